@@ -1,0 +1,28 @@
+//! The library behind the `prismatic` command: scene files, built-in scenes,
+//! backend selection and output files. Tests and benches use it too.
+
+pub mod backends;
+pub mod builtin;
+pub mod obj;
+pub mod output;
+pub mod scene_file;
+
+use scene_file::{SceneDocument, SceneFileError};
+use std::path::Path;
+
+/// Loads a scene by built-in name, or else from a file path.
+pub fn load_scene(name_or_path: &str) -> Result<SceneDocument, SceneFileError> {
+    match builtin::find(name_or_path) {
+        Some(b) => scene_file::parse(b.source, &format!("<built-in {}>", b.name), None),
+        None if !Path::new(name_or_path).exists() && !name_or_path.contains(['/', '.']) => Err(SceneFileError {
+            file: name_or_path.to_string(),
+            line: None,
+            key: String::new(),
+            reason: format!(
+                "no such built-in scene or file; built-in scenes are: {}",
+                builtin::BUILTIN_SCENES.iter().map(|s| s.name).collect::<Vec<_>>().join(", ")
+            ),
+        }),
+        None => scene_file::load(Path::new(name_or_path)),
+    }
+}

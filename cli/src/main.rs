@@ -1,0 +1,243 @@
+//! `prismatic`: render dispersion caustics, dump photon maps, list built-in scenes.
+
+use anyhow::{Context, Result};
+use clap::{Args, Parser, Subcommand};
+use prismatic_cli::backends::{self, BackendChoice};
+use prismatic_cli::builtin::{BUILTIN_SCENES, find};
+use prismatic_cli::output::{PendingFile, write_photon_csv, write_png};
+use prismatic_cli::scene_file::{SceneFileError, parse_bands, parse_estimator};
+use prismatic_core::bands::BandSpec;
+use prismatic_core::scene::Estimator;
+use prismatic_core::{PhotonMap, PreparedScene, Progress, Stage};
+use std::io::{IsTerminal, Write};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+
+#[derive(Parser)]
+#[command(name = "prismatic", version, about = "N-band dispersion photon mapping: prisms, caustics and rainbows")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene to a PNG.
+    Render {
+        #[command(flatten)]
+        job: JobArgs,
+        /// Output PNG.
+        #[arg(short, long, default_value = "prismatic.png")]
+        output: PathBuf,
+    },
+    /// Trace a scene's caustic photons and write them as CSV.
+    Photons {
+        #[command(flatten)]
+        job: JobArgs,
+        /// Output CSV.
+        #[arg(short, long, default_value = "photons.csv")]
+        output: PathBuf,
+    },
+    /// List the built-in scenes.
+    Scenes,
+    /// Print a built-in scene as TOML (a template for your own).
+    Scene {
+        /// Built-in scene name.
+        name: String,
+    },
+}
+
+#[derive(Args)]
+struct JobArgs {
+    /// A built-in scene name or a scene file.
+    #[arg(default_value = "sphere")]
+    scene: String,
+    /// Which backend does the work.
+    #[arg(long, value_enum, default_value_t = BackendChoice::Reference)]
+    backend: BackendChoice,
+    /// Band table: paper3, paper7 or a number of physically based bands.
+    #[arg(long, value_parser = parse_bands)]
+    bands: Option<BandSpec>,
+    /// White photons to emit.
+    #[arg(long)]
+    photons: Option<u32>,
+    /// Gather radius.
+    #[arg(long)]
+    radius: Option<f32>,
+    /// RNG seed.
+    #[arg(long)]
+    seed: Option<u32>,
+    /// Gather estimator: paper or density.
+    #[arg(long, value_parser = parse_estimator)]
+    estimator: Option<Estimator>,
+    /// Image width.
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height.
+    #[arg(long)]
+    height: Option<u32>,
+}
+
+/// Exit status for bad input (scene files, arguments), as clap uses for usage errors.
+const EXIT_BAD_INPUT: u8 = 2;
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            if e.downcast_ref::<SceneFileError>().is_some() {
+                ExitCode::from(EXIT_BAD_INPUT)
+            } else {
+                ExitCode::FAILURE
+            }
+        }
+    }
+}
+
+fn run(cli: Cli) -> Result<()> {
+    match cli.command {
+        Command::Scenes => {
+            for s in &BUILTIN_SCENES {
+                println!("{:<10} {}", s.name, s.description);
+            }
+            Ok(())
+        }
+        Command::Scene { name } => {
+            let s = find(&name).ok_or_else(|| SceneFileError {
+                file: name.clone(),
+                line: None,
+                key: String::new(),
+                reason: format!("no such built-in scene; try one of: {}", names()),
+            })?;
+            print!("{}", s.source);
+            Ok(())
+        }
+        Command::Render { job, output } => {
+            let out = PendingFile::create(&output)?;
+            let (name, scene) = prepare(&job)?;
+            let mut selected = backends::select(job.backend)?;
+            if let Some(note) = &selected.note {
+                eprintln!("{note}");
+            }
+            let mut bar = ProgressBar::new();
+            let t0 = Instant::now();
+            let map = selected.backend.trace_photons(&scene, &mut bar)?;
+            let t_trace = t0.elapsed();
+            let t1 = Instant::now();
+            let image = selected.backend.render(&scene, &map, &mut bar)?;
+            let t_render = t1.elapsed();
+            bar.finish();
+            if !image.is_finite() {
+                anyhow::bail!("the render produced non-finite pixels; nothing was written (please report this scene)");
+            }
+            out.commit(|w| write_png(w, &image))?;
+            println!(
+                "{name}: {} backend, {}; trace {}, render {}; wrote {} ({}x{})",
+                selected.backend.name(),
+                photon_summary(&scene, &map),
+                secs(t_trace),
+                secs(t_render),
+                output.display(),
+                image.width,
+                image.height
+            );
+            Ok(())
+        }
+        Command::Photons { job, output } => {
+            let out = PendingFile::create(&output)?;
+            let (name, scene) = prepare(&job)?;
+            let mut selected = backends::select(job.backend)?;
+            let mut bar = ProgressBar::new();
+            let t0 = Instant::now();
+            let map = selected.backend.trace_photons(&scene, &mut bar)?;
+            let t_trace = t0.elapsed();
+            bar.finish();
+            out.commit(|w| write_photon_csv(w, &map, &scene.bands))?;
+            println!(
+                "{name}: {} backend, {}; trace {}; wrote {}",
+                selected.backend.name(),
+                photon_summary(&scene, &map),
+                secs(t_trace),
+                output.display()
+            );
+            Ok(())
+        }
+    }
+}
+
+/// Loads the scene, applies the command-line overrides and validates.
+fn prepare(job: &JobArgs) -> Result<(String, PreparedScene)> {
+    let mut doc = prismatic_cli::load_scene(&job.scene)?;
+    let r = &mut doc.scene.render;
+    r.bands = job.bands.unwrap_or(r.bands);
+    r.photons = job.photons.unwrap_or(r.photons);
+    r.radius = job.radius.unwrap_or(r.radius);
+    r.seed = job.seed.unwrap_or(r.seed);
+    r.estimator = job.estimator.unwrap_or(r.estimator);
+    r.width = job.width.unwrap_or(r.width);
+    r.height = job.height.unwrap_or(r.height);
+    doc.validate()?;
+    let scene = PreparedScene::new(doc.scene.clone()).map_err(|e| doc.error(e))?;
+    Ok((job.scene.clone(), scene))
+}
+
+fn photon_summary(scene: &PreparedScene, map: &PhotonMap) -> String {
+    let s = &map.stats;
+    format!(
+        "{} photons emitted, {} met a specular surface, {} stored ({} bands {})",
+        s.emitted,
+        s.specular_paths,
+        s.stored,
+        scene.bands.len(),
+        scene.bands.spec()
+    )
+}
+
+fn secs(d: Duration) -> String {
+    format!("{:.2} s", d.as_secs_f64())
+}
+
+fn names() -> String {
+    BUILTIN_SCENES.iter().map(|s| s.name).collect::<Vec<_>>().join(", ")
+}
+
+/// A one-line progress bar on stderr, shown only when stderr is a terminal.
+struct ProgressBar {
+    enabled: bool,
+    last: Option<(Stage, u64)>,
+}
+
+impl ProgressBar {
+    fn new() -> Self {
+        ProgressBar { enabled: std::io::stderr().is_terminal(), last: None }
+    }
+
+    fn finish(&mut self) {
+        if self.enabled && self.last.is_some() {
+            eprint!("\r{:60}\r", "");
+        }
+    }
+}
+
+impl Progress for ProgressBar {
+    fn advance(&mut self, stage: Stage, done: u64, total: u64) {
+        if !self.enabled || total == 0 {
+            return;
+        }
+        let percent = done * 100 / total;
+        if self.last == Some((stage, percent)) {
+            return;
+        }
+        self.last = Some((stage, percent));
+        let label = match stage {
+            Stage::Trace => "tracing photons",
+            Stage::Render => "rendering",
+        };
+        let filled = (percent / 4) as usize;
+        eprint!("\r{label:<16} [{}{}] {percent:3}%", "#".repeat(filled), " ".repeat(25 - filled));
+        std::io::stderr().flush().context("stderr").ok();
+    }
+}

@@ -1,0 +1,75 @@
+//! Output files written atomically: a temporary file beside the target,
+//! renamed into place only when complete. The temporary file is created
+//! before any work starts, so an unwritable path fails early.
+
+use anyhow::{Context, Result};
+use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::{BandTable, Image, PhotonMap};
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+/// A file being written: a temporary file that becomes `target` on [`commit`](Self::commit).
+pub struct PendingFile {
+    target: PathBuf,
+    temp: PathBuf,
+    file: Option<File>,
+}
+
+impl PendingFile {
+    /// Creates the temporary file next to `target` (fails now if the place is not writable).
+    pub fn create(target: &Path) -> Result<Self> {
+        let name = target.file_name().with_context(|| format!("{}: not a file path", target.display()))?;
+        let dir = target.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        let temp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
+        let file = File::create(&temp).with_context(|| format!("{}: cannot write here", target.display()))?;
+        Ok(PendingFile { target: target.to_path_buf(), temp, file: Some(file) })
+    }
+
+    /// Writes the content with `write` and renames the file into place.
+    pub fn commit(mut self, write: impl FnOnce(&mut BufWriter<File>) -> Result<()>) -> Result<()> {
+        let file = self.file.take().expect("file is present until commit");
+        let mut w = BufWriter::new(file);
+        write(&mut w).with_context(|| format!("{}: write failed", self.target.display()))?;
+        w.flush()?;
+        w.get_ref().sync_all().ok();
+        std::fs::rename(&self.temp, &self.target)
+            .with_context(|| format!("{}: cannot rename into place", self.target.display()))?;
+        Ok(())
+    }
+}
+
+impl Drop for PendingFile {
+    fn drop(&mut self) {
+        if self.file.is_some() {
+            let _ = std::fs::remove_file(&self.temp);
+        }
+    }
+}
+
+/// Encodes `image` as an 8-bit sRGB PNG.
+pub fn write_png(w: &mut BufWriter<File>, image: &Image) -> Result<()> {
+    let buf = image::RgbImage::from_raw(image.width, image.height, image.to_srgb8()).context("image size mismatch")?;
+    buf.write_to(w, image::ImageFormat::Png)?;
+    Ok(())
+}
+
+/// The CSV header of `prismatic photons`.
+pub const PHOTON_CSV_HEADER: &str = "emission,band,lambda_nm,x,y,z,dir_x,dir_y,dir_z,power";
+
+/// Writes the photon map as CSV in canonical order. White (unsplit) photons
+/// have band -1 and an empty wavelength.
+pub fn write_photon_csv(w: &mut impl Write, map: &PhotonMap, bands: &BandTable) -> Result<()> {
+    writeln!(w, "{PHOTON_CSV_HEADER}")?;
+    for p in &map.photons {
+        let d = p.direction();
+        let [x, y, z] = p.position;
+        if p.band == WHITE_BAND {
+            write!(w, "{},-1,,", p.emission)?;
+        } else {
+            write!(w, "{},{},{},", p.emission, p.band, bands.band(usize::from(p.band)).lambda_nm)?;
+        }
+        writeln!(w, "{x},{y},{z},{},{},{},{}", d.x, d.y, d.z, p.flux)?;
+    }
+    Ok(())
+}

@@ -1,0 +1,632 @@
+//! The TOML scene-file format: parsing into a core [`Scene`], with errors
+//! that name the file, the key, its line and the reason.
+//!
+//! Parsing keeps the source span of every key it reads, so that problems the
+//! core's validation finds later (`object[1].radius: must be greater than 0`)
+//! are reported at the right line too. Unknown keys are errors.
+
+use crate::obj;
+use prismatic_core::bands::BandSpec;
+use prismatic_core::dispersion::{Dispersion, Glass};
+use prismatic_core::scene::{Camera, Checker, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape};
+use prismatic_core::{Scene, SceneError, Vec3};
+use std::collections::HashMap;
+use std::fmt;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+use toml::de::{DeTable, DeValue};
+
+/// A problem with a scene file.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub struct SceneFileError {
+    /// The file (or built-in scene name).
+    pub file: String,
+    /// 1-based line of the offending key, where known.
+    pub line: Option<usize>,
+    /// Dotted key (`object[2].radius`); empty for syntax errors.
+    pub key: String,
+    /// What is wrong.
+    pub reason: String,
+}
+
+impl fmt::Display for SceneFileError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.file)?;
+        if let Some(line) = self.line {
+            write!(f, ":{line}")?;
+        }
+        if !self.key.is_empty() {
+            write!(f, ": {}", self.key)?;
+        }
+        write!(f, ": {}", self.reason)
+    }
+}
+
+/// A parsed (not yet validated) scene with the source positions of its keys.
+#[derive(Clone, Debug)]
+pub struct SceneDocument {
+    /// The scene, before validation (command-line overrides go here).
+    pub scene: Scene,
+    file: String,
+    lines: HashMap<String, usize>,
+}
+
+impl SceneDocument {
+    /// Validates the scene, reporting problems at their key's line.
+    pub fn validate(&self) -> Result<(), SceneFileError> {
+        self.scene.validate().map_err(|e| self.error(e))
+    }
+
+    /// Turns a core error into a file error with the key's line.
+    pub fn error(&self, e: SceneError) -> SceneFileError {
+        // Nested keys (`ior.bands[3]`) fall back to their nearest recorded parent.
+        let mut key = e.key.as_str();
+        let line = loop {
+            if let Some(&l) = self.lines.get(key) {
+                break Some(l);
+            }
+            match key.rfind(['.', '[']) {
+                Some(i) => key = &key[..i],
+                None => break None,
+            }
+        };
+        SceneFileError { file: self.file.clone(), line, key: e.key, reason: e.reason }
+    }
+}
+
+/// Reads and parses a scene file; OBJ meshes are resolved relative to it.
+pub fn load(path: &Path) -> Result<SceneDocument, SceneFileError> {
+    let label = path.display().to_string();
+    let source = std::fs::read_to_string(path).map_err(|e| SceneFileError {
+        file: label.clone(),
+        line: None,
+        key: String::new(),
+        reason: format!("cannot read the file: {e}"),
+    })?;
+    parse(&source, &label, path.parent())
+}
+
+/// Parses scene-file text. `file` names it in errors; `base` resolves mesh paths.
+pub fn parse(source: &str, file: &str, base: Option<&Path>) -> Result<SceneDocument, SceneFileError> {
+    let mut p = Parser { source, file, base: base.map(Path::to_path_buf), lines: HashMap::new() };
+    let root = DeTable::parse(source).map_err(|e| SceneFileError {
+        file: file.to_string(),
+        line: e.span().map(|s| p.line_of(s.start)),
+        key: String::new(),
+        reason: format!("TOML syntax error: {}", e.message()),
+    })?;
+    let scene = p.scene(root.get_ref(), root.span())?;
+    Ok(SceneDocument { scene, file: file.to_string(), lines: p.lines })
+}
+
+struct Parser<'s> {
+    source: &'s str,
+    file: &'s str,
+    base: Option<PathBuf>,
+    lines: HashMap<String, usize>,
+}
+
+type Result<T, E = SceneFileError> = std::result::Result<T, E>;
+
+/// A table being read, with its key prefix.
+struct Table<'a, 'i> {
+    key: String,
+    span: Range<usize>,
+    entries: &'a DeTable<'i>,
+}
+
+impl<'s> Parser<'s> {
+    fn line_of(&self, offset: usize) -> usize {
+        self.source[..offset.min(self.source.len())].matches('\n').count() + 1
+    }
+
+    fn err(&self, key: &str, span: &Range<usize>, reason: impl Into<String>) -> SceneFileError {
+        SceneFileError {
+            file: self.file.to_string(),
+            line: Some(self.line_of(span.start)),
+            key: key.to_string(),
+            reason: reason.into(),
+        }
+    }
+
+    fn table<'a, 'i>(&self, key: &str, v: &'a Spanned<DeValue<'i>>) -> Result<Table<'a, 'i>> {
+        match v.get_ref() {
+            DeValue::Table(t) => Ok(Table { key: key.to_string(), span: v.span(), entries: t }),
+            other => Err(self.err(key, &v.span(), format!("must be a table, got {}", other.type_str()))),
+        }
+    }
+
+    /// Rejects keys of `t` not in `allowed`, and records the lines of the others.
+    fn check_keys(&mut self, t: &Table<'_, '_>, allowed: &[&str]) -> Result<()> {
+        for (k, v) in t.entries.iter() {
+            let name = k.get_ref().as_ref();
+            let key = join(&t.key, name);
+            if !allowed.contains(&name) {
+                return Err(self.err(&key, &k.span(), format!("unknown key; expected one of: {}", allowed.join(", "))));
+            }
+            let line = self.line_of(v.span().start);
+            self.lines.insert(key, line);
+        }
+        Ok(())
+    }
+
+    fn get<'a, 'i>(&self, t: &Table<'a, 'i>, field: &str) -> Option<&'a Spanned<DeValue<'i>>> {
+        t.entries.iter().find(|(k, _)| k.get_ref().as_ref() == field).map(|(_, v)| v)
+    }
+
+    fn required<'a, 'i>(&self, t: &Table<'a, 'i>, field: &str) -> Result<&'a Spanned<DeValue<'i>>> {
+        self.get(t, field).ok_or_else(|| self.err(&join(&t.key, field), &t.span, "is required but missing"))
+    }
+
+    fn number(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<f64> {
+        match v.get_ref() {
+            DeValue::Float(f) => {
+                f.as_str().parse::<f64>().map_err(|_| self.err(key, &v.span(), "is not a valid number"))
+            }
+            DeValue::Integer(i) => i64::from_str_radix(i.as_str(), i.radix())
+                .map(|i| i as f64)
+                .map_err(|_| self.err(key, &v.span(), "is not a valid number")),
+            other => Err(self.err(key, &v.span(), format!("must be a number, got {}", other.type_str()))),
+        }
+    }
+
+    fn float(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<f32> {
+        let x = self.number(key, v)?;
+        if x.is_finite() && x.abs() > f64::from(f32::MAX) {
+            return Err(self.err(key, &v.span(), format!("{x} is out of range")));
+        }
+        Ok(x as f32)
+    }
+
+    fn uint(&self, key: &str, v: &Spanned<DeValue<'_>>, max: u64) -> Result<u64> {
+        match v.get_ref() {
+            DeValue::Integer(i) => match i64::from_str_radix(i.as_str(), i.radix()) {
+                Ok(n) if n >= 0 && n as u64 <= max => Ok(n as u64),
+                Ok(n) => Err(self.err(key, &v.span(), format!("must be between 0 and {max}, got {n}"))),
+                Err(_) => Err(self.err(key, &v.span(), "is not a valid integer")),
+            },
+            other => Err(self.err(key, &v.span(), format!("must be a whole number, got {}", other.type_str()))),
+        }
+    }
+
+    fn string<'a>(&self, key: &str, v: &'a Spanned<DeValue<'_>>) -> Result<&'a str> {
+        v.get_ref()
+            .as_str()
+            .ok_or_else(|| self.err(key, &v.span(), format!("must be a string, got {}", v.get_ref().type_str())))
+    }
+
+    fn array<'a, 'i>(&self, key: &str, v: &'a Spanned<DeValue<'i>>) -> Result<&'a [Spanned<DeValue<'i>>]> {
+        match v.get_ref() {
+            DeValue::Array(a) => Ok(a),
+            other => Err(self.err(key, &v.span(), format!("must be an array, got {}", other.type_str()))),
+        }
+    }
+
+    fn floats(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Vec<f64>> {
+        self.array(key, v)?.iter().enumerate().map(|(i, x)| self.number(&format!("{key}[{i}]"), x)).collect()
+    }
+
+    fn vec3(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Vec3> {
+        let a = self.array(key, v)?;
+        if a.len() != 3 {
+            return Err(self.err(
+                key,
+                &v.span(),
+                format!("must be an array of three numbers, got {} elements", a.len()),
+            ));
+        }
+        let c: Vec<f32> =
+            a.iter().enumerate().map(|(i, x)| self.float(&format!("{key}[{i}]"), x)).collect::<Result<_>>()?;
+        Ok(Vec3::new(c[0], c[1], c[2]))
+    }
+
+    fn opt<T>(
+        &self,
+        t: &Table<'_, '_>,
+        field: &str,
+        read: impl FnOnce(&Self, &str, &Spanned<DeValue<'_>>) -> Result<T>,
+    ) -> Result<Option<T>> {
+        self.get(t, field).map(|v| read(self, &join(&t.key, field), v)).transpose()
+    }
+
+    fn req<T>(
+        &self,
+        t: &Table<'_, '_>,
+        field: &str,
+        read: impl FnOnce(&Self, &str, &Spanned<DeValue<'_>>) -> Result<T>,
+    ) -> Result<T> {
+        let v = self.required(t, field)?;
+        read(self, &join(&t.key, field), v)
+    }
+
+    fn scene(&mut self, root: &DeTable<'_>, span: Range<usize>) -> Result<Scene> {
+        let root = Table { key: String::new(), span, entries: root };
+        self.check_keys(&root, &["render", "camera", "light", "material", "object"])?;
+        let render = match self.get(&root, "render") {
+            Some(v) => {
+                let t = self.table("render", v)?;
+                self.render(&t)?
+            }
+            None => RenderSettings::default(),
+        };
+        let camera = {
+            let v = self.required(&root, "camera")?;
+            let t = self.table("camera", v)?;
+            self.camera(&t)?
+        };
+        let lights = match self.get(&root, "light") {
+            Some(v) => self
+                .array("light", v)?
+                .iter()
+                .enumerate()
+                .map(|(i, l)| {
+                    let t = self.table(&format!("light[{i}]"), l)?;
+                    self.light(&t)
+                })
+                .collect::<Result<Vec<_>>>()?,
+            None => Vec::new(),
+        };
+        let mut materials = Vec::new();
+        if let Some(v) = self.get(&root, "material") {
+            let t = self.table("material", v)?;
+            for (name, m) in t.entries.iter() {
+                let key = format!("material.{}", name.get_ref());
+                let mt = self.table(&key, m)?;
+                materials.push(Material { name: name.get_ref().to_string(), kind: self.material(&mt)? });
+            }
+        }
+        let objects = match self.get(&root, "object") {
+            Some(v) => self
+                .array("object", v)?
+                .iter()
+                .enumerate()
+                .map(|(i, o)| {
+                    let t = self.table(&format!("object[{i}]"), o)?;
+                    self.object(&t, &materials)
+                })
+                .collect::<Result<Vec<_>>>()?,
+            None => Vec::new(),
+        };
+        Ok(Scene { render, camera, lights, materials, objects })
+    }
+
+    fn render(&mut self, t: &Table<'_, '_>) -> Result<RenderSettings> {
+        self.check_keys(
+            t,
+            &[
+                "width",
+                "height",
+                "photons",
+                "radius",
+                "bands",
+                "estimator",
+                "seed",
+                "max_depth",
+                "ambient",
+                "exposure",
+                "background",
+            ],
+        )?;
+        let d = RenderSettings::default();
+        let u32_max = u64::from(u32::MAX);
+        Ok(RenderSettings {
+            width: self.opt(t, "width", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.width, |x| x as u32),
+            height: self.opt(t, "height", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.height, |x| x as u32),
+            photons: self.opt(t, "photons", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.photons, |x| x as u32),
+            radius: self.opt(t, "radius", Self::float)?.unwrap_or(d.radius),
+            bands: self.opt(t, "bands", Self::bands)?.unwrap_or(d.bands),
+            estimator: self.opt(t, "estimator", Self::estimator)?.unwrap_or(d.estimator),
+            seed: self.opt(t, "seed", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.seed, |x| x as u32),
+            max_depth: self.opt(t, "max_depth", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.max_depth, |x| x as u32),
+            ambient: self.opt(t, "ambient", Self::float)?.unwrap_or(d.ambient),
+            exposure: self.opt(t, "exposure", Self::float)?.unwrap_or(d.exposure),
+            background: self.opt(t, "background", Self::vec3)?.unwrap_or(d.background),
+        })
+    }
+
+    fn bands(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<BandSpec> {
+        match v.get_ref() {
+            DeValue::String(s) => parse_bands(s).map_err(|reason| self.err(key, &v.span(), reason)),
+            DeValue::Integer(_) => {
+                let n = self.uint(key, v, u64::from(u16::MAX))?;
+                Ok(BandSpec::Physical(n as u16))
+            }
+            other => Err(self.err(
+                key,
+                &v.span(),
+                format!("must be \"paper3\", \"paper7\" or a number of bands, got {}", other.type_str()),
+            )),
+        }
+    }
+
+    fn estimator(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Estimator> {
+        parse_estimator(self.string(key, v)?).map_err(|reason| self.err(key, &v.span(), reason))
+    }
+
+    fn camera(&mut self, t: &Table<'_, '_>) -> Result<Camera> {
+        self.check_keys(t, &["position", "look_at", "up", "fov_deg"])?;
+        Ok(Camera {
+            position: self.req(t, "position", Self::vec3)?,
+            look_at: self.req(t, "look_at", Self::vec3)?,
+            up: self.opt(t, "up", Self::vec3)?.unwrap_or(Vec3::Y),
+            fov_deg: self.opt(t, "fov_deg", Self::float)?.unwrap_or(45.0),
+        })
+    }
+
+    fn light(&mut self, t: &Table<'_, '_>) -> Result<Light> {
+        let kind = self.req(t, "kind", |p, k, v| p.string(k, v).map(str::to_string))?;
+        Ok(match kind.as_str() {
+            "spot" => {
+                self.check_keys(t, &["kind", "position", "direction", "cone_deg", "power"])?;
+                Light::Spot {
+                    position: self.req(t, "position", Self::vec3)?,
+                    direction: self.req(t, "direction", Self::vec3)?,
+                    cone_deg: self.req(t, "cone_deg", Self::float)?,
+                    power: self.req(t, "power", Self::float)?,
+                }
+            }
+            "point" => {
+                self.check_keys(t, &["kind", "position", "power"])?;
+                Light::Point {
+                    position: self.req(t, "position", Self::vec3)?,
+                    power: self.req(t, "power", Self::float)?,
+                }
+            }
+            "beam" => {
+                self.check_keys(t, &["kind", "position", "direction", "radius", "power"])?;
+                Light::Beam {
+                    position: self.req(t, "position", Self::vec3)?,
+                    direction: self.req(t, "direction", Self::vec3)?,
+                    radius: self.req(t, "radius", Self::float)?,
+                    power: self.req(t, "power", Self::float)?,
+                }
+            }
+            other => {
+                let v = self.required(t, "kind")?;
+                return Err(self.err(
+                    &join(&t.key, "kind"),
+                    &v.span(),
+                    format!("unknown light kind \"{other}\"; expected spot, point or beam"),
+                ));
+            }
+        })
+    }
+
+    fn material(&mut self, t: &Table<'_, '_>) -> Result<MaterialKind> {
+        let kind = self.req(t, "kind", |p, k, v| p.string(k, v).map(str::to_string))?;
+        Ok(match kind.as_str() {
+            "diffuse" => {
+                self.check_keys(t, &["kind", "albedo", "checker"])?;
+                let checker = match self.get(t, "checker") {
+                    Some(v) => {
+                        let ct = self.table(&join(&t.key, "checker"), v)?;
+                        self.check_keys(&ct, &["size", "albedo"])?;
+                        Some(Checker {
+                            size: self.req(&ct, "size", Self::float)?,
+                            albedo: self.req(&ct, "albedo", Self::vec3)?,
+                        })
+                    }
+                    None => None,
+                };
+                MaterialKind::Diffuse {
+                    albedo: self.opt(t, "albedo", Self::vec3)?.unwrap_or(Vec3::splat(0.8)),
+                    checker,
+                }
+            }
+            "dielectric" => {
+                self.check_keys(t, &["kind", "ior"])?;
+                let dispersion = self.req(t, "ior", |p, k, v| p.ior(k, v))?;
+                MaterialKind::Dielectric { dispersion }
+            }
+            "mirror" => {
+                self.check_keys(t, &["kind"])?;
+                MaterialKind::Mirror
+            }
+            other => {
+                let v = self.required(t, "kind")?;
+                return Err(self.err(
+                    &join(&t.key, "kind"),
+                    &v.span(),
+                    format!("unknown material kind \"{other}\"; expected diffuse, dielectric or mirror"),
+                ));
+            }
+        })
+    }
+
+    fn ior(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Dispersion> {
+        match v.get_ref() {
+            DeValue::Float(_) | DeValue::Integer(_) => Ok(Dispersion::Constant(self.float(key, v)?)),
+            DeValue::String(name) => Glass::from_name(name).map(Glass::dispersion).ok_or_else(|| {
+                let names: Vec<&str> = Glass::ALL.iter().map(|g| g.name()).collect();
+                self.err(key, &v.span(), format!("unknown glass \"{name}\"; named glasses are {}", names.join(", ")))
+            }),
+            DeValue::Table(t) => {
+                let models = "cauchy = [A, B], sellmeier = { b = [..], c = [..] }, abbe = [nd, vd] or bands = [n1, ..]";
+                let mut entries = t.iter();
+                let (Some((model, value)), None) = (entries.next(), entries.next()) else {
+                    return Err(self.err(key, &v.span(), format!("needs exactly one model: {models}")));
+                };
+                let mkey = join(key, model.get_ref());
+                let pair = |p: &Self| -> Result<(f32, f32)> {
+                    let x = p.floats(&mkey, value)?;
+                    match x[..] {
+                        [a, b] => Ok((a as f32, b as f32)),
+                        _ => Err(p.err(
+                            &mkey,
+                            &value.span(),
+                            format!("must be an array of two numbers, got {}", x.len()),
+                        )),
+                    }
+                };
+                match model.get_ref().as_ref() {
+                    "cauchy" => pair(self).map(|(a, b)| Dispersion::Cauchy { a, b }),
+                    "abbe" => pair(self).map(|(nd, vd)| Dispersion::Abbe { nd, vd }),
+                    "bands" => {
+                        Ok(Dispersion::PerBand(self.floats(&mkey, value)?.into_iter().map(|x| x as f32).collect()))
+                    }
+                    "sellmeier" => {
+                        let st = self.table(&mkey, value)?;
+                        for (k, _) in st.entries.iter() {
+                            if !["b", "c"].contains(&k.get_ref().as_ref()) {
+                                return Err(self.err(
+                                    &join(&mkey, k.get_ref()),
+                                    &k.span(),
+                                    "unknown key; expected b or c",
+                                ));
+                            }
+                        }
+                        Ok(Dispersion::Sellmeier {
+                            b: self.req(&st, "b", Self::floats)?,
+                            c: self.req(&st, "c", Self::floats)?,
+                        })
+                    }
+                    other => Err(self.err(
+                        &mkey,
+                        &model.span(),
+                        format!("unknown dispersion model \"{other}\"; expected {models}"),
+                    )),
+                }
+            }
+            other => Err(self.err(
+                key,
+                &v.span(),
+                format!("must be a number, a glass name or a model table, got {}", other.type_str()),
+            )),
+        }
+    }
+
+    fn object(&mut self, t: &Table<'_, '_>, materials: &[Material]) -> Result<Object> {
+        let shape_name = self.req(t, "shape", |p, k, v| p.string(k, v).map(str::to_string))?;
+        let shape = match shape_name.as_str() {
+            "sphere" => {
+                self.check_keys(t, &["shape", "material", "center", "radius"])?;
+                Shape::Sphere {
+                    center: self.req(t, "center", Self::vec3)?,
+                    radius: self.req(t, "radius", Self::float)?,
+                }
+            }
+            "plane" => {
+                self.check_keys(t, &["shape", "material", "point", "normal"])?;
+                Shape::Plane { point: self.req(t, "point", Self::vec3)?, normal: self.req(t, "normal", Self::vec3)? }
+            }
+            "disk" => {
+                self.check_keys(t, &["shape", "material", "center", "normal", "radius", "inner_radius"])?;
+                Shape::Disk {
+                    center: self.req(t, "center", Self::vec3)?,
+                    normal: self.req(t, "normal", Self::vec3)?,
+                    radius: self.req(t, "radius", Self::float)?,
+                    inner_radius: self.opt(t, "inner_radius", Self::float)?.unwrap_or(0.0),
+                }
+            }
+            "prism" => {
+                self.check_keys(t, &["shape", "material", "vertices", "extrude"])?;
+                let key = join(&t.key, "vertices");
+                let v = self.required(t, "vertices")?;
+                let corners = self.array(&key, v)?;
+                if corners.len() != 3 {
+                    return Err(self.err(&key, &v.span(), format!("must list three corners, got {}", corners.len())));
+                }
+                let mut vertices = [Vec3::ZERO; 3];
+                for (i, c) in corners.iter().enumerate() {
+                    vertices[i] = self.vec3(&format!("{key}[{i}]"), c)?;
+                }
+                Shape::Prism { vertices, extrude: self.req(t, "extrude", Self::vec3)? }
+            }
+            "mesh" => {
+                self.check_keys(t, &["shape", "material", "positions", "triangles", "path"])?;
+                self.mesh(t)?
+            }
+            other => {
+                let v = self.required(t, "shape")?;
+                return Err(self.err(
+                    &join(&t.key, "shape"),
+                    &v.span(),
+                    format!("unknown shape \"{other}\"; expected sphere, plane, disk, prism or mesh"),
+                ));
+            }
+        };
+        let key = join(&t.key, "material");
+        let v = self.required(t, "material")?;
+        let name = self.string(&key, v)?;
+        let material = materials.iter().position(|m| m.name == name).ok_or_else(|| {
+            let known: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
+            self.err(
+                &key,
+                &v.span(),
+                format!(
+                    "unknown material \"{name}\"; defined: {}",
+                    if known.is_empty() { "none".into() } else { known.join(", ") }
+                ),
+            )
+        })?;
+        Ok(Object { shape, material })
+    }
+
+    fn mesh(&self, t: &Table<'_, '_>) -> Result<Shape> {
+        if let Some(v) = self.get(t, "path") {
+            let key = join(&t.key, "path");
+            if self.get(t, "positions").is_some() || self.get(t, "triangles").is_some() {
+                return Err(self.err(&key, &v.span(), "give either path or positions + triangles, not both"));
+            }
+            let rel = self.string(&key, v)?;
+            let path = self.base.as_deref().map_or_else(|| PathBuf::from(rel), |b| b.join(rel));
+            let (positions, triangles) = obj::load(&path).map_err(|e| self.err(&key, &v.span(), e))?;
+            return Ok(Shape::Mesh { positions, triangles });
+        }
+        let positions = {
+            let key = join(&t.key, "positions");
+            let v = self.required(t, "positions")?;
+            self.array(&key, v)?
+                .iter()
+                .enumerate()
+                .map(|(i, p)| self.vec3(&format!("{key}[{i}]"), p))
+                .collect::<Result<Vec<_>>>()?
+        };
+        let key = join(&t.key, "triangles");
+        let v = self.required(t, "triangles")?;
+        let triangles = self
+            .array(&key, v)?
+            .iter()
+            .enumerate()
+            .map(|(i, tri)| {
+                let k = format!("{key}[{i}]");
+                let idx = self.array(&k, tri)?;
+                if idx.len() != 3 {
+                    return Err(self.err(&k, &tri.span(), format!("must be three vertex indices, got {}", idx.len())));
+                }
+                let mut out = [0u32; 3];
+                for (j, x) in idx.iter().enumerate() {
+                    out[j] = self.uint(&format!("{k}[{j}]"), x, u64::from(u32::MAX))? as u32;
+                }
+                Ok(out)
+            })
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Shape::Mesh { positions, triangles })
+    }
+}
+
+fn join(prefix: &str, field: &str) -> String {
+    if prefix.is_empty() { field.to_string() } else { format!("{prefix}.{field}") }
+}
+
+/// Parses a band table name: `paper3`, `paper7` or a number of bands.
+pub fn parse_bands(s: &str) -> std::result::Result<BandSpec, String> {
+    match s {
+        "paper3" => Ok(BandSpec::Paper3),
+        "paper7" => Ok(BandSpec::Paper7),
+        _ => s
+            .parse::<u16>()
+            .map(BandSpec::Physical)
+            .map_err(|_| format!("must be \"paper3\", \"paper7\" or a number of bands, got \"{s}\"")),
+    }
+}
+
+/// Parses an estimator name.
+pub fn parse_estimator(s: &str) -> std::result::Result<Estimator, String> {
+    match s {
+        "paper" => Ok(Estimator::Paper),
+        "density" => Ok(Estimator::Density),
+        _ => Err(format!("unknown estimator \"{s}\"; expected paper or density")),
+    }
+}

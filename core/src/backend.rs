@@ -1,0 +1,121 @@
+//! The `Backend` trait every implementation provides, its error type, and
+//! the scalar reference backend.
+
+use crate::image::Image;
+use crate::photon::PhotonMap;
+use crate::prepared::PreparedScene;
+use alloc::string::String;
+
+/// Why a backend could not do its work.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum BackendError {
+    /// The backend is not available in this build.
+    #[error("the {backend} backend is not built yet; use {hint}")]
+    NotBuilt {
+        /// Its name.
+        backend: &'static str,
+        /// What to use instead.
+        hint: &'static str,
+    },
+    /// No device could be found.
+    #[error("no {what} found: {detail}")]
+    NoDevice {
+        /// What kind of device.
+        what: &'static str,
+        /// Details and advice.
+        detail: String,
+    },
+    /// The device failed while working.
+    #[error("device error: {0}")]
+    Device(String),
+    /// The work does not fit in memory.
+    #[error("out of memory: {0}")]
+    OutOfMemory(String),
+}
+
+/// A stage of the pipeline, for progress reports.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// Emitting and tracing photons.
+    Trace,
+    /// Building the grid, ray tracing and gathering.
+    Render,
+}
+
+/// Receives progress reports from long work.
+pub trait Progress {
+    /// `done` of `total` units of `stage` are finished.
+    fn advance(&mut self, stage: Stage, done: u64, total: u64);
+}
+
+/// Progress that goes nowhere.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoProgress;
+
+impl Progress for NoProgress {
+    fn advance(&mut self, _: Stage, _: u64, _: u64) {}
+}
+
+/// A photon-mapping backend: traces the caustic photon map and renders with it.
+///
+/// Implementations must give the same photon map as the reference (same
+/// (emission, band) keys, positions and flux within the tolerances of the
+/// parity tests) and return it in canonical order.
+pub trait Backend {
+    /// Short name (`reference`, `cpu`, `gpu`).
+    fn name(&self) -> &'static str;
+
+    /// Traces the scene's white photons into the dispersion caustic map.
+    fn trace_photons(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> Result<PhotonMap, BackendError>;
+
+    /// Ray traces the image, gathering caustics from `photons`.
+    fn render(
+        &mut self,
+        scene: &PreparedScene,
+        photons: &PhotonMap,
+        progress: &mut dyn Progress,
+    ) -> Result<Image, BackendError>;
+}
+
+/// The scalar reference, single-threaded: the definition of right.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ReferenceBackend;
+
+impl Backend for ReferenceBackend {
+    fn name(&self) -> &'static str {
+        "reference"
+    }
+
+    fn trace_photons(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> Result<PhotonMap, BackendError> {
+        let total = scene.scene.render.photons;
+        let chunk = (total / 100).max(1024);
+        let mut map = PhotonMap::default();
+        let mut start = 0;
+        while start < total {
+            let end = start.saturating_add(chunk).min(total);
+            crate::trace::trace_range(scene, start..end, &mut map.photons, &mut map.stats);
+            progress.advance(Stage::Trace, u64::from(end), u64::from(total));
+            start = end;
+        }
+        Ok(map)
+    }
+
+    fn render(
+        &mut self,
+        scene: &PreparedScene,
+        photons: &PhotonMap,
+        progress: &mut dyn Progress,
+    ) -> Result<Image, BackendError> {
+        let grid = crate::grid::PhotonGrid::build(&photons.photons, scene.scene.render.radius);
+        let ctx = crate::render::RenderContext::new(scene, &photons.photons, &grid);
+        let (w, h) = (scene.scene.render.width, scene.scene.render.height);
+        let mut image = Image::new(w, h);
+        for (y, row) in image.pixels.chunks_mut(w as usize).enumerate() {
+            for (x, px) in row.iter_mut().enumerate() {
+                *px = ctx.pixel(x as u32, y as u32);
+            }
+            progress.advance(Stage::Render, y as u64 + 1, u64::from(h));
+        }
+        Ok(image)
+    }
+}

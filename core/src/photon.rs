@@ -1,0 +1,156 @@
+//! The stored photon (32 bytes, GPU-ready), the photon map and trace statistics.
+
+use alloc::vec::Vec;
+use bytemuck::{Pod, Zeroable};
+use glam::{Vec2, Vec3};
+
+/// Band id of a photon that has not been split (white light, all bands).
+pub const WHITE_BAND: u16 = u16::MAX;
+
+/// A caustic photon stored on a diffuse surface.
+///
+/// `#[repr(C)]` and `Pod` so that it can be copied to and from GPU buffers
+/// as is; its WGSL twin is `Photon` in the GPU backend's shaders.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct Photon {
+    /// Where it landed.
+    pub position: [f32; 3],
+    /// Its flux in W (a band photon carries 1/N of its white photon's flux).
+    pub flux: f32,
+    /// Direction of travel when stored, octahedron-encoded (see [`oct_encode`]).
+    pub direction_oct: [f32; 2],
+    /// Index of the emitted white photon this photon came from.
+    pub emission: u32,
+    /// Band id, or [`WHITE_BAND`].
+    pub band: u16,
+    /// Number of specular interactions on its path.
+    pub bounces: u16,
+}
+
+const _: () = assert!(core::mem::size_of::<Photon>() == 32);
+
+impl Photon {
+    /// Position as a vector.
+    #[inline]
+    pub fn pos(&self) -> Vec3 {
+        Vec3::from(self.position)
+    }
+
+    /// Unit direction of travel when stored.
+    #[inline]
+    pub fn direction(&self) -> Vec3 {
+        oct_decode(Vec2::from(self.direction_oct))
+    }
+
+    /// The canonical sort key: (emission, band).
+    #[inline]
+    pub fn key(&self) -> (u32, u16) {
+        (self.emission, self.band)
+    }
+}
+
+/// Octahedral encoding of a unit vector into [-1, 1]² (Cigolle et al. 2014).
+#[inline]
+pub fn oct_encode(n: Vec3) -> Vec2 {
+    let n = n / (n.x.abs() + n.y.abs() + n.z.abs());
+    let p = Vec2::new(n.x, n.y);
+    if n.z >= 0.0 {
+        p
+    } else {
+        Vec2::new((1.0 - p.y.abs()) * sign_not_zero(p.x), (1.0 - p.x.abs()) * sign_not_zero(p.y))
+    }
+}
+
+/// Inverse of [`oct_encode`].
+#[inline]
+pub fn oct_decode(e: Vec2) -> Vec3 {
+    let z = 1.0 - e.x.abs() - e.y.abs();
+    let (x, y) = if z < 0.0 {
+        ((1.0 - e.y.abs()) * sign_not_zero(e.x), (1.0 - e.x.abs()) * sign_not_zero(e.y))
+    } else {
+        (e.x, e.y)
+    };
+    Vec3::new(x, y, z).normalize()
+}
+
+#[inline]
+fn sign_not_zero(x: f32) -> f32 {
+    if x >= 0.0 { 1.0 } else { -1.0 }
+}
+
+/// What a photon pass did, for reports and for energy bookkeeping.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TraceStats {
+    /// White photons emitted.
+    pub emitted: u64,
+    /// Paths traced: one per emitted photon, plus N − 1 per split.
+    pub paths: u64,
+    /// Ray segments traced (intersection queries that hit something or escaped).
+    pub segments: u64,
+    /// Photons that took part in at least one specular interaction.
+    pub specular_paths: u64,
+    /// Photons stored.
+    pub stored: u64,
+    /// Flux emitted (W).
+    pub flux_emitted: f64,
+    /// Flux of the stored photons.
+    pub flux_stored: f64,
+    /// Flux that left the scene.
+    pub flux_escaped: f64,
+    /// Flux absorbed at diffuse surfaces reached directly from a light (not caustic).
+    pub flux_direct: f64,
+    /// Flux of paths ended by the depth limit.
+    pub flux_depth_limited: f64,
+}
+
+impl TraceStats {
+    /// Adds another pass's statistics (for backends that trace in chunks).
+    pub fn merge(&mut self, o: &TraceStats) {
+        self.emitted += o.emitted;
+        self.paths += o.paths;
+        self.segments += o.segments;
+        self.specular_paths += o.specular_paths;
+        self.stored += o.stored;
+        self.flux_emitted += o.flux_emitted;
+        self.flux_stored += o.flux_stored;
+        self.flux_escaped += o.flux_escaped;
+        self.flux_direct += o.flux_direct;
+        self.flux_depth_limited += o.flux_depth_limited;
+    }
+}
+
+/// The dispersion caustic map: stored photons in canonical (emission, band) order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PhotonMap {
+    /// The photons.
+    pub photons: Vec<Photon>,
+    /// What the pass did.
+    pub stats: TraceStats,
+}
+
+impl PhotonMap {
+    /// Puts the photons in canonical (emission, band) order.
+    pub fn sort_canonical(&mut self) {
+        self.photons.sort_unstable_by_key(Photon::key);
+    }
+
+    /// True when the photons are in canonical order.
+    pub fn is_canonical(&self) -> bool {
+        self.photons.windows(2).all(|w| w[0].key() < w[1].key())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn octahedral_round_trip() {
+        for d in [Vec3::X, -Vec3::Y, Vec3::Z, -Vec3::Z, Vec3::new(0.3, -0.5, -0.8), Vec3::new(-1.0, 2.0, 0.1)] {
+            let d = d.normalize();
+            let back = oct_decode(oct_encode(d));
+            assert!((back - d).length() < 1e-6, "{d} -> {back}");
+        }
+    }
+}

@@ -1,0 +1,195 @@
+//! A validated scene with everything derived that tracing and rendering need:
+//! the band table, each object's primitive and optics (per-band indices of
+//! refraction), and the light-selection distribution.
+
+use crate::bands::BandTable;
+use crate::geometry::{Primitive, Ray, mesh_triangles, prism_faces};
+use crate::photon::WHITE_BAND;
+use crate::scene::{Checker, MaterialKind, Scene, SceneError, Shape};
+use crate::tolerance;
+use alloc::vec::Vec;
+use glam::Vec3;
+
+/// How an object's surface scatters light, ready for tracing.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Surface {
+    /// Lambertian.
+    Diffuse {
+        /// Albedo.
+        albedo: Vec3,
+        /// Optional checker.
+        checker: Option<Checker>,
+    },
+    /// Perfect mirror.
+    Mirror,
+    /// Dielectric with its indices per band.
+    Dielectric(DielectricOptics),
+}
+
+/// A dielectric's indices of refraction for the render's band table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DielectricOptics {
+    /// n for each band.
+    pub band_ior: Vec<f32>,
+    /// `Some(n)` when every band has the same index: white light crosses
+    /// without splitting. `None` for a dispersive glass.
+    pub white_ior: Option<f32>,
+}
+
+impl DielectricOptics {
+    /// The index for `band` (a white photon only asks a non-dispersive glass).
+    #[inline]
+    pub fn ior(&self, band: u16) -> f32 {
+        if band == WHITE_BAND {
+            self.white_ior.unwrap_or(self.band_ior[self.band_ior.len() / 2])
+        } else {
+            self.band_ior[usize::from(band)]
+        }
+    }
+
+    /// True when white light splits into bands at this glass.
+    #[inline]
+    pub fn is_dispersive(&self) -> bool {
+        self.white_ior.is_none()
+    }
+}
+
+impl Surface {
+    /// Albedo at world point `p` with unit normal `n` (checker evaluated a
+    /// hair below the surface so that planes through a cell border do not flicker).
+    #[inline]
+    pub fn albedo_at(&self, p: Vec3, n: Vec3) -> Vec3 {
+        match self {
+            Surface::Diffuse { albedo, checker: None } => *albedo,
+            Surface::Diffuse { albedo, checker: Some(ch) } => {
+                let q = (p - n * (ch.size * 1e-3)) / ch.size;
+                let parity = (crate::math::floor(q.x) + crate::math::floor(q.y) + crate::math::floor(q.z)) as i64;
+                if parity.rem_euclid(2) == 0 { *albedo } else { ch.albedo }
+            }
+            _ => Vec3::ZERO,
+        }
+    }
+}
+
+/// A hit with the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Ray parameter.
+    pub t: f32,
+    /// World point.
+    pub point: Vec3,
+    /// Outward geometric unit normal.
+    pub normal: Vec3,
+    /// Index of the object hit.
+    pub object: usize,
+}
+
+/// A validated scene plus the tables derived from it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreparedScene {
+    /// The scene as given.
+    pub scene: Scene,
+    /// The render's band table.
+    pub bands: BandTable,
+    /// One primitive per object.
+    pub primitives: Vec<Primitive>,
+    /// One surface per object.
+    pub surfaces: Vec<Surface>,
+    /// Cumulative light-selection probabilities (by power).
+    pub light_cdf: Vec<f32>,
+    /// Σ light power.
+    pub total_power: f32,
+}
+
+impl PreparedScene {
+    /// Validates `scene` and derives the tables.
+    pub fn new(scene: Scene) -> Result<Self, SceneError> {
+        scene.validate()?;
+        let bands = BandTable::new(scene.render.bands);
+        let primitives = scene.objects.iter().map(|o| primitive(&o.shape)).collect();
+        let surfaces = scene
+            .objects
+            .iter()
+            .map(|o| match &scene.materials[o.material].kind {
+                MaterialKind::Diffuse { albedo, checker } => {
+                    Surface::Diffuse { albedo: *albedo, checker: checker.clone() }
+                }
+                MaterialKind::Mirror => Surface::Mirror,
+                MaterialKind::Dielectric { dispersion } => {
+                    let band_ior: Vec<f32> = (0..bands.len()).map(|b| dispersion.ior_for_band(&bands, b)).collect();
+                    let same = band_ior.iter().all(|&n| n == band_ior[0]);
+                    let white_ior = match dispersion {
+                        crate::Dispersion::Constant(n) => Some(*n),
+                        _ if same => Some(band_ior[0]),
+                        _ => None,
+                    };
+                    Surface::Dielectric(DielectricOptics { band_ior, white_ior })
+                }
+            })
+            .collect();
+        let total_power: f32 = scene.lights.iter().map(|l| l.power()).sum();
+        let mut acc = 0.0;
+        let mut light_cdf: Vec<f32> = scene
+            .lights
+            .iter()
+            .map(|l| {
+                acc += l.power();
+                acc / total_power
+            })
+            .collect();
+        if let Some(last) = light_cdf.last_mut() {
+            *last = 1.0;
+        }
+        Ok(PreparedScene { scene, bands, primitives, surfaces, light_cdf, total_power })
+    }
+
+    /// The nearest hit along `ray` closer than `t_max`. Rays start off their
+    /// surface (see [`offset_origin`]), so any positive distance counts.
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let mut limit = t_max;
+        for (object, prim) in self.primitives.iter().enumerate() {
+            if let Some(h) = prim.intersect(ray, 0.0, limit) {
+                limit = h.t;
+                best = Some(Hit { t: h.t, point: ray.at(h.t), normal: h.normal, object });
+            }
+        }
+        best
+    }
+
+    /// True when something blocks the segment from `origin` along unit `dir` before `dist`.
+    pub fn occluded(&self, origin: Vec3, dir: Vec3, dist: f32) -> bool {
+        let ray = Ray { origin, direction: dir };
+        self.primitives.iter().any(|p| p.intersect(&ray, 0.0, dist).is_some())
+    }
+}
+
+fn primitive(shape: &Shape) -> Primitive {
+    match shape {
+        Shape::Sphere { center, radius } => Primitive::Sphere { center: *center, radius: *radius },
+        Shape::Plane { point, normal } => Primitive::Plane { point: *point, normal: normal.normalize() },
+        Shape::Disk { center, normal, radius, inner_radius } => Primitive::Disk {
+            center: *center,
+            normal: normal.normalize(),
+            radius2: radius * radius,
+            inner_radius2: inner_radius * inner_radius,
+        },
+        Shape::Prism { vertices, extrude } => Primitive::Convex { faces: prism_faces(*vertices, *extrude) },
+        Shape::Mesh { positions, triangles } => {
+            let tris = mesh_triangles(positions, triangles);
+            let (lo, hi) =
+                positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
+            let center = (lo + hi) * 0.5;
+            let radius = positions.iter().map(|p| (*p - center).length()).fold(0.0f32, f32::max) * 1.0001 + 1e-6;
+            Primitive::Mesh { triangles: tris, bound_center: center, bound_radius: radius }
+        }
+    }
+}
+
+/// The origin of a ray leaving surface point `p` (normal `n`, either side)
+/// in direction `dir`: pushed off the surface to the side `dir` goes.
+#[inline]
+pub fn offset_origin(p: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
+    let eps = tolerance::surface_offset(p);
+    if dir.dot(n) >= 0.0 { p + n * eps } else { p - n * eps }
+}

@@ -1,0 +1,185 @@
+//! The scalar reference renderer: the specification of every backend's `render`.
+//!
+//! One primary ray per pixel centre. At a diffuse hit the pixel gets
+//! `albedo/π · (E_direct + E_caustic) + albedo · ambient`, where E_direct is
+//! the ray-traced irradiance from each light (with shadow rays; glass casts
+//! a full shadow because the light it passes on arrives as caustic photons)
+//! and E_caustic is the gathered photon irradiance ([`crate::gather`]): the
+//! caustic is added to the ray-traced colour, not mixed with it, which is
+//! the physically consistent blend (the two estimate disjoint light paths).
+//! Mirrors reflect; dielectrics trace both the Fresnel-weighted reflection
+//! and the refraction, to `max_depth`, dropping branches whose weight falls
+//! below [`MIN_VIEW_WEIGHT`]. At the first dispersive glass a view ray splits
+//! into one ray per band, each weighted by the band's RGB weight C_i.
+
+use crate::camera::PinholeCamera;
+use crate::gather::{GatherQuery, gather};
+use crate::geometry::Ray;
+use crate::grid::PhotonGrid;
+use crate::image::Image;
+use crate::math::{cos, radians};
+use crate::optics::{fresnel, interface, reflect, refract};
+use crate::photon::{Photon, PhotonMap, WHITE_BAND};
+use crate::prepared::{Hit, PreparedScene, Surface, offset_origin};
+use crate::scene::Light;
+use crate::tolerance::MIN_VIEW_WEIGHT;
+use core::f32::consts::PI;
+use glam::Vec3;
+
+/// Everything a pixel needs: the scene, the photons and their grid, the camera.
+pub struct RenderContext<'a> {
+    /// The scene.
+    pub scene: &'a PreparedScene,
+    /// The caustic photons.
+    pub photons: &'a [Photon],
+    /// Their grid.
+    pub grid: &'a PhotonGrid,
+    /// The camera.
+    pub camera: PinholeCamera,
+}
+
+impl<'a> RenderContext<'a> {
+    /// Sets up rendering of `scene` with photons already gridded.
+    pub fn new(scene: &'a PreparedScene, photons: &'a [Photon], grid: &'a PhotonGrid) -> Self {
+        let r = &scene.scene.render;
+        RenderContext { scene, photons, grid, camera: PinholeCamera::new(&scene.scene.camera, r.width, r.height) }
+    }
+
+    /// Linear RGB of pixel (x, y), exposure applied.
+    pub fn pixel(&self, x: u32, y: u32) -> Vec3 {
+        self.radiance(&self.camera.ray(x, y), WHITE_BAND, 0, 1.0) * self.scene.scene.render.exposure
+    }
+
+    /// Radiance arriving along `ray` for `band` (or all bands), `depth`
+    /// specular interactions deep, with path weight `weight`.
+    pub fn radiance(&self, ray: &Ray, band: u16, depth: u32, weight: f32) -> Vec3 {
+        let settings = &self.scene.scene.render;
+        let Some(hit) = self.scene.intersect(ray, f32::INFINITY) else {
+            return settings.background;
+        };
+        match &self.scene.surfaces[hit.object] {
+            Surface::Diffuse { .. } => self.shade_diffuse(ray, &hit),
+            _ if depth >= settings.max_depth => Vec3::ZERO,
+            Surface::Mirror => {
+                let d = reflect(ray.direction, hit.normal);
+                self.radiance(
+                    &Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d },
+                    band,
+                    depth + 1,
+                    weight,
+                )
+            }
+            Surface::Dielectric(glass) if band == WHITE_BAND && glass.is_dispersive() => self
+                .scene
+                .bands
+                .bands()
+                .iter()
+                .enumerate()
+                .map(|(b, info)| {
+                    info.weight * self.through_dielectric(ray, &hit, glass.ior(b as u16), b as u16, depth, weight)
+                })
+                .sum(),
+            Surface::Dielectric(glass) => self.through_dielectric(ray, &hit, glass.ior(band), band, depth, weight),
+        }
+    }
+
+    /// Fresnel-weighted reflection plus refraction at a dielectric hit.
+    fn through_dielectric(&self, ray: &Ray, hit: &Hit, ior: f32, band: u16, depth: u32, weight: f32) -> Vec3 {
+        let (n, n1, n2) = interface(ray.direction, hit.normal, ior);
+        let cos_i = -ray.direction.dot(n);
+        let r = fresnel(cos_i, n1, n2);
+        let mut sum = Vec3::ZERO;
+        if r * weight > MIN_VIEW_WEIGHT {
+            let d = reflect(ray.direction, n);
+            let reflected = Ray { origin: offset_origin(hit.point, n, d), direction: d };
+            sum += self.radiance(&reflected, band, depth + 1, weight * r) * r;
+        }
+        let t = 1.0 - r;
+        if t * weight > MIN_VIEW_WEIGHT
+            && let Some(d) = refract(ray.direction, n, n1, n2)
+        {
+            let refracted = Ray { origin: offset_origin(hit.point, n, d), direction: d };
+            sum += self.radiance(&refracted, band, depth + 1, weight * t) * t;
+        }
+        sum
+    }
+
+    /// Radiance leaving a diffuse hit toward the viewer.
+    fn shade_diffuse(&self, ray: &Ray, hit: &Hit) -> Vec3 {
+        let n = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
+        let surface = &self.scene.surfaces[hit.object];
+        let albedo = surface.albedo_at(hit.point, n);
+        let settings = &self.scene.scene.render;
+        let direct: f32 = self.scene.scene.lights.iter().map(|l| self.direct_irradiance(l, hit.point, n)).sum();
+        let query = GatherQuery { point: hit.point, normal: n, radius: settings.radius };
+        let caustic = if self.photons.is_empty() {
+            Vec3::ZERO
+        } else {
+            gather(self.grid, self.photons, &self.scene.bands, settings.estimator, &query)
+        };
+        albedo * (caustic + Vec3::splat(direct)) * (1.0 / PI) + albedo * settings.ambient
+    }
+
+    /// Irradiance from `light` at `p` (unit normal `n`), zero when in shadow.
+    pub fn direct_irradiance(&self, light: &Light, p: Vec3, n: Vec3) -> f32 {
+        match light {
+            Light::Spot { position, direction, cone_deg, power } => {
+                let cos_max = cos(radians(*cone_deg));
+                let Some((l, dist, cos_s)) = self.visible_point(*position, p, n) else {
+                    return 0.0;
+                };
+                if (-l).dot(direction.normalize()) < cos_max {
+                    return 0.0;
+                }
+                let intensity = power / (2.0 * PI * (1.0 - cos_max));
+                intensity * cos_s / (dist * dist)
+            }
+            Light::Point { position, power } => {
+                let Some((_, dist, cos_s)) = self.visible_point(*position, p, n) else {
+                    return 0.0;
+                };
+                power / (4.0 * PI) * cos_s / (dist * dist)
+            }
+            Light::Beam { position, direction, radius, power } => {
+                let axis = direction.normalize();
+                let along = (p - *position).dot(axis);
+                let cos_s = -axis.dot(n);
+                if along <= 0.0 || cos_s <= 0.0 || (p - *position - axis * along).length() > *radius {
+                    return 0.0;
+                }
+                if self.scene.occluded(offset_origin(p, n, -axis), -axis, along) {
+                    return 0.0;
+                }
+                power / (PI * radius * radius) * cos_s
+            }
+        }
+    }
+
+    /// Direction to a point light, its distance and the surface cosine, or
+    /// `None` when the light is behind the surface or blocked.
+    fn visible_point(&self, light: Vec3, p: Vec3, n: Vec3) -> Option<(Vec3, f32, f32)> {
+        let to = light - p;
+        let dist = to.length();
+        let l = to / dist;
+        let cos_s = l.dot(n);
+        if cos_s <= 0.0 {
+            return None;
+        }
+        let origin = offset_origin(p, n, l);
+        (!self.scene.occluded(origin, l, (light - origin).length())).then_some((l, dist, cos_s))
+    }
+}
+
+/// Renders the whole image with the scalar reference: grid build, then every pixel.
+pub fn render(scene: &PreparedScene, map: &PhotonMap) -> Image {
+    let grid = PhotonGrid::build(&map.photons, scene.scene.render.radius);
+    let ctx = RenderContext::new(scene, &map.photons, &grid);
+    let (w, h) = (scene.scene.render.width, scene.scene.render.height);
+    let mut image = Image::new(w, h);
+    for y in 0..h {
+        for x in 0..w {
+            image.pixels[(y * w + x) as usize] = ctx.pixel(x, y);
+        }
+    }
+    image
+}

@@ -1,0 +1,140 @@
+//! The scalar reference photon tracer: the specification every backend's
+//! `trace_photons` is compared with.
+//!
+//! White photons leave the lights; at the first dispersive dielectric a
+//! white photon splits into one photon per band (each with 1/N of the flux)
+//! and each band continues with its own index of refraction; non-dispersive
+//! glass and mirrors never split. A photon that reaches a diffuse surface
+//! after at least one specular interaction is stored (the dispersion caustic
+//! map, L S+ D paths); one that reaches it directly is direct light, which
+//! the renderer ray traces instead. Fresnel chooses reflection or refraction
+//! with a counter-based random number, so the result is a pure function of
+//! the scene and the seed.
+
+use crate::emit::emit;
+use crate::geometry::Ray;
+use crate::optics::{fresnel, interface, reflect, refract};
+use crate::photon::{Photon, PhotonMap, TraceStats, WHITE_BAND, oct_encode};
+use crate::prepared::{Hit, PreparedScene, Surface, offset_origin};
+use crate::rng::{dim, random_f32};
+use alloc::vec::Vec;
+
+/// Traces every white photon of the scene's render settings.
+pub fn trace_photons(scene: &PreparedScene) -> PhotonMap {
+    let mut map = PhotonMap::default();
+    trace_range(scene, 0..scene.scene.render.photons, &mut map.photons, &mut map.stats);
+    map
+}
+
+/// Flux of one emitted white photon.
+pub fn photon_flux(scene: &PreparedScene) -> f32 {
+    match scene.scene.render.photons {
+        0 => 0.0,
+        n => scene.total_power / n as f32,
+    }
+}
+
+/// Traces white photons `range` (emission indices), appending stored photons
+/// in canonical order. Backends use it for chunks and scalar tails.
+pub fn trace_range(scene: &PreparedScene, range: core::ops::Range<u32>, out: &mut Vec<Photon>, stats: &mut TraceStats) {
+    let flux = photon_flux(scene);
+    for index in range {
+        trace_emitted(scene, index, flux, out, stats);
+    }
+}
+
+/// One photon path in flight.
+#[derive(Clone, Copy, Debug)]
+struct Path {
+    ray: Ray,
+    flux: f32,
+    band: u16,
+    bounces: u32,
+}
+
+/// Traces white photon `index` and all the band photons it splits into.
+pub fn trace_emitted(scene: &PreparedScene, index: u32, flux: f32, out: &mut Vec<Photon>, stats: &mut TraceStats) {
+    let e = emit(scene, scene.scene.render.seed, index);
+    stats.emitted += 1;
+    stats.paths += 1;
+    stats.flux_emitted += f64::from(flux);
+    let path = Path { ray: Ray { origin: e.origin, direction: e.direction }, flux, band: WHITE_BAND, bounces: 0 };
+    trace_path(scene, index, path, out, stats);
+}
+
+fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Photon>, stats: &mut TraceStats) {
+    let settings = &scene.scene.render;
+    loop {
+        stats.segments += 1;
+        let Some(hit) = scene.intersect(&p.ray, f32::INFINITY) else {
+            stats.flux_escaped += f64::from(p.flux);
+            return;
+        };
+        let surface = &scene.surfaces[hit.object];
+        if let Surface::Diffuse { .. } = surface {
+            if p.bounces == 0 {
+                stats.flux_direct += f64::from(p.flux);
+            } else {
+                stats.stored += 1;
+                stats.flux_stored += f64::from(p.flux);
+                out.push(Photon {
+                    position: hit.point.to_array(),
+                    flux: p.flux,
+                    direction_oct: oct_encode(p.ray.direction).to_array(),
+                    emission: index,
+                    band: p.band,
+                    bounces: p.bounces as u16,
+                });
+            }
+            return;
+        }
+        if p.bounces >= settings.max_depth {
+            stats.flux_depth_limited += f64::from(p.flux);
+            return;
+        }
+        if p.bounces == 0 {
+            stats.specular_paths += 1;
+        }
+        match surface {
+            Surface::Mirror => {
+                let d = reflect(p.ray.direction, hit.normal);
+                p.ray = Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d };
+            }
+            Surface::Dielectric(glass) if p.band == WHITE_BAND && glass.is_dispersive() => {
+                let n = scene.bands.len();
+                stats.paths += n as u64 - 1;
+                for band in 0..n as u16 {
+                    let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
+                    let child = Path {
+                        ray: scatter_dielectric(&p.ray, &hit, glass.ior(band), u),
+                        flux: p.flux / n as f32,
+                        band,
+                        bounces: p.bounces + 1,
+                    };
+                    trace_path(scene, index, child, out, stats);
+                }
+                return;
+            }
+            Surface::Dielectric(glass) => {
+                let u = random_f32(settings.seed, index, dim::scatter(p.band, p.bounces));
+                p.ray = scatter_dielectric(&p.ray, &hit, glass.ior(p.band), u);
+            }
+            Surface::Diffuse { .. } => unreachable!("handled above"),
+        }
+        p.bounces += 1;
+    }
+}
+
+/// The ray leaving a dielectric surface: reflected with probability equal to
+/// the Fresnel reflectance (`u < R`), refracted otherwise; total internal
+/// reflection always reflects.
+pub fn scatter_dielectric(ray: &Ray, hit: &Hit, ior: f32, u: f32) -> Ray {
+    let (n, n1, n2) = interface(ray.direction, hit.normal, ior);
+    let cos_i = -ray.direction.dot(n);
+    let d = if u < fresnel(cos_i, n1, n2) {
+        reflect(ray.direction, n)
+    } else {
+        refract(ray.direction, n, n1, n2).unwrap_or_else(|| reflect(ray.direction, n))
+    };
+    Ray { origin: offset_origin(hit.point, n, d), direction: d }
+}

@@ -41,7 +41,7 @@ mod tests {
     fn srgb_encoding_end_points_and_mid_grey() {
         assert_eq!(to_srgb8(Vec3::ZERO), [0, 0, 0]);
         assert_eq!(to_srgb8(Vec3::ONE), [255, 255, 255]);
-        assert_eq!(to_srgb8(Vec3::splat(0.214)), [128, 128, 128]);
+        assert_eq!(to_srgb8(Vec3::splat(0.2159)), [128, 128, 128]);
         assert_eq!(to_srgb8(Vec3::new(f32::NAN, -1.0, 7.0)), [0, 0, 255]);
     }
 

@@ -16,11 +16,11 @@ pub fn reflect(d: Vec3, n: Vec3) -> Vec3 {
 pub fn refract(d: Vec3, n: Vec3, n1: f32, n2: f32) -> Option<Vec3> {
     let eta = n1 / n2;
     let cos_i = (-d.dot(n)).clamp(0.0, 1.0);
-    let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
-    if sin2_t > 1.0 {
+    let cos2_t = cos2_transmitted(cos_i, eta);
+    if cos2_t < 0.0 {
         return None;
     }
-    let cos_t = sqrt(1.0 - sin2_t);
+    let cos_t = sqrt(cos2_t);
     Some((d * eta + n * (eta * cos_i - cos_t)).normalize())
 }
 
@@ -29,16 +29,28 @@ pub fn refract(d: Vec3, n: Vec3, n1: f32, n2: f32) -> Option<Vec3> {
 /// 1 under total internal reflection. Transmittance is `1 − R`.
 #[inline]
 pub fn fresnel(cos_i: f32, n1: f32, n2: f32) -> f32 {
+    if n1 == n2 {
+        return 0.0; // index-matched: no interface at all (exact, also at grazing angles)
+    }
     let cos_i = cos_i.clamp(0.0, 1.0);
-    let eta = n1 / n2;
-    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
-    if sin2_t >= 1.0 {
+    let cos2_t = cos2_transmitted(cos_i, n1 / n2);
+    if cos2_t <= 0.0 {
         return 1.0;
     }
-    let cos_t = sqrt(1.0 - sin2_t);
+    let cos_t = sqrt(cos2_t);
     let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
     let rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i);
     (0.5 * (rs * rs + rp * rp)).clamp(0.0, 1.0)
+}
+
+/// cos² θ_t = 1 − η²(1 − cos² θ_i), arranged as (1 − η²) + η² cos² θ_i so that
+/// it keeps its precision at grazing incidence when η ≈ 1 (the textbook form
+/// rounds 1 − cos² θ_i to 1 there and loses the whole answer). Negative
+/// means total internal reflection.
+#[inline]
+pub fn cos2_transmitted(cos_i: f32, eta: f32) -> f32 {
+    let eta2 = eta * eta;
+    (1.0 - eta2) + eta2 * cos_i * cos_i
 }
 
 /// The indices on both sides of a dielectric surface hit by a ray travelling

@@ -1,0 +1,105 @@
+//! The gather estimators against fields of photons with a known answer.
+
+use prismatic_core::bands::{BandSpec, BandTable, MAX_BANDS};
+use prismatic_core::gather::{GatherQuery, gather, paper_hue};
+use prismatic_core::grid::PhotonGrid;
+use prismatic_core::photon::{WHITE_BAND, oct_encode};
+use prismatic_core::rng::random_f32;
+use prismatic_core::scene::Estimator;
+use prismatic_core::{Photon, Vec3};
+
+/// `count` photons spread uniformly over the square [-1, 1]² of the plane
+/// y = 0, arriving from above, band `band(i)`, flux `flux` each.
+fn field(count: u32, flux: f32, band: impl Fn(u32) -> u16) -> Vec<Photon> {
+    (0..count)
+        .map(|i| Photon {
+            position: [2.0 * random_f32(5, i, 0) - 1.0, 0.0, 2.0 * random_f32(5, i, 1) - 1.0],
+            flux,
+            direction_oct: oct_encode(-Vec3::Y).to_array(),
+            emission: i,
+            band: band(i),
+            bounces: 1,
+        })
+        .collect()
+}
+
+fn query(radius: f32) -> GatherQuery {
+    GatherQuery { point: Vec3::new(0.1, 0.0, -0.2), normal: Vec3::Y, radius }
+}
+
+#[test]
+fn density_estimate_of_uniform_white_light_is_its_irradiance() {
+    // 400,000 photons of 1e-5 W on 4 m²: E = 1 W/m². Within r = 0.1 about
+    // 3,140 photons: Poisson noise 1.8 %; allow 4σ.
+    let photons = field(400_000, 1e-5, |_| WHITE_BAND);
+    let grid = PhotonGrid::build(&photons, 0.1);
+    let bands = BandTable::new(BandSpec::Paper7);
+    let e = gather(&grid, &photons, &bands, Estimator::Density, &query(0.1));
+    assert!((e - Vec3::ONE).abs().max_element() < 0.072, "{e}");
+}
+
+#[test]
+fn paper_and_density_agree_on_evenly_split_light() {
+    let bands = BandTable::new(BandSpec::Paper7);
+    // 400,000 white photons of 1e-5 W on 4 m² (E = 1), each split into the
+    // seven bands with 1/7 of the flux.
+    let photons = field(2_800_000, 1e-5 / 7.0, |i| (i % 7) as u16);
+    let grid = PhotonGrid::build(&photons, 0.1);
+    let paper = gather(&grid, &photons, &bands, Estimator::Paper, &query(0.1));
+    let density = gather(&grid, &photons, &bands, Estimator::Density, &query(0.1));
+    assert!((paper - Vec3::ONE).abs().max_element() < 0.1, "{paper}");
+    assert!((paper - density).abs().max_element() < 0.1, "{paper} vs {density}");
+}
+
+#[test]
+fn paper_hue_is_w_over_total_scaled_so_white_is_white() {
+    let bands = BandTable::new(BandSpec::Paper7);
+    let mut counts = [0u32; MAX_BANDS + 1];
+    assert_eq!(paper_hue(&bands, &counts).as_vec3(), Vec3::ZERO, "no photons: black, not NaN");
+    counts[0] = 10; // red only
+    let red = paper_hue(&bands, &counts).as_vec3();
+    assert!((red - Vec3::new(7.0 * 0.265, 0.0, 0.0)).length() < 1e-6, "{red}");
+    counts = [0; MAX_BANDS + 1];
+    counts[MAX_BANDS] = 3; // white photons count once in every band
+    assert!((paper_hue(&bands, &counts).as_vec3() - Vec3::ONE).length() < 1e-6);
+    // Counts beyond 2^24 stay exact: integer counting.
+    counts = [0; MAX_BANDS + 1];
+    counts[4] = (1 << 24) + 1;
+    counts[3] = 1;
+    let hue = paper_hue(&bands, &counts);
+    let expected_b = 7.0 * 0.498 * f64::from((1u32 << 24) + 1) / f64::from((1u32 << 24) + 2);
+    assert!((hue.z - expected_b).abs() < 1e-6 * expected_b, "{hue}");
+}
+
+#[test]
+fn photons_behind_the_surface_do_not_count() {
+    let mut photons = field(10_000, 1e-3, |_| WHITE_BAND);
+    for p in &mut photons {
+        p.direction_oct = oct_encode(Vec3::Y).to_array(); // arriving from below
+    }
+    let grid = PhotonGrid::build(&photons, 0.2);
+    let bands = BandTable::new(BandSpec::Paper3);
+    assert_eq!(gather(&grid, &photons, &bands, Estimator::Density, &query(0.2)), Vec3::ZERO);
+}
+
+#[test]
+fn grid_finds_exactly_the_photons_within_the_radius() {
+    let photons = field(50_000, 1.0, |_| 0);
+    for radius in [0.003, 0.05, 0.3] {
+        let grid = PhotonGrid::build(&photons, radius);
+        for k in 0..50 {
+            let p = Vec3::new(2.0 * random_f32(9, k, 0) - 1.0, 0.0, 2.0 * random_f32(9, k, 1) - 1.0);
+            let mut found = Vec::new();
+            grid.for_each_candidate(p, radius, |i| {
+                if (photons[i as usize].pos() - p).length_squared() <= radius * radius {
+                    found.push(i)
+                }
+            });
+            found.sort_unstable();
+            let brute: Vec<u32> = (0..photons.len() as u32)
+                .filter(|&i| (photons[i as usize].pos() - p).length_squared() <= radius * radius)
+                .collect();
+            assert_eq!(found, brute, "radius {radius}, query {p}");
+        }
+    }
+}

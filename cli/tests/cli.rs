@@ -1,0 +1,140 @@
+//! The `prismatic` binary end to end: what a user types, what they get back.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn prismatic(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_prismatic")).args(args).current_dir(dir).output().expect("the binary runs")
+}
+
+fn text(o: &Output) -> (String, String) {
+    (String::from_utf8_lossy(&o.stdout).into_owned(), String::from_utf8_lossy(&o.stderr).into_owned())
+}
+
+/// Files in `dir` (to check that nothing, not even a temporary file, was left).
+fn files_in(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> =
+        std::fs::read_dir(dir).unwrap().map(|e| e.unwrap().file_name().to_string_lossy().into_owned()).collect();
+    v.sort();
+    v
+}
+
+const SMALL: [&str; 6] = ["--photons", "3000", "--width", "48", "--height", "36"];
+
+#[test]
+fn render_writes_a_png_and_reports_what_it_did() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut args = vec!["render", "sphere", "-o", "out.png"];
+    args.extend(SMALL);
+    let o = prismatic(&args, dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{err}");
+    assert!(
+        out.contains("reference backend") && out.contains("3000 photons emitted") && out.contains("stored"),
+        "{out}"
+    );
+    let img = image::open(dir.path().join("out.png")).expect("a readable PNG").to_rgb8();
+    assert_eq!(img.dimensions(), (48, 36));
+    assert!(img.pixels().any(|p| p.0 != [0, 0, 0]), "not a black image");
+    assert_eq!(files_in(dir.path()), vec!["out.png"]);
+}
+
+#[test]
+fn render_defaults_to_the_sphere_scene_and_prismatic_png() {
+    let o = Command::new(env!("CARGO_BIN_EXE_prismatic")).args(["render", "--help"]).output().unwrap();
+    let (out, _) = text(&o);
+    assert!(out.contains("[default: sphere]") && out.contains("[default: prismatic.png]"), "{out}");
+}
+
+#[test]
+fn photons_writes_the_caustic_map_as_csv_in_canonical_order() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = prismatic(&["photons", "prism", "--photons", "300", "-o", "p.csv"], dir.path());
+    assert!(o.status.success(), "{}", text(&o).1);
+    let csv = std::fs::read_to_string(dir.path().join("p.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("emission,band,lambda_nm,x,y,z,dir_x,dir_y,dir_z,power"));
+    let keys: Vec<(u32, i32)> = lines
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            assert_eq!(f.len(), 10, "{l}");
+            assert!(f[3..].iter().all(|x| x.parse::<f32>().unwrap().is_finite()), "{l}");
+            (f[0].parse().unwrap(), f[1].parse().unwrap())
+        })
+        .collect();
+    assert!(keys.len() > 300, "the prism splits most photons into 24 bands: {}", keys.len());
+    assert!(keys.windows(2).all(|w| w[0] < w[1]), "canonical (emission, band) order");
+}
+
+#[test]
+fn scenes_lists_the_built_ins_and_scene_prints_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let (out, _) = text(&prismatic(&["scenes"], dir.path()));
+    for name in ["sphere", "prism", "recombine", "rainbow"] {
+        assert!(out.lines().any(|l| l.starts_with(name)), "{name} missing from {out}");
+    }
+    let (toml, _) = text(&prismatic(&["scene", "rainbow"], dir.path()));
+    assert!(toml.contains("ior = \"water\""));
+    // The printed scene is a working template.
+    std::fs::write(dir.path().join("mine.toml"), toml).unwrap();
+    let o = prismatic(&["photons", "mine.toml", "--photons", "100", "-o", "m.csv"], dir.path());
+    assert!(o.status.success(), "{}", text(&o).1);
+}
+
+#[test]
+fn a_bad_scene_file_exits_2_with_file_line_key_and_reason_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, _) = text(&prismatic(&["scene", "sphere"], dir.path()));
+    let bad = scene.replace("radius = 1.0", "radius = -1.0");
+    std::fs::write(dir.path().join("bad.toml"), &bad).unwrap();
+    let line = bad.lines().position(|l| l == "radius = -1.0").unwrap() + 1;
+    let o = prismatic(&["render", "bad.toml", "-o", "bad.png"], dir.path());
+    let (_, err) = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains(&format!("bad.toml:{line}: object[1].radius: must be greater than 0")), "{err}");
+    assert_eq!(files_in(dir.path()), vec!["bad.toml"], "no output file, not even a temporary one");
+}
+
+#[test]
+fn unknown_scenes_and_bad_flags_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = prismatic(&["render", "teapot"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).1.contains("built-in scenes are: sphere, prism, recombine, rainbow"));
+    let o = prismatic(&["render", "sphere", "--bands", "0"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(text(&o).1.contains("render.bands"), "{}", text(&o).1);
+    let o = prismatic(&["render", "sphere", "--estimator", "guess"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(files_in(dir.path()).is_empty());
+}
+
+#[test]
+fn an_unwritable_output_fails_before_any_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = prismatic(&["render", "rainbow", "-o", "no/such/dir/x.png"], dir.path());
+    let (out, err) = text(&o);
+    assert!(!o.status.success());
+    assert!(err.contains("no/such/dir/x.png") && err.contains("cannot write"), "{err}");
+    assert!(!out.contains("photons emitted"), "it must not have traced: {out}");
+}
+
+#[test]
+fn backends_that_are_not_built_say_so_and_name_the_alternative() {
+    let dir = tempfile::tempdir().unwrap();
+    for backend in ["cpu", "gpu"] {
+        let o = prismatic(&["render", "sphere", "--backend", backend, "-o", "x.png"], dir.path());
+        let (_, err) = text(&o);
+        assert!(!o.status.success());
+        assert!(
+            err.contains(&format!("the {backend} backend is not built yet")) && err.contains("--backend reference"),
+            "{err}"
+        );
+    }
+    let mut args = vec!["render", "prism", "--backend", "auto", "-o", "a.png"];
+    args.extend(SMALL);
+    let o = prismatic(&args, dir.path());
+    assert!(o.status.success());
+    assert!(text(&o).1.contains("auto picked the reference backend"));
+    assert_eq!(files_in(dir.path()), vec!["a.png"]);
+}

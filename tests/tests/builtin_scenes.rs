@@ -1,0 +1,109 @@
+//! The built-in scenes show what they promise: a caustic that adds light, a
+//! spectrum in wavelength order, white light recombined, rainbows at the
+//! Descartes angles. Small renders; the physics suite checks the numbers finely.
+
+use prismatic_cli::load_scene;
+use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::render::render;
+use prismatic_core::scene::Light;
+use prismatic_core::trace::trace_photons;
+use prismatic_core::{PhotonMap, PreparedScene, Vec3};
+
+fn builtin(name: &str, photons: u32, side: u32) -> PreparedScene {
+    let mut doc = load_scene(name).unwrap();
+    doc.scene.render.photons = photons;
+    doc.scene.render.width = side;
+    doc.scene.render.height = side;
+    PreparedScene::new(doc.scene).unwrap()
+}
+
+#[test]
+fn every_built_in_scene_renders_finite_and_its_caustic_adds_light() {
+    for (name, photons) in [("sphere", 20_000), ("prism", 4_000), ("recombine", 4_000), ("rainbow", 100_000)] {
+        let scene = builtin(name, photons, 64);
+        let map = trace_photons(&scene);
+        assert!(map.stats.stored > 0, "{name}: no caustic photons");
+        let with = render(&scene, &map);
+        let without = render(&scene, &PhotonMap::default());
+        assert!(with.is_finite(), "{name}: non-finite pixels");
+        let brighter =
+            with.pixels.iter().zip(&without.pixels).filter(|(a, b)| a.element_sum() > b.element_sum() + 1e-3).count();
+        assert!(brighter >= 4, "{name}: the caustic lit only {brighter} pixels");
+    }
+}
+
+/// Per band that reached the wall: mean height and mean direction of its photons.
+fn bands_on_wall(scene: &PreparedScene, map: &PhotonMap) -> Vec<(f32, Vec3)> {
+    (0..scene.bands.len() as u16)
+        .filter_map(|b| {
+            let on_wall: Vec<_> = map.photons.iter().filter(|p| p.band == b && p.position[0] > 5.9).collect();
+            let n = on_wall.len() as f32;
+            (n > 50.0).then(|| {
+                (
+                    on_wall.iter().map(|p| p.position[1]).sum::<f32>() / n,
+                    on_wall.iter().map(|p| p.direction()).sum::<Vec3>() / n,
+                )
+            })
+        })
+        .collect()
+}
+
+#[test]
+fn prism_fans_the_bands_out_and_the_inverted_prism_recombines_them() {
+    let prism = builtin("prism", 5_000, 16);
+    let fanned: Vec<f32> = bands_on_wall(&prism, &trace_photons(&prism)).iter().map(|b| b.0).collect();
+    assert_eq!(fanned.len(), prism.bands.len(), "every band reaches the wall");
+    assert!(fanned.windows(2).all(|w| w[0] < w[1]), "violet lowest, red highest: {fanned:?}");
+    let fan = fanned[fanned.len() - 1] - fanned[0];
+    assert!(fan > 0.5, "the spectrum spans {fan}");
+
+    let recombine = builtin("recombine", 5_000, 16);
+    let map = trace_photons(&recombine);
+    assert!(map.photons.iter().all(|p| p.band != WHITE_BAND));
+    let merged = bands_on_wall(&recombine, &map);
+    assert_eq!(merged.len(), recombine.bands.len());
+    // Parallel again: every band leaves along the incoming beam's direction…
+    let Light::Beam { direction, radius, .. } = recombine.scene.lights[0] else { unreachable!("a beam scene") };
+    for (b, (_, dir)) in merged.iter().enumerate() {
+        let angle = dir.normalize().angle_between(direction.normalize()).to_degrees();
+        assert!(angle < 0.01, "band {b} leaves {angle}° off the beam");
+    }
+    // …and only lateral offsets remain (the pair acts as a thick parallel
+    // plate whose displacement depends on n): less than the beam's radius, so
+    // the band spots overlap into white, against a fan many times wider.
+    let ys: Vec<f32> = merged.iter().map(|b| b.0).collect();
+    let spread = ys.iter().copied().fold(f32::MIN, f32::max) - ys.iter().copied().fold(f32::MAX, f32::min);
+    assert!(spread < radius && spread < 0.15 * fan, "band centroids still {spread} apart: {ys:?}");
+}
+
+/// Descartes: the k-reflection bow's angle from the antisolar point, degrees.
+fn descartes_deg(n: f64, k: f64) -> f64 {
+    let i = ((n * n - 1.0) / (k * k + 2.0 * k)).sqrt().acos();
+    let r = (i.sin() / n).asin();
+    let d = 2.0 * (i - r) + k * (std::f64::consts::PI - 2.0 * r);
+    (180.0 - d.to_degrees().rem_euclid(360.0)).abs()
+}
+
+#[test]
+fn rainbow_bows_peak_at_the_descartes_angles() {
+    let scene = builtin("rainbow", 200_000, 16);
+    let map = trace_photons(&scene);
+    for (band, k) in [(2usize, 1u32), (12, 1), (2, 2), (12, 2)] {
+        let n = f64::from(match &scene.surfaces[1] {
+            prismatic_core::prepared::Surface::Dielectric(g) => g.band_ior[band],
+            _ => unreachable!("object 1 is the water drop"),
+        });
+        // Angle between the returning photon and the beam's reverse (+z).
+        let mut histogram = vec![0u32; 900]; // 0.1° bins over 0–90°
+        for p in map.photons.iter().filter(|p| usize::from(p.band) == band && u32::from(p.bounces) == k + 2) {
+            let theta = f64::from(p.direction().z).clamp(-1.0, 1.0).acos().to_degrees();
+            histogram[((theta * 10.0) as usize).min(899)] += 1;
+        }
+        let peak = histogram.iter().enumerate().max_by_key(|(_, c)| **c).map(|(i, _)| i as f64 / 10.0 + 0.05).unwrap();
+        let expected = descartes_deg(n, f64::from(k));
+        assert!(
+            (peak - expected).abs() < 0.5,
+            "band {band}, {k} reflection(s): peak {peak}°, Descartes {expected:.2}°"
+        );
+    }
+}

@@ -1,0 +1,80 @@
+//! Triangle meshes: OBJ files next to the scene, and a mesh prism that bends
+//! light exactly like the analytic prism.
+
+use prismatic_core::bands::BandSpec;
+use prismatic_core::dispersion::Glass;
+use prismatic_core::scene::Shape;
+use prismatic_core::trace::trace_photons;
+use prismatic_core::{Scene, Vec3};
+use prismatic_tests::{PrismExperiment, prepare, settings};
+
+/// The prism's two caps and three sides as 8 triangles, wound counter-clockwise seen from outside.
+fn prism_mesh(v: [Vec3; 3], extrude: Vec3) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let positions = vec![v[0], v[1], v[2], v[0] + extrude, v[1] + extrude, v[2] + extrude];
+    // With v0, v1, v2 counter-clockwise seen from −extrude: front cap reversed, back cap as is.
+    let triangles = vec![[0, 2, 1], [3, 4, 5], [0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4], [2, 0, 3], [2, 3, 5]];
+    (positions, triangles)
+}
+
+fn experiment() -> PrismExperiment {
+    PrismExperiment { apex_deg: 60.0, incidence_deg: 50.0, beam_radius: 0.05, screen_x: 6.0 }
+}
+
+fn as_mesh(mut scene: Scene) -> Scene {
+    let Shape::Prism { vertices, extrude } = scene.objects[0].shape else { unreachable!("object 0 is the prism") };
+    let (positions, triangles) = prism_mesh(vertices, extrude);
+    scene.objects[0].shape = Shape::Mesh { positions, triangles };
+    scene
+}
+
+#[test]
+fn a_mesh_prism_disperses_like_the_analytic_prism() {
+    let analytic = experiment().scene(Glass::Bk7.dispersion(), settings(2000, BandSpec::Paper7));
+    let a = trace_photons(&prepare(analytic.clone()));
+    let m = trace_photons(&prepare(as_mesh(analytic)));
+    // The same photons take the same branches; positions agree to f32 precision.
+    let twice = |map: &prismatic_core::PhotonMap| map.photons.iter().filter(|p| p.bounces == 2).count();
+    assert!(twice(&a) > 12_000, "most of 2000 × 7 band photons refract twice");
+    let keys = |map: &prismatic_core::PhotonMap| map.photons.iter().map(|p| p.key()).collect::<Vec<_>>();
+    assert_eq!(keys(&a), keys(&m), "the same (emission, band) photons are stored");
+    for (pa, pm) in a.photons.iter().zip(&m.photons) {
+        assert!((pa.pos() - pm.pos()).length() < 1e-3, "{:?} vs {:?}", pa.position, pm.position);
+    }
+}
+
+#[test]
+fn obj_meshes_load_relative_to_the_scene_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let exp = experiment();
+    let [l, r, t] = exp.corners().map(|(x, y)| Vec3::new(x as f32, y as f32, -1.0));
+    let (positions, triangles) = prism_mesh([l, r, t], Vec3::new(0.0, 0.0, 2.0));
+    let mut obj = String::from("# prism\n");
+    for p in &positions {
+        obj += &format!("v {} {} {}\n", p.x, p.y, p.z);
+    }
+    for tri in &triangles {
+        obj += &format!("f {} {}/1 {}//2\n", tri[0] + 1, tri[1] + 1, tri[2] + 1);
+    }
+    std::fs::create_dir(dir.path().join("models")).unwrap();
+    std::fs::write(dir.path().join("models/prism.obj"), obj).unwrap();
+    let scene = format!(
+        "[render]\nphotons = 500\n\n[camera]\nposition = [0, 0, 10]\nlook_at = [0, 0, 0]\n\n\
+         [[light]]\nkind = \"beam\"\nposition = [-3.6, -1.1, 0]\ndirection = [{}, {}, 0]\nradius = 0.05\npower = 1\n\n\
+         [material.glass]\nkind = \"dielectric\"\nior = \"bk7\"\n\n[material.screen]\nkind = \"diffuse\"\n\n\
+         [[object]]\nshape = \"mesh\"\nmaterial = \"glass\"\npath = \"models/prism.obj\"\n\n\
+         [[object]]\nshape = \"plane\"\nmaterial = \"screen\"\npoint = [6, 0, 0]\nnormal = [-1, 0, 0]\n",
+        exp.beam_angle().cos(),
+        exp.beam_angle().sin()
+    );
+    let path = dir.path().join("scene.toml");
+    std::fs::write(&path, scene).unwrap();
+    let doc = prismatic_cli::scene_file::load(&path).unwrap_or_else(|e| panic!("{e}"));
+    doc.validate().unwrap();
+    assert!(matches!(&doc.scene.objects[0].shape, Shape::Mesh { triangles, .. } if triangles.len() == 8));
+
+    // A broken OBJ names the OBJ file and its line, under the scene's key.
+    std::fs::write(dir.path().join("models/prism.obj"), "v 0 0 0\nf 1 2 3\n").unwrap();
+    let e = prismatic_cli::scene_file::load(&path).unwrap_err();
+    assert_eq!(e.key, "object[0].path");
+    assert!(e.reason.contains("prism.obj:2") && e.reason.contains("does not exist"), "{e}");
+}

@@ -1,0 +1,199 @@
+//! Scene files: the built-in scenes parse and validate, and bad files get a
+//! message with the file, the key, the line and the reason.
+
+use prismatic_cli::builtin::BUILTIN_SCENES;
+use prismatic_cli::scene_file::{SceneFileError, parse};
+use prismatic_core::bands::BandSpec;
+use prismatic_core::dispersion::{Dispersion, Glass};
+use prismatic_core::scene::{MaterialKind, Shape};
+
+const MINIMAL: &str = r#"
+[camera]
+position = [0, 1, 5]
+look_at = [0, 0, 0]
+
+[[light]]
+kind = "point"
+position = [0, 4, 0]
+power = 10
+
+[material.white]
+kind = "diffuse"
+
+[[object]]
+shape = "plane"
+material = "white"
+point = [0, 0, 0]
+normal = [0, 1, 0]
+"#;
+
+fn error_of(source: &str) -> SceneFileError {
+    match parse(source, "test.toml", None) {
+        Ok(doc) => doc.validate().expect_err("the scene should be rejected"),
+        Err(e) => e,
+    }
+}
+
+/// Asserts the error names `key` on the first line containing `at` (no line
+/// when `at` is `None`) and says `reason`.
+fn assert_error(source: &str, key: &str, at: Option<&str>, reason: &str) {
+    let line = at.map(|text| {
+        source.lines().position(|l| l.contains(text)).unwrap_or_else(|| panic!("{text:?} is not in the source")) + 1
+    });
+    let e = error_of(source);
+    assert_eq!(e.file, "test.toml");
+    assert_eq!(e.key, key, "{e}");
+    assert_eq!(e.line, line, "{e}");
+    assert!(e.reason.contains(reason), "reason {:?} should contain {reason:?}", e.reason);
+    let shown = e.to_string();
+    assert!(shown.starts_with("test.toml:") && shown.contains(key), "{shown}");
+}
+
+#[test]
+fn built_in_scenes_parse_and_validate() {
+    for b in &BUILTIN_SCENES {
+        let doc = parse(b.source, b.name, None).unwrap_or_else(|e| panic!("{e}"));
+        doc.validate().unwrap_or_else(|e| panic!("{e}"));
+        assert!(!doc.scene.objects.is_empty() && !doc.scene.lights.is_empty(), "{}", b.name);
+    }
+}
+
+#[test]
+fn the_minimal_scene_gets_defaults() {
+    let doc = parse(MINIMAL, "m.toml", None).unwrap();
+    doc.validate().unwrap();
+    assert_eq!(doc.scene.render.width, 400);
+    assert_eq!(doc.scene.render.bands, BandSpec::Paper7);
+    assert_eq!(doc.scene.camera.fov_deg, 45.0);
+}
+
+#[test]
+fn every_ior_form_parses() {
+    let forms = [
+        ("1.5", Dispersion::Constant(1.5)),
+        ("\"bk7\"", Glass::Bk7.dispersion()),
+        ("{ cauchy = [1.5, 0.004] }", Dispersion::Cauchy { a: 1.5, b: 0.004 }),
+        ("{ abbe = [1.5168, 64.17] }", Dispersion::Abbe { nd: 1.5168, vd: 64.17 }),
+        (
+            "{ sellmeier = { b = [1.0, 0.2], c = [0.006, 0.02] } }",
+            Dispersion::Sellmeier { b: vec![1.0, 0.2], c: vec![0.006, 0.02] },
+        ),
+        (
+            "{ bands = [1.5, 1.51, 1.52, 1.53, 1.54, 1.55, 1.56] }",
+            Dispersion::PerBand(vec![1.5, 1.51, 1.52, 1.53, 1.54, 1.55, 1.56]),
+        ),
+    ];
+    for (text, expected) in forms {
+        let source = format!(
+            "{MINIMAL}\n[material.g]\nkind = \"dielectric\"\nior = {text}\n\n[[object]]\nshape = \"sphere\"\nmaterial = \"g\"\ncenter = [0, 1, 0]\nradius = 0.5\n"
+        );
+        let doc = parse(&source, "ior.toml", None).unwrap_or_else(|e| panic!("{text}: {e}"));
+        doc.validate().unwrap_or_else(|e| panic!("{text}: {e}"));
+        let g = doc.scene.materials.iter().find(|m| m.name == "g").unwrap();
+        assert_eq!(g.kind, MaterialKind::Dielectric { dispersion: expected }, "{text}");
+    }
+}
+
+#[test]
+fn inline_meshes_and_prisms_parse() {
+    let source = format!(
+        "{MINIMAL}\n[[object]]\nshape = \"mesh\"\nmaterial = \"white\"\npositions = [[0,0,0],[1,0,0],[0,1,0]]\ntriangles = [[0,1,2]]\n\n\
+         [[object]]\nshape = \"prism\"\nmaterial = \"white\"\nvertices = [[0,0,0],[1,0,0],[0,1,0]]\nextrude = [0,0,1]\n"
+    );
+    let doc = parse(&source, "shapes.toml", None).unwrap();
+    doc.validate().unwrap();
+    assert!(matches!(&doc.scene.objects[1].shape, Shape::Mesh { triangles, .. } if triangles == &vec![[0, 1, 2]]));
+    assert!(matches!(doc.scene.objects[2].shape, Shape::Prism { .. }));
+}
+
+#[test]
+fn syntax_errors_name_the_line() {
+    let e = error_of("[camera]\nposition = [0, 1\n");
+    assert_eq!(e.line, Some(2), "{e}");
+    assert!(e.reason.contains("syntax"), "{e}");
+}
+
+#[test]
+fn unknown_keys_are_rejected() {
+    let source = MINIMAL.replace("kind = \"point\"", "kind = \"point\"\ncolour = [1, 1, 1]");
+    assert_error(&source, "light[0].colour", Some("colour"), "unknown key");
+    assert_error(&format!("{MINIMAL}\n[renderer]\nwidth = 3\n"), "renderer", Some("[renderer]"), "unknown key");
+}
+
+#[test]
+fn wrong_types_are_rejected() {
+    assert_error(
+        &MINIMAL.replace("power = 10", "power = \"bright\""),
+        "light[0].power",
+        Some("power ="),
+        "must be a number",
+    );
+    assert_error(
+        &MINIMAL.replace("position = [0, 1, 5]", "position = [0, 1]"),
+        "camera.position",
+        Some("position = [0, 1]"),
+        "three numbers",
+    );
+    assert_error(&format!("[render]\nwidth = 1.5\n{MINIMAL}"), "render.width", Some("width"), "whole number");
+}
+
+#[test]
+fn values_that_make_no_sense_are_rejected_with_their_line() {
+    assert_error(&MINIMAL.replace("power = 10", "power = nan"), "light[0].power", Some("power ="), "finite");
+    assert_error(&MINIMAL.replace("power = 10", "power = -1"), "light[0].power", Some("power ="), "greater than 0");
+    assert_error(
+        &MINIMAL.replace("normal = [0, 1, 0]", "normal = [0, 0, 0]"),
+        "object[0].normal",
+        Some("normal ="),
+        "zero-length",
+    );
+    assert_error(&format!("[render]\nbands = 0\n{MINIMAL}"), "render.bands", Some("bands ="), "1 to 256");
+    assert_error(&format!("[render]\nbands = 300\n{MINIMAL}"), "render.bands", Some("bands ="), "1 to 256");
+    assert_error(&format!("[render]\nradius = inf\n{MINIMAL}"), "render.radius", Some("radius ="), "finite");
+    assert_error(&format!("[render]\nphotons = 4000000000\n{MINIMAL}"), "render.photons", Some("photons ="), "memory");
+}
+
+#[test]
+fn missing_and_unknown_materials_are_rejected() {
+    assert_error(
+        &MINIMAL.replace("material = \"white\"", "material = \"chalk\""),
+        "object[0].material",
+        Some("chalk"),
+        "unknown material \"chalk\"",
+    );
+    let dielectric_plane = MINIMAL.replace("kind = \"diffuse\"", "kind = \"dielectric\"\nior = 1.5");
+    assert_error(&dielectric_plane, "object[0].material", Some("material = \"white\""), "closed shape");
+    assert_error(
+        &MINIMAL.replace("[[object]]\nshape = \"plane\"\n", "[[object]]\n"),
+        "object[0].shape",
+        Some("[[object]]"),
+        "missing",
+    );
+}
+
+#[test]
+fn per_band_tables_must_match_the_band_count() {
+    let source = format!(
+        "[render]\nbands = \"paper3\"\n{MINIMAL}\n[material.g]\nkind = \"dielectric\"\nior = {{ bands = [1.5, 1.6] }}\n\n\
+         [[object]]\nshape = \"sphere\"\nmaterial = \"g\"\ncenter = [0, 1, 0]\nradius = 0.5\n"
+    );
+    assert_error(&source, "material.g.ior.bands", Some("ior = "), "3 bands");
+}
+
+#[test]
+fn unknown_glass_names_list_the_known_ones() {
+    let source = format!(
+        "{MINIMAL}\n[material.g]\nkind = \"dielectric\"\nior = \"unobtainium\"\n\n[[object]]\nshape = \"sphere\"\nmaterial = \"g\"\ncenter = [0, 1, 0]\nradius = 0.5\n"
+    );
+    assert_error(&source, "material.g.ior", Some("unobtainium"), "bk7");
+}
+
+#[test]
+fn the_readme_example_is_a_valid_scene() {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
+    let section = &readme[readme.find("## Scene files").expect("README has a scene-file section")..];
+    let start = section.find("```toml\n").expect("with a TOML example") + "```toml\n".len();
+    let example = &section[start..start + section[start..].find("```").unwrap()];
+    let doc = parse(example, "README.md", None).unwrap_or_else(|e| panic!("{e}"));
+    doc.validate().unwrap_or_else(|e| panic!("{e}"));
+}

@@ -1,6 +1,7 @@
 //! Backend selection for `--backend`: reference, cpu, gpu or auto.
 
 use prismatic_core::{Backend, BackendError, ReferenceBackend};
+use prismatic_cpu::CpuBackend;
 
 /// What the user asked for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -27,11 +28,19 @@ pub struct Selected {
 pub fn select(choice: BackendChoice) -> Result<Selected, BackendError> {
     match choice {
         BackendChoice::Reference => Ok(Selected { backend: Box::new(ReferenceBackend), note: None }),
-        BackendChoice::Cpu => Err(BackendError::NotBuilt { backend: "cpu", hint: "--backend reference" }),
-        BackendChoice::Gpu => Err(BackendError::NotBuilt { backend: "gpu", hint: "--backend reference" }),
+        BackendChoice::Cpu => Ok(Selected { backend: Box::new(CpuBackend::new()), note: None }),
+        BackendChoice::Gpu => Err(BackendError::NotBuilt { backend: "gpu", hint: "--backend cpu" }),
         BackendChoice::Auto => Ok(Selected {
-            backend: Box::new(ReferenceBackend),
-            note: Some("auto picked the reference backend (the cpu and gpu backends are not built yet)".into()),
+            backend: Box::new(CpuBackend::new()),
+            note: Some(format!(
+                "auto picked the cpu backend ({} threads; the gpu backend is not built yet)",
+                rayon_threads()
+            )),
         }),
     }
+}
+
+/// Threads the CPU backend will use.
+fn rayon_threads() -> usize {
+    std::thread::available_parallelism().map_or(1, |n| n.get())
 }

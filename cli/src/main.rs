@@ -54,7 +54,7 @@ struct JobArgs {
     #[arg(default_value = "sphere")]
     scene: String,
     /// Which backend does the work.
-    #[arg(long, value_enum, default_value_t = BackendChoice::Reference)]
+    #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
     backend: BackendChoice,
     /// Band table: paper3, paper7 or a number of physically based bands.
     #[arg(long, value_parser = parse_bands)]

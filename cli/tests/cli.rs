@@ -29,10 +29,7 @@ fn render_writes_a_png_and_reports_what_it_did() {
     let o = prismatic(&args, dir.path());
     let (out, err) = text(&o);
     assert!(o.status.success(), "{err}");
-    assert!(
-        out.contains("reference backend") && out.contains("3000 photons emitted") && out.contains("stored"),
-        "{out}"
-    );
+    assert!(out.contains("cpu backend") && out.contains("3000 photons emitted") && out.contains("stored"), "{out}");
     let img = image::open(dir.path().join("out.png")).expect("a readable PNG").to_rgb8();
     assert_eq!(img.dimensions(), (48, 36));
     assert!(img.pixels().any(|p| p.0 != [0, 0, 0]), "not a black image");
@@ -120,21 +117,31 @@ fn an_unwritable_output_fails_before_any_work() {
 }
 
 #[test]
-fn backends_that_are_not_built_say_so_and_name_the_alternative() {
+fn auto_picks_the_cpu_backend_and_the_unbuilt_gpu_backend_names_the_alternative() {
     let dir = tempfile::tempdir().unwrap();
-    for backend in ["cpu", "gpu"] {
-        let o = prismatic(&["render", "sphere", "--backend", backend, "-o", "x.png"], dir.path());
-        let (_, err) = text(&o);
-        assert!(!o.status.success());
-        assert!(
-            err.contains(&format!("the {backend} backend is not built yet")) && err.contains("--backend reference"),
-            "{err}"
-        );
-    }
+    let o = prismatic(&["render", "sphere", "--backend", "gpu", "-o", "x.png"], dir.path());
+    let (_, err) = text(&o);
+    assert!(!o.status.success());
+    assert!(err.contains("the gpu backend is not built yet") && err.contains("--backend cpu"), "{err}");
     let mut args = vec!["render", "prism", "--backend", "auto", "-o", "a.png"];
     args.extend(SMALL);
     let o = prismatic(&args, dir.path());
     assert!(o.status.success());
-    assert!(text(&o).1.contains("auto picked the reference backend"));
+    assert!(text(&o).1.contains("auto picked the cpu backend"), "{}", text(&o).1);
+    assert!(text(&o).0.contains("cpu backend"));
     assert_eq!(files_in(dir.path()), vec!["a.png"]);
+}
+
+#[test]
+fn the_reference_and_cpu_backends_write_the_same_photon_map() {
+    let dir = tempfile::tempdir().unwrap();
+    for backend in ["reference", "cpu"] {
+        let o = prismatic(
+            &["photons", "sphere", "--photons", "2000", "--backend", backend, "-o", &format!("{backend}.csv")],
+            dir.path(),
+        );
+        assert!(o.status.success(), "{}", text(&o).1);
+    }
+    let read = |name: &str| std::fs::read_to_string(dir.path().join(name)).unwrap();
+    assert_eq!(read("reference.csv"), read("cpu.csv"));
 }

@@ -1,11 +1,10 @@
 //! Photon emission: where white photon `index` starts, where it goes, and which light sent it.
 
 use crate::geometry::basis;
-use crate::math::{cos, radians, sin, sqrt};
+use crate::math::{cos, radians, sin_cos_turns, sqrt};
 use crate::prepared::PreparedScene;
 use crate::rng::{dim, random_f32};
 use crate::scene::Light;
-use core::f32::consts::TAU;
 use glam::Vec3;
 
 /// A white photon as it leaves its light.
@@ -37,15 +36,15 @@ pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
         Light::Point { position, .. } => {
             let z = 1.0 - 2.0 * u1;
             let r = sqrt((1.0 - z * z).max(0.0));
-            let phi = TAU * u2;
-            Emitted { origin: *position, direction: Vec3::new(r * cos(phi), r * sin(phi), z), light }
+            let (sin_phi, cos_phi) = sin_cos_turns(u2);
+            Emitted { origin: *position, direction: Vec3::new(r * cos_phi, r * sin_phi, z), light }
         }
         Light::Beam { position, direction, radius, .. } => {
             let axis = direction.normalize();
             let (t, b) = basis(axis);
             let r = radius * sqrt(random_f32(seed, index, dim::POSITION));
-            let phi = TAU * random_f32(seed, index, dim::POSITION + 1);
-            let origin = *position + (t * cos(phi) + b * sin(phi)) * r;
+            let (sin_phi, cos_phi) = sin_cos_turns(random_f32(seed, index, dim::POSITION + 1));
+            let origin = *position + (t * cos_phi + b * sin_phi) * r;
             Emitted { origin, direction: axis, light }
         }
     }
@@ -55,7 +54,7 @@ pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
 #[inline]
 fn cone_direction(axis: Vec3, cos_t: f32, u: f32) -> Vec3 {
     let sin_t = sqrt((1.0 - cos_t * cos_t).max(0.0));
-    let phi = TAU * u;
+    let (sin_phi, cos_phi) = sin_cos_turns(u);
     let (t, b) = basis(axis);
-    (t * (sin_t * cos(phi)) + b * (sin_t * sin(phi)) + axis * cos_t).normalize()
+    (t * (sin_t * cos_phi) + b * (sin_t * sin_phi) + axis * cos_t).normalize()
 }

@@ -114,6 +114,32 @@ mod imp {
 
 pub use imp::*;
 
+/// Taylor coefficients of sin x (x, x³, …, x¹¹) and cos x (1, x², …, x¹²).
+pub const SIN_COEFFS: [f32; 6] = [1.0, -1.0 / 6.0, 1.0 / 120.0, -1.0 / 5040.0, 1.0 / 362_880.0, -1.0 / 39_916_800.0];
+/// See [`SIN_COEFFS`].
+pub const COS_COEFFS: [f32; 7] =
+    [1.0, -0.5, 1.0 / 24.0, -1.0 / 720.0, 1.0 / 40_320.0, -1.0 / 3_628_800.0, 1.0 / 479_001_600.0];
+
+/// (sin 2πu, cos 2πu) with only +, −, × and `floor`, so that the packet
+/// (SIMD) and shader (WGSL) twins compute the same bits as this scalar
+/// version. The angle is reduced to a half-angle h ∈ [−π/2, π/2], where the
+/// Taylor series above are accurate to 1e-7, then doubled:
+/// sin 2h = 2·sin h·cos h, cos 2h = 1 − 2·sin² h. Used for emission azimuths.
+#[inline]
+pub fn sin_cos_turns(u: f32) -> (f32, f32) {
+    let h = (u - floor(u + 0.5)) * core::f32::consts::PI;
+    let h2 = h * h;
+    let s = h
+        * (SIN_COEFFS[0]
+            + h2 * (SIN_COEFFS[1]
+                + h2 * (SIN_COEFFS[2] + h2 * (SIN_COEFFS[3] + h2 * (SIN_COEFFS[4] + h2 * SIN_COEFFS[5])))));
+    let c = COS_COEFFS[0]
+        + h2 * (COS_COEFFS[1]
+            + h2 * (COS_COEFFS[2]
+                + h2 * (COS_COEFFS[3] + h2 * (COS_COEFFS[4] + h2 * (COS_COEFFS[5] + h2 * COS_COEFFS[6])))));
+    (2.0 * s * c, 1.0 - 2.0 * s * s)
+}
+
 /// Degrees to radians.
 #[inline]
 pub fn radians(deg: f32) -> f32 {
@@ -124,4 +150,18 @@ pub fn radians(deg: f32) -> f32 {
 #[inline]
 pub fn degrees(rad: f32) -> f32 {
     rad * (180.0 / core::f32::consts::PI)
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn sin_cos_turns_is_accurate() {
+        for k in 0..=10_000 {
+            let u = k as f32 / 10_000.0;
+            let (s, c) = super::sin_cos_turns(u);
+            let a = f64::from(u) * core::f64::consts::TAU;
+            // Within about 8 f32 ulps of the true values.
+            assert!((f64::from(s) - a.sin()).abs() < 1e-6 && (f64::from(c) - a.cos()).abs() < 1e-6, "u = {u}");
+        }
+    }
 }

@@ -1,6 +1,10 @@
 //! Helpers shared by the cross-crate tests: scenes built in code for
 //! experiments with closed-form answers, and float comparison.
 
+pub mod parity;
+pub mod random_scene;
+pub mod tolerance;
+
 use prismatic_core::bands::BandSpec;
 use prismatic_core::dispersion::Dispersion;
 use prismatic_core::scene::{Camera, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape};

@@ -1,0 +1,190 @@
+//! Packet ray–scene intersection: the core's `Primitive::intersect` and
+//! `PreparedScene::intersect`, eight rays at a time, operation for operation.
+
+use crate::simd::{Vec3x8, ge, gt, lt};
+use prismatic_core::geometry::{HalfSpace, Primitive, Triangle};
+use prismatic_core::prepared::PreparedScene;
+use wide::f32x8;
+
+/// Eight rays.
+#[derive(Clone, Copy, Debug)]
+pub struct RayX8 {
+    /// Origins.
+    pub origin: Vec3x8,
+    /// Unit directions.
+    pub dir: Vec3x8,
+}
+
+impl RayX8 {
+    /// Points at parameter `t`.
+    #[inline]
+    pub fn at(&self, t: f32x8) -> Vec3x8 {
+        self.origin + self.dir * t
+    }
+}
+
+/// The nearest hits of eight rays: `object` is −1 where a ray hit nothing.
+#[derive(Clone, Copy, Debug)]
+pub struct HitX8 {
+    /// Distance (the search limit where nothing was hit).
+    pub t: f32x8,
+    /// Outward unit normal.
+    pub normal: Vec3x8,
+    /// Object index as a float (exact for any realistic scene), −1 for none.
+    pub object: f32x8,
+}
+
+/// Nearest hit of each ray with the scene closer than `t_max` (per lane).
+#[inline]
+pub fn intersect_scene(scene: &PreparedScene, ray: &RayX8, t_max: f32x8) -> HitX8 {
+    let mut hit = HitX8 { t: t_max, normal: Vec3x8::ZERO, object: f32x8::splat(-1.0) };
+    for (k, prim) in scene.primitives.iter().enumerate() {
+        let (mask, t, normal) = intersect_primitive(prim, ray, hit.t);
+        if mask.any() {
+            hit.t = mask.select(t, hit.t);
+            hit.normal = Vec3x8::select(mask, normal, hit.normal);
+            hit.object = mask.select(f32x8::splat(k as f32), hit.object);
+        }
+    }
+    hit
+}
+
+/// Lanes with something on the segment from `origin` along `dir` before `dist`.
+#[inline]
+pub fn occluded(scene: &PreparedScene, ray: &RayX8, dist: f32x8) -> f32x8 {
+    let mut blocked = f32x8::ZERO;
+    for prim in &scene.primitives {
+        let (mask, _, _) = intersect_primitive(prim, ray, dist);
+        blocked |= mask;
+        if blocked.all() {
+            break;
+        }
+    }
+    blocked
+}
+
+/// Hits with `0 < t < t_max`: (mask, t, outward normal).
+#[inline]
+fn intersect_primitive(prim: &Primitive, ray: &RayX8, t_max: f32x8) -> (f32x8, f32x8, Vec3x8) {
+    match prim {
+        Primitive::Sphere { center, radius } => sphere(ray, Vec3x8::splat(*center), *radius, t_max),
+        Primitive::Plane { point, normal } => {
+            let n = Vec3x8::splat(*normal);
+            let (valid, t) = plane_t(ray, Vec3x8::splat(*point), n);
+            (valid & in_range(t, t_max), t, n)
+        }
+        Primitive::Disk { center, normal, radius2, inner_radius2 } => {
+            let (c, n) = (Vec3x8::splat(*center), Vec3x8::splat(*normal));
+            let (valid, t) = plane_t(ray, c, n);
+            let d2 = (ray.at(t) - c).length_squared();
+            let inside = !gt(d2, f32x8::splat(*radius2)) & ge(d2, f32x8::splat(*inner_radius2));
+            (valid & in_range(t, t_max) & inside, t, n)
+        }
+        Primitive::Convex { faces } => convex(ray, faces, t_max),
+        Primitive::Mesh { triangles, bound_center, bound_radius } => {
+            if !sphere_any(ray, Vec3x8::splat(*bound_center), *bound_radius, t_max).any() {
+                return (f32x8::ZERO, t_max, Vec3x8::ZERO);
+            }
+            let mut best = (f32x8::ZERO, t_max, Vec3x8::ZERO);
+            for tri in triangles {
+                let (mask, t) = triangle(ray, tri, best.1);
+                if mask.any() {
+                    best = (
+                        best.0 | mask,
+                        mask.select(t, best.1),
+                        Vec3x8::select(mask, Vec3x8::splat(tri.normal), best.2),
+                    );
+                }
+            }
+            best
+        }
+    }
+}
+
+#[inline]
+fn in_range(t: f32x8, t_max: f32x8) -> f32x8 {
+    gt(t, f32x8::ZERO) & lt(t, t_max)
+}
+
+#[inline]
+fn plane_t(ray: &RayX8, point: Vec3x8, normal: Vec3x8) -> (f32x8, f32x8) {
+    let denom = ray.dir.dot(normal);
+    let valid = !lt(denom.abs(), f32x8::splat(1e-12));
+    (valid, (point - ray.origin).dot(normal) / denom)
+}
+
+#[inline]
+fn sphere(ray: &RayX8, center: Vec3x8, radius: f32, t_max: f32x8) -> (f32x8, f32x8, Vec3x8) {
+    let f = ray.origin - center;
+    let b = f.dot(ray.dir);
+    let perp = f - ray.dir * b;
+    let r = f32x8::splat(radius);
+    let disc = r * r - perp.length_squared();
+    let valid = !lt(disc, f32x8::ZERO);
+    let c = f.length_squared() - r * r;
+    let q = -b - disc.sqrt().flip_signs(b);
+    let q_zero = q.simd_eq(f32x8::ZERO);
+    let t0 = q_zero.select(f32x8::ZERO, c / q);
+    let t1 = q_zero.select(f32x8::ZERO, q);
+    let swap = lt(t0, t1);
+    let (near, far) = (swap.select(t0, t1), swap.select(t1, t0));
+    let near_ok = in_range(near, t_max);
+    let t = near_ok.select(near, far);
+    let mask = valid & (near_ok | in_range(far, t_max));
+    (mask, t, (ray.at(t) - center) / r)
+}
+
+#[inline]
+fn sphere_any(ray: &RayX8, center: Vec3x8, radius: f32, t_max: f32x8) -> f32x8 {
+    let f = ray.origin - center;
+    let b = f.dot(ray.dir);
+    let perp = f - ray.dir * b;
+    let r = f32x8::splat(radius);
+    !gt(perp.length_squared(), r * r) & !gt(-b - r, t_max)
+}
+
+#[inline]
+fn convex(ray: &RayX8, faces: &[HalfSpace], t_max: f32x8) -> (f32x8, f32x8, Vec3x8) {
+    let mut t_enter = f32x8::splat(f32::NEG_INFINITY);
+    let mut t_exit = f32x8::splat(f32::INFINITY);
+    let mut n_enter = Vec3x8::ZERO;
+    let mut n_exit = Vec3x8::ZERO;
+    let mut outside_parallel = f32x8::ZERO;
+    for face in faces {
+        let n = Vec3x8::splat(face.normal);
+        let denom = n.dot(ray.dir);
+        let dist = f32x8::splat(face.offset) - n.dot(ray.origin);
+        let parallel = denom.simd_eq(f32x8::ZERO);
+        outside_parallel |= parallel & lt(dist, f32x8::ZERO);
+        let t = dist / denom;
+        let entering = !parallel & lt(denom, f32x8::ZERO);
+        let exiting = !parallel & !lt(denom, f32x8::ZERO);
+        let new_enter = entering & gt(t, t_enter);
+        t_enter = new_enter.select(t, t_enter);
+        n_enter = Vec3x8::select(new_enter, n, n_enter);
+        let new_exit = exiting & lt(t, t_exit);
+        t_exit = new_exit.select(t, t_exit);
+        n_exit = Vec3x8::select(new_exit, n, n_exit);
+    }
+    let valid = !outside_parallel & !gt(t_enter, t_exit);
+    let enter_ok = in_range(t_enter, t_max);
+    let exit_ok = in_range(t_exit, t_max);
+    let mask = valid & (enter_ok | exit_ok);
+    (mask, enter_ok.select(t_enter, t_exit), Vec3x8::select(enter_ok, n_enter, n_exit))
+}
+
+#[inline]
+fn triangle(ray: &RayX8, tri: &Triangle, t_max: f32x8) -> (f32x8, f32x8) {
+    let (e1, e2) = (Vec3x8::splat(tri.e1), Vec3x8::splat(tri.e2));
+    let p = ray.dir.cross(e2);
+    let det = e1.dot(p);
+    let valid = !lt(det.abs(), f32x8::splat(1e-12));
+    let inv = f32x8::ONE / det;
+    let s = ray.origin - Vec3x8::splat(tri.v0);
+    let u = s.dot(p) * inv;
+    let q = s.cross(e1);
+    let v = ray.dir.dot(q) * inv;
+    let t = e2.dot(q) * inv;
+    let inside = ge(u, f32x8::ZERO) & !gt(u, f32x8::ONE) & ge(v, f32x8::ZERO) & !gt(u + v, f32x8::ONE);
+    (valid & inside & in_range(t, t_max), t)
+}

@@ -1,0 +1,245 @@
+//! Packet rendering: the core's `render`, eight rays per packet, threads over tiles.
+//!
+//! A tile's primary rays go eight pixels to a packet. Where the reference
+//! recurses (mirrors, the two Fresnel branches at glass, one ray per band at
+//! the first dispersive glass) this renderer queues the next rays with the
+//! weight and RGB tint they carry and the pixel they belong to, and traces
+//! the queue in packets of eight too, until it is empty: the same sum over
+//! paths as the reference, in a different order. Shading (direct light with
+//! shadow-ray packets, checker albedo) is lane-parallel; the gather is a
+//! per-lane walk over the grid's cells.
+
+use crate::grid::CpuGrid;
+use crate::intersect::{RayX8, intersect_scene, occluded};
+use crate::simd::{Vec3x8, ge, gt, lt};
+use crate::trace::offset_origin;
+use glam::Vec3;
+use prismatic_core::Image;
+use prismatic_core::bands::MAX_BANDS;
+use prismatic_core::camera::PinholeCamera;
+use prismatic_core::gather::GatherQuery;
+use prismatic_core::math::{cos, radians};
+use prismatic_core::optics;
+use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::prepared::{PreparedScene, Surface};
+use prismatic_core::scene::Light;
+use prismatic_core::tolerance::MIN_VIEW_WEIGHT;
+use rayon::prelude::*;
+use std::f32::consts::PI;
+use wide::f32x8;
+
+/// Rows per tile (a unit of work for one thread).
+pub const TILE_ROWS: u32 = 4;
+
+/// A ray waiting to be traced, with what it carries back to its pixel.
+#[derive(Clone, Copy, Debug)]
+struct ViewRay {
+    origin: Vec3,
+    dir: Vec3,
+    /// Path weight (Fresnel factors), for pruning as the reference does.
+    weight: f32,
+    /// RGB factor of the path (Fresnel factors times band weights).
+    tint: Vec3,
+    band: u16,
+    depth: u32,
+    pixel: u32,
+}
+
+/// Renders the image with the photons of `grid`.
+pub fn render(scene: &PreparedScene, grid: &CpuGrid) -> Image {
+    let r = &scene.scene.render;
+    let camera = PinholeCamera::new(&scene.scene.camera, r.width, r.height);
+    let mut image = Image::new(r.width, r.height);
+    let row = r.width as usize;
+    image.pixels.par_chunks_mut(row * TILE_ROWS as usize).enumerate().for_each(|(tile, pixels)| {
+        let y0 = tile as u32 * TILE_ROWS;
+        let mut queue: Vec<ViewRay> = Vec::with_capacity(pixels.len());
+        for (k, _) in pixels.iter().enumerate().rev() {
+            let (x, y) = ((k % row) as u32, y0 + (k / row) as u32);
+            let ray = camera.ray(x, y);
+            queue.push(ViewRay {
+                origin: ray.origin,
+                dir: ray.direction,
+                weight: 1.0,
+                tint: Vec3::ONE,
+                band: WHITE_BAND,
+                depth: 0,
+                pixel: k as u32,
+            });
+        }
+        let mut shader = Shader { scene, grid, counts: Box::new([0; MAX_BANDS + 1]) };
+        let mut sum = vec![Vec3::ZERO; pixels.len()];
+        while !queue.is_empty() {
+            let take = queue.len().min(8);
+            let mut batch = [queue[queue.len() - 1]; 8];
+            batch[..take].copy_from_slice(&queue[queue.len() - take..]);
+            queue.truncate(queue.len() - take);
+            shader.trace_packet(&batch[..take], &mut queue, &mut sum);
+        }
+        for (p, s) in pixels.iter_mut().zip(sum) {
+            *p = s * r.exposure;
+        }
+    });
+    image
+}
+
+struct Shader<'a> {
+    scene: &'a PreparedScene,
+    grid: &'a CpuGrid,
+    counts: Box<[u32; MAX_BANDS + 1]>,
+}
+
+impl Shader<'_> {
+    /// Traces up to eight queued rays: adds what they see to their pixels
+    /// and queues the rays they spawn.
+    fn trace_packet(&mut self, rays: &[ViewRay], queue: &mut Vec<ViewRay>, sum: &mut [Vec3]) {
+        let settings = &self.scene.scene.render;
+        let lane = |i: usize| &rays[i.min(rays.len() - 1)];
+        let ray = RayX8 {
+            origin: Vec3x8::from_lanes(&core::array::from_fn(|i| lane(i).origin)),
+            dir: Vec3x8::from_lanes(&core::array::from_fn(|i| lane(i).dir)),
+        };
+        let hit = intersect_scene(self.scene, &ray, f32x8::splat(f32::INFINITY));
+        let point = ray.at(hit.t);
+        let object = hit.object.to_array();
+        // Diffuse lanes are shaded together; the rest one by one (misses, mirrors, glass).
+        let mut diffuse = [0.0f32; 8];
+        for (i, r) in rays.iter().enumerate() {
+            if object[i] < 0.0 {
+                sum[r.pixel as usize] += r.tint * settings.background;
+            } else if let Surface::Diffuse { .. } = self.scene.surfaces[object[i] as usize] {
+                diffuse[i] = f32::from_bits(u32::MAX);
+            }
+        }
+        let diffuse = f32x8::new(diffuse);
+        if diffuse.any() {
+            let radiance = self.shade_diffuse(&ray, &hit.normal, point, &hit.object, diffuse);
+            for i in lanes(diffuse) {
+                sum[rays[i].pixel as usize] += rays[i].tint * radiance[i];
+            }
+        }
+        for (i, r) in rays.iter().enumerate() {
+            if object[i] < 0.0 || diffuse.to_bitmask() & (1 << i) != 0 || r.depth >= settings.max_depth {
+                continue;
+            }
+            let (p, n) = (point.lane(i), hit.normal.lane(i));
+            match &self.scene.surfaces[object[i] as usize] {
+                Surface::Mirror => {
+                    let d = optics::reflect(r.dir, n);
+                    let origin = prismatic_core::prepared::offset_origin(p, n, d);
+                    queue.push(ViewRay { origin, dir: d, depth: r.depth + 1, ..*r });
+                }
+                Surface::Dielectric(glass) if r.band == WHITE_BAND && glass.is_dispersive() => {
+                    for (b, info) in self.scene.bands.bands().iter().enumerate() {
+                        let tinted = ViewRay { tint: r.tint * info.weight, band: b as u16, ..*r };
+                        spawn_at_glass(&tinted, p, n, glass.ior(b as u16), queue);
+                    }
+                }
+                Surface::Dielectric(glass) => spawn_at_glass(r, p, n, glass.ior(r.band), queue),
+                Surface::Diffuse { .. } => unreachable!("shaded above"),
+            }
+        }
+    }
+
+    /// Radiance toward the viewer at diffuse hits (lanes in `mask`).
+    fn shade_diffuse(&mut self, ray: &RayX8, normal: &Vec3x8, p: Vec3x8, object: &f32x8, mask: f32x8) -> [Vec3; 8] {
+        let settings = &self.scene.scene.render;
+        let facing = lt(ray.dir.dot(*normal), f32x8::ZERO);
+        let n = Vec3x8::select(facing, *normal, -*normal);
+        let mut direct = f32x8::ZERO;
+        for light in &self.scene.scene.lights {
+            direct += self.direct_irradiance(light, p, n, mask);
+        }
+        let objects = object.to_array();
+        let direct = direct.to_array();
+        let mut out = [Vec3::ZERO; 8];
+        for i in lanes(mask) {
+            let (pi, ni) = (p.lane(i), n.lane(i));
+            let albedo = self.scene.surfaces[objects[i] as usize].albedo_at(pi, ni);
+            let query = GatherQuery { point: pi, normal: ni, radius: settings.radius };
+            let caustic = if self.grid.is_empty() {
+                Vec3::ZERO
+            } else {
+                self.grid.gather(&self.scene.bands, settings.estimator, &query, &mut self.counts)
+            };
+            out[i] = albedo * (caustic + Vec3::splat(direct[i])) * (1.0 / PI) + albedo * settings.ambient;
+        }
+        out
+    }
+
+    /// `RenderContext::direct_irradiance` for eight points.
+    fn direct_irradiance(&self, light: &Light, p: Vec3x8, n: Vec3x8, mask: f32x8) -> f32x8 {
+        match light {
+            Light::Spot { position, direction, cone_deg, power } => {
+                let cos_max = cos(radians(*cone_deg));
+                let axis = Vec3x8::splat(direction.normalize());
+                let (l, dist, cos_s, visible) = self.visible_point(*position, p, n, mask);
+                let inside = ge((-l).dot(axis), f32x8::splat(cos_max));
+                let intensity = f32x8::splat(power / (2.0 * PI * (1.0 - cos_max)));
+                (visible & inside).select(intensity * cos_s / (dist * dist), f32x8::ZERO)
+            }
+            Light::Point { position, power } => {
+                let (_, dist, cos_s, visible) = self.visible_point(*position, p, n, mask);
+                visible.select(f32x8::splat(power / (4.0 * PI)) * cos_s / (dist * dist), f32x8::ZERO)
+            }
+            Light::Beam { position, direction, radius, power } => {
+                let axis = direction.normalize();
+                let (a, c) = (Vec3x8::splat(axis), Vec3x8::splat(*position));
+                let along = (p - c).dot(a);
+                let cos_s = -a.dot(n);
+                let off_axis = (p - c - a * along).length_squared().sqrt();
+                let lit = mask & gt(along, f32x8::ZERO) & gt(cos_s, f32x8::ZERO) & !gt(off_axis, f32x8::splat(*radius));
+                if !lit.any() {
+                    return f32x8::ZERO;
+                }
+                let shadow = RayX8 { origin: offset_origin(p, n, -a), dir: -a };
+                let blocked = occluded(self.scene, &shadow, lit.select(along, f32x8::ZERO));
+                (lit & !blocked).select(f32x8::splat(power / (PI * radius * radius)) * cos_s, f32x8::ZERO)
+            }
+        }
+    }
+
+    /// Direction to a point light, distance, surface cosine and the lanes
+    /// that see it (facing it and not in shadow).
+    fn visible_point(&self, light: Vec3, p: Vec3x8, n: Vec3x8, mask: f32x8) -> (Vec3x8, f32x8, f32x8, f32x8) {
+        let to = Vec3x8::splat(light) - p;
+        let dist = to.length_squared().sqrt();
+        let l = to / dist;
+        let cos_s = l.dot(n);
+        let facing = mask & gt(cos_s, f32x8::ZERO);
+        if !facing.any() {
+            return (l, dist, cos_s, facing);
+        }
+        let origin = offset_origin(p, n, l);
+        let reach = (Vec3x8::splat(light) - origin).length_squared().sqrt();
+        let blocked = occluded(self.scene, &RayX8 { origin, dir: l }, facing.select(reach, f32x8::ZERO));
+        (l, dist, cos_s, facing & !blocked)
+    }
+}
+
+/// Queues the Fresnel-weighted reflection and refraction of `r` at a glass
+/// surface point `p` (outward normal `outward`), as the reference recurses.
+fn spawn_at_glass(r: &ViewRay, p: Vec3, outward: Vec3, ior: f32, queue: &mut Vec<ViewRay>) {
+    let (n, n1, n2) = optics::interface(r.dir, outward, ior);
+    let cos_i = -r.dir.dot(n);
+    let f = optics::fresnel(cos_i, n1, n2);
+    if f * r.weight > MIN_VIEW_WEIGHT {
+        let d = optics::reflect(r.dir, n);
+        let origin = prismatic_core::prepared::offset_origin(p, n, d);
+        queue.push(ViewRay { origin, dir: d, weight: r.weight * f, tint: r.tint * f, depth: r.depth + 1, ..*r });
+    }
+    let t = 1.0 - f;
+    if t * r.weight > MIN_VIEW_WEIGHT
+        && let Some(d) = optics::refract(r.dir, n, n1, n2)
+    {
+        let origin = prismatic_core::prepared::offset_origin(p, n, d);
+        queue.push(ViewRay { origin, dir: d, weight: r.weight * t, tint: r.tint * t, depth: r.depth + 1, ..*r });
+    }
+}
+
+/// Indices of the lanes set in `mask`.
+#[inline]
+fn lanes(mask: f32x8) -> impl Iterator<Item = usize> {
+    let bits = mask.to_bitmask();
+    (0..8).filter(move |i| bits & (1 << i) != 0)
+}

@@ -1,0 +1,419 @@
+//! Packet photon tracing: the core's `trace_photons`, eight photon paths per
+//! packet, lane-parallel with masks.
+//!
+//! White photons travel in packets of eight; a lane whose path ends is
+//! refilled with the chunk's next white photon (emitted in SIMD). When a
+//! white photon meets dispersive glass, its N band photons leave that point
+//! together as band packets (bands b..b+8 of one photon in the eight lanes,
+//! each lane with its own index of refraction, loaded as one vector from the
+//! glass's band table) and are traced to the end before the white packet
+//! goes on. Every step mirrors the scalar reference operation for
+//! operation, so the photon map is the reference's bit for bit.
+
+use crate::emit::Emitters;
+use crate::intersect::{HitX8, RayX8, intersect_scene};
+use crate::simd::{Vec3x8, ge, lt, random_f32};
+use prismatic_core::photon::{Photon, TraceStats, WHITE_BAND, oct_encode};
+use prismatic_core::prepared::{PreparedScene, Surface};
+use prismatic_core::rng::dim;
+use prismatic_core::tolerance::{SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL};
+use wide::{f32x8, u32x8};
+
+/// A lane mask with every bit set.
+const ON: f32 = f32::from_bits(u32::MAX);
+
+/// What a surface does, per object, as lane masks and index vectors.
+struct ObjectOptics {
+    id: f32x8,
+    diffuse: f32x8,
+    mirror: f32x8,
+    dielectric: f32x8,
+    /// Dielectric that splits white light.
+    dispersive: f32x8,
+    /// n for white light (non-dispersive glass only).
+    white_ior: f32x8,
+    /// n per band, eight bands per vector.
+    band_ior: Vec<f32x8>,
+}
+
+/// The scene's tracing tables, shared by all chunks.
+pub struct TraceContext<'a> {
+    scene: &'a PreparedScene,
+    emitters: Emitters,
+    objects: Vec<ObjectOptics>,
+    flux: f32,
+}
+
+impl<'a> TraceContext<'a> {
+    /// Builds the tables for `scene`.
+    pub fn new(scene: &'a PreparedScene) -> Self {
+        let mask = |b: bool| f32x8::splat(if b { ON } else { 0.0 });
+        let n = scene.bands.len();
+        let objects = scene
+            .surfaces
+            .iter()
+            .enumerate()
+            .map(|(k, s)| {
+                let glass = match s {
+                    Surface::Dielectric(g) => Some(g),
+                    _ => None,
+                };
+                let band_ior = (0..n.div_ceil(8))
+                    .map(|c| {
+                        f32x8::new(core::array::from_fn(|i| {
+                            glass.and_then(|g| g.band_ior.get(c * 8 + i).copied()).unwrap_or(1.0)
+                        }))
+                    })
+                    .collect();
+                ObjectOptics {
+                    id: f32x8::splat(k as f32),
+                    diffuse: mask(matches!(s, Surface::Diffuse { .. })),
+                    mirror: mask(matches!(s, Surface::Mirror)),
+                    dielectric: mask(glass.is_some()),
+                    dispersive: mask(glass.is_some_and(|g| g.is_dispersive())),
+                    white_ior: f32x8::splat(glass.and_then(|g| g.white_ior).unwrap_or(1.0)),
+                    band_ior,
+                }
+            })
+            .collect();
+        TraceContext { scene, emitters: Emitters::new(scene), objects, flux: prismatic_core::trace::photon_flux(scene) }
+    }
+}
+
+/// The surface facts of each lane's hit.
+struct LaneSurfaces {
+    missed: f32x8,
+    diffuse: f32x8,
+    mirror: f32x8,
+    dielectric: f32x8,
+    dispersive: f32x8,
+    /// Index of refraction for this lane: white for white packets, the band's for band packets.
+    ior: f32x8,
+}
+
+impl TraceContext<'_> {
+    /// Classifies the hits of a packet. `band_chunk` selects band indices
+    /// (band packets) or white indices (`None`).
+    #[inline]
+    fn classify(&self, hit: &HitX8, band_chunk: Option<usize>) -> LaneSurfaces {
+        let mut s = LaneSurfaces {
+            missed: lt(hit.object, f32x8::ZERO),
+            diffuse: f32x8::ZERO,
+            mirror: f32x8::ZERO,
+            dielectric: f32x8::ZERO,
+            dispersive: f32x8::ZERO,
+            ior: f32x8::ONE,
+        };
+        for o in &self.objects {
+            let m = hit.object.simd_eq(o.id);
+            s.diffuse |= m & o.diffuse;
+            s.mirror |= m & o.mirror;
+            s.dielectric |= m & o.dielectric;
+            s.dispersive |= m & o.dispersive;
+            let ior = match band_chunk {
+                Some(c) => o.band_ior[c],
+                None => o.white_ior,
+            };
+            s.ior = (m & o.dielectric).select(ior, s.ior);
+        }
+        s
+    }
+}
+
+/// Output of a chunk.
+struct Sink {
+    out: Vec<Photon>,
+    stats: TraceStats,
+}
+
+impl Sink {
+    #[inline]
+    fn add_flux(total: &mut f64, mask: f32x8, flux: f32x8) {
+        let f = flux.as_array();
+        for i in lanes(mask) {
+            *total += f64::from(f[i]);
+        }
+    }
+}
+
+/// Traces white photons `range` (emission indices) in packets; returns the
+/// stored photons in canonical order and the pass statistics.
+pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>) -> (Vec<Photon>, TraceStats) {
+    let settings = &ctx.scene.scene.render;
+    let mut sink = Sink { out: Vec::new(), stats: TraceStats::default() };
+    let mut next = range.start;
+    let mut origin = Vec3x8::ZERO;
+    let mut dir = Vec3x8::ZERO;
+    let mut emission = u32x8::ZERO;
+    let mut bounces = u32x8::ZERO;
+    let mut active = f32x8::ZERO;
+    let flux = f32x8::splat(ctx.flux);
+    loop {
+        // Refill free lanes with the next white photons.
+        let free = !active;
+        if next < range.end && free.any() {
+            let free_bits = free.to_bitmask();
+            let mut indices = [0u32; 8];
+            let mut fresh = [0.0f32; 8];
+            for (i, (index, on)) in indices.iter_mut().zip(&mut fresh).enumerate() {
+                if free_bits & (1 << i) != 0 && next < range.end {
+                    *index = next;
+                    *on = ON;
+                    next += 1;
+                }
+            }
+            let fresh = f32x8::new(fresh);
+            let (o, d) = ctx.emitters.emit(u32x8::new(indices));
+            origin = Vec3x8::select(fresh, o, origin);
+            dir = Vec3x8::select(fresh, d, dir);
+            let fresh_u = bytemuck::cast::<f32x8, u32x8>(fresh);
+            emission = fresh_u.select(u32x8::new(indices), emission);
+            bounces = fresh_u.select(u32x8::ZERO, bounces);
+            active |= fresh;
+            let n = u64::from(fresh.to_bitmask().count_ones());
+            sink.stats.emitted += n;
+            sink.stats.paths += n;
+            sink.stats.flux_emitted += f64::from(ctx.flux) * n as f64;
+        }
+        if !active.any() {
+            break;
+        }
+        let ray = RayX8 { origin, dir };
+        let hit = intersect_scene(ctx.scene, &ray, f32x8::splat(f32::INFINITY));
+        let s = ctx.classify(&hit, None);
+        let point = ray.at(hit.t);
+        let ended = end_paths(ctx, &mut sink, active, &s, point, dir, flux, emission, u32x8::splat(0xFFFF), bounces);
+        let mut go_on = active & !ended;
+        // White photons at dispersive glass: their bands leave from here, in band packets.
+        let split = go_on & s.dispersive;
+        for i in lanes(split) {
+            sink.stats.paths += ctx.scene.bands.len() as u64 - 1;
+            trace_bands(ctx, &mut sink, i, &hit, point, dir, emission.as_array()[i], bounces.as_array()[i]);
+        }
+        go_on &= !split;
+        let u = random_f32(settings.seed, emission, scatter_dims(u32x8::splat(u32::from(WHITE_BAND)), bounces));
+        (origin, dir) = scatter(point, dir, hit.normal, &s, u, origin, go_on, dir);
+        bounces += bytemuck::cast::<f32x8, u32x8>(go_on) & u32x8::ONE;
+        active = go_on;
+    }
+    canonical_order(&mut sink.out, range.start, range.len());
+    (sink.out, sink.stats)
+}
+
+/// Traces the bands of white photon `emission` (lane `lane` of `hit`) from
+/// the dispersive surface it has just met, eight bands per packet.
+#[expect(clippy::too_many_arguments, reason = "the state of one split photon, passed in registers")]
+fn trace_bands(
+    ctx: &TraceContext<'_>,
+    sink: &mut Sink,
+    lane: usize,
+    hit: &HitX8,
+    point: Vec3x8,
+    dir: Vec3x8,
+    emission: u32,
+    white_bounces: u32,
+) {
+    let seed = ctx.scene.scene.render.seed;
+    let n = ctx.scene.bands.len();
+    let flux = f32x8::splat(ctx.flux / n as f32);
+    let emission_v = u32x8::splat(emission);
+    let object = hit.object.as_array()[lane] as usize;
+    let (p0, d0, n0) =
+        (Vec3x8::splat(point.lane(lane)), Vec3x8::splat(dir.lane(lane)), Vec3x8::splat(hit.normal.lane(lane)));
+    for chunk in 0..n.div_ceil(8) {
+        let band = u32x8::new(core::array::from_fn(|i| (chunk * 8 + i) as u32));
+        let mut active = bytemuck::cast::<u32x8, f32x8>(band.simd_lt(u32x8::splat(n as u32)));
+        let mut bounces = u32x8::splat(white_bounces);
+        // First, every band scatters at the glass with its own index.
+        let start = LaneSurfaces {
+            missed: f32x8::ZERO,
+            diffuse: f32x8::ZERO,
+            mirror: f32x8::ZERO,
+            dielectric: f32x8::splat(ON),
+            dispersive: f32x8::ZERO,
+            ior: ctx.objects[object].band_ior[chunk],
+        };
+        let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
+        let (mut origin, mut dir) = scatter(p0, d0, n0, &start, u, p0, active, d0);
+        bounces += u32x8::ONE;
+        while active.any() {
+            let ray = RayX8 { origin, dir };
+            let hit = intersect_scene(ctx.scene, &ray, f32x8::splat(f32::INFINITY));
+            let s = ctx.classify(&hit, Some(chunk));
+            let point = ray.at(hit.t);
+            let ended = end_paths(ctx, sink, active, &s, point, dir, flux, emission_v, band, bounces);
+            active &= !ended;
+            let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
+            (origin, dir) = scatter(point, dir, hit.normal, &s, u, origin, active, dir);
+            bounces += bytemuck::cast::<f32x8, u32x8>(active) & u32x8::ONE;
+        }
+    }
+}
+
+/// Ends the paths that stop at this hit (escape, diffuse surface, depth
+/// limit), storing caustic photons; returns the lanes that ended.
+#[expect(clippy::too_many_arguments, reason = "one packet's state, passed in registers")]
+#[inline]
+fn end_paths(
+    ctx: &TraceContext<'_>,
+    sink: &mut Sink,
+    active: f32x8,
+    s: &LaneSurfaces,
+    point: Vec3x8,
+    dir: Vec3x8,
+    flux: f32x8,
+    emission: u32x8,
+    band: u32x8,
+    bounces: u32x8,
+) -> f32x8 {
+    sink.stats.segments += u64::from(active.to_bitmask().count_ones());
+    let missed = active & s.missed;
+    let first = bytemuck::cast::<u32x8, f32x8>(bounces.simd_eq(u32x8::ZERO));
+    let diffuse = active & s.diffuse;
+    let specular = active & (s.mirror | s.dielectric);
+    let deep = bytemuck::cast::<u32x8, f32x8>(bounces.simd_ge(u32x8::splat(ctx.scene.scene.render.max_depth)));
+    let too_deep = specular & deep;
+    Sink::add_flux(&mut sink.stats.flux_escaped, missed, flux);
+    Sink::add_flux(&mut sink.stats.flux_direct, diffuse & first, flux);
+    Sink::add_flux(&mut sink.stats.flux_depth_limited, too_deep, flux);
+    sink.stats.specular_paths += u64::from((specular & !too_deep & first).to_bitmask().count_ones());
+    let store = diffuse & !first;
+    if store.any() {
+        let (f, e, b, k) = (flux.as_array(), emission.as_array(), band.as_array(), bounces.as_array());
+        for i in lanes(store) {
+            sink.stats.stored += 1;
+            sink.stats.flux_stored += f64::from(f[i]);
+            sink.out.push(Photon {
+                position: point.lane(i).to_array(),
+                flux: f[i],
+                direction_oct: oct_encode(dir.lane(i)).to_array(),
+                emission: e[i],
+                band: b[i] as u16,
+                bounces: k[i] as u16,
+            });
+        }
+    }
+    missed | diffuse | too_deep
+}
+
+/// New origins and directions of the lanes in `go_on` (mirror reflection or
+/// Fresnel scattering); other lanes keep `origin`/`dir`.
+#[expect(clippy::too_many_arguments, reason = "one packet's state, passed in registers")]
+#[inline]
+fn scatter(
+    point: Vec3x8,
+    d: Vec3x8,
+    normal: Vec3x8,
+    s: &LaneSurfaces,
+    u: f32x8,
+    origin: Vec3x8,
+    go_on: f32x8,
+    dir: Vec3x8,
+) -> (Vec3x8, Vec3x8) {
+    if !go_on.any() {
+        return (origin, dir);
+    }
+    let (n_glass, dir_glass) = scatter_dielectric(d, normal, s.ior, u);
+    let n_face = Vec3x8::select(s.mirror, normal, n_glass);
+    let new_dir = Vec3x8::select(s.mirror, reflect(d, normal), dir_glass);
+    (Vec3x8::select(go_on, offset_origin(point, n_face, new_dir), origin), Vec3x8::select(go_on, new_dir, dir))
+}
+
+/// Sorts a chunk's photons into (emission, band) order: counting sort by
+/// emission, then the few photons of each emission by band.
+fn canonical_order(out: &mut Vec<Photon>, start: u32, len: usize) {
+    let mut offsets = vec![0u32; len + 1];
+    for p in out.iter() {
+        offsets[(p.emission - start) as usize + 1] += 1;
+    }
+    for i in 0..len {
+        offsets[i + 1] += offsets[i];
+    }
+    let mut sorted = vec![Photon::default(); out.len()];
+    for p in out.iter() {
+        let slot = &mut offsets[(p.emission - start) as usize];
+        sorted[*slot as usize] = *p;
+        *slot += 1;
+    }
+    let mut begin = 0;
+    for &end in &offsets[..len] {
+        sorted[begin..end as usize].sort_unstable_by_key(|p| p.band);
+        begin = end as usize;
+    }
+    *out = sorted;
+}
+
+/// Indices of the lanes set in `mask`.
+#[inline]
+fn lanes(mask: f32x8) -> impl Iterator<Item = usize> {
+    let bits = mask.to_bitmask();
+    (0..8).filter(move |i| bits & (1 << i) != 0)
+}
+
+/// `dim::scatter(band, bounce)` per lane (`band` as u32, WHITE_BAND = 0xFFFF).
+#[inline]
+fn scatter_dims(band: u32x8, bounces: u32x8) -> u32x8 {
+    let slot = (band + u32x8::ONE) & u32x8::splat(0xFFFF);
+    u32x8::splat(dim::PATH) + slot * u32x8::splat(dim::PER_BAND) + bounces
+}
+
+/// Mirror reflection, `d − n·(2·(d·n))`.
+#[inline]
+pub fn reflect(d: Vec3x8, n: Vec3x8) -> Vec3x8 {
+    d - n * (f32x8::splat(2.0) * d.dot(n))
+}
+
+/// `prismatic_core::prepared::offset_origin` per lane.
+#[inline]
+pub fn offset_origin(p: Vec3x8, n: Vec3x8, dir: Vec3x8) -> Vec3x8 {
+    let eps = f32x8::splat(SURFACE_OFFSET_ABS) + f32x8::splat(SURFACE_OFFSET_REL) * p.abs_max_element();
+    let ne = n * eps;
+    Vec3x8::select(ge(dir.dot(n), f32x8::ZERO), p + ne, p - ne)
+}
+
+/// `prismatic_core::trace::scatter_dielectric` per lane: returns the facing
+/// normal and the new direction (reflected where `u < R` or under total
+/// internal reflection, refracted otherwise).
+#[inline]
+pub fn scatter_dielectric(d: Vec3x8, outward: Vec3x8, ior: f32x8, u: f32x8) -> (Vec3x8, Vec3x8) {
+    let (n, n1, n2) = interface(d, outward, ior);
+    let r = fresnel(-d.dot(n), n1, n2);
+    let (tir, refracted) = refract(d, n, n1, n2);
+    (n, Vec3x8::select(lt(u, r) | tir, reflect(d, n), refracted))
+}
+
+/// `prismatic_core::optics::interface`: facing normal and the indices on either side.
+#[inline]
+pub fn interface(d: Vec3x8, outward: Vec3x8, ior: f32x8) -> (Vec3x8, f32x8, f32x8) {
+    let entering = lt(d.dot(outward), f32x8::ZERO);
+    (Vec3x8::select(entering, outward, -outward), entering.select(f32x8::ONE, ior), entering.select(ior, f32x8::ONE))
+}
+
+#[inline]
+fn cos2_transmitted(cos_i: f32x8, eta: f32x8) -> f32x8 {
+    let eta2 = eta * eta;
+    (f32x8::ONE - eta2) + eta2 * cos_i * cos_i
+}
+
+/// `prismatic_core::optics::fresnel` per lane.
+#[inline]
+pub fn fresnel(cos_i: f32x8, n1: f32x8, n2: f32x8) -> f32x8 {
+    let cos_i = cos_i.max(f32x8::ZERO).min(f32x8::ONE);
+    let cos2_t = cos2_transmitted(cos_i, n1 / n2);
+    let tir = !cos2_t.simd_gt(f32x8::ZERO);
+    let cos_t = cos2_t.max(f32x8::ZERO).sqrt();
+    let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+    let rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i);
+    let r = (f32x8::splat(0.5) * (rs * rs + rp * rp)).max(f32x8::ZERO).min(f32x8::ONE);
+    n1.simd_eq(n2).select(f32x8::ZERO, tir.select(f32x8::ONE, r))
+}
+
+/// `prismatic_core::optics::refract` per lane: (total internal reflection mask, direction).
+#[inline]
+pub fn refract(d: Vec3x8, n: Vec3x8, n1: f32x8, n2: f32x8) -> (f32x8, Vec3x8) {
+    let eta = n1 / n2;
+    let cos_i = (-d.dot(n)).max(f32x8::ZERO).min(f32x8::ONE);
+    let cos2_t = cos2_transmitted(cos_i, eta);
+    let cos_t = cos2_t.max(f32x8::ZERO).sqrt();
+    (lt(cos2_t, f32x8::ZERO), (d * eta + n * (eta * cos_i - cos_t)).normalize())
+}

@@ -1,0 +1,140 @@
+//! Parity checks between backends: photon maps and images compared under
+//! the rules of [`crate::tolerance`]; on failure both sides are written to
+//! `parity-failures/<case>/` (git-ignored) and the message names the folder.
+
+use crate::tolerance::*;
+use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::{Image, PhotonMap, PreparedScene};
+use std::path::PathBuf;
+
+/// What a comparison found.
+#[derive(Debug, Default)]
+pub struct ParityReport {
+    /// Photons compared.
+    pub matched: usize,
+    /// Keys missing on one side, or matched photons that landed elsewhere.
+    pub outliers: usize,
+    /// Worst relative difference of per-band total flux.
+    pub worst_band_flux: f64,
+}
+
+/// Compares two photon maps (both in canonical order).
+pub fn compare_maps(expected: &PhotonMap, got: &PhotonMap, bands: usize) -> Result<ParityReport, String> {
+    let (a, b) = (&expected.photons, &got.photons);
+    let mut report = ParityReport::default();
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() || j < b.len() {
+        match (a.get(i), b.get(j)) {
+            (Some(x), Some(y)) if x.key() == y.key() => {
+                let position_ok = (0..3).all(|k| close(x.position[k], y.position[k], POSITION_REL, POSITION_ABS));
+                if !position_ok || !close(x.flux, y.flux, FLUX_REL, 0.0) {
+                    report.outliers += 1;
+                }
+                report.matched += 1;
+                i += 1;
+                j += 1;
+            }
+            (Some(x), Some(y)) if x.key() < y.key() => {
+                report.outliers += 1;
+                i += 1;
+            }
+            (Some(_), None) => {
+                report.outliers += 1;
+                i += 1;
+            }
+            _ => {
+                report.outliers += 1;
+                j += 1;
+            }
+        }
+    }
+    let allowed = MIN_OUTLIERS.max((OUTLIER_FRACTION * a.len().max(b.len()) as f64) as usize);
+    if report.outliers > allowed {
+        return Err(format!("{} outlier photons of {} (allowed {allowed})", report.outliers, a.len()));
+    }
+    let per_band = |m: &PhotonMap| {
+        let mut f = vec![0.0f64; bands + 1];
+        for p in &m.photons {
+            f[if p.band == WHITE_BAND { bands } else { usize::from(p.band) }] += f64::from(p.flux);
+        }
+        f
+    };
+    let (fa, fb) = (per_band(expected), per_band(got));
+    let total: f64 = fa.iter().sum();
+    for (band, (x, y)) in fa.iter().zip(&fb).enumerate() {
+        // Bands that carry almost nothing are compared against the whole map's flux.
+        let rel = (x - y).abs() / x.abs().max(y.abs()).max(1e-3 * total).max(f64::MIN_POSITIVE);
+        report.worst_band_flux = report.worst_band_flux.max(rel);
+        if rel > BAND_FLUX_REL {
+            return Err(format!("band {band}: total flux {x} vs {y} ({:.3} % apart)", rel * 100.0));
+        }
+    }
+    Ok(report)
+}
+
+/// Compares two images pixel by pixel.
+pub fn compare_images(expected: &Image, got: &Image) -> Result<usize, String> {
+    if (expected.width, expected.height) != (got.width, got.height) {
+        return Err(format!("sizes differ: {}x{} vs {}x{}", expected.width, expected.height, got.width, got.height));
+    }
+    let bad = expected
+        .pixels
+        .iter()
+        .zip(&got.pixels)
+        .filter(|(a, b)| !(0..3).all(|k| close(a[k], b[k], PIXEL_REL, PIXEL_ABS)))
+        .count();
+    let allowed = (PIXEL_OUTLIER_FRACTION * expected.pixels.len() as f64).ceil() as usize;
+    if bad > allowed {
+        return Err(format!("{bad} of {} pixels differ (allowed {allowed})", expected.pixels.len()));
+    }
+    Ok(bad)
+}
+
+/// One backend's output for a scene.
+pub struct Output {
+    /// Backend name, for file names.
+    pub backend: &'static str,
+    /// Its photon map.
+    pub map: PhotonMap,
+    /// Its image.
+    pub image: Image,
+}
+
+/// Compares `got` with `expected` on `scene`; on failure writes both photon
+/// maps (CSV) and images (PNG) to `parity-failures/<case>/` and panics
+/// naming the folder.
+pub fn assert_parity(case: &str, scene: &PreparedScene, expected: &Output, got: &Output) -> ParityReport {
+    let maps = compare_maps(&expected.map, &got.map, scene.bands.len());
+    let images = compare_images(&expected.image, &got.image);
+    match (maps, images) {
+        (Ok(report), Ok(_)) => report,
+        (maps, images) => {
+            let dir = write_failure(case, scene, &[expected, got]);
+            panic!(
+                "{case}: {} differs from {}: photon maps: {}; images: {}. Both sides written to {}",
+                got.backend,
+                expected.backend,
+                maps.err().unwrap_or_else(|| "ok".into()),
+                images.err().unwrap_or_else(|| "ok".into()),
+                dir.display()
+            );
+        }
+    }
+}
+
+fn write_failure(case: &str, scene: &PreparedScene, outputs: &[&Output]) -> PathBuf {
+    let dir = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../parity-failures")).join(case);
+    let _ = std::fs::create_dir_all(&dir);
+    let dir = std::fs::canonicalize(&dir).unwrap_or(dir);
+    for o in outputs {
+        if let Ok(file) = std::fs::File::create(dir.join(format!("{}.csv", o.backend))) {
+            let mut w = std::io::BufWriter::new(file);
+            let _ = prismatic_cli::output::write_photon_csv(&mut w, &o.map, &scene.bands);
+        }
+        if let Ok(file) = std::fs::File::create(dir.join(format!("{}.png", o.backend))) {
+            let mut w = std::io::BufWriter::new(file);
+            let _ = prismatic_cli::output::write_png(&mut w, &o.image);
+        }
+    }
+    dir
+}

@@ -1,0 +1,111 @@
+//! Random but valid scenes for parity tests: glass spheres and prisms,
+//! mirror spheres, random glasses and band tables, a spot, point or beam
+//! light aimed at the first object, over a floor and in front of a wall.
+//! A pure function of the seed.
+
+use crate::{camera, glass, white};
+use prismatic_core::bands::BandSpec;
+use prismatic_core::dispersion::{Dispersion, Glass};
+use prismatic_core::rng::random_f32;
+use prismatic_core::scene::{Checker, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape};
+use prismatic_core::{Scene, Vec3};
+
+struct Dice {
+    seed: u32,
+    n: u32,
+}
+
+impl Dice {
+    fn f(&mut self, lo: f32, hi: f32) -> f32 {
+        self.n += 1;
+        lo + (hi - lo) * random_f32(self.seed, 0x5eed, self.n)
+    }
+    fn pick(&mut self, n: usize) -> usize {
+        ((self.f(0.0, 1.0) * n as f32) as usize).min(n - 1)
+    }
+    fn v(&mut self, lo: Vec3, hi: Vec3) -> Vec3 {
+        Vec3::new(self.f(lo.x, hi.x), self.f(lo.y, hi.y), self.f(lo.z, hi.z))
+    }
+}
+
+/// Scene number `seed`, with `photons` white photons and a `side`×`side` image.
+pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
+    let mut d = Dice { seed, n: 0 };
+    let bands = match d.pick(3) {
+        0 => BandSpec::Paper3,
+        1 => BandSpec::Paper7,
+        _ => BandSpec::Physical(1 + d.pick(24) as u16),
+    };
+    let render = RenderSettings {
+        width: side,
+        height: side,
+        photons,
+        radius: d.f(0.03, 0.12),
+        bands,
+        estimator: if d.pick(2) == 0 { Estimator::Paper } else { Estimator::Density },
+        seed,
+        ..RenderSettings::default()
+    };
+    let dispersion = match d.pick(5) {
+        0 => Glass::ALL[d.pick(Glass::ALL.len())].dispersion(),
+        1 => Dispersion::Constant(d.f(1.2, 2.4)),
+        2 => Dispersion::Cauchy { a: d.f(1.4, 1.7), b: d.f(0.002, 0.02) },
+        3 => Dispersion::Abbe { nd: d.f(1.45, 1.9), vd: d.f(20.0, 70.0) },
+        _ => Glass::Paper.dispersion(),
+    };
+    let floor = Material {
+        name: "floor".into(),
+        kind: MaterialKind::Diffuse {
+            albedo: Vec3::splat(0.8),
+            checker: (d.pick(2) == 0).then(|| Checker { size: d.f(0.2, 1.0), albedo: Vec3::new(0.3, 0.3, 0.5) }),
+        },
+    };
+    let materials = vec![
+        glass("glass", dispersion),
+        white("wall"),
+        floor,
+        Material { name: "mirror".into(), kind: MaterialKind::Mirror },
+    ];
+    let mut objects = vec![
+        Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 2 },
+        Object { shape: Shape::Plane { point: Vec3::new(0.0, 0.0, -4.0), normal: Vec3::Z }, material: 1 },
+    ];
+    let mut first_center = Vec3::new(0.0, 1.0, 0.0);
+    for k in 0..1 + d.pick(3) {
+        let center = d.v(Vec3::new(-2.0, 0.8, -2.0), Vec3::new(2.0, 2.0, 1.0));
+        if k == 0 {
+            first_center = center;
+        }
+        let shape = if d.pick(2) == 0 {
+            Shape::Sphere { center, radius: d.f(0.3, 0.8) }
+        } else {
+            let s = d.f(0.4, 0.9);
+            let a = d.f(0.0, std::f32::consts::TAU);
+            let corner = |t: f32| center + Vec3::new((a + t).cos() * s, (a + t).sin() * s, -0.6);
+            Shape::Prism {
+                vertices: [corner(0.0), corner(2.1), corner(4.2)],
+                extrude: Vec3::new(d.f(-0.3, 0.3), 0.0, 1.2),
+            }
+        };
+        let material = if k > 0 && d.pick(3) == 0 { 3 } else { 0 };
+        objects.push(Object { shape, material });
+    }
+    let from = d.v(Vec3::new(-4.0, 3.0, -1.0), Vec3::new(4.0, 6.0, 3.0));
+    let light = match d.pick(3) {
+        0 => Light::Spot {
+            position: from,
+            direction: first_center - from,
+            cone_deg: d.f(8.0, 30.0),
+            power: d.f(5.0, 50.0),
+        },
+        1 => Light::Point { position: from, power: d.f(5.0, 50.0) },
+        _ => {
+            Light::Beam { position: from, direction: first_center - from, radius: d.f(0.1, 0.6), power: d.f(1.0, 10.0) }
+        }
+    };
+    let mut cam = camera();
+    cam.position = Vec3::new(0.5, 3.5, 7.0);
+    cam.look_at = Vec3::new(0.0, 0.8, -0.5);
+    cam.fov_deg = 55.0;
+    Scene { render, camera: cam, lights: vec![light], materials, objects }
+}

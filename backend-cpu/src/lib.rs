@@ -21,17 +21,30 @@ use rayon::prelude::*;
 
 /// White photons per work item: large enough to amortise a packet's set-up,
 /// small enough to balance the threads.
-pub const TRACE_CHUNK: u32 = 4096;
+pub const TRACE_CHUNK: u32 = 1024;
 
-/// The CPU backend.
+/// The CPU backend. It keeps its per-chunk buffers between frames, so an
+/// engine that traces every frame into the same [`PhotonMap`]
+/// ([`CpuBackend::trace_into`]) allocates nothing after the first.
 pub struct CpuBackend {
     pool: Option<rayon::ThreadPool>,
+    chunks: Vec<ChunkBuffer>,
 }
+
+/// One work item's unsorted output and sort scratch.
+#[derive(Default)]
+struct ChunkBuffer {
+    photons: Vec<photon_types::Photon>,
+    offsets: Vec<u32>,
+    stats: photon_types::TraceStats,
+}
+
+use prismatic_core::photon as photon_types;
 
 impl CpuBackend {
     /// Uses rayon's global pool (all cores).
     pub fn new() -> Self {
-        CpuBackend { pool: None }
+        CpuBackend { pool: None, chunks: Vec::new() }
     }
 
     /// Uses exactly `threads` threads (for scaling measurements).
@@ -40,7 +53,16 @@ impl CpuBackend {
             .num_threads(threads)
             .build()
             .map_err(|e| BackendError::Device(format!("cannot start {threads} threads: {e}")))?;
-        Ok(CpuBackend { pool: Some(pool) })
+        Ok(CpuBackend { pool: Some(pool), chunks: Vec::new() })
+    }
+
+    /// Traces the scene's photons into `map`, reusing its memory.
+    pub fn trace_into(&mut self, scene: &PreparedScene, map: &mut PhotonMap) {
+        let CpuBackend { pool, chunks } = self;
+        match pool {
+            Some(pool) => pool.install(|| trace_chunks(scene, chunks, map)),
+            None => trace_chunks(scene, chunks, map),
+        }
     }
 
     fn install<R: Send>(&self, work: impl FnOnce() -> R + Send) -> R {
@@ -59,19 +81,38 @@ impl Default for CpuBackend {
 
 /// Traces the scene's photons in packets on the current rayon pool.
 pub fn trace_photons(scene: &PreparedScene) -> PhotonMap {
+    let mut map = PhotonMap::default();
+    trace_chunks(scene, &mut Vec::new(), &mut map);
+    map
+}
+
+/// Traces fixed chunks of emissions in parallel (each unsorted into its own
+/// buffer), then sorts each chunk straight into its slice of the map.
+fn trace_chunks(scene: &PreparedScene, chunks: &mut Vec<ChunkBuffer>, map: &mut PhotonMap) {
     let total = scene.scene.render.photons;
     let ctx = trace::TraceContext::new(scene);
-    let chunks: Vec<_> = (0..total.div_ceil(TRACE_CHUNK))
-        .into_par_iter()
-        .map(|c| trace::trace_chunk(&ctx, c * TRACE_CHUNK..((c + 1) * TRACE_CHUNK).min(total)))
-        .collect();
-    let mut map = PhotonMap::default();
-    map.photons.reserve(chunks.iter().map(|c| c.0.len()).sum());
-    for (photons, stats) in chunks {
-        map.photons.extend_from_slice(&photons);
-        map.stats.merge(&stats);
+    let n_chunks = total.div_ceil(TRACE_CHUNK) as usize;
+    chunks.resize_with(n_chunks.max(chunks.len()), ChunkBuffer::default);
+    let range = |c: usize| c as u32 * TRACE_CHUNK..((c as u32 + 1) * TRACE_CHUNK).min(total);
+    chunks[..n_chunks].par_iter_mut().enumerate().for_each(|(c, buf)| {
+        buf.stats = trace::trace_chunk(&ctx, range(c), &mut buf.photons);
+    });
+    let stored: usize = chunks[..n_chunks].iter().map(|b| b.photons.len()).sum();
+    map.photons.clear();
+    map.photons.resize(stored, photon_types::Photon::default());
+    map.stats = photon_types::TraceStats::default();
+    let mut slices = Vec::with_capacity(n_chunks);
+    let mut rest = map.photons.as_mut_slice();
+    for buf in &chunks[..n_chunks] {
+        let (head, tail) = rest.split_at_mut(buf.photons.len());
+        slices.push(head);
+        rest = tail;
+        map.stats.merge(&buf.stats);
     }
-    map
+    chunks[..n_chunks].par_iter_mut().zip(slices).enumerate().for_each(|(c, (buf, dest))| {
+        let r = range(c);
+        trace::canonical_order(&buf.photons, r.start, r.len(), &mut buf.offsets, dest);
+    });
 }
 
 impl Backend for CpuBackend {
@@ -80,7 +121,8 @@ impl Backend for CpuBackend {
     }
 
     fn trace_photons(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> Result<PhotonMap, BackendError> {
-        let map = self.install(|| trace_photons(scene));
+        let mut map = PhotonMap::default();
+        self.trace_into(scene, &mut map);
         let total = u64::from(scene.scene.render.photons);
         progress.advance(Stage::Trace, total, total);
         Ok(map)
@@ -104,6 +146,10 @@ impl Backend for CpuBackend {
 
 /// Builds the grid and renders the image with the CPU backend's packets on the current rayon pool.
 pub fn render(scene: &PreparedScene, photons: &PhotonMap) -> Image {
-    let grid = CpuGrid::build(&photons.photons, scene.scene.render.radius);
-    render::render(scene, &grid)
+    render_with_grid(scene, &CpuGrid::build(&photons.photons, scene.scene.render.radius))
+}
+
+/// Renders the image from an already built grid (ray tracing and gather).
+pub fn render_with_grid(scene: &PreparedScene, grid: &CpuGrid) -> Image {
+    render::render(scene, grid)
 }

@@ -136,11 +136,13 @@ impl Sink {
     }
 }
 
-/// Traces white photons `range` (emission indices) in packets; returns the
-/// stored photons in canonical order and the pass statistics.
-pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>) -> (Vec<Photon>, TraceStats) {
+/// Traces white photons `range` (emission indices) in packets into `out`
+/// (cleared first; not yet in canonical order, see [`canonical_order`]) and
+/// returns the pass statistics.
+pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &mut Vec<Photon>) -> TraceStats {
     let settings = &ctx.scene.scene.render;
-    let mut sink = Sink { out: Vec::new(), stats: TraceStats::default() };
+    out.clear();
+    let mut sink = Sink { out: core::mem::take(out), stats: TraceStats::default() };
     let mut next = range.start;
     let mut origin = Vec3x8::ZERO;
     let mut dir = Vec3x8::ZERO;
@@ -182,7 +184,8 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>) -> (Vec
         let hit = intersect_scene(ctx.scene, &ray, f32x8::splat(f32::INFINITY));
         let s = ctx.classify(&hit, None);
         let point = ray.at(hit.t);
-        let ended = end_paths(ctx, &mut sink, active, &s, point, dir, flux, emission, u32x8::splat(0xFFFF), bounces);
+        let ended =
+            end_paths(ctx, &mut sink, active, &s, point, dir, flux, emission, u32x8::splat(0xFFFF), bounces, None);
         let mut go_on = active & !ended;
         // White photons at dispersive glass: their bands leave from here, in band packets.
         let split = go_on & s.dispersive;
@@ -196,8 +199,8 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>) -> (Vec
         bounces += bytemuck::cast::<f32x8, u32x8>(go_on) & u32x8::ONE;
         active = go_on;
     }
-    canonical_order(&mut sink.out, range.start, range.len());
-    (sink.out, sink.stats)
+    *out = sink.out;
+    sink.stats
 }
 
 /// Traces the bands of white photon `emission` (lane `lane` of `hit`) from
@@ -236,22 +239,27 @@ fn trace_bands(
         let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
         let (mut origin, mut dir) = scatter(p0, d0, n0, &start, u, p0, active, d0);
         bounces += u32x8::ONE;
+        // Each band stores at most once; kept by lane so that they leave in band order.
+        let mut stored: [Option<Photon>; 8] = [None; 8];
         while active.any() {
             let ray = RayX8 { origin, dir };
             let hit = intersect_scene(ctx.scene, &ray, f32x8::splat(f32::INFINITY));
             let s = ctx.classify(&hit, Some(chunk));
             let point = ray.at(hit.t);
-            let ended = end_paths(ctx, sink, active, &s, point, dir, flux, emission_v, band, bounces);
+            let ended =
+                end_paths(ctx, sink, active, &s, point, dir, flux, emission_v, band, bounces, Some(&mut stored));
             active &= !ended;
             let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
             (origin, dir) = scatter(point, dir, hit.normal, &s, u, origin, active, dir);
             bounces += bytemuck::cast::<f32x8, u32x8>(active) & u32x8::ONE;
         }
+        sink.out.extend(stored.into_iter().flatten());
     }
 }
 
 /// Ends the paths that stop at this hit (escape, diffuse surface, depth
-/// limit), storing caustic photons; returns the lanes that ended.
+/// limit), storing caustic photons (into `lane_slots` by lane when given,
+/// else at the end of the output); returns the lanes that ended.
 #[expect(clippy::too_many_arguments, reason = "one packet's state, passed in registers")]
 #[inline]
 fn end_paths(
@@ -265,6 +273,7 @@ fn end_paths(
     emission: u32x8,
     band: u32x8,
     bounces: u32x8,
+    mut lane_slots: Option<&mut [Option<Photon>; 8]>,
 ) -> f32x8 {
     sink.stats.segments += u64::from(active.to_bitmask().count_ones());
     let missed = active & s.missed;
@@ -283,14 +292,18 @@ fn end_paths(
         for i in lanes(store) {
             sink.stats.stored += 1;
             sink.stats.flux_stored += f64::from(f[i]);
-            sink.out.push(Photon {
+            let photon = Photon {
                 position: point.lane(i).to_array(),
                 flux: f[i],
                 direction_oct: oct_encode(dir.lane(i)).to_array(),
                 emission: e[i],
                 band: b[i] as u16,
                 bounces: k[i] as u16,
-            });
+            };
+            match lane_slots.as_deref_mut() {
+                Some(slots) => slots[i] = Some(photon),
+                None => sink.out.push(photon),
+            }
         }
     }
     missed | diffuse | too_deep
@@ -319,28 +332,25 @@ fn scatter(
     (Vec3x8::select(go_on, offset_origin(point, n_face, new_dir), origin), Vec3x8::select(go_on, new_dir, dir))
 }
 
-/// Sorts a chunk's photons into (emission, band) order: counting sort by
-/// emission, then the few photons of each emission by band.
-fn canonical_order(out: &mut Vec<Photon>, start: u32, len: usize) {
-    let mut offsets = vec![0u32; len + 1];
-    for p in out.iter() {
+/// Writes a chunk's photons (emissions `start..start + len`) into `dest` in
+/// canonical (emission, band) order: a stable counting sort by emission.
+/// Within one emission the photons are already in band order (band packets
+/// run in band order and flush by lane), and an emission stores either one
+/// white photon or band photons, never both. `offsets` is scratch space.
+pub fn canonical_order(unsorted: &[Photon], start: u32, len: usize, offsets: &mut Vec<u32>, dest: &mut [Photon]) {
+    offsets.clear();
+    offsets.resize(len + 1, 0);
+    for p in unsorted {
         offsets[(p.emission - start) as usize + 1] += 1;
     }
     for i in 0..len {
         offsets[i + 1] += offsets[i];
     }
-    let mut sorted = vec![Photon::default(); out.len()];
-    for p in out.iter() {
+    for p in unsorted {
         let slot = &mut offsets[(p.emission - start) as usize];
-        sorted[*slot as usize] = *p;
+        dest[*slot as usize] = *p;
         *slot += 1;
     }
-    let mut begin = 0;
-    for &end in &offsets[..len] {
-        sorted[begin..end as usize].sort_unstable_by_key(|p| p.band);
-        begin = end as usize;
-    }
-    *out = sorted;
 }
 
 /// Indices of the lanes set in `mask`.

@@ -1,46 +1,104 @@
-//! Criterion benches, one group per pipeline stage and backend:
-//! `trace/reference` (photons per second) and `frame/reference` (trace +
-//! grid + render) on the paper's configuration of the `sphere` scene.
+//! Criterion benches, one group per pipeline stage and backend, on the
+//! paper's configuration (400×400, 20,000 white photons, 7 bands) of the
+//! `sphere` and `prism` scenes, and on 1,000,000 photons:
+//!
+//! - `trace/<backend>`: photon tracing (throughput in white photons);
+//!   `trace/cpu-1t` and `trace/cpu-2t` pin the thread count;
+//! - `grid/cpu`: hash-grid build (counting sort);
+//! - `gather/cpu`: ray tracing + gather of a frame with a built grid;
+//! - `frame/<backend>`: the whole frame (trace, grid, render).
 
-use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use prismatic_benches::paper_config;
+use prismatic_core::PhotonMap;
 use prismatic_core::grid::PhotonGrid;
 use prismatic_core::{render, trace};
+use prismatic_cpu::{CpuBackend, CpuGrid};
 use std::hint::black_box;
 
 const PAPER_PHOTONS: u32 = 20_000;
+const MANY_PHOTONS: u32 = 1_000_000;
 
-fn trace_reference(c: &mut Criterion) {
-    let mut g = c.benchmark_group("trace/reference");
+fn trace_group(c: &mut Criterion) {
+    let mut g = c.benchmark_group("trace");
     for name in ["sphere", "prism"] {
-        let scene = paper_config(name, PAPER_PHOTONS);
-        g.throughput(Throughput::Elements(u64::from(PAPER_PHOTONS)));
-        g.bench_function(name, |b| b.iter(|| black_box(trace::trace_photons(&scene))));
+        for photons in [PAPER_PHOTONS, MANY_PHOTONS] {
+            let scene = paper_config(name, photons);
+            let id = format!("{name}/{photons}");
+            g.throughput(Throughput::Elements(u64::from(photons)));
+            if photons == PAPER_PHOTONS {
+                g.bench_function(BenchmarkId::new("reference", &id), |b| {
+                    b.iter(|| black_box(trace::trace_photons(&scene)))
+                });
+            }
+            for threads in [1, 2] {
+                // An engine traces every frame into the same map: no allocation after the first.
+                let mut backend = CpuBackend::with_threads(threads).expect("thread pool");
+                let mut map = PhotonMap::default();
+                g.bench_function(BenchmarkId::new(format!("cpu-{threads}t"), &id), |b| {
+                    b.iter(|| backend.trace_into(&scene, black_box(&mut map)))
+                });
+            }
+        }
     }
     g.finish();
 }
 
-fn grid_reference(c: &mut Criterion) {
-    let scene = paper_config("sphere", PAPER_PHOTONS);
-    let map = trace::trace_photons(&scene);
-    let mut g = c.benchmark_group("grid/reference");
-    g.throughput(Throughput::Elements(map.photons.len() as u64));
-    g.bench_function("sphere", |b| b.iter(|| black_box(PhotonGrid::build(&map.photons, scene.scene.render.radius))));
+fn grid_group(c: &mut Criterion) {
+    let mut g = c.benchmark_group("grid");
+    for photons in [PAPER_PHOTONS, MANY_PHOTONS] {
+        let scene = paper_config("sphere", photons);
+        let map = prismatic_cpu::trace_photons(&scene);
+        let r = scene.scene.render.radius;
+        g.throughput(Throughput::Elements(map.photons.len() as u64));
+        if photons == PAPER_PHOTONS {
+            g.bench_function(BenchmarkId::new("reference", photons), |b| {
+                b.iter(|| black_box(PhotonGrid::build(&map.photons, r)))
+            });
+        }
+        g.bench_function(BenchmarkId::new("cpu", photons), |b| b.iter(|| black_box(CpuGrid::build(&map.photons, r))));
+    }
     g.finish();
 }
 
-fn frame_reference(c: &mut Criterion) {
-    let scene = paper_config("sphere", PAPER_PHOTONS);
-    let mut g = c.benchmark_group("frame/reference");
+fn gather_group(c: &mut Criterion) {
+    let mut g = c.benchmark_group("gather");
     g.sample_size(10);
-    g.bench_function("sphere", |b| {
-        b.iter(|| {
-            let map = trace::trace_photons(&scene);
-            black_box(render::render(&scene, &map))
-        })
-    });
+    for photons in [PAPER_PHOTONS, MANY_PHOTONS] {
+        let scene = paper_config("sphere", photons);
+        let map = prismatic_cpu::trace_photons(&scene);
+        let grid = CpuGrid::build(&map.photons, scene.scene.render.radius);
+        g.bench_function(BenchmarkId::new("cpu", photons), |b| {
+            b.iter(|| black_box(prismatic_cpu::render_with_grid(&scene, &grid)))
+        });
+    }
     g.finish();
 }
 
-criterion_group!(benches, trace_reference, grid_reference, frame_reference);
+fn frame_group(c: &mut Criterion) {
+    let mut g = c.benchmark_group("frame");
+    g.sample_size(10);
+    for photons in [PAPER_PHOTONS, MANY_PHOTONS] {
+        let scene = paper_config("sphere", photons);
+        if photons == PAPER_PHOTONS {
+            g.bench_function(BenchmarkId::new("reference", photons), |b| {
+                b.iter(|| {
+                    let map = trace::trace_photons(&scene);
+                    black_box(render::render(&scene, &map))
+                })
+            });
+        }
+        let mut backend = CpuBackend::new();
+        let mut map = PhotonMap::default();
+        g.bench_function(BenchmarkId::new("cpu", photons), |b| {
+            b.iter(|| {
+                backend.trace_into(&scene, &mut map);
+                black_box(prismatic_cpu::render(&scene, &map))
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, trace_group, grid_group, gather_group, frame_group);
 criterion_main!(benches);

@@ -36,7 +36,8 @@ pub const TILE_ROWS: u32 = 4;
 struct ViewRay {
     origin: Vec3,
     dir: Vec3,
-    /// Path weight (Fresnel factors), for pruning as the reference does.
+    /// The path's share of the pixel (Fresnel factors, times the band's
+    /// largest weight after a split), for pruning as the reference does.
     weight: f32,
     /// RGB factor of the path (Fresnel factors times band weights).
     tint: Vec3,
@@ -131,7 +132,8 @@ impl Shader<'_> {
                 }
                 Surface::Dielectric(glass) if r.band == WHITE_BAND && glass.is_dispersive() => {
                     for (b, info) in self.scene.bands.bands().iter().enumerate() {
-                        let tinted = ViewRay { tint: r.tint * info.weight, band: b as u16, ..*r };
+                        let share = r.weight * info.weight.abs().max_element();
+                        let tinted = ViewRay { tint: r.tint * info.weight, weight: share, band: b as u16, ..*r };
                         spawn_at_glass(&tinted, p, n, glass.ior(b as u16), queue);
                     }
                 }

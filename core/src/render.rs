@@ -8,9 +8,11 @@
 //! caustic is added to the ray-traced colour, not mixed with it, which is
 //! the physically consistent blend (the two estimate disjoint light paths).
 //! Mirrors reflect; dielectrics trace both the Fresnel-weighted reflection
-//! and the refraction, to `max_depth`, dropping branches whose weight falls
-//! below [`MIN_VIEW_WEIGHT`]. At the first dispersive glass a view ray splits
-//! into one ray per band, each weighted by the band's RGB weight C_i.
+//! and the refraction, to `max_depth`, dropping branches whose share of the
+//! pixel (Fresnel factors times, after a split, the band's largest RGB
+//! weight) falls below [`MIN_VIEW_WEIGHT`]. At the first dispersive glass a
+//! view ray splits into one ray per band, each weighted by the band's RGB
+//! weight C_i.
 
 use crate::camera::PinholeCamera;
 use crate::gather::{GatherQuery, gather};
@@ -76,7 +78,9 @@ impl<'a> RenderContext<'a> {
                 .iter()
                 .enumerate()
                 .map(|(b, info)| {
-                    info.weight * self.through_dielectric(ray, &hit, glass.ior(b as u16), b as u16, depth, weight)
+                    // The band's share of the pixel bounds what its branches can add.
+                    let share = weight * info.weight.abs().max_element();
+                    info.weight * self.through_dielectric(ray, &hit, glass.ior(b as u16), b as u16, depth, share)
                 })
                 .sum(),
             Surface::Dielectric(glass) => self.through_dielectric(ray, &hit, glass.ior(band), band, depth, weight),

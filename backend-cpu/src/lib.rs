@@ -134,10 +134,7 @@ impl Backend for CpuBackend {
         photons: &PhotonMap,
         progress: &mut dyn Progress,
     ) -> Result<Image, BackendError> {
-        let image = self.install(|| {
-            let grid = CpuGrid::build(&photons.photons, scene.scene.render.radius);
-            render::render(scene, &grid)
-        });
+        let image = self.install(|| render(scene, photons));
         let h = u64::from(scene.scene.render.height);
         progress.advance(Stage::Render, h, h);
         Ok(image)

@@ -87,17 +87,7 @@ impl Backend for ReferenceBackend {
     }
 
     fn trace_photons(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> Result<PhotonMap, BackendError> {
-        let total = scene.scene.render.photons;
-        let chunk = (total / 100).max(1024);
-        let mut map = PhotonMap::default();
-        let mut start = 0;
-        while start < total {
-            let end = start.saturating_add(chunk).min(total);
-            crate::trace::trace_range(scene, start..end, &mut map.photons, &mut map.stats);
-            progress.advance(Stage::Trace, u64::from(end), u64::from(total));
-            start = end;
-        }
-        Ok(map)
+        Ok(crate::trace::trace_photons_with_progress(scene, progress))
     }
 
     fn render(
@@ -106,16 +96,6 @@ impl Backend for ReferenceBackend {
         photons: &PhotonMap,
         progress: &mut dyn Progress,
     ) -> Result<Image, BackendError> {
-        let grid = crate::grid::PhotonGrid::build(&photons.photons, scene.scene.render.radius);
-        let ctx = crate::render::RenderContext::new(scene, &photons.photons, &grid);
-        let (w, h) = (scene.scene.render.width, scene.scene.render.height);
-        let mut image = Image::new(w, h);
-        for (y, row) in image.pixels.chunks_mut(w as usize).enumerate() {
-            for (x, px) in row.iter_mut().enumerate() {
-                *px = ctx.pixel(x as u32, y as u32);
-            }
-            progress.advance(Stage::Render, y as u64 + 1, u64::from(h));
-        }
-        Ok(image)
+        Ok(crate::render::render_with_progress(scene, photons, progress))
     }
 }

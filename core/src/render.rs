@@ -14,6 +14,7 @@
 //! view ray splits into one ray per band, each weighted by the band's RGB
 //! weight C_i.
 
+use crate::backend::{NoProgress, Progress, Stage};
 use crate::camera::PinholeCamera;
 use crate::gather::{GatherQuery, gather};
 use crate::geometry::Ray;
@@ -176,14 +177,20 @@ impl<'a> RenderContext<'a> {
 
 /// Renders the whole image with the scalar reference: grid build, then every pixel.
 pub fn render(scene: &PreparedScene, map: &PhotonMap) -> Image {
+    render_with_progress(scene, map, &mut NoProgress)
+}
+
+/// [`render`], reporting progress after every row.
+pub fn render_with_progress(scene: &PreparedScene, map: &PhotonMap, progress: &mut dyn Progress) -> Image {
     let grid = PhotonGrid::build(&map.photons, scene.scene.render.radius);
     let ctx = RenderContext::new(scene, &map.photons, &grid);
     let (w, h) = (scene.scene.render.width, scene.scene.render.height);
     let mut image = Image::new(w, h);
-    for y in 0..h {
-        for x in 0..w {
-            image.pixels[(y * w + x) as usize] = ctx.pixel(x, y);
+    for (y, row) in image.pixels.chunks_mut(w as usize).enumerate() {
+        for (x, px) in row.iter_mut().enumerate() {
+            *px = ctx.pixel(x as u32, y as u32);
         }
+        progress.advance(Stage::Render, y as u64 + 1, u64::from(h));
     }
     image
 }

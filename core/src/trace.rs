@@ -11,6 +11,7 @@
 //! with a counter-based random number, so the result is a pure function of
 //! the scene and the seed.
 
+use crate::backend::{NoProgress, Progress, Stage};
 use crate::emit::emit;
 use crate::geometry::Ray;
 use crate::optics::{fresnel, interface, reflect, refract};
@@ -21,8 +22,21 @@ use alloc::vec::Vec;
 
 /// Traces every white photon of the scene's render settings.
 pub fn trace_photons(scene: &PreparedScene) -> PhotonMap {
+    trace_photons_with_progress(scene, &mut NoProgress)
+}
+
+/// [`trace_photons`], reporting progress about a hundred times.
+pub fn trace_photons_with_progress(scene: &PreparedScene, progress: &mut dyn Progress) -> PhotonMap {
+    let total = scene.scene.render.photons;
+    let chunk = (total / 100).max(1024);
     let mut map = PhotonMap::default();
-    trace_range(scene, 0..scene.scene.render.photons, &mut map.photons, &mut map.stats);
+    let mut start = 0;
+    while start < total {
+        let end = start.saturating_add(chunk).min(total);
+        trace_range(scene, start..end, &mut map.photons, &mut map.stats);
+        progress.advance(Stage::Trace, u64::from(end), u64::from(total));
+        start = end;
+    }
     map
 }
 

@@ -133,7 +133,7 @@ fn run(cli: Cli) -> Result<()> {
             if !image.is_finite() {
                 anyhow::bail!("the render produced non-finite pixels; nothing was written (please report this scene)");
             }
-            out.commit(|w| write_png(w, &image))?;
+            out.commit(|w| write_png(w, &image, scene.scene.render.tone_map))?;
             println!(
                 "{name}: {} backend, {}; trace {}, render {}; wrote {} ({}x{})",
                 selected.backend.name(),

@@ -3,6 +3,7 @@
 //! before any work starts, so an unwritable path fails early.
 
 use anyhow::{Context, Result};
+use prismatic_core::color::ToneMap;
 use prismatic_core::photon::WHITE_BAND;
 use prismatic_core::{BandTable, Image, PhotonMap};
 use std::fs::File;
@@ -48,8 +49,9 @@ impl Drop for PendingFile {
 }
 
 /// Encodes `image` as an 8-bit sRGB PNG.
-pub fn write_png(w: &mut BufWriter<File>, image: &Image) -> Result<()> {
-    let buf = image::RgbImage::from_raw(image.width, image.height, image.to_srgb8()).context("image size mismatch")?;
+pub fn write_png(w: &mut BufWriter<File>, image: &Image, tone_map: ToneMap) -> Result<()> {
+    let buf = image::RgbImage::from_raw(image.width, image.height, image.to_srgb8(tone_map))
+        .context("image size mismatch")?;
     buf.write_to(w, image::ImageFormat::Png)?;
     Ok(())
 }

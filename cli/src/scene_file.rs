@@ -7,6 +7,7 @@
 
 use crate::obj;
 use prismatic_core::bands::BandSpec;
+use prismatic_core::color::ToneMap;
 use prismatic_core::dispersion::{Dispersion, Glass};
 use prismatic_core::scene::{Camera, Checker, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape};
 use prismatic_core::{Scene, SceneError, Vec3};
@@ -306,6 +307,7 @@ impl<'s> Parser<'s> {
                 "ambient",
                 "exposure",
                 "background",
+                "tone_map",
             ],
         )?;
         let d = RenderSettings::default();
@@ -322,6 +324,7 @@ impl<'s> Parser<'s> {
             ambient: self.opt(t, "ambient", Self::float)?.unwrap_or(d.ambient),
             exposure: self.opt(t, "exposure", Self::float)?.unwrap_or(d.exposure),
             background: self.opt(t, "background", Self::vec3)?.unwrap_or(d.background),
+            tone_map: self.opt(t, "tone_map", Self::tone_map)?.unwrap_or(d.tone_map),
         })
     }
 
@@ -337,6 +340,14 @@ impl<'s> Parser<'s> {
                 &v.span(),
                 format!("must be \"paper3\", \"paper7\" or a number of bands, got {}", other.type_str()),
             )),
+        }
+    }
+
+    fn tone_map(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<ToneMap> {
+        match self.string(key, v)? {
+            "clamp" => Ok(ToneMap::Clamp),
+            "reinhard" => Ok(ToneMap::Reinhard),
+            other => Err(self.err(key, &v.span(), format!("unknown tone map \"{other}\"; expected clamp or reinhard"))),
         }
     }
 

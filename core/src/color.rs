@@ -26,6 +26,39 @@ pub fn encode_srgb(linear: f32) -> f32 {
     if c <= 0.003_130_8 { 12.92 * c } else { 1.055 * crate::math::powf(c, 1.0 / 2.4) - 0.055 }
 }
 
+/// How linear radiance becomes displayable before the sRGB encoding.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ToneMap {
+    /// Clip each channel at 1 (bright caustics turn white).
+    #[default]
+    Clamp,
+    /// Reinhard on luminance, Y/(1 + Y): compresses highlights while keeping
+    /// their hue, so a bright caustic's coloured rim stays coloured.
+    Reinhard,
+}
+
+impl ToneMap {
+    /// The scene-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ToneMap::Clamp => "clamp",
+            ToneMap::Reinhard => "reinhard",
+        }
+    }
+
+    /// Maps one linear pixel (the final clamp happens in [`to_srgb8`]).
+    #[inline]
+    pub fn apply(self, rgb: Vec3) -> Vec3 {
+        match self {
+            ToneMap::Clamp => rgb,
+            ToneMap::Reinhard => {
+                let y = rgb.dot(Vec3::new(0.2126, 0.7152, 0.0722)).max(0.0);
+                rgb / (1.0 + y)
+            }
+        }
+    }
+}
+
 /// Linear RGB to 8-bit sRGB. The clamp happens here, on the final pixel only:
 /// band weights may be negative (spectral colours lie outside the sRGB gamut).
 pub fn to_srgb8(rgb: Vec3) -> [u8; 3] {
@@ -43,6 +76,15 @@ mod tests {
         assert_eq!(to_srgb8(Vec3::ONE), [255, 255, 255]);
         assert_eq!(to_srgb8(Vec3::splat(0.2159)), [128, 128, 128]);
         assert_eq!(to_srgb8(Vec3::new(f32::NAN, -1.0, 7.0)), [0, 0, 255]);
+    }
+
+    #[test]
+    fn reinhard_keeps_hue_and_compresses_highlights() {
+        let hot = Vec3::new(8.0, 4.0, 0.5);
+        let mapped = ToneMap::Reinhard.apply(hot);
+        assert!(mapped.max_element() < hot.max_element());
+        assert!((mapped.x / mapped.y - 2.0).abs() < 1e-6, "hue ratio kept");
+        assert_eq!(ToneMap::Clamp.apply(hot), hot);
     }
 
     #[test]

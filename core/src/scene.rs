@@ -6,6 +6,7 @@
 //! scene-file format so that a file loader can pass them straight through.
 
 use crate::bands::{BandSpec, MAX_BANDS};
+use crate::color::ToneMap;
 use crate::dispersion::{Dispersion, MAX_SELLMEIER_TERMS};
 use alloc::format;
 use alloc::string::{String, ToString};
@@ -84,6 +85,8 @@ pub struct RenderSettings {
     pub exposure: f32,
     /// Radiance of rays that leave the scene.
     pub background: Vec3,
+    /// How radiance becomes displayable.
+    pub tone_map: ToneMap,
 }
 
 impl Default for RenderSettings {
@@ -100,6 +103,7 @@ impl Default for RenderSettings {
             ambient: 0.03,
             exposure: 1.0,
             background: Vec3::ZERO,
+            tone_map: ToneMap::Clamp,
         }
     }
 }

@@ -151,6 +151,12 @@ fn values_that_make_no_sense_are_rejected_with_their_line() {
     assert_error(&format!("[render]\nbands = 300\n{MINIMAL}"), "render.bands", Some("bands ="), "1 to 256");
     assert_error(&format!("[render]\nradius = inf\n{MINIMAL}"), "render.radius", Some("radius ="), "finite");
     assert_error(&format!("[render]\nphotons = 4000000000\n{MINIMAL}"), "render.photons", Some("photons ="), "memory");
+    assert_error(
+        &format!("[render]\ntone_map = \"aces\"\n{MINIMAL}"),
+        "render.tone_map",
+        Some("tone_map"),
+        "clamp or reinhard",
+    );
 }
 
 #[test]

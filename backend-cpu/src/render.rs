@@ -12,7 +12,7 @@
 use crate::grid::CpuGrid;
 use crate::intersect::{RayX8, intersect_scene, occluded};
 use crate::simd::{Vec3x8, ge, gt, lt};
-use crate::trace::offset_origin;
+use crate::trace::{fresnel, interface, offset_origin, reflect, refract};
 use glam::Vec3;
 use prismatic_core::Image;
 use prismatic_core::bands::MAX_BANDS;
@@ -119,12 +119,15 @@ impl Shader<'_> {
                 sum[rays[i].pixel as usize] += rays[i].tint * radiance[i];
             }
         }
+        let mut at_glass = 0u32;
+        let mut glass_ior = [1.0f32; 8];
         for (i, r) in rays.iter().enumerate() {
             if object[i] < 0.0 || diffuse.to_bitmask() & (1 << i) != 0 || r.depth >= settings.max_depth {
                 continue;
             }
             let (p, n) = (point.lane(i), hit.normal.lane(i));
             match &self.scene.surfaces[object[i] as usize] {
+                // Band rays at glass: Fresnel and refraction for the whole packet at once, below.
                 Surface::Mirror => {
                     let d = optics::reflect(r.dir, n);
                     let origin = prismatic_core::prepared::offset_origin(p, n, d);
@@ -137,9 +140,15 @@ impl Shader<'_> {
                         spawn_at_glass(&tinted, p, n, glass.ior(b as u16), queue);
                     }
                 }
-                Surface::Dielectric(glass) => spawn_at_glass(r, p, n, glass.ior(r.band), queue),
+                Surface::Dielectric(glass) => {
+                    glass_ior[i] = glass.ior(r.band);
+                    at_glass |= 1 << i;
+                }
                 Surface::Diffuse { .. } => unreachable!("shaded above"),
             }
+        }
+        if at_glass != 0 {
+            spawn_packet_at_glass(rays, at_glass, point, hit.normal, f32x8::new(glass_ior), queue);
         }
     }
 
@@ -236,6 +245,37 @@ fn spawn_at_glass(r: &ViewRay, p: Vec3, outward: Vec3, ior: f32, queue: &mut Vec
     {
         let origin = prismatic_core::prepared::offset_origin(p, n, d);
         queue.push(ViewRay { origin, dir: d, weight: r.weight * t, tint: r.tint * t, depth: r.depth + 1, ..*r });
+    }
+}
+
+/// [`spawn_at_glass`] for the packet lanes in `lanes_at_glass`, the Fresnel
+/// factors and directions computed for all eight lanes at once.
+fn spawn_packet_at_glass(
+    rays: &[ViewRay],
+    lanes_at_glass: u32,
+    point: Vec3x8,
+    outward: Vec3x8,
+    ior: f32x8,
+    queue: &mut Vec<ViewRay>,
+) {
+    let d = Vec3x8::from_lanes(&core::array::from_fn(|i| rays[i.min(rays.len() - 1)].dir));
+    let (n, n1, n2) = interface(d, outward, ior);
+    let f = fresnel(-d.dot(n), n1, n2).to_array();
+    let reflected = reflect(d, n);
+    let reflected_origin = offset_origin(point, n, reflected);
+    let (tir, refracted) = refract(d, n, n1, n2);
+    let refracted_origin = offset_origin(point, n, refracted);
+    let tir = tir.to_bitmask();
+    for (i, r) in rays.iter().enumerate().filter(|(i, _)| lanes_at_glass & (1 << i) != 0) {
+        if f[i] * r.weight > MIN_VIEW_WEIGHT {
+            let (origin, dir) = (reflected_origin.lane(i), reflected.lane(i));
+            queue.push(ViewRay { origin, dir, weight: r.weight * f[i], tint: r.tint * f[i], depth: r.depth + 1, ..*r });
+        }
+        let t = 1.0 - f[i];
+        if t * r.weight > MIN_VIEW_WEIGHT && tir & (1 << i) == 0 {
+            let (origin, dir) = (refracted_origin.lane(i), refracted.lane(i));
+            queue.push(ViewRay { origin, dir, weight: r.weight * t, tint: r.tint * t, depth: r.depth + 1, ..*r });
+        }
     }
 }
 

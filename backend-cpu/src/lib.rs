@@ -16,6 +16,7 @@ mod trace;
 pub use grid::CpuGrid;
 
 use prismatic_core::backend::{Backend, BackendError, Progress, Stage};
+use prismatic_core::photon::{Photon, TraceStats};
 use prismatic_core::{Image, PhotonMap, PreparedScene};
 use rayon::prelude::*;
 
@@ -34,12 +35,10 @@ pub struct CpuBackend {
 /// One work item's unsorted output and sort scratch.
 #[derive(Default)]
 struct ChunkBuffer {
-    photons: Vec<photon_types::Photon>,
+    photons: Vec<Photon>,
     offsets: Vec<u32>,
-    stats: photon_types::TraceStats,
+    stats: TraceStats,
 }
-
-use prismatic_core::photon as photon_types;
 
 impl CpuBackend {
     /// Uses rayon's global pool (all cores).
@@ -99,8 +98,8 @@ fn trace_chunks(scene: &PreparedScene, chunks: &mut Vec<ChunkBuffer>, map: &mut 
     });
     let stored: usize = chunks[..n_chunks].iter().map(|b| b.photons.len()).sum();
     map.photons.clear();
-    map.photons.resize(stored, photon_types::Photon::default());
-    map.stats = photon_types::TraceStats::default();
+    map.photons.resize(stored, Photon::default());
+    map.stats = TraceStats::default();
     let mut slices = Vec::with_capacity(n_chunks);
     let mut rest = map.photons.as_mut_slice();
     for buf in &chunks[..n_chunks] {

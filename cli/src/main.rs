@@ -179,21 +179,38 @@ fn prepare(job: &JobArgs) -> Result<(String, PreparedScene)> {
     r.estimator = job.estimator.unwrap_or(r.estimator);
     r.width = job.width.unwrap_or(r.width);
     r.height = job.height.unwrap_or(r.height);
-    doc.validate()?;
-    let scene = PreparedScene::new(doc.scene.clone()).map_err(|e| doc.error(e))?;
+    doc.validate().map_err(|e| blame_flag(job, e))?;
+    let scene = PreparedScene::new(doc.scene.clone()).map_err(|e| blame_flag(job, doc.error(e)))?;
     Ok((job.scene.clone(), scene))
+}
+
+/// A value that came from a flag is reported against the flag, not the scene file.
+fn blame_flag(job: &JobArgs, e: SceneFileError) -> SceneFileError {
+    let given = [
+        ("render.bands", "--bands", job.bands.is_some()),
+        ("render.photons", "--photons", job.photons.is_some()),
+        ("render.radius", "--radius", job.radius.is_some()),
+        ("render.seed", "--seed", job.seed.is_some()),
+        ("render.estimator", "--estimator", job.estimator.is_some()),
+        ("render.width", "--width", job.width.is_some()),
+        ("render.height", "--height", job.height.is_some()),
+    ];
+    match given.iter().find(|(key, _, set)| *set && e.key == *key) {
+        Some((_, flag, _)) => {
+            SceneFileError { file: "command line".into(), line: None, key: (*flag).into(), reason: e.reason }
+        }
+        None => e,
+    }
 }
 
 fn photon_summary(scene: &PreparedScene, map: &PhotonMap) -> String {
     let s = &map.stats;
-    format!(
-        "{} photons emitted, {} met a specular surface, {} stored ({} bands {})",
-        s.emitted,
-        s.specular_paths,
-        s.stored,
-        scene.bands.len(),
-        scene.bands.spec()
-    )
+    let bands = match scene.bands.spec() {
+        BandSpec::Physical(1) => "1 physically based band".to_string(),
+        BandSpec::Physical(n) => format!("{n} physically based bands"),
+        paper => format!("{} bands, {paper}", scene.bands.len()),
+    };
+    format!("{} photons emitted, {} met a specular surface, {} stored ({bands})", s.emitted, s.specular_paths, s.stored)
 }
 
 fn secs(d: Duration) -> String {

@@ -100,7 +100,7 @@ fn unknown_scenes_and_bad_flags_exit_2() {
     assert!(text(&o).1.contains("built-in scenes are: sphere, prism, recombine, rainbow"));
     let o = prismatic(&["render", "sphere", "--bands", "0"], dir.path());
     assert_eq!(o.status.code(), Some(2));
-    assert!(text(&o).1.contains("render.bands"), "{}", text(&o).1);
+    assert!(text(&o).1.contains("--bands: must be"), "{}", text(&o).1);
     let o = prismatic(&["render", "sphere", "--estimator", "guess"], dir.path());
     assert_eq!(o.status.code(), Some(2));
     assert!(files_in(dir.path()).is_empty());
@@ -144,4 +144,14 @@ fn the_reference_and_cpu_backends_write_the_same_photon_map() {
     }
     let read = |name: &str| std::fs::read_to_string(dir.path().join(name)).unwrap();
     assert_eq!(read("reference.csv"), read("cpu.csv"));
+}
+
+#[test]
+fn bad_flag_values_are_reported_against_the_flag() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = prismatic(&["render", "sphere", "--radius", "0", "-o", "x.png"], dir.path());
+    let (_, err) = text(&o);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(err.contains("command line: --radius: must be greater than 0"), "{err}");
+    assert!(files_in(dir.path()).is_empty());
 }

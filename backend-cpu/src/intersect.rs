@@ -147,10 +147,11 @@ fn sphere_any(ray: &RayX8, center: Vec3x8, radius: f32, t_max: f32x8) -> f32x8 {
 fn convex(ray: &RayX8, faces: &[HalfSpace], t_max: f32x8) -> (f32x8, f32x8, Vec3x8) {
     let mut t_enter = f32x8::splat(f32::NEG_INFINITY);
     let mut t_exit = f32x8::splat(f32::INFINITY);
-    let mut n_enter = Vec3x8::ZERO;
-    let mut n_exit = Vec3x8::ZERO;
+    // Which face limits each lane, as a float index: normals are looked up once at the end.
+    let mut f_enter = f32x8::ZERO;
+    let mut f_exit = f32x8::ZERO;
     let mut outside_parallel = f32x8::ZERO;
-    for face in faces {
+    for (k, face) in faces.iter().enumerate() {
         let n = Vec3x8::splat(face.normal);
         let denom = n.dot(ray.dir);
         let dist = f32x8::splat(face.offset) - n.dot(ray.origin);
@@ -159,18 +160,24 @@ fn convex(ray: &RayX8, faces: &[HalfSpace], t_max: f32x8) -> (f32x8, f32x8, Vec3
         let t = dist / denom;
         let entering = !parallel & lt(denom, f32x8::ZERO);
         let exiting = !parallel & !lt(denom, f32x8::ZERO);
+        let k = f32x8::splat(k as f32);
         let new_enter = entering & gt(t, t_enter);
         t_enter = new_enter.select(t, t_enter);
-        n_enter = Vec3x8::select(new_enter, n, n_enter);
+        f_enter = new_enter.select(k, f_enter);
         let new_exit = exiting & lt(t, t_exit);
         t_exit = new_exit.select(t, t_exit);
-        n_exit = Vec3x8::select(new_exit, n, n_exit);
+        f_exit = new_exit.select(k, f_exit);
     }
     let valid = !outside_parallel & !gt(t_enter, t_exit);
     let enter_ok = in_range(t_enter, t_max);
     let exit_ok = in_range(t_exit, t_max);
     let mask = valid & (enter_ok | exit_ok);
-    (mask, enter_ok.select(t_enter, t_exit), Vec3x8::select(enter_ok, n_enter, n_exit))
+    let face = enter_ok.select(f_enter, f_exit);
+    let mut normal = Vec3x8::ZERO;
+    for (k, f) in faces.iter().enumerate() {
+        normal = Vec3x8::select(face.simd_eq(f32x8::splat(k as f32)), Vec3x8::splat(f.normal), normal);
+    }
+    (mask, enter_ok.select(t_enter, t_exit), normal)
 }
 
 #[inline]

@@ -7,7 +7,7 @@ use crate::simd::{Vec3x8, lt};
 use glam::{DVec3, IVec3, Vec3};
 use prismatic_core::bands::{BandTable, MAX_BANDS};
 use prismatic_core::gather::{GatherQuery, paper_hue};
-use prismatic_core::grid::{MAX_TABLE_BITS, bucket_of, cell_of};
+use prismatic_core::grid::{bucket_mask, bucket_of, bucket_starts, cell_of};
 use prismatic_core::photon::{Photon, WHITE_BAND};
 use prismatic_core::scene::Estimator;
 use rayon::prelude::*;
@@ -31,16 +31,9 @@ impl CpuGrid {
     pub fn build(photons: &[Photon], radius: f32) -> Self {
         let cell_size = 2.0 * radius;
         let inv_cell = 1.0 / cell_size;
-        let buckets = photons.len().next_power_of_two().clamp(1, 1 << MAX_TABLE_BITS);
-        let mask = (buckets - 1) as u32;
+        let mask = bucket_mask(photons.len());
         let bucket: Vec<u32> = photons.par_iter().map(|p| bucket_of(cell_of(p.pos(), inv_cell), mask)).collect();
-        let mut cell_start = vec![0u32; buckets + 1];
-        for &b in &bucket {
-            cell_start[b as usize + 1] += 1;
-        }
-        for i in 0..buckets {
-            cell_start[i + 1] += cell_start[i];
-        }
+        let cell_start = bucket_starts(&bucket, mask);
         let padded = photons.len() + 8;
         let mut grid = CpuGrid {
             cell_size,

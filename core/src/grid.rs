@@ -49,21 +49,34 @@ pub fn bucket_of(c: IVec3, mask: u32) -> u32 {
         & mask
 }
 
+/// The bucket mask for a grid over `photons` photons.
+#[inline]
+pub fn bucket_mask(photons: usize) -> u32 {
+    (photons.next_power_of_two().clamp(1, 1 << MAX_TABLE_BITS) - 1) as u32
+}
+
+/// The counting sort's first half: `start[b]..start[b + 1]` is where bucket
+/// b's photons go, given each photon's bucket.
+pub fn bucket_starts(bucket: &[u32], mask: u32) -> Vec<u32> {
+    let buckets = mask as usize + 1;
+    let mut start = vec![0u32; buckets + 1];
+    for &b in bucket {
+        start[b as usize + 1] += 1;
+    }
+    for i in 0..buckets {
+        start[i + 1] += start[i];
+    }
+    start
+}
+
 impl PhotonGrid {
     /// Builds the grid for `photons` and gather radius `radius`.
     pub fn build(photons: &[Photon], radius: f32) -> Self {
         let cell_size = 2.0 * radius;
         let inv_cell = 1.0 / cell_size;
-        let buckets = photons.len().next_power_of_two().clamp(1, 1 << MAX_TABLE_BITS);
-        let mask = (buckets - 1) as u32;
+        let mask = bucket_mask(photons.len());
         let bucket: Vec<u32> = photons.iter().map(|p| bucket_of(cell_of(p.pos(), inv_cell), mask)).collect();
-        let mut cell_start = vec![0u32; buckets + 1];
-        for &b in &bucket {
-            cell_start[b as usize + 1] += 1;
-        }
-        for i in 0..buckets {
-            cell_start[i + 1] += cell_start[i];
-        }
+        let cell_start = bucket_starts(&bucket, mask);
         let mut cursor = cell_start.clone();
         let mut photon_index = vec![0u32; photons.len()];
         for (i, &b) in bucket.iter().enumerate() {

@@ -122,7 +122,7 @@ impl Shader<'_> {
         let mut at_glass = 0u32;
         let mut glass_ior = [1.0f32; 8];
         for (i, r) in rays.iter().enumerate() {
-            if object[i] < 0.0 || diffuse.to_bitmask() & (1 << i) != 0 || r.depth >= settings.max_depth {
+            if object[i] < 0.0 || diffuse.to_bitmask() & (1 << i) != 0 || r.depth >= self.scene.plan.max_depth {
                 continue;
             }
             let (p, n) = (point.lane(i), hit.normal.lane(i));
@@ -133,7 +133,7 @@ impl Shader<'_> {
                     let origin = prismatic_core::prepared::offset_origin(p, n, d);
                     queue.push(ViewRay { origin, dir: d, depth: r.depth + 1, ..*r });
                 }
-                Surface::Dielectric(glass) if r.band == WHITE_BAND && glass.is_dispersive() => {
+                Surface::Dielectric(glass) if r.band == WHITE_BAND && glass.splits_view_rays => {
                     for (b, info) in self.scene.bands.bands().iter().enumerate() {
                         let share = r.weight * info.weight.abs().max_element();
                         let tinted = ViewRay { tint: r.tint * info.weight, weight: share, band: b as u16, ..*r };
@@ -158,8 +158,8 @@ impl Shader<'_> {
         let facing = lt(ray.dir.dot(*normal), f32x8::ZERO);
         let n = Vec3x8::select(facing, *normal, -*normal);
         let mut direct = f32x8::ZERO;
-        for light in &self.scene.scene.lights {
-            direct += self.direct_irradiance(light, p, n, mask);
+        for (light, plan) in self.scene.scene.lights.iter().zip(&self.scene.plan.shadows) {
+            direct += self.direct_irradiance(light, plan.on, p, n, mask);
         }
         let objects = object.to_array();
         let direct = direct.to_array();
@@ -178,19 +178,19 @@ impl Shader<'_> {
         out
     }
 
-    /// `RenderContext::direct_irradiance` for eight points.
-    fn direct_irradiance(&self, light: &Light, p: Vec3x8, n: Vec3x8, mask: f32x8) -> f32x8 {
+    /// `RenderContext::direct_irradiance` for eight points (shadow rays if `shadows`).
+    fn direct_irradiance(&self, light: &Light, shadows: bool, p: Vec3x8, n: Vec3x8, mask: f32x8) -> f32x8 {
         match light {
             Light::Spot { position, direction, cone_deg, power } => {
                 let cos_max = cos(radians(*cone_deg));
                 let axis = Vec3x8::splat(direction.normalize());
-                let (l, dist, cos_s, visible) = self.visible_point(*position, p, n, mask);
+                let (l, dist, cos_s, visible) = self.visible_point(*position, p, n, mask, shadows);
                 let inside = ge((-l).dot(axis), f32x8::splat(cos_max));
                 let intensity = f32x8::splat(power / (2.0 * PI * (1.0 - cos_max)));
                 (visible & inside).select(intensity * cos_s / (dist * dist), f32x8::ZERO)
             }
             Light::Point { position, power } => {
-                let (_, dist, cos_s, visible) = self.visible_point(*position, p, n, mask);
+                let (_, dist, cos_s, visible) = self.visible_point(*position, p, n, mask, shadows);
                 visible.select(f32x8::splat(power / (4.0 * PI)) * cos_s / (dist * dist), f32x8::ZERO)
             }
             Light::Beam { position, direction, radius, power } => {
@@ -200,8 +200,8 @@ impl Shader<'_> {
                 let cos_s = -a.dot(n);
                 let off_axis = (p - c - a * along).length_squared().sqrt();
                 let lit = mask & gt(along, f32x8::ZERO) & gt(cos_s, f32x8::ZERO) & !gt(off_axis, f32x8::splat(*radius));
-                if !lit.any() {
-                    return f32x8::ZERO;
+                if !lit.any() || !shadows {
+                    return lit.select(f32x8::splat(power / (PI * radius * radius)) * cos_s, f32x8::ZERO);
                 }
                 let shadow = RayX8 { origin: offset_origin(p, n, -a), dir: -a };
                 let blocked = occluded(self.scene, &shadow, lit.select(along, f32x8::ZERO));
@@ -212,13 +212,20 @@ impl Shader<'_> {
 
     /// Direction to a point light, distance, surface cosine and the lanes
     /// that see it (facing it and not in shadow).
-    fn visible_point(&self, light: Vec3, p: Vec3x8, n: Vec3x8, mask: f32x8) -> (Vec3x8, f32x8, f32x8, f32x8) {
+    fn visible_point(
+        &self,
+        light: Vec3,
+        p: Vec3x8,
+        n: Vec3x8,
+        mask: f32x8,
+        shadows: bool,
+    ) -> (Vec3x8, f32x8, f32x8, f32x8) {
         let to = Vec3x8::splat(light) - p;
         let dist = to.length_squared().sqrt();
         let l = to / dist;
         let cos_s = l.dot(n);
         let facing = mask & gt(cos_s, f32x8::ZERO);
-        if !facing.any() {
+        if !facing.any() || !shadows {
             return (l, dist, cos_s, facing);
         }
         let origin = offset_origin(p, n, l);

@@ -70,8 +70,8 @@ impl<'a> TraceContext<'a> {
                     diffuse: mask(matches!(s, Surface::Diffuse { .. })),
                     mirror: mask(matches!(s, Surface::Mirror)),
                     dielectric: mask(glass.is_some()),
-                    dispersive: mask(glass.is_some_and(|g| g.is_dispersive())),
-                    white_ior: f32x8::splat(glass.and_then(|g| g.white_ior).unwrap_or(1.0)),
+                    dispersive: mask(glass.is_some_and(|g| g.splits_photons)),
+                    white_ior: f32x8::splat(glass.map_or(1.0, |g| g.white_ior)),
                     band_ior,
                 }
             })
@@ -280,7 +280,7 @@ fn end_paths(
     let first = bytemuck::cast::<u32x8, f32x8>(bounces.simd_eq(u32x8::ZERO));
     let diffuse = active & s.diffuse;
     let specular = active & (s.mirror | s.dielectric);
-    let deep = bytemuck::cast::<u32x8, f32x8>(bounces.simd_ge(u32x8::splat(ctx.scene.scene.render.max_depth)));
+    let deep = bytemuck::cast::<u32x8, f32x8>(bounces.simd_ge(u32x8::splat(ctx.scene.plan.max_depth)));
     let too_deep = specular & deep;
     Sink::add_flux(&mut sink.stats.flux_escaped, missed, flux);
     Sink::add_flux(&mut sink.stats.flux_direct, diffuse & first, flux);

@@ -77,6 +77,9 @@ struct JobArgs {
     /// Image height.
     #[arg(long)]
     height: Option<u32>,
+    /// Print every decision of the effect plan with its reason.
+    #[arg(long)]
+    explain: bool,
 }
 
 /// Exit status for bad input (scene files, arguments), as clap uses for usage errors.
@@ -181,6 +184,10 @@ fn prepare(job: &JobArgs) -> Result<(String, PreparedScene)> {
     r.height = job.height.unwrap_or(r.height);
     doc.validate().map_err(|e| blame_flag(job, e))?;
     let scene = PreparedScene::new(doc.scene.clone()).map_err(|e| blame_flag(job, doc.error(e)))?;
+    println!("{}", scene.plan.summary());
+    if job.explain {
+        print!("{}", scene.plan.explain());
+    }
     Ok((job.scene.clone(), scene))
 }
 

@@ -3,6 +3,7 @@
 //! refraction), and the light-selection distribution.
 
 use crate::bands::BandTable;
+use crate::effects::EffectPlan;
 use crate::geometry::{Primitive, Ray, mesh_triangles, prism_faces};
 use crate::photon::WHITE_BAND;
 use crate::scene::{Checker, MaterialKind, Scene, SceneError, Shape};
@@ -26,31 +27,34 @@ pub enum Surface {
     Dielectric(DielectricOptics),
 }
 
-/// A dielectric's indices of refraction for the render's band table.
+/// A dielectric's indices of refraction for the render's band table, and
+/// whether white light splits into bands there (the effect plan decides).
 #[derive(Clone, Debug, PartialEq)]
 pub struct DielectricOptics {
     /// n for each band.
     pub band_ior: Vec<f32>,
-    /// `Some(n)` when every band has the same index: white light crosses
-    /// without splitting. `None` for a dispersive glass.
-    pub white_ior: Option<f32>,
+    /// n for white light that does not split: the glass's one index when it
+    /// has one, else the middle band's.
+    pub white_ior: f32,
+    /// The bands do not all share one index.
+    pub dispersive: bool,
+    /// White photons split into bands here.
+    pub splits_photons: bool,
+    /// White view rays split into bands here.
+    pub splits_view_rays: bool,
 }
 
 impl DielectricOptics {
-    /// The index for `band` (a white photon only asks a non-dispersive glass).
+    /// The index for `band` ([`WHITE_BAND`]: the white index).
     #[inline]
     pub fn ior(&self, band: u16) -> f32 {
-        if band == WHITE_BAND {
-            self.white_ior.unwrap_or(self.band_ior[self.band_ior.len() / 2])
-        } else {
-            self.band_ior[usize::from(band)]
-        }
+        if band == WHITE_BAND { self.white_ior } else { self.band_ior[usize::from(band)] }
     }
 
-    /// True when white light splits into bands at this glass.
+    /// True when the bands do not all share one index.
     #[inline]
     pub fn is_dispersive(&self) -> bool {
-        self.white_ior.is_none()
+        self.dispersive
     }
 }
 
@@ -99,6 +103,8 @@ pub struct PreparedScene {
     pub light_cdf: Vec<f32>,
     /// Σ light power.
     pub total_power: f32,
+    /// What the render simulates; backends follow it.
+    pub plan: EffectPlan,
 }
 
 impl PreparedScene {
@@ -107,7 +113,7 @@ impl PreparedScene {
         scene.validate()?;
         let bands = BandTable::new(scene.render.bands);
         let primitives = scene.objects.iter().map(|o| primitive(&o.shape)).collect();
-        let surfaces = scene
+        let surfaces: Vec<Surface> = scene
             .objects
             .iter()
             .map(|o| match &scene.materials[o.material].kind {
@@ -117,13 +123,19 @@ impl PreparedScene {
                 MaterialKind::Mirror => Surface::Mirror,
                 MaterialKind::Dielectric { dispersion } => {
                     let band_ior: Vec<f32> = (0..bands.len()).map(|b| dispersion.ior_for_band(&bands, b)).collect();
-                    let same = band_ior.iter().all(|&n| n == band_ior[0]);
+                    let dispersive = !dispersion.is_constant() && band_ior.iter().any(|&n| n != band_ior[0]);
                     let white_ior = match dispersion {
-                        crate::Dispersion::Constant(n) => Some(*n),
-                        _ if same => Some(band_ior[0]),
-                        _ => None,
+                        crate::Dispersion::Constant(n) => *n,
+                        _ => band_ior[band_ior.len() / 2],
                     };
-                    Surface::Dielectric(DielectricOptics { band_ior, white_ior })
+                    // Whether white light splits here is set from the effect plan below.
+                    Surface::Dielectric(DielectricOptics {
+                        band_ior,
+                        white_ior,
+                        dispersive,
+                        splits_photons: false,
+                        splits_view_rays: false,
+                    })
                 }
             })
             .collect();
@@ -140,7 +152,15 @@ impl PreparedScene {
         if let Some(last) = light_cdf.last_mut() {
             *last = 1.0;
         }
-        Ok(PreparedScene { scene, bands, primitives, surfaces, light_cdf, total_power })
+        let mut surfaces: Vec<Surface> = surfaces;
+        let plan = EffectPlan::new(&scene, &surfaces);
+        for s in &mut surfaces {
+            if let Surface::Dielectric(g) = s {
+                g.splits_photons = g.dispersive && plan.band_splitting.on;
+                g.splits_view_rays = g.dispersive && plan.view_dispersion.on;
+            }
+        }
+        Ok(PreparedScene { scene, bands, primitives, surfaces, light_cdf, total_power, plan })
     }
 
     /// The nearest hit along `ray` closer than `t_max`. Rays start off their

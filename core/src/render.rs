@@ -62,7 +62,7 @@ impl<'a> RenderContext<'a> {
         };
         match &self.scene.surfaces[hit.object] {
             Surface::Diffuse { .. } => self.shade_diffuse(ray, &hit),
-            _ if depth >= settings.max_depth => Vec3::ZERO,
+            _ if depth >= self.scene.plan.max_depth => Vec3::ZERO,
             Surface::Mirror => {
                 let d = reflect(ray.direction, hit.normal);
                 self.radiance(
@@ -72,7 +72,7 @@ impl<'a> RenderContext<'a> {
                     weight,
                 )
             }
-            Surface::Dielectric(glass) if band == WHITE_BAND && glass.is_dispersive() => self
+            Surface::Dielectric(glass) if band == WHITE_BAND && glass.splits_view_rays => self
                 .scene
                 .bands
                 .bands()
@@ -115,7 +115,7 @@ impl<'a> RenderContext<'a> {
         let surface = &self.scene.surfaces[hit.object];
         let albedo = surface.albedo_at(hit.point, n);
         let settings = &self.scene.scene.render;
-        let direct: f32 = self.scene.scene.lights.iter().map(|l| self.direct_irradiance(l, hit.point, n)).sum();
+        let direct: f32 = (0..self.scene.scene.lights.len()).map(|i| self.direct_irradiance(i, hit.point, n)).sum();
         let query = GatherQuery { point: hit.point, normal: n, radius: settings.radius };
         let caustic = if self.photons.is_empty() {
             Vec3::ZERO
@@ -125,12 +125,14 @@ impl<'a> RenderContext<'a> {
         albedo * (caustic + Vec3::splat(direct)) * (1.0 / PI) + albedo * settings.ambient
     }
 
-    /// Irradiance from `light` at `p` (unit normal `n`), zero when in shadow.
-    pub fn direct_irradiance(&self, light: &Light, p: Vec3, n: Vec3) -> f32 {
-        match light {
+    /// Irradiance from light `index` at `p` (unit normal `n`), zero when in
+    /// shadow (shadow rays only where the effect plan asks for them).
+    pub fn direct_irradiance(&self, index: usize, p: Vec3, n: Vec3) -> f32 {
+        let shadows = self.scene.plan.shadows[index].on;
+        match &self.scene.scene.lights[index] {
             Light::Spot { position, direction, cone_deg, power } => {
                 let cos_max = cos(radians(*cone_deg));
-                let Some((l, dist, cos_s)) = self.visible_point(*position, p, n) else {
+                let Some((l, dist, cos_s)) = self.visible_point(*position, p, n, shadows) else {
                     return 0.0;
                 };
                 if (-l).dot(direction.normalize()) < cos_max {
@@ -140,7 +142,7 @@ impl<'a> RenderContext<'a> {
                 intensity * cos_s / (dist * dist)
             }
             Light::Point { position, power } => {
-                let Some((_, dist, cos_s)) = self.visible_point(*position, p, n) else {
+                let Some((_, dist, cos_s)) = self.visible_point(*position, p, n, shadows) else {
                     return 0.0;
                 };
                 power / (4.0 * PI) * cos_s / (dist * dist)
@@ -152,7 +154,7 @@ impl<'a> RenderContext<'a> {
                 if along <= 0.0 || cos_s <= 0.0 || (p - *position - axis * along).length() > *radius {
                     return 0.0;
                 }
-                if self.scene.occluded(offset_origin(p, n, -axis), -axis, along) {
+                if shadows && self.scene.occluded(offset_origin(p, n, -axis), -axis, along) {
                     return 0.0;
                 }
                 power / (PI * radius * radius) * cos_s
@@ -162,13 +164,16 @@ impl<'a> RenderContext<'a> {
 
     /// Direction to a point light, its distance and the surface cosine, or
     /// `None` when the light is behind the surface or blocked.
-    fn visible_point(&self, light: Vec3, p: Vec3, n: Vec3) -> Option<(Vec3, f32, f32)> {
+    fn visible_point(&self, light: Vec3, p: Vec3, n: Vec3, shadows: bool) -> Option<(Vec3, f32, f32)> {
         let to = light - p;
         let dist = to.length();
         let l = to / dist;
         let cos_s = l.dot(n);
         if cos_s <= 0.0 {
             return None;
+        }
+        if !shadows {
+            return Some((l, dist, cos_s));
         }
         let origin = offset_origin(p, n, l);
         (!self.scene.occluded(origin, l, (light - origin).length())).then_some((l, dist, cos_s))

@@ -27,7 +27,8 @@ pub fn trace_photons(scene: &PreparedScene) -> PhotonMap {
 
 /// [`trace_photons`], reporting progress about a hundred times.
 pub fn trace_photons_with_progress(scene: &PreparedScene, progress: &mut dyn Progress) -> PhotonMap {
-    let total = scene.scene.render.photons;
+    // The effect plan may skip the photon pass altogether.
+    let total = if scene.plan.caustics.on { scene.scene.render.photons } else { 0 };
     let chunk = (total / 100).max(1024);
     let mut map = PhotonMap::default();
     let mut start = 0;
@@ -102,7 +103,7 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
             }
             return;
         }
-        if p.bounces >= settings.max_depth {
+        if p.bounces >= scene.plan.max_depth {
             stats.flux_depth_limited += f64::from(p.flux);
             return;
         }
@@ -114,7 +115,7 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                 let d = reflect(p.ray.direction, hit.normal);
                 p.ray = Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d };
             }
-            Surface::Dielectric(glass) if p.band == WHITE_BAND && glass.is_dispersive() => {
+            Surface::Dielectric(glass) if p.band == WHITE_BAND && glass.splits_photons => {
                 let n = scene.bands.len();
                 stats.paths += n as u64 - 1;
                 for band in 0..n as u16 {

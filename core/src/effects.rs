@@ -1,0 +1,244 @@
+//! The effect plan: which passes a scene needs, decided once from the
+//! validated scene, with a reason for each decision. Backends follow it;
+//! none of them decides on its own.
+//!
+//! Reachability is judged with bounding spheres, conservatively: an effect
+//! is only skipped when it provably cannot contribute.
+
+use crate::math::{asin, cos, radians, sqrt};
+use crate::prepared::Surface;
+use crate::scene::{Camera, Light, Scene, Shape};
+use alloc::format;
+use alloc::string::String;
+use alloc::vec::Vec;
+use glam::Vec3;
+
+/// One decision: is the effect simulated, and why.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Effect {
+    /// Simulated or skipped.
+    pub on: bool,
+    /// Why, in a few words.
+    pub reason: String,
+}
+
+impl Effect {
+    fn on(reason: impl Into<String>) -> Self {
+        Effect { on: true, reason: reason.into() }
+    }
+    fn off(reason: impl Into<String>) -> Self {
+        Effect { on: false, reason: reason.into() }
+    }
+}
+
+/// What a render of a scene simulates.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct EffectPlan {
+    /// The caustic photon pass.
+    pub caustics: Effect,
+    /// Splitting white photons into bands at dispersive glass.
+    pub band_splitting: Effect,
+    /// Splitting view rays into bands at dispersive glass.
+    pub view_dispersion: Effect,
+    /// Shadow rays, per light.
+    pub shadows: Vec<Effect>,
+    /// The largest useful number of specular interactions on a path.
+    pub max_depth: u32,
+    /// Why that depth.
+    pub depth_reason: String,
+}
+
+/// A bounding sphere (centre, radius) of a shape; infinite radius for planes.
+fn bounds(shape: &Shape) -> (Vec3, f32) {
+    let around = |points: &[Vec3]| {
+        let center = points.iter().copied().sum::<Vec3>() / points.len().max(1) as f32;
+        (center, points.iter().map(|p| (*p - center).length()).fold(0.0, f32::max))
+    };
+    match shape {
+        Shape::Sphere { center, radius } => (*center, *radius),
+        Shape::Plane { point, .. } => (*point, f32::INFINITY),
+        Shape::Disk { center, radius, .. } => (*center, *radius),
+        Shape::Prism { vertices, extrude } => {
+            let [a, b, c] = *vertices;
+            around(&[a, b, c, a + *extrude, b + *extrude, c + *extrude])
+        }
+        Shape::Mesh { positions, .. } => around(positions),
+    }
+}
+
+/// Can `light` send light into the sphere (centre `c`, radius `r`)?
+fn light_reaches(light: &Light, c: Vec3, r: f32) -> bool {
+    if !r.is_finite() {
+        return true;
+    }
+    match light {
+        Light::Point { .. } => true,
+        Light::Spot { position, direction, cone_deg, .. } => {
+            let to = c - *position;
+            let dist = to.length();
+            if dist <= r {
+                return true;
+            }
+            let angle = to.normalize().dot(direction.normalize()).clamp(-1.0, 1.0);
+            let spread = radians(*cone_deg) + asin((r / dist).min(1.0));
+            spread >= core::f32::consts::PI || angle >= cos(spread)
+        }
+        Light::Beam { position, direction, radius, .. } => {
+            let axis = direction.normalize();
+            let along = (c - *position).dot(axis);
+            let off_axis = (c - *position - axis * along).length();
+            along > -r && off_axis <= radius + r
+        }
+    }
+}
+
+/// Can the camera see into the sphere (centre `c`, radius `r`)? Tests the
+/// sphere against the cone that circumscribes the view frustum.
+fn camera_sees(camera: &Camera, aspect: f32, c: Vec3, r: f32) -> bool {
+    if !r.is_finite() {
+        return true;
+    }
+    let forward = (camera.look_at - camera.position).normalize();
+    let to = c - camera.position;
+    let dist = to.length();
+    if dist <= r {
+        return true;
+    }
+    let half_v = radians(camera.fov_deg) * 0.5;
+    let tan_v = crate::math::tan(half_v);
+    let half_diag = crate::math::atan2(tan_v * sqrt(1.0 + aspect * aspect), 1.0);
+    let spread = half_diag + asin((r / dist).min(1.0));
+    spread >= core::f32::consts::PI || to.normalize().dot(forward) >= cos(spread)
+}
+
+impl EffectPlan {
+    /// Decides the plan for `scene`, whose objects have `surfaces`.
+    pub fn new(scene: &Scene, surfaces: &[Surface]) -> Self {
+        let bounds: Vec<(Vec3, f32)> = scene.objects.iter().map(|o| bounds(&o.shape)).collect();
+        let specular: Vec<usize> =
+            (0..surfaces.len()).filter(|&k| !matches!(surfaces[k], Surface::Diffuse { .. })).collect();
+        let dispersive = |k: usize| matches!(&surfaces[k], Surface::Dielectric(g) if g.is_dispersive());
+        let lit: Vec<usize> = specular
+            .iter()
+            .copied()
+            .filter(|&k| scene.lights.iter().any(|l| light_reaches(l, bounds[k].0, bounds[k].1)))
+            .collect();
+        let has_diffuse = surfaces.iter().any(|s| matches!(s, Surface::Diffuse { .. }));
+        let n_bands = crate::bands::BandTable::new(scene.render.bands).len();
+
+        let caustics = if specular.is_empty() {
+            Effect::off("no mirror or glass in the scene")
+        } else if lit.is_empty() {
+            Effect::off(format!(
+                "no light reaches a mirror or glass ({} outside every light's cone or beam)",
+                name_list(&specular)
+            ))
+        } else if !has_diffuse {
+            Effect::off("no diffuse surface to receive caustics")
+        } else if scene.render.photons == 0 {
+            Effect::off("0 photons requested")
+        } else {
+            let kind = if specular.iter().any(|&k| dispersive(k)) { "dispersive" } else { "white" };
+            Effect::on(format!(
+                "{kind}, {n_bands} band{}, {} of {} specular object{} lit",
+                plural(n_bands),
+                lit.len(),
+                specular.len(),
+                plural(specular.len())
+            ))
+        };
+        // Light that reaches one mirror or glass may go on to any other, so
+        // every dispersive glass counts once any specular object is lit.
+        let band_splitting = if !caustics.on {
+            Effect::off("no photon pass")
+        } else if specular.iter().any(|&k| dispersive(k)) {
+            Effect::on(format!("{n_bands} bands at dispersive glass"))
+        } else {
+            Effect::off("no glass disperses (constant index): photons stay white")
+        };
+        let aspect = scene.render.width as f32 / scene.render.height as f32;
+        let seen = |k: usize| camera_sees(&scene.camera, aspect, bounds[k].0, bounds[k].1);
+        let dispersive_objects: Vec<usize> = specular.iter().copied().filter(|&k| dispersive(k)).collect();
+        let view_dispersion = if dispersive_objects.is_empty() {
+            Effect::off("no dispersive glass")
+        } else if dispersive_objects.iter().any(|&k| seen(k)) {
+            Effect::on("dispersive glass in view")
+        } else if specular.iter().any(|&k| seen(k)) {
+            Effect::on("dispersive glass may be seen through a mirror or glass in view")
+        } else {
+            Effect::off("no dispersive glass visible")
+        };
+        let shadows = scene
+            .lights
+            .iter()
+            .map(|_| {
+                if scene.objects.len() < 2 {
+                    Effect::off("one object cannot shadow itself")
+                } else {
+                    Effect::on(format!("{} objects can occlude", scene.objects.len()))
+                }
+            })
+            .collect();
+        let (max_depth, depth_reason) = if specular.is_empty() {
+            (0, String::from("no mirror or glass: paths end at the first surface"))
+        } else {
+            (scene.render.max_depth, String::from("render.max_depth"))
+        };
+        EffectPlan { caustics, band_splitting, view_dispersion, shadows, max_depth, depth_reason }
+    }
+
+    /// One line: what is simulated and what is skipped.
+    pub fn summary(&self) -> String {
+        let lights_shadowed = self.shadows.iter().filter(|s| s.on).count();
+        let mut on = Vec::new();
+        let mut off = Vec::new();
+        let mut put = |name: &str, e: &Effect| {
+            let item = format!("{name} ({})", e.reason);
+            if e.on { on.push(item) } else { off.push(item) }
+        };
+        put("caustics", &self.caustics);
+        if self.caustics.on {
+            put("band splitting", &self.band_splitting);
+        }
+        put("view dispersion", &self.view_dispersion);
+        if lights_shadowed > 0 {
+            on.push(format!("shadows ({lights_shadowed} light{})", plural(lights_shadowed)));
+        } else {
+            off.push(String::from("shadows (nothing can occlude)"));
+        }
+        let mut line =
+            format!("effects: {}", if on.is_empty() { String::from("direct light only") } else { on.join(", ") });
+        if !off.is_empty() {
+            line += &format!("; skipped: {}", off.join(", "));
+        }
+        line
+    }
+
+    /// Every decision with its reason, one per line.
+    pub fn explain(&self) -> String {
+        let yes = |e: &Effect| if e.on { "yes" } else { "no " };
+        let mut s = format!(
+            "caustic photon pass: {} {}\nband splitting:      {} {}\nview dispersion:     {} {}\n",
+            yes(&self.caustics),
+            self.caustics.reason,
+            yes(&self.band_splitting),
+            self.band_splitting.reason,
+            yes(&self.view_dispersion),
+            self.view_dispersion.reason
+        );
+        for (i, e) in self.shadows.iter().enumerate() {
+            s += &format!("shadows of light[{i}]: {} {}\n", yes(e), e.reason);
+        }
+        s += &format!("max depth:           {} ({})\n", self.max_depth, self.depth_reason);
+        s
+    }
+}
+
+fn plural(n: usize) -> &'static str {
+    if n == 1 { "" } else { "s" }
+}
+
+fn name_list(objects: &[usize]) -> String {
+    let names: Vec<String> = objects.iter().map(|k| format!("object[{k}]")).collect();
+    names.join(", ")
+}

@@ -1,0 +1,156 @@
+//! The effect plan: the renderer simulates only what the scene calls for,
+//! skips nothing that would show, and says why. Every test runs on every
+//! backend.
+
+use prismatic_core::bands::BandSpec;
+use prismatic_core::dispersion::{Dispersion, Glass};
+use prismatic_core::prepared::Surface;
+use prismatic_core::scene::{Light, Object, Shape};
+use prismatic_core::{Backend, Image, NoProgress, PhotonMap, PreparedScene, ReferenceBackend, Scene, Vec3};
+use prismatic_cpu::CpuBackend;
+use prismatic_tests::random_scene::random_scene;
+use prismatic_tests::{camera, glass, prepare, settings, white};
+
+fn backends() -> Vec<Box<dyn Backend>> {
+    vec![Box::new(ReferenceBackend), Box::new(CpuBackend::new())]
+}
+
+fn run(backend: &mut dyn Backend, scene: &PreparedScene) -> (PhotonMap, Image) {
+    let map = backend.trace_photons(scene, &mut NoProgress).unwrap();
+    let image = backend.render(scene, &map, &mut NoProgress).unwrap();
+    (map, image)
+}
+
+/// A glass sphere above a floor under a spot light aimed at it.
+fn sphere_scene(dispersion: Dispersion, cone_deg: f32, aim: Vec3) -> Scene {
+    let mut render = settings(4000, BandSpec::Paper7);
+    render.width = 48;
+    render.height = 48;
+    let mut cam = camera();
+    cam.position = Vec3::new(0.0, 3.0, 6.0);
+    cam.look_at = Vec3::new(0.0, 0.5, 0.0);
+    Scene {
+        render,
+        camera: cam,
+        lights: vec![Light::Spot { position: Vec3::new(0.0, 6.0, 0.0), direction: aim, cone_deg, power: 20.0 }],
+        materials: vec![glass("glass", dispersion), white("floor")],
+        objects: vec![
+            Object { shape: Shape::Sphere { center: Vec3::new(0.0, 1.5, 0.0), radius: 1.0 }, material: 0 },
+            Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 1 },
+        ],
+    }
+}
+
+#[test]
+fn a_scene_without_mirrors_or_glass_traces_no_photons_and_renders_the_same() {
+    let mut scene = sphere_scene(Dispersion::Constant(1.5), 20.0, -Vec3::Y);
+    scene.materials[0] = white("chalk");
+    let scene = prepare(scene);
+    assert!(!scene.plan.caustics.on);
+    assert_eq!(scene.plan.caustics.reason, "no mirror or glass in the scene");
+    assert_eq!(scene.plan.max_depth, 0);
+    let mut forced = scene.clone();
+    forced.plan.caustics.on = true;
+    for mut backend in backends() {
+        let (map, image) = run(backend.as_mut(), &scene);
+        assert_eq!(map.stats.emitted, 0, "{}: the photon pass ran", backend.name());
+        assert!(map.photons.is_empty());
+        let forced_map = backend.trace_photons(&forced, &mut NoProgress).unwrap();
+        assert_eq!(forced_map.stats.emitted, 4000);
+        assert!(forced_map.photons.is_empty(), "{}: chalk made caustics", backend.name());
+        let forced_image = backend.render(&forced, &PhotonMap::default(), &mut NoProgress).unwrap();
+        assert_eq!(image.pixels, forced_image.pixels, "{}", backend.name());
+    }
+}
+
+#[test]
+fn constant_index_glass_traces_white_photons_only_with_a_seventh_of_the_segments() {
+    let scene = prepare(sphere_scene(Dispersion::Constant(1.5), 9.0, -Vec3::Y));
+    assert!(scene.plan.caustics.on && !scene.plan.band_splitting.on, "{}", scene.plan.summary());
+    assert!(scene.plan.band_splitting.reason.contains("constant index"), "{}", scene.plan.band_splitting.reason);
+    // The same glass as 7 bands that share one index, forced to split.
+    let mut split = prepare(sphere_scene(Dispersion::PerBand(vec![1.5; 7]), 9.0, -Vec3::Y));
+    for s in &mut split.surfaces {
+        if let Surface::Dielectric(g) = s {
+            (g.splits_photons, g.splits_view_rays) = (true, true);
+        }
+    }
+    for mut backend in backends() {
+        let (white_map, white_image) = run(backend.as_mut(), &scene);
+        let (split_map, split_image) = run(backend.as_mut(), &split);
+        let name = backend.name();
+        assert!(white_map.photons.iter().all(|p| p.band == prismatic_core::photon::WHITE_BAND), "{name}");
+        assert!(split_map.photons.iter().all(|p| p.band < 7), "{name}");
+        // One white path against seven band paths behind the first hit: 3 segments against 1 + 7 × 2.
+        let ratio = white_map.stats.segments as f64 / split_map.stats.segments as f64;
+        assert!(
+            (0.14..0.25).contains(&ratio),
+            "{name}: segments {} vs {}",
+            white_map.stats.segments,
+            split_map.stats.segments
+        );
+        // Same light, different random draws: equal within photon noise.
+        let sum = |i: &Image| i.pixels.iter().map(|p| f64::from(p.element_sum())).sum::<f64>();
+        let (a, b) = (sum(&white_image), sum(&split_image));
+        assert!((a - b).abs() < 0.02 * a, "{name}: image energy {a} vs {b}");
+    }
+}
+
+#[test]
+fn glass_outside_every_light_cone_skips_the_photon_pass_and_says_why() {
+    // The spot points away from the sphere.
+    let scene = prepare(sphere_scene(Glass::Bk7.dispersion(), 10.0, Vec3::new(1.0, -0.2, 0.0)));
+    assert!(!scene.plan.caustics.on);
+    assert!(
+        scene.plan.caustics.reason.contains("object[0] outside every light's cone or beam"),
+        "{}",
+        scene.plan.caustics.reason
+    );
+    assert!(scene.plan.summary().contains("skipped: caustics"), "{}", scene.plan.summary());
+    for mut backend in backends() {
+        let (map, _) = run(backend.as_mut(), &scene);
+        assert_eq!(map.stats.emitted, 0, "{}", backend.name());
+    }
+    // Aimed at the sphere, the pass runs.
+    assert!(prepare(sphere_scene(Glass::Bk7.dispersion(), 10.0, -Vec3::Y)).plan.caustics.on);
+}
+
+#[test]
+fn the_plan_never_skips_light_that_would_show() {
+    // Whatever the plan skips, forcing it back on changes nothing. Half the
+    // scenes aim their light somewhere random, so that it often misses the glass.
+    let mut skipped_caustics = 0;
+    for seed in 1..=60 {
+        let mut s = random_scene(seed, 1500, 24);
+        if seed % 2 == 0 {
+            let u = |d: u32| prismatic_core::rng::random_f32(seed, 77, d) * 2.0 - 1.0;
+            let aim = Vec3::new(u(0) * 6.0, u(1) * 2.0 - 1.0, u(2) * 6.0);
+            match &mut s.lights[0] {
+                Light::Spot { position, direction, .. } | Light::Beam { position, direction, .. } => {
+                    *direction = aim - *position;
+                }
+                Light::Point { .. } => {}
+            }
+        }
+        let scene = PreparedScene::new(s).unwrap();
+        skipped_caustics += usize::from(!scene.plan.caustics.on);
+        let mut forced = scene.clone();
+        forced.plan.caustics.on = true;
+        forced.plan.max_depth = scene.scene.render.max_depth;
+        for s in &mut forced.surfaces {
+            if let Surface::Dielectric(g) = s {
+                (g.splits_photons, g.splits_view_rays) = (g.is_dispersive(), g.is_dispersive());
+            }
+        }
+        for e in &mut forced.plan.shadows {
+            e.on = true;
+        }
+        let planned = prismatic_core::trace::trace_photons(&scene);
+        let full = prismatic_core::trace::trace_photons(&forced);
+        assert_eq!(planned.photons, full.photons, "seed {seed}: {}", scene.plan.summary());
+        let a = prismatic_core::render::render(&scene, &planned);
+        let b = prismatic_core::render::render(&forced, &full);
+        assert_eq!(a.pixels, b.pixels, "seed {seed}: {}", scene.plan.summary());
+    }
+    assert!(skipped_caustics >= 5, "only {skipped_caustics} scenes exercised a skipped photon pass");
+}

@@ -4,6 +4,7 @@ use crate::simd::{Vec3x8, ge, sin_cos_turns};
 use prismatic_core::geometry::basis;
 use prismatic_core::math::{cos, radians};
 use prismatic_core::prepared::PreparedScene;
+use prismatic_core::projection::Targets;
 use prismatic_core::rng::dim;
 use prismatic_core::scene::Light;
 use wide::{f32x8, u32x8};
@@ -16,9 +17,21 @@ enum Emitter {
     Beam { position: Vec3x8, axis: Vec3x8, t: Vec3x8, b: Vec3x8, radius: f32x8 },
 }
 
+/// A light's projection map with its vectors splatted (see `prismatic_core::projection`).
+struct ProjectionX8 {
+    /// Cone targets: axis, its basis (t, b), cosine of the half-angle.
+    cones: Vec<(Vec3x8, Vec3x8, Vec3x8, f32x8)>,
+    /// Disc targets: centre and radius.
+    discs: Vec<(Vec3x8, f32x8)>,
+    /// Cumulative target probabilities.
+    cdf: Vec<f32x8>,
+    scale: f32x8,
+}
+
 /// The scene's lights, ready to emit packets.
 pub struct Emitters {
     lights: Vec<Emitter>,
+    projections: Vec<Option<ProjectionX8>>,
     cdf: Vec<f32x8>,
     seed: u32,
 }
@@ -57,16 +70,44 @@ impl Emitters {
             })
             .collect();
         let cdf = scene.light_cdf.iter().map(|&c| f32x8::splat(c)).collect();
-        Emitters { lights, cdf, seed: scene.scene.render.seed }
+        let projections = scene
+            .projections
+            .iter()
+            .map(|p| {
+                p.as_ref().map(|p| {
+                    let (mut cones, mut discs) = (Vec::new(), Vec::new());
+                    match &p.targets {
+                        Targets::Cones { axis, cos_max } => {
+                            for (a, c) in axis.iter().zip(cos_max) {
+                                let (t, b) = basis(*a);
+                                cones.push((Vec3x8::splat(*a), Vec3x8::splat(t), Vec3x8::splat(b), f32x8::splat(*c)));
+                            }
+                        }
+                        Targets::Discs { center, radius } => {
+                            for (c, r) in center.iter().zip(radius) {
+                                discs.push((Vec3x8::splat(*c), f32x8::splat(*r)));
+                            }
+                        }
+                    }
+                    ProjectionX8 {
+                        cones,
+                        discs,
+                        cdf: p.cdf.iter().map(|&c| f32x8::splat(c)).collect(),
+                        scale: f32x8::splat(p.scale),
+                    }
+                })
+            })
+            .collect();
+        Emitters { lights, projections, cdf, seed: scene.scene.render.seed }
     }
 
-    /// Origins and directions of white photons `index`.
+    /// Origins, directions and flux weights of white photons `index`.
     #[inline]
-    pub fn emit(&self, index: u32x8) -> (Vec3x8, Vec3x8) {
+    pub fn emit(&self, index: u32x8) -> (Vec3x8, Vec3x8, f32x8) {
         let rnd = |d: u32| crate::simd::random_f32(self.seed, index, u32x8::splat(d));
         let (u1, u2) = (rnd(dim::DIRECTION), rnd(dim::DIRECTION + 1));
         if self.lights.len() == 1 {
-            return self.emit_from(&self.lights[0], index, u1, u2);
+            return self.emit_from(0, index, u1, u2);
         }
         // Light k is the first whose cumulative probability exceeds u.
         let u = rnd(dim::LIGHT);
@@ -74,26 +115,97 @@ impl Emitters {
         for c in &self.cdf[..self.cdf.len() - 1] {
             chosen += ge(u, *c) & f32x8::ONE;
         }
-        let (mut origin, mut dir) = (Vec3x8::ZERO, Vec3x8::ZERO);
-        for (k, light) in self.lights.iter().enumerate() {
+        let (mut origin, mut dir, mut weight) = (Vec3x8::ZERO, Vec3x8::ZERO, f32x8::ZERO);
+        for k in 0..self.lights.len() {
             let mine = chosen.simd_eq(f32x8::splat(k as f32));
             if mine.any() {
-                let (o, d) = self.emit_from(light, index, u1, u2);
+                let (o, d, w) = self.emit_from(k, index, u1, u2);
                 origin = Vec3x8::select(mine, o, origin);
                 dir = Vec3x8::select(mine, d, dir);
+                weight = mine.select(w, weight);
             }
         }
-        (origin, dir)
+        (origin, dir, weight)
     }
 
     #[inline]
-    fn emit_from(&self, light: &Emitter, index: u32x8, u1: f32x8, u2: f32x8) -> (Vec3x8, Vec3x8) {
+    fn emit_from(&self, k: usize, index: u32x8, u1: f32x8, u2: f32x8) -> (Vec3x8, Vec3x8, f32x8) {
+        if let Some(p) = &self.projections[k] {
+            return self.emit_projected(&self.lights[k], p, index, u1, u2);
+        }
+        let (origin, dir) = self.emit_whole(&self.lights[k], index, u1, u2);
+        (origin, dir, f32x8::ONE)
+    }
+
+    /// `Projection::sample` for eight photons.
+    #[inline]
+    fn emit_projected(
+        &self,
+        light: &Emitter,
+        p: &ProjectionX8,
+        index: u32x8,
+        u1: f32x8,
+        u2: f32x8,
+    ) -> (Vec3x8, Vec3x8, f32x8) {
+        let rnd = |d: u32| crate::simd::random_f32(self.seed, index, u32x8::splat(d));
+        let n = p.cdf.len();
+        if n == 0 {
+            return (Vec3x8::ZERO, Vec3x8 { x: f32x8::ZERO, y: f32x8::ZERO, z: f32x8::ONE }, f32x8::ZERO);
+        }
+        let u_target = rnd(dim::TARGET);
+        let mut target = f32x8::ZERO;
+        for c in &p.cdf[..n - 1] {
+            target += ge(u_target, *c) & f32x8::ONE;
+        }
+        let (mut origin, mut dir) = (Vec3x8::ZERO, Vec3x8::ZERO);
+        let mut covering = f32x8::ZERO;
+        let inside;
+        match *light {
+            Emitter::Spot { position, axis: light_axis, cos_max: cone, .. } => {
+                for (j, (a, t, b, c)) in p.cones.iter().enumerate() {
+                    let cos_t = f32x8::ONE - u1 * (f32x8::ONE - *c);
+                    let d = cone_direction(*a, *t, *b, cos_t, u2);
+                    dir = Vec3x8::select(target.simd_eq(f32x8::splat(j as f32)), d, dir);
+                }
+                origin = position;
+                inside = ge(dir.dot(light_axis), cone);
+            }
+            Emitter::Point { position } => {
+                for (j, (a, t, b, c)) in p.cones.iter().enumerate() {
+                    let cos_t = f32x8::ONE - u1 * (f32x8::ONE - *c);
+                    let d = cone_direction(*a, *t, *b, cos_t, u2);
+                    dir = Vec3x8::select(target.simd_eq(f32x8::splat(j as f32)), d, dir);
+                }
+                origin = position;
+                inside = f32x8::splat(f32::from_bits(u32::MAX));
+            }
+            Emitter::Beam { position, axis, t, b, radius } => {
+                let (v1, v2) = (rnd(dim::POSITION), rnd(dim::POSITION + 1));
+                let (sin_phi, cos_phi) = sin_cos_turns(v2);
+                for (j, (c, r)) in p.discs.iter().enumerate() {
+                    let o = *c + (t * cos_phi + b * sin_phi) * (*r * v1.sqrt());
+                    origin = Vec3x8::select(target.simd_eq(f32x8::splat(j as f32)), o, origin);
+                }
+                dir = axis;
+                inside = !(origin - position).length_squared().simd_gt(radius * radius);
+            }
+        }
+        for (a, _, _, c) in &p.cones {
+            covering += ge(dir.dot(*a), *c) & f32x8::ONE;
+        }
+        for (c, r) in &p.discs {
+            covering += !(origin - *c).length_squared().simd_gt(*r * *r) & f32x8::ONE;
+        }
+        let weight = inside.select(p.scale / covering.max(f32x8::ONE), f32x8::ZERO);
+        (origin, dir, weight)
+    }
+
+    #[inline]
+    fn emit_whole(&self, light: &Emitter, index: u32x8, u1: f32x8, u2: f32x8) -> (Vec3x8, Vec3x8) {
         match *light {
             Emitter::Spot { position, axis, t, b, cos_max } => {
                 let cos_t = f32x8::ONE - u1 * (f32x8::ONE - cos_max);
-                let sin_t = (f32x8::ONE - cos_t * cos_t).max(f32x8::ZERO).sqrt();
-                let (sin_phi, cos_phi) = sin_cos_turns(u2);
-                (position, (t * (sin_t * cos_phi) + b * (sin_t * sin_phi) + axis * cos_t).normalize())
+                (position, cone_direction(axis, t, b, cos_t, u2))
             }
             Emitter::Point { position } => {
                 let z = f32x8::ONE - f32x8::splat(2.0) * u1;
@@ -109,4 +221,12 @@ impl Emitters {
             }
         }
     }
+}
+
+/// `prismatic_core::projection::cone_direction` with the basis (t, b) of `axis` given.
+#[inline]
+fn cone_direction(axis: Vec3x8, t: Vec3x8, b: Vec3x8, cos_t: f32x8, u: f32x8) -> Vec3x8 {
+    let sin_t = (f32x8::ONE - cos_t * cos_t).max(f32x8::ZERO).sqrt();
+    let (sin_phi, cos_phi) = sin_cos_turns(u);
+    (t * (sin_t * cos_phi) + b * (sin_t * sin_phi) + axis * cos_t).normalize()
 }

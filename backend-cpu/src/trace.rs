@@ -149,7 +149,7 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
     let mut emission = u32x8::ZERO;
     let mut bounces = u32x8::ZERO;
     let mut active = f32x8::ZERO;
-    let flux = f32x8::splat(ctx.flux);
+    let mut flux = f32x8::ZERO;
     loop {
         // Refill free lanes with the next white photons.
         let free = !active;
@@ -165,17 +165,19 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
                 }
             }
             let fresh = f32x8::new(fresh);
-            let (o, d) = ctx.emitters.emit(u32x8::new(indices));
+            let (o, d, weight) = ctx.emitters.emit(u32x8::new(indices));
+            sink.stats.emitted += u64::from(fresh.to_bitmask().count_ones());
+            // Projection-map samples outside their light (weight 0) are not traced.
+            let fresh = fresh & weight.simd_ne(f32x8::ZERO);
             origin = Vec3x8::select(fresh, o, origin);
             dir = Vec3x8::select(fresh, d, dir);
+            flux = fresh.select(f32x8::splat(ctx.flux) * weight, flux);
             let fresh_u = bytemuck::cast::<f32x8, u32x8>(fresh);
             emission = fresh_u.select(u32x8::new(indices), emission);
             bounces = fresh_u.select(u32x8::ZERO, bounces);
             active |= fresh;
-            let n = u64::from(fresh.to_bitmask().count_ones());
-            sink.stats.emitted += n;
-            sink.stats.paths += n;
-            sink.stats.flux_emitted += f64::from(ctx.flux) * n as f64;
+            sink.stats.paths += u64::from(fresh.to_bitmask().count_ones());
+            Sink::add_flux(&mut sink.stats.flux_emitted, fresh, flux);
         }
         if !active.any() {
             break;
@@ -191,7 +193,8 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
         let split = go_on & s.dispersive;
         for i in lanes(split) {
             sink.stats.paths += ctx.scene.bands.len() as u64 - 1;
-            trace_bands(ctx, &mut sink, i, &hit, point, dir, emission.as_array()[i], bounces.as_array()[i]);
+            let white = (emission.as_array()[i], bounces.as_array()[i], flux.as_array()[i]);
+            trace_bands(ctx, &mut sink, i, &hit, point, dir, white);
         }
         go_on &= !split;
         let u = random_f32(settings.seed, emission, scatter_dims(u32x8::splat(u32::from(WHITE_BAND)), bounces));
@@ -203,9 +206,9 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
     sink.stats
 }
 
-/// Traces the bands of white photon `emission` (lane `lane` of `hit`) from
-/// the dispersive surface it has just met, eight bands per packet.
-#[expect(clippy::too_many_arguments, reason = "the state of one split photon, passed in registers")]
+/// Traces the bands of a white photon (lane `lane` of `hit`; its emission
+/// index, bounces and flux in `white`) from the dispersive surface it has
+/// just met, eight bands per packet.
 fn trace_bands(
     ctx: &TraceContext<'_>,
     sink: &mut Sink,
@@ -213,12 +216,11 @@ fn trace_bands(
     hit: &HitX8,
     point: Vec3x8,
     dir: Vec3x8,
-    emission: u32,
-    white_bounces: u32,
+    (emission, white_bounces, white_flux): (u32, u32, f32),
 ) {
     let seed = ctx.scene.scene.render.seed;
     let n = ctx.scene.bands.len();
-    let flux = f32x8::splat(ctx.flux / n as f32);
+    let flux = f32x8::splat(white_flux / n as f32);
     let emission_v = u32x8::splat(emission);
     let object = hit.object.as_array()[lane] as usize;
     let (p0, d0, n0) =

@@ -191,6 +191,12 @@ impl<'s> Parser<'s> {
         }
     }
 
+    fn boolean(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<bool> {
+        v.get_ref()
+            .as_bool()
+            .ok_or_else(|| self.err(key, &v.span(), format!("must be true or false, got {}", v.get_ref().type_str())))
+    }
+
     fn string<'a>(&self, key: &str, v: &'a Spanned<DeValue<'_>>) -> Result<&'a str> {
         v.get_ref()
             .as_str()
@@ -308,6 +314,7 @@ impl<'s> Parser<'s> {
                 "exposure",
                 "background",
                 "tone_map",
+                "projection_maps",
             ],
         )?;
         let d = RenderSettings::default();
@@ -325,6 +332,7 @@ impl<'s> Parser<'s> {
             exposure: self.opt(t, "exposure", Self::float)?.unwrap_or(d.exposure),
             background: self.opt(t, "background", Self::vec3)?.unwrap_or(d.background),
             tone_map: self.opt(t, "tone_map", Self::tone_map)?.unwrap_or(d.tone_map),
+            projection_maps: self.opt(t, "projection_maps", Self::boolean)?.unwrap_or(d.projection_maps),
         })
     }
 

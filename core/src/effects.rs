@@ -42,6 +42,9 @@ pub struct EffectPlan {
     pub view_dispersion: Effect,
     /// Shadow rays, per light.
     pub shadows: Vec<Effect>,
+    /// Projection maps (emission aimed at mirrors and glass); see
+    /// [`crate::projection`]. Decided per light by `PreparedScene`.
+    pub projection: Effect,
     /// The largest useful number of specular interactions on a path.
     pub max_depth: u32,
     /// Why that depth.
@@ -49,7 +52,7 @@ pub struct EffectPlan {
 }
 
 /// A bounding sphere (centre, radius) of a shape; infinite radius for planes.
-fn bounds(shape: &Shape) -> (Vec3, f32) {
+pub(crate) fn bounds(shape: &Shape) -> (Vec3, f32) {
     let around = |points: &[Vec3]| {
         let center = points.iter().copied().sum::<Vec3>() / points.len().max(1) as f32;
         (center, points.iter().map(|p| (*p - center).length()).fold(0.0, f32::max))
@@ -184,7 +187,14 @@ impl EffectPlan {
         } else {
             (scene.render.max_depth, String::from("render.max_depth"))
         };
-        EffectPlan { caustics, band_splitting, view_dispersion, shadows, max_depth, depth_reason }
+        let projection = if !caustics.on {
+            Effect::off("no photon pass")
+        } else if !scene.render.projection_maps {
+            Effect::off("render.projection_maps = false")
+        } else {
+            Effect::on("pending")
+        };
+        EffectPlan { caustics, band_splitting, view_dispersion, shadows, projection, max_depth, depth_reason }
     }
 
     /// One line: what is simulated and what is skipped.
@@ -199,6 +209,7 @@ impl EffectPlan {
         put("caustics", &self.caustics);
         if self.caustics.on {
             put("band splitting", &self.band_splitting);
+            put("projection maps", &self.projection);
         }
         put("view dispersion", &self.view_dispersion);
         if lights_shadowed > 0 {
@@ -218,9 +229,11 @@ impl EffectPlan {
     pub fn explain(&self) -> String {
         let yes = |e: &Effect| if e.on { "yes" } else { "no " };
         let mut s = format!(
-            "caustic photon pass: {} {}\nband splitting:      {} {}\nview dispersion:     {} {}\n",
+            "caustic photon pass: {} {}\nprojection maps:     {} {}\nband splitting:      {} {}\nview dispersion:     {} {}\n",
             yes(&self.caustics),
             self.caustics.reason,
+            yes(&self.projection),
+            self.projection.reason,
             yes(&self.band_splitting),
             self.band_splitting.reason,
             yes(&self.view_dispersion),

@@ -3,6 +3,7 @@
 use crate::geometry::basis;
 use crate::math::{cos, radians, sin_cos_turns, sqrt};
 use crate::prepared::PreparedScene;
+use crate::projection::cone_direction;
 use crate::rng::{dim, random_f32};
 use crate::scene::Light;
 use glam::Vec3;
@@ -16,28 +17,41 @@ pub struct Emitted {
     pub direction: Vec3,
     /// Index of the light.
     pub light: usize,
+    /// Flux multiplier: 1 without a projection map; with one, the photon's
+    /// share of its light's emission (0: aimed outside the light, not traced).
+    pub weight: f32,
 }
 
 /// Emits white photon `index` of the pass. Lights are chosen with
 /// probability proportional to their power, so every photon carries the same
-/// flux, Σ power / photons.
+/// flux, Σ power / photons, times its projection-map weight.
 pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
     let u = random_f32(seed, index, dim::LIGHT);
     let light = scene.light_cdf.iter().position(|&c| u < c).unwrap_or(scene.light_cdf.len() - 1);
     let u1 = random_f32(seed, index, dim::DIRECTION);
     let u2 = random_f32(seed, index, dim::DIRECTION + 1);
-    match &scene.scene.lights[light] {
+    let source = &scene.scene.lights[light];
+    if let Some(projection) = &scene.projections[light] {
+        let u_target = random_f32(seed, index, dim::TARGET);
+        let (v1, v2) = match source {
+            Light::Beam { .. } => (random_f32(seed, index, dim::POSITION), random_f32(seed, index, dim::POSITION + 1)),
+            _ => (u1, u2),
+        };
+        let s = projection.sample(source, u_target, v1, v2);
+        return Emitted { origin: s.origin, direction: s.direction, light, weight: s.weight };
+    }
+    match source {
         Light::Spot { position, direction, cone_deg, .. } => {
             let axis = direction.normalize();
             let cos_max = cos(radians(*cone_deg));
             let cos_t = 1.0 - u1 * (1.0 - cos_max);
-            Emitted { origin: *position, direction: cone_direction(axis, cos_t, u2), light }
+            Emitted { origin: *position, direction: cone_direction(axis, cos_t, u2), light, weight: 1.0 }
         }
         Light::Point { position, .. } => {
             let z = 1.0 - 2.0 * u1;
             let r = sqrt((1.0 - z * z).max(0.0));
             let (sin_phi, cos_phi) = sin_cos_turns(u2);
-            Emitted { origin: *position, direction: Vec3::new(r * cos_phi, r * sin_phi, z), light }
+            Emitted { origin: *position, direction: Vec3::new(r * cos_phi, r * sin_phi, z), light, weight: 1.0 }
         }
         Light::Beam { position, direction, radius, .. } => {
             let axis = direction.normalize();
@@ -45,16 +59,7 @@ pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
             let r = radius * sqrt(random_f32(seed, index, dim::POSITION));
             let (sin_phi, cos_phi) = sin_cos_turns(random_f32(seed, index, dim::POSITION + 1));
             let origin = *position + (t * cos_phi + b * sin_phi) * r;
-            Emitted { origin, direction: axis, light }
+            Emitted { origin, direction: axis, light, weight: 1.0 }
         }
     }
-}
-
-/// A unit direction at polar cosine `cos_t` around `axis`, azimuth `u · 2π`.
-#[inline]
-fn cone_direction(axis: Vec3, cos_t: f32, u: f32) -> Vec3 {
-    let sin_t = sqrt((1.0 - cos_t * cos_t).max(0.0));
-    let (sin_phi, cos_phi) = sin_cos_turns(u);
-    let (t, b) = basis(axis);
-    (t * (sin_t * cos_phi) + b * (sin_t * sin_phi) + axis * cos_t).normalize()
 }

@@ -92,7 +92,7 @@ pub struct TraceStats {
     pub specular_paths: u64,
     /// Photons stored.
     pub stored: u64,
-    /// Flux emitted (W).
+    /// Flux of the photons traced (W); with projection maps, their weighted flux.
     pub flux_emitted: f64,
     /// Flux of the stored photons.
     pub flux_stored: f64,

@@ -34,6 +34,8 @@ pub mod dim {
     pub const DIRECTION: u32 = 1;
     /// Two dimensions for the position on an area emitter (beam disc).
     pub const POSITION: u32 = 3;
+    /// Which projection-map target a photon is aimed at.
+    pub const TARGET: u32 = 5;
     /// First dimension of the path's scattering decisions.
     pub const PATH: u32 = 8;
     /// Dimensions reserved per band path (one per bounce, at most this many bounces).

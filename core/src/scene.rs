@@ -87,6 +87,8 @@ pub struct RenderSettings {
     pub background: Vec3,
     /// How radiance becomes displayable.
     pub tone_map: ToneMap,
+    /// Aim caustic photons only at mirrors and glass (projection maps).
+    pub projection_maps: bool,
 }
 
 impl Default for RenderSettings {
@@ -104,6 +106,7 @@ impl Default for RenderSettings {
             exposure: 1.0,
             background: Vec3::ZERO,
             tone_map: ToneMap::Clamp,
+            projection_maps: true,
         }
     }
 }

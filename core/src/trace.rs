@@ -71,6 +71,10 @@ struct Path {
 pub fn trace_emitted(scene: &PreparedScene, index: u32, flux: f32, out: &mut Vec<Photon>, stats: &mut TraceStats) {
     let e = emit(scene, scene.scene.render.seed, index);
     stats.emitted += 1;
+    let flux = flux * e.weight;
+    if e.weight == 0.0 {
+        return; // a projection-map sample outside its light: nothing to trace
+    }
     stats.paths += 1;
     stats.flux_emitted += f64::from(flux);
     let path = Path { ray: Ray { origin: e.origin, direction: e.direction }, flux, band: WHITE_BAND, bounces: 0 };

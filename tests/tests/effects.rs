@@ -154,3 +154,60 @@ fn the_plan_never_skips_light_that_would_show() {
     }
     assert!(skipped_caustics >= 5, "only {skipped_caustics} scenes exercised a skipped photon pass");
 }
+
+fn builtin(name: &str, photons: u32, projection_maps: bool) -> PreparedScene {
+    let mut doc = prismatic_cli::load_scene(name).unwrap();
+    let r = &mut doc.scene.render;
+    (r.photons, r.width, r.height, r.projection_maps) = (photons, 64, 64, projection_maps);
+    PreparedScene::new(doc.scene).unwrap()
+}
+
+#[test]
+fn projection_maps_store_the_same_caustic_from_ten_times_fewer_photons() {
+    const AIMED: u32 = 20_000;
+    let aimed = builtin("sphere", AIMED, true);
+    let scale = aimed.projections[0].as_ref().expect("the sphere's spot light gets a projection map").scale;
+    assert!(scale < 0.1, "the sphere fills {:.1} % of the spot's cone", scale * 100.0);
+    assert!(aimed.plan.summary().contains("projection maps (1 of 1 light aimed"), "{}", aimed.plan.summary());
+    // Without projection maps, the same stored photons need 1/scale times the emission.
+    let whole = builtin("sphere", (AIMED as f32 / scale) as u32, false);
+    let ten_times = builtin("sphere", AIMED * 10, false);
+    for mut backend in backends() {
+        let name = backend.name();
+        let (map_aimed, image_aimed) = run(backend.as_mut(), &aimed);
+        let (map_whole, image_whole) = run(backend.as_mut(), &whole);
+        let map_ten = backend.trace_photons(&ten_times, &mut NoProgress).unwrap();
+        assert_eq!(map_aimed.stats.specular_paths, u64::from(AIMED), "{name}: every aimed photon meets the glass");
+        assert!(
+            map_aimed.stats.stored > map_ten.stats.stored,
+            "{name}: {} emitted store {}, while 10× as many without projection maps store only {}",
+            AIMED,
+            map_aimed.stats.stored,
+            map_ten.stats.stored
+        );
+        // Unbiased: the same caustic flux and, within photon noise, the same image.
+        let (fa, fw) = (map_aimed.stats.flux_stored, map_whole.stats.flux_stored);
+        assert!((fa - fw).abs() < 0.02 * fw, "{name}: stored flux {fa} vs {fw}");
+        let diff: f64 = image_aimed
+            .pixels
+            .iter()
+            .zip(&image_whole.pixels)
+            .map(|(a, b)| f64::from((*a - *b).abs().element_sum()))
+            .sum();
+        let total: f64 = image_whole.pixels.iter().map(|p| f64::from(p.element_sum())).sum();
+        assert!(diff < 0.03 * total, "{name}: images differ by {:.2} % (L1)", 100.0 * diff / total);
+    }
+}
+
+#[test]
+fn a_beam_that_lies_wholly_on_its_prism_has_nothing_to_aim() {
+    let scene = builtin("prism", 2_000, true);
+    assert!(scene.projections.iter().all(Option::is_none));
+    assert!(
+        !scene.plan.projection.on && scene.plan.projection.reason.starts_with("no gain"),
+        "{}",
+        scene.plan.projection.reason
+    );
+    let map = prismatic_core::trace::trace_photons(&scene);
+    assert_eq!(map.stats.specular_paths, 2_000, "every photon of the beam already meets the prism");
+}

@@ -6,7 +6,8 @@
 //!   `trace/cpu-1t` and `trace/cpu-2t` pin the thread count;
 //! - `grid/cpu`: hash-grid build (counting sort);
 //! - `gather/cpu`: ray tracing + gather of a frame with a built grid;
-//! - `frame/<backend>`: the whole frame (trace, grid, render).
+//! - `frame/<backend>`: the whole frame (trace, grid, render);
+//! - `effects/<scene>/{planned,unplanned}`: what the effect plan saves.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use prismatic_benches::paper_config;
@@ -100,5 +101,51 @@ fn frame_group(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, trace_group, grid_group, gather_group, frame_group);
+/// `effects/<scene>/{planned,unplanned}`: a whole CPU frame of each built-in
+/// scene as it is, against the same scene with every effect forced on and
+/// no projection maps, emitting as many more photons as it takes to store
+/// the same caustic (the time the effect plan saves at equal quality).
+fn effects_group(c: &mut Criterion) {
+    let mut g = c.benchmark_group("effects");
+    g.sample_size(10);
+    for name in ["sphere", "prism", "recombine", "rainbow"] {
+        let planned = builtin(name, None);
+        let scale = planned.projections.iter().flatten().map(|p| p.scale).fold(1.0f32, f32::min);
+        let more = (planned.scene.render.photons as f32 / scale) as u32;
+        let mut unplanned = builtin(name, Some(more));
+        unplanned.plan.caustics.on = true;
+        unplanned.plan.max_depth = unplanned.scene.render.max_depth;
+        for e in &mut unplanned.plan.shadows {
+            e.on = true;
+        }
+        for s in &mut unplanned.surfaces {
+            if let prismatic_core::prepared::Surface::Dielectric(glass) = s {
+                (glass.splits_photons, glass.splits_view_rays) = (glass.is_dispersive(), glass.is_dispersive());
+            }
+        }
+        for (id, scene) in [("planned", &planned), ("unplanned", &unplanned)] {
+            let mut backend = CpuBackend::new();
+            let mut map = PhotonMap::default();
+            g.bench_function(BenchmarkId::new(name, id), |b| {
+                b.iter(|| {
+                    backend.trace_into(scene, &mut map);
+                    black_box(prismatic_cpu::render(scene, &map))
+                })
+            });
+        }
+    }
+    g.finish();
+}
+
+/// A built-in scene as it is, or without projection maps and with `photons`.
+fn builtin(name: &str, unplanned_photons: Option<u32>) -> prismatic_core::PreparedScene {
+    let mut doc = prismatic_cli::load_scene(name).expect("built-in scene parses");
+    if let Some(photons) = unplanned_photons {
+        doc.scene.render.photons = photons;
+        doc.scene.render.projection_maps = false;
+    }
+    prismatic_core::PreparedScene::new(doc.scene).expect("built-in scene is valid")
+}
+
+criterion_group!(benches, trace_group, grid_group, gather_group, frame_group, effects_group);
 criterion_main!(benches);

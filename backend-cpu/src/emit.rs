@@ -159,23 +159,19 @@ impl Emitters {
         }
         let (mut origin, mut dir) = (Vec3x8::ZERO, Vec3x8::ZERO);
         let mut covering = f32x8::ZERO;
+        // Spot and point lights: a direction in the chosen target's cone.
+        for (j, (a, t, b, c)) in p.cones.iter().enumerate() {
+            let cos_t = f32x8::ONE - u1 * (f32x8::ONE - *c);
+            let d = cone_direction(*a, *t, *b, cos_t, u2);
+            dir = Vec3x8::select(target.simd_eq(f32x8::splat(j as f32)), d, dir);
+        }
         let inside;
         match *light {
             Emitter::Spot { position, axis: light_axis, cos_max: cone, .. } => {
-                for (j, (a, t, b, c)) in p.cones.iter().enumerate() {
-                    let cos_t = f32x8::ONE - u1 * (f32x8::ONE - *c);
-                    let d = cone_direction(*a, *t, *b, cos_t, u2);
-                    dir = Vec3x8::select(target.simd_eq(f32x8::splat(j as f32)), d, dir);
-                }
                 origin = position;
                 inside = ge(dir.dot(light_axis), cone);
             }
             Emitter::Point { position } => {
-                for (j, (a, t, b, c)) in p.cones.iter().enumerate() {
-                    let cos_t = f32x8::ONE - u1 * (f32x8::ONE - *c);
-                    let d = cone_direction(*a, *t, *b, cos_t, u2);
-                    dir = Vec3x8::select(target.simd_eq(f32x8::splat(j as f32)), d, dir);
-                }
                 origin = position;
                 inside = f32x8::splat(f32::from_bits(u32::MAX));
             }

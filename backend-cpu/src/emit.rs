@@ -71,6 +71,7 @@ impl Emitters {
             .collect();
         let cdf = scene.light_cdf.iter().map(|&c| f32x8::splat(c)).collect();
         let projections = scene
+            .plan
             .projections
             .iter()
             .map(|p| {

@@ -110,19 +110,10 @@ fn effects_group(c: &mut Criterion) {
     g.sample_size(10);
     for name in ["sphere", "prism", "recombine", "rainbow"] {
         let planned = builtin(name, None);
-        let scale = planned.projections.iter().flatten().map(|p| p.scale).fold(1.0f32, f32::min);
+        let scale = planned.plan.projections.iter().flatten().map(|p| p.scale).fold(1.0f32, f32::min);
         let more = (planned.scene.render.photons as f32 / scale) as u32;
         let mut unplanned = builtin(name, Some(more));
-        unplanned.plan.caustics.on = true;
-        unplanned.plan.max_depth = unplanned.scene.render.max_depth;
-        for e in &mut unplanned.plan.shadows {
-            e.on = true;
-        }
-        for s in &mut unplanned.surfaces {
-            if let prismatic_core::prepared::Surface::Dielectric(glass) = s {
-                (glass.splits_photons, glass.splits_view_rays) = (glass.is_dispersive(), glass.is_dispersive());
-            }
-        }
+        unplanned.simulate_everything();
         for (id, scene) in [("planned", &planned), ("unplanned", &unplanned)] {
             let mut backend = CpuBackend::new();
             let mut map = PhotonMap::default();
@@ -137,13 +128,10 @@ fn effects_group(c: &mut Criterion) {
     g.finish();
 }
 
-/// A built-in scene as it is, or without projection maps and with `photons`.
-fn builtin(name: &str, unplanned_photons: Option<u32>) -> prismatic_core::PreparedScene {
+/// A built-in scene as it is, or with `photons` instead of its own count.
+fn builtin(name: &str, photons: Option<u32>) -> prismatic_core::PreparedScene {
     let mut doc = prismatic_cli::load_scene(name).expect("built-in scene parses");
-    if let Some(photons) = unplanned_photons {
-        doc.scene.render.photons = photons;
-        doc.scene.render.projection_maps = false;
-    }
+    doc.scene.render.photons = photons.unwrap_or(doc.scene.render.photons);
     prismatic_core::PreparedScene::new(doc.scene).expect("built-in scene is valid")
 }
 

@@ -7,6 +7,7 @@
 
 use crate::math::{asin, cos, radians, sqrt};
 use crate::prepared::Surface;
+use crate::projection::Projection;
 use crate::scene::{Camera, Light, Scene, Shape};
 use alloc::format;
 use alloc::string::String;
@@ -32,7 +33,7 @@ impl Effect {
 }
 
 /// What a render of a scene simulates.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct EffectPlan {
     /// The caustic photon pass.
     pub caustics: Effect,
@@ -42,9 +43,10 @@ pub struct EffectPlan {
     pub view_dispersion: Effect,
     /// Shadow rays, per light.
     pub shadows: Vec<Effect>,
-    /// Projection maps (emission aimed at mirrors and glass); see
-    /// [`crate::projection`]. Decided per light by `PreparedScene`.
+    /// Projection maps (emission aimed at mirrors and glass); see [`crate::projection`].
     pub projection: Effect,
+    /// Each light's projection map (`None`: emit over its whole distribution).
+    pub projections: Vec<Option<Projection>>,
     /// The largest useful number of specular interactions on a path.
     pub max_depth: u32,
     /// Why that depth.
@@ -52,7 +54,7 @@ pub struct EffectPlan {
 }
 
 /// A bounding sphere (centre, radius) of a shape; infinite radius for planes.
-pub(crate) fn bounds(shape: &Shape) -> (Vec3, f32) {
+fn bounds(shape: &Shape) -> (Vec3, f32) {
     let around = |points: &[Vec3]| {
         let center = points.iter().copied().sum::<Vec3>() / points.len().max(1) as f32;
         (center, points.iter().map(|p| (*p - center).length()).fold(0.0, f32::max))
@@ -70,7 +72,7 @@ pub(crate) fn bounds(shape: &Shape) -> (Vec3, f32) {
 }
 
 /// Can `light` send light into the sphere (centre `c`, radius `r`)?
-fn light_reaches(light: &Light, c: Vec3, r: f32) -> bool {
+pub(crate) fn light_reaches(light: &Light, c: Vec3, r: f32) -> bool {
     if !r.is_finite() {
         return true;
     }
@@ -187,14 +189,59 @@ impl EffectPlan {
         } else {
             (scene.render.max_depth, String::from("render.max_depth"))
         };
+        let mut projections: Vec<Option<Projection>> = scene.lights.iter().map(|_| None).collect();
         let projection = if !caustics.on {
             Effect::off("no photon pass")
         } else if !scene.render.projection_maps {
             Effect::off("render.projection_maps = false")
         } else {
-            Effect::on("pending")
+            let spheres: Vec<(Vec3, f32)> = specular.iter().map(|&k| bounds[k]).collect();
+            projections = scene.lights.iter().map(|l| Projection::new(l, &spheres)).collect();
+            let aimed: Vec<f32> = projections.iter().flatten().map(|p| p.scale).collect();
+            if aimed.is_empty() {
+                Effect::off("no gain: the lights' mirrors and glass fill their emission")
+            } else {
+                let share = aimed.iter().sum::<f32>() / aimed.len() as f32;
+                Effect::on(format!(
+                    "{} of {} light{} aimed, {:.1} % of the emission",
+                    aimed.len(),
+                    projections.len(),
+                    plural(projections.len()),
+                    share * 100.0
+                ))
+            }
         };
-        EffectPlan { caustics, band_splitting, view_dispersion, shadows, projection, max_depth, depth_reason }
+        EffectPlan {
+            caustics,
+            band_splitting,
+            view_dispersion,
+            shadows,
+            projection,
+            projections,
+            max_depth,
+            depth_reason,
+        }
+    }
+
+    /// Turns every effect on and projection maps off: the scene simulated in
+    /// full, for comparisons (what the plan saves, and that it skips nothing
+    /// that shows). `surfaces` are the scene's, whose glass then splits
+    /// wherever it disperses.
+    pub fn simulate_everything(&mut self, max_depth: u32, surfaces: &mut [Surface]) {
+        for e in [&mut self.caustics, &mut self.band_splitting, &mut self.view_dispersion]
+            .into_iter()
+            .chain(&mut self.shadows)
+        {
+            *e = Effect::on("forced on");
+        }
+        self.projection = Effect::off("forced off");
+        self.projections.iter_mut().for_each(|p| *p = None);
+        self.max_depth = max_depth;
+        for s in surfaces {
+            if let Surface::Dielectric(g) = s {
+                (g.splits_photons, g.splits_view_rays) = (g.dispersive, g.dispersive);
+            }
+        }
     }
 
     /// One line: what is simulated and what is skipped.

@@ -31,7 +31,7 @@ pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
     let u1 = random_f32(seed, index, dim::DIRECTION);
     let u2 = random_f32(seed, index, dim::DIRECTION + 1);
     let source = &scene.scene.lights[light];
-    if let Some(projection) = &scene.projections[light] {
+    if let Some(projection) = &scene.plan.projections[light] {
         let u_target = random_f32(seed, index, dim::TARGET);
         let (v1, v2) = match source {
             Light::Beam { .. } => (random_f32(seed, index, dim::POSITION), random_f32(seed, index, dim::POSITION + 1)),

@@ -146,12 +146,6 @@ pub fn radians(deg: f32) -> f32 {
     deg * (core::f32::consts::PI / 180.0)
 }
 
-/// Radians to degrees.
-#[inline]
-pub fn degrees(rad: f32) -> f32 {
-    rad * (180.0 / core::f32::consts::PI)
-}
-
 #[cfg(test)]
 mod tests {
     #[test]

@@ -6,10 +6,8 @@ use crate::bands::BandTable;
 use crate::effects::EffectPlan;
 use crate::geometry::{Primitive, Ray, mesh_triangles, prism_faces};
 use crate::photon::WHITE_BAND;
-use crate::projection::Projection;
 use crate::scene::{Checker, MaterialKind, Scene, SceneError, Shape};
 use crate::tolerance;
-use alloc::format;
 use alloc::vec::Vec;
 use glam::Vec3;
 
@@ -107,8 +105,6 @@ pub struct PreparedScene {
     pub total_power: f32,
     /// What the render simulates; backends follow it.
     pub plan: EffectPlan,
-    /// Each light's projection map (`None`: emit over its whole distribution).
-    pub projections: Vec<Option<Projection>>,
 }
 
 impl PreparedScene {
@@ -164,41 +160,12 @@ impl PreparedScene {
                 g.splits_view_rays = g.dispersive && plan.view_dispersion.on;
             }
         }
-        let mut plan = plan;
-        let projections: Vec<Option<Projection>> = if plan.projection.on {
-            let spheres: Vec<(Vec3, f32)> = scene
-                .objects
-                .iter()
-                .zip(&surfaces)
-                .filter(|(_, s)| !matches!(s, Surface::Diffuse { .. }))
-                .map(|(o, _)| crate::effects::bounds(&o.shape))
-                .collect();
-            scene.lights.iter().map(|l| Projection::new(l, &spheres)).collect()
-        } else {
-            scene.lights.iter().map(|_| None).collect()
-        };
-        if plan.projection.on {
-            let aimed: Vec<f32> = projections.iter().flatten().map(|p| p.scale).collect();
-            plan.projection = if aimed.is_empty() {
-                crate::effects::Effect {
-                    on: false,
-                    reason: "no gain: the lights' mirrors and glass fill their emission".into(),
-                }
-            } else {
-                let share = aimed.iter().sum::<f32>() / aimed.len() as f32;
-                crate::effects::Effect {
-                    on: true,
-                    reason: format!(
-                        "{} of {} light{} aimed, {:.1} % of the emission",
-                        aimed.len(),
-                        projections.len(),
-                        if projections.len() == 1 { "" } else { "s" },
-                        share * 100.0
-                    ),
-                }
-            };
-        }
-        Ok(PreparedScene { scene, bands, primitives, surfaces, light_cdf, total_power, plan, projections })
+        Ok(PreparedScene { scene, bands, primitives, surfaces, light_cdf, total_power, plan })
+    }
+
+    /// Simulates every effect, ignoring the plan (see [`EffectPlan::simulate_everything`]).
+    pub fn simulate_everything(&mut self) {
+        self.plan.simulate_everything(self.scene.render.max_depth, &mut self.surfaces);
     }
 
     /// The nearest hit along `ray` closer than `t_max`. Rays start off their

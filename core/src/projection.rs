@@ -9,6 +9,7 @@
 //! of targets that cover its sample (targets may overlap); samples outside
 //! the light's own cone or disc get weight 0 and are not traced.
 
+use crate::effects::light_reaches;
 use crate::geometry::basis;
 use crate::math::{cos, radians, sin_cos_turns, sqrt};
 use crate::scene::Light;
@@ -63,26 +64,22 @@ impl Projection {
     /// much as the light emits into).
     pub fn new(light: &Light, spheres: &[(Vec3, f32)]) -> Option<Projection> {
         let (targets, measures, light_measure) = match light {
-            Light::Spot { position, direction, cone_deg, .. } => {
-                let (axis, cos_max) = cones(*position, spheres, Some((direction.normalize(), *cone_deg)))?;
+            Light::Spot { position, cone_deg, .. } => {
+                let (axis, cos_max) = cones(light, *position, spheres)?;
                 let m = cos_max.iter().map(|c| 1.0 - c).collect::<Vec<_>>();
                 (Targets::Cones { axis, cos_max }, m, 1.0 - cos(radians(*cone_deg)))
             }
             Light::Point { position, .. } => {
-                let (axis, cos_max) = cones(*position, spheres, None)?;
+                let (axis, cos_max) = cones(light, *position, spheres)?;
                 let m = cos_max.iter().map(|c| 1.0 - c).collect::<Vec<_>>();
                 (Targets::Cones { axis, cos_max }, m, 2.0)
             }
             Light::Beam { position, direction, radius, .. } => {
                 let a = direction.normalize();
                 let (mut center, mut radii) = (Vec::new(), Vec::new());
-                for &(c, r) in spheres {
-                    let along = (c - *position).dot(a);
-                    let on_plane = c - a * along;
-                    if along > -r && (on_plane - *position).length() <= radius + r {
-                        center.push(on_plane);
-                        radii.push(r);
-                    }
+                for &(c, r) in spheres.iter().filter(|(c, r)| light_reaches(light, *c, *r)) {
+                    center.push(c - a * (c - *position).dot(a));
+                    radii.push(r);
                 }
                 let m = radii.iter().map(|r| r * r).collect::<Vec<_>>();
                 (Targets::Discs { center, radius: radii }, m, radius * radius)
@@ -151,27 +148,19 @@ fn weight(inside: bool, scale: f32, covering: usize) -> f32 {
     if inside { scale / covering as f32 } else { 0.0 }
 }
 
-/// Target cones from `position` toward each sphere (only those a spot's
-/// cone can reach); `None` when the light sits inside one.
-fn cones(position: Vec3, spheres: &[(Vec3, f32)], spot: Option<(Vec3, f32)>) -> Option<(Vec<Vec3>, Vec<f32>)> {
+/// Target cones from `position` (of `light`) toward each sphere it reaches;
+/// `None` when the light sits inside one.
+fn cones(light: &Light, position: Vec3, spheres: &[(Vec3, f32)]) -> Option<(Vec<Vec3>, Vec<f32>)> {
     let (mut axis, mut cos_max) = (Vec::new(), Vec::new());
     for &(c, r) in spheres {
-        let to = c - position;
-        let d = to.length();
+        let d = (c - position).length();
         if d <= r || !r.is_finite() {
             return None;
         }
-        let a = to / d;
-        let cos_alpha = sqrt(1.0 - (r / d) * (r / d));
-        if let Some((light_axis, cone_deg)) = spot {
-            let alpha = crate::math::acos(cos_alpha);
-            let spread = radians(cone_deg) + alpha;
-            if spread < core::f32::consts::PI && a.dot(light_axis) < cos(spread) {
-                continue; // outside the spot's cone
-            }
+        if light_reaches(light, c, r) {
+            axis.push((c - position) / d);
+            cos_max.push(sqrt(1.0 - (r / d) * (r / d)));
         }
-        axis.push(a);
-        cos_max.push(cos_alpha);
     }
     Some((axis, cos_max))
 }

@@ -140,6 +140,13 @@ impl PrismExperiment {
     }
 }
 
+/// Built-in scene `name` with its render settings edited by `edit`, prepared.
+pub fn builtin(name: &str, edit: impl FnOnce(&mut RenderSettings)) -> PreparedScene {
+    let mut doc = prismatic_cli::load_scene(name).unwrap_or_else(|e| panic!("{e}"));
+    edit(&mut doc.scene.render);
+    PreparedScene::new(doc.scene).unwrap_or_else(|e| panic!("{name}: {e}"))
+}
+
 /// Prepares a scene that tests build (panics with the validation message if invalid).
 pub fn prepare(scene: Scene) -> PreparedScene {
     PreparedScene::new(scene).unwrap_or_else(|e| panic!("test scene is invalid: {e}"))

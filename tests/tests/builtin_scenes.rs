@@ -2,7 +2,6 @@
 //! spectrum in wavelength order, white light recombined, rainbows at the
 //! Descartes angles. Small renders; the physics suite checks the numbers finely.
 
-use prismatic_cli::load_scene;
 use prismatic_core::photon::WHITE_BAND;
 use prismatic_core::render::render;
 use prismatic_core::scene::Light;
@@ -10,11 +9,7 @@ use prismatic_core::trace::trace_photons;
 use prismatic_core::{PhotonMap, PreparedScene, Vec3};
 
 fn builtin(name: &str, photons: u32, side: u32) -> PreparedScene {
-    let mut doc = load_scene(name).unwrap();
-    doc.scene.render.photons = photons;
-    doc.scene.render.width = side;
-    doc.scene.render.height = side;
-    PreparedScene::new(doc.scene).unwrap()
+    prismatic_tests::builtin(name, |r| (r.photons, r.width, r.height) = (photons, side, side))
 }
 
 #[test]

@@ -132,19 +132,12 @@ fn the_plan_never_skips_light_that_would_show() {
                 Light::Point { .. } => {}
             }
         }
+        // Projection maps change where photons start (their unbiasedness is tested separately).
+        s.render.projection_maps = false;
         let scene = PreparedScene::new(s).unwrap();
         skipped_caustics += usize::from(!scene.plan.caustics.on);
         let mut forced = scene.clone();
-        forced.plan.caustics.on = true;
-        forced.plan.max_depth = scene.scene.render.max_depth;
-        for s in &mut forced.surfaces {
-            if let Surface::Dielectric(g) = s {
-                (g.splits_photons, g.splits_view_rays) = (g.is_dispersive(), g.is_dispersive());
-            }
-        }
-        for e in &mut forced.plan.shadows {
-            e.on = true;
-        }
+        forced.simulate_everything();
         let planned = prismatic_core::trace::trace_photons(&scene);
         let full = prismatic_core::trace::trace_photons(&forced);
         assert_eq!(planned.photons, full.photons, "seed {seed}: {}", scene.plan.summary());
@@ -156,17 +149,16 @@ fn the_plan_never_skips_light_that_would_show() {
 }
 
 fn builtin(name: &str, photons: u32, projection_maps: bool) -> PreparedScene {
-    let mut doc = prismatic_cli::load_scene(name).unwrap();
-    let r = &mut doc.scene.render;
-    (r.photons, r.width, r.height, r.projection_maps) = (photons, 64, 64, projection_maps);
-    PreparedScene::new(doc.scene).unwrap()
+    prismatic_tests::builtin(name, |r| {
+        (r.photons, r.width, r.height, r.projection_maps) = (photons, 64, 64, projection_maps)
+    })
 }
 
 #[test]
 fn projection_maps_store_the_same_caustic_from_ten_times_fewer_photons() {
     const AIMED: u32 = 20_000;
     let aimed = builtin("sphere", AIMED, true);
-    let scale = aimed.projections[0].as_ref().expect("the sphere's spot light gets a projection map").scale;
+    let scale = aimed.plan.projections[0].as_ref().expect("the sphere's spot light gets a projection map").scale;
     assert!(scale < 0.1, "the sphere fills {:.1} % of the spot's cone", scale * 100.0);
     assert!(aimed.plan.summary().contains("projection maps (1 of 1 light aimed"), "{}", aimed.plan.summary());
     // Without projection maps, the same stored photons need 1/scale times the emission.
@@ -202,7 +194,7 @@ fn projection_maps_store_the_same_caustic_from_ten_times_fewer_photons() {
 #[test]
 fn a_beam_that_lies_wholly_on_its_prism_has_nothing_to_aim() {
     let scene = builtin("prism", 2_000, true);
-    assert!(scene.projections.iter().all(Option::is_none));
+    assert!(scene.plan.projections.iter().all(Option::is_none));
     assert!(
         !scene.plan.projection.on && scene.plan.projection.reason.starts_with("no gain"),
         "{}",

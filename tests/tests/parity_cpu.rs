@@ -84,7 +84,7 @@ fn cpu_matches_the_reference_with_projection_maps_on_every_light_kind() {
         ],
     };
     let scene = PreparedScene::new(scene).unwrap();
-    assert!(scene.projections.iter().all(Option::is_some), "{}", scene.plan.explain());
+    assert!(scene.plan.projections.iter().all(Option::is_some), "{}", scene.plan.explain());
     let expected = run(&mut ReferenceBackend, &scene);
     let got = run(&mut CpuBackend::new(), &scene);
     assert!(!expected.map.photons.is_empty());

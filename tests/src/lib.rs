@@ -1,6 +1,7 @@
 //! Helpers shared by the cross-crate tests: scenes built in code for
 //! experiments with closed-form answers, and float comparison.
 
+pub mod backends;
 pub mod parity;
 pub mod random_scene;
 pub mod tolerance;
@@ -72,8 +73,6 @@ impl PrismExperiment {
 
     /// The scene: prism of `dispersion`, the beam, the screen.
     pub fn scene(&self, dispersion: Dispersion, render: RenderSettings) -> Scene {
-        let [l, r, t] = self.corners();
-        let v = |p: (f64, f64)| Vec3::new(p.0 as f32, p.1 as f32, -1.0);
         let phi = self.beam_angle();
         let dir = Vec3::new(phi.cos() as f32, phi.sin() as f32, 0.0);
         let (ex, ey) = self.entry_point();
@@ -90,7 +89,7 @@ impl PrismExperiment {
             materials: vec![glass("glass", dispersion), white("screen")],
             objects: vec![
                 Object {
-                    shape: Shape::Prism { vertices: [v(l), v(r), v(t)], extrude: Vec3::new(0.0, 0.0, 2.0) },
+                    shape: Shape::Prism { vertices: self.vertices(), extrude: Vec3::new(0.0, 0.0, 2.0) },
                     material: 0,
                 },
                 Object {
@@ -114,8 +113,9 @@ impl PrismExperiment {
         (s.abs() <= 1.0).then(|| (i + s.asin() - a).to_degrees())
     }
 
-    /// Closed form: where the centre ray of index `n` meets the screen (y).
-    pub fn screen_y(&self, n: f64) -> Option<f64> {
+    /// Closed form: where the centre ray of index `n` leaves the prism's
+    /// second face, and its direction there as an angle from +x (radians).
+    pub fn exit_ray(&self, n: f64) -> Option<((f64, f64), f64)> {
         let h = self.half();
         let r1 = (self.incidence_deg.to_radians().sin() / n).asin();
         // Inside, the ray turns from the left face's inward normal (angle −A/2) by r1.
@@ -128,9 +128,35 @@ impl PrismExperiment {
         // Solve p + s·d = r + u·f.
         let det = dx * (-fy) - dy * (-fx);
         let s = ((r.0 - px) * (-fy) - (r.1 - py) * (-fx)) / det;
-        let (qx, qy) = (px + s * dx, py + s * dy);
         let out = self.beam_angle() - self.deviation_deg(n)?.to_radians();
+        Some(((px + s * dx, py + s * dy), out))
+    }
+
+    /// Closed form: where the centre ray of index `n` meets the screen (y).
+    pub fn screen_y(&self, n: f64) -> Option<f64> {
+        let ((qx, qy), out) = self.exit_ray(n)?;
         Some(qy + (f64::from(self.screen_x) - qx) * out.tan())
+    }
+
+    /// The prism's vertices as given to [`Shape::Prism`] (back face, z = −1).
+    fn vertices(&self) -> [Vec3; 3] {
+        self.corners().map(|p| Vec3::new(p.0 as f32, p.1 as f32, -1.0))
+    }
+
+    /// Adds the recombining prism: the first prism's point reflection through
+    /// the point `gap / 2` past where the centre ray of index `n` leaves it,
+    /// so that its first face is parallel to the first prism's exit face,
+    /// `gap` further along that ray.
+    /// Returns the cross-section of the new prism.
+    pub fn add_inverted_prism(&self, scene: &mut Scene, n: f64, gap: f64) -> [(f64, f64); 3] {
+        let ((qx, qy), out) = self.exit_ray(n).expect("the centre ray leaves the first prism");
+        let c = (qx + out.cos() * gap / 2.0, qy + out.sin() * gap / 2.0);
+        // Rounded to f32 first, so that the closed form sees the prism the tracer sees.
+        let reflect = |p: (f64, f64)| (f64::from((2.0 * c.0 - p.0) as f32), f64::from((2.0 * c.1 - p.1) as f32));
+        let corners = self.corners().map(reflect);
+        let v = corners.map(|p| Vec3::new(p.0 as f32, p.1 as f32, 1.0));
+        scene.objects.push(Object { shape: Shape::Prism { vertices: v, extrude: Vec3::new(0.0, 0.0, -2.0) }, material: 0 });
+        corners
     }
 
     /// Closed form: minimum deviation D_min = 2·asin(n·sin(A/2)) − A, degrees.
@@ -150,4 +176,50 @@ pub fn builtin(name: &str, edit: impl FnOnce(&mut RenderSettings)) -> PreparedSc
 /// Prepares a scene that tests build (panics with the validation message if invalid).
 pub fn prepare(scene: Scene) -> PreparedScene {
     PreparedScene::new(scene).unwrap_or_else(|e| panic!("test scene is invalid: {e}"))
+}
+
+/// Closed form for a ray in the xy-plane through glass triangles of index
+/// `n` (in air), refracting at every face (Snell's law in f64, no
+/// reflections): where it meets the screen plane x = `screen_x` (y), or
+/// `None` when it is totally reflected somewhere.
+pub fn snell_path_2d(triangles: &[[(f64, f64); 3]], start: (f64, f64), angle: f64, n: f64, screen_x: f64) -> Option<f64> {
+    let (mut p, mut d) = (start, (angle.cos(), angle.sin()));
+    loop {
+        // Nearest face ahead, with its outward normal.
+        let mut nearest: Option<(f64, (f64, f64))> = None;
+        for tri in triangles {
+            let centroid = ((tri[0].0 + tri[1].0 + tri[2].0) / 3.0, (tri[0].1 + tri[1].1 + tri[2].1) / 3.0);
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                let e = (b.0 - a.0, b.1 - a.1);
+                let mut normal = (e.1, -e.0);
+                if normal.0 * (a.0 - centroid.0) + normal.1 * (a.1 - centroid.1) < 0.0 {
+                    normal = (-normal.0, -normal.1);
+                }
+                let det = d.0 * (-e.1) + d.1 * e.0;
+                if det.abs() < 1e-15 {
+                    continue;
+                }
+                let t = ((a.0 - p.0) * (-e.1) + (a.1 - p.1) * e.0) / det;
+                let u = (d.0 * (a.1 - p.1) - d.1 * (a.0 - p.0)) / det;
+                if t > 1e-9 && (0.0..=1.0).contains(&u) && nearest.is_none_or(|(best, _)| t < best) {
+                    let len = normal.0.hypot(normal.1);
+                    nearest = Some((t, (normal.0 / len, normal.1 / len)));
+                }
+            }
+        }
+        let Some((t, outward)) = nearest else {
+            return Some(p.1 + (screen_x - p.0) * d.1 / d.0);
+        };
+        p = (p.0 + t * d.0, p.1 + t * d.1);
+        let cos = d.0 * outward.0 + d.1 * outward.1;
+        let (facing, eta) = if cos < 0.0 { (outward, 1.0 / n) } else { ((-outward.0, -outward.1), n) };
+        let cos_i = -(d.0 * facing.0 + d.1 * facing.1);
+        let cos2_t = 1.0 - eta * eta * (1.0 - cos_i * cos_i);
+        if cos2_t < 0.0 {
+            return None;
+        }
+        let k = eta * cos_i - cos2_t.sqrt();
+        d = (eta * d.0 + k * facing.0, eta * d.1 + k * facing.1);
+    }
 }

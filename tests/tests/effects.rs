@@ -6,20 +6,11 @@ use prismatic_core::bands::BandSpec;
 use prismatic_core::dispersion::{Dispersion, Glass};
 use prismatic_core::prepared::Surface;
 use prismatic_core::scene::{Light, Object, Shape};
-use prismatic_core::{Backend, Image, NoProgress, PhotonMap, PreparedScene, ReferenceBackend, Scene, Vec3};
-use prismatic_cpu::CpuBackend;
+use prismatic_core::{Image, NoProgress, PhotonMap, PreparedScene, Scene, Vec3};
+use prismatic_tests::backends::{every_backend, trace_and_render};
 use prismatic_tests::random_scene::random_scene;
 use prismatic_tests::{camera, glass, prepare, settings, white};
 
-fn backends() -> Vec<Box<dyn Backend>> {
-    vec![Box::new(ReferenceBackend), Box::new(CpuBackend::new())]
-}
-
-fn run(backend: &mut dyn Backend, scene: &PreparedScene) -> (PhotonMap, Image) {
-    let map = backend.trace_photons(scene, &mut NoProgress).unwrap();
-    let image = backend.render(scene, &map, &mut NoProgress).unwrap();
-    (map, image)
-}
 
 /// A glass sphere above a floor under a spot light aimed at it.
 fn sphere_scene(dispersion: Dispersion, cone_deg: f32, aim: Vec3) -> Scene {
@@ -51,8 +42,8 @@ fn a_scene_without_mirrors_or_glass_traces_no_photons_and_renders_the_same() {
     assert_eq!(scene.plan.max_depth, 0);
     let mut forced = scene.clone();
     forced.plan.caustics.on = true;
-    for mut backend in backends() {
-        let (map, image) = run(backend.as_mut(), &scene);
+    for mut backend in every_backend() {
+        let (map, image) = trace_and_render(backend.as_mut(), &scene);
         assert_eq!(map.stats.emitted, 0, "{}: the photon pass ran", backend.name());
         assert!(map.photons.is_empty());
         let forced_map = backend.trace_photons(&forced, &mut NoProgress).unwrap();
@@ -75,9 +66,9 @@ fn constant_index_glass_traces_white_photons_only_with_a_seventh_of_the_segments
             (g.splits_photons, g.splits_view_rays) = (true, true);
         }
     }
-    for mut backend in backends() {
-        let (white_map, white_image) = run(backend.as_mut(), &scene);
-        let (split_map, split_image) = run(backend.as_mut(), &split);
+    for mut backend in every_backend() {
+        let (white_map, white_image) = trace_and_render(backend.as_mut(), &scene);
+        let (split_map, split_image) = trace_and_render(backend.as_mut(), &split);
         let name = backend.name();
         assert!(white_map.photons.iter().all(|p| p.band == prismatic_core::photon::WHITE_BAND), "{name}");
         assert!(split_map.photons.iter().all(|p| p.band < 7), "{name}");
@@ -107,8 +98,8 @@ fn glass_outside_every_light_cone_skips_the_photon_pass_and_says_why() {
         scene.plan.caustics.reason
     );
     assert!(scene.plan.summary().contains("skipped: caustics"), "{}", scene.plan.summary());
-    for mut backend in backends() {
-        let (map, _) = run(backend.as_mut(), &scene);
+    for mut backend in every_backend() {
+        let (map, _) = trace_and_render(backend.as_mut(), &scene);
         assert_eq!(map.stats.emitted, 0, "{}", backend.name());
     }
     // Aimed at the sphere, the pass runs.
@@ -164,10 +155,10 @@ fn projection_maps_store_the_same_caustic_from_ten_times_fewer_photons() {
     // Without projection maps, the same stored photons need 1/scale times the emission.
     let whole = builtin("sphere", (AIMED as f32 / scale) as u32, false);
     let ten_times = builtin("sphere", AIMED * 10, false);
-    for mut backend in backends() {
+    for mut backend in every_backend() {
         let name = backend.name();
-        let (map_aimed, image_aimed) = run(backend.as_mut(), &aimed);
-        let (map_whole, image_whole) = run(backend.as_mut(), &whole);
+        let (map_aimed, image_aimed) = trace_and_render(backend.as_mut(), &aimed);
+        let (map_whole, image_whole) = trace_and_render(backend.as_mut(), &whole);
         let map_ten = backend.trace_photons(&ten_times, &mut NoProgress).unwrap();
         assert_eq!(map_aimed.stats.specular_paths, u64::from(AIMED), "{name}: every aimed photon meets the glass");
         assert!(

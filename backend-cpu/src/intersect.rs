@@ -4,6 +4,7 @@
 use crate::simd::{Vec3x8, ge, gt, lt};
 use prismatic_core::geometry::{HalfSpace, Primitive, Triangle};
 use prismatic_core::prepared::PreparedScene;
+use prismatic_core::tolerance::{BARYCENTRIC_EPS, SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL, SURFACE_SKIN_FACTOR};
 use wide::f32x8;
 
 /// Eight rays.
@@ -85,20 +86,36 @@ fn intersect_primitive(prim: &Primitive, ray: &RayX8, t_max: f32x8) -> (f32x8, f
             if !sphere_any(ray, Vec3x8::splat(*bound_center), *bound_radius, t_max).any() {
                 return (f32x8::ZERO, t_max, Vec3x8::ZERO);
             }
-            let mut best = (f32x8::ZERO, t_max, Vec3x8::ZERO);
+            let skin = surface_skin(ray.origin);
+            let (mut hit, mut best_t, mut best_n) = (f32x8::ZERO, t_max, Vec3x8::ZERO);
+            let mut best_entering = f32x8::ZERO;
             for tri in triangles {
-                let (mask, t) = triangle(ray, tri, best.1);
+                let limit = hit.select((best_t + skin).min(t_max), t_max);
+                let (mask, t) = triangle(ray, tri, limit, skin);
                 if mask.any() {
-                    best = (
-                        best.0 | mask,
-                        mask.select(t, best.1),
-                        Vec3x8::select(mask, Vec3x8::splat(tri.normal), best.2),
-                    );
+                    // The core's `nearer_triangle`, per lane.
+                    let entering = lt(Vec3x8::splat(tri.normal).dot(ray.dir), f32x8::ZERO);
+                    let same = !(entering ^ best_entering);
+                    let nearer = (entering & !best_entering)
+                        | (!entering & best_entering & lt(t, best_t - skin))
+                        | (same & lt(t, best_t));
+                    let take = mask & (!hit | nearer);
+                    hit |= take;
+                    best_t = take.select(t, best_t);
+                    best_n = Vec3x8::select(take, Vec3x8::splat(tri.normal), best_n);
+                    best_entering = take.select(entering, best_entering);
                 }
             }
-            best
+            (hit, best_t, best_n)
         }
     }
+}
+
+/// `prismatic_core::tolerance::surface_skin` per lane.
+#[inline]
+fn surface_skin(origin: Vec3x8) -> f32x8 {
+    let offset = f32x8::splat(SURFACE_OFFSET_ABS) + f32x8::splat(SURFACE_OFFSET_REL) * origin.abs_max_element();
+    f32x8::splat(SURFACE_SKIN_FACTOR) * offset
 }
 
 #[inline]
@@ -145,6 +162,7 @@ fn sphere_any(ray: &RayX8, center: Vec3x8, radius: f32, t_max: f32x8) -> f32x8 {
 
 #[inline]
 fn convex(ray: &RayX8, faces: &[HalfSpace], t_max: f32x8) -> (f32x8, f32x8, Vec3x8) {
+    let skin = surface_skin(ray.origin);
     let mut t_enter = f32x8::splat(f32::NEG_INFINITY);
     let mut t_exit = f32x8::splat(f32::INFINITY);
     // Which face limits each lane, as a float index: normals are looked up once at the end.
@@ -155,6 +173,9 @@ fn convex(ray: &RayX8, faces: &[HalfSpace], t_max: f32x8) -> (f32x8, f32x8, Vec3
         let n = Vec3x8::splat(face.normal);
         let denom = n.dot(ray.dir);
         let dist = f32x8::splat(face.offset) - n.dot(ray.origin);
+        // Within the skin outside a face it would enter: the face contains the origin.
+        let in_skin = lt(denom, f32x8::ZERO) & lt(dist, f32x8::ZERO) & gt(dist, -skin);
+        let dist = in_skin.select(f32x8::ZERO, dist);
         let parallel = denom.simd_eq(f32x8::ZERO);
         outside_parallel |= parallel & lt(dist, f32x8::ZERO);
         let t = dist / denom;
@@ -181,7 +202,7 @@ fn convex(ray: &RayX8, faces: &[HalfSpace], t_max: f32x8) -> (f32x8, f32x8, Vec3
 }
 
 #[inline]
-fn triangle(ray: &RayX8, tri: &Triangle, t_max: f32x8) -> (f32x8, f32x8) {
+fn triangle(ray: &RayX8, tri: &Triangle, t_max: f32x8, skin: f32x8) -> (f32x8, f32x8) {
     let (e1, e2) = (Vec3x8::splat(tri.e1), Vec3x8::splat(tri.e2));
     let p = ray.dir.cross(e2);
     let det = e1.dot(p);
@@ -192,6 +213,10 @@ fn triangle(ray: &RayX8, tri: &Triangle, t_max: f32x8) -> (f32x8, f32x8) {
     let q = s.cross(e1);
     let v = ray.dir.dot(q) * inv;
     let t = e2.dot(q) * inv;
-    let inside = ge(u, f32x8::ZERO) & !gt(u, f32x8::ONE) & ge(v, f32x8::ZERO) & !gt(u + v, f32x8::ONE);
-    (valid & inside & in_range(t, t_max), t)
+    let (lo, hi) = (f32x8::splat(-BARYCENTRIC_EPS), f32x8::splat(1.0 + BARYCENTRIC_EPS));
+    let inside = ge(u, lo) & !gt(u, hi) & ge(v, lo) & !gt(u + v, hi);
+    let n = Vec3x8::splat(tri.normal);
+    let height = n.dot(ray.origin - Vec3x8::splat(tri.v0));
+    let in_skin = gt(height, f32x8::ZERO) & lt(height, skin) & lt(n.dot(ray.dir), f32x8::ZERO);
+    (valid & !in_skin & inside & in_range(t, t_max), t)
 }

@@ -120,7 +120,7 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Render { job, output } => {
             let out = PendingFile::create(&output)?;
-            let (name, scene) = prepare(&job)?;
+            let (name, scene, _) = prepare(&job)?;
             let mut selected = backends::select(job.backend)?;
             if let Some(note) = &selected.note {
                 eprintln!("{note}");
@@ -151,14 +151,14 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Photons { job, output } => {
             let out = PendingFile::create(&output)?;
-            let (name, scene) = prepare(&job)?;
+            let (name, scene, origin) = prepare(&job)?;
             let mut selected = backends::select(job.backend)?;
             let mut bar = ProgressBar::new();
             let t0 = Instant::now();
             let map = selected.backend.trace_photons(&scene, &mut bar)?;
             let t_trace = t0.elapsed();
             bar.finish();
-            out.commit(|w| write_photon_csv(w, &map, &scene.bands))?;
+            out.commit(|w| write_photon_csv(w, &map, &scene.bands, origin))?;
             println!(
                 "{name}: {} backend, {}; trace {}; wrote {}",
                 selected.backend.name(),
@@ -171,8 +171,9 @@ fn run(cli: Cli) -> Result<()> {
     }
 }
 
-/// Loads the scene, applies the command-line overrides and validates.
-fn prepare(job: &JobArgs) -> Result<(String, PreparedScene)> {
+/// Loads the scene, applies the command-line overrides and validates. Also
+/// returns the world position of the scene's local frame.
+fn prepare(job: &JobArgs) -> Result<(String, PreparedScene, glam::DVec3)> {
     let mut doc = prismatic_cli::load_scene(&job.scene)?;
     let r = &mut doc.scene.render;
     r.bands = job.bands.unwrap_or(r.bands);
@@ -188,7 +189,7 @@ fn prepare(job: &JobArgs) -> Result<(String, PreparedScene)> {
     if job.explain {
         print!("{}", scene.plan.explain());
     }
-    Ok((job.scene.clone(), scene))
+    Ok((job.scene.clone(), scene, doc.origin))
 }
 
 /// A value that came from a flag is reported against the flag, not the scene file.

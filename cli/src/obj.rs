@@ -1,10 +1,11 @@
 //! A small Wavefront OBJ reader: vertices and faces (polygons are fan-triangulated).
 
-use prismatic_core::Vec3;
+use glam::DVec3;
 use std::path::Path;
 
-/// Vertex positions and triangles (indices into the positions).
-pub type MeshData = (Vec<Vec3>, Vec<[u32; 3]>);
+/// Vertex positions (world coordinates, f64 as written) and triangles
+/// (indices into the positions).
+pub type MeshData = (Vec<DVec3>, Vec<[u32; 3]>);
 
 /// Reads `path` into positions and triangles; the error names the file and line.
 pub fn load(path: &Path) -> Result<MeshData, String> {
@@ -21,14 +22,14 @@ pub fn parse(text: &str) -> Result<MeshData, (usize, String)> {
         let mut words = line.split_whitespace();
         match words.next() {
             Some("v") => {
-                let c: Vec<f32> = words
+                let c: Vec<f64> = words
                     .take(3)
-                    .map(|w| w.parse::<f32>().map_err(|_| (line_no, format!("bad vertex coordinate \"{w}\""))))
+                    .map(|w| w.parse::<f64>().map_err(|_| (line_no, format!("bad vertex coordinate \"{w}\""))))
                     .collect::<Result<_, _>>()?;
                 if c.len() != 3 {
                     return Err((line_no, "a vertex needs three coordinates".into()));
                 }
-                positions.push(Vec3::new(c[0], c[1], c[2]));
+                positions.push(DVec3::new(c[0], c[1], c[2]));
             }
             Some("f") => {
                 let idx: Vec<u32> = words

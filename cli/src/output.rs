@@ -59,13 +59,14 @@ pub fn write_png(w: &mut BufWriter<File>, image: &Image, tone_map: ToneMap) -> R
 /// The CSV header of `prismatic photons`.
 pub const PHOTON_CSV_HEADER: &str = "emission,band,lambda_nm,x,y,z,dir_x,dir_y,dir_z,power";
 
-/// Writes the photon map as CSV in canonical order. White (unsplit) photons
-/// have band -1 and an empty wavelength.
-pub fn write_photon_csv(w: &mut impl Write, map: &PhotonMap, bands: &BandTable) -> Result<()> {
+/// Writes the photon map as CSV in canonical order, positions in world
+/// coordinates (the scene's local frame plus `origin`, in f64). White
+/// (unsplit) photons have band -1 and an empty wavelength.
+pub fn write_photon_csv(w: &mut impl Write, map: &PhotonMap, bands: &BandTable, origin: glam::DVec3) -> Result<()> {
     writeln!(w, "{PHOTON_CSV_HEADER}")?;
     for p in &map.photons {
         let d = p.direction();
-        let [x, y, z] = p.position;
+        let [x, y, z] = (p.pos().as_dvec3() + origin).to_array();
         if p.band == WHITE_BAND {
             write!(w, "{},-1,,", p.emission)?;
         } else {

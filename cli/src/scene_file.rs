@@ -6,6 +6,7 @@
 //! are reported at the right line too. Unknown keys are errors.
 
 use crate::obj;
+use glam::DVec3;
 use prismatic_core::bands::BandSpec;
 use prismatic_core::color::ToneMap;
 use prismatic_core::dispersion::{Dispersion, Glass};
@@ -49,6 +50,9 @@ impl fmt::Display for SceneFileError {
 pub struct SceneDocument {
     /// The scene, before validation (command-line overrides go here).
     pub scene: Scene,
+    /// World position of the scene's local frame: every position in `scene`
+    /// is relative to it (see [`LOCAL_FRAME_RADIUS`]).
+    pub origin: DVec3,
     file: String,
     lines: HashMap<String, usize>,
 }
@@ -90,7 +94,7 @@ pub fn load(path: &Path) -> Result<SceneDocument, SceneFileError> {
 
 /// Parses scene-file text. `file` names it in errors; `base` resolves mesh paths.
 pub fn parse(source: &str, file: &str, base: Option<&Path>) -> Result<SceneDocument, SceneFileError> {
-    let mut p = Parser { source, file, base: base.map(Path::to_path_buf), lines: HashMap::new() };
+    let mut p = Parser { source, file, base: base.map(Path::to_path_buf), lines: HashMap::new(), origin: DVec3::ZERO };
     let root = DeTable::parse(source).map_err(|e| SceneFileError {
         file: file.to_string(),
         line: e.span().map(|s| p.line_of(s.start)),
@@ -98,7 +102,7 @@ pub fn parse(source: &str, file: &str, base: Option<&Path>) -> Result<SceneDocum
         reason: format!("TOML syntax error: {}", e.message()),
     })?;
     let scene = p.scene(root.get_ref(), root.span())?;
-    Ok(SceneDocument { scene, file: file.to_string(), lines: p.lines })
+    Ok(SceneDocument { scene, origin: p.origin, file: file.to_string(), lines: p.lines })
 }
 
 struct Parser<'s> {
@@ -106,7 +110,15 @@ struct Parser<'s> {
     file: &'s str,
     base: Option<PathBuf>,
     lines: HashMap<String, usize>,
+    /// Subtracted (in f64) from every position read.
+    origin: DVec3,
 }
+
+/// A scene whose camera lies farther than this from the world origin (in
+/// any coordinate) is recentred on its camera: positions are read in f64
+/// and stored in f32 relative to the camera, where f32 is precise. Closer
+/// scenes keep world coordinates (f32 resolves 6e-5 at 1,024).
+pub const LOCAL_FRAME_RADIUS: f64 = 1024.0;
 
 type Result<T, E = SceneFileError> = std::result::Result<T, E>;
 
@@ -228,6 +240,32 @@ impl<'s> Parser<'s> {
         Ok(Vec3::new(c[0], c[1], c[2]))
     }
 
+    fn dvec3(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<DVec3> {
+        let a = self.array(key, v)?;
+        if a.len() != 3 {
+            return Err(self.err(
+                key,
+                &v.span(),
+                format!("must be an array of three numbers, got {} elements", a.len()),
+            ));
+        }
+        let c: Vec<f64> =
+            a.iter().enumerate().map(|(i, x)| self.number(&format!("{key}[{i}]"), x)).collect::<Result<_>>()?;
+        Ok(DVec3::new(c[0], c[1], c[2]))
+    }
+
+    /// A position: read in f64, relative to the scene's local frame, then f32.
+    fn point(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Vec3> {
+        let p = self.dvec3(key, v)?;
+        self.local(p).ok_or_else(|| self.err(key, &v.span(), format!("{p} is out of range")))
+    }
+
+    /// World position `p` in the local frame (`None` beyond f32's range).
+    fn local(&self, p: DVec3) -> Option<Vec3> {
+        let local = p - self.origin;
+        (!local.is_finite() || local.abs().max_element() <= f64::from(f32::MAX)).then(|| local.as_vec3())
+    }
+
     fn opt<T>(
         &self,
         t: &Table<'_, '_>,
@@ -260,6 +298,12 @@ impl<'s> Parser<'s> {
         let camera = {
             let v = self.required(&root, "camera")?;
             let t = self.table("camera", v)?;
+            if let Some(position) = self.get(&t, "position") {
+                let at = self.dvec3("camera.position", position)?;
+                if at.abs().max_element() > LOCAL_FRAME_RADIUS {
+                    self.origin = at;
+                }
+            }
             self.camera(&t)?
         };
         let lights = match self.get(&root, "light") {
@@ -366,8 +410,8 @@ impl<'s> Parser<'s> {
     fn camera(&mut self, t: &Table<'_, '_>) -> Result<Camera> {
         self.check_keys(t, &["position", "look_at", "up", "fov_deg"])?;
         Ok(Camera {
-            position: self.req(t, "position", Self::vec3)?,
-            look_at: self.req(t, "look_at", Self::vec3)?,
+            position: self.req(t, "position", Self::point)?,
+            look_at: self.req(t, "look_at", Self::point)?,
             up: self.opt(t, "up", Self::vec3)?.unwrap_or(Vec3::Y),
             fov_deg: self.opt(t, "fov_deg", Self::float)?.unwrap_or(45.0),
         })
@@ -379,7 +423,7 @@ impl<'s> Parser<'s> {
             "spot" => {
                 self.check_keys(t, &["kind", "position", "direction", "cone_deg", "power"])?;
                 Light::Spot {
-                    position: self.req(t, "position", Self::vec3)?,
+                    position: self.req(t, "position", Self::point)?,
                     direction: self.req(t, "direction", Self::vec3)?,
                     cone_deg: self.req(t, "cone_deg", Self::float)?,
                     power: self.req(t, "power", Self::float)?,
@@ -388,14 +432,14 @@ impl<'s> Parser<'s> {
             "point" => {
                 self.check_keys(t, &["kind", "position", "power"])?;
                 Light::Point {
-                    position: self.req(t, "position", Self::vec3)?,
+                    position: self.req(t, "position", Self::point)?,
                     power: self.req(t, "power", Self::float)?,
                 }
             }
             "beam" => {
                 self.check_keys(t, &["kind", "position", "direction", "radius", "power"])?;
                 Light::Beam {
-                    position: self.req(t, "position", Self::vec3)?,
+                    position: self.req(t, "position", Self::point)?,
                     direction: self.req(t, "direction", Self::vec3)?,
                     radius: self.req(t, "radius", Self::float)?,
                     power: self.req(t, "power", Self::float)?,
@@ -421,10 +465,13 @@ impl<'s> Parser<'s> {
                     Some(v) => {
                         let ct = self.table(&join(&t.key, "checker"), v)?;
                         self.check_keys(&ct, &["size", "albedo"])?;
-                        Some(Checker {
-                            size: self.req(&ct, "size", Self::float)?,
-                            albedo: self.req(&ct, "albedo", Self::vec3)?,
-                        })
+                        let size = self.req(&ct, "size", Self::float)?;
+                        // The pattern stays where it is in the world: shift it by
+                        // the local frame's origin modulo two squares (one period).
+                        let period = 2.0 * f64::from(size);
+                        let offset =
+                            if period > 0.0 { self.origin.rem_euclid(DVec3::splat(period)) } else { DVec3::ZERO };
+                        Some(Checker { size, albedo: self.req(&ct, "albedo", Self::vec3)?, offset: offset.as_vec3() })
                     }
                     None => None,
                 };
@@ -434,9 +481,10 @@ impl<'s> Parser<'s> {
                 }
             }
             "dielectric" => {
-                self.check_keys(t, &["kind", "ior"])?;
+                self.check_keys(t, &["kind", "ior", "outside_ior"])?;
                 let dispersion = self.req(t, "ior", |p, k, v| p.ior(k, v))?;
-                MaterialKind::Dielectric { dispersion }
+                let outside = self.opt(t, "outside_ior", |p, k, v| p.ior(k, v))?.unwrap_or(Dispersion::Constant(1.0));
+                MaterialKind::Dielectric { dispersion, outside }
             }
             "mirror" => {
                 self.check_keys(t, &["kind"])?;
@@ -521,18 +569,18 @@ impl<'s> Parser<'s> {
             "sphere" => {
                 self.check_keys(t, &["shape", "material", "center", "radius"])?;
                 Shape::Sphere {
-                    center: self.req(t, "center", Self::vec3)?,
+                    center: self.req(t, "center", Self::point)?,
                     radius: self.req(t, "radius", Self::float)?,
                 }
             }
             "plane" => {
                 self.check_keys(t, &["shape", "material", "point", "normal"])?;
-                Shape::Plane { point: self.req(t, "point", Self::vec3)?, normal: self.req(t, "normal", Self::vec3)? }
+                Shape::Plane { point: self.req(t, "point", Self::point)?, normal: self.req(t, "normal", Self::vec3)? }
             }
             "disk" => {
                 self.check_keys(t, &["shape", "material", "center", "normal", "radius", "inner_radius"])?;
                 Shape::Disk {
-                    center: self.req(t, "center", Self::vec3)?,
+                    center: self.req(t, "center", Self::point)?,
                     normal: self.req(t, "normal", Self::vec3)?,
                     radius: self.req(t, "radius", Self::float)?,
                     inner_radius: self.opt(t, "inner_radius", Self::float)?.unwrap_or(0.0),
@@ -548,7 +596,7 @@ impl<'s> Parser<'s> {
                 }
                 let mut vertices = [Vec3::ZERO; 3];
                 for (i, c) in corners.iter().enumerate() {
-                    vertices[i] = self.vec3(&format!("{key}[{i}]"), c)?;
+                    vertices[i] = self.point(&format!("{key}[{i}]"), c)?;
                 }
                 Shape::Prism { vertices, extrude: self.req(t, "extrude", Self::vec3)? }
             }
@@ -591,6 +639,10 @@ impl<'s> Parser<'s> {
             let rel = self.string(&key, v)?;
             let path = self.base.as_deref().map_or_else(|| PathBuf::from(rel), |b| b.join(rel));
             let (positions, triangles) = obj::load(&path).map_err(|e| self.err(&key, &v.span(), e))?;
+            let positions = positions
+                .into_iter()
+                .map(|p| self.local(p).ok_or_else(|| self.err(&key, &v.span(), format!("vertex {p} is out of range"))))
+                .collect::<Result<Vec<_>>>()?;
             return Ok(Shape::Mesh { positions, triangles });
         }
         let positions = {
@@ -599,7 +651,7 @@ impl<'s> Parser<'s> {
             self.array(&key, v)?
                 .iter()
                 .enumerate()
-                .map(|(i, p)| self.vec3(&format!("{key}[{i}]"), p))
+                .map(|(i, p)| self.point(&format!("{key}[{i}]"), p))
                 .collect::<Result<Vec<_>>>()?
         };
         let key = join(&t.key, "triangles");

@@ -4,6 +4,7 @@
 //! object (for planes and discs: along their stated normal); callers decide
 //! the facing side with the sign of `dot(direction, normal)`.
 
+use crate::tolerance::BARYCENTRIC_EPS;
 use alloc::vec::Vec;
 use glam::Vec3;
 
@@ -127,11 +128,15 @@ impl Primitive {
             Primitive::Convex { faces } => intersect_convex(ray, faces, t_min, t_max),
             Primitive::Mesh { triangles, bound_center, bound_radius } => {
                 intersect_sphere_any(ray, *bound_center, *bound_radius, t_max)?;
+                let skin = crate::tolerance::surface_skin(ray.origin);
                 let mut best: Option<SurfaceHit> = None;
                 for tri in triangles {
-                    let limit = best.map_or(t_max, |b| b.t);
-                    if let Some(t) = intersect_triangle(ray, tri, t_min, limit) {
-                        best = Some(SurfaceHit { t, normal: tri.normal });
+                    let limit = best.map_or(t_max, |b| (b.t + skin).min(t_max));
+                    if let Some(t) = intersect_triangle(ray, tri, t_min, limit, skin) {
+                        let entering = tri.normal.dot(ray.direction) < 0.0;
+                        if best.is_none_or(|b| nearer_triangle(t, entering, b, ray.direction, skin)) {
+                            best = Some(SurfaceHit { t, normal: tri.normal });
+                        }
                     }
                 }
                 best
@@ -188,13 +193,17 @@ fn intersect_sphere_any(ray: &Ray, center: Vec3, radius: f32, t_max: f32) -> Opt
 }
 
 fn intersect_convex(ray: &Ray, faces: &[HalfSpace], t_min: f32, t_max: f32) -> Option<SurfaceHit> {
+    let skin = crate::tolerance::surface_skin(ray.origin);
     let mut t_enter = f32::NEG_INFINITY;
     let mut t_exit = f32::INFINITY;
     let mut n_enter = Vec3::ZERO;
     let mut n_exit = Vec3::ZERO;
     for face in faces {
         let denom = face.normal.dot(ray.direction);
-        let dist = face.offset - face.normal.dot(ray.origin);
+        let mut dist = face.offset - face.normal.dot(ray.origin);
+        if denom < 0.0 && dist < 0.0 && dist > -skin {
+            dist = 0.0; // within the skin: the face contains the origin (see `surface_skin`)
+        }
         if denom == 0.0 {
             if dist < 0.0 {
                 return None; // parallel and outside this face
@@ -224,23 +233,45 @@ fn intersect_convex(ray: &Ray, faces: &[HalfSpace], t_min: f32, t_max: f32) -> O
     }
 }
 
-/// Möller–Trumbore, two-sided.
+/// Whether a triangle hit at `t` (`entering`: against its normal) beats the
+/// best so far. A ray through an edge or a vertex hits every triangle there
+/// at the same t up to rounding; within the skin, a triangle the ray enters
+/// wins over one it leaves, so that a ray entering a closed mesh through a
+/// vertex is not taken to be leaving it.
 #[inline]
-fn intersect_triangle(ray: &Ray, tri: &Triangle, t_min: f32, t_max: f32) -> Option<f32> {
+fn nearer_triangle(t: f32, entering: bool, best: SurfaceHit, d: Vec3, skin: f32) -> bool {
+    let best_entering = best.normal.dot(d) < 0.0;
+    match (entering, best_entering) {
+        (true, false) => true, // t < best.t + skin: the limit passed to the test
+        (false, true) => t < best.t - skin,
+        _ => t < best.t,
+    }
+}
+
+/// Möller–Trumbore, two-sided, on the triangle widened by
+/// [`BARYCENTRIC_EPS`] so that shared edges have no cracks; a ray that would enter the triangle from
+/// within `skin` outside its plane misses it (see `tolerance::surface_skin`).
+#[inline]
+fn intersect_triangle(ray: &Ray, tri: &Triangle, t_min: f32, t_max: f32, skin: f32) -> Option<f32> {
     let p = ray.direction.cross(tri.e2);
     let det = tri.e1.dot(p);
     if det.abs() < 1e-12 {
         return None;
     }
+    let height = tri.normal.dot(ray.origin - tri.v0);
+    if height > 0.0 && height < skin && tri.normal.dot(ray.direction) < 0.0 {
+        return None;
+    }
     let inv = 1.0 / det;
     let s = ray.origin - tri.v0;
     let u = s.dot(p) * inv;
-    if !(0.0..=1.0).contains(&u) {
+    let (lo, hi) = (-BARYCENTRIC_EPS, 1.0 + BARYCENTRIC_EPS);
+    if !(lo..=hi).contains(&u) {
         return None;
     }
     let q = s.cross(tri.e1);
     let v = ray.direction.dot(q) * inv;
-    if v < 0.0 || u + v > 1.0 {
+    if v < lo || u + v > hi {
         return None;
     }
     let t = tri.e2.dot(q) * inv;

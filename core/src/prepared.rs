@@ -66,7 +66,7 @@ impl Surface {
         match self {
             Surface::Diffuse { albedo, checker: None } => *albedo,
             Surface::Diffuse { albedo, checker: Some(ch) } => {
-                let q = (p - n * (ch.size * 1e-3)) / ch.size;
+                let q = (p + ch.offset - n * (ch.size * 1e-3)) / ch.size;
                 let parity = (crate::math::floor(q.x) + crate::math::floor(q.y) + crate::math::floor(q.z)) as i64;
                 if parity.rem_euclid(2) == 0 { *albedo } else { ch.albedo }
             }
@@ -121,13 +121,17 @@ impl PreparedScene {
                     Surface::Diffuse { albedo: *albedo, checker: checker.clone() }
                 }
                 MaterialKind::Mirror => Surface::Mirror,
-                MaterialKind::Dielectric { dispersion } => {
-                    let band_ior: Vec<f32> = (0..bands.len()).map(|b| dispersion.ior_for_band(&bands, b)).collect();
-                    let dispersive = !dispersion.is_constant() && band_ior.iter().any(|&n| n != band_ior[0]);
-                    let white_ior = match dispersion {
-                        crate::Dispersion::Constant(n) => *n,
-                        _ => band_ior[band_ior.len() / 2],
+                MaterialKind::Dielectric { dispersion, outside } => {
+                    // Snell's law and Fresnel depend only on the ratio of the
+                    // indices, so the optics carry the relative index n/n_outside.
+                    let per_band = |d: &crate::Dispersion| -> Vec<f32> {
+                        (0..bands.len()).map(|b| d.ior_for_band(&bands, b)).collect()
                     };
+                    let (inside_ior, outside_ior) = (per_band(dispersion), per_band(outside));
+                    let band_ior: Vec<f32> = inside_ior.iter().zip(&outside_ior).map(|(n, m)| n / m).collect();
+                    let constant = dispersion.is_constant() && outside.is_constant();
+                    let dispersive = !constant && band_ior.iter().any(|&n| n != band_ior[0]);
+                    let white_ior = white_index(dispersion, &inside_ior) / white_index(outside, &outside_ior);
                     // Whether white light splits here is set from the effect plan below.
                     Surface::Dielectric(DielectricOptics {
                         band_ior,
@@ -186,6 +190,15 @@ impl PreparedScene {
     pub fn occluded(&self, origin: Vec3, dir: Vec3, dist: f32) -> bool {
         let ray = Ray { origin, direction: dir };
         self.primitives.iter().any(|p| p.intersect(&ray, 0.0, dist).is_some())
+    }
+}
+
+/// n for white light: the model's one index when it has one, else the
+/// middle band's of `band_ior`.
+fn white_index(dispersion: &crate::Dispersion, band_ior: &[f32]) -> f32 {
+    match dispersion {
+        crate::Dispersion::Constant(n) => *n,
+        _ => band_ior[band_ior.len() / 2],
     }
 }
 

@@ -174,6 +174,10 @@ pub struct Checker {
     pub size: f32,
     /// Albedo of the alternate squares.
     pub albedo: Vec3,
+    /// Added to a point before the pattern is evaluated: a scene recentred
+    /// on a new origin sets it to that origin modulo two squares, so the
+    /// squares stay where they are in the world.
+    pub offset: Vec3,
 }
 
 /// How a surface scatters light.
@@ -190,6 +194,10 @@ pub enum MaterialKind {
     Dielectric {
         /// n(λ).
         dispersion: Dispersion,
+        /// n(λ) of the medium the object sits in (`Constant(1.0)`: air). Only
+        /// the ratio of the two indices matters at an interface, so glass in
+        /// water is glass with the relative index n_glass/n_water.
+        outside: Dispersion,
     },
     /// Perfect mirror.
     Mirror,
@@ -460,62 +468,65 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             Ok(())
         }
         MaterialKind::Mirror => Ok(()),
-        MaterialKind::Dielectric { dispersion } => validate_dispersion(c, dispersion, bands),
+        MaterialKind::Dielectric { dispersion, outside } => {
+            validate_dispersion(c, "ior", dispersion, bands)?;
+            validate_dispersion(c, "outside_ior", outside, bands)
+        }
     }
 }
 
-fn validate_dispersion(c: &Check<'_>, d: &Dispersion, bands: BandSpec) -> Result<(), SceneError> {
+fn validate_dispersion(c: &Check<'_>, key: &str, d: &Dispersion, bands: BandSpec) -> Result<(), SceneError> {
     let index_ok = |n: f32| n.is_finite() && (1.0..=5.0).contains(&n);
     match d {
         Dispersion::Constant(n) if !index_ok(*n) => {
-            Err(c.err("ior", format!("an index of refraction must be between 1 and 5, got {n}")))
+            Err(c.err(key, format!("an index of refraction must be between 1 and 5, got {n}")))
         }
         Dispersion::Cauchy { a, b } if !(a.is_finite() && b.is_finite()) => {
-            Err(c.err("ior.cauchy", "A and B must be finite numbers"))
+            Err(c.err(&format!("{key}.cauchy"), "A and B must be finite numbers"))
         }
-        Dispersion::Abbe { nd, vd } if !(index_ok(*nd) && vd.is_finite() && *vd > 0.0) => {
-            Err(c.err("ior.abbe", format!("needs n_d in [1, 5] and a positive Abbe number, got [{nd}, {vd}]")))
-        }
+        Dispersion::Abbe { nd, vd } if !(index_ok(*nd) && vd.is_finite() && *vd > 0.0) => Err(
+            c.err(&format!("{key}.abbe"), format!("needs n_d in [1, 5] and a positive Abbe number, got [{nd}, {vd}]"))
+        ),
         Dispersion::Sellmeier { b, c: cs } => {
             if b.is_empty() || b.len() != cs.len() || b.len() > MAX_SELLMEIER_TERMS {
                 return Err(c.err(
-                    "ior.sellmeier",
+                    &format!("{key}.sellmeier"),
                     format!("b and c need the same number of terms, 1 to {MAX_SELLMEIER_TERMS}"),
                 ));
             }
             if !b.iter().chain(cs).all(|x| x.is_finite()) {
-                return Err(c.err("ior.sellmeier", "coefficients must be finite numbers"));
+                return Err(c.err(&format!("{key}.sellmeier"), "coefficients must be finite numbers"));
             }
-            check_visible_range(c, d)
+            check_visible_range(c, key, d)
         }
         Dispersion::PerBand(n) => {
             let expected = crate::bands::BandTable::new(bands).len();
             if n.len() != expected {
                 return Err(c.err(
-                    "ior.bands",
+                    &format!("{key}.bands"),
                     format!("has {} entries but the render uses {expected} bands ({bands})", n.len()),
                 ));
             }
             match n.iter().position(|&x| !index_ok(x)) {
                 Some(i) => Err(c.err(
-                    &format!("ior.bands[{i}]"),
+                    &format!("{key}.bands[{i}]"),
                     format!("an index of refraction must be between 1 and 5, got {}", n[i]),
                 )),
                 None => Ok(()),
             }
         }
-        _ => check_visible_range(c, d),
+        _ => check_visible_range(c, key, d),
     }
 }
 
 /// A continuous model must give a physical index over the whole visible range.
-fn check_visible_range(c: &Check<'_>, d: &Dispersion) -> Result<(), SceneError> {
+fn check_visible_range(c: &Check<'_>, key: &str, d: &Dispersion) -> Result<(), SceneError> {
     let (lo, hi) = crate::bands::VISIBLE_NM;
     for k in 0..=40 {
         let lambda = lo + (hi - lo) * k as f32 / 40.0;
         let n = d.ior_at(lambda).unwrap_or(1.0);
         if !(n.is_finite() && (1.0..=5.0).contains(&n)) {
-            return Err(c.err("ior", format!("gives n = {n} at {lambda} nm; an index must be between 1 and 5")));
+            return Err(c.err(key, format!("gives n = {n} at {lambda} nm; an index must be between 1 and 5")));
         }
     }
     Ok(())

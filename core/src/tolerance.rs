@@ -13,9 +13,32 @@ pub const SURFACE_OFFSET_REL: f32 = 6.1e-5;
 /// Absolute floor of the surface offset, for points near the origin.
 pub const SURFACE_OFFSET_ABS: f32 = 1e-5;
 
+/// A ray's origin lies up to one surface offset off the surface it leaves;
+/// at an edge or a vertex that puts it just outside the neighbouring faces.
+/// A face (or triangle) the ray would enter from less than this distance
+/// outside its plane is taken to contain the origin already, so the ray does
+/// not "enter" a second time through the face next to the one it just
+/// crossed. Twice the offset: the offset is along one face's normal, and
+/// its distance to any other face's plane is at most the offset itself.
+pub const SURFACE_SKIN_FACTOR: f32 = 2.0;
+
+/// How far outside a triangle (in barycentric coordinates) a hit still
+/// counts. Möller–Trumbore computes u and v with a few ulps of error, so a
+/// ray through a shared edge or vertex can miss every triangle there by
+/// 1e-7 and slip into a closed mesh unseen. Widening each triangle by 1e-6
+/// of its size (8 ulps of 1) closes those cracks; neighbours then overlap
+/// by as much, which the nearest-hit rule resolves.
+pub const BARYCENTRIC_EPS: f32 = 1e-6;
+
 /// Photon throughput below which a view ray's contribution is dropped
 /// (1/1000 of the pixel: below the 8-bit quantisation step of the output).
 pub const MIN_VIEW_WEIGHT: f32 = 1e-3;
+
+/// The skin of [`SURFACE_SKIN_FACTOR`] around a ray starting at `origin`.
+#[inline]
+pub fn surface_skin(origin: glam::Vec3) -> f32 {
+    SURFACE_SKIN_FACTOR * surface_offset(origin)
+}
 
 /// Offset for a point `p` on a surface: large enough to clear f32 error at
 /// the magnitude of `p`.

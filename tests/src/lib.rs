@@ -28,7 +28,7 @@ pub fn white(name: &str) -> Material {
 
 /// A dielectric called `name`.
 pub fn glass(name: &str, dispersion: Dispersion) -> Material {
-    Material { name: name.into(), kind: MaterialKind::Dielectric { dispersion } }
+    Material { name: name.into(), kind: MaterialKind::Dielectric { dispersion, outside: Dispersion::Constant(1.0) } }
 }
 
 /// The prism experiment in the xy-plane, as a closed-form problem.
@@ -155,7 +155,9 @@ impl PrismExperiment {
         let reflect = |p: (f64, f64)| (f64::from((2.0 * c.0 - p.0) as f32), f64::from((2.0 * c.1 - p.1) as f32));
         let corners = self.corners().map(reflect);
         let v = corners.map(|p| Vec3::new(p.0 as f32, p.1 as f32, 1.0));
-        scene.objects.push(Object { shape: Shape::Prism { vertices: v, extrude: Vec3::new(0.0, 0.0, -2.0) }, material: 0 });
+        scene
+            .objects
+            .push(Object { shape: Shape::Prism { vertices: v, extrude: Vec3::new(0.0, 0.0, -2.0) }, material: 0 });
         corners
     }
 
@@ -182,7 +184,13 @@ pub fn prepare(scene: Scene) -> PreparedScene {
 /// `n` (in air), refracting at every face (Snell's law in f64, no
 /// reflections): where it meets the screen plane x = `screen_x` (y), or
 /// `None` when it is totally reflected somewhere.
-pub fn snell_path_2d(triangles: &[[(f64, f64); 3]], start: (f64, f64), angle: f64, n: f64, screen_x: f64) -> Option<f64> {
+pub fn snell_path_2d(
+    triangles: &[[(f64, f64); 3]],
+    start: (f64, f64),
+    angle: f64,
+    n: f64,
+    screen_x: f64,
+) -> Option<f64> {
     let (mut p, mut d) = (start, (angle.cos(), angle.sin()));
     loop {
         // Nearest face ahead, with its outward normal.

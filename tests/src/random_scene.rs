@@ -57,7 +57,11 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
         name: "floor".into(),
         kind: MaterialKind::Diffuse {
             albedo: Vec3::splat(0.8),
-            checker: (d.pick(2) == 0).then(|| Checker { size: d.f(0.2, 1.0), albedo: Vec3::new(0.3, 0.3, 0.5) }),
+            checker: (d.pick(2) == 0).then(|| Checker {
+                size: d.f(0.2, 1.0),
+                albedo: Vec3::new(0.3, 0.3, 0.5),
+                offset: Vec3::ZERO,
+            }),
         },
     };
     let materials = vec![

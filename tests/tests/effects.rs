@@ -11,7 +11,6 @@ use prismatic_tests::backends::{every_backend, trace_and_render};
 use prismatic_tests::random_scene::random_scene;
 use prismatic_tests::{camera, glass, prepare, settings, white};
 
-
 /// A glass sphere above a floor under a spot light aimed at it.
 fn sphere_scene(dispersion: Dispersion, cone_deg: f32, aim: Vec3) -> Scene {
     let mut render = settings(4000, BandSpec::Paper7);

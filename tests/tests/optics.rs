@@ -5,6 +5,7 @@
 use prismatic_core::Vec3;
 use prismatic_core::optics::{fresnel, reflect, refract};
 use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
 
 /// An index of refraction: anything from air to beyond diamond, or exactly 1.
 fn index() -> impl Strategy<Value = f32> {
@@ -44,7 +45,12 @@ fn sin_to(d: Vec3, n: Vec3) -> f32 {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(4096))]
+    // A fixed seed keeps CI reproducible; PROPTEST_RNG_SEED=<number> explores other cases.
+    #![proptest_config(ProptestConfig {
+        cases: 4096,
+        rng_seed: std::env::var("PROPTEST_RNG_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(RngSeed::Fixed(0x5eed)),
+        ..ProptestConfig::default()
+    })]
 
     #[test]
     fn snell_law_holds_and_directions_are_unit((n1, n2, n, d) in case()) {
@@ -104,12 +110,15 @@ proptest! {
             let back = refract(-t, -n, n2, n1);
             prop_assert!(back.is_some(), "the reverse path exists");
             let back = back.unwrap();
-            prop_assert!((back + d).length() < 5e-4, "{} vs {}", back, -d);
+            // The reverse refraction's condition number is 1/cos θ1: a few ulps
+            // of error in t become ~1e-6/cos θ1 in the direction back.
+            let tolerance = 1e-5 + 1e-6 / -d.dot(n);
+            prop_assert!((back + d).length() < tolerance, "{} vs {}", back, -d);
         }
     }
 
     #[test]
-    fn grazing_incidence_stays_finite((n1, n2, n) in (index(), index(), normal()), e in -7.0f32..-3.0, spin in 0.0f32..6.28) {
+    fn grazing_incidence_stays_finite((n1, n2, n) in (index(), index(), normal()), e in -7.0f32..-3.0, spin in 0.0f32..std::f32::consts::TAU) {
         let cos_i = 10f32.powf(e);
         let d = incoming(n, cos_i, spin);
         let r = fresnel(-d.dot(n), n1, n2);

@@ -10,7 +10,7 @@ use prismatic_core::prepared::Surface;
 use prismatic_core::scene::{Light, Object, RenderSettings, Shape};
 use prismatic_core::{PreparedScene, Scene, Vec3};
 use prismatic_tests::backends::{every_backend, trace};
-use prismatic_tests::{PrismExperiment, camera, snell_path_2d, glass, prepare, settings, white};
+use prismatic_tests::{PrismExperiment, camera, glass, prepare, settings, snell_path_2d, white};
 
 /// PHYSICS.md's figures for a 60° BK7 prism, from the closed form and the Sellmeier fit.
 #[test]
@@ -201,7 +201,11 @@ fn an_inverted_prism_recombines_the_bands() {
             // Four refractions, then the screen.
             let on_screen: Vec<_> =
                 map.photons.iter().filter(|p| usize::from(p.band) == band && p.bounces == 4).collect();
-            assert!(on_screen.len() > PHOTONS as usize / 2, "{name}: band {band}: {} photons on the screen", on_screen.len());
+            assert!(
+                on_screen.len() > PHOTONS as usize / 2,
+                "{name}: band {band}: {} photons on the screen",
+                on_screen.len()
+            );
             for p in &on_screen {
                 // Four f32 refractions: under 4e-3° (see the prism test).
                 let angle = p.direction().angle_between(direction).to_degrees();

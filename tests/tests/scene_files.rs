@@ -90,7 +90,11 @@ fn every_ior_form_parses() {
         let doc = parse(&source, "ior.toml", None).unwrap_or_else(|e| panic!("{text}: {e}"));
         doc.validate().unwrap_or_else(|e| panic!("{text}: {e}"));
         let g = doc.scene.materials.iter().find(|m| m.name == "g").unwrap();
-        assert_eq!(g.kind, MaterialKind::Dielectric { dispersion: expected }, "{text}");
+        assert_eq!(
+            g.kind,
+            MaterialKind::Dielectric { dispersion: expected, outside: Dispersion::Constant(1.0) },
+            "{text}"
+        );
     }
 }
 

@@ -105,6 +105,15 @@ pub fn parse(source: &str, file: &str, base: Option<&Path>) -> Result<SceneDocum
     Ok(SceneDocument { scene, origin: p.origin, file: file.to_string(), lines: p.lines })
 }
 
+/// Parses, validates and prepares `source` (no file access beyond OBJ
+/// paths, no rendering): what the fuzz target and its proptest twin run.
+/// Rejects bad input with a [`SceneFileError`]; never panics.
+pub fn check_source(source: &str) -> Result<prismatic_core::PreparedScene, SceneFileError> {
+    let doc = parse(source, "fuzz.toml", None)?;
+    doc.validate()?;
+    prismatic_core::PreparedScene::new(doc.scene.clone()).map_err(|e| doc.error(e))
+}
+
 struct Parser<'s> {
     source: &'s str,
     file: &'s str,

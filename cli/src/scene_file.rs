@@ -235,18 +235,13 @@ impl<'s> Parser<'s> {
         self.array(key, v)?.iter().enumerate().map(|(i, x)| self.number(&format!("{key}[{i}]"), x)).collect()
     }
 
+    /// A direction or a colour (not moved with the local frame).
     fn vec3(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Vec3> {
-        let a = self.array(key, v)?;
-        if a.len() != 3 {
-            return Err(self.err(
-                key,
-                &v.span(),
-                format!("must be an array of three numbers, got {} elements", a.len()),
-            ));
+        let p = self.dvec3(key, v)?;
+        match (0..3).find(|&i| p[i].is_finite() && p[i].abs() > f64::from(f32::MAX)) {
+            Some(i) => Err(self.err(&format!("{key}[{i}]"), &v.span(), format!("{} is out of range", p[i]))),
+            None => Ok(p.as_vec3()),
         }
-        let c: Vec<f32> =
-            a.iter().enumerate().map(|(i, x)| self.float(&format!("{key}[{i}]"), x)).collect::<Result<_>>()?;
-        Ok(Vec3::new(c[0], c[1], c[2]))
     }
 
     fn dvec3(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<DVec3> {

@@ -168,6 +168,35 @@ impl PrismExperiment {
     }
 }
 
+/// A dielectric sphere of radius 1 at the origin inside a diffuse catcher
+/// sphere of radius 50 that closes the scene, lit by a beam along −z of
+/// radius `beam_radius` whose axis passes `beam_x` from the centre.
+pub fn sphere_in_a_catcher(dispersion: Dispersion, render: RenderSettings, beam_x: f32, beam_radius: f32) -> Scene {
+    Scene {
+        render,
+        camera: camera(),
+        lights: vec![Light::Beam {
+            position: Vec3::new(beam_x, 0.0, 5.0),
+            direction: Vec3::NEG_Z,
+            radius: beam_radius,
+            power: 1.0,
+        }],
+        materials: vec![glass("sphere", dispersion), white("catcher")],
+        objects: vec![
+            Object { shape: Shape::Sphere { center: Vec3::ZERO, radius: 1.0 }, material: 0 },
+            Object { shape: Shape::Sphere { center: Vec3::ZERO, radius: 50.0 }, material: 1 },
+        ],
+    }
+}
+
+/// Descartes: the k-reflection bow's angle from the antisolar point, degrees.
+pub fn descartes_deg(n: f64, k: f64) -> f64 {
+    let i = ((n * n - 1.0) / (k * k + 2.0 * k)).sqrt().acos();
+    let r = (i.sin() / n).asin();
+    let d = 2.0 * (i - r) + k * (std::f64::consts::PI - 2.0 * r);
+    (180.0 - d.to_degrees().rem_euclid(360.0)).abs()
+}
+
 /// Built-in scene `name` with its render settings edited by `edit`, prepared.
 pub fn builtin(name: &str, edit: impl FnOnce(&mut RenderSettings)) -> PreparedScene {
     let mut doc = prismatic_cli::load_scene(name).unwrap_or_else(|e| panic!("{e}"));

@@ -7,6 +7,7 @@ use prismatic_core::render::render;
 use prismatic_core::scene::Light;
 use prismatic_core::trace::trace_photons;
 use prismatic_core::{PhotonMap, PreparedScene, Vec3};
+use prismatic_tests::descartes_deg;
 
 fn builtin(name: &str, photons: u32, side: u32) -> PreparedScene {
     prismatic_tests::builtin(name, |r| (r.photons, r.width, r.height) = (photons, side, side))
@@ -69,14 +70,6 @@ fn prism_fans_the_bands_out_and_the_inverted_prism_recombines_them() {
     let ys: Vec<f32> = merged.iter().map(|b| b.0).collect();
     let spread = ys.iter().copied().fold(f32::MIN, f32::max) - ys.iter().copied().fold(f32::MAX, f32::min);
     assert!(spread < radius && spread < 0.15 * fan, "band centroids still {spread} apart: {ys:?}");
-}
-
-/// Descartes: the k-reflection bow's angle from the antisolar point, degrees.
-fn descartes_deg(n: f64, k: f64) -> f64 {
-    let i = ((n * n - 1.0) / (k * k + 2.0 * k)).sqrt().acos();
-    let r = (i.sin() / n).asin();
-    let d = 2.0 * (i - r) + k * (std::f64::consts::PI - 2.0 * r);
-    (180.0 - d.to_degrees().rem_euclid(360.0)).abs()
 }
 
 #[test]

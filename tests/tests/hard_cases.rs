@@ -16,7 +16,7 @@ use prismatic_core::scene::{Estimator, Light, MaterialKind, Object, Shape};
 use prismatic_core::{Backend, BandTable, Image, NoProgress, PreparedScene, Scene, Vec3};
 use prismatic_cpu::CpuGrid;
 use prismatic_tests::backends::{every_backend, trace, trace_and_render};
-use prismatic_tests::{PrismExperiment, builtin, camera, glass, prepare, settings, white};
+use prismatic_tests::{PrismExperiment, builtin, camera, glass, prepare, settings, sphere_in_a_catcher, white};
 
 /// Panics unless every photon of `map` is finite and every pixel of `image` too.
 fn assert_finite(case: &str, map: &PhotonMap, image: Option<&Image>) {
@@ -59,26 +59,17 @@ fn image_energy(image: &Image) -> f64 {
     image.pixels.iter().map(|p| f64::from(p.x + p.y + p.z)).sum()
 }
 
-/// A glass sphere of radius 1 at the origin and a beam along −z whose axis
-/// grazes the sphere's silhouette (impact parameter 1), inside a closed catcher.
-fn tangent_beam(beam_radius: f32) -> Scene {
+/// 20,000 photons, 7 bands, depth 64.
+fn deep_settings() -> prismatic_core::RenderSettings {
     let mut render = settings(20_000, BandSpec::Paper7);
     render.max_depth = 64;
-    Scene {
-        render,
-        camera: camera(),
-        lights: vec![Light::Beam {
-            position: Vec3::new(1.0, 0.0, 5.0),
-            direction: Vec3::new(0.0, 0.0, -1.0),
-            radius: beam_radius,
-            power: 1.0,
-        }],
-        materials: vec![glass("glass", Glass::Paper.dispersion()), white("catcher")],
-        objects: vec![
-            Object { shape: Shape::Sphere { center: Vec3::ZERO, radius: 1.0 }, material: 0 },
-            Object { shape: Shape::Sphere { center: Vec3::ZERO, radius: 50.0 }, material: 1 },
-        ],
-    }
+    render
+}
+
+/// A paper-glass sphere and a beam whose axis grazes its silhouette
+/// (impact parameter 1), inside a closed catcher.
+fn tangent_beam(beam_radius: f32) -> Scene {
+    sphere_in_a_catcher(Glass::Paper.dispersion(), deep_settings(), 1.0, beam_radius)
 }
 
 /// Rays tangent to a sphere and at grazing incidence (cos θ from 0.14 down to
@@ -350,11 +341,7 @@ fn tiny_and_huge_gather_radii() {
 fn index_one_and_diamond() {
     for mut backend in every_backend() {
         let name = backend.name();
-        let mut scene = tangent_beam(0.5);
-        scene.lights[0] =
-            Light::Beam { position: Vec3::new(0.0, 0.0, 5.0), direction: Vec3::NEG_Z, radius: 0.5, power: 1.0 };
-        scene.materials[0] = glass("air", Dispersion::Constant(1.0));
-        let scene = prepare(scene);
+        let scene = prepare(sphere_in_a_catcher(Dispersion::Constant(1.0), deep_settings(), 0.0, 0.5));
         let map = trace(backend.as_mut(), &scene);
         assert_finite(name, &map, None);
         assert_eq!(map.photons.len(), 20_000, "{name}: every photon crosses the sphere once");

@@ -7,10 +7,10 @@ use prismatic_core::bands::BandSpec;
 use prismatic_core::dispersion::{Dispersion, Glass};
 use prismatic_core::photon::{PhotonMap, WHITE_BAND};
 use prismatic_core::prepared::Surface;
-use prismatic_core::scene::{Light, Object, RenderSettings, Shape};
-use prismatic_core::{PreparedScene, Scene, Vec3};
+use prismatic_core::scene::{Light, RenderSettings};
+use prismatic_core::{PreparedScene, Scene};
 use prismatic_tests::backends::{every_backend, trace};
-use prismatic_tests::{PrismExperiment, camera, glass, prepare, settings, snell_path_2d, white};
+use prismatic_tests::{PrismExperiment, descartes_deg, prepare, settings, snell_path_2d, sphere_in_a_catcher};
 
 /// PHYSICS.md's figures for a 60° BK7 prism, from the closed form and the Sellmeier fit.
 #[test]
@@ -95,33 +95,9 @@ fn check_prism_bands(case: &str, exp: &PrismExperiment, scene: &PreparedScene, m
     }
 }
 
-/// A water drop of radius 1 at the origin under a parallel beam along −z that
-/// covers it exactly, inside a diffuse catcher sphere of radius 50 that
-/// closes the scene.
+/// A drop of radius 1 under a parallel beam that covers it exactly.
 fn drop_in_a_catcher(dispersion: Dispersion, render: RenderSettings) -> Scene {
-    Scene {
-        render,
-        camera: camera(),
-        lights: vec![Light::Beam {
-            position: Vec3::new(0.0, 0.0, 5.0),
-            direction: Vec3::new(0.0, 0.0, -1.0),
-            radius: 1.0,
-            power: 1.0,
-        }],
-        materials: vec![glass("drop", dispersion), white("catcher")],
-        objects: vec![
-            Object { shape: Shape::Sphere { center: Vec3::ZERO, radius: 1.0 }, material: 0 },
-            Object { shape: Shape::Sphere { center: Vec3::ZERO, radius: 50.0 }, material: 1 },
-        ],
-    }
-}
-
-/// Descartes: the k-reflection bow's angle from the antisolar point, degrees.
-fn descartes_deg(n: f64, k: f64) -> f64 {
-    let i = ((n * n - 1.0) / (k * k + 2.0 * k)).sqrt().acos();
-    let r = (i.sin() / n).asin();
-    let d = 2.0 * (i - r) + k * (std::f64::consts::PI - 2.0 * r);
-    (180.0 - d.to_degrees().rem_euclid(360.0)).abs()
+    sphere_in_a_catcher(dispersion, render, 0.0, 1.0)
 }
 
 /// Photons leaving the drop after one and two internal reflections pile up

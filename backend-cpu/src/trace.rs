@@ -7,7 +7,8 @@
 //! together as band packets (bands b..b+8 of one photon in the eight lanes,
 //! each lane with its own index of refraction, loaded as one vector from the
 //! glass's band table) and are traced to the end before the white packet
-//! goes on. Every step mirrors the scalar reference operation for
+//! goes on. With single-band sampling (random band, continuous) the white
+//! photon's lane simply continues as its band, with its own index. Every step mirrors the scalar reference operation for
 //! operation, so the photon map is the reference's bit for bit.
 
 use crate::emit::Emitters;
@@ -16,7 +17,9 @@ use crate::simd::{Vec3x8, ge, lt, random_f32};
 use prismatic_core::photon::{Photon, TraceStats, WHITE_BAND, oct_encode};
 use prismatic_core::prepared::{PreparedScene, Surface};
 use prismatic_core::rng::dim;
+use prismatic_core::scene::WavelengthSampling;
 use prismatic_core::tolerance::{SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL};
+use prismatic_core::trace::sample_band;
 use wide::{f32x8, u32x8};
 
 /// A lane mask with every bit set.
@@ -120,6 +123,29 @@ impl TraceContext<'_> {
     }
 }
 
+impl TraceContext<'_> {
+    /// `ior` with the lanes of `mask` that carry one band (non-split
+    /// sampling) set to their band's index, or their own wavelength's; the
+    /// scalar rule of the reference, lane by lane.
+    fn band_lanes_ior(&self, hit: &HitX8, mask: f32x8, band: u32x8, lambda: &[Option<f32>; 8], ior: f32x8) -> f32x8 {
+        let mask = mask & bytemuck::cast::<u32x8, f32x8>(!band.simd_eq(u32x8::splat(u32::from(WHITE_BAND))));
+        if !mask.any() {
+            return ior;
+        }
+        let mut out = ior.to_array();
+        let (objects, bands) = (hit.object.as_array(), band.as_array());
+        for i in lanes(mask) {
+            if let Surface::Dielectric(glass) = &self.scene.surfaces[objects[i] as usize] {
+                out[i] = match lambda[i] {
+                    Some(l) => glass.ior_at_wavelength(bands[i] as u16, l, &self.scene.bands),
+                    None => glass.ior(bands[i] as u16),
+                };
+            }
+        }
+        f32x8::new(out)
+    }
+}
+
 /// Output of a chunk.
 struct Sink {
     out: Vec<Photon>,
@@ -150,6 +176,11 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
     let mut bounces = u32x8::ZERO;
     let mut active = f32x8::ZERO;
     let mut flux = f32x8::ZERO;
+    // Band and wavelength of lanes that continue as one band (non-split sampling).
+    let white = u32x8::splat(u32::from(WHITE_BAND));
+    let mut band = white;
+    let mut lambda = [None::<f32>; 8];
+    let split_all = settings.wavelengths == WavelengthSampling::Split;
     loop {
         // Refill free lanes with the next white photons.
         let free = !active;
@@ -175,6 +206,7 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
             let fresh_u = bytemuck::cast::<f32x8, u32x8>(fresh);
             emission = fresh_u.select(u32x8::new(indices), emission);
             bounces = fresh_u.select(u32x8::ZERO, bounces);
+            band = fresh_u.select(white, band);
             active |= fresh;
             sink.stats.paths += u64::from(fresh.to_bitmask().count_ones());
             Sink::add_flux(&mut sink.stats.flux_emitted, fresh, flux);
@@ -184,20 +216,31 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
         }
         let ray = RayX8 { origin, dir };
         let hit = intersect_scene(ctx.scene, &ray, f32x8::splat(f32::INFINITY));
-        let s = ctx.classify(&hit, None);
+        let mut s = ctx.classify(&hit, None);
         let point = ray.at(hit.t);
-        let ended =
-            end_paths(ctx, &mut sink, active, &s, point, dir, flux, emission, u32x8::splat(0xFFFF), bounces, None);
+        let ended = end_paths(ctx, &mut sink, active, &s, point, dir, flux, emission, band, bounces, None);
         let mut go_on = active & !ended;
-        // White photons at dispersive glass: their bands leave from here, in band packets.
-        let split = go_on & s.dispersive;
-        for i in lanes(split) {
-            sink.stats.paths += ctx.scene.bands.len() as u64 - 1;
-            let white = (emission.as_array()[i], bounces.as_array()[i], flux.as_array()[i]);
-            trace_bands(ctx, &mut sink, i, &hit, point, dir, white);
+        let split = go_on & s.dispersive & bytemuck::cast::<u32x8, f32x8>(band.simd_eq(white));
+        if split_all {
+            // White photons at dispersive glass: their bands leave from here, in band packets.
+            for i in lanes(split) {
+                sink.stats.paths += ctx.scene.bands.len() as u64 - 1;
+                let white = (emission.as_array()[i], bounces.as_array()[i], flux.as_array()[i]);
+                trace_bands(ctx, &mut sink, i, &hit, point, dir, white);
+            }
+            go_on &= !split;
+        } else {
+            // Each white photon continues as one band in its own lane.
+            let mut bands = band.to_array();
+            for i in lanes(split) {
+                let (b, l) = sample_band(ctx.scene, emission.as_array()[i]);
+                bands[i] = u32::from(b);
+                lambda[i] = l;
+            }
+            band = u32x8::new(bands);
+            s.ior = ctx.band_lanes_ior(&hit, go_on & s.dielectric, band, &lambda, s.ior);
         }
-        go_on &= !split;
-        let u = random_f32(settings.seed, emission, scatter_dims(u32x8::splat(u32::from(WHITE_BAND)), bounces));
+        let u = random_f32(settings.seed, emission, scatter_dims(band, bounces));
         (origin, dir) = scatter(point, dir, hit.normal, &s, u, origin, go_on, dir);
         bounces += bytemuck::cast::<f32x8, u32x8>(go_on) & u32x8::ONE;
         active = go_on;

@@ -5,9 +5,9 @@ use clap::{Args, Parser, Subcommand};
 use prismatic_cli::backends::{self, BackendChoice};
 use prismatic_cli::builtin::{BUILTIN_SCENES, find};
 use prismatic_cli::output::{PendingFile, write_photon_csv, write_png};
-use prismatic_cli::scene_file::{SceneFileError, parse_bands, parse_estimator};
+use prismatic_cli::scene_file::{SceneFileError, parse_bands, parse_estimator, parse_wavelengths};
 use prismatic_core::bands::BandSpec;
-use prismatic_core::scene::Estimator;
+use prismatic_core::scene::{Estimator, WavelengthSampling};
 use prismatic_core::{PhotonMap, PreparedScene, Progress, Stage};
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
@@ -71,6 +71,9 @@ struct JobArgs {
     /// Gather estimator: paper or density.
     #[arg(long, value_parser = parse_estimator)]
     estimator: Option<Estimator>,
+    /// Wavelength sampling at dispersive glass: split, random_band or continuous.
+    #[arg(long, value_parser = parse_wavelengths)]
+    wavelengths: Option<WavelengthSampling>,
     /// Image width.
     #[arg(long)]
     width: Option<u32>,
@@ -181,6 +184,7 @@ fn prepare(job: &JobArgs) -> Result<(String, PreparedScene, glam::DVec3)> {
     r.radius = job.radius.unwrap_or(r.radius);
     r.seed = job.seed.unwrap_or(r.seed);
     r.estimator = job.estimator.unwrap_or(r.estimator);
+    r.wavelengths = job.wavelengths.unwrap_or(r.wavelengths);
     r.width = job.width.unwrap_or(r.width);
     r.height = job.height.unwrap_or(r.height);
     doc.validate().map_err(|e| blame_flag(job, e))?;
@@ -200,6 +204,7 @@ fn blame_flag(job: &JobArgs, e: SceneFileError) -> SceneFileError {
         ("render.radius", "--radius", job.radius.is_some()),
         ("render.seed", "--seed", job.seed.is_some()),
         ("render.estimator", "--estimator", job.estimator.is_some()),
+        ("render.wavelengths", "--wavelengths", job.wavelengths.is_some()),
         ("render.width", "--width", job.width.is_some()),
         ("render.height", "--height", job.height.is_some()),
     ];

@@ -10,7 +10,9 @@ use glam::DVec3;
 use prismatic_core::bands::BandSpec;
 use prismatic_core::color::ToneMap;
 use prismatic_core::dispersion::{Dispersion, Glass};
-use prismatic_core::scene::{Camera, Checker, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape};
+use prismatic_core::scene::{
+    Camera, Checker, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape, WavelengthSampling,
+};
 use prismatic_core::{Scene, SceneError, Vec3};
 use std::collections::HashMap;
 use std::fmt;
@@ -356,6 +358,7 @@ impl<'s> Parser<'s> {
                 "radius",
                 "bands",
                 "estimator",
+                "wavelengths",
                 "seed",
                 "max_depth",
                 "ambient",
@@ -374,6 +377,7 @@ impl<'s> Parser<'s> {
             radius: self.opt(t, "radius", Self::float)?.unwrap_or(d.radius),
             bands: self.opt(t, "bands", Self::bands)?.unwrap_or(d.bands),
             estimator: self.opt(t, "estimator", Self::estimator)?.unwrap_or(d.estimator),
+            wavelengths: self.opt(t, "wavelengths", Self::wavelengths)?.unwrap_or(d.wavelengths),
             seed: self.opt(t, "seed", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.seed, |x| x as u32),
             max_depth: self.opt(t, "max_depth", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.max_depth, |x| x as u32),
             ambient: self.opt(t, "ambient", Self::float)?.unwrap_or(d.ambient),
@@ -409,6 +413,10 @@ impl<'s> Parser<'s> {
 
     fn estimator(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Estimator> {
         parse_estimator(self.string(key, v)?).map_err(|reason| self.err(key, &v.span(), reason))
+    }
+
+    fn wavelengths(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<WavelengthSampling> {
+        parse_wavelengths(self.string(key, v)?).map_err(|reason| self.err(key, &v.span(), reason))
     }
 
     fn camera(&mut self, t: &Table<'_, '_>) -> Result<Camera> {
@@ -704,4 +712,10 @@ pub fn parse_estimator(s: &str) -> std::result::Result<Estimator, String> {
         "density" => Ok(Estimator::Density),
         _ => Err(format!("unknown estimator \"{s}\"; expected paper or density")),
     }
+}
+
+/// Parses a wavelength-sampling name.
+pub fn parse_wavelengths(s: &str) -> std::result::Result<WavelengthSampling, String> {
+    WavelengthSampling::from_name(s)
+        .ok_or_else(|| format!("unknown wavelength sampling \"{s}\"; expected split, random_band or continuous"))
 }

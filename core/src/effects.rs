@@ -8,7 +8,7 @@
 use crate::math::{asin, cos, radians, sqrt};
 use crate::prepared::Surface;
 use crate::projection::Projection;
-use crate::scene::{Camera, Light, Scene, Shape};
+use crate::scene::{Camera, Light, Scene, Shape, WavelengthSampling};
 use alloc::format;
 use alloc::string::String;
 use alloc::vec::Vec;
@@ -157,7 +157,10 @@ impl EffectPlan {
         let band_splitting = if !caustics.on {
             Effect::off("no photon pass")
         } else if specular.iter().any(|&k| dispersive(k)) {
-            Effect::on(format!("{n_bands} bands at dispersive glass"))
+            match scene.render.wavelengths {
+                WavelengthSampling::Split => Effect::on(format!("{n_bands} bands at dispersive glass")),
+                w => Effect::on(format!("one of {n_bands} bands per photon at dispersive glass ({})", w.name())),
+            }
         } else {
             Effect::off("no glass disperses (constant index): photons stay white")
         };

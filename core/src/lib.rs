@@ -44,7 +44,9 @@ pub use effects::{Effect, EffectPlan};
 pub use image::Image;
 pub use photon::{Photon, PhotonMap, TraceStats};
 pub use prepared::PreparedScene;
-pub use scene::{Camera, Checker, Estimator, Light, Material, Object, RenderSettings, Scene, SceneError, Shape};
+pub use scene::{
+    Camera, Checker, Estimator, Light, Material, Object, RenderSettings, Scene, SceneError, Shape, WavelengthSampling,
+};
 
 /// Re-exported so that users of the scene model need not depend on glam themselves.
 pub use glam::Vec3;

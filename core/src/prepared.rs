@@ -2,7 +2,7 @@
 //! the band table, each object's primitive and optics (per-band indices of
 //! refraction), and the light-selection distribution.
 
-use crate::bands::BandTable;
+use crate::bands::{BandTable, VISIBLE_NM};
 use crate::effects::EffectPlan;
 use crate::geometry::{Primitive, Ray, mesh_triangles, prism_faces};
 use crate::photon::WHITE_BAND;
@@ -42,6 +42,38 @@ pub struct DielectricOptics {
     pub splits_photons: bool,
     /// White view rays split into bands here.
     pub splits_view_rays: bool,
+    /// The relative index as a function of wavelength, for photons traced at
+    /// their own wavelength ([`crate::WavelengthSampling::Continuous`]);
+    /// `None` when a per-band table gives the index (no wavelength axis).
+    pub spectrum: Option<IorCurve>,
+}
+
+/// A relative index of refraction sampled every nanometre over the visible
+/// range, read by linear interpolation (the error of a Sellmeier curve
+/// between samples is below 1e-7).
+#[derive(Clone, Debug, PartialEq)]
+pub struct IorCurve {
+    /// n at `VISIBLE_NM.0 + i` nm.
+    samples: Vec<f32>,
+}
+
+impl IorCurve {
+    /// Samples n_inside(λ)/n_outside(λ); `None` when either has no wavelength axis.
+    pub fn new(inside: &crate::Dispersion, outside: &crate::Dispersion) -> Option<Self> {
+        let (lo, hi) = (VISIBLE_NM.0 as u32, VISIBLE_NM.1 as u32);
+        let samples = (lo..=hi)
+            .map(|nm| Some(inside.ior_at(nm as f32)? / outside.ior_at(nm as f32)?))
+            .collect::<Option<Vec<f32>>>()?;
+        Some(IorCurve { samples })
+    }
+
+    /// n at `lambda_nm` (clamped to the visible range).
+    pub fn at(&self, lambda_nm: f32) -> f32 {
+        let x = (lambda_nm - VISIBLE_NM.0).clamp(0.0, (self.samples.len() - 1) as f32);
+        let i = (x as usize).min(self.samples.len() - 2);
+        let f = x - i as f32;
+        self.samples[i] + (self.samples[i + 1] - self.samples[i]) * f
+    }
 }
 
 impl DielectricOptics {
@@ -49,6 +81,19 @@ impl DielectricOptics {
     #[inline]
     pub fn ior(&self, band: u16) -> f32 {
         if band == WHITE_BAND { self.white_ior } else { self.band_ior[usize::from(band)] }
+    }
+
+    /// The index for `band` traced at its own wavelength `lambda_nm`: the
+    /// band's index moved along the glass's dispersion curve, so that the
+    /// band's centre keeps exactly the band's index (and a per-band table,
+    /// which has no curve, keeps it everywhere).
+    #[inline]
+    pub fn ior_at_wavelength(&self, band: u16, lambda_nm: f32, bands: &BandTable) -> f32 {
+        let n = self.ior(band);
+        match &self.spectrum {
+            Some(curve) => n + (curve.at(lambda_nm) - curve.at(bands.band(usize::from(band)).lambda_nm)),
+            None => n,
+        }
     }
 
     /// True when the bands do not all share one index.
@@ -139,6 +184,7 @@ impl PreparedScene {
                         dispersive,
                         splits_photons: false,
                         splits_view_rays: false,
+                        spectrum: IorCurve::new(dispersion, outside),
                     })
                 }
             })

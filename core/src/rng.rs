@@ -36,6 +36,10 @@ pub mod dim {
     pub const POSITION: u32 = 3;
     /// Which projection-map target a photon is aimed at.
     pub const TARGET: u32 = 5;
+    /// The band a white photon continues as when it does not split.
+    pub const BAND: u32 = 6;
+    /// The wavelength within that band (continuous sampling).
+    pub const WAVELENGTH: u32 = 7;
     /// First dimension of the path's scattering decisions.
     pub const PATH: u32 = 8;
     /// Dimensions reserved per band path (one per bounce, at most this many bounces).

@@ -60,6 +60,39 @@ impl Estimator {
     }
 }
 
+/// How a white photon's spectrum is sampled at the first dispersive glass.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum WavelengthSampling {
+    /// Split into all N bands, each with 1/N of the flux (the paper's method).
+    #[default]
+    Split,
+    /// Continue as one band chosen uniformly at random, carrying the whole
+    /// flux (1/N × N): N times fewer paths, more colour noise.
+    RandomBand,
+    /// One random band as in `RandomBand`, traced at a wavelength drawn
+    /// uniformly from the band's interval: stripes become continuous while
+    /// colours keep the band's weight.
+    Continuous,
+}
+
+impl WavelengthSampling {
+    /// The scene-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            WavelengthSampling::Split => "split",
+            WavelengthSampling::RandomBand => "random_band",
+            WavelengthSampling::Continuous => "continuous",
+        }
+    }
+
+    /// Parses a scene-file name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [WavelengthSampling::Split, WavelengthSampling::RandomBand, WavelengthSampling::Continuous]
+            .into_iter()
+            .find(|w| w.name() == name)
+    }
+}
+
 /// Image and photon-pass settings (`[render]`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct RenderSettings {
@@ -75,6 +108,8 @@ pub struct RenderSettings {
     pub bands: BandSpec,
     /// The gather estimator.
     pub estimator: Estimator,
+    /// How white photons sample the spectrum at dispersive glass.
+    pub wavelengths: WavelengthSampling,
     /// Seed of the counter-based RNG.
     pub seed: u32,
     /// Most specular interactions on a photon path or view ray.
@@ -100,6 +135,7 @@ impl Default for RenderSettings {
             radius: 0.05,
             bands: BandSpec::Paper7,
             estimator: Estimator::Paper,
+            wavelengths: WavelengthSampling::Split,
             seed: 1,
             max_depth: 12,
             ambient: 0.03,

@@ -4,7 +4,9 @@
 //! White photons leave the lights; at the first dispersive dielectric a
 //! white photon splits into one photon per band (each with 1/N of the flux)
 //! and each band continues with its own index of refraction; non-dispersive
-//! glass and mirrors never split. A photon that reaches a diffuse surface
+//! glass and mirrors never split. With [`WavelengthSampling::RandomBand`] or
+//! `Continuous` the white photon does not split but continues as one random
+//! band with all its flux (see [`sample_band`]). A photon that reaches a diffuse surface
 //! after at least one specular interaction is stored (the dispersion caustic
 //! map, L S+ D paths); one that reaches it directly is direct light, which
 //! the renderer ray traces instead. Fresnel chooses reflection or refraction
@@ -16,8 +18,9 @@ use crate::emit::emit;
 use crate::geometry::Ray;
 use crate::optics::{fresnel, interface, reflect, refract};
 use crate::photon::{Photon, PhotonMap, TraceStats, WHITE_BAND, oct_encode};
-use crate::prepared::{Hit, PreparedScene, Surface, offset_origin};
+use crate::prepared::{DielectricOptics, Hit, PreparedScene, Surface, offset_origin};
 use crate::rng::{dim, random_f32};
+use crate::scene::WavelengthSampling;
 use alloc::vec::Vec;
 
 /// Traces every white photon of the scene's render settings.
@@ -64,6 +67,8 @@ struct Path {
     ray: Ray,
     flux: f32,
     band: u16,
+    /// The wavelength a continuous-spectrum photon is traced at.
+    lambda_nm: Option<f32>,
     bounces: u32,
 }
 
@@ -77,7 +82,13 @@ pub fn trace_emitted(scene: &PreparedScene, index: u32, flux: f32, out: &mut Vec
     }
     stats.paths += 1;
     stats.flux_emitted += f64::from(flux);
-    let path = Path { ray: Ray { origin: e.origin, direction: e.direction }, flux, band: WHITE_BAND, bounces: 0 };
+    let path = Path {
+        ray: Ray { origin: e.origin, direction: e.direction },
+        flux,
+        band: WHITE_BAND,
+        lambda_nm: None,
+        bounces: 0,
+    };
     trace_path(scene, index, path, out, stats);
 }
 
@@ -120,6 +131,15 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                 p.ray = Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d };
             }
             Surface::Dielectric(glass) if p.band == WHITE_BAND && glass.splits_photons => {
+                if settings.wavelengths != WavelengthSampling::Split {
+                    let (band, lambda_nm) = sample_band(scene, index);
+                    p.band = band;
+                    p.lambda_nm = lambda_nm;
+                    let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
+                    p.ray = scatter_dielectric(&p.ray, &hit, band_ior(scene, glass, &p), u);
+                    p.bounces += 1;
+                    continue;
+                }
                 let n = scene.bands.len();
                 stats.paths += n as u64 - 1;
                 for band in 0..n as u16 {
@@ -128,6 +148,7 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                         ray: scatter_dielectric(&p.ray, &hit, glass.ior(band), u),
                         flux: p.flux / n as f32,
                         band,
+                        lambda_nm: None,
                         bounces: p.bounces + 1,
                     };
                     trace_path(scene, index, child, out, stats);
@@ -136,11 +157,33 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
             }
             Surface::Dielectric(glass) => {
                 let u = random_f32(settings.seed, index, dim::scatter(p.band, p.bounces));
-                p.ray = scatter_dielectric(&p.ray, &hit, glass.ior(p.band), u);
+                p.ray = scatter_dielectric(&p.ray, &hit, band_ior(scene, glass, &p), u);
             }
             Surface::Diffuse { .. } => unreachable!("handled above"),
         }
         p.bounces += 1;
+    }
+}
+
+/// The band a white photon continues as when it does not split
+/// ([`WavelengthSampling::RandomBand`] and `Continuous`): uniform over the
+/// bands, and for `Continuous` a wavelength uniform over the band's interval.
+pub fn sample_band(scene: &PreparedScene, index: u32) -> (u16, Option<f32>) {
+    let seed = scene.scene.render.seed;
+    let n = scene.bands.len();
+    let band = ((random_f32(seed, index, dim::BAND) * n as f32) as usize).min(n - 1);
+    let lambda_nm = (scene.scene.render.wavelengths == WavelengthSampling::Continuous).then(|| {
+        let (lo, hi) = scene.bands.band(band).interval_nm;
+        lo + (hi - lo) * random_f32(seed, index, dim::WAVELENGTH)
+    });
+    (band as u16, lambda_nm)
+}
+
+/// The index a path sees at `glass`: its band's, or at its own wavelength.
+fn band_ior(scene: &PreparedScene, glass: &DielectricOptics, p: &Path) -> f32 {
+    match p.lambda_nm {
+        Some(lambda) => glass.ior_at_wavelength(p.band, lambda, &scene.bands),
+        None => glass.ior(p.band),
     }
 }
 

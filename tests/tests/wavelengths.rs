@@ -1,0 +1,159 @@
+//! Wavelength sampling at dispersive glass: splitting into every band (the
+//! paper), one random band per photon, and continuous wavelengths. The
+//! physics of each against closed forms, their expectations against each
+//! other, and every backend against the reference.
+
+use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::prepared::Surface;
+use prismatic_core::trace::sample_band;
+use prismatic_core::{BandSpec, Glass, PreparedScene, WavelengthSampling};
+use prismatic_tests::backends::{every_backend, trace, trace_and_render};
+use prismatic_tests::parity::{Output, assert_parity};
+use prismatic_tests::{PrismExperiment, builtin, prepare, settings};
+
+const SAMPLINGS: [WavelengthSampling; 3] =
+    [WavelengthSampling::Split, WavelengthSampling::RandomBand, WavelengthSampling::Continuous];
+
+#[test]
+fn single_band_photons_carry_the_whole_flux_and_keep_one_band() {
+    let bands = BandSpec::Physical(16);
+    let exp = PrismExperiment { apex_deg: 60.0, incidence_deg: 50.0, beam_radius: 0.05, screen_x: 6.0 };
+    for sampling in [WavelengthSampling::RandomBand, WavelengthSampling::Continuous] {
+        let mut render = settings(20_000, bands);
+        render.wavelengths = sampling;
+        let scene = prepare(exp.scene(Glass::Bk7.dispersion(), render));
+        let map = prismatic_core::trace::trace_photons(&scene);
+        let flux = prismatic_core::trace::photon_flux(&scene);
+        // One path per emitted photon: nothing splits.
+        assert_eq!(map.stats.paths, map.stats.emitted, "{sampling:?}");
+        let mut per_band = [0u32; 16];
+        for p in &map.photons {
+            assert_ne!(p.band, WHITE_BAND, "{sampling:?}: white photon stored behind dispersive glass");
+            assert_eq!(p.flux, flux, "{sampling:?}: a band photon carries N × 1/N of the white flux");
+            assert_eq!(p.band, sample_band(&scene, p.emission).0);
+            per_band[usize::from(p.band)] += 1;
+        }
+        // Bands are uniform: each count within 5 binomial standard deviations of n/16.
+        let n = map.photons.len() as f64;
+        let (mean, sd) = (n / 16.0, (n * (1.0 / 16.0) * (15.0 / 16.0)).sqrt());
+        for (b, &c) in per_band.iter().enumerate() {
+            assert!(
+                (f64::from(c) - mean).abs() < 5.0 * sd,
+                "{sampling:?}: band {b} has {c} photons, expected {mean:.0}"
+            );
+        }
+    }
+}
+
+#[test]
+fn continuous_photons_deviate_as_snell_law_says_at_their_own_wavelength() {
+    let bands = BandSpec::Physical(7);
+    let glass = Glass::Sf11.dispersion();
+    let exp = PrismExperiment { apex_deg: 60.0, incidence_deg: 60.0, beam_radius: 0.05, screen_x: 6.0 };
+    let mut render = settings(20_000, bands);
+    render.wavelengths = WavelengthSampling::Continuous;
+    for mut backend in every_backend() {
+        let scene = prepare(exp.scene(glass.clone(), render.clone()));
+        let map = trace(backend.as_mut(), &scene);
+        let phi = exp.beam_angle();
+        let mut spread = (f64::INFINITY, f64::NEG_INFINITY);
+        let mut checked = 0;
+        for p in map.photons.iter().filter(|p| p.bounces == 2) {
+            let (band, lambda) = sample_band(&scene, p.emission);
+            let lambda = lambda.expect("continuous sampling draws a wavelength");
+            let (lo, hi) = scene.bands.band(usize::from(band)).interval_nm;
+            assert!((lo..=hi).contains(&lambda), "λ {lambda} outside band {band} ({lo}–{hi})");
+            let n = f64::from(glass.ior_at(lambda).unwrap());
+            let d = p.direction();
+            let got = (phi - f64::from(d.y).atan2(f64::from(d.x))).to_degrees();
+            let expected = exp.deviation_deg(n).unwrap();
+            // As for band photons (physics.rs), plus the 1 nm curve's
+            // interpolation error (< 1e-7 in n, ~1e-5°).
+            assert!((got - expected).abs() < 2e-3, "λ {lambda}: deviation {got:.5}° vs {expected:.5}°");
+            spread = (spread.0.min(got), spread.1.max(got));
+            checked += 1;
+        }
+        // SF11 (n ≈ 1.78) reflects ~16 % at each face: about 70 % pass both.
+        assert!(checked > 12_000, "{}: only {checked} photons passed both faces", backend.name());
+        // The stripe is continuous: deviations cover the whole visible range's
+        // span (SF11, 380–780 nm), not 7 lines.
+        let span = exp.deviation_deg(f64::from(glass.ior_at(390.0).unwrap())).unwrap()
+            - exp.deviation_deg(f64::from(glass.ior_at(770.0).unwrap())).unwrap();
+        assert!(spread.1 - spread.0 > span, "{}: deviations span {:?}", backend.name(), spread);
+    }
+}
+
+#[test]
+fn continuous_index_at_a_band_centre_is_the_band_index() {
+    for glass in [Glass::Bk7, Glass::Water, Glass::Paper] {
+        for bands in [BandSpec::Paper7, BandSpec::Physical(16)] {
+            let mut scene = builtin("prism", |r| r.bands = bands);
+            let mut doc = scene.scene.clone();
+            if let prismatic_core::scene::MaterialKind::Dielectric { dispersion, .. } = &mut doc.materials[0].kind {
+                *dispersion = glass.dispersion();
+            }
+            scene = PreparedScene::new(doc).unwrap();
+            let optics = scene
+                .surfaces
+                .iter()
+                .find_map(|s| match s {
+                    Surface::Dielectric(g) => Some(g),
+                    _ => None,
+                })
+                .unwrap();
+            for (b, band) in scene.bands.bands().iter().enumerate() {
+                assert_eq!(optics.ior_at_wavelength(b as u16, band.lambda_nm, &scene.bands), optics.ior(b as u16));
+            }
+        }
+    }
+}
+
+#[test]
+fn every_sampling_lights_the_caustic_with_the_same_expected_energy() {
+    // Expectations agree; only the noise differs. The sphere's caustic energy
+    // (image sum minus the image without photons), 200k photons.
+    let energy = |sampling: WavelengthSampling| {
+        let scene = builtin("sphere", |r| {
+            r.wavelengths = sampling;
+            r.photons = 200_000;
+            r.width = 64;
+            r.height = 64;
+            r.estimator = prismatic_core::Estimator::Density;
+        });
+        let map = prismatic_core::trace::trace_photons(&scene);
+        let with = prismatic_core::render::render(&scene, &map).pixels;
+        let without = prismatic_core::render::render(&scene, &Default::default()).pixels;
+        with.iter().zip(&without).map(|(a, b)| (*a - *b).as_dvec3()).sum::<glam::DVec3>()
+    };
+    let split = energy(WavelengthSampling::Split);
+    for sampling in [WavelengthSampling::RandomBand, WavelengthSampling::Continuous] {
+        let got = energy(sampling);
+        // Per channel within 3 %: the split image's caustic covers ~300
+        // pixels with ~100 photons each; random bands add colour noise that
+        // averages out over the caustic.
+        let rel = ((got - split) / split).abs().max_element();
+        assert!(rel < 0.03, "{sampling:?}: caustic energy {got} vs split {split} ({rel:.4})");
+    }
+}
+
+#[test]
+fn every_backend_matches_the_reference_for_every_sampling() {
+    for sampling in SAMPLINGS {
+        for (name, photons) in [("sphere", 20_000), ("prism", 4_000), ("rainbow", 40_000)] {
+            let scene = builtin(name, |r| {
+                r.wavelengths = sampling;
+                r.photons = photons;
+                r.width = 64;
+                r.height = 64;
+            });
+            let mut backends = every_backend();
+            let (map, image) = trace_and_render(backends[0].as_mut(), &scene);
+            let expected = Output { backend: backends[0].name(), map, image };
+            for backend in &mut backends[1..] {
+                let (map, image) = trace_and_render(backend.as_mut(), &scene);
+                let got = Output { backend: backend.name(), map, image };
+                assert_parity(&format!("{}-{name}-{}", backend.name(), sampling.name()), &scene, &expected, &got);
+            }
+        }
+    }
+}

@@ -30,6 +30,7 @@ pub mod math;
 pub mod optics;
 pub mod photon;
 pub mod prepared;
+pub mod progressive;
 pub mod projection;
 pub mod render;
 pub mod rng;

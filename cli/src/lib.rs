@@ -6,6 +6,7 @@ pub mod builtin;
 pub mod obj;
 pub mod output;
 pub mod scene_file;
+pub mod study;
 
 use scene_file::{SceneDocument, SceneFileError};
 use std::path::Path;

@@ -6,6 +6,8 @@ use prismatic_cli::backends::{self, BackendChoice};
 use prismatic_cli::builtin::{BUILTIN_SCENES, find};
 use prismatic_cli::output::{PendingFile, write_photon_csv, write_png};
 use prismatic_cli::scene_file::{SceneFileError, parse_bands, parse_estimator, parse_wavelengths};
+use prismatic_cli::study::progress::StudyBar;
+use prismatic_cli::study::{self, StudyOptions, report};
 use prismatic_core::bands::BandSpec;
 use prismatic_core::scene::{Estimator, WavelengthSampling};
 use prismatic_core::{PhotonMap, PreparedScene, Progress, Stage};
@@ -37,6 +39,24 @@ enum Command {
         job: JobArgs,
         /// Output CSV.
         #[arg(short, long, default_value = "photons.csv")]
+        output: PathBuf,
+    },
+    /// Measure what accuracy costs in time: sweep bands, wavelength sampling,
+    /// photons, radius, estimator and backend against a converged reference;
+    /// writes SCENE.csv, SCENE.md and SCENE.png.
+    Study {
+        #[command(flatten)]
+        study: StudyArgs,
+        /// Output folder.
+        #[arg(short, long, default_value = "study")]
+        output: PathBuf,
+    },
+    /// Build (or rebuild) a scene's study reference and write it as a PNG.
+    Reference {
+        #[command(flatten)]
+        study: StudyArgs,
+        /// Output PNG.
+        #[arg(short, long, default_value = "reference.png")]
         output: PathBuf,
     },
     /// List the built-in scenes.
@@ -85,6 +105,33 @@ struct JobArgs {
     explain: bool,
 }
 
+#[derive(Args)]
+struct StudyArgs {
+    /// A built-in scene name or a scene file.
+    #[arg(default_value = "sphere")]
+    scene: String,
+    /// Small images, three photon counts, fewer curves: under a minute.
+    #[arg(long)]
+    quick: bool,
+    /// Where references are cached (by content hash).
+    #[arg(long, default_value = ".prismatic-cache/references")]
+    cache: PathBuf,
+    /// Rebuild the reference even when a cached one matches.
+    #[arg(long)]
+    rebuild_reference: bool,
+}
+
+impl StudyArgs {
+    fn options(&self, rebuild: bool) -> StudyOptions {
+        StudyOptions {
+            scene: self.scene.clone(),
+            quick: self.quick,
+            cache: self.cache.clone(),
+            rebuild_reference: self.rebuild_reference || rebuild,
+        }
+    }
+}
+
 /// Exit status for bad input (scene files, arguments), as clap uses for usage errors.
 const EXIT_BAD_INPUT: u8 = 2;
 
@@ -105,6 +152,41 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
+        Command::Study { study, output } => {
+            let mut bar = StudyBar::new();
+            let result = study::run(&study.options(false), &mut bar);
+            bar.finish();
+            let result = result?;
+            let written = report::write_all(&result, &output, &machine())?;
+            println!(
+                "{}: {} points; wrote {}, {} and {}",
+                result.scene,
+                result.rows.len(),
+                written.csv.display(),
+                written.markdown.display(),
+                written.plot.display()
+            );
+            Ok(())
+        }
+        Command::Reference { study, output } => {
+            let out = PendingFile::create(&output)?;
+            let mut bar = StudyBar::new();
+            let built = study::build_reference(&study.options(true), &mut bar);
+            bar.finish();
+            let (reference, tone_map) = built?;
+            out.commit(|w| write_png(w, &reference.image, tone_map))?;
+            println!(
+                "{}: reference of {} passes (last change ΔE00 {:.3}, {}) in {:.1} s, cached in {}; wrote {}",
+                study.scene,
+                reference.passes,
+                reference.last_change,
+                if reference.converged { "converged" } else { "not converged" },
+                reference.seconds,
+                reference.dir.display(),
+                output.display()
+            );
+            Ok(())
+        }
         Command::Scenes => {
             for s in &BUILTIN_SCENES {
                 println!("{:<10} {}", s.name, s.description);
@@ -214,6 +296,35 @@ fn blame_flag(job: &JobArgs, e: SceneFileError) -> SceneFileError {
         }
         None => e,
     }
+}
+
+/// The machine a study ran on, for its report: CPU model, cores and the date.
+fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let days = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs() / 86_400);
+    format!("{cpu}, {cores} cores, {}", civil_date(days as i64))
+}
+
+/// YYYY-MM-DD of a day count since 1970-01-01 (Hinnant's civil-from-days).
+fn civil_date(days: i64) -> String {
+    let z = days + 719_468;
+    let era = z.div_euclid(146_097);
+    let doe = z - era * 146_097;
+    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
+    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    let mp = (5 * doy + 2) / 153;
+    let d = doy - (153 * mp + 2) / 5 + 1;
+    let m = if mp < 10 { mp + 3 } else { mp - 9 };
+    let y = yoe + era * 400 + i64::from(m <= 2);
+    format!("{y:04}-{m:02}-{d:02}")
 }
 
 fn photon_summary(scene: &PreparedScene, map: &PhotonMap) -> String {

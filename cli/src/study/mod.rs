@@ -1,0 +1,439 @@
+//! `prismatic study`: what accuracy costs in time. Sweeps the settings that
+//! trade one for the other (band table, wavelength sampling, photon count,
+//! gather radius, estimator, backend), times every stage of each render and
+//! measures its error against a converged reference.
+
+pub mod error;
+pub mod pfm;
+pub mod plot;
+pub mod progress;
+pub mod reference;
+pub mod report;
+
+use crate::backends::{BackendChoice, select};
+use anyhow::{Context, Result};
+use error::{RenderError, StripeSums, mean_delta_e, rmse, stripe_error};
+use prismatic_core::progressive::{DEFAULT_ALPHA, PassAverage, pass_scene};
+use prismatic_core::scene::Shape;
+use prismatic_core::{Backend, BandSpec, Estimator, Light, NoProgress, PreparedScene, WavelengthSampling};
+use reference::{Reference, ReferenceSpec};
+use std::path::PathBuf;
+use std::time::Instant;
+
+/// Points whose band paths (photons × bands for `split`) exceed this are
+/// skipped: their photon maps would not fit in memory (32 bytes a photon,
+/// twice over with the CPU grid's copy).
+pub const MAX_BAND_PATHS: u64 = 100_000_000;
+
+/// Gather radius: the scene's, or shrinking over passes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RadiusMode {
+    /// The scene's radius, one pass with all photons.
+    Fixed,
+    /// Progressive photon mapping: `passes` passes sharing the photons, the
+    /// radius shrinking from the scene's with α = 0.7.
+    Progressive {
+        /// Passes.
+        passes: u32,
+    },
+}
+
+/// One family of settings, swept over photon counts (a curve in the plot).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Series {
+    /// Short label (`paper7`, `16 random band`, …).
+    pub label: String,
+    /// Band table.
+    pub bands: BandSpec,
+    /// Wavelength sampling.
+    pub sampling: WavelengthSampling,
+    /// Estimator.
+    pub estimator: Estimator,
+    /// Radius.
+    pub radius: RadiusMode,
+    /// Backend.
+    pub backend: BackendChoice,
+    /// Largest photon count for this series (the scalar reference is slow).
+    pub max_photons: u32,
+}
+
+/// What to sweep and how to measure.
+#[derive(Clone, Debug)]
+pub struct StudyPlan {
+    /// Image width and height (the reference's too).
+    pub size: (u32, u32),
+    /// Photon counts.
+    pub photons: Vec<u32>,
+    /// The curves.
+    pub series: Vec<Series>,
+    /// The reference.
+    pub reference: ReferenceSpec,
+    /// Photons of the paper's Table 5 comparison.
+    pub table5_photons: u32,
+}
+
+pub(crate) fn series(label: &str, bands: BandSpec, sampling: WavelengthSampling, estimator: Estimator) -> Series {
+    Series {
+        label: label.into(),
+        bands,
+        sampling,
+        estimator,
+        radius: RadiusMode::Fixed,
+        backend: BackendChoice::Cpu,
+        max_photons: u32::MAX,
+    }
+}
+
+impl StudyPlan {
+    /// The full sweep for a scene of `size`.
+    pub fn full(size: (u32, u32)) -> Self {
+        use WavelengthSampling::{Continuous, RandomBand, Split};
+        let d = Estimator::Density;
+        let mut s = vec![
+            series("paper3", BandSpec::Paper3, Split, Estimator::Paper),
+            series("paper7", BandSpec::Paper7, Split, Estimator::Paper),
+            series("paper7 density", BandSpec::Paper7, Split, d),
+        ];
+        for n in [3, 7, 16, 32, 64] {
+            s.push(series(&format!("{n} bands"), BandSpec::Physical(n), Split, d));
+        }
+        s.push(series("7 bands paper est.", BandSpec::Physical(7), Split, Estimator::Paper));
+        s.push(series("16 random band", BandSpec::Physical(16), RandomBand, d));
+        s.push(series("64 random band", BandSpec::Physical(64), RandomBand, d));
+        s.push(series("16 continuous", BandSpec::Physical(16), Continuous, d));
+        let mut progressive = series("16 progressive", BandSpec::Physical(16), Split, d);
+        progressive.radius = RadiusMode::Progressive { passes: 8 };
+        s.push(progressive);
+        let mut scalar = series("paper7 reference backend", BandSpec::Paper7, Split, Estimator::Paper);
+        scalar.backend = BackendChoice::Reference;
+        scalar.max_photons = 1_000_000;
+        s.push(scalar);
+        StudyPlan {
+            size,
+            photons: vec![10_000, 30_000, 100_000, 300_000, 1_000_000, 3_000_000, 10_000_000],
+            series: s,
+            reference: ReferenceSpec::full(),
+            table5_photons: 20_000,
+        }
+    }
+
+    /// The quick sweep: small images, three photon counts, fewer curves
+    /// (under a minute on two cores, reference included).
+    pub fn quick(size: (u32, u32)) -> Self {
+        use WavelengthSampling::{Continuous, RandomBand, Split};
+        let d = Estimator::Density;
+        let scale = 96.0 / size.0.max(size.1) as f32;
+        let small = (((size.0 as f32 * scale) as u32).max(8), ((size.1 as f32 * scale) as u32).max(8));
+        let mut progressive = series("16 progressive", BandSpec::Physical(16), Split, d);
+        progressive.radius = RadiusMode::Progressive { passes: 4 };
+        let mut scalar = series("paper7 reference backend", BandSpec::Paper7, Split, Estimator::Paper);
+        scalar.backend = BackendChoice::Reference;
+        scalar.max_photons = 10_000;
+        StudyPlan {
+            size: small,
+            photons: vec![10_000, 40_000, 160_000],
+            series: vec![
+                series("paper3", BandSpec::Paper3, Split, Estimator::Paper),
+                series("paper7", BandSpec::Paper7, Split, Estimator::Paper),
+                series("3 bands", BandSpec::Physical(3), Split, d),
+                series("7 bands", BandSpec::Physical(7), Split, d),
+                series("16 bands", BandSpec::Physical(16), Split, d),
+                series("16 random band", BandSpec::Physical(16), RandomBand, d),
+                series("16 continuous", BandSpec::Physical(16), Continuous, d),
+                progressive,
+                scalar,
+            ],
+            reference: ReferenceSpec::quick(),
+            table5_photons: 20_000,
+        }
+    }
+}
+
+/// One measured point.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StudyRow {
+    /// Its series' label.
+    pub series: String,
+    /// The series' settings.
+    pub setting: Series,
+    /// White photons emitted.
+    pub photons: u32,
+    /// Photons stored (all passes).
+    pub stored: u64,
+    /// Seconds tracing photons.
+    pub trace_s: f64,
+    /// Seconds building the grid, ray tracing and gathering.
+    pub render_s: f64,
+    /// The errors.
+    pub error: RenderError,
+    /// On the Pareto front of (time, ΔE00) over every row.
+    pub pareto: bool,
+}
+
+impl StudyRow {
+    /// Total seconds.
+    pub fn total_s(&self) -> f64 {
+        self.trace_s + self.render_s
+    }
+}
+
+/// A row of the paper's Table 5 comparison.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Table5Row {
+    /// What the paper calls it.
+    pub method: &'static str,
+    /// The paper's frames per second (GTX 260, 400×400).
+    pub paper_fps: f64,
+    /// Seconds here (trace + render), CPU backend.
+    pub seconds: f64,
+    /// Mean ΔE00 against the reference.
+    pub delta_e: f64,
+}
+
+/// Everything a study found.
+pub struct StudyResult {
+    /// The scene's name.
+    pub scene: String,
+    /// The plan it ran.
+    pub plan: StudyPlan,
+    /// Where the reference came from and how converged it is.
+    pub reference: ReferenceSummary,
+    /// Measured points, in the order run.
+    pub rows: Vec<StudyRow>,
+    /// The paper's Table 5 measured here.
+    pub table5: Vec<Table5Row>,
+    /// Points not run, and why.
+    pub skipped: Vec<String>,
+}
+
+/// How the reference was made.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReferenceSummary {
+    /// Passes.
+    pub passes: u32,
+    /// Change at the last doubling (ΔE00).
+    pub last_change: f64,
+    /// Converged below the threshold.
+    pub converged: bool,
+    /// Seconds to build (when it was built).
+    pub seconds: f64,
+    /// Caustic pixels.
+    pub caustic_pixels: usize,
+    /// Cache directory.
+    pub dir: PathBuf,
+}
+
+/// Study inputs.
+pub struct StudyOptions {
+    /// Scene name or file.
+    pub scene: String,
+    /// Quick mode.
+    pub quick: bool,
+    /// Cache directory for references.
+    pub cache: PathBuf,
+    /// Rebuild the reference even if cached.
+    pub rebuild_reference: bool,
+}
+
+/// Receives progress: a new total of steps, a finished step, a message.
+pub trait StudyProgress {
+    /// The number of steps ahead.
+    fn start(&mut self, steps: u64);
+    /// One step is done; `message` says what runs next or what happened.
+    fn step(&mut self, message: &str);
+    /// A line for the log.
+    fn note(&mut self, message: &str);
+}
+
+/// Runs the study.
+pub fn run(options: &StudyOptions, progress: &mut dyn StudyProgress) -> Result<StudyResult> {
+    let (scene, plan) = study_scene(options)?;
+    let stripes = has_stripes(&scene);
+
+    let points: Vec<(usize, u32)> = plan
+        .series
+        .iter()
+        .enumerate()
+        .flat_map(|(i, s)| plan.photons.iter().filter(move |&&p| p <= s.max_photons).map(move |&p| (i, p)))
+        .collect();
+    progress.start(points.len() as u64 + 5);
+    progress.note(&format!("{}: reference ({} bands, density, progressive)", options.scene, plan.reference.bands));
+    let mut cpu = select(BackendChoice::Cpu)?.backend;
+    let reference = reference::load_or_build(
+        &options.scene,
+        &scene,
+        &plan.reference,
+        &options.cache,
+        options.rebuild_reference,
+        cpu.as_mut(),
+        &mut |m| progress.note(m),
+    )?;
+    progress.step("reference ready");
+    let mut rows = Vec::new();
+    let mut skipped = Vec::new();
+    for (i, photons) in points {
+        let setting = &plan.series[i];
+        let paths =
+            u64::from(photons) * if setting.sampling == WavelengthSampling::Split { setting_bands(setting) } else { 1 };
+        if paths > MAX_BAND_PATHS {
+            skipped.push(format!("{} at {photons} photons ({paths} band paths > {MAX_BAND_PATHS})", setting.label));
+            progress.step(&format!("{} {photons}: skipped", setting.label));
+            continue;
+        }
+        let mut backend = select(setting.backend)?.backend;
+        let row = measure(&scene, setting, photons, backend.as_mut(), &reference, stripes)
+            .with_context(|| format!("{} at {photons} photons", setting.label))?;
+        progress.step(&format!("{} {photons}: ΔE00 {:.2} in {:.3} s", setting.label, row.error.delta_e, row.total_s()));
+        rows.push(row);
+    }
+    report::mark_pareto(&mut rows);
+    let table5 = table5(&scene, &plan, cpu.as_mut(), &reference, progress)?;
+    Ok(StudyResult {
+        scene: options.scene.clone(),
+        reference: ReferenceSummary {
+            passes: reference.passes,
+            last_change: reference.last_change,
+            converged: reference.converged,
+            seconds: reference.seconds,
+            caustic_pixels: reference.mask.iter().filter(|&&m| m).count(),
+            dir: reference.dir.clone(),
+        },
+        plan,
+        rows,
+        table5,
+        skipped,
+    })
+}
+
+/// Builds (or loads) the reference the study of `options` would use; also
+/// returns the scene's tone map, for writing it out.
+pub fn build_reference(
+    options: &StudyOptions,
+    progress: &mut dyn StudyProgress,
+) -> Result<(Reference, prismatic_core::color::ToneMap)> {
+    let (scene, plan) = study_scene(options)?;
+    let mut cpu = select(BackendChoice::Cpu)?.backend;
+    let r = reference::load_or_build(
+        &options.scene,
+        &scene,
+        &plan.reference,
+        &options.cache,
+        options.rebuild_reference,
+        cpu.as_mut(),
+        &mut |m| progress.note(m),
+    )?;
+    Ok((r, scene.scene.render.tone_map))
+}
+
+/// The scene at the study's image size, and the plan.
+fn study_scene(options: &StudyOptions) -> Result<(PreparedScene, StudyPlan)> {
+    let doc = crate::load_scene(&options.scene)?;
+    let size = (doc.scene.render.width, doc.scene.render.height);
+    let plan = if options.quick { StudyPlan::quick(size) } else { StudyPlan::full(size) };
+    let mut scene = doc.scene.clone();
+    (scene.render.width, scene.render.height) = plan.size;
+    let scene = PreparedScene::new(scene).map_err(|e| doc.error(e))?;
+    Ok((scene, plan))
+}
+
+fn setting_bands(s: &Series) -> u64 {
+    prismatic_core::BandTable::new(s.bands).len() as u64
+}
+
+/// Band stripes are compared where light arrives as a collimated beam
+/// through a prism: every light a beam, some object a prism.
+pub fn has_stripes(scene: &PreparedScene) -> bool {
+    let s = &scene.scene;
+    s.lights.iter().all(|l| matches!(l, Light::Beam { .. }))
+        && s.objects.iter().any(|o| matches!(o.shape, Shape::Prism { .. }))
+}
+
+/// Renders `scene` with `setting` and `photons`, timing each stage, and
+/// measures the error against `reference`.
+pub fn measure(
+    scene: &PreparedScene,
+    setting: &Series,
+    photons: u32,
+    backend: &mut dyn Backend,
+    reference: &Reference,
+    stripes: bool,
+) -> Result<StudyRow> {
+    let mut s = scene.scene.clone();
+    s.render.bands = setting.bands;
+    s.render.wavelengths = setting.sampling;
+    s.render.estimator = setting.estimator;
+    let passes = match setting.radius {
+        RadiusMode::Fixed => 1,
+        RadiusMode::Progressive { passes } => passes,
+    };
+    s.render.photons = photons.div_ceil(passes);
+    let configured = PreparedScene::new(s)?;
+    let (mut trace_s, mut render_s, mut stored) = (0.0, 0.0, 0);
+    let mut average = PassAverage::new(configured.scene.render.width, configured.scene.render.height);
+    let mut own_stripes = StripeSums::new(&configured.bands);
+    for k in 1..=passes {
+        let pass = match setting.radius {
+            RadiusMode::Fixed => configured.clone(),
+            RadiusMode::Progressive { .. } => pass_scene(&configured, DEFAULT_ALPHA, k),
+        };
+        let t0 = Instant::now();
+        let map = backend.trace_photons(&pass, &mut NoProgress)?;
+        trace_s += t0.elapsed().as_secs_f64();
+        let t1 = Instant::now();
+        let image = backend.render(&pass, &map, &mut NoProgress)?;
+        render_s += t1.elapsed().as_secs_f64();
+        stored += map.stats.stored;
+        own_stripes.add(&map);
+        average.add(&image);
+    }
+    let image = average.mean();
+    let tone_map = scene.scene.render.tone_map;
+    let error = RenderError {
+        delta_e: mean_delta_e(&image, &reference.image, &reference.mask, tone_map),
+        rmse: rmse(&image, &reference.image),
+        stripe: if stripes { stripe_error(&own_stripes, &configured.bands, &reference.stripes) } else { None },
+    };
+    Ok(StudyRow {
+        series: setting.label.clone(),
+        setting: setting.clone(),
+        photons,
+        stored,
+        trace_s,
+        render_s,
+        error,
+        pareto: false,
+    })
+}
+
+/// The paper's Table 5 at its photon count: ray tracing alone, photon
+/// mapping without dispersion (one band), 3 and 7 bands.
+fn table5(
+    scene: &PreparedScene,
+    plan: &StudyPlan,
+    backend: &mut dyn Backend,
+    reference: &Reference,
+    progress: &mut dyn StudyProgress,
+) -> Result<Vec<Table5Row>> {
+    let methods: [(&str, f64, BandSpec, u32); 4] = [
+        ("ray tracing", 5.0, BandSpec::Paper7, 0),
+        ("photon mapping without dispersion", 4.6, BandSpec::Physical(1), plan.table5_photons),
+        ("3 bands (paper3)", 1.7, BandSpec::Paper3, plan.table5_photons),
+        ("7 bands (paper7)", 0.8, BandSpec::Paper7, plan.table5_photons),
+    ];
+    let mut rows = Vec::new();
+    for (method, paper_fps, bands, photons) in methods {
+        let setting = series(method, bands, WavelengthSampling::Split, Estimator::Paper);
+        // Best of three: these are short runs, easily disturbed.
+        let mut best: Option<StudyRow> = None;
+        for _ in 0..3 {
+            let row = measure(scene, &setting, photons, backend, reference, false)?;
+            if best.as_ref().is_none_or(|b| row.total_s() < b.total_s()) {
+                best = Some(row);
+            }
+        }
+        let best = best.expect("three runs");
+        rows.push(Table5Row { method, paper_fps, seconds: best.total_s(), delta_e: best.error.delta_e });
+        progress.step(&format!("Table 5: {method}"));
+    }
+    Ok(rows)
+}

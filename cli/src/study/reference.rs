@@ -1,0 +1,259 @@
+//! The reference render a study measures error against: physically based
+//! bands at high N, the `density` estimator, and progressive photon mapping
+//! until doubling the passes no longer changes the image; cached on disk by
+//! the hash of everything it depends on.
+
+use super::error::{StripeSums, caustic_mask, mean_delta_e};
+use super::pfm;
+use anyhow::{Context, Result};
+use prismatic_core::progressive::{DEFAULT_ALPHA, PassAverage, pass_scene};
+use prismatic_core::{Backend, BandSpec, Estimator, Image, NoProgress, PhotonMap, PreparedScene, WavelengthSampling};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Bump when the tracer or renderer changes what a reference looks like, so
+/// that cached references are rebuilt.
+const REFERENCE_VERSION: &str = "prismatic-reference 1";
+
+/// How a reference is made.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ReferenceSpec {
+    /// Physically based bands.
+    pub bands: u16,
+    /// White photons per pass.
+    pub photons_per_pass: u32,
+    /// Radius shrink per pass (Hachisuka's α).
+    pub alpha: f32,
+    /// Converged when the passes' mean after 2k passes differs from the mean
+    /// after k passes by less than this mean ΔE00 over the caustic pixels.
+    pub threshold: f64,
+    /// Stop here even if not converged (the report says so).
+    pub max_passes: u32,
+}
+
+impl ReferenceSpec {
+    /// The full study's reference.
+    pub fn full() -> Self {
+        ReferenceSpec { bands: 64, photons_per_pass: 250_000, alpha: DEFAULT_ALPHA, threshold: 0.4, max_passes: 32 }
+    }
+
+    /// The quick study's (small images, so fewer photons reach the same noise).
+    pub fn quick() -> Self {
+        ReferenceSpec { bands: 64, photons_per_pass: 100_000, alpha: DEFAULT_ALPHA, threshold: 0.4, max_passes: 16 }
+    }
+}
+
+/// A finished reference.
+pub struct Reference {
+    /// The converged image.
+    pub image: Image,
+    /// The same scene without caustic photons (direct light only).
+    pub without_caustics: Image,
+    /// The pixels the caustic touches.
+    pub mask: Vec<bool>,
+    /// Flux-weighted stripe positions per band, over all passes.
+    pub stripes: StripeSums,
+    /// Passes run.
+    pub passes: u32,
+    /// ΔE00 between the last two checkpoints.
+    pub last_change: f64,
+    /// Whether `last_change` fell below the threshold.
+    pub converged: bool,
+    /// Seconds it took to build.
+    pub seconds: f64,
+    /// Where it is cached.
+    pub dir: PathBuf,
+}
+
+/// The scene a reference renders: `scene` with the reference's bands,
+/// estimator and photons per pass (its radius is pass 1's).
+pub fn reference_scene(scene: &PreparedScene, spec: &ReferenceSpec) -> Result<PreparedScene> {
+    let mut s = scene.scene.clone();
+    s.render.bands = BandSpec::Physical(spec.bands);
+    s.render.estimator = Estimator::Density;
+    s.render.wavelengths = WavelengthSampling::Split;
+    s.render.photons = spec.photons_per_pass;
+    Ok(PreparedScene::new(s)?)
+}
+
+/// FNV-1a (64 bit) of everything the reference depends on.
+pub fn content_hash(scene: &PreparedScene, spec: &ReferenceSpec) -> u64 {
+    let text = format!("{REFERENCE_VERSION}\n{spec:?}\n{:?}", scene.scene);
+    text.bytes().fold(0xcbf2_9ce4_8422_2325, |h, b| (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+}
+
+/// Loads the cached reference for `scene` (named `name`), or builds and
+/// caches it (always builds when `rebuild`). `report` hears about each pass.
+pub fn load_or_build(
+    name: &str,
+    scene: &PreparedScene,
+    spec: &ReferenceSpec,
+    cache: &Path,
+    rebuild: bool,
+    backend: &mut dyn Backend,
+    report: &mut dyn FnMut(&str),
+) -> Result<Reference> {
+    let ref_scene = reference_scene(scene, spec)?;
+    let dir = cache.join(format!("{}-{:016x}", sanitize(name), content_hash(&ref_scene, spec)));
+    if !rebuild && let Some(r) = load(&dir, &ref_scene)? {
+        report(&format!("reference: cached in {}", dir.display()));
+        return Ok(r);
+    }
+    let r = build(&ref_scene, spec, dir, backend, report)?;
+    save(&r, &ref_scene)?;
+    Ok(r)
+}
+
+fn build(
+    scene: &PreparedScene,
+    spec: &ReferenceSpec,
+    dir: PathBuf,
+    backend: &mut dyn Backend,
+    report: &mut dyn FnMut(&str),
+) -> Result<Reference> {
+    let t0 = Instant::now();
+    let r = &scene.scene.render;
+    let tone_map = r.tone_map;
+    let without_caustics = backend.render(scene, &PhotonMap::default(), &mut NoProgress)?;
+    let mut average = PassAverage::new(r.width, r.height);
+    let mut stripes = StripeSums::new(&scene.bands);
+    let mut checkpoint: Option<Image> = None;
+    let (mut last_change, mut converged) = (f64::INFINITY, false);
+    for k in 1..=spec.max_passes {
+        let pass = pass_scene(scene, spec.alpha, k);
+        let map = backend.trace_photons(&pass, &mut NoProgress)?;
+        stripes.add(&map);
+        average.add(&backend.render(&pass, &map, &mut NoProgress)?);
+        if k.is_power_of_two() {
+            let mean = average.mean();
+            if let Some(previous) = &checkpoint {
+                let mask = caustic_mask(&mean, &without_caustics, tone_map);
+                last_change = mean_delta_e(&mean, previous, &mask, tone_map);
+                report(&format!("reference: {k} passes, ΔE00 {last_change:.3} from {} passes", k / 2));
+                if last_change < spec.threshold {
+                    converged = true;
+                    break;
+                }
+            }
+            checkpoint = Some(mean);
+        }
+    }
+    let image = average.mean();
+    let mask = caustic_mask(&image, &without_caustics, tone_map);
+    Ok(Reference {
+        image,
+        without_caustics,
+        mask,
+        stripes,
+        passes: average.passes(),
+        last_change,
+        converged,
+        seconds: t0.elapsed().as_secs_f64(),
+        dir,
+    })
+}
+
+/// A file-name-safe stem of a scene name or path.
+pub fn sanitize(name: &str) -> String {
+    let stem = Path::new(name).file_stem().map_or(name.into(), |s| s.to_string_lossy().into_owned());
+    stem.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' }).collect()
+}
+
+/// Writes the reference into its directory: a temporary directory first,
+/// renamed into place, so a cache entry is whole or absent.
+fn save(r: &Reference, scene: &PreparedScene) -> Result<()> {
+    let parent = r.dir.parent().context("reference directory has a parent")?;
+    std::fs::create_dir_all(parent).with_context(|| format!("{}: cannot create", parent.display()))?;
+    let temp = parent.join(format!(".tmp-{}", std::process::id()));
+    std::fs::create_dir_all(&temp).with_context(|| format!("{}: cannot create", temp.display()))?;
+    pfm::write(&temp.join("reference.pfm"), &r.image)?;
+    pfm::write(&temp.join("no-caustics.pfm"), &r.without_caustics)?;
+    let mut stripes = String::from("lo_nm,hi_nm,flux,moment_x,moment_y,moment_z\n");
+    for ((lo, hi), f, m) in &r.stripes.bands {
+        writeln!(stripes, "{lo},{hi},{f:e},{:e},{:e},{:e}", m.x, m.y, m.z)?;
+    }
+    std::fs::write(temp.join("stripes.csv"), stripes)?;
+    let info = format!(
+        "passes = {}\nlast_change_delta_e = {}\nconverged = {}\nseconds = {:.1}\nbands = {}\nphotons_per_pass = {}\n",
+        r.passes,
+        if r.last_change.is_finite() { r.last_change } else { -1.0 },
+        r.converged,
+        r.seconds,
+        scene.bands.len(),
+        scene.scene.render.photons
+    );
+    std::fs::write(temp.join("info.toml"), info)?;
+    if r.dir.exists() {
+        std::fs::remove_dir_all(&r.dir).with_context(|| format!("{}: cannot replace", r.dir.display()))?;
+    }
+    std::fs::rename(&temp, &r.dir).with_context(|| format!("{}: cannot move into place", r.dir.display()))?;
+    Ok(())
+}
+
+/// The cached reference in `dir`, or `None` when there is none.
+fn load(dir: &Path, scene: &PreparedScene) -> Result<Option<Reference>> {
+    if !dir.join("info.toml").exists() {
+        return Ok(None);
+    }
+    let bad = |what: &str| format!("{}: broken cached reference ({what}); rebuild it with --rebuild", dir.display());
+    let image = pfm::read(&dir.join("reference.pfm")).with_context(|| bad("reference.pfm"))?;
+    let without_caustics = pfm::read(&dir.join("no-caustics.pfm")).with_context(|| bad("no-caustics.pfm"))?;
+    let info: toml::Table =
+        std::fs::read_to_string(dir.join("info.toml"))?.parse().with_context(|| bad("info.toml"))?;
+    let mut stripes = StripeSums::default();
+    for line in std::fs::read_to_string(dir.join("stripes.csv"))?.lines().skip(1) {
+        let v: Vec<f64> =
+            line.split(',').map(str::parse).collect::<Result<_, _>>().with_context(|| bad("stripes.csv"))?;
+        anyhow::ensure!(v.len() == 6, bad("stripes.csv"));
+        stripes.bands.push(((v[0] as f32, v[1] as f32), v[2], glam::DVec3::new(v[3], v[4], v[5])));
+    }
+    let r = &scene.scene.render;
+    anyhow::ensure!((image.width, image.height) == (r.width, r.height), bad("image size"));
+    let mask = caustic_mask(&image, &without_caustics, r.tone_map);
+    Ok(Some(Reference {
+        image,
+        without_caustics,
+        mask,
+        stripes,
+        passes: info.get("passes").and_then(|v| v.as_integer()).unwrap_or(0) as u32,
+        last_change: info.get("last_change_delta_e").and_then(|v| v.as_float()).unwrap_or(-1.0),
+        converged: info.get("converged").and_then(|v| v.as_bool()).unwrap_or(false),
+        seconds: info.get("seconds").and_then(|v| v.as_float()).unwrap_or(0.0),
+        dir: dir.to_path_buf(),
+    }))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_cache_key_changes_with_anything_the_reference_depends_on() {
+        let doc = crate::load_scene("sphere").unwrap();
+        let scene = PreparedScene::new(doc.scene.clone()).unwrap();
+        let spec = ReferenceSpec::quick();
+        let key =
+            |scene: &PreparedScene, spec: &ReferenceSpec| content_hash(&reference_scene(scene, spec).unwrap(), spec);
+        let base = key(&scene, &spec);
+        assert_eq!(base, key(&scene, &spec), "stable");
+        // The study's own settings do not matter (the reference sets its own)...
+        let mut other = doc.scene.clone();
+        other.render.bands = BandSpec::Paper3;
+        other.render.estimator = Estimator::Paper;
+        assert_eq!(base, key(&PreparedScene::new(other).unwrap(), &spec));
+        // ...but the scene, the image and the reference's own settings do.
+        let mut moved = doc.scene.clone();
+        moved.lights[0] = match moved.lights[0].clone() {
+            prismatic_core::Light::Spot { position, direction, cone_deg, power } => {
+                prismatic_core::Light::Spot { position, direction, cone_deg, power: power * 1.01 }
+            }
+            other => other,
+        };
+        assert_ne!(base, key(&PreparedScene::new(moved).unwrap(), &spec));
+        let mut wider = doc.scene.clone();
+        wider.render.width += 1;
+        assert_ne!(base, key(&PreparedScene::new(wider).unwrap(), &spec));
+        assert_ne!(base, key(&scene, &ReferenceSpec { threshold: 0.2, ..spec.clone() }));
+    }
+}

@@ -152,9 +152,7 @@ impl StudyPlan {
 /// One measured point.
 #[derive(Clone, Debug, PartialEq)]
 pub struct StudyRow {
-    /// Its series' label.
-    pub series: String,
-    /// The series' settings.
+    /// The series' settings (its label names the curve).
     pub setting: Series,
     /// White photons emitted.
     pub photons: u32,
@@ -393,16 +391,7 @@ pub fn measure(
         rmse: rmse(&image, &reference.image),
         stripe: if stripes { stripe_error(&own_stripes, &configured.bands, &reference.stripes) } else { None },
     };
-    Ok(StudyRow {
-        series: setting.label.clone(),
-        setting: setting.clone(),
-        photons,
-        stored,
-        trace_s,
-        render_s,
-        error,
-        pareto: false,
-    })
+    Ok(StudyRow { setting: setting.clone(), photons, stored, trace_s, render_s, error, pareto: false })
 }
 
 /// The paper's Table 5 at its photon count: ray tracing alone, photon

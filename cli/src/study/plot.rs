@@ -87,14 +87,14 @@ pub fn draw(rows: &[StudyRow], title: &str) -> RgbImage {
     // Curves.
     let mut labels: Vec<&str> = Vec::new();
     for row in rows {
-        if !labels.contains(&row.series.as_str()) {
-            labels.push(&row.series);
+        if !labels.contains(&row.setting.label.as_str()) {
+            labels.push(&row.setting.label);
         }
     }
     for (k, label) in labels.iter().enumerate() {
         let colour = Rgb(PALETTE[k % PALETTE.len()]);
         let mut curve: Vec<(i32, i32)> =
-            rows.iter().zip(&pts).filter(|(r, _)| r.series == *label).map(|(_, p)| map(*p)).collect();
+            rows.iter().zip(&pts).filter(|(r, _)| r.setting.label == *label).map(|(_, p)| map(*p)).collect();
         curve.sort();
         for w in curve.windows(2) {
             thick_line(&mut img, w[0], w[1], colour);

@@ -74,7 +74,7 @@ pub fn csv(result: &StudyResult) -> String {
             s,
             "{},{},{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.4},{:.6},{},{}",
             result.scene,
-            r.series,
+            r.setting.label,
             st.bands,
             st.sampling.name(),
             st.estimator.name(),
@@ -141,7 +141,7 @@ pub fn markdown(result: &StudyResult, machine: &str, plot: &Path) -> String {
                 let _ = writeln!(
                     s,
                     "- Cheapest setting with ΔE00 < {threshold} ({what}): **{}, {} photons**, {} per frame (ΔE00 {:.2}).",
-                    r.series,
+                    r.setting.label,
                     photons(r.photons),
                     seconds(r.total_s()),
                     r.error.delta_e
@@ -163,7 +163,7 @@ pub fn markdown(result: &StudyResult, machine: &str, plot: &Path) -> String {
         let _ = writeln!(
             s,
             "| {} | {} | {} | {} | {} | {:.2} | {:.4} |{} {} |",
-            r.series,
+            r.setting.label,
             photons(r.photons),
             seconds(r.trace_s),
             seconds(r.render_s),
@@ -214,7 +214,6 @@ mod tests {
             prismatic_core::Estimator::Paper,
         );
         StudyRow {
-            series: "x".into(),
             setting,
             photons: 1,
             stored: 0,

@@ -257,15 +257,7 @@ pub fn run(options: &StudyOptions, progress: &mut dyn StudyProgress) -> Result<S
     progress.start(points.len() as u64 + 5);
     progress.note(&format!("{}: reference ({} bands, density, progressive)", options.scene, plan.reference.bands));
     let mut cpu = select(BackendChoice::Cpu)?.backend;
-    let reference = reference::load_or_build(
-        &options.scene,
-        &scene,
-        &plan.reference,
-        &options.cache,
-        options.rebuild_reference,
-        cpu.as_mut(),
-        &mut |m| progress.note(m),
-    )?;
+    let reference = load_reference(options, &scene, &plan, cpu.as_mut(), progress)?;
     progress.step("reference ready");
     let mut rows = Vec::new();
     let mut skipped = Vec::new();
@@ -310,17 +302,27 @@ pub fn build_reference(
     progress: &mut dyn StudyProgress,
 ) -> Result<(Reference, prismatic_core::color::ToneMap)> {
     let (scene, plan) = study_scene(options)?;
-    let mut cpu = select(BackendChoice::Cpu)?.backend;
-    let r = reference::load_or_build(
+    let r = load_reference(options, &scene, &plan, select(BackendChoice::Cpu)?.backend.as_mut(), progress)?;
+    Ok((r, scene.scene.render.tone_map))
+}
+
+/// The plan's reference for `scene`, from the cache or built on `backend`.
+fn load_reference(
+    options: &StudyOptions,
+    scene: &PreparedScene,
+    plan: &StudyPlan,
+    backend: &mut dyn Backend,
+    progress: &mut dyn StudyProgress,
+) -> Result<Reference> {
+    reference::load_or_build(
         &options.scene,
-        &scene,
+        scene,
         &plan.reference,
         &options.cache,
         options.rebuild_reference,
-        cpu.as_mut(),
+        backend,
         &mut |m| progress.note(m),
-    )?;
-    Ok((r, scene.scene.render.tone_map))
+    )
 }
 
 /// The scene at the study's image size, and the plan.
@@ -370,18 +372,24 @@ pub fn measure(
     let mut average = PassAverage::new(configured.scene.render.width, configured.scene.render.height);
     let mut own_stripes = StripeSums::new(&configured.bands);
     for k in 1..=passes {
+        let progressive;
         let pass = match setting.radius {
-            RadiusMode::Fixed => configured.clone(),
-            RadiusMode::Progressive { .. } => pass_scene(&configured, DEFAULT_ALPHA, k),
+            RadiusMode::Fixed => &configured,
+            RadiusMode::Progressive { .. } => {
+                progressive = pass_scene(&configured, DEFAULT_ALPHA, k);
+                &progressive
+            }
         };
         let t0 = Instant::now();
-        let map = backend.trace_photons(&pass, &mut NoProgress)?;
+        let map = backend.trace_photons(pass, &mut NoProgress)?;
         trace_s += t0.elapsed().as_secs_f64();
         let t1 = Instant::now();
-        let image = backend.render(&pass, &map, &mut NoProgress)?;
+        let image = backend.render(pass, &map, &mut NoProgress)?;
         render_s += t1.elapsed().as_secs_f64();
         stored += map.stats.stored;
-        own_stripes.add(&map);
+        if stripes {
+            own_stripes.add(&map);
+        }
         average.add(&image);
     }
     let image = average.mean();

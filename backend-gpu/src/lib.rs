@@ -1,5 +1,218 @@
-//! prismatic-gpu: the wgpu compute backend (WGSL ports of the core's tracer,
-//! grid build and gather, buffers resident on the device).
+//! prismatic-gpu: the wgpu compute backend.
 //!
-//! Not built yet: `prismatic --backend gpu` says so and points to
-//! `--backend reference`.
+//! Every stage runs on the device in WGSL (`src/shaders/`), each a twin of
+//! the core stage of the same name: emit + trace (same counter-based RNG,
+//! bit for bit), compaction into canonical (emission, band) order, hash-grid
+//! build (count, prefix sum, scatter), and ray tracing with the gather.
+//! Buffers stay on the device between stages; [`GpuBackend::frame`] renders
+//! without reading anything back but a photon count, and the photon map is
+//! read back only when asked for ([`Backend::trace_photons`]).
+//!
+//! An engine embeds it with [`GpuBackend::from_device`] on its own device
+//! and renders into its own buffer or storage texture
+//! ([`GpuBackend::render_into_buffer`], [`GpuBackend::render_into_texture`]).
+
+mod context;
+mod grid;
+pub mod layout;
+mod photons;
+mod pipelines;
+mod render;
+mod scan;
+mod scene;
+pub mod shaders;
+mod trace;
+
+pub use context::{AdapterChoice, GpuContext, STORAGE_BUFFERS_NEEDED, describe, is_hardware, required_limits};
+pub use render::PIXEL_BYTES;
+
+use photons::PhotonArray;
+use pipelines::Pipelines;
+use prismatic_core::backend::{Backend, BackendError, Progress, Stage};
+use prismatic_core::{Image, PhotonMap, PreparedScene};
+use scene::{EncodedScene, SceneBuffers};
+
+/// Options that change how the work is cut, not what it computes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GpuOptions {
+    /// Photons per storage binding; `None`: as many as the device allows.
+    /// Tests set it small to run the multi-binding paths on small scenes.
+    pub window_photons: Option<u32>,
+}
+
+/// The wgpu backend.
+pub struct GpuBackend {
+    ctx: GpuContext,
+    pipelines: Pipelines,
+    options: GpuOptions,
+    /// The last frame's pixels (reused while the image size stays).
+    pixels: Option<wgpu::Buffer>,
+}
+
+/// What a device-resident frame did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FrameInfo {
+    /// Photons in the caustic map.
+    pub stored: u32,
+}
+
+impl GpuBackend {
+    /// A backend on its own device: the best adapter there is (`choice`).
+    pub fn new(choice: AdapterChoice) -> Result<Self, BackendError> {
+        Ok(Self::with_context(GpuContext::new(choice)?, GpuOptions::default()))
+    }
+
+    /// A backend on a caller's device and queue (a game engine's); the
+    /// device needs [`required_limits`].
+    pub fn from_device(device: wgpu::Device, queue: wgpu::Queue) -> Result<Self, BackendError> {
+        Ok(Self::with_context(GpuContext::from_device(device, queue)?, GpuOptions::default()))
+    }
+
+    /// A backend on `ctx` with `options`.
+    pub fn with_context(ctx: GpuContext, options: GpuOptions) -> Self {
+        let pipelines = Pipelines::new(&ctx.device);
+        GpuBackend { ctx, pipelines, options, pixels: None }
+    }
+
+    /// The adapter, when the backend chose it.
+    pub fn adapter(&self) -> Option<&wgpu::AdapterInfo> {
+        self.ctx.adapter.as_ref()
+    }
+
+    /// The device and queue (to share with the caller).
+    pub fn context(&self) -> &GpuContext {
+        &self.ctx
+    }
+
+    fn window(&self) -> u32 {
+        let device = photons::window_for(&self.ctx.limits());
+        self.options.window_photons.map_or(device, |w| w.clamp(1, device))
+    }
+
+    fn upload(&self, scene: &PreparedScene) -> Result<SceneBuffers, BackendError> {
+        let encoded = EncodedScene::new(scene);
+        self.ctx.checked("uploading the scene", || {
+            SceneBuffers::upload(&self.ctx.device, &self.pipelines.scene_layout, &encoded)
+        })
+    }
+
+    fn trace_on_device(
+        &mut self,
+        scene: &PreparedScene,
+        buffers: &mut SceneBuffers,
+        progress: &mut dyn Progress,
+    ) -> Result<trace::DeviceMap, BackendError> {
+        let window = self.window();
+        trace::trace(&self.ctx, &self.pipelines, buffers, scene, window, progress)
+    }
+
+    fn pixels_for(&mut self, scene: &PreparedScene) -> Result<wgpu::Buffer, BackendError> {
+        let r = &scene.scene.render;
+        let bytes = (u64::from(r.width) * u64::from(r.height) * PIXEL_BYTES).max(PIXEL_BYTES);
+        match &self.pixels {
+            Some(b) if b.size() == bytes => Ok(b.clone()),
+            _ => {
+                let b = render::pixel_buffer(&self.ctx, r.width, r.height)?;
+                self.pixels = Some(b.clone());
+                Ok(b)
+            }
+        }
+    }
+
+    /// A whole frame on the device, into `pixels`: trace, compaction, grid,
+    /// render. Nothing is read back but the photon count.
+    fn frame_into(&mut self, scene: &PreparedScene, pixels: &wgpu::Buffer) -> Result<FrameInfo, BackendError> {
+        let mut buffers = self.upload(scene)?;
+        let map = self.trace_on_device(scene, &mut buffers, &mut prismatic_core::NoProgress)?;
+        let grid = grid::build(&self.ctx, &self.pipelines, &mut buffers, &map)?;
+        render::render(&self.ctx, &mut self.pipelines, &mut buffers, &grid, pixels)?;
+        Ok(FrameInfo { stored: map.stored })
+    }
+
+    /// Renders a frame into the backend's own pixel buffer and waits for it.
+    pub fn frame(&mut self, scene: &PreparedScene) -> Result<FrameInfo, BackendError> {
+        let pixels = self.pixels_for(scene)?;
+        let info = self.frame_into(scene, &pixels)?;
+        self.ctx.wait()?;
+        Ok(info)
+    }
+
+    /// [`GpuBackend::frame`], then the image read back.
+    pub fn frame_image(&mut self, scene: &PreparedScene) -> Result<(FrameInfo, Image), BackendError> {
+        let info = self.frame(scene)?;
+        let r = &scene.scene.render;
+        let pixels = self.pixels_for(scene)?;
+        Ok((info, render::read_image(&self.ctx, &pixels, r.width, r.height)?))
+    }
+
+    /// Renders a frame into the caller's `buffer` (`STORAGE` usage, at
+    /// least width × height × [`PIXEL_BYTES`]): row-major `vec4<f32>`,
+    /// linear RGB with exposure applied, alpha 1. Submitted, not waited for.
+    pub fn render_into_buffer(
+        &mut self,
+        scene: &PreparedScene,
+        buffer: &wgpu::Buffer,
+    ) -> Result<FrameInfo, BackendError> {
+        self.frame_into(scene, buffer)
+    }
+
+    /// Renders a frame into the caller's storage texture (the image's size;
+    /// `Rgba32Float`, `Rgba16Float` or `Rgba8Unorm`; `STORAGE_BINDING`
+    /// usage) with a copy on the device. Submitted, not waited for.
+    pub fn render_into_texture(
+        &mut self,
+        scene: &PreparedScene,
+        texture: &wgpu::Texture,
+    ) -> Result<FrameInfo, BackendError> {
+        let pixels = self.pixels_for(scene)?;
+        let info = self.frame_into(scene, &pixels)?;
+        let mut buffers = self.upload(scene)?;
+        render::copy_to_texture(&self.ctx, &mut self.pipelines, &mut buffers, &pixels, texture)?;
+        Ok(info)
+    }
+}
+
+impl GpuBackend {
+    /// Uploads `photons` and builds their grid, waiting for the device
+    /// (the `grid/gpu` bench: the stage alone).
+    pub fn build_grid(&mut self, scene: &PreparedScene, photons: &PhotonMap) -> Result<(), BackendError> {
+        let mut buffers = self.upload(scene)?;
+        let array = PhotonArray::upload(&self.ctx, &photons.photons, self.window())?;
+        let map = trace::DeviceMap::uploaded(&self.ctx, array, photons.photons.len() as u32);
+        grid::build(&self.ctx, &self.pipelines, &mut buffers, &map)?;
+        self.ctx.wait()
+    }
+}
+
+impl Backend for GpuBackend {
+    fn name(&self) -> &'static str {
+        "gpu"
+    }
+
+    fn trace_photons(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> Result<PhotonMap, BackendError> {
+        let mut buffers = self.upload(scene)?;
+        let map = self.trace_on_device(scene, &mut buffers, progress)?;
+        let photons = map.photons.read(&self.ctx, map.stored)?;
+        Ok(PhotonMap { photons, stats: map.stats(&self.ctx)? })
+    }
+
+    fn render(
+        &mut self,
+        scene: &PreparedScene,
+        photons: &PhotonMap,
+        progress: &mut dyn Progress,
+    ) -> Result<Image, BackendError> {
+        let mut buffers = self.upload(scene)?;
+        let window = self.window();
+        let stored = photons.photons.len() as u32;
+        let map =
+            trace::DeviceMap::uploaded(&self.ctx, PhotonArray::upload(&self.ctx, &photons.photons, window)?, stored);
+        let grid = grid::build(&self.ctx, &self.pipelines, &mut buffers, &map)?;
+        let pixels = self.pixels_for(scene)?;
+        render::render(&self.ctx, &mut self.pipelines, &mut buffers, &grid, &pixels)?;
+        let r = &scene.scene.render;
+        let image = render::read_image(&self.ctx, &pixels, r.width, r.height)?;
+        progress.advance(Stage::Render, u64::from(r.height), u64::from(r.height));
+        Ok(image)
+    }
+}

@@ -2,6 +2,7 @@
 
 use prismatic_core::{Backend, BackendError, ReferenceBackend};
 use prismatic_cpu::CpuBackend;
+use prismatic_gpu::{AdapterChoice, GpuBackend};
 
 /// What the user asked for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
@@ -10,17 +11,17 @@ pub enum BackendChoice {
     Reference,
     /// The packet-SIMD CPU backend.
     Cpu,
-    /// The wgpu compute backend.
+    /// The wgpu compute backend (any adapter, a software one included).
     Gpu,
-    /// The fastest backend this machine has.
+    /// The fastest backend this machine has: a hardware GPU, else the CPU.
     Auto,
 }
 
-/// A backend ready to use, with a note on how it was chosen (for `auto`).
+/// A backend ready to use, with a note on how it was chosen.
 pub struct Selected {
     /// The backend.
     pub backend: Box<dyn Backend>,
-    /// Why it was picked, when the user did not pick it.
+    /// Which device it runs on, or why it was picked.
     pub note: Option<String>,
 }
 
@@ -29,14 +30,21 @@ pub fn select(choice: BackendChoice) -> Result<Selected, BackendError> {
     match choice {
         BackendChoice::Reference => Ok(Selected { backend: Box::new(ReferenceBackend), note: None }),
         BackendChoice::Cpu => Ok(Selected { backend: Box::new(CpuBackend::new()), note: None }),
-        BackendChoice::Gpu => Err(BackendError::NotBuilt { backend: "gpu", hint: "--backend cpu" }),
-        BackendChoice::Auto => Ok(Selected {
-            backend: Box::new(CpuBackend::new()),
-            note: Some(format!(
-                "auto picked the cpu backend ({} threads; the gpu backend is not built yet)",
-                rayon_threads()
-            )),
-        }),
+        BackendChoice::Gpu => {
+            let gpu = GpuBackend::new(AdapterChoice::Any)?;
+            let note = gpu.adapter().map(|a| format!("gpu backend on {}", prismatic_gpu::describe(a)));
+            Ok(Selected { backend: Box::new(gpu), note })
+        }
+        BackendChoice::Auto => match GpuBackend::new(AdapterChoice::HardwareOnly) {
+            Ok(gpu) => {
+                let on = gpu.adapter().map_or_else(|| "a GPU".to_string(), prismatic_gpu::describe);
+                Ok(Selected { backend: Box::new(gpu), note: Some(format!("auto picked the gpu backend on {on}")) })
+            }
+            Err(why) => Ok(Selected {
+                backend: Box::new(CpuBackend::new()),
+                note: Some(format!("auto picked the cpu backend ({} threads; {why})", rayon_threads())),
+            }),
+        },
     }
 }
 

@@ -8,13 +8,14 @@ use glam::Vec3;
 /// A camera with its frame precomputed for an image size.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PinholeCamera {
-    origin: Vec3,
+    /// Eye point.
+    pub origin: Vec3,
     /// Image-plane step per pixel to the right.
-    right: Vec3,
+    pub right: Vec3,
     /// Image-plane step per pixel downward.
-    down: Vec3,
+    pub down: Vec3,
     /// Direction through the top-left corner of the image.
-    corner: Vec3,
+    pub corner: Vec3,
 }
 
 impl PinholeCamera {

@@ -67,6 +67,11 @@ impl IorCurve {
         Some(IorCurve { samples })
     }
 
+    /// The samples, n at `VISIBLE_NM.0 + i` nm (for backends that upload the curve).
+    pub fn samples(&self) -> &[f32] {
+        &self.samples
+    }
+
     /// n at `lambda_nm` (clamped to the visible range).
     pub fn at(&self, lambda_nm: f32) -> f32 {
         let x = (lambda_nm - VISIBLE_NM.0).clamp(0.0, (self.samples.len() - 1) as f32);

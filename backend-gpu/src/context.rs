@@ -1,0 +1,203 @@
+//! The device the backend works on: its own (adapter chosen here) or a
+//! caller's (a game engine's `Device` and `Queue`), the limits it needs,
+//! and the translation of wgpu errors (validation, out of memory, device
+//! lost) into `BackendError`s.
+
+use prismatic_core::BackendError;
+use std::sync::{Arc, Mutex};
+
+/// Storage buffers the render pass binds (six for the scene, four photon
+/// windows, the grid's cell starts and the pixels).
+pub const STORAGE_BUFFERS_NEEDED: u32 = 12;
+
+/// A device and queue with what the backend knows about them.
+pub struct GpuContext {
+    /// The device.
+    pub device: wgpu::Device,
+    /// Its queue.
+    pub queue: wgpu::Queue,
+    /// The adapter, when the backend chose it.
+    pub adapter: Option<wgpu::AdapterInfo>,
+    lost: Arc<Mutex<Option<String>>>,
+}
+
+/// Which adapters an own device may run on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum AdapterChoice {
+    /// The best adapter there is, software (lavapipe) included.
+    Any,
+    /// Only a hardware GPU (discrete, integrated or virtual).
+    HardwareOnly,
+}
+
+/// The limits to request from `adapter` for this backend: WebGPU's
+/// defaults, plus the storage buffers it binds and the adapter's own buffer
+/// and binding sizes (so that large photon maps need fewer chunks).
+pub fn required_limits(adapter: &wgpu::Limits) -> wgpu::Limits {
+    wgpu::Limits {
+        max_storage_buffers_per_shader_stage: STORAGE_BUFFERS_NEEDED
+            .max(16)
+            .min(adapter.max_storage_buffers_per_shader_stage),
+        max_storage_buffer_binding_size: adapter.max_storage_buffer_binding_size,
+        max_buffer_size: adapter.max_buffer_size,
+        ..wgpu::Limits::default()
+    }
+}
+
+fn rank(t: wgpu::DeviceType) -> u32 {
+    match t {
+        wgpu::DeviceType::DiscreteGpu => 4,
+        wgpu::DeviceType::IntegratedGpu => 3,
+        wgpu::DeviceType::VirtualGpu => 2,
+        wgpu::DeviceType::Cpu => 1,
+        wgpu::DeviceType::Other => 0,
+    }
+}
+
+/// True for adapters that are real GPUs (not a software rasterizer).
+pub fn is_hardware(info: &wgpu::AdapterInfo) -> bool {
+    rank(info.device_type) >= 2
+}
+
+/// Names an adapter for messages: "llvmpipe (LLVM 15.0.6, 256 bits), Vulkan, Cpu".
+pub fn describe(info: &wgpu::AdapterInfo) -> String {
+    format!("{}, {:?}, {:?}", info.name, info.backend, info.device_type)
+}
+
+impl GpuContext {
+    /// Creates a device on the best adapter (`choice` says which count).
+    pub fn new(choice: AdapterChoice) -> Result<Self, BackendError> {
+        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::PRIMARY));
+        let seen: Vec<String> = adapters.iter().map(|a| describe(&a.get_info())).collect();
+        let best = adapters
+            .into_iter()
+            .filter(|a| a.limits().max_storage_buffers_per_shader_stage >= STORAGE_BUFFERS_NEEDED)
+            .filter(|a| choice == AdapterChoice::Any || is_hardware(&a.get_info()))
+            .max_by_key(|a| rank(a.get_info().device_type));
+        let Some(adapter) = best else {
+            let what = if choice == AdapterChoice::Any { "GPU adapter" } else { "hardware GPU adapter" };
+            let detail = if seen.is_empty() {
+                "wgpu found no Vulkan, Metal or DX12 adapter on this machine (for a software one install \
+                 Mesa's lavapipe, Debian package mesa-vulkan-drivers); use --backend cpu"
+                    .to_string()
+            } else {
+                format!("adapters seen: {} (none suitable); use --backend cpu", seen.join("; "))
+            };
+            return Err(BackendError::NoDevice { what, detail });
+        };
+        let info = adapter.get_info();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("prismatic"),
+            required_limits: required_limits(&adapter.limits()),
+            ..Default::default()
+        }))
+        .map_err(|e| BackendError::NoDevice {
+            what: "GPU device",
+            detail: format!("{} refused a device: {e}; use --backend cpu", describe(&info)),
+        })?;
+        // Errors are collected by error scopes around each piece of work;
+        // one that escapes them must not abort the process.
+        device.on_uncaptured_error(Arc::new(|e| eprintln!("prismatic-gpu: uncaptured wgpu error: {e}")));
+        let mut ctx = GpuContext::from_device(device, queue)?;
+        ctx.adapter = Some(info);
+        Ok(ctx)
+    }
+
+    /// Wraps a caller's device and queue (a game engine's). The device must
+    /// allow [`STORAGE_BUFFERS_NEEDED`] storage buffers per shader stage
+    /// (request [`required_limits`] when creating it).
+    pub fn from_device(device: wgpu::Device, queue: wgpu::Queue) -> Result<Self, BackendError> {
+        let have = device.limits().max_storage_buffers_per_shader_stage;
+        if have < STORAGE_BUFFERS_NEEDED {
+            return Err(BackendError::Device(format!(
+                "the device allows {have} storage buffers per shader stage and the gpu backend binds \
+                 {STORAGE_BUFFERS_NEEDED}; create it with prismatic_gpu::required_limits(&adapter.limits())"
+            )));
+        }
+        let lost = Arc::new(Mutex::new(None));
+        let sink = Arc::clone(&lost);
+        device.set_device_lost_callback(move |reason, message| {
+            if let Ok(mut slot) = sink.lock() {
+                *slot = Some(format!("{reason:?}: {message}"));
+            }
+        });
+        Ok(GpuContext { device, queue, adapter: None, lost })
+    }
+
+    /// The device's limits.
+    pub fn limits(&self) -> wgpu::Limits {
+        self.device.limits()
+    }
+
+    /// An error if the device has been lost.
+    pub fn check_lost(&self) -> Result<(), BackendError> {
+        match self.lost.lock().ok().and_then(|l| l.clone()) {
+            Some(why) => Err(BackendError::Device(format!("the GPU device was lost ({why}); use --backend cpu"))),
+            None => Ok(()),
+        }
+    }
+
+    /// Runs `work` (which creates resources and submits commands) under
+    /// error scopes and turns what they catch into a `BackendError` naming `what`.
+    pub fn checked<T>(&self, what: &str, work: impl FnOnce() -> T) -> Result<T, BackendError> {
+        self.check_lost()?;
+        let oom = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let internal = self.device.push_error_scope(wgpu::ErrorFilter::Internal);
+        let out = work();
+        let internal = pollster::block_on(internal.pop());
+        let validation = pollster::block_on(validation.pop());
+        let oom = pollster::block_on(oom.pop());
+        self.check_lost()?;
+        if let Some(e) = oom {
+            return Err(BackendError::OutOfMemory(format!("{what}: {e}")));
+        }
+        if let Some(e) = validation.or(internal) {
+            return Err(BackendError::Device(format!("{what}: {e}")));
+        }
+        Ok(out)
+    }
+
+    /// Waits until the device has finished all submitted work.
+    pub fn wait(&self) -> Result<(), BackendError> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map_err(|e| BackendError::Device(format!("waiting for the GPU: {e}")))?;
+        self.check_lost()
+    }
+
+    /// Copies `size` bytes at `offset` of `buffer` to the host.
+    pub fn read(&self, buffer: &wgpu::Buffer, offset: u64, size: u64) -> Result<Vec<u8>, BackendError> {
+        if size == 0 {
+            return Ok(Vec::new());
+        }
+        let staging = self.checked("readback buffer", || {
+            let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("prismatic readback"),
+                size,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let mut encoder = self.device.create_command_encoder(&Default::default());
+            encoder.copy_buffer_to_buffer(buffer, offset, &staging, 0, size);
+            self.queue.submit([encoder.finish()]);
+            staging
+        })?;
+        let (send, recv) = std::sync::mpsc::channel();
+        staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+            let _ = send.send(r);
+        });
+        self.wait()?;
+        recv.recv()
+            .map_err(|_| BackendError::Device("readback never completed".into()))?
+            .map_err(|e| BackendError::Device(format!("mapping a readback buffer: {e}")))?;
+        let bytes = staging
+            .slice(..)
+            .get_mapped_range()
+            .map_err(|e| BackendError::Device(format!("reading a mapped buffer: {e}")))?
+            .to_vec();
+        staging.unmap();
+        Ok(bytes)
+    }
+}

@@ -1,0 +1,123 @@
+//! The hash grid on the device: twin of `prismatic_core::grid`. Count
+//! photons per bucket (atomics), prefix-sum the counts into bucket starts,
+//! scatter each photon into its bucket's range of a sorted copy that the
+//! gather reads in place.
+
+use crate::context::GpuContext;
+use crate::photons::PhotonArray;
+use crate::pipelines::{Pipelines, dispatch};
+use crate::scan;
+use crate::scene::SceneBuffers;
+use crate::shaders::WORKGROUP_SIZE;
+use crate::trace::DeviceMap;
+use prismatic_core::BackendError;
+use prismatic_core::grid::bucket_mask;
+
+/// A grid over a device map.
+pub struct DeviceGrid {
+    /// `cells[b]..cells[b + 1]` is bucket b's range of `sorted`.
+    pub cells: wgpu::Buffer,
+    /// The photons in bucket order.
+    pub sorted: PhotonArray,
+}
+
+/// Builds the grid over `map` for the scene's gather radius.
+pub fn build(
+    ctx: &GpuContext,
+    pipelines: &Pipelines,
+    scene_buffers: &mut SceneBuffers,
+    map: &DeviceMap,
+) -> Result<DeviceGrid, BackendError> {
+    let stored = map.stored;
+    let mask = bucket_mask(stored as usize);
+    let buckets = u64::from(mask) + 1;
+    let sorted = PhotonArray::new(ctx, "prismatic sorted photons", stored, map.photons.window)?;
+    let (cells, cursor) = ctx.checked("allocating the grid", || {
+        let buffer = |label: &str, n: u64| {
+            ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: n * 4,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        (buffer("prismatic grid cells", buckets + 1), buffer("prismatic grid cursor", buckets))
+    })?;
+    let p = &mut scene_buffers.params;
+    (p.stored, p.grid_mask, p.window) = (stored, mask, map.photons.window);
+    scene_buffers.write_params(&ctx.queue);
+    if stored == 0 {
+        return Ok(DeviceGrid { cells, sorted });
+    }
+    ctx.checked("building the grid", || {
+        let mut entries = vec![
+            wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 1, resource: cells.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 2, resource: cursor.as_entire_binding() },
+        ];
+        entries.extend(map.photons.entries(3));
+        entries.extend(sorted.entries(7));
+        let group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("prismatic grid"),
+            layout: &pipelines.grid_layout,
+            entries: &entries,
+        });
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        dispatch(&mut encoder, &pipelines.grid_count, &[&group], u64::from(stored), WORKGROUP_SIZE);
+        scan::record(&ctx.device, pipelines, &mut encoder, &cells, (buckets + 1) as u32);
+        encoder.copy_buffer_to_buffer(&cells, 0, &cursor, 0, buckets * 4);
+        dispatch(&mut encoder, &pipelines.grid_scatter, &[&group], u64::from(stored), WORKGROUP_SIZE);
+        ctx.queue.submit([encoder.finish()]);
+    })?;
+    Ok(DeviceGrid { cells, sorted })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::context::AdapterChoice;
+    use prismatic_core::grid::{bucket_of, cell_of};
+    use prismatic_core::{Photon, rng::random_f32};
+
+    /// The device grid's bucket starts and bucket contents equal the core
+    /// grid's (its twin), on a cloud dense enough for two scan levels.
+    #[test]
+    fn device_grid_matches_the_core_grid() {
+        let Ok(ctx) = GpuContext::new(AdapterChoice::Any) else {
+            assert!(std::env::var_os("CI").is_none(), "CI=true and no GPU adapter");
+            return;
+        };
+        let pipelines = Pipelines::new(&ctx.device);
+        let photons: Vec<Photon> = (0..300_000u32)
+            .map(|i| Photon {
+                // Half the photons in a uniform cloud, half in one dense spot
+                // (a caustic's focus: tens of thousands in a few buckets).
+                position: [0, 1, 2].map(|d| (random_f32(9, i, d) * 2.0 - 1.0) * if i % 2 == 0 { 1.0 } else { 0.004 }),
+                emission: i,
+                band: (i % 7) as u16,
+                ..Photon::default()
+            })
+            .collect();
+        let radius = 0.01;
+        let mut encoded = crate::scene::EncodedScene::default();
+        encoded.params.inv_cell = 1.0 / (2.0 * radius);
+        let mut buffers = SceneBuffers::upload(&ctx.device, &pipelines.scene_layout, &encoded);
+        let window = crate::photons::window_for(&ctx.limits());
+        let map = DeviceMap::uploaded(&ctx, PhotonArray::upload(&ctx, &photons, window).unwrap(), photons.len() as u32);
+        let grid = build(&ctx, &pipelines, &mut buffers, &map).unwrap();
+        let core = prismatic_core::grid::PhotonGrid::build(&photons, radius);
+        let cells = ctx.read(&grid.cells, 0, grid.cells.size()).unwrap();
+        let cells: Vec<u32> = bytemuck::pod_collect_to_vec(&cells);
+        assert_eq!(cells, core.cell_start);
+        let sorted = grid.sorted.read(&ctx, photons.len() as u32).unwrap();
+        let inv = 1.0 / core.cell_size;
+        for (b, w) in core.cell_start.windows(2).enumerate() {
+            let mut got: Vec<u32> = sorted[w[0] as usize..w[1] as usize].iter().map(|p| p.emission).collect();
+            got.sort_unstable();
+            assert_eq!(got, core.photon_index[w[0] as usize..w[1] as usize], "bucket {b}");
+            for p in &sorted[w[0] as usize..w[1] as usize] {
+                assert_eq!(bucket_of(cell_of(p.pos(), inv), core.mask), b as u32);
+            }
+        }
+    }
+}

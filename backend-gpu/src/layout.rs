@@ -1,0 +1,231 @@
+//! Every struct shared with WGSL, defined once here: `#[repr(C)]`, `Pod`,
+//! explicit padding and a size assertion. Each has a twin of the same name
+//! in `shaders/common.wgsl`; `tests/layout.rs` parses the WGSL with naga and
+//! checks that sizes and field offsets match.
+//!
+//! A WGSL `vec3<f32>` is 16-byte aligned, so every `[f32; 3]` here starts at
+//! a multiple of 16 and is followed by a 4-byte scalar that fills its slot.
+
+use bytemuck::{Pod, Zeroable};
+
+/// Per-dispatch settings (a uniform buffer): what to trace and how to render.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct Params {
+    /// The render's seed.
+    pub seed: u32,
+    /// First emission index of the current trace chunk.
+    pub chunk_start: u32,
+    /// Emissions in the current trace chunk.
+    pub chunk_len: u32,
+    /// Scratch slots per emission (N bands when white light splits, else 1).
+    pub slots: u32,
+    /// Number of bands.
+    pub band_count: u32,
+    /// Specular interactions before a path ends.
+    pub max_depth: u32,
+    /// 0 split, 1 random band, 2 continuous.
+    pub wavelengths: u32,
+    /// Objects in the scene.
+    pub object_count: u32,
+    /// Lights in the scene.
+    pub light_count: u32,
+    /// Index of the light-selection CDF in the tables buffer.
+    pub light_cdf: u32,
+    /// 0 paper, 1 density.
+    pub estimator: u32,
+    /// Photons per window of a photon array (see `photons.rs`).
+    pub window: u32,
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// First pixel of the current render chunk.
+    pub pixel_offset: u32,
+    /// Pixels in the current render chunk.
+    pub pixel_count: u32,
+    /// Photons in the map (for the grid and the gather).
+    pub stored: u32,
+    /// Bucket mask of the grid.
+    pub grid_mask: u32,
+    /// Photon capacity of the map (scatter drops what does not fit).
+    pub capacity: u32,
+    /// Padding.
+    pub _pad0: u32,
+    /// Flux of one emitted white photon.
+    pub flux: f32,
+    /// Gather radius.
+    pub radius: f32,
+    /// 1 / grid cell size.
+    pub inv_cell: f32,
+    /// Exposure multiplier.
+    pub exposure: f32,
+    /// Ambient light.
+    pub ambient: [f32; 3],
+    /// Padding.
+    pub _pad1: u32,
+    /// Background radiance.
+    pub background: [f32; 3],
+    /// Padding.
+    pub _pad2: u32,
+    /// Camera eye point.
+    pub cam_origin: [f32; 3],
+    /// Padding.
+    pub _pad3: u32,
+    /// Image-plane step per pixel to the right.
+    pub cam_right: [f32; 3],
+    /// Padding.
+    pub _pad4: u32,
+    /// Image-plane step per pixel downward.
+    pub cam_down: [f32; 3],
+    /// Padding.
+    pub _pad5: u32,
+    /// Direction through the top-left image corner.
+    pub cam_corner: [f32; 3],
+    /// Padding.
+    pub _pad6: u32,
+}
+const _: () = assert!(core::mem::size_of::<Params>() == 192);
+
+/// An object's primitive. Kinds: 0 sphere (`a` centre, `ra` radius), 1 plane
+/// (`a` point, `n` normal), 2 disc (`a` centre, `n` normal, `ra` radius²,
+/// `rb` hole radius²), 3 convex (`count` faces from `first` in the geometry
+/// buffer), 4 mesh (`count` triangles of 4 vec4s from `first`, bounding
+/// sphere `a`, `ra`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuObject {
+    /// Primitive kind.
+    pub kind: u32,
+    /// First record in the geometry buffer.
+    pub first: u32,
+    /// Number of records.
+    pub count: u32,
+    /// Padding.
+    pub _pad: u32,
+    /// Centre or point.
+    pub a: [f32; 3],
+    /// First radius-like value.
+    pub ra: f32,
+    /// Normal.
+    pub n: [f32; 3],
+    /// Second radius-like value.
+    pub rb: f32,
+}
+const _: () = assert!(core::mem::size_of::<GpuObject>() == 48);
+
+/// An object's surface. Kinds: 0 diffuse, 1 mirror, 2 dielectric.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuSurface {
+    /// Surface kind.
+    pub kind: u32,
+    /// Bit flags, see `SURFACE_*` in the shader prelude.
+    pub flags: u32,
+    /// Index of the per-band indices in the tables buffer.
+    pub ior_first: u32,
+    /// Index of the n(λ) curve in the tables buffer.
+    pub curve_first: u32,
+    /// Diffuse albedo.
+    pub albedo: [f32; 3],
+    /// Index for white light.
+    pub white_ior: f32,
+    /// Albedo of the checker's odd cells.
+    pub checker_albedo: [f32; 3],
+    /// Checker cell size.
+    pub checker_size: f32,
+    /// Checker offset.
+    pub checker_offset: [f32; 3],
+    /// Samples in the n(λ) curve.
+    pub curve_len: u32,
+}
+const _: () = assert!(core::mem::size_of::<GpuSurface>() == 64);
+
+/// A light. Kinds: 0 spot, 1 point, 2 beam. Projection kinds: 0 none,
+/// 1 cones, 2 discs (targets are vec4s in the geometry buffer: axis and
+/// cos θ_max, or centre and radius; their CDF is in the tables buffer).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLight {
+    /// Light kind.
+    pub kind: u32,
+    /// 1 when shadow rays are traced toward it.
+    pub shadows: u32,
+    /// Projection-map kind.
+    pub proj_kind: u32,
+    /// Projection targets.
+    pub proj_count: u32,
+    /// Position (spot, point) or centre of the emitting disc (beam).
+    pub position: [f32; 3],
+    /// Power in W.
+    pub power: f32,
+    /// Unit axis (spot, beam).
+    pub axis: [f32; 3],
+    /// cos of the spot's half-angle.
+    pub cos_max: f32,
+    /// First basis vector around the axis.
+    pub tangent: [f32; 3],
+    /// Beam radius.
+    pub radius: f32,
+    /// Second basis vector around the axis.
+    pub bitangent: [f32; 3],
+    /// Projection weight of a sample covered once.
+    pub proj_scale: f32,
+    /// First target in the geometry buffer.
+    pub proj_first: u32,
+    /// First CDF entry in the tables buffer.
+    pub proj_cdf: u32,
+    /// Padding.
+    pub _pad: [u32; 2],
+}
+const _: () = assert!(core::mem::size_of::<GpuLight>() == 96);
+
+/// A spectral band.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuBand {
+    /// Linear RGB weight C_i.
+    pub weight: [f32; 3],
+    /// Wavelength the band is traced at.
+    pub lambda_nm: f32,
+    /// Interval start.
+    pub lo_nm: f32,
+    /// Interval end.
+    pub hi_nm: f32,
+    /// Largest |weight| channel (the band's share of a pixel).
+    pub max_weight: f32,
+    /// Padding.
+    pub _pad: f32,
+}
+const _: () = assert!(core::mem::size_of::<GpuBand>() == 32);
+
+/// What one workgroup of the photon pass did, summed over chunks; the host
+/// adds the workgroups up in u64/f64 for [`prismatic_core::TraceStats`].
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct Tally {
+    /// Emitted, paths, segments, specular paths, stored.
+    pub counts: [u32; 5],
+    /// Padding.
+    pub _pad0: [u32; 3],
+    /// Flux emitted, stored, escaped, direct, depth limited.
+    pub flux: [f32; 5],
+    /// Padding.
+    pub _pad1: [u32; 3],
+}
+const _: () = assert!(core::mem::size_of::<Tally>() == 64);
+
+/// The settings of one prefix-sum level.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct ScanParams {
+    /// Elements to scan.
+    pub n: u32,
+    /// Padding (uniform buffers are 16-byte granular).
+    pub _pad0: u32,
+    /// Padding.
+    pub _pad1: u32,
+    /// Padding.
+    pub _pad2: u32,
+}
+const _: () = assert!(core::mem::size_of::<ScanParams>() == 16);

@@ -1,0 +1,206 @@
+//! Bind-group layouts and compute pipelines of every stage, compiled once
+//! per backend (the render pipeline once per view-ray stack size, the
+//! texture copy once per texel format).
+
+use crate::shaders::{self, WINDOWS};
+use std::collections::HashMap;
+
+/// What a binding holds.
+#[derive(Clone, Copy)]
+enum Slot {
+    Uniform,
+    Read,
+    ReadWrite,
+    Texture(wgpu::TextureFormat),
+}
+
+fn layout(device: &wgpu::Device, label: &str, slots: &[Slot]) -> wgpu::BindGroupLayout {
+    let entries: Vec<wgpu::BindGroupLayoutEntry> = slots
+        .iter()
+        .enumerate()
+        .map(|(i, slot)| wgpu::BindGroupLayoutEntry {
+            binding: i as u32,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: match *slot {
+                Slot::Uniform => wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                Slot::Read | Slot::ReadWrite => wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { read_only: matches!(slot, Slot::Read) },
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                Slot::Texture(format) => wgpu::BindingType::StorageTexture {
+                    access: wgpu::StorageTextureAccess::WriteOnly,
+                    format,
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                },
+            },
+            count: None,
+        })
+        .collect();
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries })
+}
+
+fn with_windows(mut slots: Vec<Slot>, slot: Slot) -> Vec<Slot> {
+    slots.extend((0..WINDOWS).map(|_| slot));
+    slots
+}
+
+fn pipeline(
+    device: &wgpu::Device,
+    label: &str,
+    source: &str,
+    entry: &str,
+    layouts: &[&wgpu::BindGroupLayout],
+) -> wgpu::ComputePipeline {
+    let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+        label: Some(label),
+        source: wgpu::ShaderSource::Wgsl(source.into()),
+    });
+    let groups: Vec<Option<&wgpu::BindGroupLayout>> = layouts.iter().map(|l| Some(*l)).collect();
+    let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+        label: Some(label),
+        bind_group_layouts: &groups,
+        immediate_size: 0,
+    });
+    device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+        label: Some(label),
+        layout: Some(&layout),
+        module: &module,
+        entry_point: Some(entry),
+        compilation_options: Default::default(),
+        cache: None,
+    })
+}
+
+/// Every layout and pipeline of the backend.
+pub struct Pipelines {
+    /// Group 0 of trace and render: params and the scene's six buffers.
+    pub scene_layout: wgpu::BindGroupLayout,
+    /// Group 1 of trace: scratch photons, counts, tallies.
+    pub trace_layout: wgpu::BindGroupLayout,
+    /// Compaction: params, scratch, counts, offsets, cursor, chunk total, map windows.
+    pub compact_layout: wgpu::BindGroupLayout,
+    /// Prefix sum: its params, data, block sums.
+    pub scan_layout: wgpu::BindGroupLayout,
+    /// Grid: params, cells, cursor, map windows, sorted windows.
+    pub grid_layout: wgpu::BindGroupLayout,
+    /// Group 1 of render: cells, pixels, sorted windows.
+    pub render_layout: wgpu::BindGroupLayout,
+    /// Emit + trace.
+    pub trace: wgpu::ComputePipeline,
+    /// Compaction scatter.
+    pub compact: wgpu::ComputePipeline,
+    /// Cursor advance after a chunk.
+    pub advance: wgpu::ComputePipeline,
+    /// Per-block scan.
+    pub scan_blocks: wgpu::ComputePipeline,
+    /// Block offsets added back.
+    pub scan_add: wgpu::ComputePipeline,
+    /// Photons per bucket.
+    pub grid_count: wgpu::ComputePipeline,
+    /// Photons into bucket order.
+    pub grid_scatter: wgpu::ComputePipeline,
+    render: HashMap<u32, wgpu::ComputePipeline>,
+    texture: HashMap<wgpu::TextureFormat, (wgpu::BindGroupLayout, wgpu::ComputePipeline)>,
+}
+
+impl Pipelines {
+    /// Compiles every stage's pipeline.
+    pub fn new(device: &wgpu::Device) -> Self {
+        use Slot::*;
+        let scene_layout = layout(device, "prismatic scene", &[Uniform, Read, Read, Read, Read, Read, Read]);
+        let trace_layout = layout(device, "prismatic trace", &[ReadWrite, ReadWrite, ReadWrite]);
+        let compact_layout = layout(
+            device,
+            "prismatic compact",
+            &with_windows(vec![Uniform, Read, Read, Read, ReadWrite, Read], ReadWrite),
+        );
+        let scan_layout = layout(device, "prismatic scan", &[Uniform, ReadWrite, ReadWrite]);
+        let grid_layout = layout(
+            device,
+            "prismatic grid",
+            &with_windows(with_windows(vec![Uniform, ReadWrite, ReadWrite], Read), ReadWrite),
+        );
+        let render_layout = layout(device, "prismatic render", &with_windows(vec![Read, ReadWrite], Read));
+        let trace_src = shaders::trace();
+        let compact_src = shaders::compact();
+        let scan_src = shaders::scan();
+        let grid_src = shaders::grid();
+        Pipelines {
+            trace: pipeline(device, "prismatic trace", &trace_src, "main", &[&scene_layout, &trace_layout]),
+            compact: pipeline(device, "prismatic compact", &compact_src, "scatter", &[&compact_layout]),
+            advance: pipeline(device, "prismatic advance", &compact_src, "advance", &[&compact_layout]),
+            scan_blocks: pipeline(device, "prismatic scan", &scan_src, "scan_blocks", &[&scan_layout]),
+            scan_add: pipeline(device, "prismatic scan add", &scan_src, "add_sums", &[&scan_layout]),
+            grid_count: pipeline(device, "prismatic grid count", &grid_src, "count", &[&grid_layout]),
+            grid_scatter: pipeline(device, "prismatic grid scatter", &grid_src, "scatter", &[&grid_layout]),
+            scene_layout,
+            trace_layout,
+            compact_layout,
+            scan_layout,
+            grid_layout,
+            render_layout,
+            render: HashMap::new(),
+            texture: HashMap::new(),
+        }
+    }
+
+    /// The render pipeline for a view-ray stack of `stack` entries.
+    pub fn render(&mut self, device: &wgpu::Device, stack: u32) -> &wgpu::ComputePipeline {
+        let Pipelines { render, scene_layout, render_layout, .. } = self;
+        render.entry(stack).or_insert_with(|| {
+            pipeline(device, "prismatic render", &shaders::render(stack), "main", &[scene_layout, render_layout])
+        })
+    }
+
+    /// The copy into a storage texture of `format`, with its layout; `None`
+    /// for formats the copy does not write.
+    pub fn texture_copy(
+        &mut self,
+        device: &wgpu::Device,
+        format: wgpu::TextureFormat,
+    ) -> Option<&(wgpu::BindGroupLayout, wgpu::ComputePipeline)> {
+        let name = match format {
+            wgpu::TextureFormat::Rgba32Float => "rgba32float",
+            wgpu::TextureFormat::Rgba16Float => "rgba16float",
+            wgpu::TextureFormat::Rgba8Unorm => "rgba8unorm",
+            _ => return None,
+        };
+        Some(self.texture.entry(format).or_insert_with(|| {
+            use Slot::*;
+            let layout = layout(device, "prismatic to texture", &[Uniform, Read, Texture(format)]);
+            let p = pipeline(device, "prismatic to texture", &shaders::to_texture(name), "main", &[&layout]);
+            (layout, p)
+        }))
+    }
+}
+
+/// Records one compute pass of `pipeline` over `invocations` invocations of
+/// `group_size` (workgroups beyond the per-dimension limit wrap into y).
+pub fn dispatch(
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::ComputePipeline,
+    groups: &[&wgpu::BindGroup],
+    invocations: u64,
+    group_size: u32,
+) {
+    if invocations == 0 {
+        return;
+    }
+    let workgroups = invocations.div_ceil(u64::from(group_size));
+    let x = workgroups.min(MAX_WORKGROUPS) as u32;
+    let y = workgroups.div_ceil(MAX_WORKGROUPS) as u32;
+    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: None, timestamp_writes: None });
+    pass.set_pipeline(pipeline);
+    for (i, g) in groups.iter().enumerate() {
+        pass.set_bind_group(i as u32, Some(*g), &[]);
+    }
+    pass.dispatch_workgroups(x, y, 1);
+}
+
+/// Workgroups per dispatch dimension (WebGPU's guaranteed minimum).
+pub const MAX_WORKGROUPS: u64 = 65_535;

@@ -1,0 +1,282 @@
+//! A prepared scene encoded into the device buffers of bind group 0:
+//! objects, surfaces, lights, bands, geometry records and float tables.
+//! Values that the reference derives once (normalised axes, cone cosines,
+//! bases, CDFs, per-band indices) are computed here with the core's own
+//! functions, so the shaders start from the same bits.
+
+use crate::layout::{GpuBand, GpuLight, GpuObject, GpuSurface, Params};
+use crate::shaders::kind::*;
+use bytemuck::Pod;
+use glam::Vec3;
+use prismatic_core::PreparedScene;
+use prismatic_core::camera::PinholeCamera;
+use prismatic_core::geometry::{Primitive, basis};
+use prismatic_core::math::{cos, radians};
+use prismatic_core::prepared::Surface;
+use prismatic_core::projection::Targets;
+use prismatic_core::scene::{Estimator, Light, WavelengthSampling};
+use prismatic_core::trace::photon_flux;
+use wgpu::util::DeviceExt;
+
+/// The scene's records, ready to upload.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct EncodedScene {
+    /// Settings (chunk, grid and pixel fields are filled in per dispatch).
+    pub params: Params,
+    /// One per object.
+    pub objects: Vec<GpuObject>,
+    /// One per object.
+    pub surfaces: Vec<GpuSurface>,
+    /// One per light.
+    pub lights: Vec<GpuLight>,
+    /// One per band.
+    pub bands: Vec<GpuBand>,
+    /// Convex faces, triangles and projection targets.
+    pub geometry: Vec<[f32; 4]>,
+    /// Per-band indices, n(λ) curves, CDFs.
+    pub tables: Vec<f32>,
+}
+
+fn v3(v: Vec3) -> [f32; 3] {
+    v.to_array()
+}
+
+fn v4(v: Vec3, w: f32) -> [f32; 4] {
+    [v.x, v.y, v.z, w]
+}
+
+impl EncodedScene {
+    /// Encodes `scene`.
+    pub fn new(scene: &PreparedScene) -> Self {
+        let mut e = EncodedScene::default();
+        for prim in &scene.primitives {
+            let o = e.object(prim);
+            e.objects.push(o);
+        }
+        for surface in &scene.surfaces {
+            let s = e.surface(surface);
+            e.surfaces.push(s);
+        }
+        let light_cdf = e.tables.len() as u32;
+        e.tables.extend_from_slice(&scene.light_cdf);
+        for (i, light) in scene.scene.lights.iter().enumerate() {
+            let shadows = scene.plan.shadows.get(i).is_some_and(|s| s.on);
+            let l = e.light(light, scene.plan.projections.get(i).and_then(Option::as_ref), shadows);
+            e.lights.push(l);
+        }
+        for band in scene.bands.bands() {
+            e.bands.push(GpuBand {
+                weight: v3(band.weight),
+                lambda_nm: band.lambda_nm,
+                lo_nm: band.interval_nm.0,
+                hi_nm: band.interval_nm.1,
+                max_weight: band.weight.abs().max_element(),
+                _pad: 0.0,
+            });
+        }
+        let r = &scene.scene.render;
+        let camera = PinholeCamera::new(&scene.scene.camera, r.width, r.height);
+        e.params = Params {
+            seed: r.seed,
+            band_count: scene.bands.len() as u32,
+            max_depth: scene.plan.max_depth,
+            wavelengths: match r.wavelengths {
+                WavelengthSampling::Split => 0,
+                WavelengthSampling::RandomBand => 1,
+                WavelengthSampling::Continuous => 2,
+            },
+            object_count: e.objects.len() as u32,
+            light_count: e.lights.len() as u32,
+            light_cdf,
+            estimator: match r.estimator {
+                Estimator::Paper => 0,
+                Estimator::Density => 1,
+            },
+            width: r.width,
+            height: r.height,
+            flux: photon_flux(scene),
+            radius: r.radius,
+            inv_cell: 1.0 / (2.0 * r.radius),
+            exposure: r.exposure,
+            ambient: [r.ambient; 3],
+            background: v3(r.background),
+            cam_origin: v3(camera.origin),
+            cam_right: v3(camera.right),
+            cam_down: v3(camera.down),
+            cam_corner: v3(camera.corner),
+            ..Params::default()
+        };
+        e
+    }
+
+    fn object(&mut self, prim: &Primitive) -> GpuObject {
+        let first = self.geometry.len() as u32;
+        let o = GpuObject { first, ..GpuObject::default() };
+        match prim {
+            Primitive::Sphere { center, radius } => GpuObject { kind: 0, a: v3(*center), ra: *radius, ..o },
+            Primitive::Plane { point, normal } => GpuObject { kind: 1, a: v3(*point), n: v3(*normal), ..o },
+            Primitive::Disk { center, normal, radius2, inner_radius2 } => {
+                GpuObject { kind: 2, a: v3(*center), n: v3(*normal), ra: *radius2, rb: *inner_radius2, ..o }
+            }
+            Primitive::Convex { faces } => {
+                self.geometry.extend(faces.iter().map(|f| v4(f.normal, f.offset)));
+                GpuObject { kind: 3, count: faces.len() as u32, ..o }
+            }
+            Primitive::Mesh { triangles, bound_center, bound_radius } => {
+                for t in triangles {
+                    self.geometry.extend([v4(t.v0, 0.0), v4(t.e1, 0.0), v4(t.e2, 0.0), v4(t.normal, 0.0)]);
+                }
+                GpuObject { kind: 4, count: triangles.len() as u32, a: v3(*bound_center), ra: *bound_radius, ..o }
+            }
+        }
+    }
+
+    fn surface(&mut self, surface: &Surface) -> GpuSurface {
+        match surface {
+            Surface::Diffuse { albedo, checker } => {
+                let mut s = GpuSurface { kind: SURFACE_DIFFUSE, albedo: v3(*albedo), ..GpuSurface::default() };
+                if let Some(c) = checker {
+                    s.flags |= SURFACE_HAS_CHECKER;
+                    s.checker_albedo = v3(c.albedo);
+                    s.checker_size = c.size;
+                    s.checker_offset = v3(c.offset);
+                }
+                s
+            }
+            Surface::Mirror => GpuSurface { kind: SURFACE_MIRROR, ..GpuSurface::default() },
+            Surface::Dielectric(g) => {
+                let mut s = GpuSurface {
+                    kind: SURFACE_DIELECTRIC,
+                    ior_first: self.tables.len() as u32,
+                    white_ior: g.white_ior,
+                    ..GpuSurface::default()
+                };
+                self.tables.extend_from_slice(&g.band_ior);
+                if g.splits_photons {
+                    s.flags |= SURFACE_SPLITS_PHOTONS;
+                }
+                if g.splits_view_rays {
+                    s.flags |= SURFACE_SPLITS_VIEW_RAYS;
+                }
+                if let Some(curve) = &g.spectrum {
+                    s.flags |= SURFACE_HAS_CURVE;
+                    s.curve_first = self.tables.len() as u32;
+                    s.curve_len = curve.samples().len() as u32;
+                    self.tables.extend_from_slice(curve.samples());
+                }
+                s
+            }
+        }
+    }
+
+    fn light(
+        &mut self,
+        light: &Light,
+        projection: Option<&prismatic_core::projection::Projection>,
+        shadows: bool,
+    ) -> GpuLight {
+        let mut l = GpuLight { shadows: u32::from(shadows), power: light.power(), ..GpuLight::default() };
+        match light {
+            Light::Spot { position, direction, cone_deg, .. } => {
+                let axis = direction.normalize();
+                l.kind = LIGHT_SPOT;
+                l.position = v3(*position);
+                l.axis = v3(axis);
+                l.cos_max = cos(radians(*cone_deg));
+            }
+            Light::Point { position, .. } => {
+                l.kind = LIGHT_POINT;
+                l.position = v3(*position);
+            }
+            Light::Beam { position, direction, radius, .. } => {
+                let axis = direction.normalize();
+                let (t, b) = basis(axis);
+                l.kind = LIGHT_BEAM;
+                l.position = v3(*position);
+                l.axis = v3(axis);
+                l.tangent = v3(t);
+                l.bitangent = v3(b);
+                l.radius = *radius;
+            }
+        }
+        if let Some(p) = projection {
+            l.proj_first = self.geometry.len() as u32;
+            match &p.targets {
+                Targets::Cones { axis, cos_max } => {
+                    l.proj_kind = PROJECTION_CONES;
+                    self.geometry.extend(axis.iter().zip(cos_max).map(|(a, c)| v4(*a, *c)));
+                }
+                Targets::Discs { center, radius } => {
+                    l.proj_kind = PROJECTION_DISCS;
+                    self.geometry.extend(center.iter().zip(radius).map(|(c, r)| v4(*c, *r)));
+                }
+            }
+            l.proj_count = p.cdf.len() as u32;
+            l.proj_cdf = self.tables.len() as u32;
+            l.proj_scale = p.scale;
+            self.tables.extend_from_slice(&p.cdf);
+        }
+        l
+    }
+}
+
+/// The scene's buffers on the device and their bind group (group 0 of the
+/// trace and render pipelines).
+pub struct SceneBuffers {
+    /// The host copy of the settings, updated per dispatch.
+    pub params: Params,
+    /// The uniform buffer behind `params`.
+    pub params_buffer: wgpu::Buffer,
+    /// Bind group 0.
+    pub bind_group: wgpu::BindGroup,
+    /// Keeps the storage buffers alive.
+    _storage: Vec<wgpu::Buffer>,
+}
+
+/// A storage buffer holding `items` (at least one element: bindings cannot be empty).
+pub fn storage_init<T: Pod + Default>(device: &wgpu::Device, label: &str, items: &[T]) -> wgpu::Buffer {
+    let fallback = [T::default()];
+    let items = if items.is_empty() { &fallback[..] } else { items };
+    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+        label: Some(label),
+        contents: bytemuck::cast_slice(items),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+    })
+}
+
+impl SceneBuffers {
+    /// Uploads `encoded` and binds it with `layout`.
+    pub fn upload(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, encoded: &EncodedScene) -> Self {
+        let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("prismatic params"),
+            contents: bytemuck::bytes_of(&encoded.params),
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        });
+        let storage = vec![
+            storage_init(device, "prismatic objects", &encoded.objects),
+            storage_init(device, "prismatic surfaces", &encoded.surfaces),
+            storage_init(device, "prismatic lights", &encoded.lights),
+            storage_init(device, "prismatic bands", &encoded.bands),
+            storage_init(device, "prismatic geometry", &encoded.geometry),
+            storage_init(device, "prismatic tables", &encoded.tables),
+        ];
+        let mut entries = vec![wgpu::BindGroupEntry { binding: 0, resource: params_buffer.as_entire_binding() }];
+        entries.extend(
+            storage
+                .iter()
+                .enumerate()
+                .map(|(i, b)| wgpu::BindGroupEntry { binding: i as u32 + 1, resource: b.as_entire_binding() }),
+        );
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("prismatic scene"),
+            layout,
+            entries: &entries,
+        });
+        SceneBuffers { params: encoded.params, params_buffer, bind_group, _storage: storage }
+    }
+
+    /// Writes the host copy of the settings to the device (visible to the next submit).
+    pub fn write_params(&self, queue: &wgpu::Queue) {
+        queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.params));
+    }
+}

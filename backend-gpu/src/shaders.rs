@@ -1,0 +1,202 @@
+//! The WGSL sources of every pipeline, assembled from the files under
+//! `shaders/` behind a prelude of constants written from the Rust ones
+//! (tolerances, RNG dimensions, band and workgroup sizes), so that the two
+//! languages cannot drift apart.
+
+use prismatic_core::bands::VISIBLE_NM;
+use prismatic_core::math::{COS_COEFFS, SIN_COEFFS};
+use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::rng::dim;
+use prismatic_core::scene::MAX_DEPTH;
+use prismatic_core::tolerance::{
+    BARYCENTRIC_EPS, MIN_VIEW_WEIGHT, SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL, SURFACE_SKIN_FACTOR,
+};
+use std::fmt::Write as _;
+
+/// Invocations per workgroup of the per-photon and per-pixel passes.
+pub const WORKGROUP_SIZE: u32 = 64;
+/// Invocations per workgroup of the prefix sum.
+pub const SCAN_THREADS: u32 = 256;
+/// Elements each prefix-sum invocation scans.
+pub const SCAN_PER_THREAD: u32 = 4;
+/// Elements per prefix-sum workgroup.
+pub const SCAN_BLOCK: u32 = SCAN_THREADS * SCAN_PER_THREAD;
+/// Bindings a photon array is split over (each at most one binding's size).
+pub const WINDOWS: u32 = 4;
+
+/// Surface and light kinds and flags, as `GpuSurface` and `GpuLight` encode them.
+pub mod kind {
+    /// Lambertian surface.
+    pub const SURFACE_DIFFUSE: u32 = 0;
+    /// Mirror.
+    pub const SURFACE_MIRROR: u32 = 1;
+    /// Dielectric.
+    pub const SURFACE_DIELECTRIC: u32 = 2;
+    /// White photons split into bands here.
+    pub const SURFACE_SPLITS_PHOTONS: u32 = 1;
+    /// White view rays split into bands here.
+    pub const SURFACE_SPLITS_VIEW_RAYS: u32 = 2;
+    /// The diffuse surface has a checker.
+    pub const SURFACE_HAS_CHECKER: u32 = 4;
+    /// The dielectric has an n(λ) curve.
+    pub const SURFACE_HAS_CURVE: u32 = 8;
+    /// Spot light.
+    pub const LIGHT_SPOT: u32 = 0;
+    /// Point light.
+    pub const LIGHT_POINT: u32 = 1;
+    /// Beam.
+    pub const LIGHT_BEAM: u32 = 2;
+    /// No projection map.
+    pub const PROJECTION_NONE: u32 = 0;
+    /// Projection onto cones of directions.
+    pub const PROJECTION_CONES: u32 = 1;
+    /// Projection onto discs of the beam's plane.
+    pub const PROJECTION_DISCS: u32 = 2;
+}
+
+/// The view-ray stack of the render pass: two pending entries per depth
+/// (the other Fresnel branch and the rest of a band split) plus the root.
+pub fn stack_size(max_depth: u32) -> u32 {
+    (2 * max_depth.min(MAX_DEPTH) + 4).next_power_of_two()
+}
+
+fn prelude(stack: u32) -> String {
+    let mut s = String::from("// Written by prismatic_gpu::shaders from the Rust constants.\n");
+    let mut u = |name: &str, v: u32| writeln!(s, "const {name}: u32 = {v}u;").unwrap();
+    u("WORKGROUP_SIZE", WORKGROUP_SIZE);
+    u("SCAN_THREADS", SCAN_THREADS);
+    u("SCAN_PER_THREAD", SCAN_PER_THREAD);
+    u("SCAN_BLOCK", SCAN_BLOCK);
+    u("STACK_SIZE", stack);
+    u("WHITE_BAND", u32::from(WHITE_BAND));
+    u("DIM_LIGHT", dim::LIGHT);
+    u("DIM_DIRECTION", dim::DIRECTION);
+    u("DIM_POSITION", dim::POSITION);
+    u("DIM_TARGET", dim::TARGET);
+    u("DIM_BAND", dim::BAND);
+    u("DIM_WAVELENGTH", dim::WAVELENGTH);
+    u("DIM_PATH", dim::PATH);
+    u("DIM_PER_BAND", dim::PER_BAND);
+    u("WAVELENGTHS_SPLIT", 0);
+    u("WAVELENGTHS_RANDOM_BAND", 1);
+    u("WAVELENGTHS_CONTINUOUS", 2);
+    u("ESTIMATOR_PAPER", 0);
+    u("ESTIMATOR_DENSITY", 1);
+    u("SURFACE_DIFFUSE", kind::SURFACE_DIFFUSE);
+    u("SURFACE_MIRROR", kind::SURFACE_MIRROR);
+    u("SURFACE_DIELECTRIC", kind::SURFACE_DIELECTRIC);
+    u("SURFACE_SPLITS_PHOTONS", kind::SURFACE_SPLITS_PHOTONS);
+    u("SURFACE_SPLITS_VIEW_RAYS", kind::SURFACE_SPLITS_VIEW_RAYS);
+    u("SURFACE_HAS_CHECKER", kind::SURFACE_HAS_CHECKER);
+    u("SURFACE_HAS_CURVE", kind::SURFACE_HAS_CURVE);
+    u("LIGHT_SPOT", kind::LIGHT_SPOT);
+    u("LIGHT_POINT", kind::LIGHT_POINT);
+    u("LIGHT_BEAM", kind::LIGHT_BEAM);
+    u("PROJECTION_NONE", kind::PROJECTION_NONE);
+    u("PROJECTION_CONES", kind::PROJECTION_CONES);
+    u("PROJECTION_DISCS", kind::PROJECTION_DISCS);
+    let mut f = |name: &str, v: f32| writeln!(s, "const {name}: f32 = {v:e};").unwrap();
+    f("PI", std::f32::consts::PI);
+    f("BIG", f32::MAX);
+    f("SURFACE_OFFSET_REL", SURFACE_OFFSET_REL);
+    f("SURFACE_OFFSET_ABS", SURFACE_OFFSET_ABS);
+    f("SURFACE_SKIN_FACTOR", SURFACE_SKIN_FACTOR);
+    f("BARYCENTRIC_EPS", BARYCENTRIC_EPS);
+    f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);
+    f("VISIBLE_NM_LO", VISIBLE_NM.0);
+    for (i, c) in SIN_COEFFS.iter().enumerate() {
+        f(&format!("SIN_C{i}"), *c);
+    }
+    for (i, c) in COS_COEFFS.iter().enumerate() {
+        f(&format!("COS_C{i}"), *c);
+    }
+    s
+}
+
+/// A photon array split over [`WINDOWS`] bindings `first..first + WINDOWS`
+/// of `group`, with `{name}_load(i)` (and `{name}_store(i, p)` when
+/// writable) over the whole array; `params.window` photons per binding.
+fn photon_windows(name: &str, group: u32, first: u32, writable: bool) -> String {
+    let access = if writable { "read_write" } else { "read" };
+    let mut s = String::new();
+    for w in 0..WINDOWS {
+        writeln!(s, "@group({group}) @binding({}) var<storage, {access}> {name}{w}: array<Photon>;", first + w)
+            .unwrap();
+    }
+    writeln!(
+        s,
+        "fn {name}_load(i: u32) -> Photon {{\n    let w = i / params.window;\n    let k = i - w * params.window;"
+    )
+    .unwrap();
+    for w in 0..WINDOWS - 1 {
+        writeln!(s, "    if w == {w}u {{ return {name}{w}[k]; }}").unwrap();
+    }
+    writeln!(s, "    return {name}{}[k];\n}}", WINDOWS - 1).unwrap();
+    if writable {
+        writeln!(
+            s,
+            "fn {name}_store(i: u32, p: Photon) {{\n    let w = i / params.window;\n    let k = i - w * params.window;"
+        )
+        .unwrap();
+        for w in 0..WINDOWS {
+            writeln!(s, "    if w == {w}u {{ {name}{w}[k] = p; }}").unwrap();
+        }
+        s.push_str("}\n");
+    }
+    s
+}
+
+const COMMON: &str = include_str!("shaders/common.wgsl");
+const SCENE: &str = include_str!("shaders/scene.wgsl");
+
+/// Emit + trace (entry `main`).
+pub fn trace() -> String {
+    [
+        prelude(0),
+        COMMON.into(),
+        SCENE.into(),
+        include_str!("shaders/emit.wgsl").into(),
+        include_str!("shaders/trace.wgsl").into(),
+    ]
+    .concat()
+}
+
+/// Compaction into canonical order (entries `scatter`, `advance`); the map is bindings 6–9.
+pub fn compact() -> String {
+    [prelude(0), COMMON.into(), include_str!("shaders/compact.wgsl").into(), photon_windows("map", 0, 6, true)].concat()
+}
+
+/// Exclusive prefix sum (entries `scan_blocks`, `add_sums`).
+pub fn scan() -> String {
+    [prelude(0), COMMON.into(), include_str!("shaders/scan.wgsl").into()].concat()
+}
+
+/// Grid build (entries `count`, `scatter`); the map is bindings 3–6, the sorted copy 7–10.
+pub fn grid() -> String {
+    [
+        prelude(0),
+        COMMON.into(),
+        include_str!("shaders/grid.wgsl").into(),
+        photon_windows("map", 0, 3, false),
+        photon_windows("sorted", 0, 7, true),
+    ]
+    .concat()
+}
+
+/// Ray tracing + gather (entry `main`) with a view-ray stack of `stack` entries;
+/// the sorted photons are bindings 2–5 of group 1.
+pub fn render(stack: u32) -> String {
+    [
+        prelude(stack),
+        COMMON.into(),
+        SCENE.into(),
+        include_str!("shaders/render.wgsl").into(),
+        photon_windows("sorted", 1, 2, false),
+    ]
+    .concat()
+}
+
+/// Copies a rendered pixel buffer into a storage texture of `format` (a WGSL texel format).
+pub fn to_texture(format: &str) -> String {
+    [prelude(0), COMMON.into(), include_str!("shaders/to_texture.wgsl").replace("TEXEL_FORMAT", format)].concat()
+}

@@ -1,0 +1,289 @@
+// Shared by every pipeline: the structs (twins of `layout.rs`), the
+// counter-based RNG (twin of prismatic_core::rng), float helpers and optics
+// (twins of prismatic_core::{math, optics, geometry::basis}).
+// Constants (WORKGROUP_SIZE, WHITE_BAND, tolerances, RNG dimensions) come
+// from the prelude that `shaders.rs` writes from the Rust constants.
+
+// Twin of prismatic_gpu::layout::Params.
+struct Params {
+    seed: u32,
+    chunk_start: u32,
+    chunk_len: u32,
+    slots: u32,
+    band_count: u32,
+    max_depth: u32,
+    wavelengths: u32,
+    object_count: u32,
+    light_count: u32,
+    light_cdf: u32,
+    estimator: u32,
+    window: u32,
+    width: u32,
+    height: u32,
+    pixel_offset: u32,
+    pixel_count: u32,
+    stored: u32,
+    grid_mask: u32,
+    capacity: u32,
+    _pad0: u32,
+    flux: f32,
+    radius: f32,
+    inv_cell: f32,
+    exposure: f32,
+    ambient: vec3<f32>,
+    _pad1: u32,
+    background: vec3<f32>,
+    _pad2: u32,
+    cam_origin: vec3<f32>,
+    _pad3: u32,
+    cam_right: vec3<f32>,
+    _pad4: u32,
+    cam_down: vec3<f32>,
+    _pad5: u32,
+    cam_corner: vec3<f32>,
+    _pad6: u32,
+}
+
+// Twin of prismatic_core::photon::Photon (band in the low 16 bits of
+// `band_bounces`, bounces in the high 16: the Rust struct's two u16s).
+struct Photon {
+    position: vec3<f32>,
+    flux: f32,
+    direction_oct: vec2<f32>,
+    emission: u32,
+    band_bounces: u32,
+}
+
+// Twin of prismatic_gpu::layout::GpuObject.
+struct GpuObject {
+    kind: u32,
+    first: u32,
+    count: u32,
+    _pad: u32,
+    a: vec3<f32>,
+    ra: f32,
+    n: vec3<f32>,
+    rb: f32,
+}
+
+// Twin of prismatic_gpu::layout::GpuSurface.
+struct GpuSurface {
+    kind: u32,
+    flags: u32,
+    ior_first: u32,
+    curve_first: u32,
+    albedo: vec3<f32>,
+    white_ior: f32,
+    checker_albedo: vec3<f32>,
+    checker_size: f32,
+    checker_offset: vec3<f32>,
+    curve_len: u32,
+}
+
+// Twin of prismatic_gpu::layout::GpuLight.
+struct GpuLight {
+    kind: u32,
+    shadows: u32,
+    proj_kind: u32,
+    proj_count: u32,
+    position: vec3<f32>,
+    power: f32,
+    axis: vec3<f32>,
+    cos_max: f32,
+    tangent: vec3<f32>,
+    radius: f32,
+    bitangent: vec3<f32>,
+    proj_scale: f32,
+    proj_first: u32,
+    proj_cdf: u32,
+    _pad: vec2<u32>,
+}
+
+// Twin of prismatic_gpu::layout::GpuBand.
+struct GpuBand {
+    weight: vec3<f32>,
+    lambda_nm: f32,
+    lo_nm: f32,
+    hi_nm: f32,
+    max_weight: f32,
+    _pad: f32,
+}
+
+// Twin of prismatic_gpu::layout::Tally.
+struct Tally {
+    counts: array<u32, 5>,
+    _pad0: array<u32, 3>,
+    flux: array<f32, 5>,
+    _pad1: array<u32, 3>,
+}
+
+// Twin of prismatic_gpu::layout::ScanParams.
+struct ScanParams {
+    n: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+// ---- rng.rs ----
+
+fn pcg_hash(input: u32) -> u32 {
+    let state = input * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+fn random_u32(seed: u32, index: u32, dimension: u32) -> u32 {
+    return pcg_hash(pcg_hash(pcg_hash(seed) ^ index) + dimension);
+}
+
+fn random_f32(seed: u32, index: u32, dimension: u32) -> f32 {
+    return f32(random_u32(seed, index, dimension) >> 8u) * (1.0 / 16777216.0);
+}
+
+// rng::dim::scatter
+fn scatter_dim(band: u32, bounce: u32) -> u32 {
+    return DIM_PATH + ((band + 1u) % 65536u) * DIM_PER_BAND + bounce;
+}
+
+// ---- math.rs ----
+
+// glam's normalize: v · (1 / |v|).
+fn nrm(v: vec3<f32>) -> vec3<f32> {
+    return v * (1.0 / sqrt(dot(v, v)));
+}
+
+// f32::copysign (the sign bit of `s`, also for -0.0).
+fn copysign(x: f32, s: f32) -> f32 {
+    return bitcast<f32>((bitcast<u32>(x) & 0x7fffffffu) | (bitcast<u32>(s) & 0x80000000u));
+}
+
+fn max_abs(v: vec3<f32>) -> f32 {
+    return max(max(abs(v.x), abs(v.y)), abs(v.z));
+}
+
+// math::sin_cos_turns: (sin 2πu, cos 2πu) from + − × floor only.
+fn sin_cos_turns(u: f32) -> vec2<f32> {
+    let h = (u - floor(u + 0.5)) * PI;
+    let h2 = h * h;
+    let s = h * (SIN_C0 + h2 * (SIN_C1 + h2 * (SIN_C2 + h2 * (SIN_C3 + h2 * (SIN_C4 + h2 * SIN_C5)))));
+    let c = COS_C0 + h2 * (COS_C1 + h2 * (COS_C2 + h2 * (COS_C3 + h2 * (COS_C4 + h2 * (COS_C5 + h2 * COS_C6)))));
+    return vec2<f32>(2.0 * s * c, 1.0 - 2.0 * s * s);
+}
+
+struct Basis {
+    t: vec3<f32>,
+    b: vec3<f32>,
+}
+
+// geometry::basis (Duff et al. 2017).
+fn basis(n: vec3<f32>) -> Basis {
+    let sign = copysign(1.0, n.z);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    return Basis(
+        vec3<f32>(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        vec3<f32>(b, sign + n.y * n.y * a, -n.y),
+    );
+}
+
+// projection::cone_direction
+fn cone_direction(axis: vec3<f32>, cos_t: f32, u: f32) -> vec3<f32> {
+    let sin_t = sqrt(max(1.0 - cos_t * cos_t, 0.0));
+    let sc = sin_cos_turns(u);
+    let tb = basis(axis);
+    return nrm(tb.t * (sin_t * sc.y) + tb.b * (sin_t * sc.x) + axis * cos_t);
+}
+
+// photon::oct_encode
+fn sign_not_zero(x: f32) -> f32 {
+    return select(-1.0, 1.0, x >= 0.0);
+}
+
+fn oct_encode(v: vec3<f32>) -> vec2<f32> {
+    let n = v / (abs(v.x) + abs(v.y) + abs(v.z));
+    if n.z >= 0.0 {
+        return n.xy;
+    }
+    return vec2<f32>((1.0 - abs(n.y)) * sign_not_zero(n.x), (1.0 - abs(n.x)) * sign_not_zero(n.y));
+}
+
+fn oct_decode(e: vec2<f32>) -> vec3<f32> {
+    let z = 1.0 - abs(e.x) - abs(e.y);
+    var xy = e;
+    if z < 0.0 {
+        xy = vec2<f32>((1.0 - abs(e.y)) * sign_not_zero(e.x), (1.0 - abs(e.x)) * sign_not_zero(e.y));
+    }
+    return nrm(vec3<f32>(xy, z));
+}
+
+// ---- optics.rs ----
+
+fn reflect_dir(d: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
+    return d - n * (2.0 * dot(d, n));
+}
+
+fn cos2_transmitted(cos_i: f32, eta: f32) -> f32 {
+    let eta2 = eta * eta;
+    return (1.0 - eta2) + eta2 * cos_i * cos_i;
+}
+
+fn fresnel(cos_in: f32, n1: f32, n2: f32) -> f32 {
+    if n1 == n2 {
+        return 0.0;
+    }
+    let cos_i = clamp(cos_in, 0.0, 1.0);
+    let cos2_t = cos2_transmitted(cos_i, n1 / n2);
+    if cos2_t <= 0.0 {
+        return 1.0;
+    }
+    let cos_t = sqrt(cos2_t);
+    let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+    let rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i);
+    return clamp(0.5 * (rs * rs + rp * rp), 0.0, 1.0);
+}
+
+// optics::refract; w = 0 on total internal reflection.
+fn refract_dir(d: vec3<f32>, n: vec3<f32>, n1: f32, n2: f32) -> vec4<f32> {
+    let eta = n1 / n2;
+    let cos_i = clamp(-dot(d, n), 0.0, 1.0);
+    let cos2_t = cos2_transmitted(cos_i, eta);
+    if cos2_t < 0.0 {
+        return vec4<f32>(0.0);
+    }
+    let cos_t = sqrt(cos2_t);
+    return vec4<f32>(nrm(d * eta + n * (eta * cos_i - cos_t)), 1.0);
+}
+
+// optics::interface: the normal facing the ray and (n_incident, n_transmitted).
+struct Interface {
+    n: vec3<f32>,
+    n1: f32,
+    n2: f32,
+}
+
+fn facing_interface(d: vec3<f32>, outward: vec3<f32>, ior: f32) -> Interface {
+    if dot(d, outward) < 0.0 {
+        return Interface(outward, 1.0, ior);
+    }
+    return Interface(-outward, ior, 1.0);
+}
+
+// tolerance::surface_offset and prepared::offset_origin
+fn surface_offset(p: vec3<f32>) -> f32 {
+    return SURFACE_OFFSET_ABS + SURFACE_OFFSET_REL * max_abs(p);
+}
+
+fn offset_origin(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
+    let eps = surface_offset(p);
+    if dot(dir, n) >= 0.0 {
+        return p + n * eps;
+    }
+    return p - n * eps;
+}
+
+// Flattens a 2D dispatch (workgroups beyond the per-dimension limit wrap
+// into y) into one invocation index.
+fn flat_index(wid: vec3<u32>, nwg: vec3<u32>, lid: u32) -> u32 {
+    return (wid.y * nwg.x + wid.x) * WORKGROUP_SIZE + lid;
+}

@@ -1,0 +1,94 @@
+// Photon emission: twin of prismatic_core::emit and
+// prismatic_core::projection::Projection::sample.
+
+struct Emitted {
+    origin: vec3<f32>,
+    direction: vec3<f32>,
+    light: u32,
+    weight: f32,
+}
+
+fn pick(first: u32, count: u32, u: f32) -> u32 {
+    for (var i = 0u; i < count; i++) {
+        if u < tables[first + i] {
+            return i;
+        }
+    }
+    return count - 1u;
+}
+
+fn projected(l: GpuLight, u_target: f32, u1: f32, u2: f32) -> Emitted {
+    if l.proj_count == 0u {
+        return Emitted(vec3<f32>(0.0), vec3<f32>(0.0, 0.0, 1.0), 0u, 0.0);
+    }
+    let j = pick(l.proj_cdf, l.proj_count, u_target);
+    let target_ = geometry[l.proj_first + j];
+    if l.proj_kind == PROJECTION_CONES {
+        let cos_t = 1.0 - u1 * (1.0 - target_.w);
+        let d = cone_direction(target_.xyz, cos_t, u2);
+        var inside = true;
+        if l.kind == LIGHT_SPOT {
+            inside = dot(d, l.axis) >= l.cos_max;
+        } else if l.kind == LIGHT_BEAM {
+            inside = false;
+        }
+        var covering = 0u;
+        for (var i = 0u; i < l.proj_count; i++) {
+            let c = geometry[l.proj_first + i];
+            if dot(d, c.xyz) >= c.w {
+                covering++;
+            }
+        }
+        return Emitted(l.position, d, 0u, select(0.0, l.proj_scale / f32(max(covering, 1u)), inside));
+    }
+    // Discs on the beam's emitting plane.
+    let r = target_.w * sqrt(u1);
+    let sc = sin_cos_turns(u2);
+    let origin = target_.xyz + (l.tangent * sc.y + l.bitangent * sc.x) * r;
+    let off = origin - l.position;
+    let inside = dot(off, off) <= l.radius * l.radius;
+    var covering = 0u;
+    for (var i = 0u; i < l.proj_count; i++) {
+        let c = geometry[l.proj_first + i];
+        let e = origin - c.xyz;
+        if dot(e, e) <= c.w * c.w {
+            covering++;
+        }
+    }
+    return Emitted(origin, l.axis, 0u, select(0.0, l.proj_scale / f32(max(covering, 1u)), inside));
+}
+
+// emit::emit: white photon `index` of the pass.
+fn emit(seed: u32, index: u32) -> Emitted {
+    let u = random_f32(seed, index, DIM_LIGHT);
+    let light = pick(params.light_cdf, params.light_count, u);
+    let l = lights[light];
+    let u1 = random_f32(seed, index, DIM_DIRECTION);
+    let u2 = random_f32(seed, index, DIM_DIRECTION + 1u);
+    if l.proj_kind != PROJECTION_NONE {
+        let u_target = random_f32(seed, index, DIM_TARGET);
+        var v1 = u1;
+        var v2 = u2;
+        if l.kind == LIGHT_BEAM {
+            v1 = random_f32(seed, index, DIM_POSITION);
+            v2 = random_f32(seed, index, DIM_POSITION + 1u);
+        }
+        var e = projected(l, u_target, v1, v2);
+        e.light = light;
+        return e;
+    }
+    if l.kind == LIGHT_SPOT {
+        let cos_t = 1.0 - u1 * (1.0 - l.cos_max);
+        return Emitted(l.position, cone_direction(l.axis, cos_t, u2), light, 1.0);
+    }
+    if l.kind == LIGHT_POINT {
+        let z = 1.0 - 2.0 * u1;
+        let r = sqrt(max(1.0 - z * z, 0.0));
+        let sc = sin_cos_turns(u2);
+        return Emitted(l.position, vec3<f32>(r * sc.y, r * sc.x, z), light, 1.0);
+    }
+    let r = l.radius * sqrt(random_f32(seed, index, DIM_POSITION));
+    let sc = sin_cos_turns(random_f32(seed, index, DIM_POSITION + 1u));
+    let origin = l.position + (l.tangent * sc.y + l.bitangent * sc.x) * r;
+    return Emitted(origin, l.axis, light, 1.0);
+}

@@ -1,0 +1,43 @@
+// Hash-grid build by counting sort: twin of prismatic_core::grid.
+// `count` counts photons per bucket; the host scans the counts into bucket
+// starts and copies them to `cursor`; `scatter` copies each photon into its
+// bucket's range of the sorted map, which the gather reads. Within a bucket
+// the order is the atomics' (the gather's sums do not depend on it beyond
+// float rounding).
+
+@group(0) @binding(0) var<uniform> params: Params;
+@group(0) @binding(1) var<storage, read_write> cells: array<atomic<u32>>;
+@group(0) @binding(2) var<storage, read_write> cursor: array<atomic<u32>>;
+
+// grid::cell_of and grid::bucket_of
+fn bucket_of_point(p: vec3<f32>) -> u32 {
+    let c = vec3<i32>(floor(p * params.inv_cell));
+    return ((bitcast<u32>(c.x) * 73856093u) ^ (bitcast<u32>(c.y) * 19349663u) ^ (bitcast<u32>(c.z) * 83492791u))
+        & params.grid_mask;
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn count(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let i = flat_index(wid, nwg, lid);
+    if i < params.stored {
+        atomicAdd(&cells[bucket_of_point(map_load(i).position)], 1u);
+    }
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn scatter(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let i = flat_index(wid, nwg, lid);
+    if i < params.stored {
+        let p = map_load(i);
+        let slot = atomicAdd(&cursor[bucket_of_point(p.position)], 1u);
+        sorted_store(slot, p);
+    }
+}

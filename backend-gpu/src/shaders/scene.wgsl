@@ -1,0 +1,268 @@
+// The scene on the device (bind group 0) and ray–scene intersection:
+// twins of prismatic_core::geometry (primitives) and
+// prismatic_core::prepared (nearest hit, occlusion, surface indices).
+
+@group(0) @binding(0) var<uniform> params: Params;
+@group(0) @binding(1) var<storage, read> objects: array<GpuObject>;
+@group(0) @binding(2) var<storage, read> surfaces: array<GpuSurface>;
+@group(0) @binding(3) var<storage, read> lights: array<GpuLight>;
+@group(0) @binding(4) var<storage, read> bands: array<GpuBand>;
+// Convex faces (normal, offset), triangles (v0, e1, e2, normal), projection targets.
+@group(0) @binding(5) var<storage, read> geometry: array<vec4<f32>>;
+// Per-band indices, n(λ) curves, light and projection CDFs.
+@group(0) @binding(6) var<storage, read> tables: array<f32>;
+
+struct SurfaceHit {
+    ok: bool,
+    t: f32,
+    normal: vec3<f32>,
+}
+
+struct Hit {
+    ok: bool,
+    t: f32,
+    point: vec3<f32>,
+    normal: vec3<f32>,
+    object: u32,
+}
+
+fn no_hit() -> SurfaceHit {
+    return SurfaceHit(false, 0.0, vec3<f32>(0.0));
+}
+
+fn plane_t(o: vec3<f32>, d: vec3<f32>, point: vec3<f32>, normal: vec3<f32>) -> vec2<f32> {
+    let denom = dot(d, normal);
+    if abs(denom) < 1e-12 {
+        return vec2<f32>(0.0, 0.0);
+    }
+    return vec2<f32>(dot(point - o, normal) / denom, 1.0);
+}
+
+fn hit_sphere(o: vec3<f32>, d: vec3<f32>, center: vec3<f32>, radius: f32, t_min: f32, t_max: f32) -> SurfaceHit {
+    let f = o - center;
+    let b = dot(f, d);
+    let perp = f - d * b;
+    let disc = radius * radius - dot(perp, perp);
+    if disc < 0.0 {
+        return no_hit();
+    }
+    let c = dot(f, f) - radius * radius;
+    let q = -b - copysign(sqrt(disc), b);
+    var t0 = 0.0;
+    var t1 = 0.0;
+    if q != 0.0 {
+        t0 = c / q;
+        t1 = q;
+    }
+    let near = select(t1, t0, t0 < t1);
+    let far = select(t0, t1, t0 < t1);
+    var t: f32;
+    if near > t_min && near < t_max {
+        t = near;
+    } else if far > t_min && far < t_max {
+        t = far;
+    } else {
+        return no_hit();
+    }
+    return SurfaceHit(true, t, (o + d * t - center) / radius);
+}
+
+fn hit_convex(o: vec3<f32>, d: vec3<f32>, first: u32, count: u32, t_min: f32, t_max: f32) -> SurfaceHit {
+    let skin = SURFACE_SKIN_FACTOR * surface_offset(o);
+    var t_enter = -BIG;
+    var t_exit = BIG;
+    var n_enter = vec3<f32>(0.0);
+    var n_exit = vec3<f32>(0.0);
+    for (var i = 0u; i < count; i++) {
+        let face = geometry[first + i];
+        let denom = dot(face.xyz, d);
+        var dist = face.w - dot(face.xyz, o);
+        if denom < 0.0 && dist < 0.0 && dist > -skin {
+            dist = 0.0;
+        }
+        if denom == 0.0 {
+            if dist < 0.0 {
+                return no_hit();
+            }
+            continue;
+        }
+        let t = dist / denom;
+        if denom < 0.0 {
+            if t > t_enter {
+                t_enter = t;
+                n_enter = face.xyz;
+            }
+        } else if t < t_exit {
+            t_exit = t;
+            n_exit = face.xyz;
+        }
+    }
+    if t_enter > t_exit {
+        return no_hit();
+    }
+    if t_enter > t_min && t_enter < t_max {
+        return SurfaceHit(true, t_enter, n_enter);
+    }
+    if t_exit > t_min && t_exit < t_max {
+        return SurfaceHit(true, t_exit, n_exit);
+    }
+    return no_hit();
+}
+
+// geometry::intersect_triangle; returns t, or -1 for a miss (t_min ≥ 0 always).
+fn hit_triangle(o: vec3<f32>, d: vec3<f32>, tri: u32, t_min: f32, t_max: f32, skin: f32) -> f32 {
+    let v0 = geometry[tri].xyz;
+    let e1 = geometry[tri + 1u].xyz;
+    let e2 = geometry[tri + 2u].xyz;
+    let normal = geometry[tri + 3u].xyz;
+    let p = cross(d, e2);
+    let det = dot(e1, p);
+    if abs(det) < 1e-12 {
+        return -1.0;
+    }
+    let height = dot(normal, o - v0);
+    if height > 0.0 && height < skin && dot(normal, d) < 0.0 {
+        return -1.0;
+    }
+    let inv = 1.0 / det;
+    let s = o - v0;
+    let u = dot(s, p) * inv;
+    let lo = -BARYCENTRIC_EPS;
+    let hi = 1.0 + BARYCENTRIC_EPS;
+    if !(u >= lo && u <= hi) {
+        return -1.0;
+    }
+    let q = cross(s, e1);
+    let v = dot(d, q) * inv;
+    if v < lo || u + v > hi {
+        return -1.0;
+    }
+    let t = dot(e2, q) * inv;
+    if t > t_min && t < t_max {
+        return t;
+    }
+    return -1.0;
+}
+
+fn hit_mesh(o: vec3<f32>, d: vec3<f32>, obj: GpuObject, t_min: f32, t_max: f32) -> SurfaceHit {
+    // Bounding sphere first (geometry::intersect_sphere_any).
+    let f = o - obj.a;
+    let b = dot(f, d);
+    let perp = f - d * b;
+    if dot(perp, perp) > obj.ra * obj.ra || -b - obj.ra > t_max {
+        return no_hit();
+    }
+    let skin = SURFACE_SKIN_FACTOR * surface_offset(o);
+    var best = no_hit();
+    for (var i = 0u; i < obj.count; i++) {
+        let tri = obj.first + 4u * i;
+        var limit = t_max;
+        if best.ok {
+            limit = min(best.t + skin, t_max);
+        }
+        let t = hit_triangle(o, d, tri, t_min, limit, skin);
+        if t < 0.0 {
+            continue;
+        }
+        let normal = geometry[tri + 3u].xyz;
+        let entering = dot(normal, d) < 0.0;
+        var better = !best.ok;
+        if best.ok {
+            let best_entering = dot(best.normal, d) < 0.0;
+            if entering && !best_entering {
+                better = true;
+            } else if !entering && best_entering {
+                better = t < best.t - skin;
+            } else {
+                better = t < best.t;
+            }
+        }
+        if better {
+            best = SurfaceHit(true, t, normal);
+        }
+    }
+    return best;
+}
+
+fn hit_object(obj: GpuObject, o: vec3<f32>, d: vec3<f32>, t_min: f32, t_max: f32) -> SurfaceHit {
+    switch obj.kind {
+        case 0u: {
+            return hit_sphere(o, d, obj.a, obj.ra, t_min, t_max);
+        }
+        case 1u: {
+            let t = plane_t(o, d, obj.a, obj.n);
+            if t.y != 0.0 && t.x > t_min && t.x < t_max {
+                return SurfaceHit(true, t.x, obj.n);
+            }
+            return no_hit();
+        }
+        case 2u: {
+            let t = plane_t(o, d, obj.a, obj.n);
+            if t.y == 0.0 || !(t.x > t_min && t.x < t_max) {
+                return no_hit();
+            }
+            let r = o + d * t.x - obj.a;
+            let d2 = dot(r, r);
+            if d2 <= obj.ra && d2 >= obj.rb {
+                return SurfaceHit(true, t.x, obj.n);
+            }
+            return no_hit();
+        }
+        case 3u: {
+            return hit_convex(o, d, obj.first, obj.count, t_min, t_max);
+        }
+        default: {
+            return hit_mesh(o, d, obj, t_min, t_max);
+        }
+    }
+}
+
+// PreparedScene::intersect: the nearest hit closer than t_max.
+fn intersect_scene(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> Hit {
+    var best = Hit(false, 0.0, vec3<f32>(0.0), vec3<f32>(0.0), 0u);
+    var limit = t_max;
+    for (var i = 0u; i < params.object_count; i++) {
+        let h = hit_object(objects[i], o, d, 0.0, limit);
+        if h.ok {
+            limit = h.t;
+            best = Hit(true, h.t, o + d * h.t, h.normal, i);
+        }
+    }
+    return best;
+}
+
+// PreparedScene::occluded
+fn occluded(o: vec3<f32>, d: vec3<f32>, dist: f32) -> bool {
+    for (var i = 0u; i < params.object_count; i++) {
+        if hit_object(objects[i], o, d, 0.0, dist).ok {
+            return true;
+        }
+    }
+    return false;
+}
+
+// DielectricOptics::ior
+fn band_ior(s: GpuSurface, band: u32) -> f32 {
+    if band == WHITE_BAND {
+        return s.white_ior;
+    }
+    return tables[s.ior_first + band];
+}
+
+// IorCurve::at
+fn curve_at(s: GpuSurface, lambda_nm: f32) -> f32 {
+    let x = clamp(lambda_nm - VISIBLE_NM_LO, 0.0, f32(s.curve_len - 1u));
+    let i = min(u32(x), s.curve_len - 2u);
+    let f = x - f32(i);
+    let a = tables[s.curve_first + i];
+    return a + (tables[s.curve_first + i + 1u] - a) * f;
+}
+
+// DielectricOptics::ior_at_wavelength (lambda_nm < 0: no wavelength of its own).
+fn path_ior(s: GpuSurface, band: u32, lambda_nm: f32) -> f32 {
+    let n = band_ior(s, band);
+    if lambda_nm < 0.0 || (s.flags & SURFACE_HAS_CURVE) == 0u {
+        return n;
+    }
+    return n + (curve_at(s, lambda_nm) - curve_at(s, bands[band].lambda_nm));
+}

@@ -1,0 +1,181 @@
+// Emit + trace: twin of prismatic_core::trace. One invocation per white
+// photon of the chunk; its stored photons go to its own `slots` scratch
+// slots in (band) order, its count to `counts`, so that the compaction pass
+// can put the chunk into canonical (emission, band) order without atomics.
+// The workgroup sums its statistics into its `tallies` slot.
+
+@group(1) @binding(0) var<storage, read_write> scratch: array<Photon>;
+@group(1) @binding(1) var<storage, read_write> counts: array<u32>;
+@group(1) @binding(2) var<storage, read_write> tallies: array<Tally>;
+
+// Emitted, paths, segments, specular paths, stored.
+var<private> tally_counts: array<u32, 5>;
+// Flux emitted, stored, escaped, direct, depth limited.
+var<private> tally_flux: array<f32, 5>;
+var<private> slot_base: u32;
+var<private> slot_used: u32;
+
+var<workgroup> reduce_counts: array<u32, 5u * WORKGROUP_SIZE>;
+var<workgroup> reduce_flux: array<f32, 5u * WORKGROUP_SIZE>;
+
+struct Path {
+    origin: vec3<f32>,
+    dir: vec3<f32>,
+    flux: f32,
+    band: u32,
+    // The wavelength of a continuous-spectrum photon; < 0 for none.
+    lambda_nm: f32,
+    bounces: u32,
+}
+
+const FOLLOW_END: u32 = 0u;
+const FOLLOW_SPLIT: u32 = 1u;
+
+// trace::scatter_dielectric: reflect with probability R, else refract.
+fn scatter_dielectric(p: ptr<function, Path>, point: vec3<f32>, outward: vec3<f32>, ior: f32, u: f32) {
+    let d = (*p).dir;
+    let f = facing_interface(d, outward, ior);
+    let cos_i = -dot(d, f.n);
+    var out = reflect_dir(d, f.n);
+    if !(u < fresnel(cos_i, f.n1, f.n2)) {
+        let r = refract_dir(d, f.n, f.n1, f.n2);
+        if r.w != 0.0 {
+            out = r.xyz;
+        }
+    }
+    (*p).origin = offset_origin(point, f.n, out);
+    (*p).dir = out;
+}
+
+fn store(p: ptr<function, Path>, point: vec3<f32>, index: u32) {
+    tally_counts[4] += 1u;
+    tally_flux[1] += (*p).flux;
+    if slot_used < params.slots {
+        scratch[slot_base + slot_used] = Photon(
+            point,
+            (*p).flux,
+            oct_encode((*p).dir),
+            index,
+            ((*p).band & 0xffffu) | (min((*p).bounces, 0xffffu) << 16u),
+        );
+    }
+    slot_used++;
+}
+
+// Follows a path until it is stored, escapes, is absorbed or hits the
+// depth limit (FOLLOW_END), or reaches glass where a white photon splits
+// into bands (FOLLOW_SPLIT, with the hit in `split_at`).
+fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u32 {
+    let seed = params.seed;
+    loop {
+        tally_counts[2] += 1u;
+        let hit = intersect_scene((*p).origin, (*p).dir, BIG);
+        if !hit.ok {
+            tally_flux[2] += (*p).flux;
+            return FOLLOW_END;
+        }
+        let s = surfaces[hit.object];
+        if s.kind == SURFACE_DIFFUSE {
+            if (*p).bounces == 0u {
+                tally_flux[3] += (*p).flux;
+            } else {
+                store(p, hit.point, index);
+            }
+            return FOLLOW_END;
+        }
+        if (*p).bounces >= params.max_depth {
+            tally_flux[4] += (*p).flux;
+            return FOLLOW_END;
+        }
+        if (*p).bounces == 0u {
+            tally_counts[3] += 1u;
+        }
+        if s.kind == SURFACE_MIRROR {
+            let d = reflect_dir((*p).dir, hit.normal);
+            (*p).origin = offset_origin(hit.point, hit.normal, d);
+            (*p).dir = d;
+        } else if (*p).band == WHITE_BAND && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u {
+            if params.wavelengths == WAVELENGTHS_SPLIT {
+                *split_at = hit;
+                return FOLLOW_SPLIT;
+            }
+            // trace::sample_band: continue as one random band with the whole flux.
+            let n = params.band_count;
+            let band = min(u32(random_f32(seed, index, DIM_BAND) * f32(n)), n - 1u);
+            (*p).band = band;
+            if params.wavelengths == WAVELENGTHS_CONTINUOUS {
+                let b = bands[band];
+                (*p).lambda_nm = b.lo_nm + (b.hi_nm - b.lo_nm) * random_f32(seed, index, DIM_WAVELENGTH);
+            }
+            let u = random_f32(seed, index, scatter_dim(band, (*p).bounces));
+            scatter_dielectric(p, hit.point, hit.normal, path_ior(s, band, (*p).lambda_nm), u);
+        } else {
+            let u = random_f32(seed, index, scatter_dim((*p).band, (*p).bounces));
+            scatter_dielectric(p, hit.point, hit.normal, path_ior(s, (*p).band, (*p).lambda_nm), u);
+        }
+        (*p).bounces += 1u;
+    }
+    return FOLLOW_END;
+}
+
+// trace::trace_emitted
+fn trace_emitted(index: u32) {
+    let e = emit(params.seed, index);
+    tally_counts[0] += 1u;
+    if e.weight == 0.0 {
+        return;
+    }
+    let flux = params.flux * e.weight;
+    tally_counts[1] += 1u;
+    tally_flux[0] += flux;
+    var p = Path(e.origin, e.direction, flux, WHITE_BAND, -1.0, 0u);
+    var hit: Hit;
+    if follow(&p, index, &hit) != FOLLOW_SPLIT {
+        return;
+    }
+    let n = params.band_count;
+    tally_counts[1] += n - 1u;
+    let s = surfaces[hit.object];
+    for (var band = 0u; band < n; band++) {
+        var child = Path(p.origin, p.dir, p.flux / f32(n), band, -1.0, p.bounces + 1u);
+        let u = random_f32(params.seed, index, scatter_dim(band, p.bounces));
+        scatter_dielectric(&child, hit.point, hit.normal, band_ior(s, band), u);
+        var unused: Hit;
+        follow(&child, index, &unused);
+    }
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn main(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let k = flat_index(wid, nwg, lid);
+    if k < params.chunk_len {
+        slot_base = k * params.slots;
+        trace_emitted(params.chunk_start + k);
+        counts[k] = slot_used;
+    }
+    for (var j = 0u; j < 5u; j++) {
+        reduce_counts[j * WORKGROUP_SIZE + lid] = tally_counts[j];
+        reduce_flux[j * WORKGROUP_SIZE + lid] = tally_flux[j];
+    }
+    workgroupBarrier();
+    for (var stride = WORKGROUP_SIZE / 2u; stride > 0u; stride /= 2u) {
+        if lid < stride {
+            for (var j = 0u; j < 5u; j++) {
+                reduce_counts[j * WORKGROUP_SIZE + lid] += reduce_counts[j * WORKGROUP_SIZE + lid + stride];
+                reduce_flux[j * WORKGROUP_SIZE + lid] += reduce_flux[j * WORKGROUP_SIZE + lid + stride];
+            }
+        }
+        workgroupBarrier();
+    }
+    if lid == 0u {
+        let slot = wid.y * nwg.x + wid.x;
+        for (var j = 0u; j < 5u; j++) {
+            tallies[slot].counts[j] += reduce_counts[j * WORKGROUP_SIZE];
+            tallies[slot].flux[j] += reduce_flux[j * WORKGROUP_SIZE];
+        }
+    }
+}

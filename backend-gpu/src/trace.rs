@@ -1,0 +1,171 @@
+//! The photon pass on the device: twin of `prismatic_core::trace`. Emissions
+//! go in chunks (a chunk's scratch fits one binding and its dispatch the
+//! workgroup limits); per chunk: emit + trace, prefix sum of the per-emission
+//! counts, scatter into the canonical map after the chunks before it, and
+//! a one-invocation pass that moves the map's cursor. Only the cursor and
+//! the per-workgroup tallies are read back, once, at the end.
+
+use crate::context::GpuContext;
+use crate::layout::Tally;
+use crate::photons::{PHOTON_BYTES, PhotonArray};
+use crate::pipelines::{MAX_WORKGROUPS, Pipelines, dispatch};
+use crate::scan;
+use crate::scene::SceneBuffers;
+use crate::shaders::WORKGROUP_SIZE;
+use prismatic_core::backend::{Progress, Stage};
+use prismatic_core::prepared::Surface;
+use prismatic_core::scene::WavelengthSampling;
+use prismatic_core::{BackendError, PreparedScene, TraceStats};
+
+/// Largest chunk of emissions per dispatch (keeps progress reports coming
+/// and the scratch small).
+pub const MAX_CHUNK: u32 = 1 << 20;
+
+/// A photon map on the device, in canonical order.
+pub struct DeviceMap {
+    /// The photons.
+    pub photons: PhotonArray,
+    /// How many there are.
+    pub stored: u32,
+    /// Per-workgroup statistics ([`DeviceMap::stats`] adds them up).
+    tallies: wgpu::Buffer,
+}
+
+impl DeviceMap {
+    /// A map of `photons` that did not come from a photon pass (no statistics).
+    pub fn uploaded(ctx: &GpuContext, photons: PhotonArray, stored: u32) -> Self {
+        DeviceMap { photons, stored, tallies: storage(ctx, "prismatic tallies", std::mem::size_of::<Tally>() as u64) }
+    }
+
+    /// What the pass did (reads the per-workgroup tallies back).
+    pub fn stats(&self, ctx: &GpuContext) -> Result<TraceStats, BackendError> {
+        read_stats(ctx, &self.tallies)
+    }
+}
+
+/// Scratch slots per emission: every band when white photons split, else one.
+pub fn slots_per_emission(scene: &PreparedScene) -> u32 {
+    let splits = scene.surfaces.iter().any(|s| matches!(s, Surface::Dielectric(g) if g.splits_photons));
+    if splits && scene.scene.render.wavelengths == WavelengthSampling::Split { scene.bands.len() as u32 } else { 1 }
+}
+
+fn storage(ctx: &GpuContext, label: &str, bytes: u64) -> wgpu::Buffer {
+    ctx.device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size: bytes.max(4),
+        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+/// Traces the scene's photons into a device-resident canonical map.
+pub fn trace(
+    ctx: &GpuContext,
+    pipelines: &Pipelines,
+    scene_buffers: &mut SceneBuffers,
+    scene: &PreparedScene,
+    window: u32,
+    progress: &mut dyn Progress,
+) -> Result<DeviceMap, BackendError> {
+    let total = if scene.plan.caustics.on { scene.scene.render.photons } else { 0 };
+    let slots = slots_per_emission(scene);
+    let chunk = (window / slots).clamp(1, MAX_CHUNK).min(total.max(1));
+    let bound = u64::from(total) * u64::from(slots);
+    let capacity = bound.min(u64::from(u32::MAX)) as u32;
+    let photons = PhotonArray::new(ctx, "prismatic photon map", capacity, window)?;
+    let groups = u64::from(chunk).div_ceil(u64::from(WORKGROUP_SIZE));
+    let (scratch, counts, offsets, cursor, tallies) = ctx.checked("allocating the photon pass", || {
+        (
+            storage(ctx, "prismatic scratch", u64::from(chunk) * u64::from(slots) * PHOTON_BYTES),
+            storage(ctx, "prismatic counts", u64::from(chunk) * 4),
+            storage(ctx, "prismatic offsets", u64::from(chunk) * 4),
+            storage(ctx, "prismatic cursor", 4),
+            storage(ctx, "prismatic tallies", dispatched_groups(groups) * std::mem::size_of::<Tally>() as u64),
+        )
+    })?;
+    let trace_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("prismatic trace"),
+        layout: &pipelines.trace_layout,
+        entries: &[
+            wgpu::BindGroupEntry { binding: 0, resource: scratch.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 1, resource: counts.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 2, resource: tallies.as_entire_binding() },
+        ],
+    });
+    let mut start = 0u32;
+    while start < total {
+        let len = chunk.min(total - start);
+        let p = &mut scene_buffers.params;
+        (p.chunk_start, p.chunk_len, p.slots, p.window, p.capacity) = (start, len, slots, window, photons.capacity);
+        scene_buffers.write_params(&ctx.queue);
+        ctx.checked("tracing photons", || {
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            dispatch(
+                &mut encoder,
+                &pipelines.trace,
+                &[&scene_buffers.bind_group, &trace_group],
+                u64::from(len),
+                WORKGROUP_SIZE,
+            );
+            encoder.copy_buffer_to_buffer(&counts, 0, &offsets, 0, u64::from(len) * 4);
+            let chunk_total = scan::record(&ctx.device, pipelines, &mut encoder, &offsets, len);
+            let mut entries = vec![
+                wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: scratch.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: counts.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: offsets.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 4, resource: cursor.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 5, resource: chunk_total.as_entire_binding() },
+            ];
+            entries.extend(photons.entries(6));
+            let compact_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("prismatic compact"),
+                layout: &pipelines.compact_layout,
+                entries: &entries,
+            });
+            let slots_total = u64::from(len) * u64::from(slots);
+            dispatch(&mut encoder, &pipelines.compact, &[&compact_group], slots_total, WORKGROUP_SIZE);
+            dispatch(&mut encoder, &pipelines.advance, &[&compact_group], 1, 1);
+            ctx.queue.submit([encoder.finish()]);
+        })?;
+        start += len;
+        progress.advance(Stage::Trace, u64::from(start), u64::from(total));
+    }
+    let stored = u32::from_le_bytes(ctx.read(&cursor, 0, 4)?[..4].try_into().expect("4 bytes"));
+    if stored > photons.capacity {
+        return Err(BackendError::OutOfMemory(format!(
+            "{stored} caustic photons do not fit the device's photon map ({} photons: {} bindings of at most {} \
+             photons); trace fewer photons, use --wavelengths random_band, or use --backend cpu",
+            photons.capacity,
+            crate::shaders::WINDOWS,
+            window
+        )));
+    }
+    Ok(DeviceMap { photons, stored, tallies })
+}
+
+/// Workgroups a dispatch of `groups` runs: x·y of its 2D grid (one tally each).
+fn dispatched_groups(groups: u64) -> u64 {
+    groups.min(MAX_WORKGROUPS) * groups.div_ceil(MAX_WORKGROUPS)
+}
+
+/// Adds the workgroups' tallies up in u64 and f64.
+fn read_stats(ctx: &GpuContext, tallies: &wgpu::Buffer) -> Result<TraceStats, BackendError> {
+    let bytes = ctx.read(tallies, 0, tallies.size())?;
+    let mut s = TraceStats::default();
+    for t in bytemuck::pod_collect_to_vec::<u8, Tally>(&bytes) {
+        let [emitted, paths, segments, specular, stored] = t.counts.map(u64::from);
+        s.emitted += emitted;
+        s.paths += paths;
+        s.segments += segments;
+        s.specular_paths += specular;
+        s.stored += stored;
+        let [fe, fs, fx, fd, fl] = t.flux.map(f64::from);
+        s.flux_emitted += fe;
+        s.flux_stored += fs;
+        s.flux_escaped += fx;
+        s.flux_direct += fd;
+        s.flux_depth_limited += fl;
+    }
+    Ok(s)
+}

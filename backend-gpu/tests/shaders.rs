@@ -1,0 +1,149 @@
+//! The WGSL of every pipeline parses and validates (naga, as wgpu does),
+//! and every struct shared with Rust has the same size and field offsets
+//! on both sides.
+
+use naga::valid::{Capabilities, ValidationFlags, Validator};
+use prismatic_gpu::layout::{GpuBand, GpuLight, GpuObject, GpuSurface, Params, ScanParams, Tally};
+use prismatic_gpu::shaders;
+use std::mem::{offset_of, size_of};
+
+fn module(name: &str, source: &str) -> naga::Module {
+    let module =
+        naga::front::wgsl::parse_str(source).unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
+    Validator::new(ValidationFlags::all(), Capabilities::all())
+        .validate(&module)
+        .unwrap_or_else(|e| panic!("{name}: {}", e.emit_to_string(source)));
+    module
+}
+
+fn sources() -> Vec<(&'static str, String)> {
+    vec![
+        ("trace", shaders::trace()),
+        ("compact", shaders::compact()),
+        ("scan", shaders::scan()),
+        ("grid", shaders::grid()),
+        ("render", shaders::render(shaders::stack_size(12))),
+        ("render-deepest", shaders::render(shaders::stack_size(prismatic_core::scene::MAX_DEPTH))),
+        ("to_texture", shaders::to_texture("rgba16float")),
+    ]
+}
+
+#[test]
+fn every_shader_parses_and_validates() {
+    for (name, source) in sources() {
+        module(name, &source);
+    }
+}
+
+/// (size, [(field, offset)]) of struct `name` in `module`.
+fn wgsl_layout(module: &naga::Module, name: &str) -> (u32, Vec<(String, u32)>) {
+    let (_, ty) =
+        module.types.iter().find(|(_, t)| t.name.as_deref() == Some(name)).unwrap_or_else(|| panic!("no {name}"));
+    let naga::TypeInner::Struct { members, span } = &ty.inner else { panic!("{name} is not a struct") };
+    (*span, members.iter().map(|m| (m.name.clone().unwrap_or_default(), m.offset)).collect())
+}
+
+macro_rules! rust_layout {
+    ($t:ty { $($field:ident),* $(,)? }) => {
+        (size_of::<$t>() as u32, vec![$((stringify!($field).to_string(), offset_of!($t, $field) as u32)),*])
+    };
+}
+
+#[test]
+fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
+    let trace = module("trace", &shaders::trace());
+    let scan = module("scan", &shaders::scan());
+    let photon = rust_layout!(prismatic_core::Photon { position, flux, direction_oct, emission, band });
+    let (size, mut fields) = wgsl_layout(&trace, "Photon");
+    // WGSL packs the two u16s (band, bounces) into one u32 at the band's offset.
+    assert_eq!(fields.pop(), Some(("band_bounces".into(), photon.1[4].1)));
+    assert_eq!((size, fields), (photon.0, photon.1[..4].to_vec()), "Photon");
+    let cases = [
+        (
+            "Params",
+            &trace,
+            rust_layout!(Params {
+                seed,
+                chunk_start,
+                chunk_len,
+                slots,
+                band_count,
+                max_depth,
+                wavelengths,
+                object_count,
+                light_count,
+                light_cdf,
+                estimator,
+                window,
+                width,
+                height,
+                pixel_offset,
+                pixel_count,
+                stored,
+                grid_mask,
+                capacity,
+                _pad0,
+                flux,
+                radius,
+                inv_cell,
+                exposure,
+                ambient,
+                _pad1,
+                background,
+                _pad2,
+                cam_origin,
+                _pad3,
+                cam_right,
+                _pad4,
+                cam_down,
+                _pad5,
+                cam_corner,
+                _pad6,
+            }),
+        ),
+        ("GpuObject", &trace, rust_layout!(GpuObject { kind, first, count, _pad, a, ra, n, rb })),
+        (
+            "GpuSurface",
+            &trace,
+            rust_layout!(GpuSurface {
+                kind,
+                flags,
+                ior_first,
+                curve_first,
+                albedo,
+                white_ior,
+                checker_albedo,
+                checker_size,
+                checker_offset,
+                curve_len,
+            }),
+        ),
+        (
+            "GpuLight",
+            &trace,
+            rust_layout!(GpuLight {
+                kind,
+                shadows,
+                proj_kind,
+                proj_count,
+                position,
+                power,
+                axis,
+                cos_max,
+                tangent,
+                radius,
+                bitangent,
+                proj_scale,
+                proj_first,
+                proj_cdf,
+                _pad,
+            }),
+        ),
+        ("GpuBand", &trace, rust_layout!(GpuBand { weight, lambda_nm, lo_nm, hi_nm, max_weight, _pad })),
+        ("Tally", &trace, rust_layout!(Tally { counts, _pad0, flux, _pad1 })),
+        ("ScanParams", &scan, rust_layout!(ScanParams { n, _pad0, _pad1, _pad2 })),
+    ];
+    for (name, module, rust) in cases {
+        assert_eq!(wgsl_layout(module, name), rust, "{name}: WGSL (size, offsets) vs Rust");
+    }
+}

@@ -1,0 +1,38 @@
+//! Criterion benches of the GPU backend, one group per stage: `trace/gpu`
+//! (photon pass and readback of the map), `grid/gpu` (upload and grid
+//! build), `gather/gpu` (grid, ray tracing and gather from a given map, image
+//! read back) and `frame/gpu` (the whole frame on the device). Every
+//! measurement ends with a device sync. On lavapipe they only show that the
+//! stages run; real figures need a GPU.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use prismatic_core::{Backend, NoProgress};
+use prismatic_gpu::{AdapterChoice, GpuBackend};
+
+fn scene(photons: u32) -> prismatic_core::PreparedScene {
+    let mut doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
+    doc.scene.render.photons = photons;
+    prismatic_core::PreparedScene::new(doc.scene).expect("valid")
+}
+
+fn gpu_groups(c: &mut Criterion) {
+    let mut gpu = match GpuBackend::new(AdapterChoice::Any) {
+        Ok(gpu) => gpu,
+        Err(e) => panic!("the gpu benches need an adapter (lavapipe will do): {e}"),
+    };
+    let paper = scene(20_000);
+    let map = gpu.trace_photons(&paper, &mut NoProgress).expect("trace");
+    c.benchmark_group("trace")
+        .bench_function("gpu", |b| b.iter(|| gpu.trace_photons(&paper, &mut NoProgress).unwrap()));
+    c.benchmark_group("grid").bench_function("gpu", |b| b.iter(|| gpu.build_grid(&paper, &map).unwrap()));
+    c.benchmark_group("gather")
+        .bench_function("gpu", |b| b.iter(|| gpu.render(&paper, &map, &mut NoProgress).unwrap()));
+    c.benchmark_group("frame").bench_function("gpu", |b| b.iter(|| gpu.frame(&paper).unwrap()));
+}
+
+criterion_group! {
+    name = benches;
+    config = Criterion::default().sample_size(10);
+    targets = gpu_groups
+}
+criterion_main!(benches);

@@ -1,0 +1,107 @@
+//! The GPU backend against the scalar reference and the CPU backend: photon
+//! maps and images on every built-in scene and on random scenes, photon
+//! maps split over several storage bindings, determinism between runs, and
+//! the device-resident frame against trace + render.
+
+use prismatic_cli::load_scene;
+use prismatic_core::{Backend, NoProgress, PreparedScene, ReferenceBackend};
+use prismatic_cpu::CpuBackend;
+use prismatic_gpu::{GpuBackend, GpuOptions};
+use prismatic_tests::backends::gpu_backend;
+use prismatic_tests::parity::{Output, assert_parity, compare_images};
+use prismatic_tests::random_scene::random_scene;
+
+fn run(backend: &mut dyn Backend, scene: &PreparedScene) -> Output {
+    let map = backend.trace_photons(scene, &mut NoProgress).expect("trace");
+    let image = backend.render(scene, &map, &mut NoProgress).expect("render");
+    Output { backend: backend.name(), map, image }
+}
+
+fn gpu() -> Option<GpuBackend> {
+    gpu_backend(GpuOptions::default())
+}
+
+/// The parity test body (the CPU backend's, see parity_cpu.rs): the GPU
+/// against the reference and against the CPU backend, maps and images.
+fn check(case: &str, scene: &PreparedScene, gpu: &mut GpuBackend) {
+    let reference = run(&mut ReferenceBackend, scene);
+    let cpu = run(&mut CpuBackend::new(), scene);
+    let got = run(gpu, scene);
+    assert!(got.map.is_canonical(), "{case}: gpu map not in canonical order");
+    assert!(!reference.map.photons.is_empty() || scene.scene.render.photons == 0, "{case}: no caustic photons");
+    assert_eq!(got.map.stats.emitted, reference.map.stats.emitted, "{case}: emitted");
+    assert_parity(&format!("{case}-vs-reference"), scene, &reference, &got);
+    assert_parity(&format!("{case}-vs-cpu"), scene, &cpu, &got);
+}
+
+fn built_in(name: &str, photons: u32) -> PreparedScene {
+    let mut doc = load_scene(name).unwrap();
+    doc.scene.render.photons = photons;
+    doc.scene.render.width = 96;
+    doc.scene.render.height = 96;
+    PreparedScene::new(doc.scene).unwrap()
+}
+
+#[test]
+fn gpu_matches_the_reference_and_the_cpu_on_every_built_in_scene() {
+    let Some(mut gpu) = gpu() else { return };
+    for (name, photons) in [("prism", 4_000), ("recombine", 4_000), ("rainbow", 60_000)] {
+        check(&format!("gpu-{name}"), &built_in(name, photons), &mut gpu);
+    }
+    // The sphere's photon map matches; its image does not yet (see the
+    // ignored test below), so here only the map is held to the reference.
+    let scene = built_in("sphere", 30_000);
+    let reference = prismatic_core::trace::trace_photons(&scene);
+    let got = gpu.trace_photons(&scene, &mut NoProgress).expect("trace");
+    prismatic_tests::parity::compare_maps(&reference, &got, scene.bands.len()).expect("gpu-sphere photon map");
+}
+
+/// KNOWN BUG, issue 4 is open for it: on the sphere at 30k photons, pixels
+/// that see the dense caustic through the glass lose the contributions of
+/// the view-ray bands traced last (25 of 9216 pixels; which bands depends on
+/// the order the split hands them out). Photon map, grid (see
+/// prismatic-gpu's grid test) and every other scene match.
+#[test]
+#[ignore = "known bug in the GPU render of dense caustics seen through glass; issue 4"]
+fn gpu_sphere_image_matches_the_reference() {
+    let Some(mut gpu) = gpu() else { return };
+    check("gpu-sphere", &built_in("sphere", 30_000), &mut gpu);
+}
+
+#[test]
+fn gpu_matches_the_reference_and_the_cpu_on_random_scenes() {
+    let Some(mut gpu) = gpu() else { return };
+    for seed in 1..=16 {
+        let scene = PreparedScene::new(random_scene(seed, 3_000, 40)).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+        check(&format!("gpu-random-{seed}"), &scene, &mut gpu);
+    }
+}
+
+#[test]
+fn gpu_photon_map_is_identical_between_runs_and_over_several_bindings() {
+    let Some(mut gpu) = gpu() else { return };
+    let scene = PreparedScene::new(random_scene(3, 20_000, 48)).unwrap();
+    let first = gpu.trace_photons(&scene, &mut NoProgress).expect("trace");
+    let second = gpu.trace_photons(&scene, &mut NoProgress).expect("trace");
+    assert_eq!(first.photons, second.photons, "two runs with one seed differ");
+    // Windows of 1,000 photons: the map spans the four bindings' worth of
+    // the multi-binding path, and emissions go in many chunks.
+    let n = first.photons.len() as u32;
+    let mut small = gpu_backend(GpuOptions { window_photons: Some(n.div_ceil(4).next_multiple_of(8)) }).unwrap();
+    let split = small.trace_photons(&scene, &mut NoProgress).expect("trace in windows");
+    assert_eq!(first.photons, split.photons, "the map differs when split over bindings");
+    let whole = gpu.render(&scene, &first, &mut NoProgress).unwrap();
+    let windowed = small.render(&scene, &first, &mut NoProgress).unwrap();
+    compare_images(&whole, &windowed).expect("render over several bindings");
+}
+
+#[test]
+fn gpu_frame_on_the_device_matches_trace_then_render() {
+    let Some(mut gpu) = gpu() else { return };
+    let scene = built_in("prism", 4_000);
+    let map = gpu.trace_photons(&scene, &mut NoProgress).unwrap();
+    let image = gpu.render(&scene, &map, &mut NoProgress).unwrap();
+    let (info, frame) = gpu.frame_image(&scene).unwrap();
+    assert_eq!(info.stored as usize, map.photons.len());
+    compare_images(&image, &frame).expect("frame vs trace + render");
+}

@@ -120,19 +120,24 @@ impl GpuBackend {
     }
 
     /// A whole frame on the device, into `pixels`: trace, compaction, grid,
-    /// render. Nothing is read back but the photon count.
-    fn frame_into(&mut self, scene: &PreparedScene, pixels: &wgpu::Buffer) -> Result<FrameInfo, BackendError> {
+    /// render. Nothing is read back but the photon count. Returns the
+    /// scene's buffers for passes that follow on the same frame.
+    fn frame_into(
+        &mut self,
+        scene: &PreparedScene,
+        pixels: &wgpu::Buffer,
+    ) -> Result<(FrameInfo, SceneBuffers), BackendError> {
         let mut buffers = self.upload(scene)?;
         let map = self.trace_on_device(scene, &mut buffers, &mut prismatic_core::NoProgress)?;
         let grid = grid::build(&self.ctx, &self.pipelines, &mut buffers, &map)?;
         render::render(&self.ctx, &mut self.pipelines, &mut buffers, &grid, pixels)?;
-        Ok(FrameInfo { stored: map.stored })
+        Ok((FrameInfo { stored: map.stored }, buffers))
     }
 
     /// Renders a frame into the backend's own pixel buffer and waits for it.
     pub fn frame(&mut self, scene: &PreparedScene) -> Result<FrameInfo, BackendError> {
         let pixels = self.pixels_for(scene)?;
-        let info = self.frame_into(scene, &pixels)?;
+        let (info, _) = self.frame_into(scene, &pixels)?;
         self.ctx.wait()?;
         Ok(info)
     }
@@ -153,7 +158,7 @@ impl GpuBackend {
         scene: &PreparedScene,
         buffer: &wgpu::Buffer,
     ) -> Result<FrameInfo, BackendError> {
-        self.frame_into(scene, buffer)
+        Ok(self.frame_into(scene, buffer)?.0)
     }
 
     /// Renders a frame into the caller's storage texture (the image's size;
@@ -165,8 +170,7 @@ impl GpuBackend {
         texture: &wgpu::Texture,
     ) -> Result<FrameInfo, BackendError> {
         let pixels = self.pixels_for(scene)?;
-        let info = self.frame_into(scene, &pixels)?;
-        let mut buffers = self.upload(scene)?;
+        let (info, mut buffers) = self.frame_into(scene, &pixels)?;
         render::copy_to_texture(&self.ctx, &mut self.pipelines, &mut buffers, &pixels, texture)?;
         Ok(info)
     }

@@ -20,6 +20,12 @@ fn pixels_per_chunk(limits: &wgpu::Limits) -> u64 {
     (limits.max_storage_buffer_binding_size / PIXEL_BYTES) / (align / PIXEL_BYTES) * (align / PIXEL_BYTES)
 }
 
+/// (first pixel, pixels) of each dispatch over a `total`-pixel image.
+fn pixel_chunks(total: u64, limits: &wgpu::Limits) -> impl Iterator<Item = (u64, u64)> {
+    let chunk = pixels_per_chunk(limits);
+    (0..total).step_by(chunk as usize).map(move |offset| (offset, chunk.min(total - offset)))
+}
+
 /// A pixel buffer for a `width` × `height` image.
 pub fn pixel_buffer(ctx: &GpuContext, width: u32, height: u32) -> Result<wgpu::Buffer, BackendError> {
     ctx.checked("allocating the image", || {
@@ -49,11 +55,8 @@ pub fn render(
             total * PIXEL_BYTES
         )));
     }
-    let chunk = pixels_per_chunk(&ctx.limits());
     let pipeline = pipelines.render(&ctx.device, stack_size(scene_buffers.params.max_depth)).clone();
-    let mut offset = 0u64;
-    while offset < total {
-        let count = chunk.min(total - offset);
+    for (offset, count) in pixel_chunks(total, &ctx.limits()) {
         let p = &mut scene_buffers.params;
         (p.pixel_offset, p.pixel_count) = (offset as u32, count as u32);
         scene_buffers.write_params(&ctx.queue);
@@ -79,7 +82,6 @@ pub fn render(
             dispatch(&mut encoder, &pipeline, &[&scene_buffers.bind_group, &group], count, WORKGROUP_SIZE);
             ctx.queue.submit([encoder.finish()]);
         })?;
-        offset += count;
     }
     Ok(())
 }
@@ -107,10 +109,7 @@ pub fn copy_to_texture(
     })?;
     let view = target.create_view(&Default::default());
     let total = u64::from(w) * u64::from(h);
-    let chunk = pixels_per_chunk(&ctx.limits());
-    let mut offset = 0u64;
-    while offset < total {
-        let count = chunk.min(total - offset);
+    for (offset, count) in pixel_chunks(total, &ctx.limits()) {
         let p = &mut scene_buffers.params;
         (p.pixel_offset, p.pixel_count) = (offset as u32, count as u32);
         scene_buffers.write_params(&ctx.queue);
@@ -135,7 +134,6 @@ pub fn copy_to_texture(
             dispatch(&mut encoder, &pipeline, &[&group], count, WORKGROUP_SIZE);
             ctx.queue.submit([encoder.finish()]);
         })?;
-        offset += count;
     }
     Ok(())
 }

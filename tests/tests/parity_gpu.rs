@@ -105,3 +105,51 @@ fn gpu_frame_on_the_device_matches_trace_then_render() {
     assert_eq!(info.stored as usize, map.photons.len());
     compare_images(&image, &frame).expect("frame vs trace + render");
 }
+
+/// An engine's view: the backend built on a device it did not create,
+/// rendering into the engine's own storage texture; the texels equal the
+/// frame the backend reads back itself.
+#[test]
+fn gpu_renders_into_an_engines_texture_on_the_engines_device() {
+    let Some(own) = gpu() else { return };
+    let (device, queue) = (own.context().device.clone(), own.context().queue.clone());
+    let mut engine = GpuBackend::from_device(device.clone(), queue.clone()).expect("embed");
+    let scene = built_in("prism", 4_000);
+    let (w, h) = (scene.scene.render.width, scene.scene.render.height);
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("engine target"),
+        size: wgpu::Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba32Float,
+        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
+        view_formats: &[],
+    });
+    engine.render_into_texture(&scene, &texture).expect("render into texture");
+    let bytes_per_row = w * 16; // 96 × 16 = 1536, a multiple of 256
+    let readback = device.create_buffer(&wgpu::BufferDescriptor {
+        label: None,
+        size: u64::from(bytes_per_row * h),
+        usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+        mapped_at_creation: false,
+    });
+    let mut encoder = device.create_command_encoder(&Default::default());
+    encoder.copy_texture_to_buffer(
+        texture.as_image_copy(),
+        wgpu::TexelCopyBufferInfo {
+            buffer: &readback,
+            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(bytes_per_row), rows_per_image: None },
+        },
+        texture.size(),
+    );
+    queue.submit([encoder.finish()]);
+    let bytes = engine.context().read(&readback, 0, readback.size()).expect("read texels");
+    let texels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
+    let (_, frame) = engine.frame_image(&scene).unwrap();
+    let mut image = prismatic_core::Image::new(w, h);
+    for (px, t) in image.pixels.iter_mut().zip(texels) {
+        *px = prismatic_core::Vec3::new(t[0], t[1], t[2]);
+    }
+    compare_images(&frame, &image).expect("texture vs frame");
+}

@@ -282,6 +282,16 @@ fn offset_origin(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
     return p - n * eps;
 }
 
+// grid::cell_of: the integer cell of `p` (float → int conversions saturate).
+fn cell_of(p: vec3<f32>, inv_cell: f32) -> vec3<i32> {
+    return vec3<i32>(floor(p * inv_cell));
+}
+
+// grid::bucket_of (Teschner et al. primes, wrapping u32 arithmetic).
+fn bucket_of(c: vec3<i32>, mask: u32) -> u32 {
+    return ((bitcast<u32>(c.x) * 73856093u) ^ (bitcast<u32>(c.y) * 19349663u) ^ (bitcast<u32>(c.z) * 83492791u)) & mask;
+}
+
 // Flattens a 2D dispatch (workgroups beyond the per-dimension limit wrap
 // into y) into one invocation index.
 fn flat_index(wid: vec3<u32>, nwg: vec3<u32>, lid: u32) -> u32 {

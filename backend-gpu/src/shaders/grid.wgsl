@@ -9,11 +9,8 @@
 @group(0) @binding(1) var<storage, read_write> cells: array<atomic<u32>>;
 @group(0) @binding(2) var<storage, read_write> cursor: array<atomic<u32>>;
 
-// grid::cell_of and grid::bucket_of
 fn bucket_of_point(p: vec3<f32>) -> u32 {
-    let c = vec3<i32>(floor(p * params.inv_cell));
-    return ((bitcast<u32>(c.x) * 73856093u) ^ (bitcast<u32>(c.y) * 19349663u) ^ (bitcast<u32>(c.z) * 83492791u))
-        & params.grid_mask;
+    return bucket_of(cell_of(p, params.inv_cell), params.grid_mask);
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE)

@@ -118,12 +118,6 @@ fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     return l.power / (4.0 * PI) * cos_s / (dist * dist);
 }
 
-// grid::cell_of and grid::bucket_of
-fn bucket_of_cell(c: vec3<i32>) -> u32 {
-    return ((bitcast<u32>(c.x) * 73856093u) ^ (bitcast<u32>(c.y) * 19349663u) ^ (bitcast<u32>(c.z) * 83492791u))
-        & params.grid_mask;
-}
-
 fn step_limit(lo: i32, hi: i32) -> i32 {
     // hi.min(lo.saturating_add(1))
     if lo == 2147483647 {
@@ -137,8 +131,10 @@ fn gather(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
     let r = params.radius;
     let r2 = r * r;
     let area = PI * r2;
-    let lo = vec3<i32>(floor((point - vec3<f32>(r)) * params.inv_cell));
-    let hi = vec3<i32>(floor((point + vec3<f32>(r)) * params.inv_cell));
+    let lo = cell_of(point - vec3<f32>(r), params.inv_cell);
+    let hi = cell_of(point + vec3<f32>(r), params.inv_cell);
+    var seen: array<u32, 8>;
+    var seen_count = 0u;
     var density = vec3<f32>(0.0);
     var hue = vec3<f32>(0.0);
     var total = 0u;
@@ -150,16 +146,15 @@ fn gather(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
         let cx = lo.x + i32(c % extent.x);
         let cy = lo.y + i32((c / extent.x) % extent.y);
         let cz = lo.z + i32(c / (extent.x * extent.y));
-        let b = bucket_of_cell(vec3<i32>(cx, cy, cz));
-        // A bucket that an earlier cell of this query hashed to is not visited twice.
+        let b = bucket_of(vec3<i32>(cx, cy, cz), params.grid_mask);
+        // Cells may share a bucket: each bucket is visited once.
         var dup = false;
-        for (var e = 0u; e < c; e++) {
-            let ex = lo.x + i32(e % extent.x);
-            let ey = lo.y + i32((e / extent.x) % extent.y);
-            let ez = lo.z + i32(e / (extent.x * extent.y));
-            dup = dup || bucket_of_cell(vec3<i32>(ex, ey, ez)) == b;
+        for (var i = 0u; i < seen_count; i++) {
+            dup = dup || seen[i] == b;
         }
         if !dup {
+            seen[seen_count] = b;
+            seen_count++;
             let end = cells[b + 1u];
             for (var i = cells[b]; i < end; i++) {
                 let p = sorted_load(i);

@@ -6,9 +6,10 @@
 use prismatic_core::BackendError;
 use std::sync::{Arc, Mutex};
 
-/// Storage buffers the render pass binds (six for the scene, four photon
-/// windows, the grid's cell starts and the pixels).
-pub const STORAGE_BUFFERS_NEEDED: u32 = 12;
+/// Storage buffers the grid build binds, the most of any stage (four
+/// photon windows each of the map and its sorted copy, the cell starts,
+/// their cursor and the widest bucket's size).
+pub const STORAGE_BUFFERS_NEEDED: u32 = 11;
 
 /// A device and queue with what the backend knows about them.
 pub struct GpuContext {

@@ -1,7 +1,7 @@
 //! The hash grid on the device: twin of `prismatic_core::grid`. Count
 //! photons per bucket (atomics), prefix-sum the counts into bucket starts,
 //! scatter each photon into its bucket's range of a sorted copy that the
-//! gather reads in place.
+//! gather reads in place; note the widest bucket's size.
 
 use crate::context::GpuContext;
 use crate::photons::PhotonArray;
@@ -19,6 +19,16 @@ pub struct DeviceGrid {
     pub cells: wgpu::Buffer,
     /// The photons in bucket order.
     pub sorted: PhotonArray,
+    /// One u32: the most photons in one bucket.
+    widest: wgpu::Buffer,
+}
+
+impl DeviceGrid {
+    /// The most photons in one bucket (waits for the device).
+    pub fn widest_bucket(&self, ctx: &GpuContext) -> Result<u32, BackendError> {
+        let bytes = ctx.read(&self.widest, 0, 4)?;
+        Ok(u32::from_le_bytes(bytes[..4].try_into().expect("4 bytes")))
+    }
 }
 
 /// Builds the grid over `map` for the scene's gather radius.
@@ -32,7 +42,7 @@ pub fn build(
     let mask = bucket_mask(stored as usize);
     let buckets = u64::from(mask) + 1;
     let sorted = PhotonArray::new(ctx, "prismatic sorted photons", stored, map.photons.window)?;
-    let (cells, cursor) = ctx.checked("allocating the grid", || {
+    let (cells, cursor, widest) = ctx.checked("allocating the grid", || {
         let buffer = |label: &str, n: u64| {
             ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
@@ -41,13 +51,17 @@ pub fn build(
                 mapped_at_creation: false,
             })
         };
-        (buffer("prismatic grid cells", buckets + 1), buffer("prismatic grid cursor", buckets))
+        (
+            buffer("prismatic grid cells", buckets + 1),
+            buffer("prismatic grid cursor", buckets),
+            buffer("prismatic grid widest bucket", 1),
+        )
     })?;
     let p = &mut scene_buffers.params;
     (p.stored, p.grid_mask, p.window) = (stored, mask, map.photons.window);
     scene_buffers.write_params(&ctx.queue);
     if stored == 0 {
-        return Ok(DeviceGrid { cells, sorted });
+        return Ok(DeviceGrid { cells, sorted, widest });
     }
     ctx.checked("building the grid", || {
         let mut entries = vec![
@@ -57,6 +71,7 @@ pub fn build(
         ];
         entries.extend(map.photons.entries(3));
         entries.extend(sorted.entries(7));
+        entries.push(wgpu::BindGroupEntry { binding: 11, resource: widest.as_entire_binding() });
         let group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("prismatic grid"),
             layout: &pipelines.grid_layout,
@@ -67,9 +82,10 @@ pub fn build(
         scan::record(&ctx.device, pipelines, &mut encoder, &cells, (buckets + 1) as u32);
         encoder.copy_buffer_to_buffer(&cells, 0, &cursor, 0, buckets * 4);
         dispatch(&mut encoder, &pipelines.grid_scatter, &[&group], u64::from(stored), WORKGROUP_SIZE);
+        dispatch(&mut encoder, &pipelines.grid_widest, &[&group], buckets, WORKGROUP_SIZE);
         ctx.queue.submit([encoder.finish()]);
     })?;
-    Ok(DeviceGrid { cells, sorted })
+    Ok(DeviceGrid { cells, sorted, widest })
 }
 
 #[cfg(test)]
@@ -80,7 +96,8 @@ mod tests {
     use prismatic_core::{Photon, rng::random_f32};
 
     /// The device grid's bucket starts and bucket contents equal the core
-    /// grid's (its twin), on a cloud dense enough for two scan levels.
+    /// grid's (its twin), on a cloud dense enough for two scan levels; the
+    /// widest bucket is the core grid's.
     #[test]
     fn device_grid_matches_the_core_grid() {
         let Ok(ctx) = GpuContext::new(AdapterChoice::Any) else {
@@ -109,6 +126,8 @@ mod tests {
         let cells = ctx.read(&grid.cells, 0, grid.cells.size()).unwrap();
         let cells: Vec<u32> = bytemuck::pod_collect_to_vec(&cells);
         assert_eq!(cells, core.cell_start);
+        let widest = core.cell_start.windows(2).map(|w| w[1] - w[0]).max().unwrap();
+        assert_eq!(grid.widest_bucket(&ctx).unwrap(), widest);
         let sorted = grid.sorted.read(&ctx, photons.len() as u32).unwrap();
         let inv = 1.0 / core.cell_size;
         for (b, w) in core.cell_start.windows(2).enumerate() {

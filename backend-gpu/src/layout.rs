@@ -50,6 +50,15 @@ pub struct Params {
     pub grid_mask: u32,
     /// Photon capacity of the map (scatter drops what does not fit).
     pub capacity: u32,
+    /// Visible-point slots per pixel of the current render chunk.
+    pub points_per_pixel: u32,
+    /// Photons of each bucket skipped by the current gather pass.
+    pub gather_first: u32,
+    /// Photons of each bucket the current gather pass reads (at most).
+    pub gather_span: u32,
+    /// Always 0: lets a shader hide a value from the compiler's algebra
+    /// (see `opaque` in gather.wgsl).
+    pub zero: u32,
     /// Padding.
     pub _pad0: u32,
     /// Flux of one emitted white photon.
@@ -85,7 +94,7 @@ pub struct Params {
     /// Padding.
     pub _pad6: u32,
 }
-const _: () = assert!(core::mem::size_of::<Params>() == 192);
+const _: () = assert!(core::mem::size_of::<Params>() == 208);
 
 /// An object's primitive. Kinds: 0 sphere (`a` centre, `ra` radius), 1 plane
 /// (`a` point, `n` normal), 2 disc (`a` centre, `n` normal, `ra` radius²,
@@ -214,6 +223,36 @@ pub struct Tally {
     pub _pad1: [u32; 3],
 }
 const _: () = assert!(core::mem::size_of::<Tally>() == 64);
+
+/// A view ray's diffuse hit waiting for its caustic gather (progressive
+/// photon mapping's "hit point"): where, facing which way, what the caustic
+/// radiance there is worth to its pixel, and the gather's running sums.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct VisiblePoint {
+    /// The hit point.
+    pub position: [f32; 3],
+    /// Photons gathered so far, in bands (a white photon counts N).
+    pub total: u32,
+    /// The surface normal on the side the view ray came from.
+    pub normal: [f32; 3],
+    /// Flux gathered so far.
+    pub flux: f32,
+    /// tint × albedo / π × exposure: pixel radiance per unit caustic irradiance.
+    pub weight: [f32; 3],
+    /// Padding.
+    pub _pad0: u32,
+    /// Density estimator: Σ C_b Φ N; paper estimator: Σ C_b.
+    pub sums: [f32; 3],
+    /// Compensation (Kahan) of `flux`: millions of photons in one gather
+    /// must not drift.
+    pub flux_c: f32,
+    /// Compensation (Kahan) of `sums`.
+    pub sums_c: [f32; 3],
+    /// Padding.
+    pub _pad1: u32,
+}
+const _: () = assert!(core::mem::size_of::<VisiblePoint>() == 80);
 
 /// The settings of one prefix-sum level.
 #[repr(C)]

@@ -3,10 +3,12 @@
 //! Every stage runs on the device in WGSL (`src/shaders/`), each a twin of
 //! the core stage of the same name: emit + trace (same counter-based RNG,
 //! bit for bit), compaction into canonical (emission, band) order, hash-grid
-//! build (count, prefix sum, scatter), and ray tracing with the gather.
-//! Buffers stay on the device between stages; [`GpuBackend::frame`] renders
-//! without reading anything back but a photon count, and the photon map is
-//! read back only when asked for ([`Backend::trace_photons`]).
+//! build (count, prefix sum, scatter), ray tracing into visible points, and
+//! the gather at them. Buffers stay on the device between stages;
+//! [`GpuBackend::frame`] renders reading back only a photon count and two
+//! sizes (visible points needed, widest bucket on software devices), and
+//! the photon map is read back only when asked for
+//! ([`Backend::trace_photons`]).
 //!
 //! An engine embeds it with [`GpuBackend::from_device`] on its own device
 //! and renders into its own buffer or storage texture
@@ -24,12 +26,12 @@ pub mod shaders;
 mod trace;
 
 pub use context::{AdapterChoice, GpuContext, STORAGE_BUFFERS_NEEDED, describe, is_hardware, required_limits};
-pub use render::PIXEL_BYTES;
+pub use render::{PIXEL_BYTES, SOFTWARE_GATHER_SPAN};
 
 use photons::PhotonArray;
 use pipelines::Pipelines;
 use prismatic_core::backend::{Backend, BackendError, Progress, Stage};
-use prismatic_core::{Image, PhotonMap, PreparedScene};
+use prismatic_core::{Image, PhotonMap, PreparedScene, TraceStats};
 use scene::{EncodedScene, SceneBuffers};
 
 /// Options that change how the work is cut, not what it computes.
@@ -38,6 +40,10 @@ pub struct GpuOptions {
     /// Photons per storage binding; `None`: as many as the device allows.
     /// Tests set it small to run the multi-binding paths on small scenes.
     pub window_photons: Option<u32>,
+    /// Photons of each grid bucket one gather pass reads; `None`: all of
+    /// them in one pass on a hardware GPU, [`SOFTWARE_GATHER_SPAN`] on a
+    /// software device (whose invocations may not loop long).
+    pub gather_span: Option<u32>,
 }
 
 /// The wgpu backend.
@@ -45,6 +51,7 @@ pub struct GpuBackend {
     ctx: GpuContext,
     pipelines: Pipelines,
     options: GpuOptions,
+    gatherer: render::Gatherer,
     /// The last frame's pixels (reused while the image size stays).
     pixels: Option<wgpu::Buffer>,
 }
@@ -71,12 +78,20 @@ impl GpuBackend {
     /// A backend on `ctx` with `options`.
     pub fn with_context(ctx: GpuContext, options: GpuOptions) -> Self {
         let pipelines = Pipelines::new(&ctx.device);
-        GpuBackend { ctx, pipelines, options, pixels: None }
+        let software = ctx.device.adapter_info().device_type == wgpu::DeviceType::Cpu;
+        let span = options.gather_span.unwrap_or(if software { SOFTWARE_GATHER_SPAN } else { u32::MAX });
+        GpuBackend { ctx, pipelines, options, gatherer: render::Gatherer::new(span), pixels: None }
     }
 
     /// The adapter, when the backend chose it.
     pub fn adapter(&self) -> Option<&wgpu::AdapterInfo> {
         self.ctx.adapter.as_ref()
+    }
+
+    /// Visible-point slots per pixel of the render: grows, once, to what
+    /// the scenes rendered so far needed (a re-render of that frame).
+    pub fn points_per_pixel(&self) -> u32 {
+        self.gatherer.points_per_pixel()
     }
 
     /// The device and queue (to share with the caller).
@@ -120,24 +135,26 @@ impl GpuBackend {
     }
 
     /// A whole frame on the device, into `pixels`: trace, compaction, grid,
-    /// render. Nothing is read back but the photon count. Returns the
-    /// scene's buffers for passes that follow on the same frame.
+    /// render. Nothing is read back but the photon count and the render's
+    /// visible-point check. Returns the scene's buffers and the photon map
+    /// for passes that follow on the same frame.
     fn frame_into(
         &mut self,
         scene: &PreparedScene,
         pixels: &wgpu::Buffer,
-    ) -> Result<(FrameInfo, SceneBuffers), BackendError> {
+        progress: &mut dyn Progress,
+    ) -> Result<(FrameInfo, SceneBuffers, trace::DeviceMap), BackendError> {
         let mut buffers = self.upload(scene)?;
-        let map = self.trace_on_device(scene, &mut buffers, &mut prismatic_core::NoProgress)?;
+        let map = self.trace_on_device(scene, &mut buffers, progress)?;
         let grid = grid::build(&self.ctx, &self.pipelines, &mut buffers, &map)?;
-        render::render(&self.ctx, &mut self.pipelines, &mut buffers, &grid, pixels)?;
-        Ok((FrameInfo { stored: map.stored }, buffers))
+        render::render(&self.ctx, &mut self.pipelines, &mut buffers, &grid, &mut self.gatherer, pixels)?;
+        Ok((FrameInfo { stored: map.stored }, buffers, map))
     }
 
     /// Renders a frame into the backend's own pixel buffer and waits for it.
     pub fn frame(&mut self, scene: &PreparedScene) -> Result<FrameInfo, BackendError> {
         let pixels = self.pixels_for(scene)?;
-        let (info, _) = self.frame_into(scene, &pixels)?;
+        let (info, ..) = self.frame_into(scene, &pixels, &mut prismatic_core::NoProgress)?;
         self.ctx.wait()?;
         Ok(info)
     }
@@ -158,7 +175,7 @@ impl GpuBackend {
         scene: &PreparedScene,
         buffer: &wgpu::Buffer,
     ) -> Result<FrameInfo, BackendError> {
-        Ok(self.frame_into(scene, buffer)?.0)
+        Ok(self.frame_into(scene, buffer, &mut prismatic_core::NoProgress)?.0)
     }
 
     /// Renders a frame into the caller's storage texture (the image's size;
@@ -170,7 +187,7 @@ impl GpuBackend {
         texture: &wgpu::Texture,
     ) -> Result<FrameInfo, BackendError> {
         let pixels = self.pixels_for(scene)?;
-        let (info, mut buffers) = self.frame_into(scene, &pixels)?;
+        let (info, mut buffers, _) = self.frame_into(scene, &pixels, &mut prismatic_core::NoProgress)?;
         render::copy_to_texture(&self.ctx, &mut self.pipelines, &mut buffers, &pixels, texture)?;
         Ok(info)
     }
@@ -213,10 +230,24 @@ impl Backend for GpuBackend {
             trace::DeviceMap::uploaded(&self.ctx, PhotonArray::upload(&self.ctx, &photons.photons, window)?, stored);
         let grid = grid::build(&self.ctx, &self.pipelines, &mut buffers, &map)?;
         let pixels = self.pixels_for(scene)?;
-        render::render(&self.ctx, &mut self.pipelines, &mut buffers, &grid, &pixels)?;
+        render::render(&self.ctx, &mut self.pipelines, &mut buffers, &grid, &mut self.gatherer, &pixels)?;
         let r = &scene.scene.render;
         let image = render::read_image(&self.ctx, &pixels, r.width, r.height)?;
         progress.advance(Stage::Render, u64::from(r.height), u64::from(r.height));
         Ok(image)
+    }
+
+    /// The whole frame on the device: the photon map is never read back.
+    fn trace_and_render(
+        &mut self,
+        scene: &PreparedScene,
+        progress: &mut dyn Progress,
+    ) -> Result<(TraceStats, Image), BackendError> {
+        let pixels = self.pixels_for(scene)?;
+        let (_, _, map) = self.frame_into(scene, &pixels, progress)?;
+        let r = &scene.scene.render;
+        let image = render::read_image(&self.ctx, &pixels, r.width, r.height)?;
+        progress.advance(Stage::Render, u64::from(r.height), u64::from(r.height));
+        Ok((map.stats(&self.ctx)?, image))
     }
 }

@@ -52,7 +52,8 @@ impl PhotonArray {
         let n =
             u32::try_from(photons.len()).ok().filter(|&n| n <= window.saturating_mul(WINDOWS)).ok_or_else(|| {
                 BackendError::OutOfMemory(format!(
-                    "{} photons do not fit {WINDOWS} storage bindings of {window} photons",
+                    "{} photons do not fit this device's {WINDOWS} storage bindings of {window} photons; \
+                     use --backend cpu",
                     photons.len()
                 ))
             })?;

@@ -86,10 +86,12 @@ pub struct Pipelines {
     pub compact_layout: wgpu::BindGroupLayout,
     /// Prefix sum: its params, data, block sums.
     pub scan_layout: wgpu::BindGroupLayout,
-    /// Grid: params, cells, cursor, map windows, sorted windows.
+    /// Grid: params, cells, cursor, map windows, sorted windows, widest bucket.
     pub grid_layout: wgpu::BindGroupLayout,
-    /// Group 1 of render: cells, pixels, sorted windows.
+    /// Group 1 of render: pixels, visible points, points per pixel, points needed.
     pub render_layout: wgpu::BindGroupLayout,
+    /// Gather: params, bands, cells, points per pixel, visible points, pixels, sorted windows.
+    pub gather_layout: wgpu::BindGroupLayout,
     /// Emit + trace.
     pub trace: wgpu::ComputePipeline,
     /// Compaction scatter.
@@ -104,6 +106,12 @@ pub struct Pipelines {
     pub grid_count: wgpu::ComputePipeline,
     /// Photons into bucket order.
     pub grid_scatter: wgpu::ComputePipeline,
+    /// The widest bucket's size.
+    pub grid_widest: wgpu::ComputePipeline,
+    /// One segment of the gather at every visible point.
+    pub gather: wgpu::ComputePipeline,
+    /// Visible points' caustics into their pixels.
+    pub resolve: wgpu::ComputePipeline,
     render: HashMap<u32, wgpu::ComputePipeline>,
     texture: HashMap<wgpu::TextureFormat, (wgpu::BindGroupLayout, wgpu::ComputePipeline)>,
 }
@@ -123,13 +131,20 @@ impl Pipelines {
         let grid_layout = layout(
             device,
             "prismatic grid",
-            &with_windows(with_windows(vec![Uniform, ReadWrite, ReadWrite], Read), ReadWrite),
+            &[with_windows(with_windows(vec![Uniform, ReadWrite, ReadWrite], Read), ReadWrite), vec![ReadWrite]]
+                .concat(),
         );
-        let render_layout = layout(device, "prismatic render", &with_windows(vec![Read, ReadWrite], Read));
+        let render_layout = layout(device, "prismatic render", &[ReadWrite, ReadWrite, ReadWrite, ReadWrite]);
+        let gather_layout = layout(
+            device,
+            "prismatic gather",
+            &with_windows(vec![Uniform, Read, Read, Read, ReadWrite, ReadWrite], Read),
+        );
         let trace_src = shaders::trace();
         let compact_src = shaders::compact();
         let scan_src = shaders::scan();
         let grid_src = shaders::grid();
+        let gather_src = shaders::gather();
         Pipelines {
             trace: pipeline(device, "prismatic trace", &trace_src, "main", &[&scene_layout, &trace_layout]),
             compact: pipeline(device, "prismatic compact", &compact_src, "scatter", &[&compact_layout]),
@@ -138,12 +153,16 @@ impl Pipelines {
             scan_add: pipeline(device, "prismatic scan add", &scan_src, "add_sums", &[&scan_layout]),
             grid_count: pipeline(device, "prismatic grid count", &grid_src, "count", &[&grid_layout]),
             grid_scatter: pipeline(device, "prismatic grid scatter", &grid_src, "scatter", &[&grid_layout]),
+            grid_widest: pipeline(device, "prismatic grid widest", &grid_src, "widest", &[&grid_layout]),
+            gather: pipeline(device, "prismatic gather", &gather_src, "gather", &[&gather_layout]),
+            resolve: pipeline(device, "prismatic resolve", &gather_src, "resolve", &[&gather_layout]),
             scene_layout,
             trace_layout,
             compact_layout,
             scan_layout,
             grid_layout,
             render_layout,
+            gather_layout,
             render: HashMap::new(),
             texture: HashMap::new(),
         }

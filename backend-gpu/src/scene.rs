@@ -229,8 +229,8 @@ pub struct SceneBuffers {
     pub params_buffer: wgpu::Buffer,
     /// Bind group 0.
     pub bind_group: wgpu::BindGroup,
-    /// Keeps the storage buffers alive.
-    _storage: Vec<wgpu::Buffer>,
+    /// Objects, surfaces, lights, bands, geometry, tables (bindings 1–6).
+    storage: Vec<wgpu::Buffer>,
 }
 
 /// A storage buffer holding `items` (at least one element: bindings cannot be empty).
@@ -272,7 +272,12 @@ impl SceneBuffers {
             layout,
             entries: &entries,
         });
-        SceneBuffers { params: encoded.params, params_buffer, bind_group, _storage: storage }
+        SceneBuffers { params: encoded.params, params_buffer, bind_group, storage }
+    }
+
+    /// The band table (binding 4), which the gather binds too.
+    pub fn bands(&self) -> &wgpu::Buffer {
+        &self.storage[3]
     }
 
     /// Writes the host copy of the settings to the device (visible to the next submit).

@@ -54,10 +54,13 @@ pub mod kind {
     pub const PROJECTION_DISCS: u32 = 2;
 }
 
-/// The view-ray stack of the render pass: two pending entries per depth
-/// (the other Fresnel branch and the rest of a band split) plus the root.
+/// The view-ray stack of the render pass: one pending sibling per depth
+/// (the other Fresnel branch), two at the deepest, the rest of one band
+/// split and a spare. Exact rather than rounded up: the shader compiler's
+/// work grows with it (lavapipe lowers varying indices into the stack to
+/// chains of selects).
 pub fn stack_size(max_depth: u32) -> u32 {
-    (2 * max_depth.min(MAX_DEPTH) + 4).next_power_of_two()
+    max_depth.min(MAX_DEPTH) + 4
 }
 
 fn prelude(stack: u32) -> String {
@@ -171,7 +174,8 @@ pub fn scan() -> String {
     [prelude(0), COMMON.into(), include_str!("shaders/scan.wgsl").into()].concat()
 }
 
-/// Grid build (entries `count`, `scatter`); the map is bindings 3–6, the sorted copy 7–10.
+/// Grid build (entries `count`, `scatter`, `widest`); the map is bindings
+/// 3–6, the sorted copy 7–10, the widest bucket's size 11.
 pub fn grid() -> String {
     [
         prelude(0),
@@ -183,17 +187,17 @@ pub fn grid() -> String {
     .concat()
 }
 
-/// Ray tracing + gather (entry `main`) with a view-ray stack of `stack` entries;
-/// the sorted photons are bindings 2–5 of group 1.
+/// Ray tracing into pixels and visible points (entry `main`) with a
+/// view-ray stack of `stack` entries.
 pub fn render(stack: u32) -> String {
-    [
-        prelude(stack),
-        COMMON.into(),
-        SCENE.into(),
-        include_str!("shaders/render.wgsl").into(),
-        photon_windows("sorted", 1, 2, false),
-    ]
-    .concat()
+    [prelude(stack), COMMON.into(), SCENE.into(), include_str!("shaders/render.wgsl").into()].concat()
+}
+
+/// The gather at visible points (entries `gather`, `resolve`); the sorted
+/// photons are bindings 6–9.
+pub fn gather() -> String {
+    [prelude(0), COMMON.into(), include_str!("shaders/gather.wgsl").into(), photon_windows("sorted", 0, 6, false)]
+        .concat()
 }
 
 /// Copies a rendered pixel buffer into a storage texture of `format` (a WGSL texel format).

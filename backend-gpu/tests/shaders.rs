@@ -3,7 +3,7 @@
 //! on both sides.
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use prismatic_gpu::layout::{GpuBand, GpuLight, GpuObject, GpuSurface, Params, ScanParams, Tally};
+use prismatic_gpu::layout::{GpuBand, GpuLight, GpuObject, GpuSurface, Params, ScanParams, Tally, VisiblePoint};
 use prismatic_gpu::shaders;
 use std::mem::{offset_of, size_of};
 
@@ -24,6 +24,7 @@ fn sources() -> Vec<(&'static str, String)> {
         ("grid", shaders::grid()),
         ("render", shaders::render(shaders::stack_size(12))),
         ("render-deepest", shaders::render(shaders::stack_size(prismatic_core::scene::MAX_DEPTH))),
+        ("gather", shaders::gather()),
         ("to_texture", shaders::to_texture("rgba16float")),
     ]
 }
@@ -53,6 +54,7 @@ macro_rules! rust_layout {
 fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
     let trace = module("trace", &shaders::trace());
     let scan = module("scan", &shaders::scan());
+    let gather = module("gather", &shaders::gather());
     let photon = rust_layout!(prismatic_core::Photon { position, flux, direction_oct, emission, band });
     let (size, mut fields) = wgsl_layout(&trace, "Photon");
     // WGSL packs the two u16s (band, bounces) into one u32 at the band's offset.
@@ -82,6 +84,10 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 stored,
                 grid_mask,
                 capacity,
+                points_per_pixel,
+                gather_first,
+                gather_span,
+                zero,
                 _pad0,
                 flux,
                 radius,
@@ -142,6 +148,11 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
         ("GpuBand", &trace, rust_layout!(GpuBand { weight, lambda_nm, lo_nm, hi_nm, max_weight, _pad })),
         ("Tally", &trace, rust_layout!(Tally { counts, _pad0, flux, _pad1 })),
         ("ScanParams", &scan, rust_layout!(ScanParams { n, _pad0, _pad1, _pad2 })),
+        (
+            "VisiblePoint",
+            &gather,
+            rust_layout!(VisiblePoint { position, total, normal, flux, weight, _pad0, sums, flux_c, sums_c, _pad1 }),
+        ),
     ];
     for (name, module, rust) in cases {
         assert_eq!(wgsl_layout(module, name), rust, "{name}: WGSL (size, offsets) vs Rust");

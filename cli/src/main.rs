@@ -10,7 +10,7 @@ use prismatic_cli::study::progress::StudyBar;
 use prismatic_cli::study::{self, StudyOptions, report};
 use prismatic_core::bands::BandSpec;
 use prismatic_core::scene::{Estimator, WavelengthSampling};
-use prismatic_core::{PhotonMap, PreparedScene, Progress, Stage};
+use prismatic_core::{PreparedScene, Progress, Stage, TraceStats};
 use std::io::{IsTerminal, Write};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -212,22 +212,18 @@ fn run(cli: Cli) -> Result<()> {
             }
             let mut bar = ProgressBar::new();
             let t0 = Instant::now();
-            let map = selected.backend.trace_photons(&scene, &mut bar)?;
-            let t_trace = t0.elapsed();
-            let t1 = Instant::now();
-            let image = selected.backend.render(&scene, &map, &mut bar)?;
-            let t_render = t1.elapsed();
+            let (stats, image) = selected.backend.trace_and_render(&scene, &mut bar)?;
+            let elapsed = t0.elapsed();
             bar.finish();
             if !image.is_finite() {
                 anyhow::bail!("the render produced non-finite pixels; nothing was written (please report this scene)");
             }
             out.commit(|w| write_png(w, &image, scene.scene.render.tone_map))?;
             println!(
-                "{name}: {} backend, {}; trace {}, render {}; wrote {} ({}x{})",
+                "{name}: {} backend, {}; traced and rendered in {}; wrote {} ({}x{})",
                 selected.backend.name(),
-                photon_summary(&scene, &map),
-                secs(t_trace),
-                secs(t_render),
+                photon_summary(&scene, &stats),
+                secs(elapsed),
                 output.display(),
                 image.width,
                 image.height
@@ -247,7 +243,7 @@ fn run(cli: Cli) -> Result<()> {
             println!(
                 "{name}: {} backend, {}; trace {}; wrote {}",
                 selected.backend.name(),
-                photon_summary(&scene, &map),
+                photon_summary(&scene, &map.stats),
                 secs(t_trace),
                 output.display()
             );
@@ -327,8 +323,7 @@ fn civil_date(days: i64) -> String {
     format!("{y:04}-{m:02}-{d:02}")
 }
 
-fn photon_summary(scene: &PreparedScene, map: &PhotonMap) -> String {
-    let s = &map.stats;
+fn photon_summary(scene: &PreparedScene, s: &TraceStats) -> String {
     let bands = match scene.bands.spec() {
         BandSpec::Physical(1) => "1 physically based band".to_string(),
         BandSpec::Physical(n) => format!("{n} physically based bands"),

@@ -2,7 +2,7 @@
 //! the scalar reference backend.
 
 use crate::image::Image;
-use crate::photon::PhotonMap;
+use crate::photon::{PhotonMap, TraceStats};
 use crate::prepared::PreparedScene;
 use alloc::string::String;
 
@@ -75,6 +75,20 @@ pub trait Backend {
         photons: &PhotonMap,
         progress: &mut dyn Progress,
     ) -> Result<Image, BackendError>;
+
+    /// Traces and renders in one go, for callers that need the image and
+    /// not the photon map: a backend may keep the map where it traced it
+    /// (the GPU backend keeps it on the device). Returns what the trace
+    /// did and the image.
+    fn trace_and_render(
+        &mut self,
+        scene: &PreparedScene,
+        progress: &mut dyn Progress,
+    ) -> Result<(TraceStats, Image), BackendError> {
+        let map = self.trace_photons(scene, progress)?;
+        let image = self.render(scene, &map, progress)?;
+        Ok((map.stats, image))
+    }
 }
 
 /// The scalar reference, single-threaded: the definition of right.

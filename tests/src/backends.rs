@@ -20,12 +20,14 @@ pub fn gpu_backend(options: GpuOptions) -> Option<GpuBackend> {
     }
 }
 
-/// The reference and the CPU backend. The GPU backend is held to them in
-/// `parity_gpu.rs`; it joins this list (and so every physics and effects
-/// test) once its known render bug is fixed (split view rays through glass
-/// lose late bands over dense caustics; issue 4 is open for it).
+/// The reference, the CPU backend and the GPU backend (outside CI, only
+/// where the machine has an adapter; see [`gpu_backend`]).
 pub fn every_backend() -> Vec<Box<dyn Backend>> {
-    vec![Box::new(ReferenceBackend), Box::new(CpuBackend::new())]
+    let mut backends: Vec<Box<dyn Backend>> = vec![Box::new(ReferenceBackend), Box::new(CpuBackend::new())];
+    if let Some(gpu) = gpu_backend(GpuOptions::default()) {
+        backends.push(Box::new(gpu));
+    }
+    backends
 }
 
 /// Traces `scene`'s photons on `backend`, panicking with the backend's name on error.

@@ -13,9 +13,11 @@ use prismatic_core::grid::PhotonGrid;
 use prismatic_core::photon::{Photon, PhotonMap, WHITE_BAND, oct_encode};
 use prismatic_core::prepared::{Surface, offset_origin};
 use prismatic_core::scene::{Estimator, Light, MaterialKind, Object, Shape};
-use prismatic_core::{Backend, BandTable, Image, NoProgress, PreparedScene, Scene, Vec3};
+use prismatic_core::{Backend, BackendError, BandTable, Image, NoProgress, PreparedScene, Scene, Vec3};
 use prismatic_cpu::CpuGrid;
 use prismatic_tests::backends::{every_backend, trace, trace_and_render};
+use prismatic_tests::parity::compare_maps_allowing;
+use prismatic_tests::tolerance::{KNIFE_EDGE_OUTLIER_FRACTION, OUTLIER_FRACTION};
 use prismatic_tests::{PrismExperiment, builtin, camera, glass, prepare, settings, sphere_in_a_catcher, white};
 
 /// Panics unless every photon of `map` is finite and every pixel of `image` too.
@@ -479,10 +481,30 @@ fn one_pixel_floor(estimator: Estimator, radius: f32) -> PreparedScene {
 /// More than 2^24 photons in one gather: the counts and sums stay exact
 /// (an f32 counter stops at 2^24; an f32 sum of 2^24 photons drifts by
 /// percent). The paper hue of 2^24 + 3 band-0 photons and 3 band-1 photons
-/// and the density estimate both come out as the closed form says.
+/// and the density estimate both come out as the closed form says. A GPU
+/// whose storage bindings cannot hold that many photons (lavapipe: 4 × 2^22)
+/// must say so and name the CPU backend; it is then held to the closed form
+/// at 2^22 + 3 photons, where a plain f32 sum already drifts by 1 to 4 %.
 #[test]
 fn more_than_two_to_the_24_photons_in_one_gather() {
-    const MANY: usize = (1 << 24) + 3;
+    for estimator in [Estimator::Paper, Estimator::Density] {
+        for mut backend in every_backend() {
+            let name = backend.name();
+            match one_dense_gather(backend.as_mut(), estimator, (1 << 24) + 3) {
+                Ok(()) => {}
+                Err(BackendError::OutOfMemory(why)) if name == "gpu" => {
+                    assert!(why.contains("--backend cpu"), "{name}: {why}");
+                    one_dense_gather(backend.as_mut(), estimator, (1 << 22) + 3).unwrap();
+                }
+                Err(e) => panic!("{name}: render: {e}"),
+            }
+        }
+    }
+}
+
+/// `many` band-0 photons and 3 band-1 photons in one pixel's gather,
+/// against the closed form.
+fn one_dense_gather(backend: &mut dyn Backend, estimator: Estimator, many: usize) -> Result<(), BackendError> {
     let photon = |band: u16| Photon {
         position: [0.0, 0.0, 0.0],
         flux: 1.0 / 3.0,
@@ -491,41 +513,30 @@ fn more_than_two_to_the_24_photons_in_one_gather() {
         band,
         bounces: 1,
     };
-    let mut photons = vec![photon(0); MANY];
+    let mut photons = vec![photon(0); many];
     photons.extend([photon(1); 3]);
     let map = PhotonMap { photons, ..PhotonMap::default() };
     let radius = 0.5;
     let area = std::f64::consts::PI * f64::from(radius) * f64::from(radius);
-    for estimator in [Estimator::Paper, Estimator::Density] {
-        let scene = one_pixel_floor(estimator, radius);
-        let bands = &scene.bands;
-        let flux = f64::from(1.0f32 / 3.0) * (MANY + 3) as f64;
-        let expected = match estimator {
-            // N·W/Total · ΣΦ/(πr²), with integer counts.
-            Estimator::Paper => {
-                (bands.band(0).weight.as_dvec3() * MANY as f64 + bands.band(1).weight.as_dvec3() * 3.0)
-                    * (3.0 / (MANY + 3) as f64)
-                    * (flux / area)
-            }
-            Estimator::Density => {
-                (bands.band(0).weight.as_dvec3() * MANY as f64 + bands.band(1).weight.as_dvec3() * 3.0)
-                    * 3.0
-                    * f64::from(1.0f32 / 3.0)
-                    / area
-            }
-        };
-        // Radiance leaving the white floor: albedo/π times the irradiance.
-        let expected = expected * (0.8 / std::f64::consts::PI);
-        for mut backend in every_backend() {
-            let name = backend.name();
-            let image = render(backend.as_mut(), &scene, &map);
-            let got = image.pixels[0].as_dvec3() / f64::from(scene.scene.render.exposure);
-            assert!(
-                (got - expected).abs().max_element() <= 1e-5 * expected.max_element(),
-                "{name}, {estimator:?}: {got} vs {expected}"
-            );
-        }
-    }
+    let scene = one_pixel_floor(estimator, radius);
+    let bands = &scene.bands;
+    let flux = f64::from(1.0f32 / 3.0) * (many + 3) as f64;
+    let hue = bands.band(0).weight.as_dvec3() * many as f64 + bands.band(1).weight.as_dvec3() * 3.0;
+    let expected = match estimator {
+        // N·W/Total · ΣΦ/(πr²), with integer counts.
+        Estimator::Paper => hue * (3.0 / (many + 3) as f64) * (flux / area),
+        Estimator::Density => hue * 3.0 * f64::from(1.0f32 / 3.0) / area,
+    };
+    // Radiance leaving the white floor: albedo/π times the irradiance.
+    let expected = expected * (0.8 / std::f64::consts::PI);
+    let image = backend.render(&scene, &map, &mut NoProgress)?;
+    let got = image.pixels[0].as_dvec3() / f64::from(scene.scene.render.exposure);
+    assert!(
+        (got - expected).abs().max_element() <= 1e-5 * expected.max_element(),
+        "{}, {estimator:?}, {many} photons: {got} vs {expected}",
+        backend.name()
+    );
+    Ok(())
 }
 
 /// Photons exactly on grid cell borders (and exactly at the gather radius)
@@ -604,7 +615,8 @@ fn one_band_and_256_bands() {
 
 /// Thin beams aimed exactly at a mesh prism's vertex and along its edges, in a
 /// closed catcher: on every backend the energy closes and the photon map
-/// matches the reference's within the parity tolerances.
+/// matches the reference's within the parity tolerances (the GPU's outlier
+/// bound is `KNIFE_EDGE_OUTLIER_FRACTION`).
 #[test]
 fn beams_through_mesh_vertices_and_edges_match_the_reference() {
     let exp = PrismExperiment { apex_deg: 60.0, incidence_deg: 50.0, beam_radius: 1e-4, screen_x: 6.0 };
@@ -629,7 +641,8 @@ fn beams_through_mesh_vertices_and_edges_match_the_reference() {
             assert_eq!(s.flux_escaped, 0.0, "{case}");
             let accounted = s.flux_stored + s.flux_direct + s.flux_depth_limited;
             assert!((accounted - s.flux_emitted).abs() <= 1e-6 * s.flux_emitted, "{case}: {s:?}");
-            let report = prismatic_tests::parity::compare_maps(&reference, &map, scene.bands.len());
+            let outliers = if backend.name() == "gpu" { KNIFE_EDGE_OUTLIER_FRACTION } else { OUTLIER_FRACTION };
+            let report = compare_maps_allowing(&reference, &map, scene.bands.len(), outliers);
             assert!(report.is_ok(), "{case}: {}", report.unwrap_err());
         }
     }

@@ -25,6 +25,10 @@ struct Params {
     stored: u32,
     grid_mask: u32,
     capacity: u32,
+    points_per_pixel: u32,
+    gather_first: u32,
+    gather_span: u32,
+    zero: u32,
     _pad0: u32,
     flux: f32,
     radius: f32,
@@ -107,6 +111,20 @@ struct GpuBand {
     hi_nm: f32,
     max_weight: f32,
     _pad: f32,
+}
+
+// Twin of prismatic_gpu::layout::VisiblePoint.
+struct VisiblePoint {
+    position: vec3<f32>,
+    total: u32,
+    normal: vec3<f32>,
+    flux: f32,
+    weight: vec3<f32>,
+    _pad0: u32,
+    sums: vec3<f32>,
+    flux_c: f32,
+    sums_c: vec3<f32>,
+    _pad1: u32,
 }
 
 // Twin of prismatic_gpu::layout::Tally.

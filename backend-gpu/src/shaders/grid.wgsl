@@ -1,13 +1,15 @@
 // Hash-grid build by counting sort: twin of prismatic_core::grid.
 // `count` counts photons per bucket; the host scans the counts into bucket
 // starts and copies them to `cursor`; `scatter` copies each photon into its
-// bucket's range of the sorted map, which the gather reads. Within a bucket
+// bucket's range of the sorted map, which the gather reads; `widest` finds
+// the largest bucket (for devices whose gathers go in segments). Within a bucket
 // the order is the atomics' (the gather's sums do not depend on it beyond
 // float rounding).
 
 @group(0) @binding(0) var<uniform> params: Params;
 @group(0) @binding(1) var<storage, read_write> cells: array<atomic<u32>>;
 @group(0) @binding(2) var<storage, read_write> cursor: array<atomic<u32>>;
+@group(0) @binding(11) var<storage, read_write> widest_bucket: atomic<u32>;
 
 fn bucket_of_point(p: vec3<f32>) -> u32 {
     return bucket_of(cell_of(p, params.inv_cell), params.grid_mask);
@@ -36,5 +38,20 @@ fn scatter(
         let p = map_load(i);
         let slot = atomicAdd(&cursor[bucket_of_point(p.position)], 1u);
         sorted_store(slot, p);
+    }
+}
+
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn widest(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let b = flat_index(wid, nwg, lid);
+    if b <= params.grid_mask {
+        let size = atomicLoad(&cells[b + 1u]) - atomicLoad(&cells[b]);
+        if size > atomicLoad(&widest_bucket) {
+            atomicMax(&widest_bucket, size);
+        }
     }
 }

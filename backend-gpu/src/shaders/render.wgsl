@@ -1,13 +1,20 @@
-// Ray tracing and gather: twin of prismatic_core::render and
-// prismatic_core::gather. One invocation per pixel. WGSL has no recursion,
-// so the reference's recursion becomes a stack of pending rays, each with
-// the RGB tint and the weight it carries back to the pixel (as the CPU
-// backend's queue does); the split of a white view ray into bands is a
-// stack entry that hands out one band at a time, which keeps the stack at
-// two entries per depth.
+// Ray tracing: twin of prismatic_core::render, less the caustic gather.
+// One invocation per pixel. WGSL has no recursion, so the reference's
+// recursion becomes a stack of pending rays, each with the RGB tint and
+// the weight it carries back to the pixel (as the CPU backend's queue
+// does); the split of a white view ray into bands is a stack entry that
+// hands out one band at a time. Direct light, ambient and background go
+// straight into the pixel; each diffuse hit that needs the caustic becomes
+// a visible point for gather.wgsl (slot j of pixel k at
+// `j * pixel_count + k`), so that no invocation runs a gather: a
+// software device caps the loop iterations of one invocation.
 
-@group(1) @binding(0) var<storage, read> cells: array<u32>;
-@group(1) @binding(1) var<storage, read_write> pixels: array<vec4<f32>>;
+@group(1) @binding(0) var<storage, read_write> pixels: array<vec4<f32>>;
+@group(1) @binding(1) var<storage, read_write> points: array<VisiblePoint>;
+@group(1) @binding(2) var<storage, read_write> point_counts: array<u32>;
+// The most visible points any pixel wanted, when some pixel wanted more
+// than `points_per_pixel` (else left alone).
+@group(1) @binding(3) var<storage, read_write> points_needed: atomic<u32>;
 
 struct Pending {
     origin: vec3<f32>,
@@ -27,16 +34,19 @@ const NO_SPLIT: u32 = 0xffffffffu;
 
 var<private> stack: array<Pending, STACK_SIZE>;
 var<private> top: u32;
+// What the entry being handled spawns, pushed in one place: each access to
+// `stack` with a varying index costs the shader compiler in proportion to
+// STACK_SIZE (lavapipe lowers it to a chain of selects).
+var<private> kids: array<Pending, 3>;
+var<private> kid_count: u32;
 
-fn push(e: Pending) {
-    if top < STACK_SIZE {
-        stack[top] = e;
-        top++;
-    }
+fn spawn(e: Pending) {
+    kids[kid_count] = e;
+    kid_count++;
 }
 
-fn push_ray(origin: vec3<f32>, dir: vec3<f32>, band: u32, depth: u32, weight: f32, tint: vec3<f32>) {
-    push(Pending(origin, weight, dir, band, tint, depth, vec3<f32>(0.0), NO_SPLIT, 0u));
+fn spawn_ray(origin: vec3<f32>, dir: vec3<f32>, band: u32, depth: u32, weight: f32, tint: vec3<f32>) {
+    spawn(Pending(origin, weight, dir, band, tint, depth, vec3<f32>(0.0), NO_SPLIT, 0u));
 }
 
 // RenderContext::through_dielectric: the Fresnel-weighted reflection and refraction.
@@ -48,12 +58,12 @@ fn through_dielectric(e: Pending, ior: f32, band: u32, weight: f32, tint: vec3<f
     if t * weight > MIN_VIEW_WEIGHT {
         let d = refract_dir(e.dir, f.n, f.n1, f.n2);
         if d.w != 0.0 {
-            push_ray(offset_origin(e.origin, f.n, d.xyz), d.xyz, band, e.depth + 1u, weight * t, tint * t);
+            spawn_ray(offset_origin(e.origin, f.n, d.xyz), d.xyz, band, e.depth + 1u, weight * t, tint * t);
         }
     }
     if r * weight > MIN_VIEW_WEIGHT {
         let d = reflect_dir(e.dir, f.n);
-        push_ray(offset_origin(e.origin, f.n, d), d, band, e.depth + 1u, weight * r, tint * r);
+        spawn_ray(offset_origin(e.origin, f.n, d), d, band, e.depth + 1u, weight * r, tint * r);
     }
 }
 
@@ -118,133 +128,93 @@ fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     return l.power / (4.0 * PI) * cos_s / (dist * dist);
 }
 
-fn step_limit(lo: i32, hi: i32) -> i32 {
-    // hi.min(lo.saturating_add(1))
-    if lo == 2147483647 {
-        return lo;
+var<private> pixel_index: u32;
+var<private> point_count: u32;
+
+// A diffuse hit's caustic, left to the gather pass: the point, its normal
+// on the viewer's side, and what unit caustic irradiance there adds to
+// the pixel. Points past the pixel's slots are counted, not written.
+fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>) {
+    if point_count < params.points_per_pixel {
+        points[point_count * params.pixel_count + pixel_index] =
+            VisiblePoint(point, 0u, normal, 0.0, weight, 0u, vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u);
     }
-    return min(hi, lo + 1);
+    point_count++;
 }
 
-// gather::gather over the photons in the (at most 8) buckets the disc touches.
-fn gather(point: vec3<f32>, normal: vec3<f32>) -> vec3<f32> {
-    let r = params.radius;
-    let r2 = r * r;
-    let area = PI * r2;
-    let lo = cell_of(point - vec3<f32>(r), params.inv_cell);
-    let hi = cell_of(point + vec3<f32>(r), params.inv_cell);
-    var seen: array<u32, 8>;
-    var seen_count = 0u;
-    var density = vec3<f32>(0.0);
-    var hue = vec3<f32>(0.0);
-    var total = 0u;
-    var flux = 0.0;
-    let n_bands = params.band_count;
-    let hi_lim = vec3<i32>(step_limit(lo.x, hi.x), step_limit(lo.y, hi.y), step_limit(lo.z, hi.z));
-    let extent = vec3<u32>(hi_lim - lo) + vec3<u32>(1u);
-    for (var c = 0u; c < extent.x * extent.y * extent.z; c++) {
-        let cx = lo.x + i32(c % extent.x);
-        let cy = lo.y + i32((c / extent.x) % extent.y);
-        let cz = lo.z + i32(c / (extent.x * extent.y));
-        let b = bucket_of(vec3<i32>(cx, cy, cz), params.grid_mask);
-        // Cells may share a bucket: each bucket is visited once.
-        var dup = false;
-        for (var i = 0u; i < seen_count; i++) {
-            dup = dup || seen[i] == b;
-        }
-        if !dup {
-            seen[seen_count] = b;
-            seen_count++;
-            let end = cells[b + 1u];
-            for (var i = cells[b]; i < end; i++) {
-                let p = sorted_load(i);
-                let d = p.position - point;
-                if dot(d, d) <= r2 && dot(oct_decode(p.direction_oct), normal) < 0.0 {
-                    let band = p.band_bounces & 0xffffu;
-                    if band < n_bands {
-                        density += bands[band].weight * (p.flux * f32(n_bands));
-                        hue += bands[band].weight;
-                        total += 1u;
-                    } else {
-                        density += vec3<f32>(p.flux);
-                        hue += vec3<f32>(1.0);
-                        total += n_bands;
-                    }
-                    flux += p.flux;
-                }
-            }
-        }
-    }
-    if params.estimator == ESTIMATOR_DENSITY {
-        return density / area;
-    }
-    if total == 0u {
-        return vec3<f32>(0.0);
-    }
-    return hue * (f32(n_bands) / f32(total)) * (flux / area);
-}
-
-// RenderContext::shade_diffuse
-fn shade_diffuse(dir: vec3<f32>, hit: Hit) -> vec3<f32> {
+// RenderContext::shade_diffuse, less the caustic (see add_visible_point);
+// `tint` is the view ray's.
+fn shade_diffuse(dir: vec3<f32>, hit: Hit, tint: vec3<f32>) -> vec3<f32> {
     let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
     let albedo = albedo_at(surfaces[hit.object], hit.point, n);
     var direct = 0.0;
     for (var i = 0u; i < params.light_count; i++) {
         direct += direct_irradiance(lights[i], hit.point, n);
     }
-    var caustic = vec3<f32>(0.0);
     if params.stored > 0u {
-        caustic = gather(hit.point, n);
+        add_visible_point(hit.point, n, tint * albedo * (params.exposure / PI));
     }
-    return albedo * (caustic + vec3<f32>(direct)) * (1.0 / PI) + albedo * params.ambient;
+    return albedo * vec3<f32>(direct) * (1.0 / PI) + albedo * params.ambient;
 }
 
-// RenderContext::pixel: radiance through the pixel centre, exposure applied.
+// One pending entry: what it adds to the pixel; what it spawns goes to `kids`.
+fn visit(e: Pending) -> vec3<f32> {
+    if e.next_band != NO_SPLIT {
+        // One band of a split view ray: its RGB weight, its index. The rest
+        // of the split goes below this band's rays.
+        let b = e.next_band;
+        if b + 1u < params.band_count {
+            var rest = e;
+            rest.next_band = b + 1u;
+            spawn(rest);
+        }
+        let band = bands[b];
+        let ior = band_ior(surfaces[e.object], b);
+        through_dielectric(e, ior, b, e.weight * band.max_weight, e.tint * band.weight);
+        return vec3<f32>(0.0);
+    }
+    let hit = intersect_scene(e.origin, e.dir, BIG);
+    if !hit.ok {
+        return e.tint * params.background;
+    }
+    let s = surfaces[hit.object];
+    if s.kind == SURFACE_DIFFUSE {
+        return e.tint * shade_diffuse(e.dir, hit, e.tint);
+    }
+    if e.depth >= params.max_depth {
+        return vec3<f32>(0.0);
+    }
+    if s.kind == SURFACE_MIRROR {
+        let d = reflect_dir(e.dir, hit.normal);
+        spawn_ray(offset_origin(hit.point, hit.normal, d), d, e.band, e.depth + 1u, e.weight, e.tint);
+        return vec3<f32>(0.0);
+    }
+    var at = Pending(hit.point, e.weight, e.dir, e.band, e.tint, e.depth, hit.normal, NO_SPLIT, hit.object);
+    if e.band == WHITE_BAND && (s.flags & SURFACE_SPLITS_VIEW_RAYS) != 0u {
+        at.next_band = 0u;
+        spawn(at);
+    } else {
+        through_dielectric(at, band_ior(s, e.band), e.band, e.weight, e.tint);
+    }
+    return vec3<f32>(0.0);
+}
+
+// RenderContext::pixel: radiance through the pixel centre, exposure
+// applied, but for the caustics of its visible points.
 fn pixel(x: u32, y: u32) -> vec3<f32> {
     let d = params.cam_corner + params.cam_right * (f32(x) + 0.5) + params.cam_down * (f32(y) + 0.5);
-    top = 0u;
-    push_ray(params.cam_origin, nrm(d), WHITE_BAND, 0u, 1.0, vec3<f32>(1.0));
+    stack[0] = Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, vec3<f32>(1.0), 0u, vec3<f32>(0.0), NO_SPLIT, 0u);
+    top = 1u;
     var sum = vec3<f32>(0.0);
     while top > 0u {
         top--;
-        let e = stack[top];
-        if e.next_band != NO_SPLIT {
-            // One band of a split view ray: its RGB weight, its index.
-            let b = e.next_band;
-            let band = bands[b];
-            let ior = band_ior(surfaces[e.object], b);
-            through_dielectric(e, ior, b, e.weight * band.max_weight, e.tint * band.weight);
-            if b + 1u < params.band_count {
-                var rest = e;
-                rest.next_band = b + 1u;
-                push(rest);
-            }
-            continue;
-        }
-        let hit = intersect_scene(e.origin, e.dir, BIG);
-        if !hit.ok {
-            sum += e.tint * params.background;
-            continue;
-        }
-        let s = surfaces[hit.object];
-        if s.kind == SURFACE_DIFFUSE {
-            sum += e.tint * shade_diffuse(e.dir, hit);
-            continue;
-        }
-        if e.depth >= params.max_depth {
-            continue;
-        }
-        if s.kind == SURFACE_MIRROR {
-            let d = reflect_dir(e.dir, hit.normal);
-            push_ray(offset_origin(hit.point, hit.normal, d), d, e.band, e.depth + 1u, e.weight, e.tint);
-            continue;
-        }
-        var at = Pending(hit.point, e.weight, e.dir, e.band, e.tint, e.depth, hit.normal, NO_SPLIT, hit.object);
-        if e.band == WHITE_BAND && (s.flags & SURFACE_SPLITS_VIEW_RAYS) != 0u {
-            at.next_band = 0u;
-            push(at);
-        } else {
-            through_dielectric(at, band_ior(s, e.band), e.band, e.weight, e.tint);
+        kid_count = 0u;
+        sum += visit(stack[top]);
+        // The stack never holds more than max_depth + 3 entries (see
+        // prismatic_gpu::shaders::stack_size).
+        for (var i = 0u; i < kid_count && top < STACK_SIZE; i++) {
+            stack[top] = kids[i];
+            top++;
         }
     }
     return sum * params.exposure;
@@ -261,5 +231,11 @@ fn main(
         return;
     }
     let i = params.pixel_offset + k;
+    pixel_index = k;
+    point_count = 0u;
     pixels[k] = vec4<f32>(pixel(i % params.width, i / params.width), 1.0);
+    point_counts[k] = point_count;
+    if point_count > params.points_per_pixel {
+        atomicMax(&points_needed, point_count);
+    }
 }

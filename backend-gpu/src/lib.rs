@@ -169,7 +169,8 @@ impl GpuBackend {
 
     /// Renders a frame into the caller's `buffer` (`STORAGE` usage, at
     /// least width × height × [`PIXEL_BYTES`]): row-major `vec4<f32>`,
-    /// linear RGB with exposure applied, alpha 1. Submitted, not waited for.
+    /// linear RGB with exposure applied, alpha 1. Returns when the frame is
+    /// done (the render reads back whether every pixel had its visible points).
     pub fn render_into_buffer(
         &mut self,
         scene: &PreparedScene,
@@ -180,7 +181,7 @@ impl GpuBackend {
 
     /// Renders a frame into the caller's storage texture (the image's size;
     /// `Rgba32Float`, `Rgba16Float` or `Rgba8Unorm`; `STORAGE_BINDING`
-    /// usage) with a copy on the device. Submitted, not waited for.
+    /// usage) with a copy on the device; the copy is submitted, not waited for.
     pub fn render_into_texture(
         &mut self,
         scene: &PreparedScene,

@@ -147,7 +147,8 @@ pub fn render(
     let view = pipelines.render(&ctx.device, stack_size(scene_buffers.params.max_depth)).clone();
     loop {
         let slots = gatherer.points_per_pixel;
-        let chunk = pixels_per_chunk(&ctx.limits(), slots);
+        // One chunk's worth of slots, no more than the image needs.
+        let chunk = pixels_per_chunk(&ctx.limits(), slots).min(total.max(1).next_multiple_of(16));
         let span = gatherer.span;
         let buffers = gatherer.buffers(ctx, chunk)?;
         for (offset, count) in pixel_chunks(total, chunk) {

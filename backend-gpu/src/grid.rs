@@ -1,7 +1,7 @@
 //! The hash grid on the device: twin of `prismatic_core::grid`. Count
 //! photons per bucket (atomics), prefix-sum the counts into bucket starts,
 //! scatter each photon into its bucket's range of a sorted copy that the
-//! gather reads in place; note the widest bucket's size.
+//! gather reads in place; on request, find the widest bucket's size.
 
 use crate::context::GpuContext;
 use crate::photons::PhotonArray;
@@ -19,13 +19,23 @@ pub struct DeviceGrid {
     pub cells: wgpu::Buffer,
     /// The photons in bucket order.
     pub sorted: PhotonArray,
-    /// One u32: the most photons in one bucket.
+    /// One u32: the most photons in one bucket, once asked for.
     widest: wgpu::Buffer,
+    /// The build's bindings (none for an empty map), for `widest_bucket`.
+    group: Option<wgpu::BindGroup>,
 }
 
 impl DeviceGrid {
-    /// The most photons in one bucket (waits for the device).
-    pub fn widest_bucket(&self, ctx: &GpuContext) -> Result<u32, BackendError> {
+    /// The most photons in one bucket (a pass over the buckets, then a
+    /// wait for the device); only devices that gather in segments ask.
+    pub fn widest_bucket(&self, ctx: &GpuContext, pipelines: &Pipelines) -> Result<u32, BackendError> {
+        let Some(group) = &self.group else { return Ok(0) };
+        ctx.checked("finding the widest bucket", || {
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            let buckets = self.cells.size() / 4 - 1;
+            dispatch(&mut encoder, &pipelines.grid_widest, &[group], buckets, WORKGROUP_SIZE);
+            ctx.queue.submit([encoder.finish()]);
+        })?;
         let bytes = ctx.read(&self.widest, 0, 4)?;
         Ok(u32::from_le_bytes(bytes[..4].try_into().expect("4 bytes")))
     }
@@ -61,9 +71,9 @@ pub fn build(
     (p.stored, p.grid_mask, p.window) = (stored, mask, map.photons.window);
     scene_buffers.write_params(&ctx.queue);
     if stored == 0 {
-        return Ok(DeviceGrid { cells, sorted, widest });
+        return Ok(DeviceGrid { cells, sorted, widest, group: None });
     }
-    ctx.checked("building the grid", || {
+    let group = ctx.checked("building the grid", || {
         let mut entries = vec![
             wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
             wgpu::BindGroupEntry { binding: 1, resource: cells.as_entire_binding() },
@@ -82,10 +92,10 @@ pub fn build(
         scan::record(&ctx.device, pipelines, &mut encoder, &cells, (buckets + 1) as u32);
         encoder.copy_buffer_to_buffer(&cells, 0, &cursor, 0, buckets * 4);
         dispatch(&mut encoder, &pipelines.grid_scatter, &[&group], u64::from(stored), WORKGROUP_SIZE);
-        dispatch(&mut encoder, &pipelines.grid_widest, &[&group], buckets, WORKGROUP_SIZE);
         ctx.queue.submit([encoder.finish()]);
+        group
     })?;
-    Ok(DeviceGrid { cells, sorted, widest })
+    Ok(DeviceGrid { cells, sorted, widest, group: Some(group) })
 }
 
 #[cfg(test)]
@@ -127,7 +137,7 @@ mod tests {
         let cells: Vec<u32> = bytemuck::pod_collect_to_vec(&cells);
         assert_eq!(cells, core.cell_start);
         let widest = core.cell_start.windows(2).map(|w| w[1] - w[0]).max().unwrap();
-        assert_eq!(grid.widest_bucket(&ctx).unwrap(), widest);
+        assert_eq!(grid.widest_bucket(&ctx, &pipelines).unwrap(), widest);
         let sorted = grid.sorted.read(&ctx, photons.len() as u32).unwrap();
         let inv = 1.0 / core.cell_size;
         for (b, w) in core.cell_start.windows(2).enumerate() {

@@ -142,7 +142,7 @@ pub fn render(
     let passes = match (scene_buffers.params.stored, gatherer.span) {
         (0, _) => 0,
         (_, u32::MAX) => 1,
-        (_, span) => grid.widest_bucket(ctx)?.div_ceil(span).max(1),
+        (_, span) => grid.widest_bucket(ctx, pipelines)?.div_ceil(span).max(1),
     };
     let view = pipelines.render(&ctx.device, stack_size(scene_buffers.params.max_depth)).clone();
     loop {

@@ -1,0 +1,138 @@
+//! Frame times of the GPU backend on whatever adapter wgpu picks, at sizes
+//! criterion cannot sample in reasonable time (1080p, 10M photons): each
+//! configuration's whole frame (`GpuBackend::frame`, which waits for the
+//! device), and two reduced frames that bound its stages: the same photons
+//! into a 1×1 image (upload, trace, compaction, grid) and the same image
+//! with one photon (view rays and visible points, an empty gather).
+//!
+//! `cargo run --release -p prismatic-benches --example gpu_frame_times -- [FRAMES]`
+
+use prismatic_core::bands::BandSpec;
+use prismatic_core::scene::WavelengthSampling;
+use prismatic_core::{Backend, NoProgress, PreparedScene};
+use prismatic_gpu::{AdapterChoice, GpuBackend};
+use std::time::{Duration, Instant};
+
+/// One configuration to time.
+struct Config {
+    label: &'static str,
+    width: u32,
+    height: u32,
+    photons: u32,
+    bands: BandSpec,
+    wavelengths: WavelengthSampling,
+    projection_maps: bool,
+}
+
+fn scene(c: &Config, width: u32, height: u32, photons: u32) -> PreparedScene {
+    let mut doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
+    let r = &mut doc.scene.render;
+    (r.width, r.height, r.photons) = (width, height, photons);
+    r.bands = c.bands;
+    r.wavelengths = c.wavelengths;
+    r.projection_maps = c.projection_maps;
+    PreparedScene::new(doc.scene).expect("valid")
+}
+
+/// Median wall time of `frames` frames after one warm-up frame, and what the first stored.
+fn time_frames(gpu: &mut GpuBackend, s: &PreparedScene, frames: usize) -> Result<(Duration, u32), String> {
+    let info = gpu.frame(s).map_err(|e| e.to_string())?;
+    let mut times = Vec::with_capacity(frames);
+    for _ in 0..frames {
+        let t = Instant::now();
+        gpu.frame(s).map_err(|e| e.to_string())?;
+        times.push(t.elapsed());
+    }
+    times.sort();
+    Ok((times[times.len() / 2], info.stored))
+}
+
+fn ms(d: Duration) -> f64 {
+    d.as_secs_f64() * 1e3
+}
+
+fn main() {
+    let frames: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(5);
+    let mut gpu = GpuBackend::new(AdapterChoice::Any).unwrap_or_else(|e| panic!("no adapter: {e}"));
+    let info = gpu.adapter().map(prismatic_gpu::describe).unwrap_or_default();
+    println!("adapter: {info}; median of {frames} frames after one warm-up");
+    let split = WavelengthSampling::Split;
+    let configs = [
+        Config {
+            label: "paper: 400x400, 20k, paper7, no projection maps",
+            width: 400,
+            height: 400,
+            photons: 20_000,
+            bands: BandSpec::Paper7,
+            wavelengths: split,
+            projection_maps: false,
+        },
+        Config {
+            label: "sphere 1080p, 1M x paper7 split",
+            width: 1920,
+            height: 1080,
+            photons: 1_000_000,
+            bands: BandSpec::Paper7,
+            wavelengths: split,
+            projection_maps: true,
+        },
+        Config {
+            label: "sphere 1080p, 1M x 7 physical bands split",
+            width: 1920,
+            height: 1080,
+            photons: 1_000_000,
+            bands: BandSpec::Physical(7),
+            wavelengths: split,
+            projection_maps: true,
+        },
+        Config {
+            label: "sphere 1080p, 10M x paper7 split",
+            width: 1920,
+            height: 1080,
+            photons: 10_000_000,
+            bands: BandSpec::Paper7,
+            wavelengths: split,
+            projection_maps: true,
+        },
+        Config {
+            label: "sphere 1080p, 10M x paper7 random_band",
+            width: 1920,
+            height: 1080,
+            photons: 10_000_000,
+            bands: BandSpec::Paper7,
+            wavelengths: WavelengthSampling::RandomBand,
+            projection_maps: true,
+        },
+    ];
+    println!("| configuration | frame | fps | trace+grid (1x1 image) | view rays (1 photon) | stored photons |");
+    println!("|---|---:|---:|---:|---:|---:|");
+    for c in &configs {
+        let full = time_frames(&mut gpu, &scene(c, c.width, c.height, c.photons), frames);
+        let trace = time_frames(&mut gpu, &scene(c, 1, 1, c.photons), frames);
+        let rays = time_frames(&mut gpu, &scene(c, c.width, c.height, 1), frames);
+        match (full, trace, rays) {
+            (Ok((f, stored)), Ok((t, _)), Ok((r, _))) => println!(
+                "| {} | {:.2} ms | {:.1} | {:.2} ms | {:.2} ms | {stored} |",
+                c.label,
+                ms(f),
+                1.0 / f.as_secs_f64(),
+                ms(t),
+                ms(r)
+            ),
+            (f, t, r) => println!("| {} | {f:?} | | {t:?} | {r:?} | |", c.label),
+        }
+    }
+    // The photon map read back (what `prismatic photons` pays on top of the trace).
+    let c = &configs[1];
+    let s = scene(c, c.width, c.height, c.photons);
+    let t = Instant::now();
+    match gpu.trace_photons(&s, &mut NoProgress) {
+        Ok(map) => println!(
+            "trace_photons with readback, {}: {:.2} ms, {} photons",
+            c.label,
+            ms(t.elapsed()),
+            map.photons.len()
+        ),
+        Err(e) => println!("trace_photons failed: {e}"),
+    }
+}

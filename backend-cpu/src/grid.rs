@@ -79,6 +79,17 @@ impl CpuGrid {
         q: &GatherQuery,
         counts: &mut [u32; MAX_BANDS + 1],
     ) -> Vec3 {
+        self.gather_counted(bands, estimator, q, counts).0
+    }
+
+    /// [`CpuGrid::gather`], and how many photons it accepted (the core's `gather_counted`).
+    pub fn gather_counted(
+        &self,
+        bands: &BandTable,
+        estimator: Estimator,
+        q: &GatherQuery,
+        counts: &mut [u32; MAX_BANDS + 1],
+    ) -> (Vec3, u32) {
         let r2 = q.radius * q.radius;
         let area = std::f64::consts::PI * f64::from(r2);
         let inv = 1.0 / self.cell_size;
@@ -90,6 +101,7 @@ impl CpuGrid {
         let mut n_seen = 0;
         let mut density = DVec3::ZERO;
         let mut flux = 0.0f64;
+        let mut found = 0u32;
         for z in lo.z..=hi.z.min(lo.z.saturating_add(1)) {
             for y in lo.y..=hi.y.min(lo.y.saturating_add(1)) {
                 for x in lo.x..=hi.x.min(lo.x.saturating_add(1)) {
@@ -110,6 +122,7 @@ impl CpuGrid {
                         let front = lt(d.dot(qn), f32x8::ZERO);
                         let real = lt(lane_index, f32x8::splat((end - i) as f32));
                         let accepted = (inside & front & real).to_bitmask();
+                        found += accepted.count_ones();
                         for lane in (0..8).filter(|l| accepted & (1 << l) != 0) {
                             let (band, f) = (self.band[i + lane], self.flux[i + lane]);
                             match estimator {
@@ -125,7 +138,7 @@ impl CpuGrid {
                 }
             }
         }
-        match estimator {
+        let irradiance = match estimator {
             Estimator::Density => (density / area).as_vec3(),
             Estimator::Paper => {
                 let hue = paper_hue(bands, counts);
@@ -133,6 +146,7 @@ impl CpuGrid {
                 counts[MAX_BANDS] = 0;
                 hue.as_vec3() * (flux / area) as f32
             }
-        }
+        };
+        (irradiance, found)
     }
 }

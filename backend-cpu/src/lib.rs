@@ -9,6 +9,7 @@
 mod emit;
 mod grid;
 mod intersect;
+mod progressive;
 mod render;
 mod simd;
 mod trace;
@@ -17,6 +18,8 @@ pub use grid::CpuGrid;
 
 use prismatic_core::backend::{Backend, BackendError, Progress, Stage};
 use prismatic_core::photon::{Photon, TraceStats};
+use prismatic_core::progressive::PassGather;
+use prismatic_core::visible::{VisiblePoint, VisiblePoints};
 use prismatic_core::{Image, PhotonMap, PreparedScene};
 use rayon::prelude::*;
 
@@ -30,6 +33,8 @@ pub const TRACE_CHUNK: u32 = 1024;
 pub struct CpuBackend {
     pool: Option<rayon::ThreadPool>,
     chunks: Vec<ChunkBuffer>,
+    /// The photon map of the last progressive pass (its memory is reused).
+    pass_map: PhotonMap,
 }
 
 /// One work item's unsorted output and sort scratch.
@@ -43,7 +48,7 @@ struct ChunkBuffer {
 impl CpuBackend {
     /// Uses rayon's global pool (all cores).
     pub fn new() -> Self {
-        CpuBackend { pool: None, chunks: Vec::new() }
+        CpuBackend { pool: None, chunks: Vec::new(), pass_map: PhotonMap::default() }
     }
 
     /// Uses exactly `threads` threads (for scaling measurements).
@@ -52,12 +57,12 @@ impl CpuBackend {
             .num_threads(threads)
             .build()
             .map_err(|e| BackendError::Device(format!("cannot start {threads} threads: {e}")))?;
-        Ok(CpuBackend { pool: Some(pool), chunks: Vec::new() })
+        Ok(CpuBackend { pool: Some(pool), chunks: Vec::new(), pass_map: PhotonMap::default() })
     }
 
     /// Traces the scene's photons into `map`, reusing its memory.
     pub fn trace_into(&mut self, scene: &PreparedScene, map: &mut PhotonMap) {
-        let CpuBackend { pool, chunks } = self;
+        let CpuBackend { pool, chunks, .. } = self;
         match pool {
             Some(pool) => pool.install(|| trace_chunks(scene, chunks, map)),
             None => trace_chunks(scene, chunks, map),
@@ -138,6 +143,31 @@ impl Backend for CpuBackend {
         let h = u64::from(scene.scene.render.height);
         progress.advance(Stage::Render, h, h);
         Ok(image)
+    }
+
+    fn visible_points(
+        &mut self,
+        scene: &PreparedScene,
+        progress: &mut dyn Progress,
+    ) -> Result<VisiblePoints, BackendError> {
+        let points = self.install(|| render::visible_points(scene));
+        let h = u64::from(scene.scene.render.height);
+        progress.advance(Stage::Render, h, h);
+        Ok(points)
+    }
+
+    fn gather_pass(
+        &mut self,
+        scene: &PreparedScene,
+        points: &[VisiblePoint],
+        radii: &[f32],
+    ) -> Result<PassGather, BackendError> {
+        // The pass's map is kept for the next pass (no allocation after the first).
+        let mut map = std::mem::take(&mut self.pass_map);
+        self.trace_into(scene, &mut map);
+        let found = self.install(|| progressive::gather_pass(scene, &map, points, radii));
+        self.pass_map = map;
+        Ok(found)
     }
 }
 

@@ -7,7 +7,8 @@
 //! the queue in packets of eight too, until it is empty: the same sum over
 //! paths as the reference, in a different order. Shading (direct light with
 //! shadow-ray packets, checker albedo) is lane-parallel; the gather is a
-//! per-lane walk over the grid's cells.
+//! per-lane walk over the grid's cells. For progressive rendering the same
+//! loop leaves visible points instead of gathering.
 
 use crate::grid::CpuGrid;
 use crate::intersect::{RayX8, intersect_scene, occluded};
@@ -24,6 +25,7 @@ use prismatic_core::photon::WHITE_BAND;
 use prismatic_core::prepared::{PreparedScene, Surface};
 use prismatic_core::scene::Light;
 use prismatic_core::tolerance::MIN_VIEW_WEIGHT;
+use prismatic_core::visible::{VisiblePoint, VisiblePoints};
 use rayon::prelude::*;
 use std::f32::consts::PI;
 use wide::f32x8;
@@ -48,46 +50,78 @@ struct ViewRay {
 
 /// Renders the image with the photons of `grid`.
 pub fn render(scene: &PreparedScene, grid: &CpuGrid) -> Image {
+    trace_view_rays(scene, grid, false).0
+}
+
+/// Traces the view rays once without gathering: the image without caustics
+/// and the visible points (tile by tile, so their order does not depend on
+/// the thread count).
+pub fn visible_points(scene: &PreparedScene) -> VisiblePoints {
+    let empty = CpuGrid::build(&[], scene.scene.render.radius);
+    let (base, points) = trace_view_rays(scene, &empty, true);
+    VisiblePoints { base, points }
+}
+
+/// The tile loop: every pixel's view rays in packets, gathering from `grid`
+/// or (with `record`) leaving visible points instead.
+fn trace_view_rays(scene: &PreparedScene, grid: &CpuGrid, record: bool) -> (Image, Vec<VisiblePoint>) {
     let r = &scene.scene.render;
     let camera = PinholeCamera::new(&scene.scene.camera, r.width, r.height);
     let mut image = Image::new(r.width, r.height);
     let row = r.width as usize;
-    image.pixels.par_chunks_mut(row * TILE_ROWS as usize).enumerate().for_each(|(tile, pixels)| {
-        let y0 = tile as u32 * TILE_ROWS;
-        let mut queue: Vec<ViewRay> = Vec::with_capacity(pixels.len());
-        for (k, _) in pixels.iter().enumerate().rev() {
-            let (x, y) = ((k % row) as u32, y0 + (k / row) as u32);
-            let ray = camera.ray(x, y);
-            queue.push(ViewRay {
-                origin: ray.origin,
-                dir: ray.direction,
-                weight: 1.0,
-                tint: Vec3::ONE,
-                band: WHITE_BAND,
-                depth: 0,
-                pixel: k as u32,
-            });
-        }
-        let mut shader = Shader { scene, grid, counts: Box::new([0; MAX_BANDS + 1]) };
-        let mut sum = vec![Vec3::ZERO; pixels.len()];
-        while !queue.is_empty() {
-            let take = queue.len().min(8);
-            let mut batch = [queue[queue.len() - 1]; 8];
-            batch[..take].copy_from_slice(&queue[queue.len() - take..]);
-            queue.truncate(queue.len() - take);
-            shader.trace_packet(&batch[..take], &mut queue, &mut sum);
-        }
-        for (p, s) in pixels.iter_mut().zip(sum) {
-            *p = s * r.exposure;
-        }
-    });
-    image
+    let tile_pixels = row * TILE_ROWS as usize;
+    let tiles: Vec<Vec<VisiblePoint>> = image
+        .pixels
+        .par_chunks_mut(tile_pixels)
+        .enumerate()
+        .map(|(tile, pixels)| {
+            let y0 = tile as u32 * TILE_ROWS;
+            let mut queue: Vec<ViewRay> = Vec::with_capacity(pixels.len());
+            for (k, _) in pixels.iter().enumerate().rev() {
+                let (x, y) = ((k % row) as u32, y0 + (k / row) as u32);
+                let ray = camera.ray(x, y);
+                queue.push(ViewRay {
+                    origin: ray.origin,
+                    dir: ray.direction,
+                    weight: 1.0,
+                    tint: Vec3::ONE,
+                    band: WHITE_BAND,
+                    depth: 0,
+                    pixel: k as u32,
+                });
+            }
+            let mut shader = Shader {
+                scene,
+                grid,
+                counts: Box::new([0; MAX_BANDS + 1]),
+                points: record.then(Vec::new),
+                first_pixel: (tile * tile_pixels) as u32,
+            };
+            let mut sum = vec![Vec3::ZERO; pixels.len()];
+            while !queue.is_empty() {
+                let take = queue.len().min(8);
+                let mut batch = [queue[queue.len() - 1]; 8];
+                batch[..take].copy_from_slice(&queue[queue.len() - take..]);
+                queue.truncate(queue.len() - take);
+                shader.trace_packet(&batch[..take], &mut queue, &mut sum);
+            }
+            for (p, s) in pixels.iter_mut().zip(sum) {
+                *p = s * r.exposure;
+            }
+            shader.points.unwrap_or_default()
+        })
+        .collect();
+    (image, tiles.concat())
 }
 
 struct Shader<'a> {
     scene: &'a PreparedScene,
     grid: &'a CpuGrid,
     counts: Box<[u32; MAX_BANDS + 1]>,
+    /// Where diffuse hits go instead of a gather, when recording.
+    points: Option<Vec<VisiblePoint>>,
+    /// The tile's first pixel (ray pixels are relative to it).
+    first_pixel: u32,
 }
 
 impl Shader<'_> {
@@ -114,7 +148,7 @@ impl Shader<'_> {
         }
         let diffuse = f32x8::new(diffuse);
         if diffuse.any() {
-            let radiance = self.shade_diffuse(&ray, &hit.normal, point, &hit.object, diffuse);
+            let radiance = self.shade_diffuse(rays, &ray, &hit.normal, point, &hit.object, diffuse);
             for i in lanes(diffuse) {
                 sum[rays[i].pixel as usize] += rays[i].tint * radiance[i];
             }
@@ -153,7 +187,16 @@ impl Shader<'_> {
     }
 
     /// Radiance toward the viewer at diffuse hits (lanes in `mask`).
-    fn shade_diffuse(&mut self, ray: &RayX8, normal: &Vec3x8, p: Vec3x8, object: &f32x8, mask: f32x8) -> [Vec3; 8] {
+    /// When recording, the caustic is left to a visible point per lane.
+    fn shade_diffuse(
+        &mut self,
+        rays: &[ViewRay],
+        ray: &RayX8,
+        normal: &Vec3x8,
+        p: Vec3x8,
+        object: &f32x8,
+        mask: f32x8,
+    ) -> [Vec3; 8] {
         let settings = &self.scene.scene.render;
         let facing = lt(ray.dir.dot(*normal), f32x8::ZERO);
         let n = Vec3x8::select(facing, *normal, -*normal);
@@ -168,7 +211,14 @@ impl Shader<'_> {
             let (pi, ni) = (p.lane(i), n.lane(i));
             let albedo = self.scene.surfaces[objects[i] as usize].albedo_at(pi, ni);
             let query = GatherQuery { point: pi, normal: ni, radius: settings.radius };
-            let caustic = if self.grid.is_empty() {
+            let caustic = if let Some(points) = &mut self.points {
+                if self.scene.plan.caustics.on {
+                    let weight = rays[i].tint * albedo / PI * settings.exposure;
+                    let pixel = self.first_pixel + rays[i].pixel;
+                    points.push(VisiblePoint { point: pi, normal: ni, weight, pixel });
+                }
+                Vec3::ZERO
+            } else if self.grid.is_empty() {
                 Vec3::ZERO
             } else {
                 self.grid.gather(&self.scene.bands, settings.estimator, &query, &mut self.counts)

@@ -7,7 +7,11 @@
 //! - `grid/cpu`: hash-grid build (counting sort);
 //! - `gather/cpu`: ray tracing + gather of a frame with a built grid;
 //! - `frame/<backend>`: the whole frame (trace, grid, render);
-//! - `effects/<scene>/{planned,unplanned}`: what the effect plan saves.
+//! - `effects/<scene>/{planned,unplanned}`: what the effect plan saves;
+//! - `progressive/<backend>-<threads>t/<photons>/pass-<k>`: one progressive
+//!   pass (trace + grids + gather at the visible points) of `sphere` as
+//!   `prismatic render` runs it, at pass k (radii shrink with k), and
+//!   `progressive/prepare`: the view rays and the pilot pass.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use prismatic_benches::paper_config;
@@ -128,6 +132,38 @@ fn effects_group(c: &mut Criterion) {
     g.finish();
 }
 
+/// `progressive/...`: a pass of the built-in `sphere` (400×400, its own
+/// radius and 7 paper bands) at 65k (the scene's) and 1M photons a pass;
+/// pass 2 against pass 64 shows whether a pass's cost stays flat, 1 against
+/// 2 threads how the gather scales.
+fn progressive_group(c: &mut Criterion) {
+    use prismatic_core::progressive::{ProgressiveRender, pass_radius, photon_pass_scene};
+    use prismatic_core::{Backend, NoProgress};
+    let mut g = c.benchmark_group("progressive");
+    g.sample_size(10);
+    let scene = builtin("sphere", None);
+    let mut backend = CpuBackend::new();
+    g.bench_function("prepare", |b| {
+        b.iter(|| black_box(ProgressiveRender::prepare(&mut backend, &scene, &mut NoProgress).unwrap()))
+    });
+    for photons in [scene.scene.render.photons, MANY_PHOTONS] {
+        let scene = builtin("sphere", Some(photons));
+        for threads in [1, 2] {
+            let mut backend = CpuBackend::with_threads(threads).expect("pool");
+            let render = ProgressiveRender::prepare(&mut backend, &scene, &mut NoProgress).unwrap();
+            let points = &render.points().points;
+            for k in [2, 64] {
+                let pass = photon_pass_scene(&scene, scene.scene.render.alpha, k - 1);
+                let shrink = pass_radius(1.0, scene.scene.render.alpha, k);
+                let radii: Vec<f32> = render.initial_radii().iter().map(|r| r * shrink).collect();
+                let id = BenchmarkId::new(format!("cpu-{threads}t/{photons}"), format!("pass-{k}"));
+                g.bench_function(id, |b| b.iter(|| black_box(backend.gather_pass(&pass, points, &radii).unwrap())));
+            }
+        }
+    }
+    g.finish();
+}
+
 /// A built-in scene as it is, or with `photons` instead of its own count.
 fn builtin(name: &str, photons: Option<u32>) -> prismatic_core::PreparedScene {
     let mut doc = prismatic_cli::load_scene(name).expect("built-in scene parses");
@@ -135,5 +171,5 @@ fn builtin(name: &str, photons: Option<u32>) -> prismatic_core::PreparedScene {
     prismatic_core::PreparedScene::new(doc.scene).expect("built-in scene is valid")
 }
 
-criterion_group!(benches, trace_group, grid_group, gather_group, frame_group, effects_group);
+criterion_group!(benches, trace_group, grid_group, gather_group, frame_group, effects_group, progressive_group);
 criterion_main!(benches);

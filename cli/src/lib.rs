@@ -5,6 +5,8 @@ pub mod backends;
 pub mod builtin;
 pub mod obj;
 pub mod output;
+pub mod partial;
+pub mod passes;
 pub mod scene_file;
 pub mod study;
 

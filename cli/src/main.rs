@@ -4,14 +4,18 @@ use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
 use prismatic_cli::backends::{self, BackendChoice};
 use prismatic_cli::builtin::{BUILTIN_SCENES, find};
-use prismatic_cli::output::{PendingFile, write_photon_csv, write_png};
+use prismatic_cli::output::{PendingFile, write_image, write_photon_csv, write_png};
+use prismatic_cli::partial::{Partial, fingerprint};
+use prismatic_cli::passes::{parse_passes, parse_seconds};
 use prismatic_cli::scene_file::{SceneFileError, parse_bands, parse_estimator, parse_wavelengths};
 use prismatic_cli::study::progress::StudyBar;
 use prismatic_cli::study::{self, StudyOptions, report};
 use prismatic_core::bands::BandSpec;
+use prismatic_core::progressive::ProgressiveRender;
 use prismatic_core::scene::{Estimator, WavelengthSampling};
 use prismatic_core::{PreparedScene, Progress, Stage, TraceStats};
 use std::io::{IsTerminal, Write};
+use std::ops::Range;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -25,11 +29,34 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Render a scene to a PNG.
+    /// Render a scene progressively: view rays once, then photon passes
+    /// whose gather radius shrinks per pixel, averaged into the image.
     Render {
         #[command(flatten)]
         job: JobArgs,
-        /// Output PNG.
+        /// Passes: N (passes 0..N) or A..B (passes A to B-1, e.g. for --partial);
+        /// default: the scene's `passes`.
+        #[arg(long, value_parser = parse_passes)]
+        passes: Option<Range<u32>>,
+        /// Stop after the pass that crosses this many seconds.
+        #[arg(long, value_parser = parse_seconds)]
+        time: Option<f64>,
+        /// Write the passes' raw sums to this file (for `prismatic merge`) instead of an image.
+        #[arg(long)]
+        partial: Option<PathBuf>,
+        /// Rewrite the output every this many seconds while rendering.
+        #[arg(long, value_parser = parse_seconds)]
+        save_every: Option<f64>,
+        /// Output image: .png (tone-mapped sRGB) or .exr (linear RGB, 32-bit float).
+        #[arg(short, long, default_value = "prismatic.png", conflicts_with = "partial")]
+        output: PathBuf,
+    },
+    /// Combine partial renders (`render --partial`) into the image one run of all their passes gives.
+    Merge {
+        /// Partial files.
+        #[arg(required = true)]
+        files: Vec<PathBuf>,
+        /// Output image: .png or .exr.
         #[arg(short, long, default_value = "prismatic.png")]
         output: PathBuf,
     },
@@ -203,27 +230,80 @@ fn run(cli: Cli) -> Result<()> {
             print!("{}", s.source);
             Ok(())
         }
-        Command::Render { job, output } => {
-            let out = PendingFile::create(&output)?;
+        Command::Render { job, passes, time, partial, save_every, output } => {
+            let target = match &partial {
+                Some(file) => Target::Partial(file.clone()),
+                None => Target::Image(output),
+            };
+            let out = PendingFile::create(target.path())?;
             let (name, scene, _) = prepare(&job)?;
+            let range = passes.unwrap_or(0..scene.scene.render.passes);
             let mut selected = backends::select(job.backend)?;
             if let Some(note) = &selected.note {
                 eprintln!("{note}");
             }
+            let backend = selected.backend.as_mut();
             let mut bar = ProgressBar::new();
             let t0 = Instant::now();
-            let (stats, image) = selected.backend.trace_and_render(&scene, &mut bar)?;
+            let mut render = ProgressiveRender::prepare(backend, &scene, &mut bar)?;
+            let prepared = t0.elapsed();
+            let budget = time.map(Duration::from_secs_f64);
+            let save_every = save_every.map(Duration::from_secs_f64);
+            let mut stats = TraceStats::default();
+            let mut last_save = Instant::now();
+            for (done, k) in range.clone().enumerate() {
+                stats.merge(&render.run_pass(backend, k)?);
+                bar.pass(done as u32 + 1, range.len() as u32, stats.emitted, t0.elapsed(), budget);
+                if budget.is_some_and(|b| t0.elapsed() >= b) {
+                    break;
+                }
+                if save_every.is_some_and(|e| last_save.elapsed() >= e) && done + 1 < range.len() {
+                    let snapshot = PendingFile::create(target.path())?;
+                    target.write(snapshot, &render, &scene, backend.name())?;
+                    last_save = Instant::now();
+                }
+            }
             let elapsed = t0.elapsed();
             bar.finish();
-            if !image.is_finite() {
-                anyhow::bail!("the render produced non-finite pixels; nothing was written (please report this scene)");
-            }
-            out.commit(|w| write_png(w, &image, scene.scene.render.tone_map))?;
+            let summed = render.accumulation().pass_count();
+            target.write(out, &render, &scene, backend.name())?;
+            let radii = render.initial_radii();
+            let (lo, hi) = radii.iter().fold((f32::INFINITY, 0.0f32), |(lo, hi), &r| (lo.min(r), hi.max(r)));
             println!(
-                "{name}: {} backend, {}; traced and rendered in {}; wrote {} ({}x{})",
-                selected.backend.name(),
+                "{name}: {} backend, {summed} passes ({}), {}; {} visible points, first radii {}; view rays and \
+                 pilot in {}, passes in {} ({:.1} ms a pass); wrote {} ({}x{})",
+                backend.name(),
+                pass_list(&render.accumulation().passes),
                 photon_summary(&scene, &stats),
-                secs(elapsed),
+                render.points().points.len(),
+                if radii.is_empty() { "none".to_string() } else { format!("{lo:.4}–{hi:.4}") },
+                secs(prepared),
+                secs(elapsed - prepared),
+                (elapsed - prepared).as_secs_f64() * 1e3 / f64::from(summed.max(1)),
+                target.path().display(),
+                scene.scene.render.width,
+                scene.scene.render.height
+            );
+            Ok(())
+        }
+        Command::Merge { files, output } => {
+            let out = PendingFile::create(&output)?;
+            let mut merged: Option<Partial> = None;
+            for file in &files {
+                let partial = Partial::read(file)?;
+                match &mut merged {
+                    None => merged = Some(partial),
+                    Some(m) => m.merge(&partial, &file.display().to_string())?,
+                }
+            }
+            let merged = merged.expect("clap requires a file");
+            let image = merged.image();
+            out.commit(|w| write_image(w, &output, &image, merged.tone_map))?;
+            println!(
+                "merged {} partials ({} passes: {}); wrote {} ({}x{})",
+                files.len(),
+                merged.sums.pass_count(),
+                pass_list(&merged.sums.passes),
                 output.display(),
                 image.width,
                 image.height
@@ -250,6 +330,50 @@ fn run(cli: Cli) -> Result<()> {
             Ok(())
         }
     }
+}
+
+/// Where a render goes: an image, or a partial render's raw sums.
+enum Target {
+    Image(PathBuf),
+    Partial(PathBuf),
+}
+
+impl Target {
+    fn path(&self) -> &std::path::Path {
+        match self {
+            Target::Image(p) | Target::Partial(p) => p,
+        }
+    }
+
+    /// Writes what the passes so far give into `out` (a complete file or nothing).
+    fn write(&self, out: PendingFile, render: &ProgressiveRender, scene: &PreparedScene, backend: &str) -> Result<()> {
+        match self {
+            Target::Image(path) => {
+                let image = render.image();
+                if !image.is_finite() {
+                    anyhow::bail!(
+                        "the render produced non-finite pixels; nothing was written (please report this scene)"
+                    );
+                }
+                out.commit(|w| write_image(w, path, &image, scene.scene.render.tone_map))
+            }
+            Target::Partial(_) => {
+                let partial = Partial {
+                    fingerprint: fingerprint(scene),
+                    backend: backend.to_string(),
+                    tone_map: scene.scene.render.tone_map,
+                    base: render.points().base.clone(),
+                    sums: render.accumulation().clone(),
+                };
+                out.commit(|w| partial.write(w))
+            }
+        }
+    }
+}
+
+/// "0..8, 12..16".
+fn pass_list(ranges: &[(u32, u32)]) -> String {
+    ranges.iter().map(|(a, b)| format!("{a}..{b}")).collect::<Vec<_>>().join(", ")
 }
 
 /// Loads the scene, applies the command-line overrides and validates. Also
@@ -353,8 +477,31 @@ impl ProgressBar {
 
     fn finish(&mut self) {
         if self.enabled && self.last.is_some() {
-            eprint!("\r{:60}\r", "");
+            eprint!("\r{:78}\r", "");
         }
+    }
+
+    /// After pass `done` of `total`: photons so far, time, and an estimate of what is left.
+    fn pass(&mut self, done: u32, total: u32, photons: u64, elapsed: Duration, budget: Option<Duration>) {
+        if !self.enabled {
+            return;
+        }
+        self.last = Some((Stage::Trace, u64::from(done)));
+        let per_pass = elapsed.as_secs_f64() / f64::from(done);
+        let mut left = per_pass * f64::from(total - done);
+        if let Some(b) = budget {
+            left = left.min((b.as_secs_f64() - elapsed.as_secs_f64()).max(0.0));
+        }
+        let filled = (done as usize * 25) / total.max(1) as usize;
+        eprint!(
+            "\rpass {done}/{total} [{}{}] {:.2} M photons, {:.1} s, ~{:.1} s left  ",
+            "#".repeat(filled),
+            " ".repeat(25 - filled),
+            photons as f64 / 1e6,
+            elapsed.as_secs_f64(),
+            left
+        );
+        std::io::stderr().flush().context("stderr").ok();
     }
 }
 

@@ -9,6 +9,7 @@ use prismatic_core::{BandTable, Image, PhotonMap};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU32, Ordering};
 
 /// A file being written: a temporary file that becomes `target` on [`commit`](Self::commit).
 pub struct PendingFile {
@@ -22,7 +23,10 @@ impl PendingFile {
     pub fn create(target: &Path) -> Result<Self> {
         let name = target.file_name().with_context(|| format!("{}: not a file path", target.display()))?;
         let dir = target.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-        let temp = dir.join(format!(".{}.tmp{}", name.to_string_lossy(), std::process::id()));
+        // A counter too: a long render rewrites its output while the final one is pending.
+        static NEXT: AtomicU32 = AtomicU32::new(0);
+        let n = NEXT.fetch_add(1, Ordering::Relaxed);
+        let temp = dir.join(format!(".{}.tmp{}-{n}", name.to_string_lossy(), std::process::id()));
         let file = File::create(&temp).with_context(|| format!("{}: cannot write here", target.display()))?;
         Ok(PendingFile { target: target.to_path_buf(), temp, file: Some(file) })
     }
@@ -54,6 +58,25 @@ pub fn write_png(w: &mut BufWriter<File>, image: &Image, tone_map: ToneMap) -> R
         .context("image size mismatch")?;
     buf.write_to(w, image::ImageFormat::Png)?;
     Ok(())
+}
+
+/// Encodes `image` as OpenEXR: linear RGB, 32-bit float, no tone mapping.
+pub fn write_exr(w: &mut BufWriter<File>, image: &Image) -> Result<()> {
+    let data: Vec<f32> = image.pixels.iter().flat_map(|p| p.to_array()).collect();
+    let buf = image::Rgb32FImage::from_raw(image.width, image.height, data).context("image size mismatch")?;
+    buf.write_to(w, image::ImageFormat::OpenExr)?;
+    Ok(())
+}
+
+/// Writes `image` as EXR (linear) when `path` ends in `.exr`, else as a
+/// tone-mapped sRGB PNG.
+pub fn write_image(w: &mut BufWriter<File>, path: &Path, image: &Image, tone_map: ToneMap) -> Result<()> {
+    if is_exr(path) { write_exr(w, image) } else { write_png(w, image, tone_map) }
+}
+
+/// True for `.exr` paths (any case).
+pub fn is_exr(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"))
 }
 
 /// The CSV header of `prismatic photons`.

@@ -366,6 +366,8 @@ impl<'s> Parser<'s> {
                 "background",
                 "tone_map",
                 "projection_maps",
+                "passes",
+                "alpha",
             ],
         )?;
         let d = RenderSettings::default();
@@ -385,6 +387,8 @@ impl<'s> Parser<'s> {
             background: self.opt(t, "background", Self::vec3)?.unwrap_or(d.background),
             tone_map: self.opt(t, "tone_map", Self::tone_map)?.unwrap_or(d.tone_map),
             projection_maps: self.opt(t, "projection_maps", Self::boolean)?.unwrap_or(d.projection_maps),
+            passes: self.opt(t, "passes", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.passes, |x| x as u32),
+            alpha: self.opt(t, "alpha", Self::float)?.unwrap_or(d.alpha),
         })
     }
 

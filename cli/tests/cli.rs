@@ -29,7 +29,9 @@ fn render_writes_a_png_and_reports_what_it_did() {
     let o = prismatic(&args, dir.path());
     let (out, err) = text(&o);
     assert!(o.status.success(), "{err}");
-    assert!(out.contains("cpu backend") && out.contains("3000 photons emitted") && out.contains("stored"), "{out}");
+    // 16 progressive passes (the scene's) of 3000 photons each.
+    assert!(out.contains("cpu backend") && out.contains("16 passes (0..16)"), "{out}");
+    assert!(out.contains("48000 photons emitted") && out.contains("stored"), "{out}");
     let img = image::open(dir.path().join("out.png")).expect("a readable PNG").to_rgb8();
     assert_eq!(img.dimensions(), (48, 36));
     assert!(img.pixels().any(|p| p.0 != [0, 0, 0]), "not a black image");
@@ -182,4 +184,85 @@ fn bad_flag_values_are_reported_against_the_flag() {
     assert_eq!(o.status.code(), Some(2));
     assert!(err.contains("command line: --radius: must be greater than 0"), "{err}");
     assert!(files_in(dir.path()).is_empty());
+}
+
+#[test]
+fn partial_renders_merge_into_the_image_of_one_run_bit_for_bit() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |extra: &[&str]| {
+        let mut args = vec!["render", "sphere"];
+        args.extend(SMALL);
+        args.extend(extra);
+        let o = prismatic(&args, dir.path());
+        assert!(o.status.success(), "{}", text(&o).1);
+        text(&o).0
+    };
+    let out = run(&["--passes", "4", "-o", "whole.png"]);
+    assert!(out.contains("4 passes (0..4)"), "{out}");
+    run(&["--passes", "4", "-o", "whole.exr"]);
+    run(&["--passes", "0..1", "--partial", "a.partial"]);
+    run(&["--passes", "1..4", "--partial", "b.partial"]);
+    for (merged, whole) in [("merged.png", "whole.png"), ("merged.exr", "whole.exr")] {
+        let o = prismatic(&["merge", "b.partial", "a.partial", "-o", merged], dir.path());
+        let (out, err) = text(&o);
+        assert!(o.status.success(), "{err}");
+        assert!(out.contains("4 passes: 0..4"), "{out}");
+        let read = |f: &str| std::fs::read(dir.path().join(f)).unwrap();
+        assert!(read(merged) == read(whole), "{merged} differs from {whole}");
+    }
+    // The EXR is linear float RGB of the image's size.
+    let exr = image::open(dir.path().join("whole.exr")).expect("a readable EXR").to_rgb32f();
+    assert_eq!(exr.dimensions(), (48, 36));
+    assert!(exr.pixels().any(|p| p.0[0] > 1.0), "the caustic is brighter than white in linear RGB");
+}
+
+#[test]
+fn a_time_budget_stops_after_the_pass_that_crosses_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut args = vec!["render", "sphere", "--passes", "100000", "--time", "0.2", "-o", "t.png"];
+    args.extend(SMALL);
+    let o = prismatic(&args, dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{err}");
+    let passes: u32 = out.split(" passes (").next().and_then(|s| s.rsplit(' ').next()).unwrap().parse().unwrap();
+    assert!((1..100_000).contains(&passes), "{out}");
+    assert_eq!(files_in(dir.path()), vec!["t.png"]);
+}
+
+#[test]
+fn bad_passes_time_and_partial_files_exit_2_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    for bad in [["--passes", "0"], ["--passes", "5..2"], ["--passes", "x"], ["--time", "soon"], ["--save-every", "0"]] {
+        let o = prismatic(&["render", "sphere", bad[0], bad[1], "-o", "x.png"], dir.path());
+        assert_eq!(o.status.code(), Some(2), "{bad:?}: {}", text(&o).1);
+        assert!(text(&o).1.contains(bad[0]), "{bad:?}: {}", text(&o).1);
+    }
+    assert!(files_in(dir.path()).is_empty());
+    let partial = |scene: &str, size: &str, file: &str| {
+        let args = ["render", scene, "--photons", "500", "--width", size, "--height", size, "--passes", "1"];
+        let o = prismatic(&[&args[..], &["--partial", file]].concat(), dir.path());
+        assert!(o.status.success(), "{}", text(&o).1);
+    };
+    partial("prism", "24", "prism.partial");
+    partial("sphere", "24", "sphere.partial");
+    partial("prism", "20", "small.partial");
+    let bytes = std::fs::read(dir.path().join("prism.partial")).unwrap();
+    std::fs::write(dir.path().join("cut.partial"), &bytes[..bytes.len() / 2]).unwrap();
+    std::fs::write(dir.path().join("text.partial"), "hello").unwrap();
+    let before = files_in(dir.path());
+    for (files, reason) in [
+        (["prism.partial", "sphere.partial"], "sphere.partial: rendered from a different scene"),
+        (["prism.partial", "small.partial"], "small.partial: a 20x20 image; the first partial is 24x24"),
+        (["prism.partial", "cut.partial"], "cut.partial: "),
+        (["text.partial", "prism.partial"], "text.partial: not a prismatic partial render"),
+        (["prism.partial", "prism.partial"], "prism.partial: pass 0 is in both"),
+    ] {
+        let o = prismatic(&["merge", files[0], files[1], "-o", "m.png"], dir.path());
+        let err = text(&o).1;
+        assert_eq!(o.status.code(), Some(2), "{files:?}: {err}");
+        assert!(err.contains(reason), "{files:?}: {err}");
+    }
+    let o = prismatic(&["merge", "cut.partial", "-o", "m.png"], dir.path());
+    assert!(text(&o).1.contains("truncated"), "{}", text(&o).1);
+    assert_eq!(files_in(dir.path()), before, "nothing written");
 }

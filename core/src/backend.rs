@@ -4,6 +4,8 @@
 use crate::image::Image;
 use crate::photon::{PhotonMap, TraceStats};
 use crate::prepared::PreparedScene;
+use crate::progressive::PassGather;
+use crate::visible::{VisiblePoint, VisiblePoints};
 use alloc::string::String;
 
 /// Why a backend could not do its work.
@@ -58,6 +60,12 @@ impl Progress for NoProgress {
 
 /// A photon-mapping backend: traces the caustic photon map and renders with it.
 ///
+/// One frame: [`Backend::trace_photons`] then [`Backend::render`] (or both
+/// at once, [`Backend::trace_and_render`]). A progressive render
+/// ([`crate::progressive::ProgressiveRender`]) prepares once
+/// ([`Backend::visible_points`]), runs passes ([`Backend::gather_pass`]) and
+/// reads out the sums, which live in the core.
+///
 /// Implementations must give the same photon map as the reference (same
 /// (emission, band) keys, positions and flux within the tolerances of the
 /// parity tests) and return it in canonical order.
@@ -88,6 +96,31 @@ pub trait Backend {
         let map = self.trace_photons(scene, progress)?;
         let image = self.render(scene, &map, progress)?;
         Ok((map.stats, image))
+    }
+
+    /// Progressive rendering, step one (once per camera and scene): traces
+    /// the view rays into the image without caustics and the visible points
+    /// that need them. The default is the scalar reference's.
+    fn visible_points(
+        &mut self,
+        scene: &PreparedScene,
+        progress: &mut dyn Progress,
+    ) -> Result<VisiblePoints, BackendError> {
+        Ok(crate::render::visible_points_with_progress(scene, progress))
+    }
+
+    /// Progressive rendering, one pass: traces `scene`'s photons (its seed
+    /// and count) and gathers them at `points`, each within its own radius
+    /// (`radii`, at most the scene's radius). The default traces with
+    /// [`Backend::trace_photons`] and gathers with the scalar reference.
+    fn gather_pass(
+        &mut self,
+        scene: &PreparedScene,
+        points: &[VisiblePoint],
+        radii: &[f32],
+    ) -> Result<PassGather, BackendError> {
+        let map = self.trace_photons(scene, &mut NoProgress)?;
+        Ok(crate::progressive::gather_pass(scene, &map, points, radii))
     }
 }
 

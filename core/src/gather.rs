@@ -36,15 +36,28 @@ pub struct GatherQuery {
 
 /// Caustic irradiance (linear RGB) at `q` from the photons of `grid`.
 pub fn gather(grid: &PhotonGrid, photons: &[Photon], bands: &BandTable, estimator: Estimator, q: &GatherQuery) -> Vec3 {
+    gather_counted(grid, photons, bands, estimator, q).0
+}
+
+/// [`gather`], and how many photons it accepted.
+pub fn gather_counted(
+    grid: &PhotonGrid,
+    photons: &[Photon],
+    bands: &BandTable,
+    estimator: Estimator,
+    q: &GatherQuery,
+) -> (Vec3, u32) {
     let r2 = q.radius * q.radius;
     let area = PI * f64::from(r2);
-    match estimator {
+    let mut accepted = 0u32;
+    let irradiance = match estimator {
         Estimator::Density => {
             let mut sum = DVec3::ZERO;
             grid.for_each_candidate(q.point, q.radius, |i| {
                 let p = &photons[i as usize];
                 if accepts(p, q, r2) {
                     sum += bands.rgb_of_flux(p.band, p.flux).as_dvec3();
+                    accepted += 1;
                 }
             });
             (sum / area).as_vec3()
@@ -59,11 +72,13 @@ pub fn gather(grid: &PhotonGrid, photons: &[Photon], bands: &BandTable, estimato
                     let slot = if p.band == WHITE_BAND { MAX_BANDS } else { usize::from(p.band) };
                     counts[slot] += 1;
                     flux += f64::from(p.flux);
+                    accepted += 1;
                 }
             });
             paper_hue(bands, &counts).as_vec3() * (flux / area) as f32
         }
-    }
+    };
+    (irradiance, accepted)
 }
 
 /// The paper's hue N·W/Total from integer band counts (`counts[MAX_BANDS]`

@@ -37,6 +37,7 @@ pub mod rng;
 pub mod scene;
 pub mod tolerance;
 pub mod trace;
+pub mod visible;
 
 pub use backend::{Backend, BackendError, NoProgress, Progress, ReferenceBackend, Stage};
 pub use bands::{Band, BandSpec, BandTable};

@@ -26,8 +26,20 @@ use crate::photon::{Photon, PhotonMap, WHITE_BAND};
 use crate::prepared::{Hit, PreparedScene, Surface, offset_origin};
 use crate::scene::Light;
 use crate::tolerance::MIN_VIEW_WEIGHT;
+use crate::visible::{VisiblePoint, VisiblePoints};
+use alloc::vec::Vec;
 use core::f32::consts::PI;
 use glam::Vec3;
+
+/// Where a view ray is on its way from the camera: its band (or white),
+/// specular depth, share of the pixel (for pruning) and RGB factor.
+#[derive(Clone, Copy, Debug)]
+struct ViewPath {
+    band: u16,
+    depth: u32,
+    weight: f32,
+    tint: Vec3,
+}
 
 /// Everything a pixel needs: the scene, the photons and their grid, the camera.
 pub struct RenderContext<'a> {
@@ -50,27 +62,41 @@ impl<'a> RenderContext<'a> {
 
     /// Linear RGB of pixel (x, y), exposure applied.
     pub fn pixel(&self, x: u32, y: u32) -> Vec3 {
-        self.radiance(&self.camera.ray(x, y), WHITE_BAND, 0, 1.0) * self.scene.scene.render.exposure
+        let path = ViewPath { band: WHITE_BAND, depth: 0, weight: 1.0, tint: Vec3::ONE };
+        self.radiance(&self.camera.ray(x, y), path, &mut None) * self.scene.scene.render.exposure
     }
 
-    /// Radiance arriving along `ray` for `band` (or all bands), `depth`
-    /// specular interactions deep, with path weight `weight`.
-    pub fn radiance(&self, ray: &Ray, band: u16, depth: u32, weight: f32) -> Vec3 {
+    /// Pixel (x, y) without its caustic, exposure applied; the diffuse hits
+    /// whose caustic it needs are appended to `points` (their weight includes
+    /// the exposure and their pixel is the row-major index of (x, y)).
+    pub fn pixel_visible_points(&self, x: u32, y: u32, points: &mut Vec<VisiblePoint>) -> Vec3 {
+        let exposure = self.scene.scene.render.exposure;
+        let path = ViewPath { band: WHITE_BAND, depth: 0, weight: 1.0, tint: Vec3::splat(exposure) };
+        let first = points.len();
+        let radiance = self.radiance(&self.camera.ray(x, y), path, &mut Some(points)) * exposure;
+        let pixel = y * self.scene.scene.render.width + x;
+        for p in &mut points[first..] {
+            p.pixel = pixel;
+        }
+        radiance
+    }
+
+    /// Radiance arriving along `ray` on `path`. With a visible-point sink
+    /// the caustic is left out and each diffuse hit that needs it is
+    /// recorded instead (weighted by the path's tint).
+    fn radiance(&self, ray: &Ray, path: ViewPath, points: &mut Option<&mut Vec<VisiblePoint>>) -> Vec3 {
         let settings = &self.scene.scene.render;
         let Some(hit) = self.scene.intersect(ray, f32::INFINITY) else {
             return settings.background;
         };
+        let ViewPath { band, depth, weight, tint } = path;
         match &self.scene.surfaces[hit.object] {
-            Surface::Diffuse { .. } => self.shade_diffuse(ray, &hit),
+            Surface::Diffuse { .. } => self.shade_diffuse(ray, &hit, tint, points),
             _ if depth >= self.scene.plan.max_depth => Vec3::ZERO,
             Surface::Mirror => {
                 let d = reflect(ray.direction, hit.normal);
-                self.radiance(
-                    &Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d },
-                    band,
-                    depth + 1,
-                    weight,
-                )
+                let next = ViewPath { depth: depth + 1, ..path };
+                self.radiance(&Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d }, next, points)
             }
             Surface::Dielectric(glass) if band == WHITE_BAND && glass.splits_view_rays => self
                 .scene
@@ -81,46 +107,63 @@ impl<'a> RenderContext<'a> {
                 .map(|(b, info)| {
                     // The band's share of the pixel bounds what its branches can add.
                     let share = weight * info.weight.abs().max_element();
-                    info.weight * self.through_dielectric(ray, &hit, glass.ior(b as u16), b as u16, depth, share)
+                    let band_path = ViewPath { band: b as u16, depth, weight: share, tint: tint * info.weight };
+                    info.weight * self.through_dielectric(ray, &hit, glass.ior(b as u16), band_path, points)
                 })
                 .sum(),
-            Surface::Dielectric(glass) => self.through_dielectric(ray, &hit, glass.ior(band), band, depth, weight),
+            Surface::Dielectric(glass) => self.through_dielectric(ray, &hit, glass.ior(band), path, points),
         }
     }
 
     /// Fresnel-weighted reflection plus refraction at a dielectric hit.
-    fn through_dielectric(&self, ray: &Ray, hit: &Hit, ior: f32, band: u16, depth: u32, weight: f32) -> Vec3 {
+    fn through_dielectric(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        ior: f32,
+        path: ViewPath,
+        points: &mut Option<&mut Vec<VisiblePoint>>,
+    ) -> Vec3 {
         let (n, n1, n2) = interface(ray.direction, hit.normal, ior);
         let cos_i = -ray.direction.dot(n);
         let r = fresnel(cos_i, n1, n2);
         let mut sum = Vec3::ZERO;
-        if r * weight > MIN_VIEW_WEIGHT {
+        let branch = |f: f32| ViewPath { depth: path.depth + 1, weight: path.weight * f, tint: path.tint * f, ..path };
+        if r * path.weight > MIN_VIEW_WEIGHT {
             let d = reflect(ray.direction, n);
             let reflected = Ray { origin: offset_origin(hit.point, n, d), direction: d };
-            sum += self.radiance(&reflected, band, depth + 1, weight * r) * r;
+            sum += self.radiance(&reflected, branch(r), points) * r;
         }
         let t = 1.0 - r;
-        if t * weight > MIN_VIEW_WEIGHT
+        if t * path.weight > MIN_VIEW_WEIGHT
             && let Some(d) = refract(ray.direction, n, n1, n2)
         {
             let refracted = Ray { origin: offset_origin(hit.point, n, d), direction: d };
-            sum += self.radiance(&refracted, band, depth + 1, weight * t) * t;
+            sum += self.radiance(&refracted, branch(t), points) * t;
         }
         sum
     }
 
-    /// Radiance leaving a diffuse hit toward the viewer.
-    fn shade_diffuse(&self, ray: &Ray, hit: &Hit) -> Vec3 {
+    /// Radiance leaving a diffuse hit toward the viewer; its caustic part
+    /// gathered here, or left to a visible point when there is a sink.
+    fn shade_diffuse(&self, ray: &Ray, hit: &Hit, tint: Vec3, points: &mut Option<&mut Vec<VisiblePoint>>) -> Vec3 {
         let n = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
         let surface = &self.scene.surfaces[hit.object];
         let albedo = surface.albedo_at(hit.point, n);
         let settings = &self.scene.scene.render;
         let direct: f32 = (0..self.scene.scene.lights.len()).map(|i| self.direct_irradiance(i, hit.point, n)).sum();
-        let query = GatherQuery { point: hit.point, normal: n, radius: settings.radius };
-        let caustic = if self.photons.is_empty() {
-            Vec3::ZERO
-        } else {
-            gather(self.grid, self.photons, &self.scene.bands, settings.estimator, &query)
+        let caustic = match points {
+            Some(points) => {
+                if self.scene.plan.caustics.on {
+                    points.push(VisiblePoint { point: hit.point, normal: n, weight: tint * albedo / PI, pixel: 0 });
+                }
+                Vec3::ZERO
+            }
+            None if self.photons.is_empty() => Vec3::ZERO,
+            None => {
+                let query = GatherQuery { point: hit.point, normal: n, radius: settings.radius };
+                gather(self.grid, self.photons, &self.scene.bands, settings.estimator, &query)
+            }
         };
         albedo * (caustic + Vec3::splat(direct)) * (1.0 / PI) + albedo * settings.ambient
     }
@@ -178,6 +221,22 @@ impl<'a> RenderContext<'a> {
         let origin = offset_origin(p, n, l);
         (!self.scene.occluded(origin, l, (light - origin).length())).then_some((l, dist, cos_s))
     }
+}
+
+/// Traces every pixel's view rays once with the scalar reference: the
+/// image without caustics and the visible points that need them.
+pub fn visible_points_with_progress(scene: &PreparedScene, progress: &mut dyn Progress) -> VisiblePoints {
+    let grid = PhotonGrid::build(&[], scene.scene.render.radius);
+    let ctx = RenderContext::new(scene, &[], &grid);
+    let (w, h) = (scene.scene.render.width, scene.scene.render.height);
+    let mut out = VisiblePoints { base: Image::new(w, h), points: Vec::new() };
+    for y in 0..h {
+        for x in 0..w {
+            out.base.pixels[(y * w + x) as usize] = ctx.pixel_visible_points(x, y, &mut out.points);
+        }
+        progress.advance(Stage::Render, u64::from(y) + 1, u64::from(h));
+    }
+    out
 }
 
 /// Renders the whole image with the scalar reference: grid build, then every pixel.

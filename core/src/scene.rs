@@ -124,6 +124,12 @@ pub struct RenderSettings {
     pub tone_map: ToneMap,
     /// Aim caustic photons only at mirrors and glass (projection maps).
     pub projection_maps: bool,
+    /// Photon passes of a progressive render (`radius` is then the largest
+    /// first radius; see `progressive`).
+    pub passes: u32,
+    /// How fast progressive radii shrink: r_k² ∝ Π (j + α)/(j + 1), 0 < α ≤ 1
+    /// (1 keeps them; smaller shrinks faster, less blur, more noise).
+    pub alpha: f32,
 }
 
 impl Default for RenderSettings {
@@ -143,6 +149,8 @@ impl Default for RenderSettings {
             background: Vec3::ZERO,
             tone_map: ToneMap::Clamp,
             projection_maps: true,
+            passes: 16,
+            alpha: 0.7,
         }
     }
 }
@@ -442,6 +450,12 @@ impl Scene {
         }
         if r.max_depth == 0 || r.max_depth > MAX_DEPTH {
             return Err(c.err("max_depth", format!("must be between 1 and {MAX_DEPTH}, got {}", r.max_depth)));
+        }
+        if r.passes == 0 {
+            return Err(c.err("passes", "must be at least 1, got 0"));
+        }
+        if !(r.alpha > 0.0 && r.alpha <= 1.0) {
+            return Err(c.err("alpha", format!("must be in (0, 1], got {}", r.alpha)));
         }
         c.non_negative("ambient", r.ambient)?;
         c.positive("exposure", r.exposure)?;

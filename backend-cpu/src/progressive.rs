@@ -19,8 +19,11 @@ pub const POINT_CHUNK: usize = 256;
 pub fn gather_pass(scene: &PreparedScene, map: &PhotonMap, points: &[VisiblePoint], radii: &[f32]) -> PassGather {
     let r_pass = scene.scene.render.radius;
     let used = levels_used(radii, r_pass);
-    let grids: Vec<Option<CpuGrid>> =
-        (0..GRID_LEVELS).map(|l| used[l].then(|| CpuGrid::build(&map.photons, level_radius(r_pass, l)))).collect();
+    // The levels are built side by side: most of a build (the scatter) is serial.
+    let grids: Vec<Option<CpuGrid>> = (0..GRID_LEVELS)
+        .into_par_iter()
+        .map(|l| used[l].then(|| CpuGrid::build(&map.photons, level_radius(r_pass, l))))
+        .collect();
     let settings = &scene.scene.render;
     let chunks: Vec<Vec<_>> = points
         .par_chunks(POINT_CHUNK)

@@ -240,8 +240,9 @@ pub struct VisiblePoint {
     pub flux: f32,
     /// tint × albedo / π × exposure: pixel radiance per unit caustic irradiance.
     pub weight: [f32; 3],
-    /// Padding.
-    pub _pad0: u32,
+    /// The gather radius at this point (the scene's in a frame; its own in
+    /// a progressive pass).
+    pub radius: f32,
     /// Density estimator: Σ C_b Φ N; paper estimator: Σ C_b.
     pub sums: [f32; 3],
     /// Compensation (Kahan) of `flux`: millions of photons in one gather
@@ -249,8 +250,8 @@ pub struct VisiblePoint {
     pub flux_c: f32,
     /// Compensation (Kahan) of `sums`.
     pub sums_c: [f32; 3],
-    /// Padding.
-    pub _pad1: u32,
+    /// Photons accepted so far (a white photon counts once).
+    pub found: u32,
 }
 const _: () = assert!(core::mem::size_of::<VisiblePoint>() == 80);
 

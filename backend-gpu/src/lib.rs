@@ -19,6 +19,7 @@ mod grid;
 pub mod layout;
 mod photons;
 mod pipelines;
+mod progressive;
 mod render;
 mod scan;
 mod scene;
@@ -31,6 +32,8 @@ pub use render::{PIXEL_BYTES, SOFTWARE_GATHER_SPAN};
 use photons::PhotonArray;
 use pipelines::Pipelines;
 use prismatic_core::backend::{Backend, BackendError, Progress, Stage};
+use prismatic_core::progressive::PassGather;
+use prismatic_core::visible::VisiblePoint;
 use prismatic_core::{Image, PhotonMap, PreparedScene, TraceStats};
 use scene::{EncodedScene, SceneBuffers};
 
@@ -250,5 +253,21 @@ impl Backend for GpuBackend {
         let image = render::read_image(&self.ctx, &pixels, r.width, r.height)?;
         progress.advance(Stage::Render, u64::from(r.height), u64::from(r.height));
         Ok((map.stats(&self.ctx)?, image))
+    }
+
+    /// A pass on the device: trace, grids, gather at the points; the
+    /// points' sums are read back (the photon map is not).
+    fn gather_pass(
+        &mut self,
+        scene: &PreparedScene,
+        points: &[VisiblePoint],
+        radii: &[f32],
+    ) -> Result<PassGather, BackendError> {
+        let mut buffers = self.upload(scene)?;
+        let map = self.trace_on_device(scene, &mut buffers, &mut prismatic_core::NoProgress)?;
+        let span = self.gatherer.span;
+        let (irradiance, photons) =
+            progressive::gather_pass(&self.ctx, &self.pipelines, &mut buffers, &map, span, scene, points, radii)?;
+        Ok(PassGather { irradiance, photons, stats: map.stats(&self.ctx)? })
     }
 }

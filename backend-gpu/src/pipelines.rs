@@ -112,6 +112,8 @@ pub struct Pipelines {
     pub gather: wgpu::ComputePipeline,
     /// Visible points' caustics into their pixels.
     pub resolve: wgpu::ComputePipeline,
+    /// gather.wgsl `gather_points`: a progressive pass at uploaded visible points.
+    pub gather_points: wgpu::ComputePipeline,
     render: HashMap<u32, wgpu::ComputePipeline>,
     texture: HashMap<wgpu::TextureFormat, (wgpu::BindGroupLayout, wgpu::ComputePipeline)>,
 }
@@ -156,6 +158,7 @@ impl Pipelines {
             grid_widest: pipeline(device, "prismatic grid widest", &grid_src, "widest", &[&grid_layout]),
             gather: pipeline(device, "prismatic gather", &gather_src, "gather", &[&gather_layout]),
             resolve: pipeline(device, "prismatic resolve", &gather_src, "resolve", &[&gather_layout]),
+            gather_points: pipeline(device, "prismatic gather points", &gather_src, "gather_points", &[&gather_layout]),
             scene_layout,
             trace_layout,
             compact_layout,

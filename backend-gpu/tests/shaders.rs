@@ -151,7 +151,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
         (
             "VisiblePoint",
             &gather,
-            rust_layout!(VisiblePoint { position, total, normal, flux, weight, _pad0, sums, flux_c, sums_c, _pad1 }),
+            rust_layout!(VisiblePoint { position, total, normal, flux, weight, radius, sums, flux_c, sums_c, found }),
         ),
     ];
     for (name, module, rust) in cases {

@@ -5,7 +5,11 @@
 //! into a 1×1 image (upload, trace, compaction, grid) and the same image
 //! with one photon (view rays and visible points, an empty gather).
 //!
-//! `cargo run --release -p prismatic-benches --example gpu_frame_times -- [FRAMES]`
+//! Then one progressive pass (`Backend::gather_pass`: trace, grid levels,
+//! gather at the visible points, sums read back) at 1080p, the visible
+//! points and first radii prepared by the CPU backend.
+//!
+//! `cargo run --release -p prismatic-benches --example gpu_frame_times -- [FRAMES] [--skip-frames]`
 
 use prismatic_core::bands::BandSpec;
 use prismatic_core::scene::WavelengthSampling;
@@ -53,6 +57,7 @@ fn ms(d: Duration) -> f64 {
 
 fn main() {
     let frames: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(5);
+    let skip_frames = std::env::args().any(|a| a == "--skip-frames");
     let mut gpu = GpuBackend::new(AdapterChoice::Any).unwrap_or_else(|e| panic!("no adapter: {e}"));
     let info = gpu.adapter().map(prismatic_gpu::describe).unwrap_or_default();
     println!("adapter: {info}; median of {frames} frames after one warm-up");
@@ -106,7 +111,7 @@ fn main() {
     ];
     println!("| configuration | frame | fps | trace+grid (1x1 image) | view rays (1 photon) | stored photons |");
     println!("|---|---:|---:|---:|---:|---:|");
-    for c in &configs {
+    for c in configs.iter().filter(|_| !skip_frames) {
         let full = time_frames(&mut gpu, &scene(c, c.width, c.height, c.photons), frames);
         let trace = time_frames(&mut gpu, &scene(c, 1, 1, c.photons), frames);
         let rays = time_frames(&mut gpu, &scene(c, c.width, c.height, 1), frames);
@@ -122,6 +127,10 @@ fn main() {
             (f, t, r) => println!("| {} | {f:?} | | {t:?} | {r:?} | |", c.label),
         }
     }
+    progressive_passes(&mut gpu, &configs[1..], frames);
+    if skip_frames {
+        return;
+    }
     // The photon map read back (what `prismatic photons` pays on top of the trace).
     let c = &configs[1];
     let s = scene(c, c.width, c.height, c.photons);
@@ -134,5 +143,49 @@ fn main() {
             map.photons.len()
         ),
         Err(e) => println!("trace_photons failed: {e}"),
+    }
+}
+
+/// Median time of a progressive pass (pass 2 and pass 64) per configuration.
+fn progressive_passes(gpu: &mut GpuBackend, configs: &[Config], frames: usize) {
+    use prismatic_core::progressive::{ProgressiveRender, pass_radius, photon_pass_scene};
+    println!();
+    println!("| progressive pass | visible points | pass 2 | pass 64 | passes/s |");
+    println!("|---|---:|---:|---:|---:|");
+    for c in configs {
+        let s = scene(c, c.width, c.height, c.photons);
+        let t = Instant::now();
+        let render = ProgressiveRender::prepare(&mut prismatic_cpu::CpuBackend::new(), &s, &mut NoProgress)
+            .expect("cpu prepares");
+        let prepare = t.elapsed();
+        let points = &render.points().points;
+        let mut medians = Vec::new();
+        for k in [2u32, 64] {
+            let pass = photon_pass_scene(&s, s.scene.render.alpha, k - 1);
+            let shrink = pass_radius(1.0, s.scene.render.alpha, k);
+            let radii: Vec<f32> =
+                render.initial_radii().iter().map(|r| (r * shrink).min(pass.scene.render.radius)).collect();
+            let mut times = Vec::new();
+            for _ in 0..=frames {
+                let t = Instant::now();
+                if let Err(e) = gpu.gather_pass(&pass, points, &radii) {
+                    println!("| {} | pass {k} failed: {e} |", c.label);
+                    return;
+                }
+                times.push(t.elapsed());
+            }
+            times.remove(0);
+            times.sort();
+            medians.push(times[times.len() / 2]);
+        }
+        println!(
+            "| {} (cpu prepare {:.2} s) | {} | {:.2} ms | {:.2} ms | {:.1} |",
+            c.label,
+            prepare.as_secs_f64(),
+            points.len(),
+            ms(medians[0]),
+            ms(medians[1]),
+            1.0 / medians[1].as_secs_f64()
+        );
     }
 }

@@ -119,3 +119,15 @@ fn partial_renders_merge_into_the_image_of_one_run() {
     // A pass in both is refused.
     assert!(merged.merge(first.accumulation()).is_err());
 }
+
+#[test]
+fn gpu_passes_in_bucket_segments_and_several_bindings_match_the_reference() {
+    // Segments of 16 photons per bucket (many gather dispatches per level)
+    // and photon maps over several storage bindings.
+    let options = prismatic_gpu::GpuOptions { window_photons: Some(50_000), gather_span: Some(16) };
+    let Some(mut gpu) = prismatic_tests::backends::gpu_backend(options) else { return };
+    let scene = small("sphere", 20_000);
+    let expected = progressive(&mut prismatic_core::ReferenceBackend, &scene, 0, 2);
+    let got = progressive(&mut gpu, &scene, 0, 2);
+    compare_images(&expected.image(), &got.image()).unwrap_or_else(|e| panic!("gpu in segments: {e}"));
+}

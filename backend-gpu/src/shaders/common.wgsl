@@ -120,11 +120,11 @@ struct VisiblePoint {
     normal: vec3<f32>,
     flux: f32,
     weight: vec3<f32>,
-    _pad0: u32,
+    radius: f32,
     sums: vec3<f32>,
     flux_c: f32,
     sums_c: vec3<f32>,
-    _pad1: u32,
+    found: u32,
 }
 
 // Twin of prismatic_gpu::layout::Tally.

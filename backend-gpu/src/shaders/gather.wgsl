@@ -34,7 +34,7 @@ fn step_limit(lo: i32, hi: i32) -> i32 {
 fn gather_segment(vp: ptr<function, VisiblePoint>) {
     let point = (*vp).position;
     let normal = (*vp).normal;
-    let r = params.radius;
+    let r = (*vp).radius;
     let r2 = r * r;
     let lo = cell_of(point - vec3<f32>(r), params.inv_cell);
     let hi = cell_of(point + vec3<f32>(r), params.inv_cell);
@@ -68,6 +68,7 @@ fn gather_segment(vp: ptr<function, VisiblePoint>) {
             let d = p.position - point;
             if dot(d, d) <= r2 && dot(oct_decode(p.direction_oct), normal) < 0.0 {
                 let band = p.band_bounces & 0xffffu;
+                (*vp).found += 1u;
                 var add = select(vec3<f32>(1.0), vec3<f32>(p.flux), density);
                 if band < n_bands {
                     add = select(bands[band].weight, bands[band].weight * (p.flux * f32(n_bands)), density);
@@ -91,7 +92,7 @@ fn gather_segment(vp: ptr<function, VisiblePoint>) {
 
 // The caustic irradiance at a point from its sums (gather::estimate).
 fn caustic(vp: VisiblePoint) -> vec3<f32> {
-    let area = PI * params.radius * params.radius;
+    let area = PI * vp.radius * vp.radius;
     if params.estimator == ESTIMATOR_DENSITY {
         return vp.sums / area;
     }
@@ -114,6 +115,26 @@ fn gather(
     if slot >= params.points_per_pixel || slot >= point_counts[k] {
         return;
     }
+    var vp = points[i];
+    gather_segment(&vp);
+    points[i] = vp;
+}
+
+// A progressive pass: one invocation per visible point of one grid level
+// (the host uploads the points sorted by level: this level's are
+// `pixel_offset` .. `pixel_offset + pixel_count`), each with its own
+// radius; the host reads the sums back and finishes the estimate.
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn gather_points(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let k = flat_index(wid, nwg, lid);
+    if k >= params.pixel_count {
+        return;
+    }
+    let i = params.pixel_offset + k;
     var vp = points[i];
     gather_segment(&vp);
     points[i] = vp;

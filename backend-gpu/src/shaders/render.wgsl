@@ -137,7 +137,7 @@ var<private> point_count: u32;
 fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>) {
     if point_count < params.points_per_pixel {
         points[point_count * params.pixel_count + pixel_index] =
-            VisiblePoint(point, 0u, normal, 0.0, weight, 0u, vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u);
+            VisiblePoint(point, 0u, normal, 0.0, weight, params.radius, vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u);
     }
     point_count++;
 }

@@ -298,6 +298,9 @@ fn run(cli: Cli) -> Result<()> {
             }
             let merged = merged.expect("clap requires a file");
             let image = merged.image();
+            if !image.is_finite() {
+                anyhow::bail!("the merged partials give non-finite pixels; nothing was written");
+            }
             out.commit(|w| write_image(w, &output, &image, merged.tone_map))?;
             println!(
                 "merged {} partials ({} passes: {}); wrote {} ({}x{})",

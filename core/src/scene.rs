@@ -150,7 +150,7 @@ impl Default for RenderSettings {
             tone_map: ToneMap::Clamp,
             projection_maps: true,
             passes: 16,
-            alpha: 0.7,
+            alpha: crate::progressive::DEFAULT_ALPHA,
         }
     }
 }

@@ -131,3 +131,20 @@ fn gpu_passes_in_bucket_segments_and_several_bindings_match_the_reference() {
     let got = progressive(&mut gpu, &scene, 0, 2);
     compare_images(&expected.image(), &got.image()).unwrap_or_else(|e| panic!("gpu in segments: {e}"));
 }
+
+#[test]
+fn one_pass_at_the_scenes_radius_is_the_fixed_radius_frame() {
+    // Visible points + a gather at R + the fixed-point sums give the image
+    // of trace + render with the same photons: the two paths agree.
+    for name in ["sphere", "prism"] {
+        let scene = small(name, 20_000);
+        let map = prismatic_core::trace::trace_photons(&scene);
+        let frame = prismatic_core::render::render(&scene, &map);
+        let points = prismatic_core::render::visible_points_with_progress(&scene, &mut NoProgress);
+        let radii = vec![scene.scene.render.radius; points.points.len()];
+        let found = prismatic_core::progressive::gather_pass(&scene, &map, &points.points, &radii);
+        let mut sums = prismatic_core::progressive::Accumulation::new(80, 80);
+        sums.add_pass(0, &points.points, &found.irradiance);
+        compare_images(&frame, &sums.image(&points.base)).unwrap_or_else(|e| panic!("{name}: {e}"));
+    }
+}

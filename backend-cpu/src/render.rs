@@ -210,7 +210,6 @@ impl Shader<'_> {
         for i in lanes(mask) {
             let (pi, ni) = (p.lane(i), n.lane(i));
             let albedo = self.scene.surfaces[objects[i] as usize].albedo_at(pi, ni);
-            let query = GatherQuery { point: pi, normal: ni, radius: settings.radius };
             let caustic = if let Some(points) = &mut self.points {
                 if self.scene.plan.caustics.on {
                     let weight = rays[i].tint * albedo / PI * settings.exposure;
@@ -221,6 +220,7 @@ impl Shader<'_> {
             } else if self.grid.is_empty() {
                 Vec3::ZERO
             } else {
+                let query = GatherQuery { point: pi, normal: ni, radius: settings.radius };
                 self.grid.gather(&self.scene.bands, settings.estimator, &query, &mut self.counts)
             };
             out[i] = albedo * (caustic + Vec3::splat(direct[i])) * (1.0 / PI) + albedo * settings.ambient;

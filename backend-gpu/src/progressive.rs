@@ -68,9 +68,13 @@ pub fn gather_pass(
     let bands = scene.bands.len() as f64;
     for start in (0..n).step_by(chunk) {
         let end = (start + chunk).min(n);
-        // This chunk's points sorted by level (stable), so each level is one range.
-        let mut order: Vec<usize> = (start..end).collect();
-        order.sort_by_key(|&i| level_of(radii[i], r_pass));
+        // This chunk's points grouped by level (stable), so each level is one range.
+        let mut by_level: [Vec<usize>; GRID_LEVELS] = Default::default();
+        for i in start..end {
+            by_level[level_of(radii[i], r_pass)].push(i);
+        }
+        let counts = by_level.each_ref().map(Vec::len);
+        let order = by_level.concat();
         let uploaded: Vec<layout::VisiblePoint> = order
             .iter()
             .map(|&i| layout::VisiblePoint {
@@ -88,8 +92,7 @@ pub fn gather_pass(
             })
         })?;
         let mut first = 0;
-        for (level, grid) in grids.iter().enumerate() {
-            let count = order[first..].iter().take_while(|&&i| level_of(radii[i], r_pass) == level).count();
+        for ((level, grid), count) in grids.iter().enumerate().zip(counts) {
             let Some((grid, segments)) = grid.as_ref().filter(|_| count > 0) else {
                 first += count;
                 continue;

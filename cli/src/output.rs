@@ -75,7 +75,7 @@ pub fn write_image(w: &mut BufWriter<File>, path: &Path, image: &Image, tone_map
 }
 
 /// True for `.exr` paths (any case).
-pub fn is_exr(path: &Path) -> bool {
+fn is_exr(path: &Path) -> bool {
     path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"))
 }
 

@@ -169,6 +169,9 @@ pub enum MergeError {
     /// A range of no passes.
     #[error("empty pass range {0}..{1}")]
     Empty(u32, u32),
+    /// Not one sum per pixel.
+    #[error("{0} pixel sums for a {1}x{2} image")]
+    Sums(usize, u32, u32),
 }
 
 /// The per-pixel sums of a set of passes: Σ over passes and visible points
@@ -195,9 +198,8 @@ impl Accumulation {
     /// Sums read back (a partial render's file): `passes` must be disjoint
     /// and non-empty, `sums` one per pixel.
     pub fn from_parts(width: u32, height: u32, passes: &[(u32, u32)], sums: Vec<[i64; 3]>) -> Result<Self, MergeError> {
-        let pixels = width as usize * height as usize;
-        if sums.len() != pixels {
-            return Err(MergeError::Size(width, height, sums.len() as u32, 1));
+        if sums.len() != width as usize * height as usize {
+            return Err(MergeError::Sums(sums.len(), width, height));
         }
         let mut a = Accumulation { width, height, passes: Vec::new(), sums };
         for &(x, y) in passes {
@@ -288,7 +290,6 @@ fn to_fixed(x: f64) -> i64 {
 #[derive(Clone, Debug)]
 pub struct ProgressiveRender {
     scene: PreparedScene,
-    alpha: f32,
     points: VisiblePoints,
     radii: Vec<f32>,
     accumulation: Accumulation,
@@ -315,7 +316,6 @@ impl ProgressiveRender {
         let r = &scene.scene.render;
         Ok(ProgressiveRender {
             scene: scene.clone(),
-            alpha: r.alpha,
             points,
             radii,
             accumulation: Accumulation::new(r.width, r.height),
@@ -329,8 +329,9 @@ impl ProgressiveRender {
             self.accumulation.add_pass(pass, &[], &[]);
             return Ok(TraceStats::default());
         }
-        let scene = photon_pass_scene(&self.scene, self.alpha, pass);
-        let shrink = pass_radius(1.0, self.alpha, pass.saturating_add(1));
+        let alpha = self.scene.scene.render.alpha;
+        let scene = photon_pass_scene(&self.scene, alpha, pass);
+        let shrink = pass_radius(1.0, alpha, pass.saturating_add(1));
         let radii: Vec<f32> = self.radii.iter().map(|&r| (r * shrink).min(scene.scene.render.radius)).collect();
         let found = backend.gather_pass(&scene, points, &radii)?;
         self.accumulation.add_pass(pass, points, &found.irradiance);

@@ -365,7 +365,7 @@ pub fn measure(
     s.render.bands = setting.bands;
     s.render.wavelengths = setting.sampling;
     s.render.estimator = setting.estimator;
-    let (image, trace_s, render_s, stored, own_stripes) = match setting.radius {
+    let (image, trace_s, render_s, stored, stripe) = match setting.radius {
         RadiusMode::Fixed => {
             s.render.photons = photons;
             let configured = PreparedScene::new(s)?;
@@ -375,11 +375,12 @@ pub fn measure(
             let t1 = Instant::now();
             let image = backend.render(&configured, &map, &mut NoProgress)?;
             let render_s = t1.elapsed().as_secs_f64();
-            let mut own = StripeSums::new(&configured.bands);
-            if stripes {
+            let stripe = stripes.then(|| {
+                let mut own = StripeSums::new(&configured.bands);
                 own.add(&map);
-            }
-            (image, trace_s, render_s, map.stats.stored, Some((own, configured)))
+                stripe_error(&own, &configured.bands, &reference.stripes)
+            });
+            (image, trace_s, render_s, map.stats.stored, stripe.flatten())
         }
         // The renderer's own progressive path (`prismatic render`): view
         // rays and pilot once, then passes. Its photon maps stay inside the
@@ -400,10 +401,7 @@ pub fn measure(
     let error = RenderError {
         delta_e: mean_delta_e(&image, &reference.image, &reference.mask, tone_map),
         rmse: rmse(&image, &reference.image),
-        stripe: match own_stripes {
-            Some((own, configured)) if stripes => stripe_error(&own, &configured.bands, &reference.stripes),
-            _ => None,
-        },
+        stripe,
     };
     Ok(StudyRow { setting: setting.clone(), photons, stored, trace_s, render_s, error, pareto: false })
 }

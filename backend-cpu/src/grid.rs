@@ -7,7 +7,7 @@ use crate::simd::{Vec3x8, lt};
 use glam::{DVec3, IVec3, Vec3};
 use prismatic_core::bands::{BandTable, MAX_BANDS};
 use prismatic_core::gather::{GatherQuery, paper_hue};
-use prismatic_core::grid::{bucket_mask, bucket_of, bucket_starts, cell_of};
+use prismatic_core::grid::{bucket_mask, bucket_of, cell_of};
 use prismatic_core::photon::{Photon, WHITE_BAND};
 use prismatic_core::scene::Estimator;
 use rayon::prelude::*;
@@ -24,40 +24,169 @@ pub struct CpuGrid {
     dir: [Vec<f32>; 3],
     flux: Vec<f32>,
     band: Vec<u16>,
+    /// Scratch: each photon's bucket (kept for the next rebuild).
+    bucket: Vec<u32>,
+    /// Scratch of `rebuild_near`: one bit a bucket, set where a query may
+    /// look (empty: every bucket).
+    near: Vec<u64>,
+}
+
+/// A build task sorts at least this many photons (fewer photons: one task).
+const SORT_TASK: usize = 1 << 15;
+
+/// One build task's share of the grid's arrays: the records of a range of
+/// buckets, which a counting sort places next to each other.
+struct RecordSlices<'a> {
+    pos: [&'a mut [f32]; 3],
+    dir: [&'a mut [f32]; 3],
+    flux: &'a mut [f32],
+    band: &'a mut [u16],
 }
 
 impl CpuGrid {
-    /// Builds the grid: buckets in parallel, then count, prefix sum, scatter.
+    /// Builds the grid over all `photons`.
     pub fn build(photons: &[Photon], radius: f32) -> Self {
-        let cell_size = 2.0 * radius;
-        let inv_cell = 1.0 / cell_size;
-        let mask = bucket_mask(photons.len());
-        let bucket: Vec<u32> = photons.par_iter().map(|p| bucket_of(cell_of(p.pos(), inv_cell), mask)).collect();
-        let cell_start = bucket_starts(&bucket, mask);
-        let padded = photons.len() + 8;
-        let mut grid = CpuGrid {
-            cell_size,
-            mask,
-            pos: core::array::from_fn(|_| vec![0.0; padded]),
-            dir: core::array::from_fn(|_| vec![0.0; padded]),
-            flux: vec![0.0; padded],
-            band: vec![0; padded],
-            cell_start,
-        };
-        let mut cursor = grid.cell_start.clone();
-        for (p, &b) in photons.iter().zip(&bucket) {
-            let slot = &mut cursor[b as usize];
-            let i = *slot as usize;
-            *slot += 1;
-            let d = p.direction();
-            for k in 0..3 {
-                grid.pos[k][i] = p.position[k];
-                grid.dir[k][i] = d[k];
-            }
-            grid.flux[i] = p.flux;
-            grid.band[i] = p.band;
-        }
+        let mut grid = Self::empty();
+        grid.rebuild(photons, radius);
         grid
+    }
+
+    /// Builds the grid for gathers at `queries` only (see [`CpuGrid::rebuild_near`]).
+    pub fn build_near(photons: &[Photon], radius: f32, queries: impl Iterator<Item = (Vec3, f32)>) -> Self {
+        let mut grid = Self::empty();
+        grid.rebuild_near(photons, radius, queries);
+        grid
+    }
+
+    fn empty() -> Self {
+        CpuGrid {
+            cell_size: 0.0,
+            mask: 0,
+            cell_start: Vec::new(),
+            pos: Default::default(),
+            dir: Default::default(),
+            flux: Vec::new(),
+            band: Vec::new(),
+            bucket: Vec::new(),
+            near: Vec::new(),
+        }
+    }
+
+    /// Rebuilds the grid over `photons` in the memory of the last build (a
+    /// progressive render's passes allocate nothing after the first).
+    pub fn rebuild(&mut self, photons: &[Photon], radius: f32) {
+        self.near.clear();
+        self.sort(photons, radius);
+    }
+
+    /// Rebuilds the grid over those of `photons` that gathers at `queries`
+    /// (point, radius ≤ `radius`) can find: the photons in the buckets of
+    /// the cells the queries' spheres touch. A gather anywhere else misses
+    /// photons. Progressive passes sort only the photons near each grid
+    /// level's own points (a dense caustic's few points skip the floor).
+    pub fn rebuild_near(&mut self, photons: &[Photon], radius: f32, queries: impl Iterator<Item = (Vec3, f32)>) {
+        self.mask = bucket_mask(photons.len());
+        let inv = 1.0 / (2.0 * radius);
+        self.near.clear();
+        self.near.resize((self.mask as usize + 1).div_ceil(64), 0);
+        for (p, r) in queries {
+            let (lo, hi) = (cell_of(p - Vec3::splat(r), inv), cell_of(p + Vec3::splat(r), inv));
+            for z in lo.z..=hi.z.min(lo.z.saturating_add(1)) {
+                for y in lo.y..=hi.y.min(lo.y.saturating_add(1)) {
+                    for x in lo.x..=hi.x.min(lo.x.saturating_add(1)) {
+                        let b = bucket_of(IVec3::new(x, y, z), self.mask) as usize;
+                        self.near[b / 64] |= 1 << (b % 64);
+                    }
+                }
+            }
+        }
+        self.sort(photons, radius);
+    }
+
+    /// The counting sort of `photons` into buckets (those `near` allows),
+    /// run as tasks over ranges of buckets: each task counts and places the
+    /// photons of its buckets, scanning every photon in order, so the
+    /// layout is the serial sort's whatever the thread count.
+    fn sort(&mut self, photons: &[Photon], radius: f32) {
+        let n = photons.len();
+        self.cell_size = 2.0 * radius;
+        let inv_cell = 1.0 / self.cell_size;
+        self.mask = bucket_mask(n);
+        let buckets = self.mask as usize + 1;
+        let mask = self.mask;
+        self.bucket.clear();
+        let near = &self.near;
+        self.bucket.par_extend(photons.par_iter().map(|p| {
+            let b = bucket_of(cell_of(p.pos(), inv_cell), mask);
+            // Buckets no query looks in: past the table, so never counted.
+            if near.is_empty() || near[b as usize / 64] & (1 << (b % 64)) != 0 { b } else { u32::MAX }
+        }));
+        let tasks = rayon::current_num_threads().min(n / SORT_TASK).max(1);
+        // Buckets split evenly (the hash spreads photons evenly over them).
+        let first: Vec<usize> = (0..=tasks).map(|t| t * buckets / tasks).collect();
+        let bucket = &self.bucket;
+
+        // Count: task t fills start[first[t] + 1..=first[t + 1]] with its
+        // buckets' counts, then the prefix sums join the tasks' ranges.
+        self.cell_start.clear();
+        self.cell_start.resize(buckets + 1, 0);
+        let (_, counts) = self.cell_start.split_at_mut(1);
+        let mut count_slices = split_at(counts, &first[1..]);
+        count_slices.par_iter_mut().enumerate().for_each(|(t, count)| {
+            let lo = first[t];
+            for &b in bucket {
+                if let Some(c) = (b as usize).checked_sub(lo).and_then(|i| count.get_mut(i)) {
+                    *c += 1;
+                }
+            }
+        });
+        for i in 0..buckets {
+            self.cell_start[i + 1] += self.cell_start[i];
+        }
+
+        // Scatter: task t writes the records of its buckets, one slice of
+        // each array (the padding's 8 records go with the last task).
+        let padded = self.cell_start[buckets] as usize + 8;
+        for v in self.pos.iter_mut().chain(&mut self.dir).chain([&mut self.flux]) {
+            v.truncate(padded);
+            v.resize(padded, 0.0);
+        }
+        self.band.truncate(padded);
+        self.band.resize(padded, 0);
+        let ends: Vec<usize> = first[1..].iter().map(|&b| self.cell_start[b] as usize).collect();
+        let [px, py, pz] = &mut self.pos;
+        let [dx, dy, dz] = &mut self.dir;
+        let mut slices: Vec<RecordSlices> = split_at(px, &ends)
+            .into_iter()
+            .zip(split_at(py, &ends))
+            .zip(split_at(pz, &ends))
+            .zip(split_at(dx, &ends).into_iter().zip(split_at(dy, &ends)).zip(split_at(dz, &ends)))
+            .zip(split_at(&mut self.flux, &ends).into_iter().zip(split_at(&mut self.band, &ends)))
+            .map(|((((x, y), z), ((u, v), w)), (flux, band))| RecordSlices {
+                pos: [x, y, z],
+                dir: [u, v, w],
+                flux,
+                band,
+            })
+            .collect();
+        let cell_start = &self.cell_start;
+        slices.par_iter_mut().enumerate().for_each(|(t, out)| {
+            let (lo, hi) = (first[t], first[t + 1]);
+            let base = cell_start[lo];
+            let mut cursor: Vec<u32> = cell_start[lo..hi].iter().map(|&s| s - base).collect();
+            for (p, &b) in photons.iter().zip(bucket) {
+                let Some(slot) = (b as usize).checked_sub(lo).and_then(|i| cursor.get_mut(i)) else { continue };
+                let i = *slot as usize;
+                *slot += 1;
+                let d = p.direction();
+                for k in 0..3 {
+                    out.pos[k][i] = p.position[k];
+                    out.dir[k][i] = d[k];
+                }
+                out.flux[i] = p.flux;
+                out.band[i] = p.band;
+            }
+        });
     }
 
     /// Number of photons in the grid.
@@ -148,5 +277,88 @@ impl CpuGrid {
             }
         };
         (irradiance, found)
+    }
+}
+
+/// `v` cut at each of `ends` but the last (the last slice runs to the end of
+/// `v`: for the records, their padding).
+fn split_at<'a, T>(v: &'a mut [T], ends: &[usize]) -> Vec<&'a mut [T]> {
+    let mut slices = Vec::with_capacity(ends.len());
+    let (mut rest, mut done) = (v, 0);
+    for &end in &ends[..ends.len() - 1] {
+        let (head, tail) = rest.split_at_mut(end - done);
+        slices.push(head);
+        (rest, done) = (tail, end);
+    }
+    slices.push(rest);
+    slices
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use prismatic_core::photon::oct_encode;
+
+    /// The parallel scatter lays the records out as a serial counting sort
+    /// does, whatever the thread count (the gathers' sums depend on it).
+    #[test]
+    fn the_layout_does_not_depend_on_the_thread_count() {
+        let mut state = 0x2545_f491_u32;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 17;
+            state ^= state << 5;
+            state as f32 / u32::MAX as f32
+        };
+        let photons: Vec<Photon> = (0..5 * SORT_TASK as u32)
+            .map(|i| Photon {
+                position: [next() * 2.0 - 1.0, 0.0, next() * 2.0 - 1.0],
+                flux: next(),
+                direction_oct: oct_encode(Vec3::new(next() - 0.5, -1.0, next() - 0.5).normalize()).to_array(),
+                emission: i,
+                band: (i % 7) as u16,
+                bounces: 1,
+            })
+            .collect();
+        let build = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| CpuGrid::build(&photons, 0.01))
+        };
+        let same = |a: &CpuGrid, b: &CpuGrid, what: &str| {
+            assert_eq!((a.cell_size, a.mask), (b.cell_size, b.mask), "{what}");
+            assert_eq!(a.cell_start, b.cell_start, "{what}");
+            let n = a.len();
+            assert_eq!(n, b.len(), "{what}");
+            for k in 0..3 {
+                assert_eq!(a.pos[k][..n], b.pos[k][..n], "{what}");
+                assert_eq!(a.dir[k][..n], b.dir[k][..n], "{what}");
+            }
+            assert_eq!((&a.flux[..n], &a.band[..n]), (&b.flux[..n], &b.band[..n]), "{what}");
+        };
+        let one = build(1);
+        for threads in [2, 3, 8] {
+            same(&one, &build(threads), &format!("{threads} threads"));
+        }
+        // A rebuild over a larger grid of another radius is a fresh build.
+        let mut reused = CpuGrid::build(&[photons.clone(), photons.clone()].concat(), 0.05);
+        reused.rebuild(&photons, 0.01);
+        same(&one, &reused, "rebuilt");
+
+        // A grid near a few queries holds fewer photons and gathers there
+        // exactly what the whole grid gathers.
+        let bands = BandTable::new(prismatic_core::BandSpec::Paper7);
+        let queries: Vec<(Vec3, f32)> =
+            (0..40).map(|i| (Vec3::new(next() - 0.5, 0.0, next() - 0.5), 0.008 + 0.002 * (i % 2) as f32)).collect();
+        let near = CpuGrid::build_near(&photons, 0.01, queries.iter().copied());
+        assert!(near.len() < photons.len() / 4, "{} of {}", near.len(), photons.len());
+        let mut counts = [0; MAX_BANDS + 1];
+        for estimator in [Estimator::Density, Estimator::Paper] {
+            for &(point, radius) in &queries {
+                let q = GatherQuery { point, normal: Vec3::Y, radius };
+                let whole = one.gather_counted(&bands, estimator, &q, &mut counts);
+                assert!(whole.1 > 0, "a query with no photons tests nothing");
+                assert_eq!(near.gather_counted(&bands, estimator, &q, &mut counts), whole);
+            }
+        }
     }
 }

@@ -35,6 +35,8 @@ pub struct CpuBackend {
     chunks: Vec<ChunkBuffer>,
     /// The photon map of the last progressive pass (its memory is reused).
     pass_map: PhotonMap,
+    /// The grid levels of the last progressive pass (rebuilt in place).
+    pass_grids: progressive::PassGrids,
 }
 
 /// One work item's unsorted output and sort scratch.
@@ -48,7 +50,7 @@ struct ChunkBuffer {
 impl CpuBackend {
     /// Uses rayon's global pool (all cores).
     pub fn new() -> Self {
-        CpuBackend { pool: None, chunks: Vec::new(), pass_map: PhotonMap::default() }
+        CpuBackend { pool: None, chunks: Vec::new(), pass_map: PhotonMap::default(), pass_grids: Default::default() }
     }
 
     /// Uses exactly `threads` threads (for scaling measurements).
@@ -57,7 +59,12 @@ impl CpuBackend {
             .num_threads(threads)
             .build()
             .map_err(|e| BackendError::Device(format!("cannot start {threads} threads: {e}")))?;
-        Ok(CpuBackend { pool: Some(pool), chunks: Vec::new(), pass_map: PhotonMap::default() })
+        Ok(CpuBackend {
+            pool: Some(pool),
+            chunks: Vec::new(),
+            pass_map: PhotonMap::default(),
+            pass_grids: Default::default(),
+        })
     }
 
     /// Traces the scene's photons into `map`, reusing its memory.
@@ -163,10 +170,10 @@ impl Backend for CpuBackend {
         radii: &[f32],
     ) -> Result<PassGather, BackendError> {
         // The pass's map is kept for the next pass (no allocation after the first).
-        let mut map = std::mem::take(&mut self.pass_map);
+        let (mut map, mut grids) = (std::mem::take(&mut self.pass_map), std::mem::take(&mut self.pass_grids));
         self.trace_into(scene, &mut map);
-        let found = self.install(|| progressive::gather_pass(scene, &map, points, radii));
-        self.pass_map = map;
+        let found = self.install(|| progressive::gather_pass(scene, &map, points, radii, &mut grids));
+        (self.pass_map, self.pass_grids) = (map, grids);
         Ok(found)
     }
 }

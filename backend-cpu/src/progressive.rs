@@ -1,6 +1,7 @@
 //! The CPU backend's progressive pass: the core's `gather_pass` with
-//! packet grids, scheduled over small chunks of visible points (not image
-//! tiles), so the threads share a caustic that covers a few rows evenly.
+//! packet grids, rebuilt in place from pass to pass, scheduled over small
+//! chunks of visible points (not image tiles), so the threads share a
+//! caustic that covers a few rows evenly.
 
 use crate::grid::CpuGrid;
 use prismatic_core::PhotonMap;
@@ -15,15 +16,33 @@ use rayon::prelude::*;
 /// many items, each small enough to balance two cores.
 pub const POINT_CHUNK: usize = 256;
 
-/// Gathers `map` at `points`, each within its radius (`radii`).
-pub fn gather_pass(scene: &PreparedScene, map: &PhotonMap, points: &[VisiblePoint], radii: &[f32]) -> PassGather {
+/// The grid levels of a pass, kept from pass to pass for their memory.
+#[derive(Default)]
+pub struct PassGrids {
+    levels: [Option<CpuGrid>; GRID_LEVELS],
+}
+
+/// Gathers `map` at `points`, each within its radius (`radii`), building
+/// the grid levels it needs in `grids`.
+pub fn gather_pass(
+    scene: &PreparedScene,
+    map: &PhotonMap,
+    points: &[VisiblePoint],
+    radii: &[f32],
+    grids: &mut PassGrids,
+) -> PassGather {
     let r_pass = scene.scene.render.radius;
     let used = levels_used(radii, r_pass);
-    // The levels are built side by side: most of a build (the scatter) is serial.
-    let grids: Vec<Option<CpuGrid>> = (0..GRID_LEVELS)
-        .into_par_iter()
-        .map(|l| used[l].then(|| CpuGrid::build(&map.photons, level_radius(r_pass, l))))
-        .collect();
+    // Each level holds only the photons near its own points.
+    for l in (0..GRID_LEVELS).filter(|&l| used[l]) {
+        let radius = level_radius(r_pass, l);
+        let queries = points.iter().zip(radii).filter(|&(_, &r)| level_of(r, r_pass) == l).map(|(p, &r)| (p.point, r));
+        match &mut grids.levels[l] {
+            Some(grid) => grid.rebuild_near(&map.photons, radius, queries),
+            empty => *empty = Some(CpuGrid::build_near(&map.photons, radius, queries)),
+        }
+    }
+    let grids = &grids.levels;
     let settings = &scene.scene.render;
     let chunks: Vec<Vec<_>> = points
         .par_chunks(POINT_CHUNK)

@@ -368,6 +368,7 @@ impl<'s> Parser<'s> {
                 "projection_maps",
                 "passes",
                 "alpha",
+                "neighbours",
             ],
         )?;
         let d = RenderSettings::default();
@@ -389,6 +390,7 @@ impl<'s> Parser<'s> {
             projection_maps: self.opt(t, "projection_maps", Self::boolean)?.unwrap_or(d.projection_maps),
             passes: self.opt(t, "passes", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.passes, |x| x as u32),
             alpha: self.opt(t, "alpha", Self::float)?.unwrap_or(d.alpha),
+            neighbours: self.opt(t, "neighbours", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.neighbours, |x| x as u32),
         })
     }
 

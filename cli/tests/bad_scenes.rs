@@ -24,6 +24,7 @@ const EXPECTED: &[(&str, &str)] = &[
     ("unknown-material", "19: object[0].material: unknown material \"marble\""),
     ("wrong-type", "2: render.photons: must be a whole number, got string"),
     ("zero-bands", "2: render.bands: must be \"paper3\", \"paper7\" or 1 to 256, got 0"),
+    ("zero-neighbours", "3: render.neighbours: must be at least 1, got 0"),
     ("zero-normal", "21: object[0].normal: must not be a zero-length vector"),
 ];
 

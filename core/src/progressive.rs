@@ -11,10 +11,13 @@
 //!
 //! Each visible point has its own r_1: a pilot pass (its own seed, an
 //! eighth of the photons) counts the photons within the scene's radius R
-//! around the point, and r_1 is the radius that would hold
-//! [`PILOT_NEIGHBOURS`] photons of a full pass at that density, between
-//! R·[`MIN_RADIUS_FRACTION`] and R. Dense caustics get small radii (sharp,
-//! and each gather visits few photons); sparse regions keep R.
+//! around the point, and r_1 is the radius that would hold the scene's
+//! `neighbours` photon paths of a full pass at that density, between
+//! R·[`MIN_RADIUS_FRACTION`] and R. A path is what one white photon
+//! leaves: N band photons when it splits into all N bands (they land
+//! together until the glass fans them out), one otherwise. Dense caustics
+//! get small radii (sharp, and each gather visits few photons); sparse
+//! regions keep R.
 //!
 //! Passes share nothing but the visible points and their r_1, both fixed by
 //! the scene and seed, so any set of passes can be rendered anywhere and
@@ -30,6 +33,7 @@ use crate::math::sqrt;
 use crate::photon::{PhotonMap, TraceStats};
 use crate::prepared::PreparedScene;
 use crate::rng::random_u32;
+use crate::scene::WavelengthSampling;
 use crate::visible::{VisiblePoint, VisiblePoints};
 use alloc::vec;
 use alloc::vec::Vec;
@@ -38,9 +42,9 @@ use glam::{DVec3, Vec3};
 /// Hachisuka et al.'s recommended fraction of photons kept per pass.
 pub const DEFAULT_ALPHA: f32 = 0.7;
 
-/// Photons of a full pass a visible point's first radius should hold
-/// (Jensen's caustic gathers use 50–100 nearest photons).
-pub const PILOT_NEIGHBOURS: f32 = 64.0;
+/// Independent photon paths a visible point's first radius should hold
+/// by default (Jensen's caustic gathers use 50–100 nearest photons).
+pub const DEFAULT_NEIGHBOURS: u32 = 32;
 
 /// The smallest first radius, as a fraction of the scene's radius: it
 /// bounds the grid levels a pass needs (see [`level_of`]).
@@ -92,13 +96,23 @@ pub fn pilot_scene(scene: &PreparedScene) -> PreparedScene {
 }
 
 /// A point's first radius from the photons its pilot gather found within
-/// `r0`, when a full pass has `scale` times the pilot's photons.
-pub fn initial_radius(r0: f32, pilot_photons: u32, scale: f32) -> f32 {
+/// `r0`, when a full pass has `scale` times the pilot's photons and the
+/// radius should hold `neighbours` of them.
+pub fn initial_radius(r0: f32, pilot_photons: u32, scale: f32, neighbours: f32) -> f32 {
     let expected = pilot_photons as f32 * scale;
-    if expected <= PILOT_NEIGHBOURS {
+    if expected <= neighbours {
         return r0;
     }
-    (r0 * sqrt(PILOT_NEIGHBOURS / expected)).clamp(r0 * MIN_RADIUS_FRACTION, r0)
+    (r0 * sqrt(neighbours / expected)).clamp(r0 * MIN_RADIUS_FRACTION, r0)
+}
+
+/// Stored photons per independent photon path: a white photon split into
+/// N bands leaves N photons that travel together until the glass fans them.
+pub fn photons_per_path(scene: &PreparedScene) -> u32 {
+    match scene.scene.render.wavelengths {
+        WavelengthSampling::Split => scene.bands.len() as u32,
+        WavelengthSampling::RandomBand | WavelengthSampling::Continuous => 1,
+    }
 }
 
 /// The grid radius of `level` in a pass whose largest radius is `r_pass`.
@@ -310,8 +324,9 @@ impl ProgressiveRender {
         } else {
             let pilot = pilot_scene(scene);
             let scale = scene.scene.render.photons as f32 / pilot.scene.render.photons as f32;
+            let neighbours = (scene.scene.render.neighbours * photons_per_path(scene)) as f32;
             let found = backend.gather_pass(&pilot, &points.points, &vec![r0; points.points.len()])?;
-            found.photons.iter().map(|&n| initial_radius(r0, n, scale)).collect()
+            found.photons.iter().map(|&n| initial_radius(r0, n, scale, neighbours)).collect()
         };
         let r = &scene.scene.render;
         Ok(ProgressiveRender {

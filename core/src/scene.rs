@@ -130,6 +130,9 @@ pub struct RenderSettings {
     /// How fast progressive radii shrink: r_k² ∝ Π (j + α)/(j + 1), 0 < α ≤ 1
     /// (1 keeps them; smaller shrinks faster, less blur, more noise).
     pub alpha: f32,
+    /// Independent photon paths a progressive render's first radius should
+    /// hold (more: smoother early passes, more blur until the radii shrink).
+    pub neighbours: u32,
 }
 
 impl Default for RenderSettings {
@@ -151,6 +154,7 @@ impl Default for RenderSettings {
             projection_maps: true,
             passes: 16,
             alpha: crate::progressive::DEFAULT_ALPHA,
+            neighbours: crate::progressive::DEFAULT_NEIGHBOURS,
         }
     }
 }
@@ -456,6 +460,9 @@ impl Scene {
         }
         if !(r.alpha > 0.0 && r.alpha <= 1.0) {
             return Err(c.err("alpha", format!("must be in (0, 1], got {}", r.alpha)));
+        }
+        if r.neighbours == 0 {
+            return Err(c.err("neighbours", "must be at least 1, got 0"));
         }
         c.non_negative("ambient", r.ambient)?;
         c.positive("exposure", r.exposure)?;

@@ -30,8 +30,8 @@ pub const MAX_BAND_PATHS: u64 = 100_000_000;
 pub enum RadiusMode {
     /// The scene's radius, one pass with all photons.
     Fixed,
-    /// Progressive photon mapping: `passes` passes sharing the photons, the
-    /// radius shrinking from the scene's with α = 0.7.
+    /// The renderer's progressive photon mapping: `passes` passes sharing
+    /// the photons, per-point radii shrinking with the scene's α.
     Progressive {
         /// Passes.
         passes: u32,
@@ -101,9 +101,11 @@ impl StudyPlan {
         s.push(series("16 random band", BandSpec::Physical(16), RandomBand, d));
         s.push(series("64 random band", BandSpec::Physical(64), RandomBand, d));
         s.push(series("16 continuous", BandSpec::Physical(16), Continuous, d));
-        let mut progressive = series("16 progressive", BandSpec::Physical(16), Split, d);
-        progressive.radius = RadiusMode::Progressive { passes: 8 };
-        s.push(progressive);
+        for (bands, passes) in [(7, 4), (16, 8)] {
+            let mut progressive = series(&format!("{bands} bands progressive"), BandSpec::Physical(bands), Split, d);
+            progressive.radius = RadiusMode::Progressive { passes };
+            s.push(progressive);
+        }
         let mut paper_progressive = series("paper7 progressive", BandSpec::Paper7, Split, Estimator::Paper);
         paper_progressive.radius = RadiusMode::Progressive { passes: 16 };
         s.push(paper_progressive);
@@ -127,7 +129,7 @@ impl StudyPlan {
         let d = Estimator::Density;
         let scale = 96.0 / size.0.max(size.1) as f32;
         let small = (((size.0 as f32 * scale) as u32).max(8), ((size.1 as f32 * scale) as u32).max(8));
-        let mut progressive = series("16 progressive", BandSpec::Physical(16), Split, d);
+        let mut progressive = series("16 bands progressive", BandSpec::Physical(16), Split, d);
         progressive.radius = RadiusMode::Progressive { passes: 4 };
         let mut scalar = series("paper7 reference backend", BandSpec::Paper7, Split, Estimator::Paper);
         scalar.backend = BackendChoice::Reference;
@@ -321,6 +323,7 @@ fn load_reference(
         &options.scene,
         scene,
         &plan.reference,
+        has_stripes(scene),
         &options.cache,
         options.rebuild_reference,
         backend,

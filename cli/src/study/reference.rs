@@ -1,28 +1,33 @@
 //! The reference render a study measures error against: physically based
-//! bands at high N, the `density` estimator, and progressive photon mapping
-//! until doubling the passes no longer changes the image; cached on disk by
-//! the hash of everything it depends on.
+//! bands at high N, the `density` estimator, and the renderer's own
+//! progressive photon mapping (per-point radii, [`ProgressiveRender`]) until
+//! doubling the passes no longer changes the image; cached on disk by the
+//! hash of everything it depends on.
 
 use super::error::{StripeSums, caustic_mask, mean_delta_e};
 use super::pfm;
 use anyhow::{Context, Result};
-use prismatic_core::progressive::{DEFAULT_ALPHA, PassAverage, pass_scene};
-use prismatic_core::{Backend, BandSpec, Estimator, Image, NoProgress, PhotonMap, PreparedScene, WavelengthSampling};
+use prismatic_core::progressive::{DEFAULT_ALPHA, ProgressiveRender, photon_pass_scene};
+use prismatic_core::{Backend, BandSpec, Estimator, Image, NoProgress, PreparedScene, WavelengthSampling};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Bump when the tracer or renderer changes what a reference looks like, so
 /// that cached references are rebuilt.
-const REFERENCE_VERSION: &str = "prismatic-reference 1";
+const REFERENCE_VERSION: &str = "prismatic-reference 2";
 
 /// How a reference is made.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ReferenceSpec {
     /// Physically based bands.
     pub bands: u16,
+    /// How photons sample the spectrum.
+    pub wavelengths: WavelengthSampling,
     /// White photons per pass.
     pub photons_per_pass: u32,
+    /// Photon paths a first radius holds.
+    pub neighbours: u32,
     /// Radius shrink per pass (Hachisuka's α).
     pub alpha: f32,
     /// Converged when the passes' mean after 2k passes differs from the mean
@@ -33,14 +38,31 @@ pub struct ReferenceSpec {
 }
 
 impl ReferenceSpec {
-    /// The full study's reference.
+    /// The full study's reference: 250k white photons a pass, each
+    /// first radius holding 16 photon paths (1,024 band photons).
     pub fn full() -> Self {
-        ReferenceSpec { bands: 64, photons_per_pass: 250_000, alpha: DEFAULT_ALPHA, threshold: 0.4, max_passes: 32 }
+        ReferenceSpec {
+            bands: 64,
+            wavelengths: WavelengthSampling::Split,
+            photons_per_pass: 250_000,
+            neighbours: 16,
+            alpha: DEFAULT_ALPHA,
+            threshold: 0.15,
+            max_passes: 64,
+        }
     }
 
-    /// The quick study's (small images, so fewer photons reach the same noise).
+    /// The quick study's (small images, a test in CI: seconds, not minutes).
     pub fn quick() -> Self {
-        ReferenceSpec { bands: 64, photons_per_pass: 100_000, alpha: DEFAULT_ALPHA, threshold: 0.4, max_passes: 16 }
+        ReferenceSpec {
+            bands: 64,
+            wavelengths: WavelengthSampling::Split,
+            photons_per_pass: 100_000,
+            neighbours: 16,
+            alpha: DEFAULT_ALPHA,
+            threshold: 0.2,
+            max_passes: 32,
+        }
     }
 }
 
@@ -72,8 +94,10 @@ pub fn reference_scene(scene: &PreparedScene, spec: &ReferenceSpec) -> Result<Pr
     let mut s = scene.scene.clone();
     s.render.bands = BandSpec::Physical(spec.bands);
     s.render.estimator = Estimator::Density;
-    s.render.wavelengths = WavelengthSampling::Split;
+    s.render.wavelengths = spec.wavelengths;
     s.render.photons = spec.photons_per_pass;
+    s.render.neighbours = spec.neighbours;
+    s.render.alpha = spec.alpha;
     Ok(PreparedScene::new(s)?)
 }
 
@@ -84,11 +108,14 @@ pub fn content_hash(scene: &PreparedScene, spec: &ReferenceSpec) -> u64 {
 }
 
 /// Loads the cached reference for `scene` (named `name`), or builds and
-/// caches it (always builds when `rebuild`). `report` hears about each pass.
+/// caches it (always builds when `rebuild`); with `stripes`, it also sums
+/// the band stripes of its photons. `report` hears about each checkpoint.
+#[allow(clippy::too_many_arguments)]
 pub fn load_or_build(
     name: &str,
     scene: &PreparedScene,
     spec: &ReferenceSpec,
+    stripes: bool,
     cache: &Path,
     rebuild: bool,
     backend: &mut dyn Backend,
@@ -100,7 +127,7 @@ pub fn load_or_build(
         report(&format!("reference: cached in {}", dir.display()));
         return Ok(r);
     }
-    let r = build(&ref_scene, spec, dir, backend, report)?;
+    let r = build(&ref_scene, spec, stripes, dir, backend, report)?;
     save(&r, &ref_scene)?;
     Ok(r)
 }
@@ -108,45 +135,47 @@ pub fn load_or_build(
 fn build(
     scene: &PreparedScene,
     spec: &ReferenceSpec,
+    stripes_wanted: bool,
     dir: PathBuf,
     backend: &mut dyn Backend,
     report: &mut dyn FnMut(&str),
 ) -> Result<Reference> {
     let t0 = Instant::now();
-    let r = &scene.scene.render;
-    let tone_map = r.tone_map;
-    let without_caustics = backend.render(scene, &PhotonMap::default(), &mut NoProgress)?;
-    let mut average = PassAverage::new(r.width, r.height);
+    let tone_map = scene.scene.render.tone_map;
+    let mut render = ProgressiveRender::prepare(backend, scene, &mut NoProgress)?;
+    let without_caustics = render.points().base.clone();
     let mut stripes = StripeSums::new(&scene.bands);
     let mut checkpoint: Option<Image> = None;
     let (mut last_change, mut converged) = (f64::INFINITY, false);
     for k in 1..=spec.max_passes {
-        let pass = pass_scene(scene, spec.alpha, k);
-        let map = backend.trace_photons(&pass, &mut NoProgress)?;
-        stripes.add(&map);
-        average.add(&backend.render(&pass, &map, &mut NoProgress)?);
+        render.run_pass(backend, k - 1)?;
+        if stripes_wanted {
+            // The pass's photons again, for their positions (the pass's own
+            // map stays inside the backend).
+            stripes.add(&backend.trace_photons(&photon_pass_scene(scene, spec.alpha, k - 1), &mut NoProgress)?);
+        }
         if k.is_power_of_two() {
-            let mean = average.mean();
+            let image = render.image();
             if let Some(previous) = &checkpoint {
-                let mask = caustic_mask(&mean, &without_caustics, tone_map);
-                last_change = mean_delta_e(&mean, previous, &mask, tone_map);
+                let mask = caustic_mask(&image, &without_caustics, tone_map);
+                last_change = mean_delta_e(&image, previous, &mask, tone_map);
                 report(&format!("reference: {k} passes, ΔE00 {last_change:.3} from {} passes", k / 2));
                 if last_change < spec.threshold {
                     converged = true;
                     break;
                 }
             }
-            checkpoint = Some(mean);
+            checkpoint = Some(image);
         }
     }
-    let image = average.mean();
+    let image = render.image();
     let mask = caustic_mask(&image, &without_caustics, tone_map);
     Ok(Reference {
         image,
         without_caustics,
         mask,
         stripes,
-        passes: average.passes(),
+        passes: render.accumulation().pass_count(),
         last_change,
         converged,
         seconds: t0.elapsed().as_secs_f64(),
@@ -254,6 +283,7 @@ mod tests {
         let mut wider = doc.scene.clone();
         wider.render.width += 1;
         assert_ne!(base, key(&PreparedScene::new(wider).unwrap(), &spec));
-        assert_ne!(base, key(&scene, &ReferenceSpec { threshold: 0.2, ..spec.clone() }));
+        assert_ne!(base, key(&scene, &ReferenceSpec { threshold: 0.1, ..spec.clone() }));
+        assert_ne!(base, key(&scene, &ReferenceSpec { neighbours: 8, ..spec.clone() }));
     }
 }

@@ -116,12 +116,15 @@ pub fn markdown(result: &StudyResult, machine: &str, plot: &Path) -> String {
     let _ = writeln!(s, "### `{}`\n", result.scene);
     let _ = writeln!(
         s,
-        "{}×{} pixels, {machine}. Reference: {} physically based bands, `density`, progressive photon mapping \
-         (α = 0.7), {} passes × {} photons; the last doubling of passes changed it by ΔE00 {:.2} (threshold {}{}); \
-         {} caustic pixels (those the reference caustic changes by ΔE00 > {}).\n",
+        "{}×{} pixels, {machine}. Reference: {} physically based bands, `density`, the renderer's progressive \
+         photon mapping (α = {}, first radii holding {} photon paths), {} passes × {} photons; the last doubling of \
+         passes changed it by ΔE00 {:.2} (threshold {}{}); {} caustic pixels (those the reference caustic changes \
+         by ΔE00 > {}).\n",
         plan.size.0,
         plan.size.1,
         plan.reference.bands,
+        plan.reference.alpha,
+        plan.reference.neighbours,
         rf.passes,
         photons(plan.reference.photons_per_pass),
         rf.last_change,

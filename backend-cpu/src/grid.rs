@@ -11,6 +11,7 @@ use prismatic_core::grid::{bucket_mask, bucket_of, cell_of};
 use prismatic_core::photon::{Photon, WHITE_BAND};
 use prismatic_core::scene::Estimator;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
 use wide::f32x8;
 
 /// Photons sorted into hash buckets (counting sort), as structure of arrays.
@@ -52,7 +53,7 @@ impl CpuGrid {
     }
 
     /// Builds the grid for gathers at `queries` only (see [`CpuGrid::rebuild_near`]).
-    pub fn build_near(photons: &[Photon], radius: f32, queries: impl Iterator<Item = (Vec3, f32)>) -> Self {
+    pub fn build_near(photons: &[Photon], radius: f32, queries: impl ParallelIterator<Item = (Vec3, f32)>) -> Self {
         let mut grid = Self::empty();
         grid.rebuild_near(photons, radius, queries);
         grid
@@ -84,22 +85,32 @@ impl CpuGrid {
     /// the cells the queries' spheres touch. A gather anywhere else misses
     /// photons. Progressive passes sort only the photons near each grid
     /// level's own points (a dense caustic's few points skip the floor).
-    pub fn rebuild_near(&mut self, photons: &[Photon], radius: f32, queries: impl Iterator<Item = (Vec3, f32)>) {
-        self.mask = bucket_mask(photons.len());
+    pub fn rebuild_near(
+        &mut self,
+        photons: &[Photon],
+        radius: f32,
+        queries: impl ParallelIterator<Item = (Vec3, f32)>,
+    ) {
+        let mask = bucket_mask(photons.len());
         let inv = 1.0 / (2.0 * radius);
-        self.near.clear();
-        self.near.resize((self.mask as usize + 1).div_ceil(64), 0);
-        for (p, r) in queries {
+        let near: Vec<AtomicU64> = (0..(mask as usize + 1).div_ceil(64)).map(|_| AtomicU64::new(0)).collect();
+        queries.for_each(|(p, r)| {
             let (lo, hi) = (cell_of(p - Vec3::splat(r), inv), cell_of(p + Vec3::splat(r), inv));
             for z in lo.z..=hi.z.min(lo.z.saturating_add(1)) {
                 for y in lo.y..=hi.y.min(lo.y.saturating_add(1)) {
                     for x in lo.x..=hi.x.min(lo.x.saturating_add(1)) {
-                        let b = bucket_of(IVec3::new(x, y, z), self.mask) as usize;
-                        self.near[b / 64] |= 1 << (b % 64);
+                        let b = bucket_of(IVec3::new(x, y, z), mask) as usize;
+                        let (word, bit) = (&near[b / 64], 1 << (b % 64));
+                        // Neighbouring queries mark the same buckets: read first.
+                        if word.load(Ordering::Relaxed) & bit == 0 {
+                            word.fetch_or(bit, Ordering::Relaxed);
+                        }
                     }
                 }
             }
-        }
+        });
+        self.near.clear();
+        self.near.extend(near.into_iter().map(AtomicU64::into_inner));
         self.sort(photons, radius);
     }
 
@@ -349,7 +360,7 @@ mod tests {
         let bands = BandTable::new(prismatic_core::BandSpec::Paper7);
         let queries: Vec<(Vec3, f32)> =
             (0..40).map(|i| (Vec3::new(next() - 0.5, 0.0, next() - 0.5), 0.008 + 0.002 * (i % 2) as f32)).collect();
-        let near = CpuGrid::build_near(&photons, 0.01, queries.iter().copied());
+        let near = CpuGrid::build_near(&photons, 0.01, queries.par_iter().copied());
         assert!(near.len() < photons.len() / 4, "{} of {}", near.len(), photons.len());
         let mut counts = [0; MAX_BANDS + 1];
         for estimator in [Estimator::Density, Estimator::Paper] {

@@ -8,7 +8,7 @@ use prismatic_core::PhotonMap;
 use prismatic_core::bands::MAX_BANDS;
 use prismatic_core::gather::GatherQuery;
 use prismatic_core::prepared::PreparedScene;
-use prismatic_core::progressive::{GRID_LEVELS, PassGather, level_of, level_radius, levels_used};
+use prismatic_core::progressive::{GRID_LEVELS, PassGather, level_of, level_radius};
 use prismatic_core::visible::VisiblePoint;
 use rayon::prelude::*;
 
@@ -32,11 +32,16 @@ pub fn gather_pass(
     grids: &mut PassGrids,
 ) -> PassGather {
     let r_pass = scene.scene.render.radius;
-    let used = levels_used(radii, r_pass);
+    let levels: Vec<u8> = radii.par_iter().map(|&r| level_of(r, r_pass) as u8).collect();
+    let mut used = [false; GRID_LEVELS];
+    levels.iter().for_each(|&l| used[usize::from(l)] = true);
     // Each level holds only the photons near its own points.
     for l in (0..GRID_LEVELS).filter(|&l| used[l]) {
         let radius = level_radius(r_pass, l);
-        let queries = points.iter().zip(radii).filter(|&(_, &r)| level_of(r, r_pass) == l).map(|(p, &r)| (p.point, r));
+        let queries = (points, radii, &levels)
+            .into_par_iter()
+            .filter(|&(_, _, &level)| usize::from(level) == l)
+            .map(|(p, &r, _)| (p.point, r));
         match &mut grids.levels[l] {
             Some(grid) => grid.rebuild_near(&map.photons, radius, queries),
             empty => *empty = Some(CpuGrid::build_near(&map.photons, radius, queries)),
@@ -44,22 +49,23 @@ pub fn gather_pass(
     }
     let grids = &grids.levels;
     let settings = &scene.scene.render;
-    let chunks: Vec<Vec<_>> = points
-        .par_chunks(POINT_CHUNK)
-        .zip(radii.par_chunks(POINT_CHUNK))
-        .map(|(points, radii)| {
-            let mut counts = Box::new([0u32; MAX_BANDS + 1]);
-            points
-                .iter()
-                .zip(radii)
-                .map(|(p, &r)| {
-                    let grid = grids[level_of(r, r_pass)].as_ref().expect("level built");
-                    let q = GatherQuery { point: p.point, normal: p.normal, radius: r };
-                    grid.gather_counted(&scene.bands, settings.estimator, &q, &mut counts)
-                })
-                .collect()
-        })
-        .collect();
+    let chunks: Vec<Vec<_>> =
+        (points.par_chunks(POINT_CHUNK), radii.par_chunks(POINT_CHUNK), levels.par_chunks(POINT_CHUNK))
+            .into_par_iter()
+            .map(|(points, radii, levels)| {
+                let mut counts = Box::new([0u32; MAX_BANDS + 1]);
+                points
+                    .iter()
+                    .zip(radii)
+                    .zip(levels)
+                    .map(|((p, &r), &level)| {
+                        let grid = grids[usize::from(level)].as_ref().expect("level built");
+                        let q = GatherQuery { point: p.point, normal: p.normal, radius: r };
+                        grid.gather_counted(&scene.bands, settings.estimator, &q, &mut counts)
+                    })
+                    .collect()
+            })
+            .collect();
     let (irradiance, photons) = chunks.into_iter().flatten().unzip();
     PassGather { irradiance, photons, stats: map.stats }
 }

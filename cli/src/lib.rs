@@ -3,6 +3,7 @@
 
 pub mod backends;
 pub mod builtin;
+pub mod ior_table;
 pub mod obj;
 pub mod output;
 pub mod partial;

@@ -70,7 +70,7 @@ enum Command {
     },
     /// Measure what accuracy costs in time: sweep bands, wavelength sampling,
     /// photons, radius, estimator and backend against a converged reference;
-    /// writes SCENE.csv, SCENE.md and SCENE.png.
+    /// writes SCENE.csv, SCENE.md and SCENE.svg.
     Study {
         #[command(flatten)]
         study: StudyArgs,

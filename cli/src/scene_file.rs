@@ -5,6 +5,7 @@
 //! core's validation finds later (`object[1].radius: must be greater than 0`)
 //! are reported at the right line too. Unknown keys are errors.
 
+use crate::ior_table;
 use crate::obj;
 use glam::DVec3;
 use prismatic_core::bands::BandSpec;
@@ -527,7 +528,8 @@ impl<'s> Parser<'s> {
                 self.err(key, &v.span(), format!("unknown glass \"{name}\"; named glasses are {}", names.join(", ")))
             }),
             DeValue::Table(t) => {
-                let models = "cauchy = [A, B], sellmeier = { b = [..], c = [..] }, abbe = [nd, vd] or bands = [n1, ..]";
+                let models = "cauchy = [A, B], sellmeier = { b = [..], c = [..] }, abbe = [nd, vd], table = \"file.csv\" \
+                              or bands = [n1, ..]";
                 let mut entries = t.iter();
                 let (Some((model, value)), None) = (entries.next(), entries.next()) else {
                     return Err(self.err(key, &v.span(), format!("needs exactly one model: {models}")));
@@ -547,6 +549,12 @@ impl<'s> Parser<'s> {
                 match model.get_ref().as_ref() {
                     "cauchy" => pair(self).map(|(a, b)| Dispersion::Cauchy { a, b }),
                     "abbe" => pair(self).map(|(nd, vd)| Dispersion::Abbe { nd, vd }),
+                    "table" => {
+                        let rel = self.string(&mkey, value)?;
+                        let path = self.base.as_deref().map_or_else(|| PathBuf::from(rel), |b| b.join(rel));
+                        let (lambda_nm, n) = ior_table::load(&path).map_err(|e| self.err(&mkey, &value.span(), e))?;
+                        Ok(Dispersion::Table { lambda_nm, n })
+                    }
                     "bands" => {
                         Ok(Dispersion::PerBand(self.floats(&mkey, value)?.into_iter().map(|x| x as f32).collect()))
                     }

@@ -556,6 +556,41 @@ fn validate_dispersion(c: &Check<'_>, key: &str, d: &Dispersion, bands: BandSpec
             }
             check_visible_range(c, key, d)
         }
+        Dispersion::Table { lambda_nm, n } => {
+            let key = format!("{key}.table");
+            if lambda_nm.len() != n.len() || lambda_nm.len() < 2 {
+                return Err(c.err(&key, format!("needs at least 2 rows, got {}", lambda_nm.len().min(n.len()))));
+            }
+            if let Some(i) = lambda_nm.iter().position(|x| !x.is_finite()) {
+                return Err(
+                    c.err(&key, format!("row {}: wavelength must be a finite number, got {}", i + 1, lambda_nm[i]))
+                );
+            }
+            if let Some(i) = lambda_nm.windows(2).position(|w| w[0] >= w[1]) {
+                return Err(c.err(
+                    &key,
+                    format!(
+                        "wavelengths must increase: row {} ({} nm) after {} nm",
+                        i + 2,
+                        lambda_nm[i + 1],
+                        lambda_nm[i]
+                    ),
+                ));
+            }
+            let (lo, hi) = crate::bands::VISIBLE_NM;
+            let (first, last) = (lambda_nm[0], lambda_nm[lambda_nm.len() - 1]);
+            if !(first <= lo && last >= hi) {
+                return Err(
+                    c.err(&key, format!("covers {first}–{last} nm; it must cover the visible range {lo}–{hi} nm"))
+                );
+            }
+            match n.iter().position(|&x| !index_ok(x)) {
+                Some(i) => Err(
+                    c.err(&key, format!("row {}: an index of refraction must be between 1 and 5, got {}", i + 1, n[i]))
+                ),
+                None => Ok(()),
+            }
+        }
         Dispersion::PerBand(n) => {
             let expected = crate::bands::BandTable::new(bands).len();
             if n.len() != expected {

@@ -207,3 +207,58 @@ fn the_readme_example_is_a_valid_scene() {
     let doc = parse(example, "README.md", None).unwrap_or_else(|e| panic!("{e}"));
     doc.validate().unwrap_or_else(|e| panic!("{e}"));
 }
+
+/// A glass scene whose `ior` is `{ table = "glass.csv" }`, read from `dir`.
+fn table_scene(dir: &std::path::Path, csv: &str) -> Result<prismatic_cli::scene_file::SceneDocument, SceneFileError> {
+    std::fs::write(dir.join("glass.csv"), csv).unwrap();
+    let source = format!(
+        "[render]\nbands = 64\n{MINIMAL}\n[material.g]\nkind = \"dielectric\"\nior = {{ table = \"glass.csv\" }}\n\n\
+         [[object]]\nshape = \"sphere\"\nmaterial = \"g\"\ncenter = [0, 1, 0]\nradius = 0.5\n"
+    );
+    let doc = parse(&source, "test.toml", Some(dir))?;
+    doc.validate()?;
+    Ok(doc)
+}
+
+/// N-BK7 sampled every 10 nm from 370 to 790 nm, wavelengths in µm (as
+/// refractiveindex.info exports), with `edit` applied to the rows.
+fn bk7_csv(edit: impl Fn(&mut Vec<(f32, f32)>)) -> String {
+    let bk7 = Glass::Bk7.dispersion();
+    let mut rows: Vec<(f32, f32)> =
+        (37..=79).map(|k| (k as f32 / 100.0, bk7.ior_at(k as f32 * 10.0).unwrap())).collect();
+    edit(&mut rows);
+    rows.iter().fold(String::from("wl,n\n"), |s, (l, n)| s + &format!("{l},{n}\n"))
+}
+
+#[test]
+fn measured_tables_are_read_from_csv_next_to_the_scene() {
+    let dir = tempfile::tempdir().unwrap();
+    let doc = table_scene(dir.path(), &bk7_csv(|_| {})).unwrap_or_else(|e| panic!("{e}"));
+    let g = doc.scene.materials.iter().find(|m| m.name == "g").unwrap();
+    let MaterialKind::Dielectric { dispersion: table @ Dispersion::Table { .. }, .. } = &g.kind else {
+        panic!("{:?}", g.kind)
+    };
+    // Linear between rows 10 nm apart: within 2e-5 of the Sellmeier curve.
+    let (bands, bk7) = (prismatic_core::bands::BandTable::new(BandSpec::Physical(64)), Glass::Bk7.dispersion());
+    for b in 0..bands.len() {
+        let (got, want) = (table.ior_for_band(&bands, b), bk7.ior_for_band(&bands, b));
+        assert!((got - want).abs() < 2e-5, "band {b}: {got} vs {want}");
+    }
+}
+
+#[test]
+fn bad_measured_tables_name_the_file_line_and_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases: [(String, &str); 5] = [
+        (bk7_csv(|r| r.swap(3, 4)), "glass.csv:6: wavelengths must increase: 0.4 after 0.41"),
+        (bk7_csv(|r| r[5].1 = f32::NAN), "glass.csv:7: \"NaN\" is not a finite number"),
+        (bk7_csv(|r| r.retain(|(l, _)| *l >= 0.4)), "covers 400–790 nm; it must cover the visible range 380–780 nm"),
+        (bk7_csv(|r| r[2].1 = 0.5), "row 3: an index of refraction must be between 1 and 5, got 0.5"),
+        ("wl,n\n".into(), "glass.csv:1: has no rows"),
+    ];
+    for (csv, reason) in cases {
+        let e = table_scene(dir.path(), &csv).map(|_| ()).expect_err(reason);
+        assert_eq!(e.key, "material.g.ior.table", "{e}");
+        assert!(e.reason.contains(reason), "{e}: expected {reason:?}");
+    }
+}

@@ -33,7 +33,7 @@ pub struct Written {
     pub plot: PathBuf,
 }
 
-/// Writes `study.csv`, `study.md` and `study.png` into `dir` (each file
+/// Writes `study.csv`, `study.md` and `study.svg` into `dir` (each file
 /// atomically).
 pub fn write_all(result: &StudyResult, dir: &Path, machine: &str) -> Result<Written> {
     std::fs::create_dir_all(dir)?;
@@ -41,18 +41,15 @@ pub fn write_all(result: &StudyResult, dir: &Path, machine: &str) -> Result<Writ
     let w = Written {
         csv: dir.join(format!("{stem}.csv")),
         markdown: dir.join(format!("{stem}.md")),
-        plot: dir.join(format!("{stem}.png")),
+        plot: dir.join(format!("{stem}.svg")),
     };
     let csv = csv(result);
     PendingFile::create(&w.csv)?.commit(|f| Ok(f.write_all(csv.as_bytes())?))?;
     let md = markdown(result, machine, &w.plot);
     PendingFile::create(&w.markdown)?.commit(|f| Ok(f.write_all(md.as_bytes())?))?;
     let title = format!("prismatic study {}: error against time ({machine})", result.scene);
-    let image = plot::draw(&result.rows, &title);
-    PendingFile::create(&w.plot)?.commit(|f| {
-        image.write_to(f, image::ImageFormat::Png)?;
-        Ok(())
-    })?;
+    let svg = plot::draw(&result.rows, &title).map_err(anyhow::Error::msg)?;
+    PendingFile::create(&w.plot)?.commit(|f| Ok(f.write_all(svg.as_bytes())?))?;
     Ok(w)
 }
 

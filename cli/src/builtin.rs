@@ -1,4 +1,5 @@
-//! The built-in scenes, compiled in from `scenes/*.toml`.
+//! The built-in scenes: scene files compiled in from `scenes/*.toml`, and
+//! scenes the project generates as glTF.
 
 /// A built-in scene: its name, a one-line description and its TOML source.
 #[derive(Clone, Copy, Debug)]
@@ -38,4 +39,35 @@ pub const BUILTIN_SCENES: [BuiltinScene; 4] = [
 /// The built-in scene called `name`.
 pub fn find(name: &str) -> Option<&'static BuiltinScene> {
     BUILTIN_SCENES.iter().find(|s| s.name == name)
+}
+
+/// A built-in scene the project writes as glTF and reads back.
+#[derive(Clone, Copy, Debug)]
+pub struct GeneratedScene {
+    /// Name used on the command line.
+    pub name: &'static str,
+    /// What it shows.
+    pub description: &'static str,
+    /// The glTF document.
+    pub document: fn() -> crate::gltf_write::GltfDocument,
+    /// Its render settings (glTF has none).
+    pub settings: fn(&mut prismatic_core::scene::RenderSettings),
+}
+
+/// The generated built-in scenes.
+pub const GENERATED_SCENES: [GeneratedScene; 1] = [GeneratedScene {
+    name: "dispersion-test",
+    description: "glTF: a grid of prisms, index 1.0 to 2.42 by row, KHR_materials_dispersion 0 to 5 by column",
+    document: crate::dispersion_test::document,
+    settings: crate::dispersion_test::settings,
+}];
+
+/// The generated built-in scene called `name`.
+pub fn find_generated(name: &str) -> Option<&'static GeneratedScene> {
+    GENERATED_SCENES.iter().find(|s| s.name == name)
+}
+
+/// Every built-in scene's name.
+pub fn names() -> Vec<&'static str> {
+    BUILTIN_SCENES.iter().map(|s| s.name).chain(GENERATED_SCENES.iter().map(|s| s.name)).collect()
 }

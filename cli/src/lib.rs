@@ -3,6 +3,9 @@
 
 pub mod backends;
 pub mod builtin;
+pub mod dispersion_test;
+pub mod gltf_scene;
+pub mod gltf_write;
 pub mod ior_table;
 pub mod obj;
 pub mod output;
@@ -18,15 +21,24 @@ use std::path::Path;
 pub fn load_scene(name_or_path: &str) -> Result<SceneDocument, SceneFileError> {
     match builtin::find(name_or_path) {
         Some(b) => scene_file::parse(b.source, &format!("<built-in {}>", b.name), None),
+        None if let Some(g) = builtin::find_generated(name_or_path) => {
+            let mut doc =
+                gltf_scene::load_slice((g.document)().to_json().as_bytes(), &format!("<built-in {}>", g.name))?;
+            (g.settings)(&mut doc.scene.render);
+            Ok(doc)
+        }
         None if !Path::new(name_or_path).exists() && !name_or_path.contains(['/', '.']) => Err(SceneFileError {
             file: name_or_path.to_string(),
             line: None,
             key: String::new(),
-            reason: format!(
-                "no such built-in scene or file; built-in scenes are: {}",
-                builtin::BUILTIN_SCENES.iter().map(|s| s.name).collect::<Vec<_>>().join(", ")
-            ),
+            reason: format!("no such built-in scene or file; built-in scenes are: {}", builtin::names().join(", ")),
         }),
+        None if is_gltf(Path::new(name_or_path)) => gltf_scene::load(Path::new(name_or_path)),
         None => scene_file::load(Path::new(name_or_path)),
     }
+}
+
+/// True for `.gltf` and `.glb` files (any case).
+fn is_gltf(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
 }

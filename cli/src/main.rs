@@ -3,7 +3,7 @@
 use anyhow::{Context, Result};
 use clap::{Args, Parser, Subcommand};
 use prismatic_cli::backends::{self, BackendChoice};
-use prismatic_cli::builtin::{BUILTIN_SCENES, find};
+use prismatic_cli::builtin::{BUILTIN_SCENES, GENERATED_SCENES, find, find_generated, names};
 use prismatic_cli::output::{PendingFile, write_image, write_photon_csv, write_png};
 use prismatic_cli::partial::{Partial, fingerprint};
 use prismatic_cli::passes::{parse_passes, parse_seconds};
@@ -216,16 +216,23 @@ fn run(cli: Cli) -> Result<()> {
         }
         Command::Scenes => {
             for s in &BUILTIN_SCENES {
-                println!("{:<10} {}", s.name, s.description);
+                println!("{:<16} {}", s.name, s.description);
+            }
+            for s in &GENERATED_SCENES {
+                println!("{:<16} {}", s.name, s.description);
             }
             Ok(())
         }
         Command::Scene { name } => {
+            if let Some(g) = find_generated(&name) {
+                println!("{}", (g.document)().to_json());
+                return Ok(());
+            }
             let s = find(&name).ok_or_else(|| SceneFileError {
                 file: name.clone(),
                 line: None,
                 key: String::new(),
-                reason: format!("no such built-in scene; try one of: {}", names()),
+                reason: format!("no such built-in scene; try one of: {}", names().join(", ")),
             })?;
             print!("{}", s.source);
             Ok(())
@@ -383,6 +390,9 @@ fn pass_list(ranges: &[(u32, u32)]) -> String {
 /// returns the world position of the scene's local frame.
 fn prepare(job: &JobArgs) -> Result<(String, PreparedScene, glam::DVec3)> {
     let mut doc = prismatic_cli::load_scene(&job.scene)?;
+    for w in &doc.warnings {
+        eprintln!("warning: {}: {w}", job.scene);
+    }
     let r = &mut doc.scene.render;
     r.bands = job.bands.unwrap_or(r.bands);
     r.photons = job.photons.unwrap_or(r.photons);
@@ -461,10 +471,6 @@ fn photon_summary(scene: &PreparedScene, s: &TraceStats) -> String {
 
 fn secs(d: Duration) -> String {
     format!("{:.2} s", d.as_secs_f64())
-}
-
-fn names() -> String {
-    BUILTIN_SCENES.iter().map(|s| s.name).collect::<Vec<_>>().join(", ")
 }
 
 /// A one-line progress bar on stderr, shown only when stderr is a terminal.

@@ -56,11 +56,19 @@ pub struct SceneDocument {
     /// World position of the scene's local frame: every position in `scene`
     /// is relative to it (see [`LOCAL_FRAME_RADIUS`]).
     pub origin: DVec3,
+    /// What the reader left out of the file (glTF elements prismatic cannot
+    /// represent), one line each, for the user to see.
+    pub warnings: Vec<String>,
     file: String,
     lines: HashMap<String, usize>,
 }
 
 impl SceneDocument {
+    /// A scene read from `file` by another reader (no TOML lines to point at).
+    pub fn from_scene(scene: Scene, file: &str, warnings: Vec<String>) -> Self {
+        SceneDocument { scene, origin: DVec3::ZERO, warnings, file: file.to_string(), lines: HashMap::new() }
+    }
+
     /// Validates the scene, reporting problems at their key's line.
     pub fn validate(&self) -> Result<(), SceneFileError> {
         self.scene.validate().map_err(|e| self.error(e))
@@ -105,7 +113,7 @@ pub fn parse(source: &str, file: &str, base: Option<&Path>) -> Result<SceneDocum
         reason: format!("TOML syntax error: {}", e.message()),
     })?;
     let scene = p.scene(root.get_ref(), root.span())?;
-    Ok(SceneDocument { scene, origin: p.origin, file: file.to_string(), lines: p.lines })
+    Ok(SceneDocument { scene, origin: p.origin, warnings: Vec::new(), file: file.to_string(), lines: p.lines })
 }
 
 /// Parses, validates and prepares `source` (no file access beyond OBJ

@@ -27,6 +27,7 @@ pub mod geometry;
 pub mod grid;
 pub mod image;
 pub mod math;
+pub mod mesh;
 pub mod optics;
 pub mod photon;
 pub mod prepared;

@@ -428,6 +428,19 @@ impl Scene {
                     ),
                 ));
             }
+            if let (MaterialKind::Dielectric { .. }, Shape::Mesh { positions, triangles }) =
+                (&material.kind, &object.shape)
+                && let Some((a, b)) = crate::mesh::open_edge(positions, triangles)
+            {
+                return Err(c.err(
+                    "triangles",
+                    format!(
+                        "dielectric '{}' needs a closed mesh (every edge shared by two triangles of opposite \
+                         winding); the edge from {a} to {b} is not",
+                        material.name
+                    ),
+                ));
+            }
         }
         Ok(())
     }

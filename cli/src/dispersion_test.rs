@@ -1,0 +1,79 @@
+//! The built-in `dispersion-test` scene, after the layout of Khronos's
+//! `DispersionTest` sample model: a grid of glass prisms on a floor, the
+//! index of refraction growing down the rows (1.0, 1.33, 1.5, 1.76, 2.42)
+//! and `KHR_materials_dispersion` along the columns (0, 0.5, 1, 2, 5), lit
+//! from the side by a distant spot light so that each prism throws its
+//! caustic onto the floor. The project writes it as glTF and reads it back
+//! through the glTF importer, so the scene is also a test of both.
+
+use crate::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, prism};
+use prismatic_core::color::ToneMap;
+use prismatic_core::scene::RenderSettings;
+use prismatic_core::{BandSpec, Estimator};
+
+/// Indices of refraction, one per row (front to back).
+pub const IORS: [f32; 5] = [1.0, 1.33, 1.5, 1.76, 2.42];
+/// `KHR_materials_dispersion` values (20/V_d), one per column (left to right).
+pub const DISPERSIONS: [f32; 5] = [0.0, 0.5, 1.0, 2.0, 5.0];
+/// Distance between neighbouring prisms.
+pub const SPACING: f32 = 1.2;
+/// The light comes from −x, 60° above the floor, from this far away.
+const LIGHT_DISTANCE: f32 = 14.0;
+
+/// Where the prism of `row` and `column` stands (its centre on the floor).
+pub fn prism_centre(row: usize, column: usize) -> [f32; 2] {
+    [(column as f32 - 2.0) * SPACING, (row as f32 - 2.0) * SPACING]
+}
+
+/// The scene as a glTF document.
+pub fn document() -> GltfDocument {
+    let mut materials = vec![GltfMaterial::diffuse("floor", [0.85, 0.85, 0.85])];
+    let mut meshes = vec![GltfMesh {
+        name: "floor".into(),
+        positions: vec![[-7.0, 0.0, -7.0], [7.0, 0.0, -7.0], [7.0, 0.0, 7.0], [-7.0, 0.0, 7.0]],
+        indices: vec![0, 2, 1, 0, 3, 2],
+        material: 0,
+        translation: [0.0; 3],
+    }];
+    for (row, &ior) in IORS.iter().enumerate() {
+        for (column, &dispersion) in DISPERSIONS.iter().enumerate() {
+            materials.push(GltfMaterial::glass(&format!("n {ior}, dispersion {dispersion}"), ior, dispersion));
+            // A 60° prism lying along z, apex up, held 0.8 above the floor
+            // so that its spectrum has room to fan out before it lands.
+            let (positions, indices) =
+                prism([[-0.3, 0.8, -0.25], [0.3, 0.8, -0.25], [0.0, 1.32, -0.25]], [0.0, 0.0, 0.5]);
+            let [x, z] = prism_centre(row, column);
+            meshes.push(GltfMesh {
+                name: format!("prism row {row} column {column}"),
+                positions,
+                indices,
+                material: materials.len() - 1,
+                translation: [x, 0.0, z],
+            });
+        }
+    }
+    let elevation = 60f32.to_radians();
+    let direction = [elevation.cos(), -elevation.sin(), 0.0];
+    GltfDocument {
+        materials,
+        meshes,
+        lights: vec![GltfLight::Spot {
+            position: [-LIGHT_DISTANCE * direction[0], -LIGHT_DISTANCE * direction[1], 0.0],
+            direction,
+            intensity: 700.0,
+            outer_cone: 17f32.to_radians(),
+        }],
+        camera: Some(GltfCamera { position: [0.0, 7.5, 6.5], look_at: [0.6, 0.0, 0.2], yfov: 48f32.to_radians() }),
+    }
+}
+
+/// Its render settings: physically based bands and enough photons for
+/// twenty-five caustics.
+pub fn settings(render: &mut RenderSettings) {
+    render.bands = BandSpec::Physical(16);
+    render.estimator = Estimator::Density;
+    render.photons = 400_000;
+    render.radius = 0.03;
+    render.ambient = 0.05;
+    render.tone_map = ToneMap::Reinhard;
+}

@@ -1,0 +1,319 @@
+//! glTF 2.0 scenes (`.gltf`, `.glb`): triangle meshes placed by their node
+//! transforms, materials from `pbrMetallicRoughness` and the transmission,
+//! IOR, volume and dispersion extensions, `KHR_lights_punctual` spot and
+//! point lights, and the first camera (else one that frames the scene).
+//!
+//! What prismatic cannot represent (textures, rough transmission, emission,
+//! skins, morph targets, lines and points) is reported once per element as
+//! a warning and left out; what makes no sense (a missing buffer, an index
+//! out of range, a NaN) is an error naming the element's glTF path.
+
+use crate::scene_file::{SceneDocument, SceneFileError};
+use glam::{Mat4, Vec3};
+use gltf::khr_lights_punctual::Kind;
+use prismatic_core::Dispersion;
+use prismatic_core::scene::{Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape};
+use std::path::Path;
+
+/// A material counts as a mirror above this metalness and below this roughness.
+const MIRROR_METALLIC: f32 = 0.9;
+const MIRROR_ROUGHNESS: f32 = 0.1;
+
+/// A glTF file's contents as prismatic scene parts.
+#[derive(Debug, Default)]
+pub struct GltfScene {
+    /// One material per glTF material used (and a default one if a mesh has none).
+    pub materials: Vec<Material>,
+    /// One mesh object per triangle primitive.
+    pub objects: Vec<Object>,
+    /// Spot and point lights.
+    pub lights: Vec<Light>,
+    /// The first camera, if the file has one.
+    pub camera: Option<Camera>,
+    /// What was left out, one line per element.
+    pub warnings: Vec<String>,
+}
+
+/// An error in a glTF file: the element's path (`meshes[0].primitives[1]`) and why.
+#[derive(Debug, Clone, PartialEq)]
+pub struct GltfError {
+    /// Where in the file.
+    pub path: String,
+    /// What is wrong.
+    pub reason: String,
+}
+
+impl GltfError {
+    fn new(path: impl Into<String>, reason: impl Into<String>) -> Self {
+        GltfError { path: path.into(), reason: reason.into() }
+    }
+}
+
+/// Reads `path` (a `.gltf` with its buffers, or a `.glb`) into scene parts.
+pub fn import(path: &Path) -> Result<GltfScene, GltfError> {
+    let bytes = std::fs::read(path).map_err(|e| GltfError::new("", format!("cannot read the file: {e}")))?;
+    import_slice(&bytes, path.parent())
+}
+
+/// Reads a glTF document from memory; `base` resolves its buffers' file names.
+pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, GltfError> {
+    let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| GltfError::new("", e.to_string()))?;
+    // Buffers only: images are textures, which prismatic does not use.
+    let buffers = gltf::import_buffers(&gltf.document, base, gltf.blob.clone())
+        .map_err(|e| GltfError::new("buffers", e.to_string()))?;
+    let mut out = GltfScene::default();
+    let mut material_of: Vec<Option<usize>> = vec![None; gltf.document.materials().len() + 1];
+    let scene = gltf.document.default_scene().or_else(|| gltf.document.scenes().next());
+    let Some(scene) = scene else {
+        return Err(GltfError::new("scenes", "the file has no scene"));
+    };
+    // Depth first, in file order (the stack pops its last entry first).
+    let mut stack: Vec<(gltf::Node<'_>, Mat4)> = scene.nodes().map(|n| (n, Mat4::IDENTITY)).collect();
+    stack.reverse();
+    while let Some((node, parent)) = stack.pop() {
+        let node_path = format!("nodes[{}]", node.index());
+        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+        if !world.is_finite() {
+            return Err(GltfError::new(node_path, "transform is not finite"));
+        }
+        if node.skin().is_some() {
+            out.warnings.push(format!("{node_path}: skin ignored (the mesh is used in its bind pose)"));
+        }
+        if let Some(mesh) = node.mesh() {
+            for primitive in mesh.primitives() {
+                let prim_path = format!("meshes[{}].primitives[{}]", mesh.index(), primitive.index());
+                if primitive.mode() != gltf::mesh::Mode::Triangles {
+                    out.warnings
+                        .push(format!("{prim_path}: {:?} primitives are left out (triangles only)", primitive.mode()));
+                    continue;
+                }
+                if primitive.morph_targets().next().is_some() {
+                    out.warnings.push(format!("{prim_path}: morph targets ignored"));
+                }
+                let shape = mesh_shape(&primitive, &buffers, world, &prim_path)?;
+                let slot = primitive.material().index().map_or(material_of.len() - 1, |i| i);
+                let material = match material_of[slot] {
+                    Some(m) => m,
+                    None => {
+                        let m = material(&primitive.material(), &mut out.warnings);
+                        out.materials.push(m);
+                        material_of[slot] = Some(out.materials.len() - 1);
+                        out.materials.len() - 1
+                    }
+                };
+                if let (MaterialKind::Dielectric { .. }, Shape::Mesh { positions, triangles }) =
+                    (&out.materials[material].kind, &shape)
+                    && let Some((a, b)) = prismatic_core::mesh::open_edge(positions, triangles)
+                {
+                    return Err(GltfError::new(
+                        prim_path,
+                        format!(
+                            "glass needs a closed mesh (every edge shared by two triangles of opposite winding); \
+                             the edge from {a} to {b} is not"
+                        ),
+                    ));
+                }
+                out.objects.push(Object { shape, material });
+            }
+        }
+        if let Some(light) = node.light() {
+            let position = world.transform_point3(Vec3::ZERO);
+            // A glTF light shines down its node's −Z.
+            let direction = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
+            // Intensity is read as W/sr (prismatic is radiometric; no lm → W).
+            let intensity = light.intensity();
+            let light_path = format!("{node_path}.extensions.KHR_lights_punctual");
+            if !(intensity.is_finite() && intensity >= 0.0) {
+                return Err(GltfError::new(
+                    light_path,
+                    format!("intensity must be a finite number ≥ 0, got {intensity}"),
+                ));
+            }
+            match light.kind() {
+                Kind::Point => {
+                    out.lights.push(Light::Point { position, power: 4.0 * std::f32::consts::PI * intensity })
+                }
+                Kind::Spot { outer_cone_angle, .. } => {
+                    let solid_angle = 2.0 * std::f32::consts::PI * (1.0 - outer_cone_angle.cos());
+                    out.lights.push(Light::Spot {
+                        position,
+                        direction,
+                        cone_deg: outer_cone_angle.to_degrees(),
+                        power: solid_angle * intensity,
+                    });
+                }
+                Kind::Directional => {
+                    out.warnings.push(format!("{light_path}: directional lights are left out (spot and point only)"))
+                }
+            }
+        }
+        if let (Some(camera), None) = (node.camera(), &out.camera) {
+            match camera.projection() {
+                gltf::camera::Projection::Perspective(p) => {
+                    let position = world.transform_point3(Vec3::ZERO);
+                    out.camera = Some(Camera {
+                        position,
+                        // A glTF camera looks down its node's −Z with +Y up.
+                        look_at: position + world.transform_vector3(Vec3::NEG_Z).normalize_or_zero(),
+                        up: world.transform_vector3(Vec3::Y),
+                        fov_deg: p.yfov().to_degrees(),
+                    });
+                }
+                gltf::camera::Projection::Orthographic(_) => {
+                    out.warnings.push(format!("cameras[{}]: orthographic cameras are left out", camera.index()))
+                }
+            }
+        }
+        let mut children: Vec<_> = node.children().map(|c| (c, world)).collect();
+        children.reverse();
+        stack.extend(children);
+    }
+    Ok(out)
+}
+
+/// The primitive's triangles in world space.
+fn mesh_shape(
+    primitive: &gltf::Primitive<'_>,
+    buffers: &[gltf::buffer::Data],
+    world: Mat4,
+    path: &str,
+) -> Result<Shape, GltfError> {
+    let reader = primitive.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+    let positions: Vec<Vec3> = reader
+        .read_positions()
+        .ok_or_else(|| GltfError::new(format!("{path}.attributes.POSITION"), "missing or unreadable"))?
+        .map(|p| world.transform_point3(Vec3::from(p)))
+        .collect();
+    if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+        return Err(GltfError::new(format!("{path}.attributes.POSITION"), format!("vertex {i} is not finite")));
+    }
+    let indices: Vec<u32> = match reader.read_indices() {
+        Some(ix) => ix.into_u32().collect(),
+        None => (0..positions.len() as u32).collect(),
+    };
+    if let Some(&i) = indices.iter().find(|&&i| i as usize >= positions.len()) {
+        return Err(GltfError::new(
+            format!("{path}.indices"),
+            format!("index {i} is out of range ({} vertices)", positions.len()),
+        ));
+    }
+    if !indices.len().is_multiple_of(3) {
+        return Err(GltfError::new(
+            format!("{path}.indices"),
+            format!("{} indices is not a whole number of triangles", indices.len()),
+        ));
+    }
+    // A mirroring transform turns the winding inside out.
+    let flip = world.determinant() < 0.0;
+    let triangles =
+        indices.chunks_exact(3).map(|t| if flip { [t[0], t[2], t[1]] } else { [t[0], t[1], t[2]] }).collect();
+    Ok(Shape::Mesh { positions, triangles })
+}
+
+/// The prismatic material of a glTF material; what it leaves out goes to `warnings`.
+fn material(m: &gltf::Material<'_>, warnings: &mut Vec<String>) -> Material {
+    let path = m.index().map_or("the default material".to_string(), |i| format!("materials[{i}]"));
+    let name = m.name().map_or_else(|| path.clone(), str::to_string);
+    let pbr = m.pbr_metallic_roughness();
+    let mut unused = Vec::new();
+    for (texture, what) in [
+        (pbr.base_color_texture().is_some(), "baseColorTexture (the factor is used)"),
+        (pbr.metallic_roughness_texture().is_some(), "metallicRoughnessTexture"),
+        (m.normal_texture().is_some(), "normalTexture"),
+        (m.occlusion_texture().is_some(), "occlusionTexture"),
+        (m.emissive_texture().is_some(), "emissiveTexture"),
+    ] {
+        if texture {
+            unused.push(what);
+        }
+    }
+    if m.emissive_factor().iter().any(|&e| e > 0.0) {
+        unused.push("emission (meshes do not emit)");
+    }
+    let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor());
+    let kind = if transmission > 0.0 {
+        if pbr.roughness_factor() > 0.0 {
+            unused.push("roughness of the transmission (glass is smooth)");
+        }
+        if m.volume().is_some_and(|v| v.attenuation_distance().is_finite()) {
+            unused.push("volume attenuation (glass is clear)");
+        }
+        MaterialKind::Dielectric { dispersion: dispersion(m), outside: Dispersion::Constant(1.0) }
+    } else if pbr.metallic_factor() >= MIRROR_METALLIC && pbr.roughness_factor() <= MIRROR_ROUGHNESS {
+        MaterialKind::Mirror
+    } else {
+        if pbr.metallic_factor() >= MIRROR_METALLIC {
+            unused.push("rough metal (rendered diffuse)");
+        }
+        let [r, g, b, _] = pbr.base_color_factor();
+        MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None }
+    };
+    if !unused.is_empty() {
+        warnings.push(format!("{path} ({name}): left out: {}", unused.join(", ")));
+    }
+    Material { name, kind }
+}
+
+/// n(λ) of a transmissive material: `KHR_materials_ior` (default 1.5) and
+/// `KHR_materials_dispersion`, whose `dispersion` is 20/V_d (0: none).
+fn dispersion(m: &gltf::Material<'_>) -> Dispersion {
+    let ior = m.ior().unwrap_or(1.5);
+    let spread = m
+        .extensions()
+        .and_then(|e| e.get("KHR_materials_dispersion"))
+        .and_then(|d| d.get("dispersion"))
+        .and_then(serde_json::Value::as_f64)
+        .unwrap_or(0.0) as f32;
+    if spread > 0.0 { Dispersion::Abbe { nd: ior, vd: 20.0 / spread } } else { Dispersion::Constant(ior) }
+}
+
+/// A whole scene from a glTF file: its parts, its camera or one framing
+/// it, default render settings scaled to its size; what was left out is in
+/// the document's warnings.
+pub fn load(path: &Path) -> Result<SceneDocument, SceneFileError> {
+    let file = path.display().to_string();
+    scene(import(path), &file)
+}
+
+/// [`load`] of a document in memory, named `file` in errors.
+pub fn load_slice(bytes: &[u8], file: &str) -> Result<SceneDocument, SceneFileError> {
+    scene(import_slice(bytes, None), file)
+}
+
+fn scene(parts: Result<GltfScene, GltfError>, file: &str) -> Result<SceneDocument, SceneFileError> {
+    let file = file.to_string();
+    let parts = parts.map_err(|e| SceneFileError { file: file.clone(), line: None, key: e.path, reason: e.reason })?;
+    let (lo, hi) = bounds(&parts.objects);
+    let (centre, size) = ((lo + hi) / 2.0, (hi - lo).length().max(1e-3));
+    let mut warnings = parts.warnings;
+    let camera = parts.camera.unwrap_or_else(|| framing_camera(centre, size));
+    let mut lights = parts.lights;
+    if lights.is_empty() {
+        warnings.push("no spot or point light: a spot light above the scene is added".into());
+        lights.push(Light::Spot {
+            position: centre + Vec3::new(0.0, size, 0.0),
+            direction: Vec3::NEG_Y,
+            cone_deg: 30.0,
+            power: 100.0,
+        });
+    }
+    let render = RenderSettings { radius: size / 100.0, ..RenderSettings::default() };
+    let scene = Scene { render, camera, lights, materials: parts.materials, objects: parts.objects };
+    Ok(SceneDocument::from_scene(scene, &file, warnings))
+}
+
+/// The axis-aligned box around the objects' vertices.
+fn bounds(objects: &[Object]) -> (Vec3, Vec3) {
+    let points = objects.iter().flat_map(|o| match &o.shape {
+        Shape::Mesh { positions, .. } => positions.as_slice(),
+        _ => &[],
+    });
+    let (lo, hi) = points.fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    if lo.is_finite() { (lo, hi) } else { (Vec3::ZERO, Vec3::ZERO) }
+}
+
+/// A camera looking at `centre` from the front and above, far enough to see
+/// a scene of diagonal `size`.
+fn framing_camera(centre: Vec3, size: f32) -> Camera {
+    Camera { position: centre + Vec3::new(0.0, 0.5, 1.2) * size, look_at: centre, up: Vec3::Y, fov_deg: 45.0 }
+}

@@ -1,0 +1,243 @@
+//! Writes small glTF 2.0 documents: triangle meshes, materials with the
+//! transmission, IOR and dispersion extensions, punctual lights and a
+//! camera, with the binary data in the file (a base64 data URI). The
+//! project writes its own glTF scenes and test files with it.
+
+use glam::{Mat3, Quat, Vec3};
+use serde_json::{Value, json};
+
+/// A material: base colour, metal/roughness, and for glass the
+/// transmission, index and `KHR_materials_dispersion` value (20/V_d).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfMaterial {
+    /// Name.
+    pub name: String,
+    /// Base colour (linear RGB).
+    pub base_color: [f32; 3],
+    /// Metalness, 0–1.
+    pub metallic: f32,
+    /// Roughness, 0–1.
+    pub roughness: f32,
+    /// `KHR_materials_transmission` factor (0: opaque).
+    pub transmission: f32,
+    /// `KHR_materials_ior`.
+    pub ior: f32,
+    /// `KHR_materials_dispersion` (0: none).
+    pub dispersion: f32,
+}
+
+impl GltfMaterial {
+    /// An opaque diffuse material.
+    pub fn diffuse(name: &str, base_color: [f32; 3]) -> Self {
+        GltfMaterial {
+            name: name.into(),
+            base_color,
+            metallic: 0.0,
+            roughness: 1.0,
+            transmission: 0.0,
+            ior: 1.5,
+            dispersion: 0.0,
+        }
+    }
+
+    /// Clear smooth glass of index `ior` and dispersion `dispersion`.
+    pub fn glass(name: &str, ior: f32, dispersion: f32) -> Self {
+        GltfMaterial {
+            name: name.into(),
+            base_color: [1.0; 3],
+            metallic: 0.0,
+            roughness: 0.0,
+            transmission: 1.0,
+            ior,
+            dispersion,
+        }
+    }
+}
+
+/// A triangle mesh in its node's frame, placed by a translation.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfMesh {
+    /// Name.
+    pub name: String,
+    /// Vertex positions.
+    pub positions: Vec<[f32; 3]>,
+    /// Three indices a triangle, counter-clockwise seen from outside.
+    pub indices: Vec<u32>,
+    /// Index into the document's materials.
+    pub material: usize,
+    /// The node's translation.
+    pub translation: [f32; 3],
+}
+
+/// A `KHR_lights_punctual` light.
+#[derive(Clone, Debug, PartialEq)]
+pub enum GltfLight {
+    /// A spot light: intensity in W/sr (prismatic reads candela as W/sr),
+    /// outer cone half-angle in radians.
+    Spot {
+        /// Position.
+        position: [f32; 3],
+        /// Direction it shines.
+        direction: [f32; 3],
+        /// Intensity.
+        intensity: f32,
+        /// Outer cone half-angle, radians.
+        outer_cone: f32,
+    },
+    /// A point light: intensity in W/sr.
+    Point {
+        /// Position.
+        position: [f32; 3],
+        /// Intensity.
+        intensity: f32,
+    },
+}
+
+/// A perspective camera.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfCamera {
+    /// Eye.
+    pub position: [f32; 3],
+    /// Point looked at.
+    pub look_at: [f32; 3],
+    /// Vertical field of view, radians.
+    pub yfov: f32,
+}
+
+/// A whole document.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GltfDocument {
+    /// Materials.
+    pub materials: Vec<GltfMaterial>,
+    /// Meshes, one node each.
+    pub meshes: Vec<GltfMesh>,
+    /// Lights, one node each.
+    pub lights: Vec<GltfLight>,
+    /// The camera, if any.
+    pub camera: Option<GltfCamera>,
+}
+
+impl GltfDocument {
+    /// The document as glTF JSON text (`.gltf`), its buffer embedded.
+    pub fn to_json(&self) -> String {
+        let mut bin: Vec<u8> = Vec::new();
+        let (mut views, mut accessors, mut meshes, mut nodes) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+        for (i, m) in self.meshes.iter().enumerate() {
+            let (lo, hi) = m.positions.iter().fold(([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]), |(lo, hi), p| {
+                (std::array::from_fn(|k| lo[k].min(p[k])), std::array::from_fn(|k| hi[k].max(p[k])))
+            });
+            let position_view =
+                push_view(&mut bin, &mut views, m.positions.iter().flatten().flat_map(|x| x.to_le_bytes()), 34962);
+            let index_view = push_view(&mut bin, &mut views, m.indices.iter().flat_map(|x| x.to_le_bytes()), 34963);
+            accessors.push(json!({
+                "bufferView": position_view, "componentType": 5126, "count": m.positions.len(),
+                "type": "VEC3", "min": lo, "max": hi
+            }));
+            accessors.push(
+                json!({ "bufferView": index_view, "componentType": 5125, "count": m.indices.len(), "type": "SCALAR" }),
+            );
+            meshes.push(json!({
+                "name": m.name,
+                "primitives": [{ "attributes": { "POSITION": 2 * i }, "indices": 2 * i + 1, "material": m.material }]
+            }));
+            nodes.push(json!({ "name": m.name, "mesh": i, "translation": m.translation }));
+        }
+        let mut lights = Vec::new();
+        for (i, l) in self.lights.iter().enumerate() {
+            let (light, position, direction) = match *l {
+                GltfLight::Spot { position, direction, intensity, outer_cone } => (
+                    json!({ "type": "spot", "intensity": intensity,
+                            "spot": { "innerConeAngle": 0.0, "outerConeAngle": outer_cone } }),
+                    position,
+                    direction,
+                ),
+                GltfLight::Point { position, intensity } => {
+                    (json!({ "type": "point", "intensity": intensity }), position, [0.0, 0.0, -1.0])
+                }
+            };
+            lights.push(light);
+            // A light shines down its node's −Z.
+            let rotation = Quat::from_rotation_arc(Vec3::NEG_Z, Vec3::from(direction).normalize());
+            nodes.push(json!({
+                "name": format!("light {i}"), "translation": position, "rotation": rotation.to_array(),
+                "extensions": { "KHR_lights_punctual": { "light": i } }
+            }));
+        }
+        let mut cameras = Vec::new();
+        if let Some(c) = &self.camera {
+            let (eye, target) = (Vec3::from(c.position), Vec3::from(c.look_at));
+            let back = (eye - target).normalize();
+            let right = Vec3::Y.cross(back).normalize();
+            let rotation = Quat::from_mat3(&Mat3::from_cols(right, back.cross(right), back));
+            cameras.push(json!({ "type": "perspective", "perspective": { "yfov": c.yfov, "znear": 0.01 } }));
+            nodes.push(
+                json!({ "name": "camera", "camera": 0, "translation": c.position, "rotation": rotation.to_array() }),
+            );
+        }
+        let materials: Vec<Value> = self.materials.iter().map(material_json).collect();
+        let uri = format!("data:application/octet-stream;base64,{}", base64::encode(&bin));
+        let mut doc = json!({
+            "asset": { "version": "2.0", "generator": "prismatic" },
+            "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_dispersion"],
+            "scene": 0,
+            "scenes": [{ "nodes": (0..nodes.len()).collect::<Vec<_>>() }],
+            "nodes": nodes,
+            "meshes": meshes,
+            "materials": materials,
+            "accessors": accessors,
+            "bufferViews": views,
+            "buffers": [{ "byteLength": bin.len(), "uri": uri }],
+            "extensions": { "KHR_lights_punctual": { "lights": lights } },
+        });
+        if !cameras.is_empty() {
+            doc["cameras"] = Value::Array(cameras);
+        }
+        serde_json::to_string_pretty(&doc).expect("JSON values serialize")
+    }
+}
+
+/// Appends `bytes` to `bin` (4-byte aligned) as a new buffer view; its index.
+fn push_view(bin: &mut Vec<u8>, views: &mut Vec<Value>, bytes: impl Iterator<Item = u8>, target: u32) -> usize {
+    let offset = bin.len();
+    bin.extend(bytes);
+    let length = bin.len() - offset;
+    bin.resize(bin.len().next_multiple_of(4), 0);
+    views.push(json!({ "buffer": 0, "byteOffset": offset, "byteLength": length, "target": target }));
+    views.len() - 1
+}
+
+fn material_json(m: &GltfMaterial) -> Value {
+    let [r, g, b] = m.base_color;
+    let mut extensions = serde_json::Map::new();
+    if m.transmission > 0.0 {
+        extensions.insert("KHR_materials_transmission".into(), json!({ "transmissionFactor": m.transmission }));
+        extensions.insert("KHR_materials_ior".into(), json!({ "ior": m.ior }));
+        if m.dispersion > 0.0 {
+            extensions.insert("KHR_materials_dispersion".into(), json!({ "dispersion": m.dispersion }));
+        }
+    }
+    json!({
+        "name": m.name,
+        "pbrMetallicRoughness": { "baseColorFactor": [r, g, b, 1.0], "metallicFactor": m.metallic, "roughnessFactor": m.roughness },
+        "extensions": extensions,
+    })
+}
+
+/// A triangular prism: one end's three corners extruded by `extrude`,
+/// eight triangles wound counter-clockwise seen from outside.
+pub fn prism(mut corners: [[f32; 3]; 3], extrude: [f32; 3]) -> (Vec<[f32; 3]>, Vec<u32>) {
+    let e = Vec3::from(extrude);
+    let [a, b, c] = corners.map(Vec3::from);
+    if (b - a).cross(c - a).dot(e) > 0.0 {
+        corners.swap(1, 2);
+    }
+    let far: Vec<[f32; 3]> = corners.iter().map(|&c| (Vec3::from(c) + e).to_array()).collect();
+    let positions = [corners.to_vec(), far].concat();
+    // Ends: 0,1,2 seen from outside the near end; the far end reversed.
+    let mut indices = vec![0, 1, 2, 3, 5, 4];
+    for k in 0..3u32 {
+        let (a, b) = (k, (k + 1) % 3);
+        indices.extend([a, a + 3, b, b, a + 3, b + 3]);
+    }
+    (positions, indices)
+}

@@ -1,0 +1,232 @@
+//! glTF scenes: a dispersive prism under a spot light read from glTF traces
+//! the same photons as the same scene written in TOML; what prismatic
+//! cannot represent is a warning; broken files are errors that name the
+//! element, exit 2 and write nothing.
+
+use prismatic_cli::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, prism};
+use prismatic_core::scene::Light;
+use prismatic_core::{PreparedScene, trace};
+use std::path::Path;
+use std::process::Command;
+
+const FLOOR: [[f32; 3]; 4] = [[-4.0, 0.0, -4.0], [4.0, 0.0, -4.0], [4.0, 0.0, 4.0], [-4.0, 0.0, 4.0]];
+const FLOOR_TRIANGLES: [u32; 6] = [0, 2, 1, 0, 3, 2];
+const PRISM_END: [[f32; 3]; 3] = [[-0.5, 0.3, -0.5], [0.5, 0.3, -0.5], [0.0, 1.2, -0.5]];
+const PRISM_EXTRUDE: [f32; 3] = [0.0, 0.0, 1.0];
+const SPOT_CONE: f32 = 0.3;
+const SPOT_INTENSITY: f32 = 50.0;
+
+/// A floor, a glass prism (n_d 1.5, dispersion 1: V_d 20) and a spot light
+/// above it, with a camera.
+fn prism_document() -> GltfDocument {
+    let (positions, indices) = prism(PRISM_END, PRISM_EXTRUDE);
+    GltfDocument {
+        materials: vec![GltfMaterial::diffuse("floor", [0.8; 3]), GltfMaterial::glass("glass", 1.5, 1.0)],
+        meshes: vec![
+            GltfMesh {
+                name: "floor".into(),
+                positions: FLOOR.to_vec(),
+                indices: FLOOR_TRIANGLES.to_vec(),
+                material: 0,
+                translation: [0.0; 3],
+            },
+            GltfMesh { name: "prism".into(), positions, indices, material: 1, translation: [0.0; 3] },
+        ],
+        lights: vec![GltfLight::Spot {
+            position: [0.0, 3.0, 0.0],
+            direction: [0.0, -1.0, 0.0],
+            intensity: SPOT_INTENSITY,
+            outer_cone: SPOT_CONE,
+        }],
+        camera: Some(GltfCamera { position: [0.0, 2.0, 5.0], look_at: [0.0, 0.5, 0.0], yfov: 0.8 }),
+    }
+}
+
+fn write(dir: &Path, name: &str, doc: &GltfDocument) -> std::path::PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, doc.to_json()).unwrap();
+    path
+}
+
+fn array<const N: usize>(v: [f32; N]) -> String {
+    format!("[{}]", v.map(|x| format!("{x:?}")).join(", "))
+}
+
+#[test]
+fn a_gltf_prism_traces_the_photons_of_the_same_scene_in_toml() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "prism.gltf", &prism_document());
+    let gltf = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+    assert!(gltf.warnings.is_empty(), "{:?}", gltf.warnings);
+    gltf.validate().unwrap_or_else(|e| panic!("{e}"));
+
+    // The spot light: its node's −Z, the cone's half-angle, I · 2π(1 − cos θ).
+    let [Light::Spot { position, direction, cone_deg, power }] = gltf.scene.lights[..] else {
+        panic!("{:?}", gltf.scene.lights)
+    };
+    assert!((direction - glam::Vec3::NEG_Y).length() < 1e-6, "{direction}");
+    assert!((cone_deg - SPOT_CONE.to_degrees()).abs() < 1e-4);
+    let expected_power = SPOT_INTENSITY * 2.0 * std::f32::consts::PI * (1.0 - SPOT_CONE.cos());
+    assert!((power - expected_power).abs() < 1e-4 * expected_power);
+
+    // The same scene in TOML: meshes and materials as intended, the light
+    // as imported (so any difference in the photons is the meshes' or the
+    // glass's).
+    let (prism_positions, prism_indices) = prism(PRISM_END, PRISM_EXTRUDE);
+    let mesh = |positions: &[[f32; 3]], indices: &[u32]| {
+        let p: Vec<String> = positions.iter().map(|&v| array(v)).collect();
+        let t: Vec<String> = indices.chunks(3).map(|t| format!("[{}, {}, {}]", t[0], t[1], t[2])).collect();
+        format!("positions = [{}]\ntriangles = [{}]\n", p.join(", "), t.join(", "))
+    };
+    let toml = format!(
+        "[camera]\nposition = [0, 2, 5]\nlook_at = [0, 0.5, 0]\n\n\
+         [[light]]\nkind = \"spot\"\nposition = {}\ndirection = {}\ncone_deg = {cone_deg:?}\npower = {power:?}\n\n\
+         [material.floor]\nkind = \"diffuse\"\nalbedo = [0.8, 0.8, 0.8]\n\n\
+         [material.glass]\nkind = \"dielectric\"\nior = {{ abbe = [1.5, 20.0] }}\n\n\
+         [[object]]\nshape = \"mesh\"\nmaterial = \"floor\"\n{}\n\
+         [[object]]\nshape = \"mesh\"\nmaterial = \"glass\"\n{}",
+        array(position.to_array()),
+        array(direction.to_array()),
+        mesh(&FLOOR, &FLOOR_TRIANGLES),
+        mesh(&prism_positions, &prism_indices),
+    );
+    let mut toml = prismatic_cli::scene_file::parse(&toml, "prism.toml", None).unwrap_or_else(|e| panic!("{e}"));
+    toml.scene.render = gltf.scene.render.clone();
+    toml.scene.render.photons = 4000;
+    let mut from_gltf = gltf.scene.clone();
+    from_gltf.render.photons = 4000;
+    let a = trace::trace_photons(&PreparedScene::new(from_gltf).unwrap());
+    let b = trace::trace_photons(&PreparedScene::new(toml.scene).unwrap());
+    assert!(a.photons.iter().any(|p| p.band != prismatic_core::photon::WHITE_BAND), "the prism splits bands");
+    assert_eq!(a, b);
+}
+
+#[test]
+fn what_prismatic_cannot_represent_is_a_warning_not_a_failure() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    doc.materials[1].roughness = 0.3;
+    doc.lights.clear();
+    let path = write(dir.path(), "rough.gltf", &doc);
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    scene.validate().unwrap();
+    let warnings = scene.warnings.join("\n");
+    assert!(warnings.contains("materials[1] (glass): left out: roughness of the transmission"), "{warnings}");
+    assert!(warnings.contains("no spot or point light"), "{warnings}");
+    // The binary prints them and renders.
+    let out = dir.path().join("rough.png");
+    let run = Command::new(env!("CARGO_BIN_EXE_prismatic"))
+        .args([
+            "render",
+            path.to_str().unwrap(),
+            "--photons",
+            "2000",
+            "--passes",
+            "1",
+            "--width",
+            "32",
+            "--height",
+            "32",
+            "-o",
+        ])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{stderr}");
+    assert!(stderr.contains("warning: ") && stderr.contains("roughness of the transmission"), "{stderr}");
+    assert!(out.is_file());
+}
+
+#[test]
+fn broken_gltf_files_name_the_element_exit_2_and_write_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut bad_index = prism_document();
+    bad_index.meshes[1].indices[4] = 99;
+    let mut nan = prism_document();
+    nan.meshes[1].positions[2][1] = f32::NAN;
+    let mut open = prism_document();
+    let faces = open.meshes[1].indices.len();
+    open.meshes[1].indices.truncate(faces - 6);
+    let missing_buffer = prism_document().to_json().replace("data:application/octet-stream;base64,", "missing.bin#");
+    let cases: Vec<(&str, String, &str)> = vec![
+        (
+            "bad-index.gltf",
+            bad_index.to_json(),
+            "meshes[1].primitives[0].indices: index 99 is out of range (6 vertices)",
+        ),
+        ("nan.gltf", nan.to_json(), "meshes[1].primitives[0].attributes.POSITION: vertex 2 is not finite"),
+        ("open.gltf", open.to_json(), "meshes[1].primitives[0]: glass needs a closed mesh"),
+        ("missing-buffer.gltf", missing_buffer, "buffers: "),
+        ("not-json.gltf", "{ this is not json".into(), "not-json.gltf: "),
+    ];
+    for (name, text, expected) in cases {
+        let path = dir.path().join(name);
+        std::fs::write(&path, text).unwrap();
+        let out = dir.path().join("out.png");
+        let run = Command::new(env!("CARGO_BIN_EXE_prismatic"))
+            .args(["render", path.to_str().unwrap(), "-o"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{name}: {stderr}");
+        assert!(stderr.contains(expected), "{name}: expected «{expected}» in {stderr}");
+        assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+        assert!(!out.exists(), "{name}: wrote an image");
+    }
+}
+
+/// The built-in DispersionTest-style grid. Its glass follows the
+/// extension: n(400 nm) − n(700 nm) is 0 along the n = 1.0 row whatever the
+/// dispersion value, and grows along every other row. Traced one prism at a
+/// time: behind the n = 1.0 prisms light goes straight on and the bands of
+/// a white photon land together; elsewhere, dispersion 0 keeps them
+/// together and any other value fans them out. (How far apart they land
+/// does not grow steadily with the value: where the bluest bands meet total
+/// internal reflection they take another path altogether.)
+#[test]
+fn the_dispersion_test_grid_spreads_colour_only_where_the_extension_says() {
+    use prismatic_cli::dispersion_test::{DISPERSIONS, IORS};
+    use prismatic_core::scene::MaterialKind;
+    let doc = prismatic_cli::load_scene("dispersion-test").unwrap_or_else(|e| panic!("{e}"));
+    assert!(doc.warnings.is_empty(), "{:?}", doc.warnings);
+    let Light::Spot { position: light, .. } = doc.scene.lights[0] else { panic!("a spot light") };
+    for (row, ior) in IORS.iter().enumerate() {
+        let mut spans = Vec::new();
+        for column in 0..DISPERSIONS.len() {
+            let object = &doc.scene.objects[1 + row * DISPERSIONS.len() + column];
+            let MaterialKind::Dielectric { dispersion, .. } = &doc.scene.materials[object.material].kind else {
+                panic!("row {row} column {column} is not glass")
+            };
+            let n = |nm: f32| dispersion.ior_at(nm).unwrap();
+            assert!((n(587.56) - ior).abs() < 1e-4, "row {row} column {column}: n_d {}", n(587.56));
+            spans.push(n(400.0) - n(700.0));
+
+            let mut scene = doc.scene.clone();
+            scene.objects = vec![scene.objects[0].clone(), object.clone()];
+            scene.render.photons = 3000;
+            let map = trace::trace_photons(&PreparedScene::new(scene).unwrap());
+            assert!(map.photons.len() > 100, "row {row} column {column}: {} photons", map.photons.len());
+            if row == 0 {
+                for p in &map.photons {
+                    let straight = (p.pos() - light).normalize();
+                    assert!((p.direction() - straight).length() < 1e-3, "n = 1 bent a photon: {p:?}");
+                }
+            }
+            // The widest distance between bands of one white photon.
+            let mut landing: std::collections::BTreeMap<u32, Vec<glam::Vec3>> = Default::default();
+            for p in &map.photons {
+                landing.entry(p.emission).or_default().push(p.pos());
+            }
+            let fanned = landing.values().any(|v| v.iter().any(|p| (*p - v[0]).length() > 1e-4));
+            let expected = row > 0 && column > 0;
+            assert_eq!(fanned, expected, "row {row} (n {ior}) column {column}: bands fanned out: {fanned}");
+        }
+        if row == 0 {
+            assert!(spans.iter().all(|&s| s == 0.0), "n = 1 disperses: {spans:?}");
+        } else {
+            assert!(spans[0] == 0.0 && spans.windows(2).all(|w| w[1] > w[0]), "row {row}: {spans:?}");
+        }
+    }
+}

@@ -12,8 +12,13 @@ pub struct BuiltinScene {
     pub source: &'static str,
 }
 
-/// Every built-in scene; the first is the default.
-pub const BUILTIN_SCENES: [BuiltinScene; 4] = [
+/// Every built-in scene file.
+pub const BUILTIN_SCENES: [BuiltinScene; 5] = [
+    BuiltinScene {
+        name: "caustic",
+        description: "the sphere scene seen close up: the caustic's rim split into its colours (the default)",
+        source: include_str!("../../scenes/caustic.toml"),
+    },
     BuiltinScene {
         name: "sphere",
         description: "the paper's glass sphere on a checkered floor under a spot light (7-band caustic)",
@@ -35,6 +40,9 @@ pub const BUILTIN_SCENES: [BuiltinScene; 4] = [
         source: include_str!("../../scenes/rainbow.toml"),
     },
 ];
+
+/// What `render` and `photons` render when no scene is named.
+pub const DEFAULT_SCENE: &str = "caustic";
 
 /// The built-in scene called `name`.
 pub fn find(name: &str) -> Option<&'static BuiltinScene> {

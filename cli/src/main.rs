@@ -98,7 +98,7 @@ enum Command {
 #[derive(Args)]
 struct JobArgs {
     /// A built-in scene name or a scene file.
-    #[arg(default_value = "sphere")]
+    #[arg(default_value = prismatic_cli::builtin::DEFAULT_SCENE)]
     scene: String,
     /// Which backend does the work.
     #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]

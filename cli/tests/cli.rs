@@ -39,10 +39,47 @@ fn render_writes_a_png_and_reports_what_it_did() {
 }
 
 #[test]
-fn render_defaults_to_the_sphere_scene_and_prismatic_png() {
+fn render_defaults_to_the_caustic_scene_and_prismatic_png() {
     let o = Command::new(env!("CARGO_BIN_EXE_prismatic")).args(["render", "--help"]).output().unwrap();
     let (out, _) = text(&o);
-    assert!(out.contains("[default: sphere]") && out.contains("[default: prismatic.png]"), "{out}");
+    assert!(out.contains("[default: caustic]") && out.contains("[default: prismatic.png]"), "{out}");
+}
+
+/// The first image a user sees shows dispersion: saturated colours of
+/// several hues, where the overview of the same scene (`sphere`) has almost
+/// none (0.16 % of its pixels, all red to yellow).
+#[test]
+fn the_default_render_shows_the_caustic_in_colour() {
+    let dir = tempfile::tempdir().unwrap();
+    let colourful = |scene: Option<&str>| {
+        let mut args = vec!["render", "--passes", "4", "-o", "out.png"];
+        args.extend(scene);
+        let o = prismatic(&args, dir.path());
+        assert!(o.status.success(), "{}", text(&o).1);
+        let img = image::open(dir.path().join("out.png")).unwrap().to_rgb8();
+        let mut hues = [0u32; 6];
+        for p in img.pixels() {
+            let [r, g, b] = p.0.map(|c| f32::from(c) / 255.0);
+            let (max, min) = (r.max(g).max(b), r.min(g).min(b));
+            if max > 0.3 && (max - min) / max > 0.5 {
+                // The hue's sextant: 0 red–yellow, 1 yellow–green, ... 5 magenta–red.
+                let h = if max == r {
+                    ((g - b) / (max - min)).rem_euclid(6.0)
+                } else if max == g {
+                    (b - r) / (max - min) + 2.0
+                } else {
+                    (r - g) / (max - min) + 4.0
+                };
+                hues[(h as usize).min(5)] += 1;
+            }
+        }
+        (hues.iter().sum::<u32>() as f32 / (img.width() * img.height()) as f32, hues)
+    };
+    let (default, hues) = colourful(None);
+    let (overview, _) = colourful(Some("sphere"));
+    assert!(default > 0.015, "{:.2} % saturated pixels", 100.0 * default);
+    assert!(default > 5.0 * overview, "default {default}, overview {overview}");
+    assert!(hues.iter().filter(|&&n| n > 100).count() >= 3, "hues {hues:?}");
 }
 
 #[test]

@@ -15,7 +15,9 @@ fn builtin(name: &str, photons: u32, side: u32) -> PreparedScene {
 
 #[test]
 fn every_built_in_scene_renders_finite_and_its_caustic_adds_light() {
-    for (name, photons) in [("sphere", 20_000), ("prism", 4_000), ("recombine", 4_000), ("rainbow", 100_000)] {
+    let scenes =
+        [("caustic", 20_000), ("sphere", 20_000), ("prism", 4_000), ("recombine", 4_000), ("rainbow", 100_000)];
+    for (name, photons) in scenes {
         let scene = builtin(name, photons, 64);
         let map = trace_photons(&scene);
         assert!(map.stats.stored > 0, "{name}: no caustic photons");

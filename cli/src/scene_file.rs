@@ -5,6 +5,7 @@
 //! core's validation finds later (`object[1].radius: must be greater than 0`)
 //! are reported at the right line too. Unknown keys are errors.
 
+use crate::gltf_scene;
 use crate::ior_table;
 use crate::obj;
 use glam::DVec3;
@@ -105,7 +106,14 @@ pub fn load(path: &Path) -> Result<SceneDocument, SceneFileError> {
 
 /// Parses scene-file text. `file` names it in errors; `base` resolves mesh paths.
 pub fn parse(source: &str, file: &str, base: Option<&Path>) -> Result<SceneDocument, SceneFileError> {
-    let mut p = Parser { source, file, base: base.map(Path::to_path_buf), lines: HashMap::new(), origin: DVec3::ZERO };
+    let mut p = Parser {
+        source,
+        file,
+        base: base.map(Path::to_path_buf),
+        lines: HashMap::new(),
+        origin: DVec3::ZERO,
+        warnings: Vec::new(),
+    };
     let root = DeTable::parse(source).map_err(|e| SceneFileError {
         file: file.to_string(),
         line: e.span().map(|s| p.line_of(s.start)),
@@ -113,7 +121,7 @@ pub fn parse(source: &str, file: &str, base: Option<&Path>) -> Result<SceneDocum
         reason: format!("TOML syntax error: {}", e.message()),
     })?;
     let scene = p.scene(root.get_ref(), root.span())?;
-    Ok(SceneDocument { scene, origin: p.origin, warnings: Vec::new(), file: file.to_string(), lines: p.lines })
+    Ok(SceneDocument { scene, origin: p.origin, warnings: p.warnings, file: file.to_string(), lines: p.lines })
 }
 
 /// Parses, validates and prepares `source` (no file access beyond OBJ
@@ -132,6 +140,8 @@ struct Parser<'s> {
     lines: HashMap<String, usize>,
     /// Subtracted (in f64) from every position read.
     origin: DVec3,
+    /// What was left out of placed glTF files.
+    warnings: Vec<String>,
 }
 
 /// A scene whose camera lies farther than this from the world origin (in
@@ -342,18 +352,17 @@ impl<'s> Parser<'s> {
                 materials.push(Material { name: name.get_ref().to_string(), kind: self.material(&mt)? });
             }
         }
-        let objects = match self.get(&root, "object") {
-            Some(v) => self
-                .array("object", v)?
-                .iter()
-                .enumerate()
-                .map(|(i, o)| {
-                    let t = self.table(&format!("object[{i}]"), o)?;
-                    self.object(&t, &materials)
-                })
-                .collect::<Result<Vec<_>>>()?,
-            None => Vec::new(),
-        };
+        let mut objects = Vec::new();
+        if let Some(v) = self.get(&root, "object") {
+            for (i, o) in self.array("object", v)?.iter().enumerate() {
+                let t = self.table(&format!("object[{i}]"), o)?;
+                if self.get(&t, "shape").is_some_and(|s| s.get_ref().as_str() == Some("gltf")) {
+                    self.gltf_objects(&t, &mut materials, &mut objects)?;
+                } else {
+                    objects.push(self.object(&t, &materials)?);
+                }
+            }
+        }
         Ok(Scene { render, camera, lights, materials, objects })
     }
 
@@ -643,7 +652,7 @@ impl<'s> Parser<'s> {
                 return Err(self.err(
                     &join(&t.key, "shape"),
                     &v.span(),
-                    format!("unknown shape \"{other}\"; expected sphere, plane, disk, prism or mesh"),
+                    format!("unknown shape \"{other}\"; expected sphere, plane, disk, prism, mesh or gltf"),
                 ));
             }
         };
@@ -662,6 +671,51 @@ impl<'s> Parser<'s> {
             )
         })?;
         Ok(Object { shape, material })
+    }
+
+    /// `shape = "gltf"`: the meshes of a glTF file (with their materials,
+    /// named `FILE/MATERIAL`), scaled by `scale` and moved by `translate`.
+    /// The file's lights and camera are left out: the scene has its own.
+    fn gltf_objects(
+        &mut self,
+        t: &Table<'_, '_>,
+        materials: &mut Vec<Material>,
+        objects: &mut Vec<Object>,
+    ) -> Result<()> {
+        self.check_keys(t, &["shape", "path", "translate", "scale"])?;
+        let key = join(&t.key, "path");
+        let v = self.required(t, "path")?;
+        let rel = self.string(&key, v)?;
+        let path = self.base.as_deref().map_or_else(|| PathBuf::from(rel), |b| b.join(rel));
+        let model = gltf_scene::import(&path)
+            .map_err(|e| self.err(&key, &v.span(), format!("{}: {}: {}", path.display(), e.path, e.reason)))?;
+        let translate = self.opt(t, "translate", Self::dvec3)?.unwrap_or(DVec3::ZERO);
+        let scale = self.opt(t, "scale", Self::float)?.map_or(1.0, f64::from);
+        if !(scale.is_finite() && scale > 0.0) {
+            let v = self.required(t, "scale")?;
+            return Err(self.err(&join(&t.key, "scale"), &v.span(), format!("must be greater than 0, got {scale}")));
+        }
+        let stem = path.file_stem().map_or_else(|| rel.to_string(), |s| s.to_string_lossy().into_owned());
+        let first = materials.len();
+        materials.extend(model.materials.into_iter().map(|m| Material { name: format!("{stem}/{}", m.name), ..m }));
+        for object in model.objects {
+            let Shape::Mesh { positions, triangles } = object.shape else { continue };
+            let positions = positions
+                .into_iter()
+                .map(|p| {
+                    let world = p.as_dvec3() * scale + translate;
+                    self.local(world)
+                        .ok_or_else(|| self.err(&key, &v.span(), format!("vertex {world} is out of range")))
+                })
+                .collect::<Result<Vec<_>>>()?;
+            objects.push(Object { shape: Shape::Mesh { positions, triangles }, material: first + object.material });
+        }
+        let left_out = model.warnings.into_iter().chain(
+            (!model.lights.is_empty() || model.camera.is_some())
+                .then(|| "its lights and camera are left out (the scene file has its own)".to_string()),
+        );
+        self.warnings.extend(left_out.map(|w| format!("{}: {w}", t.key)));
+        Ok(())
     }
 
     fn mesh(&self, t: &Table<'_, '_>) -> Result<Shape> {

@@ -4,7 +4,7 @@
 //! element, exit 2 and write nothing.
 
 use prismatic_cli::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, prism};
-use prismatic_core::scene::Light;
+use prismatic_core::scene::{Light, Shape};
 use prismatic_core::{PreparedScene, trace};
 use std::path::Path;
 use std::process::Command;
@@ -229,4 +229,58 @@ fn the_dispersion_test_grid_spreads_colour_only_where_the_extension_says() {
             assert!(spans[0] == 0.0 && spans.windows(2).all(|w| w[1] > w[0]), "row {row}: {spans:?}");
         }
     }
+}
+
+/// `[[object]] shape = "gltf"` places a glTF file's meshes and materials in
+/// a TOML scene (its lights and camera left out, with a warning): with the
+/// same light, the photons are the glTF scene's; moved and scaled, the
+/// file's geometry moves with it; a broken file is the object's error.
+#[test]
+fn a_gltf_placed_in_a_scene_file_brings_its_meshes_and_materials() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = write(dir.path(), "prism.gltf", &prism_document());
+    let alone = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    let [Light::Spot { position, direction, cone_deg, power }] = alone.scene.lights[..] else { panic!() };
+    let scene = |placement: &str| {
+        format!(
+            "[camera]\nposition = [0, 2, 5]\nlook_at = [0, 0.5, 0]\n\n\
+             [[light]]\nkind = \"spot\"\nposition = {}\ndirection = {}\ncone_deg = {cone_deg:?}\npower = {power:?}\n\n\
+             [[object]]\nshape = \"gltf\"\npath = \"prism.gltf\"\n{placement}",
+            array(position.to_array()),
+            array(direction.to_array()),
+        )
+    };
+    let placed = prismatic_cli::scene_file::parse(&scene(""), "scene.toml", Some(dir.path())).unwrap();
+    placed.validate().unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        placed.scene.materials.iter().map(|m| m.name.as_str()).collect::<Vec<_>>(),
+        ["prism/floor", "prism/glass"]
+    );
+    assert!(
+        placed.warnings.iter().any(|w| w.contains("object[0]: its lights and camera are left out")),
+        "{:?}",
+        placed.warnings
+    );
+    let trace = |mut s: prismatic_core::Scene| {
+        (s.render.photons, s.render.radius) = (3000, 0.05);
+        trace::trace_photons(&PreparedScene::new(s).unwrap())
+    };
+    assert_eq!(trace(placed.scene.clone()), trace(alone.scene.clone()));
+
+    let moved =
+        prismatic_cli::scene_file::parse(&scene("translate = [1, 0, 2]\nscale = 2\n"), "scene.toml", Some(dir.path()))
+            .unwrap();
+    let (Shape::Mesh { positions: a, .. }, Shape::Mesh { positions: b, .. }) =
+        (&placed.scene.objects[1].shape, &moved.scene.objects[1].shape)
+    else {
+        panic!("meshes")
+    };
+    for (a, b) in a.iter().zip(b) {
+        assert!((*a * 2.0 + glam::Vec3::new(1.0, 0.0, 2.0) - *b).length() < 1e-5, "{a} -> {b}");
+    }
+
+    std::fs::write(dir.path().join("prism.gltf"), "{ broken").unwrap();
+    let e = prismatic_cli::scene_file::parse(&scene(""), "scene.toml", Some(dir.path())).map(|_| ()).unwrap_err();
+    assert_eq!(e.key, "object[0].path", "{e}");
+    assert!(e.reason.contains("prism.gltf"), "{e}");
 }

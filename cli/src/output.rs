@@ -68,6 +68,15 @@ pub fn write_exr(w: &mut BufWriter<File>, image: &Image) -> Result<()> {
     Ok(())
 }
 
+/// Reads an OpenEXR file as a linear image (every bit of an f32 image
+/// written by [`write_exr`]).
+pub fn read_exr(path: &Path) -> Result<Image> {
+    let decoded = image::open(path).with_context(|| format!("{}: cannot read", path.display()))?.into_rgb32f();
+    let (width, height) = decoded.dimensions();
+    let pixels = decoded.pixels().map(|p| prismatic_core::Vec3::from(p.0)).collect();
+    Ok(Image { width, height, pixels })
+}
+
 /// Writes `image` as EXR (linear) when `path` ends in `.exr`, else as a
 /// tone-mapped sRGB PNG.
 pub fn write_image(w: &mut BufWriter<File>, path: &Path, image: &Image, tone_map: ToneMap) -> Result<()> {
@@ -98,4 +107,28 @@ pub fn write_photon_csv(w: &mut impl Write, map: &PhotonMap, bands: &BandTable, 
         writeln!(w, "{x},{y},{z},{},{},{},{}", d.x, d.y, d.z, p.flux)?;
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The reference cache relies on it: EXR keeps every bit of f32 pixels.
+    #[test]
+    fn exr_round_trip_keeps_every_bit_and_the_row_order() {
+        let mut image = Image::new(3, 2);
+        for (i, p) in image.pixels.iter_mut().enumerate() {
+            *p = prismatic_core::Vec3::new(i as f32 + 0.1, -0.1 * i as f32, f32::MIN_POSITIVE * i as f32);
+        }
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("x.exr");
+        write_exr(&mut BufWriter::new(File::create(&path).unwrap()), &image).unwrap();
+        let back = read_exr(&path).unwrap();
+        assert_eq!((back.width, back.height), (3, 2));
+        for (a, b) in back.pixels.iter().zip(&image.pixels) {
+            assert_eq!(a.to_array().map(f32::to_bits), b.to_array().map(f32::to_bits));
+        }
+        std::fs::write(&path, b"not an exr").unwrap();
+        assert!(read_exr(&path).is_err());
+    }
 }

@@ -4,7 +4,6 @@
 //! measures its error against a converged reference.
 
 pub mod error;
-pub mod pfm;
 pub mod plot;
 pub mod progress;
 pub mod reference;

@@ -5,7 +5,7 @@
 //! hash of everything it depends on.
 
 use super::error::{StripeSums, caustic_mask, mean_delta_e};
-use super::pfm;
+use crate::output::{read_exr, write_exr};
 use anyhow::{Context, Result};
 use prismatic_core::progressive::{DEFAULT_ALPHA, ProgressiveRender, photon_pass_scene};
 use prismatic_core::{Backend, BandSpec, Estimator, Image, NoProgress, PreparedScene, WavelengthSampling};
@@ -15,7 +15,7 @@ use std::time::Instant;
 
 /// Bump when the tracer or renderer changes what a reference looks like, so
 /// that cached references are rebuilt.
-const REFERENCE_VERSION: &str = "prismatic-reference 2";
+const REFERENCE_VERSION: &str = "prismatic-reference 3";
 
 /// How a reference is made.
 #[derive(Clone, Debug, PartialEq)]
@@ -196,8 +196,13 @@ fn save(r: &Reference, scene: &PreparedScene) -> Result<()> {
     std::fs::create_dir_all(parent).with_context(|| format!("{}: cannot create", parent.display()))?;
     let temp = parent.join(format!(".tmp-{}", std::process::id()));
     std::fs::create_dir_all(&temp).with_context(|| format!("{}: cannot create", temp.display()))?;
-    pfm::write(&temp.join("reference.pfm"), &r.image)?;
-    pfm::write(&temp.join("no-caustics.pfm"), &r.without_caustics)?;
+    for (name, image) in [("reference.exr", &r.image), ("no-caustics.exr", &r.without_caustics)] {
+        let path = temp.join(name);
+        let file = std::fs::File::create(&path).with_context(|| format!("{}: cannot create", path.display()))?;
+        let mut w = std::io::BufWriter::new(file);
+        write_exr(&mut w, image)?;
+        std::io::Write::flush(&mut w).with_context(|| format!("{}: cannot write", path.display()))?;
+    }
     let mut stripes = String::from("lo_nm,hi_nm,flux,moment_x,moment_y,moment_z\n");
     for ((lo, hi), f, m) in &r.stripes.bands {
         writeln!(stripes, "{lo},{hi},{f:e},{:e},{:e},{:e}", m.x, m.y, m.z)?;
@@ -226,8 +231,8 @@ fn load(dir: &Path, scene: &PreparedScene) -> Result<Option<Reference>> {
         return Ok(None);
     }
     let bad = |what: &str| format!("{}: broken cached reference ({what}); rebuild it with --rebuild", dir.display());
-    let image = pfm::read(&dir.join("reference.pfm")).with_context(|| bad("reference.pfm"))?;
-    let without_caustics = pfm::read(&dir.join("no-caustics.pfm")).with_context(|| bad("no-caustics.pfm"))?;
+    let image = read_exr(&dir.join("reference.exr")).with_context(|| bad("reference.exr"))?;
+    let without_caustics = read_exr(&dir.join("no-caustics.exr")).with_context(|| bad("no-caustics.exr"))?;
     let info: toml::Table =
         std::fs::read_to_string(dir.join("info.toml"))?.parse().with_context(|| bad("info.toml"))?;
     let mut stripes = StripeSums::default();

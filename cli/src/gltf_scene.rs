@@ -15,8 +15,9 @@ use prismatic_core::Dispersion;
 use prismatic_core::scene::{Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape};
 use std::path::Path;
 
-/// A material counts as a mirror above this metalness and below this roughness.
+/// A material counts as a mirror at this metalness or more...
 const MIRROR_METALLIC: f32 = 0.9;
+/// ...and this roughness or less.
 const MIRROR_ROUGHNESS: f32 = 0.1;
 
 /// A glTF file's contents as prismatic scene parts.

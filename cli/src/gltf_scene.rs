@@ -33,6 +33,9 @@ pub struct GltfScene {
     pub camera: Option<Camera>,
     /// What was left out, one line per element.
     pub warnings: Vec<String>,
+    /// The glTF element behind each scene key (`object[2]` →
+    /// `meshes[1].primitives[0]`), for errors the scene's validation finds.
+    pub elements: Vec<(String, String)>,
 }
 
 /// An error in a glTF file: the element's path (`meshes[0].primitives[1]`) and why.
@@ -97,23 +100,16 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
                     Some(m) => m,
                     None => {
                         let m = material(&primitive.material(), &mut out.warnings);
+                        out.elements.push((format!("material.{}", m.name), material_path(&primitive.material())));
                         out.materials.push(m);
                         material_of[slot] = Some(out.materials.len() - 1);
                         out.materials.len() - 1
                     }
                 };
-                if let (MaterialKind::Dielectric { .. }, Shape::Mesh { positions, triangles }) =
-                    (&out.materials[material].kind, &shape)
-                    && let Some((a, b)) = prismatic_core::mesh::open_edge(positions, triangles)
-                {
-                    return Err(GltfError::new(
-                        prim_path,
-                        format!(
-                            "glass needs a closed mesh (every edge shared by two triangles of opposite winding); \
-                             the edge from {a} to {b} is not"
-                        ),
-                    ));
-                }
+                // The scene's checks (closed glass, …) name the primitive.
+                let object = format!("object[{}]", out.objects.len());
+                out.elements.push((format!("{object}.triangles"), format!("{prim_path}.indices")));
+                out.elements.push((object, prim_path));
                 out.objects.push(Object { shape, material });
             }
         }
@@ -124,11 +120,8 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
             // Intensity is read as W/sr (prismatic is radiometric; no lm → W).
             let intensity = light.intensity();
             let light_path = format!("{node_path}.extensions.KHR_lights_punctual");
-            if !(intensity.is_finite() && intensity >= 0.0) {
-                return Err(GltfError::new(
-                    light_path,
-                    format!("intensity must be a finite number ≥ 0, got {intensity}"),
-                ));
+            if !matches!(light.kind(), Kind::Directional) {
+                out.elements.push((format!("light[{}]", out.lights.len()), light_path.clone()));
             }
             match light.kind() {
                 Kind::Point => {
@@ -213,7 +206,7 @@ fn mesh_shape(
 
 /// The prismatic material of a glTF material; what it leaves out goes to `warnings`.
 fn material(m: &gltf::Material<'_>, warnings: &mut Vec<String>) -> Material {
-    let path = m.index().map_or("the default material".to_string(), |i| format!("materials[{i}]"));
+    let path = material_path(m);
     let name = m.name().map_or_else(|| path.clone(), str::to_string);
     let pbr = m.pbr_metallic_roughness();
     let mut unused = Vec::new();
@@ -253,6 +246,11 @@ fn material(m: &gltf::Material<'_>, warnings: &mut Vec<String>) -> Material {
         warnings.push(format!("{path} ({name}): left out: {}", unused.join(", ")));
     }
     Material { name, kind }
+}
+
+/// Where a material is in the file (`materials[3]`).
+fn material_path(m: &gltf::Material<'_>) -> String {
+    m.index().map_or("the default material".to_string(), |i| format!("materials[{i}]"))
 }
 
 /// n(λ) of a transmissive material: `KHR_materials_ior` (default 1.5) and
@@ -300,7 +298,7 @@ fn scene(parts: Result<GltfScene, GltfError>, file: &str) -> Result<SceneDocumen
     }
     let render = RenderSettings { radius: size / 100.0, ..RenderSettings::default() };
     let scene = Scene { render, camera, lights, materials: parts.materials, objects: parts.objects };
-    Ok(SceneDocument::from_scene(scene, &file, warnings))
+    Ok(SceneDocument::from_scene(scene, &file, warnings, parts.elements))
 }
 
 /// The axis-aligned box around the objects' vertices.

@@ -62,12 +62,17 @@ pub struct SceneDocument {
     pub warnings: Vec<String>,
     file: String,
     lines: HashMap<String, usize>,
+    /// For files that are not scene files: what the file calls the element
+    /// behind a scene key (`object[2]` → `meshes[1].primitives[0]`).
+    elements: Vec<(String, String)>,
 }
 
 impl SceneDocument {
-    /// A scene read from `file` by another reader (no TOML lines to point at).
-    pub fn from_scene(scene: Scene, file: &str, warnings: Vec<String>) -> Self {
-        SceneDocument { scene, origin: DVec3::ZERO, warnings, file: file.to_string(), lines: HashMap::new() }
+    /// A scene read from `file` by another reader, which has no lines to
+    /// point at but names its elements: errors about the scene key in the
+    /// first of a pair of `elements` name the second instead.
+    pub fn from_scene(scene: Scene, file: &str, warnings: Vec<String>, elements: Vec<(String, String)>) -> Self {
+        SceneDocument { scene, origin: DVec3::ZERO, warnings, file: file.to_string(), lines: HashMap::new(), elements }
     }
 
     /// Validates the scene, reporting problems at their key's line.
@@ -88,7 +93,16 @@ impl SceneDocument {
                 None => break None,
             }
         };
-        SceneFileError { file: self.file.clone(), line, key: e.key, reason: e.reason }
+        SceneFileError { file: self.file.clone(), line, key: self.element(e.key), reason: e.reason }
+    }
+
+    /// `key` with the file's name for its element, where the reader gave one.
+    fn element(&self, key: String) -> String {
+        let named = self.elements.iter().find_map(|(scene_key, name)| {
+            let rest = key.strip_prefix(scene_key.as_str())?;
+            (rest.is_empty() || rest.starts_with(['.', '['])).then(|| format!("{name}{rest}"))
+        });
+        named.unwrap_or(key)
     }
 }
 
@@ -121,7 +135,14 @@ pub fn parse(source: &str, file: &str, base: Option<&Path>) -> Result<SceneDocum
         reason: format!("TOML syntax error: {}", e.message()),
     })?;
     let scene = p.scene(root.get_ref(), root.span())?;
-    Ok(SceneDocument { scene, origin: p.origin, warnings: p.warnings, file: file.to_string(), lines: p.lines })
+    Ok(SceneDocument {
+        scene,
+        origin: p.origin,
+        warnings: p.warnings,
+        file: file.to_string(),
+        lines: p.lines,
+        elements: Vec::new(),
+    })
 }
 
 /// Parses, validates and prepares `source` (no file access beyond OBJ
@@ -283,6 +304,11 @@ impl<'s> Parser<'s> {
     fn point(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Vec3> {
         let p = self.dvec3(key, v)?;
         self.local(p).ok_or_else(|| self.err(key, &v.span(), format!("{p} is out of range")))
+    }
+
+    /// A file the scene names (mesh, index table, glTF), relative to the scene file.
+    fn beside(&self, rel: &str) -> PathBuf {
+        self.base.as_deref().map_or_else(|| PathBuf::from(rel), |b| b.join(rel))
     }
 
     /// World position `p` in the local frame (`None` beyond f32's range).
@@ -568,7 +594,7 @@ impl<'s> Parser<'s> {
                     "abbe" => pair(self).map(|(nd, vd)| Dispersion::Abbe { nd, vd }),
                     "table" => {
                         let rel = self.string(&mkey, value)?;
-                        let path = self.base.as_deref().map_or_else(|| PathBuf::from(rel), |b| b.join(rel));
+                        let path = self.beside(rel);
                         let (lambda_nm, n) = ior_table::load(&path).map_err(|e| self.err(&mkey, &value.span(), e))?;
                         Ok(Dispersion::Table { lambda_nm, n })
                     }
@@ -686,7 +712,7 @@ impl<'s> Parser<'s> {
         let key = join(&t.key, "path");
         let v = self.required(t, "path")?;
         let rel = self.string(&key, v)?;
-        let path = self.base.as_deref().map_or_else(|| PathBuf::from(rel), |b| b.join(rel));
+        let path = self.beside(rel);
         let model = gltf_scene::import(&path)
             .map_err(|e| self.err(&key, &v.span(), format!("{}: {}: {}", path.display(), e.path, e.reason)))?;
         let translate = self.opt(t, "translate", Self::dvec3)?.unwrap_or(DVec3::ZERO);
@@ -725,7 +751,7 @@ impl<'s> Parser<'s> {
                 return Err(self.err(&key, &v.span(), "give either path or positions + triangles, not both"));
             }
             let rel = self.string(&key, v)?;
-            let path = self.base.as_deref().map_or_else(|| PathBuf::from(rel), |b| b.join(rel));
+            let path = self.beside(rel);
             let (positions, triangles) = obj::load(&path).map_err(|e| self.err(&key, &v.span(), e))?;
             let positions = positions
                 .into_iter()

@@ -148,6 +148,9 @@ fn broken_gltf_files_name_the_element_exit_2_and_write_nothing() {
     let mut open = prism_document();
     let faces = open.meshes[1].indices.len();
     open.meshes[1].indices.truncate(faces - 6);
+    let mut dark = prism_document();
+    let GltfLight::Spot { intensity, .. } = &mut dark.lights[0] else { panic!() };
+    *intensity = -1.0;
     let missing_buffer = prism_document().to_json().replace("data:application/octet-stream;base64,", "missing.bin#");
     let cases: Vec<(&str, String, &str)> = vec![
         (
@@ -156,7 +159,13 @@ fn broken_gltf_files_name_the_element_exit_2_and_write_nothing() {
             "meshes[1].primitives[0].indices: index 99 is out of range (6 vertices)",
         ),
         ("nan.gltf", nan.to_json(), "meshes[1].primitives[0].attributes.POSITION: vertex 2 is not finite"),
-        ("open.gltf", open.to_json(), "meshes[1].primitives[0]: glass needs a closed mesh"),
+        (
+            "open.gltf",
+            open.to_json(),
+            "meshes[1].primitives[0].indices: dielectric 'glass' needs a closed mesh (every edge shared by two \
+             triangles of opposite winding)",
+        ),
+        ("dark.gltf", dark.to_json(), "nodes[2].extensions.KHR_lights_punctual.power: "),
         ("missing-buffer.gltf", missing_buffer, "buffers: "),
         ("not-json.gltf", "{ this is not json".into(), "not-json.gltf: "),
     ];

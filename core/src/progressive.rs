@@ -69,20 +69,16 @@ pub fn pass_radius(r1: f32, alpha: f32, k: u32) -> f32 {
     sqrt(r2 as f32)
 }
 
-/// The scene of pass `k` (1-based): its own seed (derived from the scene's,
-/// so passes are independent) and the pass's radius.
-pub fn pass_scene(scene: &PreparedScene, alpha: f32, k: u32) -> PreparedScene {
-    let mut pass = scene.clone();
-    let r = &mut pass.scene.render;
+/// The scene of photon pass `pass` (0-based) of a progressive render: its
+/// own seed (derived from the scene's, so passes are independent) and, as
+/// its radius, the pass's largest radius R·s_k (k = pass + 1).
+pub fn photon_pass_scene(scene: &PreparedScene, alpha: f32, pass: u32) -> PreparedScene {
+    let k = pass.saturating_add(1);
+    let mut photons = scene.clone();
+    let r = &mut photons.scene.render;
     r.seed = random_u32(r.seed, k, u32::MAX);
     r.radius = pass_radius(r.radius, alpha, k);
-    pass
-}
-
-/// The scene of photon pass `pass` (0-based) of a progressive render: its
-/// own seed and, as its radius, the pass's largest radius R·s_k.
-pub fn photon_pass_scene(scene: &PreparedScene, alpha: f32, pass: u32) -> PreparedScene {
-    pass_scene(scene, alpha, pass.saturating_add(1))
+    photons
 }
 
 /// The pilot pass: a seed no photon pass uses, the scene's radius, and
@@ -374,49 +370,6 @@ impl ProgressiveRender {
     }
 }
 
-/// The running mean of the passes' images, kept in f64.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PassAverage {
-    width: u32,
-    height: u32,
-    sum: Vec<DVec3>,
-    passes: u32,
-}
-
-impl PassAverage {
-    /// An empty average for `width` × `height` images.
-    pub fn new(width: u32, height: u32) -> Self {
-        PassAverage { width, height, sum: vec![DVec3::ZERO; width as usize * height as usize], passes: 0 }
-    }
-
-    /// Adds one pass's image (same size).
-    ///
-    /// # Panics
-    /// If the image size differs.
-    pub fn add(&mut self, image: &Image) {
-        assert_eq!((image.width, image.height), (self.width, self.height), "pass image size");
-        for (s, p) in self.sum.iter_mut().zip(&image.pixels) {
-            *s += p.as_dvec3();
-        }
-        self.passes += 1;
-    }
-
-    /// Passes added so far.
-    pub fn passes(&self) -> u32 {
-        self.passes
-    }
-
-    /// The mean image (black before the first pass).
-    pub fn mean(&self) -> Image {
-        let scale = 1.0 / f64::from(self.passes.max(1));
-        let mut image = Image::new(self.width, self.height);
-        for (p, s) in image.pixels.iter_mut().zip(&self.sum) {
-            *p = (*s * scale).as_vec3();
-        }
-        image
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -432,19 +385,5 @@ mod tests {
         assert!((slope + 0.3).abs() < 1e-3, "slope {slope}");
         // α = 1 keeps the radius.
         assert_eq!(pass_radius(0.1, 1.0, 50), 0.1);
-    }
-
-    #[test]
-    fn the_average_is_the_mean_of_the_passes() {
-        let mut avg = PassAverage::new(2, 1);
-        let mut a = Image::new(2, 1);
-        a.pixels[0] = glam::Vec3::splat(1.0);
-        let mut b = Image::new(2, 1);
-        b.pixels[0] = glam::Vec3::splat(3.0);
-        b.pixels[1] = glam::Vec3::X;
-        avg.add(&a);
-        avg.add(&b);
-        assert_eq!(avg.passes(), 2);
-        assert_eq!(avg.mean().pixels, [glam::Vec3::splat(2.0), glam::Vec3::new(0.5, 0.0, 0.0)]);
     }
 }

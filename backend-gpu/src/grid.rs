@@ -21,8 +21,12 @@ pub struct DeviceGrid {
     pub sorted: PhotonArray,
     /// One u32: the most photons in one bucket, once asked for.
     widest: wgpu::Buffer,
-    /// The build's bindings (none for an empty map), for `widest_bucket`.
+    /// Where the scatter puts each bucket's next photon.
+    cursor: wgpu::Buffer,
+    /// The build's bindings (none for an empty map).
     group: Option<wgpu::BindGroup>,
+    /// Photons the grid has room for.
+    bound: u32,
 }
 
 impl DeviceGrid {
@@ -49,54 +53,102 @@ pub fn build(
     map: &DeviceMap,
 ) -> Result<DeviceGrid, BackendError> {
     let stored = map.stored;
-    let mask = bucket_mask(stored as usize);
-    let buckets = u64::from(mask) + 1;
-    let sorted = PhotonArray::new(ctx, "prismatic sorted photons", stored, map.photons.window)?;
-    let (cells, cursor, widest) = ctx.checked("allocating the grid", || {
-        let buffer = |label: &str, n: u64| {
-            ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: n * 4,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
-        };
-        (
-            buffer("prismatic grid cells", buckets + 1),
-            buffer("prismatic grid cursor", buckets),
-            buffer("prismatic grid widest bucket", 1),
-        )
-    })?;
-    let p = &mut scene_buffers.params;
-    (p.stored, p.grid_mask, p.window) = (stored, mask, map.photons.window);
-    scene_buffers.write_params(&ctx.queue);
-    if stored == 0 {
-        return Ok(DeviceGrid { cells, sorted, widest, group: None });
+    let grid = DeviceGrid::new(ctx, pipelines, scene_buffers, &map.photons, stored)?;
+    if stored > 0 {
+        grid.rebuild(ctx, pipelines, scene_buffers, stored, None)?;
+    } else {
+        let p = &mut scene_buffers.params;
+        (p.stored, p.grid_mask, p.window) = (0, 0, map.photons.window);
+        scene_buffers.write_params(&ctx.queue);
     }
-    let group = ctx.checked("building the grid", || {
-        let mut entries = vec![
-            wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 1, resource: cells.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 2, resource: cursor.as_entire_binding() },
-        ];
-        entries.extend(map.photons.entries(3));
-        entries.extend(sorted.entries(7));
-        entries.push(wgpu::BindGroupEntry { binding: 11, resource: widest.as_entire_binding() });
-        let group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("prismatic grid"),
-            layout: &pipelines.grid_layout,
-            entries: &entries,
-        });
-        let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        dispatch(&mut encoder, &pipelines.grid_count, &[&group], u64::from(stored), WORKGROUP_SIZE);
-        scan::record(&ctx.device, pipelines, &mut encoder, &cells, (buckets + 1) as u32);
-        encoder.copy_buffer_to_buffer(&cells, 0, &cursor, 0, buckets * 4);
-        dispatch(&mut encoder, &pipelines.grid_scatter, &[&group], u64::from(stored), WORKGROUP_SIZE);
-        ctx.queue.submit([encoder.finish()]);
-        group
-    })?;
-    Ok(DeviceGrid { cells, sorted, widest, group: Some(group) })
+    Ok(grid)
 }
+
+impl DeviceGrid {
+    /// A grid's buffers for at most `bound` photons of `map`, bucketed as
+    /// the core grid buckets `bound` photons.
+    pub fn new(
+        ctx: &GpuContext,
+        pipelines: &Pipelines,
+        scene_buffers: &SceneBuffers,
+        map: &PhotonArray,
+        bound: u32,
+    ) -> Result<Self, BackendError> {
+        let buckets = u64::from(bucket_mask(bound as usize)) + 1;
+        let sorted = PhotonArray::new(ctx, "prismatic sorted photons", bound, map.window)?;
+        let (cells, cursor, widest) = ctx.checked("allocating the grid", || {
+            let buffer = |label: &str, n: u64| {
+                ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                    label: Some(label),
+                    size: n * 4,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+                    mapped_at_creation: false,
+                })
+            };
+            (
+                buffer("prismatic grid cells", buckets + 1),
+                buffer("prismatic grid cursor", buckets),
+                buffer("prismatic grid widest bucket", 1),
+            )
+        })?;
+        if bound == 0 {
+            return Ok(DeviceGrid { cells, sorted, widest, group: None, bound, cursor });
+        }
+        let group = ctx.checked("binding the grid", || {
+            let mut entries = vec![
+                wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: cells.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: cursor.as_entire_binding() },
+            ];
+            entries.extend(map.entries(3));
+            entries.extend(sorted.entries(7));
+            entries.push(wgpu::BindGroupEntry { binding: 11, resource: widest.as_entire_binding() });
+            ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("prismatic grid"),
+                layout: &pipelines.grid_layout,
+                entries: &entries,
+            })
+        })?;
+        Ok(DeviceGrid { cells, sorted, widest, group: Some(group), bound, cursor })
+    }
+
+    /// Submits a rebuild over the map's first `stored` photons (at most the
+    /// bound), with cells for the scene's current `inv_cell`; with `count`,
+    /// the photon count is the u32 the device holds there (a photon pass's
+    /// cursor) and `stored` only bounds the dispatch.
+    pub fn rebuild(
+        &self,
+        ctx: &GpuContext,
+        pipelines: &Pipelines,
+        scene_buffers: &mut SceneBuffers,
+        stored: u32,
+        count: Option<&wgpu::Buffer>,
+    ) -> Result<(), BackendError> {
+        let Some(group) = &self.group else { return Ok(()) };
+        let stored = stored.min(self.bound);
+        let buckets = self.cells.size() / 4 - 1;
+        let p = &mut scene_buffers.params;
+        (p.stored, p.grid_mask, p.window) = (stored, (buckets - 1) as u32, self.sorted.window);
+        scene_buffers.write_params(&ctx.queue);
+        ctx.checked("building the grid", || {
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            if let Some(count) = count {
+                // The count never leaves the device: it goes into the params the grid reads.
+                encoder.copy_buffer_to_buffer(count, 0, &scene_buffers.params_buffer, STORED_OFFSET, 4);
+            }
+            encoder.clear_buffer(&self.cells, 0, None);
+            encoder.clear_buffer(&self.widest, 0, None);
+            dispatch(&mut encoder, &pipelines.grid_count, &[group], u64::from(stored), WORKGROUP_SIZE);
+            scan::record(&ctx.device, pipelines, &mut encoder, &self.cells, (buckets + 1) as u32);
+            encoder.copy_buffer_to_buffer(&self.cells, 0, &self.cursor, 0, buckets * 4);
+            dispatch(&mut encoder, &pipelines.grid_scatter, &[group], u64::from(stored), WORKGROUP_SIZE);
+            ctx.queue.submit([encoder.finish()]);
+        })
+    }
+}
+
+/// Byte offset of `Params::stored` in the uniform buffer.
+const STORED_OFFSET: u64 = std::mem::offset_of!(crate::layout::Params, stored) as u64;
 
 #[cfg(test)]
 mod tests {

@@ -255,6 +255,21 @@ pub struct VisiblePoint {
 }
 const _: () = assert!(core::mem::size_of::<VisiblePoint>() == 80);
 
+/// A live session's per-pass settings (group 1 of its progressive entries).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct SessionParams {
+    /// A full pass's photons per pilot photon.
+    pub pilot_scale: f32,
+    /// Photons a first radius should hold (neighbours × photons per path).
+    pub neighbours: f32,
+    /// 1 / passes summed, this pass included.
+    pub inv_passes: f32,
+    /// 1 for the pilot pass: every radius the scene's.
+    pub pilot: u32,
+}
+const _: () = assert!(core::mem::size_of::<SessionParams>() == 16);
+
 /// The settings of one prefix-sum level.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]

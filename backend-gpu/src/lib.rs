@@ -23,11 +23,13 @@ mod progressive;
 mod render;
 mod scan;
 mod scene;
+mod session;
 pub mod shaders;
 mod trace;
 
 pub use context::{AdapterChoice, GpuContext, STORAGE_BUFFERS_NEEDED, describe, is_hardware, required_limits};
 pub use render::{PIXEL_BYTES, SOFTWARE_GATHER_SPAN};
+pub use session::{Change, GpuSession, SessionFrame};
 
 use photons::PhotonArray;
 use pipelines::Pipelines;

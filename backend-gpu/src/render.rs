@@ -28,18 +28,18 @@ pub const PIXEL_BYTES: u64 = 16;
 pub const SOFTWARE_GATHER_SPAN: u32 = 4096;
 
 /// Visible-point slots per pixel before any frame has asked for more.
-const FIRST_POINTS_PER_PIXEL: u32 = 16;
+pub(crate) const FIRST_POINTS_PER_PIXEL: u32 = 16;
 
 /// Bytes of visible points one chunk of pixels may use.
 const POINT_BUDGET: u64 = 1 << 28;
 
-const POINT_BYTES: u64 = std::mem::size_of::<VisiblePoint>() as u64;
+pub(crate) const POINT_BYTES: u64 = std::mem::size_of::<VisiblePoint>() as u64;
 
 /// Pixels per chunk with `points_per_pixel` slots each: within one binding
 /// for the pixels and for the points, and within [`POINT_BUDGET`]; a
 /// multiple of 16 so that each chunk's pixel offset meets the storage-offset
 /// alignment (256 bytes).
-fn pixels_per_chunk(limits: &wgpu::Limits, points_per_pixel: u32) -> u64 {
+pub(crate) fn pixels_per_chunk(limits: &wgpu::Limits, points_per_pixel: u32) -> u64 {
     let align = u64::from(limits.min_storage_buffer_offset_alignment).max(PIXEL_BYTES) / PIXEL_BYTES;
     let binding = limits.max_storage_buffer_binding_size;
     let by_points = binding.min(POINT_BUDGET) / (POINT_BYTES * u64::from(points_per_pixel.max(1)));
@@ -47,7 +47,7 @@ fn pixels_per_chunk(limits: &wgpu::Limits, points_per_pixel: u32) -> u64 {
 }
 
 /// (first pixel, pixels) of each chunk of `chunk` pixels over a `total`-pixel image.
-fn pixel_chunks(total: u64, chunk: u64) -> impl Iterator<Item = (u64, u64)> {
+pub(crate) fn pixel_chunks(total: u64, chunk: u64) -> impl Iterator<Item = (u64, u64)> {
     (0..total).step_by(chunk as usize).map(move |offset| (offset, chunk.min(total - offset)))
 }
 

@@ -233,6 +233,16 @@ pub struct SceneBuffers {
     storage: Vec<wgpu::Buffer>,
 }
 
+/// The storage buffers of bind group 0, bindings 1–6.
+const STORAGE_LABELS: [&str; 6] = [
+    "prismatic objects",
+    "prismatic surfaces",
+    "prismatic lights",
+    "prismatic bands",
+    "prismatic geometry",
+    "prismatic tables",
+];
+
 /// A storage buffer holding `items` (at least one element: bindings cannot be empty).
 pub fn storage_init<T: Pod + Default>(device: &wgpu::Device, label: &str, items: &[T]) -> wgpu::Buffer {
     let fallback = [T::default()];
@@ -252,14 +262,26 @@ impl SceneBuffers {
             contents: bytemuck::bytes_of(&encoded.params),
             usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
         });
+        let [objects, surfaces, lights, bands, geometry, tables] = STORAGE_LABELS;
         let storage = vec![
-            storage_init(device, "prismatic objects", &encoded.objects),
-            storage_init(device, "prismatic surfaces", &encoded.surfaces),
-            storage_init(device, "prismatic lights", &encoded.lights),
-            storage_init(device, "prismatic bands", &encoded.bands),
-            storage_init(device, "prismatic geometry", &encoded.geometry),
-            storage_init(device, "prismatic tables", &encoded.tables),
+            storage_init(device, objects, &encoded.objects),
+            storage_init(device, surfaces, &encoded.surfaces),
+            storage_init(device, lights, &encoded.lights),
+            storage_init(device, bands, &encoded.bands),
+            storage_init(device, geometry, &encoded.geometry),
+            storage_init(device, tables, &encoded.tables),
         ];
+        SceneBuffers::bind(device, layout, params_buffer, storage, encoded.params)
+    }
+
+    /// The bind group over `params_buffer` and the six `storage` buffers.
+    fn bind(
+        device: &wgpu::Device,
+        layout: &wgpu::BindGroupLayout,
+        params_buffer: wgpu::Buffer,
+        storage: Vec<wgpu::Buffer>,
+        params: Params,
+    ) -> Self {
         let mut entries = vec![wgpu::BindGroupEntry { binding: 0, resource: params_buffer.as_entire_binding() }];
         entries.extend(
             storage
@@ -272,7 +294,58 @@ impl SceneBuffers {
             layout,
             entries: &entries,
         });
-        SceneBuffers { params: encoded.params, params_buffer, bind_group, storage }
+        SceneBuffers { params, params_buffer, bind_group, storage }
+    }
+
+    /// Makes the buffers hold `new` where they held `old`: each storage
+    /// buffer gets only the byte range that differs, written in place, or
+    /// is allocated again when `new` no longer fits (and the bind group
+    /// with it). Returns whether the band table was allocated again
+    /// (other stages' bind groups hold it).
+    pub fn update(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        layout: &wgpu::BindGroupLayout,
+        old: &EncodedScene,
+        new: &EncodedScene,
+    ) -> bool {
+        fn bytes<T: Pod>(items: &[T]) -> &[u8] {
+            bytemuck::cast_slice(items)
+        }
+        let pairs: [(&[u8], &[u8]); 6] = [
+            (bytes(&old.objects), bytes(&new.objects)),
+            (bytes(&old.surfaces), bytes(&new.surfaces)),
+            (bytes(&old.lights), bytes(&new.lights)),
+            (bytes(&old.bands), bytes(&new.bands)),
+            (bytes(&old.geometry), bytes(&new.geometry)),
+            (bytes(&old.tables), bytes(&new.tables)),
+        ];
+        let mut reallocated = [false; 6];
+        for (i, (was, now)) in pairs.into_iter().enumerate() {
+            if now.len() as u64 > self.storage[i].size() {
+                reallocated[i] = true;
+                self.storage[i] = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                    label: Some(STORAGE_LABELS[i]),
+                    contents: now,
+                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                });
+            } else if let Some((start, end)) = changed_range(was, now) {
+                queue.write_buffer(&self.storage[i], start as u64, &now[start..end]);
+            }
+        }
+        self.params = new.params;
+        self.write_params(queue);
+        if reallocated.contains(&true) {
+            *self = SceneBuffers::bind(
+                device,
+                layout,
+                self.params_buffer.clone(),
+                std::mem::take(&mut self.storage),
+                self.params,
+            );
+        }
+        reallocated[3]
     }
 
     /// The band table (binding 4), which the gather binds too.
@@ -283,5 +356,41 @@ impl SceneBuffers {
     /// Writes the host copy of the settings to the device (visible to the next submit).
     pub fn write_params(&self, queue: &wgpu::Queue) {
         queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.params));
+    }
+}
+
+/// The 4-byte-aligned byte range where `now` differs from `was` (all of
+/// `now` past `was`'s end counts as changed); `None` when equal.
+fn changed_range(was: &[u8], now: &[u8]) -> Option<(usize, usize)> {
+    let first = was.iter().zip(now).position(|(a, b)| a != b).unwrap_or(was.len().min(now.len()));
+    if first == now.len() {
+        return None;
+    }
+    let last = if now.len() > was.len() {
+        now.len()
+    } else {
+        now.len() - now.iter().rev().zip(was[..now.len()].iter().rev()).position(|(a, b)| a != b).unwrap_or(0)
+    };
+    Some((first / 4 * 4, last.next_multiple_of(4).min(now.len())))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::changed_range;
+
+    #[test]
+    fn only_the_changed_bytes_are_written() {
+        let was = [0u8, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11];
+        assert_eq!(changed_range(&was, &was), None);
+        let mut now = was;
+        now[5] = 99;
+        assert_eq!(changed_range(&was, &now), Some((4, 8)));
+        now[9] = 99;
+        assert_eq!(changed_range(&was, &now), Some((4, 12)));
+        // Grown: everything from the first difference to the new end.
+        let longer = [0u8, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15];
+        assert_eq!(changed_range(&was, &longer), Some((12, 16)));
+        // Shrunk and equal on the common part: nothing to write.
+        assert_eq!(changed_range(&was, &was[..8]), None);
     }
 }

@@ -107,6 +107,7 @@ fn prelude(stack: u32) -> String {
     f("BARYCENTRIC_EPS", BARYCENTRIC_EPS);
     f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);
     f("VISIBLE_NM_LO", VISIBLE_NM.0);
+    f("MIN_RADIUS_FRACTION", prismatic_core::progressive::MIN_RADIUS_FRACTION);
     for (i, c) in SIN_COEFFS.iter().enumerate() {
         f(&format!("SIN_C{i}"), *c);
     }
@@ -198,6 +199,13 @@ pub fn render(stack: u32) -> String {
 pub fn gather() -> String {
     [prelude(0), COMMON.into(), include_str!("shaders/gather.wgsl").into(), photon_windows("sorted", 0, 6, false)]
         .concat()
+}
+
+/// A live session's progressive passes (entries `first_radius`,
+/// `begin_pass`, `accumulate`): the gather's bindings plus group 1 (radius
+/// ratios, sums, base pixels, session params).
+pub fn session() -> String {
+    [gather(), include_str!("shaders/session.wgsl").into()].concat()
 }
 
 /// Copies a rendered pixel buffer into a storage texture of `format` (a WGSL texel format).

@@ -58,6 +58,162 @@ fn storage(ctx: &GpuContext, label: &str, bytes: u64) -> wgpu::Buffer {
     })
 }
 
+/// The photon pass's device buffers: the canonical map (room for every
+/// photon the scene can store), one chunk's scratch, and the cursor and
+/// tallies. A session keeps them from pass to pass; a one-off trace makes
+/// them for one.
+pub struct PhotonPass {
+    /// The map, in canonical order once a pass has run.
+    pub photons: PhotonArray,
+    /// Emissions per pass.
+    total: u32,
+    /// Scratch slots per emission.
+    slots: u32,
+    /// Emissions per chunk.
+    chunk: u32,
+    scratch: wgpu::Buffer,
+    counts: wgpu::Buffer,
+    offsets: wgpu::Buffer,
+    /// One u32: photons stored so far (saturating at `u32::MAX`).
+    cursor: wgpu::Buffer,
+    tallies: wgpu::Buffer,
+    trace_group: wgpu::BindGroup,
+}
+
+impl PhotonPass {
+    /// Buffers for the photon passes of `scene` (its photon count, bands and
+    /// wavelength sampling) with `window` photons per binding.
+    pub fn new(
+        ctx: &GpuContext,
+        pipelines: &Pipelines,
+        scene: &PreparedScene,
+        window: u32,
+    ) -> Result<Self, BackendError> {
+        let total = if scene.plan.caustics.on { scene.scene.render.photons } else { 0 };
+        let slots = slots_per_emission(scene);
+        let chunk = (window / slots).clamp(1, MAX_CHUNK).min(total.max(1));
+        let bound = u64::from(total) * u64::from(slots);
+        let capacity = bound.min(u64::from(u32::MAX)) as u32;
+        let photons = PhotonArray::new(ctx, "prismatic photon map", capacity, window)?;
+        let groups = u64::from(chunk).div_ceil(u64::from(WORKGROUP_SIZE));
+        let (scratch, counts, offsets, cursor, tallies) = ctx.checked("allocating the photon pass", || {
+            (
+                storage(ctx, "prismatic scratch", u64::from(chunk) * u64::from(slots) * PHOTON_BYTES),
+                storage(ctx, "prismatic counts", u64::from(chunk) * 4),
+                storage(ctx, "prismatic offsets", u64::from(chunk) * 4),
+                storage(ctx, "prismatic cursor", 4),
+                storage(ctx, "prismatic tallies", dispatched_groups(groups) * std::mem::size_of::<Tally>() as u64),
+            )
+        })?;
+        let trace_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("prismatic trace"),
+            layout: &pipelines.trace_layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: scratch.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: counts.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: tallies.as_entire_binding() },
+            ],
+        });
+        Ok(PhotonPass { photons, total, slots, chunk, scratch, counts, offsets, cursor, tallies, trace_group })
+    }
+
+    /// Whether these buffers hold `scene`'s passes (same photons, same slots per emission).
+    pub fn fits(&self, scene: &PreparedScene, window: u32) -> bool {
+        let total = if scene.plan.caustics.on { scene.scene.render.photons } else { 0 };
+        (self.total, self.slots, self.photons.window) == (total, slots_per_emission(scene), window)
+    }
+
+    /// Photons the map holds at most: every emission storing every slot.
+    pub fn capacity(&self) -> u32 {
+        self.photons.capacity
+    }
+
+    /// The device's count of stored photons (one u32), valid after [`PhotonPass::record`].
+    pub fn cursor(&self) -> &wgpu::Buffer {
+        &self.cursor
+    }
+
+    /// White photons a pass emits.
+    pub fn emissions(&self) -> u32 {
+        self.total
+    }
+
+    /// Submits a photon pass of the first `emissions` (at most
+    /// [`PhotonPass::emissions`]) emissions of the seed in the params, in
+    /// chunks, starting from an empty map; reads nothing back.
+    pub fn record(
+        &self,
+        ctx: &GpuContext,
+        pipelines: &Pipelines,
+        scene_buffers: &mut SceneBuffers,
+        emissions: u32,
+        progress: &mut dyn Progress,
+    ) -> Result<(), BackendError> {
+        let (total, slots, chunk, window) = (emissions.min(self.total), self.slots, self.chunk, self.photons.window);
+        let mut start = 0u32;
+        while start < total {
+            let len = chunk.min(total - start);
+            let p = &mut scene_buffers.params;
+            (p.chunk_start, p.chunk_len, p.slots, p.window, p.capacity) =
+                (start, len, slots, window, self.photons.capacity);
+            scene_buffers.write_params(&ctx.queue);
+            ctx.checked("tracing photons", || {
+                let mut encoder = ctx.device.create_command_encoder(&Default::default());
+                if start == 0 {
+                    encoder.clear_buffer(&self.cursor, 0, None);
+                    encoder.clear_buffer(&self.tallies, 0, None);
+                }
+                dispatch(
+                    &mut encoder,
+                    &pipelines.trace,
+                    &[&scene_buffers.bind_group, &self.trace_group],
+                    u64::from(len),
+                    WORKGROUP_SIZE,
+                );
+                encoder.copy_buffer_to_buffer(&self.counts, 0, &self.offsets, 0, u64::from(len) * 4);
+                let chunk_total = scan::record(&ctx.device, pipelines, &mut encoder, &self.offsets, len);
+                let mut entries = vec![
+                    wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: self.scratch.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: self.counts.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 3, resource: self.offsets.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 4, resource: self.cursor.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 5, resource: chunk_total.as_entire_binding() },
+                ];
+                entries.extend(self.photons.entries(6));
+                let compact_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    label: Some("prismatic compact"),
+                    layout: &pipelines.compact_layout,
+                    entries: &entries,
+                });
+                let slots_total = u64::from(len) * u64::from(slots);
+                dispatch(&mut encoder, &pipelines.compact, &[&compact_group], slots_total, WORKGROUP_SIZE);
+                dispatch(&mut encoder, &pipelines.advance, &[&compact_group], 1, 1);
+                ctx.queue.submit([encoder.finish()]);
+            })?;
+            start += len;
+            progress.advance(Stage::Trace, u64::from(start), u64::from(total));
+        }
+        Ok(())
+    }
+
+    /// Waits for the pass and reads its photon count; an error when the
+    /// map overflowed.
+    pub fn stored(&self, ctx: &GpuContext) -> Result<u32, BackendError> {
+        let stored = u32::from_le_bytes(ctx.read(&self.cursor, 0, 4)?[..4].try_into().expect("4 bytes"));
+        if stored > self.photons.capacity {
+            return Err(BackendError::OutOfMemory(format!(
+                "{stored} caustic photons do not fit the device's photon map ({} photons: {} bindings of at most {} \
+                 photons); trace fewer photons, use --wavelengths random_band, or use --backend cpu",
+                self.photons.capacity,
+                crate::shaders::WINDOWS,
+                self.photons.window
+            )));
+        }
+        Ok(stored)
+    }
+}
+
 /// Traces the scene's photons into a device-resident canonical map.
 pub fn trace(
     ctx: &GpuContext,
@@ -67,81 +223,10 @@ pub fn trace(
     window: u32,
     progress: &mut dyn Progress,
 ) -> Result<DeviceMap, BackendError> {
-    let total = if scene.plan.caustics.on { scene.scene.render.photons } else { 0 };
-    let slots = slots_per_emission(scene);
-    let chunk = (window / slots).clamp(1, MAX_CHUNK).min(total.max(1));
-    let bound = u64::from(total) * u64::from(slots);
-    let capacity = bound.min(u64::from(u32::MAX)) as u32;
-    let photons = PhotonArray::new(ctx, "prismatic photon map", capacity, window)?;
-    let groups = u64::from(chunk).div_ceil(u64::from(WORKGROUP_SIZE));
-    let (scratch, counts, offsets, cursor, tallies) = ctx.checked("allocating the photon pass", || {
-        (
-            storage(ctx, "prismatic scratch", u64::from(chunk) * u64::from(slots) * PHOTON_BYTES),
-            storage(ctx, "prismatic counts", u64::from(chunk) * 4),
-            storage(ctx, "prismatic offsets", u64::from(chunk) * 4),
-            storage(ctx, "prismatic cursor", 4),
-            storage(ctx, "prismatic tallies", dispatched_groups(groups) * std::mem::size_of::<Tally>() as u64),
-        )
-    })?;
-    let trace_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-        label: Some("prismatic trace"),
-        layout: &pipelines.trace_layout,
-        entries: &[
-            wgpu::BindGroupEntry { binding: 0, resource: scratch.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 1, resource: counts.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 2, resource: tallies.as_entire_binding() },
-        ],
-    });
-    let mut start = 0u32;
-    while start < total {
-        let len = chunk.min(total - start);
-        let p = &mut scene_buffers.params;
-        (p.chunk_start, p.chunk_len, p.slots, p.window, p.capacity) = (start, len, slots, window, photons.capacity);
-        scene_buffers.write_params(&ctx.queue);
-        ctx.checked("tracing photons", || {
-            let mut encoder = ctx.device.create_command_encoder(&Default::default());
-            dispatch(
-                &mut encoder,
-                &pipelines.trace,
-                &[&scene_buffers.bind_group, &trace_group],
-                u64::from(len),
-                WORKGROUP_SIZE,
-            );
-            encoder.copy_buffer_to_buffer(&counts, 0, &offsets, 0, u64::from(len) * 4);
-            let chunk_total = scan::record(&ctx.device, pipelines, &mut encoder, &offsets, len);
-            let mut entries = vec![
-                wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: scratch.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: counts.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 3, resource: offsets.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 4, resource: cursor.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 5, resource: chunk_total.as_entire_binding() },
-            ];
-            entries.extend(photons.entries(6));
-            let compact_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("prismatic compact"),
-                layout: &pipelines.compact_layout,
-                entries: &entries,
-            });
-            let slots_total = u64::from(len) * u64::from(slots);
-            dispatch(&mut encoder, &pipelines.compact, &[&compact_group], slots_total, WORKGROUP_SIZE);
-            dispatch(&mut encoder, &pipelines.advance, &[&compact_group], 1, 1);
-            ctx.queue.submit([encoder.finish()]);
-        })?;
-        start += len;
-        progress.advance(Stage::Trace, u64::from(start), u64::from(total));
-    }
-    let stored = u32::from_le_bytes(ctx.read(&cursor, 0, 4)?[..4].try_into().expect("4 bytes"));
-    if stored > photons.capacity {
-        return Err(BackendError::OutOfMemory(format!(
-            "{stored} caustic photons do not fit the device's photon map ({} photons: {} bindings of at most {} \
-             photons); trace fewer photons, use --wavelengths random_band, or use --backend cpu",
-            photons.capacity,
-            crate::shaders::WINDOWS,
-            window
-        )));
-    }
-    Ok(DeviceMap { photons, stored, tallies })
+    let pass = PhotonPass::new(ctx, pipelines, scene, window)?;
+    pass.record(ctx, pipelines, scene_buffers, pass.emissions(), progress)?;
+    let stored = pass.stored(ctx)?;
+    Ok(DeviceMap { photons: pass.photons, stored, tallies: pass.tallies })
 }
 
 /// Workgroups a dispatch of `groups` runs: x·y of its 2D grid (one tally each).

@@ -3,7 +3,9 @@
 //! on both sides.
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
-use prismatic_gpu::layout::{GpuBand, GpuLight, GpuObject, GpuSurface, Params, ScanParams, Tally, VisiblePoint};
+use prismatic_gpu::layout::{
+    GpuBand, GpuLight, GpuObject, GpuSurface, Params, ScanParams, SessionParams, Tally, VisiblePoint,
+};
 use prismatic_gpu::shaders;
 use std::mem::{offset_of, size_of};
 
@@ -25,6 +27,7 @@ fn sources() -> Vec<(&'static str, String)> {
         ("render", shaders::render(shaders::stack_size(12))),
         ("render-deepest", shaders::render(shaders::stack_size(prismatic_core::scene::MAX_DEPTH))),
         ("gather", shaders::gather()),
+        ("session", shaders::session()),
         ("to_texture", shaders::to_texture("rgba16float")),
     ]
 }
@@ -55,6 +58,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
     let trace = module("trace", &shaders::trace());
     let scan = module("scan", &shaders::scan());
     let gather = module("gather", &shaders::gather());
+    let session = module("session", &shaders::session());
     let photon = rust_layout!(prismatic_core::Photon { position, flux, direction_oct, emission, band });
     let (size, mut fields) = wgsl_layout(&trace, "Photon");
     // WGSL packs the two u16s (band, bounces) into one u32 at the band's offset.
@@ -147,6 +151,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
         ),
         ("GpuBand", &trace, rust_layout!(GpuBand { weight, lambda_nm, lo_nm, hi_nm, max_weight, _pad })),
         ("Tally", &trace, rust_layout!(Tally { counts, _pad0, flux, _pad1 })),
+        ("SessionParams", &session, rust_layout!(SessionParams { pilot_scale, neighbours, inv_passes, pilot })),
         ("ScanParams", &scan, rust_layout!(ScanParams { n, _pad0, _pad1, _pad2 })),
         (
             "VisiblePoint",

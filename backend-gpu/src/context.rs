@@ -101,13 +101,15 @@ impl GpuContext {
         // one that escapes them must not abort the process.
         device.on_uncaptured_error(Arc::new(|e| eprintln!("prismatic-gpu: uncaptured wgpu error: {e}")));
         let mut ctx = GpuContext::from_device(device, queue)?;
+        ctx.watch_for_loss();
         ctx.adapter = Some(info);
         Ok(ctx)
     }
 
     /// Wraps a caller's device and queue (a game engine's). The device must
     /// allow [`STORAGE_BUFFERS_NEEDED`] storage buffers per shader stage
-    /// (request [`required_limits`] when creating it).
+    /// (request [`required_limits`] when creating it). Its device-lost
+    /// callback stays the caller's.
     pub fn from_device(device: wgpu::Device, queue: wgpu::Queue) -> Result<Self, BackendError> {
         let have = device.limits().max_storage_buffers_per_shader_stage;
         if have < STORAGE_BUFFERS_NEEDED {
@@ -116,14 +118,19 @@ impl GpuContext {
                  {STORAGE_BUFFERS_NEEDED}; create it with prismatic_gpu::required_limits(&adapter.limits())"
             )));
         }
-        let lost = Arc::new(Mutex::new(None));
-        let sink = Arc::clone(&lost);
-        device.set_device_lost_callback(move |reason, message| {
+        Ok(GpuContext { device, queue, adapter: None, lost: Arc::new(Mutex::new(None)) })
+    }
+
+    /// Notes the device's loss, so that the next piece of work says so
+    /// (only on the backend's own device: an engine's device-lost callback
+    /// is the engine's, and replacing it would break its recovery).
+    fn watch_for_loss(&self) {
+        let sink = Arc::clone(&self.lost);
+        self.device.set_device_lost_callback(move |reason, message| {
             if let Ok(mut slot) = sink.lock() {
                 *slot = Some(format!("{reason:?}: {message}"));
             }
         });
-        Ok(GpuContext { device, queue, adapter: None, lost })
     }
 
     /// The device's limits.

@@ -1,13 +1,15 @@
 //! Criterion benches of the GPU backend, one group per stage: `trace/gpu`
 //! (photon pass and readback of the map), `grid/gpu` (upload and grid
 //! build), `gather/gpu` (grid, ray tracing and gather from a given map, image
-//! read back) and `frame/gpu` (the whole frame on the device). Every
-//! measurement ends with a device sync. On lavapipe they only show that the
+//! read back), `frame/gpu` (the whole frame on the device) and
+//! `frame/gpu-session` (one progressive pass of a live `GpuSession`, the
+//! engine-facing path: photons, grid, gather at resident visible points,
+//! sums). Every measurement ends with a device sync. On lavapipe they only show that the
 //! stages run; real figures need a GPU.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use prismatic_core::{Backend, NoProgress};
-use prismatic_gpu::{AdapterChoice, GpuBackend};
+use prismatic_gpu::{AdapterChoice, GpuBackend, GpuContext, GpuOptions, GpuSession};
 
 fn scene(photons: u32) -> prismatic_core::PreparedScene {
     let mut doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
@@ -27,7 +29,19 @@ fn gpu_groups(c: &mut Criterion) {
     c.benchmark_group("grid").bench_function("gpu", |b| b.iter(|| gpu.build_grid(&paper, &map).unwrap()));
     c.benchmark_group("gather")
         .bench_function("gpu", |b| b.iter(|| gpu.render(&paper, &map, &mut NoProgress).unwrap()));
-    c.benchmark_group("frame").bench_function("gpu", |b| b.iter(|| gpu.frame(&paper).unwrap()));
+    let mut frame = c.benchmark_group("frame");
+    frame.bench_function("gpu", |b| b.iter(|| gpu.frame(&paper).unwrap()));
+    // The paper's configuration as a live session: after the first frame
+    // (view rays, pilot), each frame is one pass.
+    let ctx = GpuContext::new(AdapterChoice::Any).expect("adapter");
+    let mut session = GpuSession::new(ctx, &paper, GpuOptions::default()).expect("session");
+    session.frame().expect("first frame");
+    frame.bench_function("gpu-session", |b| {
+        b.iter(|| {
+            session.frame().unwrap();
+            session.context().wait().unwrap();
+        })
+    });
 }
 
 criterion_group! {

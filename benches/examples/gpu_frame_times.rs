@@ -9,7 +9,14 @@
 //! gather at the visible points, sums read back) at 1080p, the visible
 //! points and first radii prepared by the CPU backend.
 //!
-//! `cargo run --release -p prismatic-benches --example gpu_frame_times -- [FRAMES] [--skip-frames]`
+//! Then the engine path: a live `GpuSession` per configuration, one
+//! progressive pass per frame. Per frame, waited for alone (latency) and
+//! back to back with one wait at the end (throughput, what an engine's
+//! frame loop sees), the host's time to submit a frame, and the same
+//! session with a 1×1 image (photons and grid only) to say which half
+//! bounds the frame.
+//!
+//! `cargo run --release -p prismatic-benches --example gpu_frame_times -- [FRAMES] [--skip-frames] [--session-only]`
 
 use prismatic_core::bands::BandSpec;
 use prismatic_core::scene::WavelengthSampling;
@@ -58,6 +65,7 @@ fn ms(d: Duration) -> f64 {
 fn main() {
     let frames: usize = std::env::args().nth(1).and_then(|a| a.parse().ok()).unwrap_or(5);
     let skip_frames = std::env::args().any(|a| a == "--skip-frames");
+    let session_only = std::env::args().any(|a| a == "--session-only");
     let mut gpu = GpuBackend::new(AdapterChoice::Any).unwrap_or_else(|e| panic!("no adapter: {e}"));
     let info = gpu.adapter().map(prismatic_gpu::describe).unwrap_or_default();
     println!("adapter: {info}; median of {frames} frames after one warm-up");
@@ -109,6 +117,11 @@ fn main() {
             projection_maps: true,
         },
     ];
+    session_frames(&configs, frames.max(8));
+    if session_only {
+        return;
+    }
+    println!();
     println!("| configuration | frame | fps | trace+grid (1x1 image) | view rays (1 photon) | stored photons |");
     println!("|---|---:|---:|---:|---:|---:|");
     for c in configs.iter().filter(|_| !skip_frames) {
@@ -187,5 +200,56 @@ fn progressive_passes(gpu: &mut GpuBackend, configs: &[Config], frames: usize) {
             ms(medians[1]),
             1.0 / medians[1].as_secs_f64()
         );
+    }
+}
+
+/// A live session's frames per configuration (see the module's comment).
+fn session_frames(configs: &[Config], frames: usize) {
+    use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
+    println!();
+    println!(
+        "| session | first frame | frame (waited) | frames back to back | fps | host submit | photons+grid only (1x1) |"
+    );
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    for c in configs {
+        let run = |width: u32, height: u32| -> Result<[Duration; 4], String> {
+            let ctx = GpuContext::new(AdapterChoice::Any).map_err(|e| e.to_string())?;
+            let s = scene(c, width, height, c.photons);
+            let mut session = GpuSession::new(ctx, &s, GpuOptions::default()).map_err(|e| e.to_string())?;
+            let t = Instant::now();
+            session.frame().map_err(|e| e.to_string())?;
+            session.context().wait().map_err(|e| e.to_string())?;
+            let first = t.elapsed();
+            let mut waited = Vec::with_capacity(frames);
+            for _ in 0..frames {
+                let t = Instant::now();
+                session.frame().map_err(|e| e.to_string())?;
+                session.context().wait().map_err(|e| e.to_string())?;
+                waited.push(t.elapsed());
+            }
+            waited.sort();
+            let (t, mut submit) = (Instant::now(), Duration::ZERO);
+            for _ in 0..frames {
+                let s = Instant::now();
+                session.frame().map_err(|e| e.to_string())?;
+                submit += s.elapsed();
+            }
+            session.context().wait().map_err(|e| e.to_string())?;
+            let n = frames as u32;
+            Ok([first, waited[frames / 2], t.elapsed() / n, submit / n])
+        };
+        match (run(c.width, c.height), run(1, 1)) {
+            (Ok([first, waited, piped, submit]), Ok([_, alone, ..])) => println!(
+                "| {} | {:.1} ms | {:.2} ms | {:.2} ms | {:.1} | {:.2} ms | {:.2} ms |",
+                c.label,
+                ms(first),
+                ms(waited),
+                ms(piped),
+                1.0 / piped.as_secs_f64(),
+                ms(submit),
+                ms(alone)
+            ),
+            (full, alone) => println!("| {} | {full:?} | {alone:?} |", c.label),
+        }
     }
 }

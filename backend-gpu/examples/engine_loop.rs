@@ -1,0 +1,90 @@
+//! prismatic in any wgpu 30 engine, without Bevy: the engine owns the
+//! device, queue and a storage texture; a `GpuSession` renders a glass
+//! sphere's caustic into it, one progressive pass per frame, and the light
+//! moves halfway through (the session redoes only what that invalidates).
+//!
+//! `cargo run --release -p prismatic-gpu --example engine_loop`
+
+use prismatic_core::dispersion::Dispersion;
+use prismatic_core::scene::{Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape};
+use prismatic_core::{PreparedScene, Vec3};
+use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
+use std::time::Instant;
+
+/// The engine's scene, in prismatic's terms: a glass sphere on a floor under a spot light.
+fn scene(light_x: f32) -> PreparedScene {
+    let material = |name: &str, kind| Material { name: name.into(), kind };
+    PreparedScene::new(Scene {
+        render: RenderSettings { width: 640, height: 360, photons: 50_000, ..RenderSettings::default() },
+        camera: Camera {
+            position: Vec3::new(4.2, 2.6, 3.4),
+            look_at: Vec3::new(0.4, 0.3, 0.0),
+            up: Vec3::Y,
+            fov_deg: 42.0,
+        },
+        lights: vec![Light::Spot {
+            position: Vec3::new(light_x, 6.0, -0.5),
+            direction: Vec3::new(-light_x, -5.0, 0.5),
+            cone_deg: 40.0,
+            power: 38.0,
+        }],
+        materials: vec![
+            material("floor", MaterialKind::Diffuse { albedo: Vec3::splat(0.85), checker: None }),
+            material(
+                "glass",
+                MaterialKind::Dielectric { dispersion: Dispersion::Paper, outside: Dispersion::Constant(1.0) },
+            ),
+        ],
+        objects: vec![
+            Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
+            Object { shape: Shape::Sphere { center: Vec3::new(0.0, 1.0, 0.0), radius: 1.0 }, material: 1 },
+        ],
+    })
+    .expect("a valid scene")
+}
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    // The engine's device: any adapter, with the limits prismatic needs.
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default()))?;
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        required_limits: prismatic_gpu::required_limits(&adapter.limits()),
+        ..Default::default()
+    }))?;
+    // The texture the engine samples (a sprite, a UI quad, a material).
+    let texture = device.create_texture(&wgpu::TextureDescriptor {
+        label: Some("caustics"),
+        size: wgpu::Extent3d { width: 640, height: 360, depth_or_array_layers: 1 },
+        mip_level_count: 1,
+        sample_count: 1,
+        dimension: wgpu::TextureDimension::D2,
+        format: wgpu::TextureFormat::Rgba16Float,
+        usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+        view_formats: &[],
+    });
+
+    // prismatic on the engine's device: one session for the scene's life.
+    let mut session =
+        GpuSession::new(GpuContext::from_device(device.clone(), queue)?, &scene(-2.5), GpuOptions::default())?;
+    for frame in 0..40 {
+        if frame == 20 {
+            // The light moved: the session diffs the scene and restarts the passes.
+            let change = session.update(&scene(-1.0))?;
+            println!("frame {frame}: the light moved ({change:?})");
+        }
+        let t = Instant::now();
+        let pass = session.frame()?; // one progressive pass, submitted, not waited for
+        session.copy_to_texture(&texture)?; // into the engine's texture, on the device
+        let submit = t.elapsed();
+        // ... the engine records and submits its own frame here, sampling `texture` ...
+        device.poll(wgpu::PollType::wait_indefinitely())?; // (only to time the GPU in this example)
+        println!(
+            "frame {frame}: pass {} ({} photons), submitted in {:.2} ms, done in {:.2} ms",
+            pass.passes,
+            pass.photons,
+            submit.as_secs_f64() * 1e3,
+            t.elapsed().as_secs_f64() * 1e3
+        );
+    }
+    Ok(())
+}

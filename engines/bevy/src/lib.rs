@@ -1,0 +1,230 @@
+//! prismatic-bevy: live dispersion caustics in a Bevy app, rendered by a
+//! [`prismatic_gpu::GpuSession`] on Bevy's own `RenderDevice` and
+//! `RenderQueue` (Bevy 0.20 and prismatic share wgpu 30: no second device,
+//! no copy through the CPU).
+//!
+//! The scene is ordinary entities: a [`CausticCamera`], [`CausticLight`]s,
+//! and objects with a [`CausticShape`] that are [`Glass`] or a
+//! [`Receiver`], all placed by their `Transform`s. Each frame the plugin
+//! mirrors them into a prismatic scene; when it differs from the last one,
+//! the session is updated (and redoes only what the change invalidates,
+//! see [`prismatic_gpu::Change`]), then one progressive pass runs and the
+//! image is copied on the device into [`CausticImage`], a linear
+//! `Rgba32Float` Bevy image the app shows as it likes (a sprite, a UI
+//! node, a material's texture).
+//!
+//! The plugin renders the whole prismatic image, not a caustic layer for
+//! Bevy's own lighting: the caustic is only right together with the
+//! refraction that makes it (what is seen through the glass is the
+//! dispersed floor), and prismatic's ray tracer draws both from the same
+//! scene. A caustic light map on Bevy's PBR meshes would need photons
+//! gathered in their texture space, which the session does not do.
+
+mod mirror;
+
+pub use mirror::{CausticCamera, CausticLight, CausticShape, Glass, Receiver};
+pub use prismatic_core;
+
+use bevy::asset::RenderAssetUsages;
+use bevy::image::Image;
+use bevy::prelude::*;
+use bevy::render::extract_resource::{ExtractResource, ExtractResourcePlugin};
+use bevy::render::render_asset::RenderAssets;
+use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat, TextureUsages};
+use bevy::render::renderer::{RenderDevice, RenderQueue};
+use bevy::render::texture::GpuImage;
+use bevy::render::{Render, RenderApp, RenderSystems};
+use prismatic_core::PreparedScene;
+use prismatic_core::scene::RenderSettings;
+use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+/// Adds live caustics: mirrors the scene's entities, runs a session pass a
+/// frame in the render world, fills [`CausticImage`] and [`CausticStats`].
+#[derive(Default)]
+pub struct PrismaticPlugin;
+
+impl Plugin for PrismaticPlugin {
+    fn build(&self, app: &mut App) {
+        app.init_resource::<CausticSettings>()
+            .init_resource::<CausticStats>()
+            .add_plugins((
+                ExtractResourcePlugin::<CausticScene>::default(),
+                ExtractResourcePlugin::<CausticImage>::default(),
+                ExtractResourcePlugin::<CausticStats>::default(),
+            ))
+            .add_systems(PostUpdate, (size_image, mirror::mirror_scene).chain().after(TransformSystems::Propagate));
+        app.sub_app_mut(RenderApp)
+            .init_resource::<LiveSession>()
+            .add_systems(Render, render_caustics.in_set(RenderSystems::Prepare));
+    }
+}
+
+/// How the caustics are rendered: the image size, photons per frame
+/// (one pass), bands, estimator, radius, α and the rest of prismatic's
+/// `[render]` settings. Changing it restarts the accumulation.
+#[derive(Resource, Clone, Debug, PartialEq)]
+pub struct CausticSettings(pub RenderSettings);
+
+impl Default for CausticSettings {
+    /// 960×540, 100k white photons a frame in the paper's 7 bands, radius 0.03.
+    fn default() -> Self {
+        CausticSettings(RenderSettings {
+            width: 960,
+            height: 540,
+            photons: 100_000,
+            radius: 0.03,
+            bands: prismatic_core::bands::BandSpec::Paper7,
+            ambient: 0.06,
+            exposure: 1.6,
+            ..RenderSettings::default()
+        })
+    }
+}
+
+/// The image the caustics are rendered into (linear `Rgba32Float`, the
+/// settings' size; the plugin makes it and makes it again on a resize).
+#[derive(Resource, Clone, Debug, ExtractResource)]
+#[extract_app(RenderApp)]
+pub struct CausticImage(pub Handle<Image>);
+
+/// The scene the entities make, with a generation that grows when it changes.
+#[derive(Resource, Clone, ExtractResource)]
+#[extract_app(RenderApp)]
+pub struct CausticScene {
+    /// The prepared scene.
+    pub scene: Arc<PreparedScene>,
+    /// Bumped on every change.
+    pub generation: u64,
+}
+
+/// What the render world reports back: passes, photons, timings, errors.
+#[derive(Resource, Clone, Default, ExtractResource)]
+#[extract_app(RenderApp)]
+pub struct CausticStats(pub Arc<Mutex<Stats>>);
+
+/// One frame's figures.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Stats {
+    /// Passes in the image now.
+    pub passes: u32,
+    /// White photons emitted by the last frame.
+    pub photons: u64,
+    /// Seconds between the last two frames' passes (the app's frame time).
+    pub frame_seconds: f64,
+    /// Seconds the last frame's submit took on the host.
+    pub submit_seconds: f64,
+    /// Scene generation the image shows.
+    pub generation: u64,
+    /// Why the scene or the session failed, if it did (the last good
+    /// image stays on screen).
+    pub error: Option<String>,
+}
+
+impl CausticStats {
+    /// A copy of the latest figures.
+    pub fn get(&self) -> Stats {
+        self.0.lock().map(|s| s.clone()).unwrap_or_default()
+    }
+
+    fn set(&self, edit: impl FnOnce(&mut Stats)) {
+        if let Ok(mut s) = self.0.lock() {
+            edit(&mut s);
+        }
+    }
+}
+
+/// Makes [`CausticImage`] (again) when there is none or the settings' size changed.
+fn size_image(
+    mut commands: Commands,
+    settings: Res<CausticSettings>,
+    image: Option<Res<CausticImage>>,
+    mut images: ResMut<Assets<Image>>,
+) {
+    let (w, h) = (settings.0.width.max(1), settings.0.height.max(1));
+    if let Some(image) = &image
+        && images.get(&image.0).is_some_and(|i| (i.width(), i.height()) == (w, h))
+    {
+        return;
+    }
+    let mut target = Image::new_uninit(
+        Extent3d { width: w, height: h, depth_or_array_layers: 1 },
+        TextureDimension::D2,
+        TextureFormat::Rgba32Float,
+        RenderAssetUsages::RENDER_WORLD,
+    );
+    target.texture_descriptor.usage =
+        TextureUsages::STORAGE_BINDING | TextureUsages::TEXTURE_BINDING | TextureUsages::COPY_SRC;
+    commands.insert_resource(CausticImage(images.add(target)));
+}
+
+/// The render world's session, made on the first frame that has a scene.
+#[derive(Resource, Default)]
+struct LiveSession {
+    session: Option<GpuSession>,
+    generation: u64,
+    last_pass: Option<Instant>,
+    /// The generation the session failed on: not tried again until the scene changes.
+    failed: Option<u64>,
+}
+
+/// One progressive pass into the image (after updating the session when the
+/// scene changed); errors go to [`CausticStats`], never a panic.
+fn render_caustics(
+    mut live: ResMut<LiveSession>,
+    scene: Option<Res<CausticScene>>,
+    image: Option<Res<CausticImage>>,
+    stats: Res<CausticStats>,
+    device: Res<RenderDevice>,
+    queue: Res<RenderQueue>,
+    images: Res<RenderAssets<GpuImage>>,
+) {
+    let (Some(scene), Some(image)) = (scene, image) else { return };
+    let Some(target) = images.get(&image.0) else { return };
+    let r = &scene.scene.scene.render;
+    if (target.texture.width(), target.texture.height()) != (r.width, r.height) {
+        return; // The resized image arrives next frame.
+    }
+    if live.failed == Some(scene.generation) {
+        return;
+    }
+    let start = Instant::now();
+    let result = (|| {
+        let live = &mut *live;
+        match &mut live.session {
+            Some(session) if live.generation != scene.generation => {
+                session.update(&scene.scene)?;
+            }
+            Some(_) => {}
+            None => {
+                let ctx = GpuContext::from_device(device.wgpu_device().clone(), (**queue).clone())?;
+                live.session = Some(GpuSession::new(ctx, &scene.scene, GpuOptions::default())?);
+            }
+        }
+        live.generation = scene.generation;
+        let session = live.session.as_mut().expect("made above");
+        let frame = session.frame()?;
+        session.copy_to_texture(&target.texture)?;
+        Ok::<_, prismatic_core::BackendError>(frame)
+    })();
+    let now = Instant::now();
+    let interval = live.last_pass.map_or(0.0, |t| (now - t).as_secs_f64());
+    live.last_pass = Some(now);
+    match result {
+        Ok(frame) => stats.set(|s| {
+            *s = Stats {
+                passes: frame.passes,
+                photons: frame.photons,
+                frame_seconds: interval,
+                submit_seconds: start.elapsed().as_secs_f64(),
+                generation: scene.generation,
+                error: None,
+            }
+        }),
+        Err(e) => {
+            (live.session, live.failed) = (None, Some(scene.generation));
+            stats.set(|s| s.error = Some(e.to_string()));
+        }
+    }
+}

@@ -10,9 +10,12 @@
 //! the photon map is read back only when asked for
 //! ([`Backend::trace_photons`]).
 //!
-//! An engine embeds it with [`GpuBackend::from_device`] on its own device
-//! and renders into its own buffer or storage texture
-//! ([`GpuBackend::render_into_buffer`], [`GpuBackend::render_into_texture`]).
+//! An engine embeds a [`GpuSession`] on its own device ([`GpuContext::from_device`]):
+//! it keeps the scene, photon map, grid, visible points and running sums on
+//! the device and adds one progressive pass per frame without waiting for
+//! it; [`GpuSession::update`] redoes only what a scene change invalidates
+//! ([`Change`]). One-off frames go into a caller's buffer or storage
+//! texture ([`GpuBackend::render_into_buffer`], [`GpuBackend::render_into_texture`]).
 
 mod context;
 mod grid;

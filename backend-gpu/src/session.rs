@@ -94,13 +94,30 @@ struct PointChunk {
     offset: u64,
     /// Pixels.
     count: u64,
-    view_group: wgpu::BindGroup,
-    gather_group: wgpu::BindGroup,
-    session_group: wgpu::BindGroup,
+    /// `slots` visible points per pixel, slot-major.
+    points: wgpu::Buffer,
+    /// Per pixel: visible points it wanted.
+    counts: wgpu::Buffer,
+    /// Per slot: the first radius as a fraction of the scene's.
+    ratio: wgpu::Buffer,
     /// Per pixel: Σ over passes of the caustic radiance.
     accum: wgpu::Buffer,
     /// Per pixel: the direct light (the view pass's pixels).
     base: wgpu::Buffer,
+    /// View pass, gather, and session entries' bind groups.
+    groups: Option<ChunkGroups>,
+}
+
+struct ChunkGroups {
+    view: wgpu::BindGroup,
+    gather: wgpu::BindGroup,
+    session: wgpu::BindGroup,
+}
+
+impl PointChunk {
+    fn groups(&self) -> &ChunkGroups {
+        self.groups.as_ref().expect("bound when allocated")
+    }
 }
 
 /// The visible-point slot count read back without waiting: the view pass
@@ -235,7 +252,7 @@ impl GpuSession {
         })?;
         self.encoded = encoded;
         let window = window(&self.ctx, self.options);
-        let mut stale = change;
+        let mut rebind = regrouped;
         if !self.photons.fits(scene, window) {
             self.photons = photon_pass(&self.ctx, &self.pipelines, scene, window)?;
             self.grid = DeviceGrid::new(
@@ -245,18 +262,17 @@ impl GpuSession {
                 &self.photons.photons,
                 self.photons.capacity(),
             )?;
-            stale = Change::Size;
-        }
-        if regrouped {
-            // The band table moved: the chunks' bind groups hold it.
-            stale = Change::Size;
+            rebind = true;
         }
         if change == Change::Size {
             let r = &scene.scene.render;
             self.pixels = pixel_buffer(&self.ctx, r.width, r.height)?;
+        } else if rebind {
+            // The chunks' bind groups hold the band table, grid and photons that moved.
+            self.bind_chunks()?;
         }
         self.scene = scene.clone();
-        self.stale = self.stale.max(stale);
+        self.stale = self.stale.max(change);
         Ok(change)
     }
 
@@ -321,22 +337,32 @@ impl GpuSession {
         self.chunks.clear();
         for (offset, count) in pixel_chunks(total, chunk) {
             let slots = count * u64::from(self.slots);
-            let (points, counts, ratio, accum, base) = ctx.checked("allocating visible points", || {
-                (
-                    buffer("prismatic visible points", slots * POINT_BYTES, copy),
-                    buffer("prismatic points per pixel", count * 4, copy),
-                    buffer("prismatic radius ratios", slots * 4, copy),
-                    buffer("prismatic caustic sums", count * PIXEL_BYTES, copy),
-                    buffer("prismatic direct light", count * PIXEL_BYTES, copy),
-                )
+            let chunk = ctx.checked("allocating visible points", || PointChunk {
+                offset,
+                count,
+                points: buffer("prismatic visible points", slots * POINT_BYTES, copy),
+                counts: buffer("prismatic points per pixel", count * 4, copy),
+                ratio: buffer("prismatic radius ratios", slots * 4, copy),
+                accum: buffer("prismatic caustic sums", count * PIXEL_BYTES, copy),
+                base: buffer("prismatic direct light", count * PIXEL_BYTES, copy),
+                groups: None,
             })?;
+            self.chunks.push(chunk);
+        }
+        self.bind_chunks()
+    }
+
+    /// Binds every chunk to the current pixels, scene, grid and photons
+    /// (again after an update moved one of them; the points stay).
+    fn bind_chunks(&mut self) -> Result<(), BackendError> {
+        let (ctx, p) = (&self.ctx, &self.pipelines);
+        for chunk in &mut self.chunks {
             let pixel_slice = wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                 buffer: &self.pixels,
-                offset: offset * PIXEL_BYTES,
-                size: wgpu::BufferSize::new(count * PIXEL_BYTES),
+                offset: chunk.offset * PIXEL_BYTES,
+                size: wgpu::BufferSize::new(chunk.count * PIXEL_BYTES),
             });
-            let p = &self.pipelines;
-            let (view_group, gather_group, session_group) = ctx.checked("binding the session", || {
+            let groups = ctx.checked("binding the session", || {
                 let group = |label: &str, layout: &wgpu::BindGroupLayout, entries: &[wgpu::BindGroupEntry]| {
                     ctx.device.create_bind_group(&wgpu::BindGroupDescriptor { label: Some(label), layout, entries })
                 };
@@ -345,8 +371,8 @@ impl GpuSession {
                     &p.render_layout,
                     &[
                         wgpu::BindGroupEntry { binding: 0, resource: pixel_slice.clone() },
-                        wgpu::BindGroupEntry { binding: 1, resource: points.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 2, resource: counts.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 1, resource: chunk.points.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 2, resource: chunk.counts.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 3, resource: self.needed.as_entire_binding() },
                     ],
                 );
@@ -354,8 +380,8 @@ impl GpuSession {
                     wgpu::BindGroupEntry { binding: 0, resource: self.buffers.params_buffer.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 1, resource: self.buffers.bands().as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 2, resource: self.grid.cells.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 3, resource: counts.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 4, resource: points.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 3, resource: chunk.counts.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 4, resource: chunk.points.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 5, resource: pixel_slice.clone() },
                 ];
                 entries.extend(self.grid.sorted.entries(6));
@@ -364,15 +390,15 @@ impl GpuSession {
                     "prismatic session sums",
                     &p.session_layout,
                     &[
-                        wgpu::BindGroupEntry { binding: 0, resource: ratio.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 1, resource: accum.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 2, resource: base.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 0, resource: chunk.ratio.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 1, resource: chunk.accum.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 2, resource: chunk.base.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 3, resource: self.session_params.as_entire_binding() },
                     ],
                 );
-                (view, gather, session)
+                ChunkGroups { view, gather, session }
             })?;
-            self.chunks.push(PointChunk { offset, count, view_group, gather_group, session_group, accum, base });
+            chunk.groups = Some(groups);
         }
         Ok(())
     }
@@ -398,7 +424,7 @@ impl GpuSession {
                     if i == 0 {
                         encoder.clear_buffer(&self.needed, 0, None);
                     }
-                    let groups = [&self.buffers.bind_group, &chunk.view_group];
+                    let groups = [&self.buffers.bind_group, &chunk.groups().view];
                     dispatch(&mut encoder, &view, &groups, chunk.count, WORKGROUP_SIZE);
                     let bytes = chunk.count * PIXEL_BYTES;
                     encoder.copy_buffer_to_buffer(&self.pixels, chunk.offset * PIXEL_BYTES, &chunk.base, 0, bytes);
@@ -534,7 +560,8 @@ impl GpuSession {
         let gathering = self.photons.capacity() > 0;
         for chunk in &self.chunks {
             let slot_count = chunk.count * u64::from(self.slots);
-            let both = [&chunk.gather_group, &chunk.session_group];
+            let groups = chunk.groups();
+            let both = [&groups.gather, &groups.session];
             for segment in 0..segments {
                 let p = &mut self.buffers.params;
                 (p.pixel_offset, p.pixel_count, p.points_per_pixel) =

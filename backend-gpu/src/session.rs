@@ -511,8 +511,7 @@ impl GpuSession {
             pilot: 1,
         };
         let emitted = self.photon_pass(&pilot, settings)?;
-        let finish = self.pipelines.first_radius.clone();
-        self.gather_chunks(&finish, false)?;
+        self.gather_chunks(Finish::FirstRadii, false)?;
         Ok(emitted)
     }
 
@@ -523,8 +522,7 @@ impl GpuSession {
         let pass = photon_pass_scene(&self.scene, self.scene.scene.render.alpha, k);
         let settings = SessionParams { inv_passes: 1.0 / (f64::from(k) + 1.0) as f32, ..SessionParams::default() };
         let emitted = self.photon_pass(&pass, settings)?;
-        let finish = self.pipelines.accumulate.clone();
-        self.gather_chunks(&finish, k == 0)?;
+        self.gather_chunks(Finish::Accumulate, k == 0)?;
         Ok(emitted)
     }
 
@@ -541,17 +539,15 @@ impl GpuSession {
         }
         self.photons.record(&self.ctx, &self.pipelines, &mut self.buffers, emissions, &mut NoProgress)?;
         let capacity = self.photons.capacity();
+        // `rebuild` leaves the grid's mask and window in the params for the gather.
         self.grid.rebuild(&self.ctx, &self.pipelines, &mut self.buffers, capacity, Some(self.photons.cursor()))?;
-        // `rebuild` left the grid's mask and window in the params.
-        let p = &mut self.buffers.params;
-        (p.seed, p.radius, p.inv_cell) = (r.seed, r.radius, 1.0 / (2.0 * r.radius));
         Ok(u64::from(emissions))
     }
 
     /// Every chunk: sums emptied and radii set, the gather (in segments
     /// on a software device), then `finish` (first radii or accumulation);
     /// `first_pass` empties the pixels' sums first.
-    fn gather_chunks(&mut self, finish: &wgpu::ComputePipeline, first_pass: bool) -> Result<(), BackendError> {
+    fn gather_chunks(&mut self, finish: Finish, first_pass: bool) -> Result<(), BackendError> {
         let segments = match self.span {
             _ if self.photons.capacity() == 0 => 1,
             u32::MAX => 1,
@@ -580,8 +576,11 @@ impl GpuSession {
                         dispatch(&mut encoder, &self.pipelines.gather, &both[..1], slot_count, WORKGROUP_SIZE);
                     }
                     if segment + 1 == segments {
-                        let invocations = if finish == &self.pipelines.accumulate { chunk.count } else { slot_count };
-                        dispatch(&mut encoder, finish, &both, invocations, WORKGROUP_SIZE);
+                        let (pipeline, invocations) = match finish {
+                            Finish::FirstRadii => (&self.pipelines.first_radius, slot_count),
+                            Finish::Accumulate => (&self.pipelines.accumulate, chunk.count),
+                        };
+                        dispatch(&mut encoder, pipeline, &both, invocations, WORKGROUP_SIZE);
                     }
                     self.ctx.queue.submit([encoder.finish()]);
                 })?;
@@ -589,6 +588,15 @@ impl GpuSession {
         }
         Ok(())
     }
+}
+
+/// What follows a chunk's gather.
+#[derive(Clone, Copy)]
+enum Finish {
+    /// The pilot's: each point's first radius (per slot).
+    FirstRadii,
+    /// A pass's: the pixels' sums and image (per pixel).
+    Accumulate,
 }
 
 /// Photons per storage binding for `options` on `ctx`'s device.

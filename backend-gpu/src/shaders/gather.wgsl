@@ -102,6 +102,25 @@ fn caustic(vp: VisiblePoint) -> vec3<f32> {
     return vp.sums * (f32(params.band_count) / f32(vp.total)) * (vp.flux / area);
 }
 
+// Whether slot-major index `i` holds a visible point of the current chunk
+// (slot j of pixel k is at `j * pixel_count + k`).
+fn is_point(i: u32) -> bool {
+    let slot = i / params.pixel_count;
+    let k = i - slot * params.pixel_count;
+    return slot < params.points_per_pixel && slot < point_counts[k];
+}
+
+// What pixel k's visible points add to it: weight × caustic, in slot order.
+fn pixel_caustic(k: u32) -> vec3<f32> {
+    var c = vec3<f32>(0.0);
+    let n = min(point_counts[k], params.points_per_pixel);
+    for (var slot = 0u; slot < n; slot++) {
+        let vp = points[slot * params.pixel_count + k];
+        c += vp.weight * caustic(vp);
+    }
+    return c;
+}
+
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn gather(
     @builtin(workgroup_id) wid: vec3<u32>,
@@ -110,9 +129,7 @@ fn gather(
 ) {
     // Slot-major: the invocations of empty slots fill whole workgroups.
     let i = flat_index(wid, nwg, lid);
-    let slot = i / params.pixel_count;
-    let k = i - slot * params.pixel_count;
-    if slot >= params.points_per_pixel || slot >= point_counts[k] {
+    if !is_point(i) {
         return;
     }
     var vp = points[i];
@@ -150,11 +167,5 @@ fn resolve(
     if k >= params.pixel_count {
         return;
     }
-    var c = pixels[k].xyz;
-    let n = min(point_counts[k], params.points_per_pixel);
-    for (var slot = 0u; slot < n; slot++) {
-        let vp = points[slot * params.pixel_count + k];
-        c += vp.weight * caustic(vp);
-    }
-    pixels[k] = vec4<f32>(c, 1.0);
+    pixels[k] = vec4<f32>(pixels[k].xyz + pixel_caustic(k), 1.0);
 }

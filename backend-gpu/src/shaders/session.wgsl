@@ -22,17 +22,6 @@ struct SessionParams {
 @group(1) @binding(2) var<storage, read> base: array<vec4<f32>>;
 @group(1) @binding(3) var<uniform> session: SessionParams;
 
-// The slot-major index of an invocation's visible point, or -1 for an empty slot.
-fn point_slot(wid: vec3<u32>, nwg: vec3<u32>, lid: u32) -> i32 {
-    let i = flat_index(wid, nwg, lid);
-    let slot = i / params.pixel_count;
-    let k = i - slot * params.pixel_count;
-    if slot >= params.points_per_pixel || slot >= point_counts[k] {
-        return -1;
-    }
-    return i32(i);
-}
-
 // progressive::initial_radius over R: the fraction of R that would hold
 // `neighbours` photons of a full pass, given what the pilot found within R.
 @compute @workgroup_size(WORKGROUP_SIZE)
@@ -41,8 +30,8 @@ fn first_radius(
     @builtin(num_workgroups) nwg: vec3<u32>,
     @builtin(local_invocation_index) lid: u32,
 ) {
-    let i = point_slot(wid, nwg, lid);
-    if i < 0 {
+    let i = flat_index(wid, nwg, lid);
+    if !is_point(i) {
         return;
     }
     let expected = f32(points[i].found) * session.pilot_scale;
@@ -61,8 +50,8 @@ fn begin_pass(
     @builtin(num_workgroups) nwg: vec3<u32>,
     @builtin(local_invocation_index) lid: u32,
 ) {
-    let i = point_slot(wid, nwg, lid);
-    if i < 0 {
+    let i = flat_index(wid, nwg, lid);
+    if !is_point(i) {
         return;
     }
     var vp = points[i];
@@ -88,13 +77,7 @@ fn accumulate(
     if k >= params.pixel_count {
         return;
     }
-    var c = vec3<f32>(0.0);
-    let n = min(point_counts[k], params.points_per_pixel);
-    for (var slot = 0u; slot < n; slot++) {
-        let vp = points[slot * params.pixel_count + k];
-        c += vp.weight * caustic(vp);
-    }
-    let sum = accum[k].xyz + c;
+    let sum = accum[k].xyz + pixel_caustic(k);
     accum[k] = vec4<f32>(sum, 0.0);
     pixels[k] = vec4<f32>(base[k].xyz + sum * session.inv_passes, 1.0);
 }

@@ -6,7 +6,7 @@
 use crate::context::GpuContext;
 use crate::photons::PhotonArray;
 use crate::pipelines::{Pipelines, dispatch};
-use crate::scan;
+use crate::scan::Scan;
 use crate::scene::SceneBuffers;
 use crate::shaders::WORKGROUP_SIZE;
 use crate::trace::DeviceMap;
@@ -23,8 +23,8 @@ pub struct DeviceGrid {
     widest: wgpu::Buffer,
     /// Where the scatter puts each bucket's next photon.
     cursor: wgpu::Buffer,
-    /// The build's bindings (none for an empty map).
-    group: Option<wgpu::BindGroup>,
+    /// The build's bindings and its scan of the bucket counts (none for an empty map).
+    build: Option<(wgpu::BindGroup, Scan)>,
     /// Photons the grid has room for.
     bound: u32,
 }
@@ -33,7 +33,7 @@ impl DeviceGrid {
     /// The most photons in one bucket (a pass over the buckets, then a
     /// wait for the device); only devices that gather in segments ask.
     pub fn widest_bucket(&self, ctx: &GpuContext, pipelines: &Pipelines) -> Result<u32, BackendError> {
-        let Some(group) = &self.group else { return Ok(0) };
+        let Some((group, _)) = &self.build else { return Ok(0) };
         ctx.checked("finding the widest bucket", || {
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
             let buckets = self.cells.size() / 4 - 1;
@@ -92,9 +92,9 @@ impl DeviceGrid {
             )
         })?;
         if bound == 0 {
-            return Ok(DeviceGrid { cells, sorted, widest, group: None, bound, cursor });
+            return Ok(DeviceGrid { cells, sorted, widest, build: None, bound, cursor });
         }
-        let group = ctx.checked("binding the grid", || {
+        let build = ctx.checked("binding the grid", || {
             let mut entries = vec![
                 wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 1, resource: cells.as_entire_binding() },
@@ -103,13 +103,14 @@ impl DeviceGrid {
             entries.extend(map.entries(3));
             entries.extend(sorted.entries(7));
             entries.push(wgpu::BindGroupEntry { binding: 11, resource: widest.as_entire_binding() });
-            ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            let group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("prismatic grid"),
                 layout: &pipelines.grid_layout,
                 entries: &entries,
-            })
+            });
+            (group, Scan::new(&ctx.device, pipelines, &cells, (buckets + 1) as u32))
         })?;
-        Ok(DeviceGrid { cells, sorted, widest, group: Some(group), bound, cursor })
+        Ok(DeviceGrid { cells, sorted, widest, build: Some(build), bound, cursor })
     }
 
     /// Submits a rebuild over the map's first `stored` photons (at most the
@@ -124,7 +125,7 @@ impl DeviceGrid {
         stored: u32,
         count: Option<&wgpu::Buffer>,
     ) -> Result<(), BackendError> {
-        let Some(group) = &self.group else { return Ok(()) };
+        let Some((group, scan)) = &self.build else { return Ok(()) };
         let stored = stored.min(self.bound);
         let buckets = self.cells.size() / 4 - 1;
         let p = &mut scene_buffers.params;
@@ -139,7 +140,7 @@ impl DeviceGrid {
             encoder.clear_buffer(&self.cells, 0, None);
             encoder.clear_buffer(&self.widest, 0, None);
             dispatch(&mut encoder, &pipelines.grid_count, &[group], u64::from(stored), WORKGROUP_SIZE);
-            scan::record(&ctx.device, pipelines, &mut encoder, &self.cells, (buckets + 1) as u32);
+            scan.record(pipelines, &mut encoder);
             encoder.copy_buffer_to_buffer(&self.cells, 0, &self.cursor, 0, buckets * 4);
             dispatch(&mut encoder, &pipelines.grid_scatter, &[group], u64::from(stored), WORKGROUP_SIZE);
             ctx.queue.submit([encoder.finish()]);

@@ -267,8 +267,16 @@ pub struct SessionParams {
     pub inv_passes: f32,
     /// 1 for the pilot pass: every radius the scene's.
     pub pilot: u32,
+    /// The grid level a `gather_level` dispatch serves.
+    pub level: u32,
+    /// Bit l set when grid level l is built (bit 0 always is).
+    pub built_levels: u32,
+    /// Padding (uniform buffers are 16-byte granular).
+    pub _pad0: u32,
+    /// Padding.
+    pub _pad1: u32,
 }
-const _: () = assert!(core::mem::size_of::<SessionParams>() == 16);
+const _: () = assert!(core::mem::size_of::<SessionParams>() == 32);
 
 /// The settings of one prefix-sum level.
 #[repr(C)]

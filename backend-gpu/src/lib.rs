@@ -20,9 +20,11 @@
 mod context;
 mod grid;
 pub mod layout;
+mod levels;
 mod photons;
 mod pipelines;
 mod progressive;
+mod readback;
 mod render;
 mod scan;
 mod scene;

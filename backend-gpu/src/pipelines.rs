@@ -114,12 +114,14 @@ pub struct Pipelines {
     pub resolve: wgpu::ComputePipeline,
     /// gather.wgsl `gather_points`: a progressive pass at uploaded visible points.
     pub gather_points: wgpu::ComputePipeline,
-    /// Group 1 of a session's progressive entries: radius ratios, sums, base pixels, session params.
+    /// Group 1 of a session's progressive entries: radius ratios, sums, base pixels, session params, levels used.
     pub session_layout: wgpu::BindGroupLayout,
     /// session.wgsl `first_radius`: first radii from the pilot's gather.
     pub first_radius: wgpu::ComputePipeline,
     /// session.wgsl `begin_pass`: sums emptied, this pass's radii.
     pub begin_pass: wgpu::ComputePipeline,
+    /// session.wgsl `gather_level`: a pass's gather at one grid level's points.
+    pub gather_level: wgpu::ComputePipeline,
     /// session.wgsl `accumulate`: the pass added to the pixels' sums.
     pub accumulate: wgpu::ComputePipeline,
     render: HashMap<u32, wgpu::ComputePipeline>,
@@ -150,13 +152,14 @@ impl Pipelines {
             "prismatic gather",
             &with_windows(vec![Uniform, Read, Read, Read, ReadWrite, ReadWrite], Read),
         );
-        let session_layout = layout(device, "prismatic session", &[ReadWrite, ReadWrite, Read, Uniform]);
+        let session_layout = layout(device, "prismatic session", &[ReadWrite, ReadWrite, Read, Uniform, ReadWrite]);
         let session_src = shaders::session();
         let session =
             |label: &str, entry: &str| pipeline(device, label, &session_src, entry, &[&gather_layout, &session_layout]);
-        let (first_radius, begin_pass, accumulate) = (
+        let (first_radius, begin_pass, gather_level, accumulate) = (
             session("prismatic first radius", "first_radius"),
             session("prismatic begin pass", "begin_pass"),
+            session("prismatic gather level", "gather_level"),
             session("prismatic accumulate", "accumulate"),
         );
         let trace_src = shaders::trace();
@@ -178,6 +181,7 @@ impl Pipelines {
             gather_points: pipeline(device, "prismatic gather points", &gather_src, "gather_points", &[&gather_layout]),
             first_radius,
             begin_pass,
+            gather_level,
             accumulate,
             session_layout,
             scene_layout,

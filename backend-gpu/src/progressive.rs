@@ -9,11 +9,12 @@
 use crate::context::GpuContext;
 use crate::grid;
 use crate::layout;
+use crate::levels;
 use crate::pipelines::{Pipelines, dispatch};
 use crate::scene::SceneBuffers;
 use crate::shaders::WORKGROUP_SIZE;
 use crate::trace::DeviceMap;
-use prismatic_core::progressive::{GRID_LEVELS, level_of, level_radius, levels_used};
+use prismatic_core::progressive::{GRID_LEVELS, level_of, levels_used};
 use prismatic_core::scene::Estimator;
 use prismatic_core::visible::VisiblePoint;
 use prismatic_core::{BackendError, PreparedScene, Vec3};
@@ -46,7 +47,7 @@ pub fn gather_pass(
     let mut grids = Vec::with_capacity(GRID_LEVELS);
     for (level, &needed) in used.iter().enumerate() {
         grids.push(if needed {
-            buffers.params.inv_cell = 1.0 / (2.0 * level_radius(r_pass, level));
+            buffers.params.inv_cell = levels::inv_cell(r_pass, level);
             let g = grid::build(ctx, pipelines, buffers, map)?;
             let segments = if span == u32::MAX { 1 } else { g.widest_bucket(ctx, pipelines)?.div_ceil(span).max(1) };
             Some((g, segments))
@@ -115,7 +116,7 @@ pub fn gather_pass(
             })?;
             for segment in 0..*segments {
                 let p = &mut buffers.params;
-                p.inv_cell = 1.0 / (2.0 * level_radius(r_pass, level));
+                p.inv_cell = levels::inv_cell(r_pass, level);
                 (p.pixel_offset, p.pixel_count) = (first as u32, count as u32);
                 (p.gather_first, p.gather_span) = (segment.saturating_mul(span), span);
                 buffers.write_params(&ctx.queue);

@@ -2,24 +2,24 @@
 //! photon pass, grid, visible points and running sums on the device from
 //! frame to frame, and each [`GpuSession::frame`] adds one progressive pass
 //! (the estimator of `prismatic_core::progressive`: pilot-pass first radii,
-//! radii shrinking with α, the mean of the passes) on the caller's queue
-//! without waiting for the device. [`GpuSession::update`] diffs a changed
+//! radii shrinking with α, grid levels for small radii, the mean of the
+//! passes) on the caller's queue without waiting for the device. [`GpuSession::update`] diffs a changed
 //! scene against the current one and invalidates only what the change
 //! touches ([`Change`]).
 
 use crate::context::GpuContext;
-use crate::grid::DeviceGrid;
 use crate::layout::SessionParams;
+use crate::levels::{self, GridLevels};
 use crate::pipelines::{Pipelines, dispatch};
+use crate::readback::PendingRead;
 use crate::render::{PIXEL_BYTES, POINT_BYTES, pixel_buffer, pixel_chunks, pixels_per_chunk, read_image};
 use crate::scene::{EncodedScene, SceneBuffers};
 use crate::shaders::{WORKGROUP_SIZE, stack_size};
 use crate::trace::PhotonPass;
 use crate::{GpuOptions, photons, render};
-use prismatic_core::progressive::{photon_pass_scene, photons_per_path, pilot_scene};
+use prismatic_core::progressive::{GRID_LEVELS, photon_pass_scene, photons_per_path, pilot_scene};
 use prismatic_core::scene::Scene;
 use prismatic_core::{BackendError, Image, NoProgress, PreparedScene};
-use std::sync::{Arc, Mutex};
 
 /// What a scene update invalidates, from least to most; each level redoes
 /// what the levels below it redo.
@@ -110,21 +110,22 @@ struct PointChunk {
 
 struct ChunkGroups {
     view: wgpu::BindGroup,
-    gather: wgpu::BindGroup,
+    /// Per built grid level (by level), the gather's bindings.
+    gather: Vec<Option<wgpu::BindGroup>>,
     session: wgpu::BindGroup,
+}
+
+impl ChunkGroups {
+    /// The gather's bindings with level `level`'s grid.
+    fn gather(&self, level: usize) -> &wgpu::BindGroup {
+        self.gather[level].as_ref().expect("bound for every built level")
+    }
 }
 
 impl PointChunk {
     fn groups(&self) -> &ChunkGroups {
         self.groups.as_ref().expect("bound when allocated")
     }
-}
-
-/// The visible-point slot count read back without waiting: the view pass
-/// copies its "points needed" into a mappable buffer; a later frame looks.
-struct PendingSlots {
-    staging: wgpu::Buffer,
-    mapped: Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>,
 }
 
 /// A scene rendered progressively on the device, one pass per frame.
@@ -138,7 +139,9 @@ pub struct GpuSession {
     encoded: EncodedScene,
     buffers: SceneBuffers,
     photons: PhotonPass,
-    grid: DeviceGrid,
+    levels: GridLevels,
+    /// The current pass's settings (the gathers' level set per dispatch).
+    settings: SessionParams,
     /// The image: row-major `vec4<f32>`, linear RGB, exposure applied.
     pixels: wgpu::Buffer,
     /// Visible-point slots per pixel.
@@ -152,7 +155,8 @@ pub struct GpuSession {
     stale: Change,
     /// Whether a view pass has told how many slots a pixel needs.
     slots_learnt: bool,
-    pending: Option<PendingSlots>,
+    /// The view pass's "points needed" on its way back.
+    pending_slots: Option<PendingRead>,
 }
 
 impl GpuSession {
@@ -169,11 +173,11 @@ impl GpuSession {
             .checked("uploading the scene", || SceneBuffers::upload(&ctx.device, &pipelines.scene_layout, &encoded))?;
         let window = window(&ctx, options);
         let photons = photon_pass(&ctx, &pipelines, scene, window)?;
-        let grid = DeviceGrid::new(&ctx, &pipelines, &buffers, &photons.photons, photons.capacity())?;
-        let small = |label: &str, usage: wgpu::BufferUsages| {
+        let levels = GridLevels::new(&ctx, &pipelines, &buffers, &photons)?;
+        let small = |label: &str, size: usize, usage: wgpu::BufferUsages| {
             ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
-                size: 16,
+                size: size.max(16) as u64,
                 usage,
                 mapped_at_creation: false,
             })
@@ -181,8 +185,12 @@ impl GpuSession {
         let (needed, session_params) = ctx.checked("allocating the session", || {
             let copy = wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST;
             (
-                small("prismatic points needed", wgpu::BufferUsages::STORAGE | copy),
-                small("prismatic session params", wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST),
+                small("prismatic points needed", 4, wgpu::BufferUsages::STORAGE | copy),
+                small(
+                    "prismatic session params",
+                    size_of::<SessionParams>(),
+                    wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                ),
             )
         })?;
         let pixels = pixel_buffer(&ctx, scene.scene.render.width, scene.scene.render.height)?;
@@ -195,7 +203,8 @@ impl GpuSession {
             encoded,
             buffers,
             photons,
-            grid,
+            levels,
+            settings: SessionParams::default(),
             pixels,
             slots: render::FIRST_POINTS_PER_PIXEL,
             needed,
@@ -204,7 +213,7 @@ impl GpuSession {
             passes: 0,
             stale: Change::Size,
             slots_learnt: false,
-            pending: None,
+            pending_slots: None,
         })
     }
 
@@ -255,13 +264,7 @@ impl GpuSession {
         let mut rebind = regrouped;
         if !self.photons.fits(scene, window) {
             self.photons = photon_pass(&self.ctx, &self.pipelines, scene, window)?;
-            self.grid = DeviceGrid::new(
-                &self.ctx,
-                &self.pipelines,
-                &self.buffers,
-                &self.photons.photons,
-                self.photons.capacity(),
-            )?;
+            self.levels.reallocate(&self.ctx, &self.pipelines, &self.buffers, &self.photons)?;
             rebind = true;
         }
         if change == Change::Size {
@@ -282,7 +285,7 @@ impl GpuSession {
     /// number comes from the grid, which it reads back (waits); a hardware
     /// GPU never waits.
     pub fn frame(&mut self) -> Result<SessionFrame, BackendError> {
-        self.check_slots()?;
+        self.check_reads()?;
         let redone = std::mem::take(&mut self.stale);
         let mut photons = 0;
         if redone >= Change::Size {
@@ -316,6 +319,12 @@ impl GpuSession {
     /// Visible-point slots per pixel now.
     pub fn points_per_pixel(&self) -> u32 {
         self.slots
+    }
+
+    /// The grid levels built now: bit l for level l (cells of the pass
+    /// radius / 4^l); level 0 always, finer ones once the first radii ask.
+    pub fn grid_levels(&self) -> u32 {
+        self.levels.built()
     }
 
     /// Allocates the visible points' buffers for the current slots and
@@ -376,16 +385,19 @@ impl GpuSession {
                         wgpu::BindGroupEntry { binding: 3, resource: self.needed.as_entire_binding() },
                     ],
                 );
-                let mut entries = vec![
-                    wgpu::BindGroupEntry { binding: 0, resource: self.buffers.params_buffer.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: self.buffers.bands().as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 2, resource: self.grid.cells.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 3, resource: chunk.counts.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 4, resource: chunk.points.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 5, resource: pixel_slice.clone() },
-                ];
-                entries.extend(self.grid.sorted.entries(6));
-                let gather = group("prismatic session gather", &p.gather_layout, &entries);
+                let mut gather: Vec<Option<wgpu::BindGroup>> = vec![None; GRID_LEVELS];
+                for (level, grid) in self.levels.iter() {
+                    let mut entries = vec![
+                        wgpu::BindGroupEntry { binding: 0, resource: self.buffers.params_buffer.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 1, resource: self.buffers.bands().as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 2, resource: grid.cells.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 3, resource: chunk.counts.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 4, resource: chunk.points.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 5, resource: pixel_slice.clone() },
+                    ];
+                    entries.extend(grid.sorted.entries(6));
+                    gather[level] = Some(group("prismatic session gather", &p.gather_layout, &entries));
+                }
                 let session = group(
                     "prismatic session sums",
                     &p.session_layout,
@@ -394,6 +406,7 @@ impl GpuSession {
                         wgpu::BindGroupEntry { binding: 1, resource: chunk.accum.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 2, resource: chunk.base.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 3, resource: self.session_params.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 4, resource: self.levels.used.as_entire_binding() },
                     ],
                 );
                 ChunkGroups { view, gather, session }
@@ -409,7 +422,7 @@ impl GpuSession {
     /// light, kept as the base) and visible points. The first time, waits
     /// to learn whether every pixel's points had a slot and traces again
     /// with more when not; later, the check is read back a frame or more
-    /// afterwards ([`GpuSession::check_slots`]).
+    /// afterwards ([`GpuSession::check_reads`]).
     fn trace_view(&mut self) -> Result<(), BackendError> {
         loop {
             let view = self.pipelines.render(&self.ctx.device, stack_size(self.buffers.params.max_depth)).clone();
@@ -431,14 +444,14 @@ impl GpuSession {
                     self.ctx.queue.submit([encoder.finish()]);
                 })?;
             }
-            self.pending = Some(self.read_slots_later()?);
+            self.pending_slots = Some(PendingRead::start(&self.ctx, &self.needed, "the visible-point count")?);
             if self.slots_learnt {
                 return Ok(());
             }
             // The first view pass: wait for the answer, and trace again with enough slots.
             self.ctx.wait()?;
             self.slots_learnt = true;
-            self.check_slots()?;
+            self.check_reads()?;
             if self.stale < Change::Size {
                 return Ok(());
             }
@@ -447,54 +460,27 @@ impl GpuSession {
         }
     }
 
-    /// Starts reading the view pass's "points needed" back without waiting.
-    fn read_slots_later(&self) -> Result<PendingSlots, BackendError> {
-        let staging = self.ctx.checked("reading the visible-point count", || {
-            let staging = self.ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("prismatic points needed readback"),
-                size: 4,
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
-            encoder.copy_buffer_to_buffer(&self.needed, 0, &staging, 0, 4);
-            self.ctx.queue.submit([encoder.finish()]);
-            staging
-        })?;
-        let mapped = Arc::new(Mutex::new(None));
-        let done = Arc::clone(&mapped);
-        staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
-            if let Ok(mut slot) = done.lock() {
-                *slot = Some(r);
-            }
-        });
-        Ok(PendingSlots { staging, mapped })
-    }
-
-    /// Looks (without waiting) whether the last view pass's count has come
-    /// back; when some pixel wanted more slots than it had, the next frame
-    /// allocates enough and traces the view again.
-    fn check_slots(&mut self) -> Result<(), BackendError> {
-        let Some(pending) = &self.pending else { return Ok(()) };
+    /// Looks (without waiting) whether values read back have come: the
+    /// last view pass's slot count (when some pixel wanted more slots than
+    /// it had, the next frame allocates enough and traces the view again)
+    /// and the grid levels the first radii need (built for the next pass).
+    fn check_reads(&mut self) -> Result<(), BackendError> {
+        if self.pending_slots.is_none() && !self.levels.reading() {
+            return Ok(());
+        }
         self.ctx
             .device
             .poll(wgpu::PollType::Poll)
             .map_err(|e| BackendError::Device(format!("polling the GPU: {e}")))?;
-        let Some(result) = pending.mapped.lock().ok().and_then(|mut m| m.take()) else { return Ok(()) };
-        result.map_err(|e| BackendError::Device(format!("mapping the visible-point count: {e}")))?;
-        let needed = {
-            let bytes = pending
-                .staging
-                .slice(..)
-                .get_mapped_range()
-                .map_err(|e| BackendError::Device(format!("reading a mapped buffer: {e}")))?;
-            u32::from_le_bytes(bytes[..4].try_into().expect("4 bytes"))
-        };
-        pending.staging.unmap();
-        self.pending = None;
-        if needed > self.slots {
-            self.slots = needed.next_power_of_two();
-            self.stale = Change::Size;
+        if let Some(needed) = self.pending_slots.as_ref().map(PendingRead::value).transpose()?.flatten() {
+            self.pending_slots = None;
+            if needed > self.slots {
+                self.slots = needed.next_power_of_two();
+                self.stale = Change::Size;
+            }
+        }
+        if self.levels.adopt(&self.ctx, &self.pipelines, &self.buffers, &self.photons)? && !self.chunks.is_empty() {
+            self.bind_chunks()?;
         }
         Ok(())
     }
@@ -509,9 +495,12 @@ impl GpuSession {
             neighbours: (r.neighbours * photons_per_path(&self.scene)) as f32,
             inv_passes: 1.0,
             pilot: 1,
+            ..SessionParams::default()
         };
+        self.levels.forget(&self.ctx)?;
         let emitted = self.photon_pass(&pilot, settings)?;
         self.gather_chunks(Finish::FirstRadii, false)?;
+        self.levels.read_used(&self.ctx)?;
         Ok(emitted)
     }
 
@@ -527,60 +516,63 @@ impl GpuSession {
     }
 
     /// Traces `pass`'s photons (its seed and photon count) and grids them
-    /// for its radius; sets the session params for the gather that follows.
+    /// at every built level for its radius; keeps the session params for
+    /// the gather that follows.
     fn photon_pass(&mut self, pass: &PreparedScene, settings: SessionParams) -> Result<u64, BackendError> {
         let r = &pass.scene.render;
         let p = &mut self.buffers.params;
-        (p.seed, p.radius, p.inv_cell) = (r.seed, r.radius, 1.0 / (2.0 * r.radius));
-        self.ctx.queue.write_buffer(&self.session_params, 0, bytemuck::bytes_of(&settings));
+        (p.seed, p.radius) = (r.seed, r.radius);
+        self.settings = settings;
         let emissions = r.photons.min(self.photons.emissions());
         if self.photons.capacity() == 0 {
             return Ok(0);
         }
         self.photons.record(&self.ctx, &self.pipelines, &mut self.buffers, emissions, &mut NoProgress)?;
-        let capacity = self.photons.capacity();
         // `rebuild` leaves the grid's mask and window in the params for the gather.
-        self.grid.rebuild(&self.ctx, &self.pipelines, &mut self.buffers, capacity, Some(self.photons.cursor()))?;
+        self.levels.rebuild(&self.ctx, &self.pipelines, &mut self.buffers, &self.photons, r.radius)?;
         Ok(u64::from(emissions))
     }
 
-    /// Every chunk: sums emptied and radii set, the gather (in segments
-    /// on a software device), then `finish` (first radii or accumulation);
-    /// `first_pass` empties the pixels' sums first.
+    /// Every chunk: sums emptied and radii set, the gather level by level
+    /// (in segments on a software device), then `finish` (first radii or
+    /// accumulation); `first_pass` empties the pixels' sums first.
     fn gather_chunks(&mut self, finish: Finish, first_pass: bool) -> Result<(), BackendError> {
-        let segments = match self.span {
-            _ if self.photons.capacity() == 0 => 1,
-            u32::MAX => 1,
-            span => self.grid.widest_bucket(&self.ctx, &self.pipelines)?.div_ceil(span).max(1),
-        };
-        let gathering = self.photons.capacity() > 0;
+        let steps = self.gather_steps()?;
+        let r_pass = self.buffers.params.radius;
         for chunk in &self.chunks {
             let slot_count = chunk.count * u64::from(self.slots);
             let groups = chunk.groups();
-            let both = [&groups.gather, &groups.session];
-            for segment in 0..segments {
+            for (i, step) in steps.iter().enumerate() {
                 let p = &mut self.buffers.params;
                 (p.pixel_offset, p.pixel_count, p.points_per_pixel) =
                     (chunk.offset as u32, chunk.count as u32, self.slots);
-                (p.gather_first, p.gather_span) = (segment.saturating_mul(self.span), self.span);
+                let mut settings = SessionParams { built_levels: self.levels.built(), ..self.settings };
+                if let Some(GatherStep { level, segment }) = *step {
+                    p.inv_cell = levels::inv_cell(r_pass, level);
+                    (p.gather_first, p.gather_span) = (segment.saturating_mul(self.span), self.span);
+                    settings.level = level as u32;
+                }
                 self.buffers.write_params(&self.ctx.queue);
+                self.ctx.queue.write_buffer(&self.session_params, 0, bytemuck::bytes_of(&settings));
                 self.ctx.checked("gathering the pass", || {
                     let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
-                    if segment == 0 {
+                    let coarsest = [groups.gather(0), &groups.session];
+                    if i == 0 {
                         if first_pass {
                             encoder.clear_buffer(&chunk.accum, 0, None);
                         }
-                        dispatch(&mut encoder, &self.pipelines.begin_pass, &both, slot_count, WORKGROUP_SIZE);
+                        dispatch(&mut encoder, &self.pipelines.begin_pass, &coarsest, slot_count, WORKGROUP_SIZE);
                     }
-                    if gathering {
-                        dispatch(&mut encoder, &self.pipelines.gather, &both[..1], slot_count, WORKGROUP_SIZE);
+                    if let Some(GatherStep { level, .. }) = *step {
+                        let both = [groups.gather(level), &groups.session];
+                        dispatch(&mut encoder, &self.pipelines.gather_level, &both, slot_count, WORKGROUP_SIZE);
                     }
-                    if segment + 1 == segments {
+                    if i + 1 == steps.len() {
                         let (pipeline, invocations) = match finish {
                             Finish::FirstRadii => (&self.pipelines.first_radius, slot_count),
                             Finish::Accumulate => (&self.pipelines.accumulate, chunk.count),
                         };
-                        dispatch(&mut encoder, pipeline, &both, invocations, WORKGROUP_SIZE);
+                        dispatch(&mut encoder, pipeline, &coarsest, invocations, WORKGROUP_SIZE);
                     }
                     self.ctx.queue.submit([encoder.finish()]);
                 })?;
@@ -588,6 +580,35 @@ impl GpuSession {
         }
         Ok(())
     }
+
+    /// The gather dispatches of this pass, in order: each built level (the
+    /// pilot's radii are all the pass radius: level 0 alone) in as many
+    /// segments as its widest bucket needs on a software device; one empty
+    /// step when there are no photons (the sums are still set and finished).
+    fn gather_steps(&self) -> Result<Vec<Option<GatherStep>>, BackendError> {
+        let mut steps = Vec::new();
+        if self.photons.capacity() > 0 {
+            let pilot = self.settings.pilot != 0;
+            for (level, grid) in self.levels.iter().take(if pilot { 1 } else { GRID_LEVELS }) {
+                let segments = match self.span {
+                    u32::MAX => 1,
+                    span => grid.widest_bucket(&self.ctx, &self.pipelines)?.div_ceil(span).max(1),
+                };
+                steps.extend((0..segments).map(|segment| Some(GatherStep { level, segment })));
+            }
+        }
+        if steps.is_empty() {
+            steps.push(None);
+        }
+        Ok(steps)
+    }
+}
+
+/// One gather dispatch: a grid level's points, one segment of each bucket.
+#[derive(Clone, Copy)]
+struct GatherStep {
+    level: usize,
+    segment: u32,
 }
 
 /// What follows a chunk's gather.

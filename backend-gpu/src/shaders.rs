@@ -98,6 +98,7 @@ fn prelude(stack: u32) -> String {
     u("PROJECTION_NONE", kind::PROJECTION_NONE);
     u("PROJECTION_CONES", kind::PROJECTION_CONES);
     u("PROJECTION_DISCS", kind::PROJECTION_DISCS);
+    u("GRID_LEVELS", prismatic_core::progressive::GRID_LEVELS as u32);
     let mut f = |name: &str, v: f32| writeln!(s, "const {name}: f32 = {v:e};").unwrap();
     f("PI", std::f32::consts::PI);
     f("BIG", f32::MAX);
@@ -202,8 +203,8 @@ pub fn gather() -> String {
 }
 
 /// A live session's progressive passes (entries `first_radius`,
-/// `begin_pass`, `accumulate`): the gather's bindings plus group 1 (radius
-/// ratios, sums, base pixels, session params).
+/// `begin_pass`, `gather_level`, `accumulate`): the gather's bindings plus
+/// group 1 (radius ratios, sums, base pixels, session params, levels used).
 pub fn session() -> String {
     [gather(), include_str!("shaders/session.wgsl").into()].concat()
 }

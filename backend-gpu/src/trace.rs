@@ -9,7 +9,7 @@ use crate::context::GpuContext;
 use crate::layout::Tally;
 use crate::photons::{PHOTON_BYTES, PhotonArray};
 use crate::pipelines::{MAX_WORKGROUPS, Pipelines, dispatch};
-use crate::scan;
+use crate::scan::Scan;
 use crate::scene::SceneBuffers;
 use crate::shaders::WORKGROUP_SIZE;
 use prismatic_core::backend::{Progress, Stage};
@@ -171,14 +171,15 @@ impl PhotonPass {
                     WORKGROUP_SIZE,
                 );
                 encoder.copy_buffer_to_buffer(&self.counts, 0, &self.offsets, 0, u64::from(len) * 4);
-                let chunk_total = scan::record(&ctx.device, pipelines, &mut encoder, &self.offsets, len);
+                let scan = Scan::new(&ctx.device, pipelines, &self.offsets, len);
+                scan.record(pipelines, &mut encoder);
                 let mut entries = vec![
                     wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 1, resource: self.scratch.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 2, resource: self.counts.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 3, resource: self.offsets.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 4, resource: self.cursor.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 5, resource: chunk_total.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 5, resource: scan.total().as_entire_binding() },
                 ];
                 entries.extend(self.photons.entries(6));
                 let compact_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {

@@ -151,7 +151,20 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
         ),
         ("GpuBand", &trace, rust_layout!(GpuBand { weight, lambda_nm, lo_nm, hi_nm, max_weight, _pad })),
         ("Tally", &trace, rust_layout!(Tally { counts, _pad0, flux, _pad1 })),
-        ("SessionParams", &session, rust_layout!(SessionParams { pilot_scale, neighbours, inv_passes, pilot })),
+        (
+            "SessionParams",
+            &session,
+            rust_layout!(SessionParams {
+                pilot_scale,
+                neighbours,
+                inv_passes,
+                pilot,
+                level,
+                built_levels,
+                _pad0,
+                _pad1
+            }),
+        ),
         ("ScanParams", &scan, rust_layout!(ScanParams { n, _pad0, _pad1, _pad2 })),
         (
             "VisiblePoint",

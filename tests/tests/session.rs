@@ -63,7 +63,28 @@ fn sessions_in_bucket_segments_and_several_bindings_match_the_reference() {
     let scene = small("sphere", 20_000);
     let Some(mut s) = session(&scene, options) else { return };
     frames(&mut s, 2);
+    // The segments' widest-bucket reads wait, so the second pass has the finer levels.
+    assert!(s.grid_levels() > 0b1, "no finer level built (levels {:#b})", s.grid_levels());
     compare_images(&reference(&scene, 2), &s.image().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn small_first_radii_are_gathered_in_finer_grid_levels() {
+    // Within 4× the sphere scene's radius its caustic is dense: the pilot
+    // gives many points first radii of a quarter of that or less, gathered
+    // in finer grids.
+    let scene = builtin("sphere", |r| {
+        (r.width, r.height, r.photons) = (80, 80, 20_000);
+        r.radius *= 4.0;
+    });
+    let Some(mut s) = session(&scene, GpuOptions::default()) else { return };
+    assert_eq!(s.grid_levels(), 0b1, "before the pilot, the pass radius's grid alone");
+    frames(&mut s, 1);
+    s.context().wait().unwrap(); // the pilot's mark of the levels comes back
+    frames(&mut s, 2);
+    assert!(s.grid_levels() > 0b1, "no finer level built (levels {:#b})", s.grid_levels());
+    assert_eq!(s.grid_levels() & 1, 1, "level 0 serves the points of levels not built");
+    compare_images(&reference(&scene, 3), &s.image().unwrap()).unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[test]

@@ -2,9 +2,11 @@
 // prismatic_core::progressive. The view pass leaves each pixel's direct
 // light (kept as `base`) and its visible points; the pilot's gather at the
 // scene's radius R gives each point its first radius (`first_radius`, as a
-// fraction of R); each pass empties the points' sums and sets their radii
-// (`begin_pass`), gathers (gather.wgsl's `gather`), then adds each pixel's
-// caustic to its running sum and writes base + mean (`accumulate`).
+// fraction of R) and marks the grid levels those radii fall in; each pass
+// empties the points' sums and sets their radii (`begin_pass`), gathers
+// level by level (`gather_level`, each point in the grid of its own cell
+// size), then adds each pixel's caustic to its running sum and writes
+// base + mean (`accumulate`).
 
 struct SessionParams {
     // A full pass's photons per pilot photon.
@@ -15,12 +17,30 @@ struct SessionParams {
     inv_passes: f32,
     // 1 for the pilot pass: every radius the scene's.
     pilot: u32,
+    // The grid level this gather dispatch serves (params.inv_cell is its cell).
+    level: u32,
+    // Bit l set when level l's grid is built (bit 0 always is).
+    built_levels: u32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 @group(1) @binding(0) var<storage, read_write> radius_ratio: array<f32>;
 @group(1) @binding(1) var<storage, read_write> accum: array<vec4<f32>>;
 @group(1) @binding(2) var<storage, read> base: array<vec4<f32>>;
 @group(1) @binding(3) var<uniform> session: SessionParams;
+// Bit l set when some point's first radius falls in grid level l.
+@group(1) @binding(4) var<storage, read_write> levels_used: atomic<u32>;
+
+// progressive::level_of: the finest grid level whose radius (r_pass / 4^l)
+// is at least r.
+fn level_of(r: f32, r_pass: f32) -> u32 {
+    var level = 0u;
+    while level + 1u < GRID_LEVELS && r <= r_pass / f32(1u << (2u * (level + 1u))) {
+        level++;
+    }
+    return level;
+}
 
 // progressive::initial_radius over R: the fraction of R that would hold
 // `neighbours` photons of a full pass, given what the pilot found within R.
@@ -40,6 +60,11 @@ fn first_radius(
         ratio = clamp(sqrt(session.neighbours / expected), MIN_RADIUS_FRACTION, 1.0);
     }
     radius_ratio[i] = ratio;
+    let bit = 1u << level_of(ratio * params.radius, params.radius);
+    // Most points find their level marked already: a load, not a write, to one address.
+    if (atomicLoad(&levels_used) & bit) == 0u {
+        atomicOr(&levels_used, bit);
+    }
 }
 
 // A pass's start: sums emptied, radius r_1 · s_k (params.radius is R · s_k);
@@ -62,6 +87,31 @@ fn begin_pass(
     vp.sums_c = vec3<f32>(0.0);
     vp.found = 0u;
     vp.radius = select(radius_ratio[i] * params.radius, params.radius, session.pilot != 0u);
+    points[i] = vp;
+}
+
+// A pass's gather at the points of grid level `session.level`: a point
+// whose own level has no grid uses the next coarser one that has (level 0,
+// the pass radius, always has).
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn gather_level(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let i = flat_index(wid, nwg, lid);
+    if !is_point(i) {
+        return;
+    }
+    var vp = points[i];
+    var level = level_of(vp.radius, params.radius);
+    while level > 0u && (session.built_levels & (1u << level)) == 0u {
+        level--;
+    }
+    if level != session.level {
+        return;
+    }
+    gather_segment(&vp);
     points[i] = vp;
 }
 

@@ -1,0 +1,57 @@
+//! A u32 read back from the device without waiting: the copy and the
+//! mapping are submitted now; a later frame, after polling the device,
+//! looks whether the value has come.
+
+use crate::context::GpuContext;
+use prismatic_core::BackendError;
+use std::sync::{Arc, Mutex};
+
+/// The first u32 of a device buffer, on its way to the host.
+pub struct PendingRead {
+    staging: wgpu::Buffer,
+    mapped: Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>,
+}
+
+impl PendingRead {
+    /// Submits a copy of `source`'s first u32 and starts mapping it;
+    /// `what` names it in errors.
+    pub fn start(ctx: &GpuContext, source: &wgpu::Buffer, what: &str) -> Result<Self, BackendError> {
+        let staging = ctx.checked(&format!("reading {what}"), || {
+            let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("prismatic readback"),
+                size: 4,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            encoder.copy_buffer_to_buffer(source, 0, &staging, 0, 4);
+            ctx.queue.submit([encoder.finish()]);
+            staging
+        })?;
+        let mapped = Arc::new(Mutex::new(None));
+        let done = Arc::clone(&mapped);
+        staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+            if let Ok(mut slot) = done.lock() {
+                *slot = Some(r);
+            }
+        });
+        Ok(PendingRead { staging, mapped })
+    }
+
+    /// The value when the mapping has completed (the caller polls the
+    /// device first), `None` while it has not; never waits.
+    pub fn value(&self) -> Result<Option<u32>, BackendError> {
+        let Some(result) = self.mapped.lock().ok().and_then(|mut m| m.take()) else { return Ok(None) };
+        result.map_err(|e| BackendError::Device(format!("mapping a value read back: {e}")))?;
+        let value = {
+            let bytes = self
+                .staging
+                .slice(..)
+                .get_mapped_range()
+                .map_err(|e| BackendError::Device(format!("reading a mapped buffer: {e}")))?;
+            u32::from_le_bytes(bytes[..4].try_into().expect("4 bytes"))
+        };
+        self.staging.unmap();
+        Ok(Some(value))
+    }
+}

@@ -3,9 +3,11 @@
 //! build), `gather/gpu` (grid, ray tracing and gather from a given map, image
 //! read back), `frame/gpu` (the whole frame on the device) and
 //! `frame/gpu-session` (one progressive pass of a live `GpuSession`, the
-//! engine-facing path: photons, grid, gather at resident visible points,
-//! sums). Every measurement ends with a device sync. On lavapipe they only show that the
-//! stages run; real figures need a GPU.
+//! engine-facing path: photons, grid levels, gather at resident visible
+//! points, sums; also `frame/gpu-session-caustic`, a dense caustic filling
+//! the view, where the finer grid levels carry most points). Every
+//! measurement ends with a device sync. On lavapipe they only show that
+//! the stages run; real figures need a GPU.
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use prismatic_core::{Backend, NoProgress};
@@ -37,6 +39,22 @@ fn gpu_groups(c: &mut Criterion) {
     let mut session = GpuSession::new(ctx, &paper, GpuOptions::default()).expect("session");
     session.frame().expect("first frame");
     frame.bench_function("gpu-session", |b| {
+        b.iter(|| {
+            session.frame().unwrap();
+            session.context().wait().unwrap();
+        })
+    });
+    // A dense caustic filling the view (the built-in `caustic` close-up):
+    // most first radii are small, gathered in the finer grid levels.
+    let mut doc = prismatic_cli::load_scene("caustic").expect("built-in caustic");
+    let r = &mut doc.scene.render;
+    (r.width, r.height, r.photons) = (200, 200, 100_000);
+    let caustic = prismatic_core::PreparedScene::new(doc.scene).expect("valid");
+    let ctx = GpuContext::new(AdapterChoice::Any).expect("adapter");
+    let mut session = GpuSession::new(ctx, &caustic, GpuOptions::default()).expect("session");
+    session.frame().expect("first frame");
+    session.context().wait().expect("the grid levels come back");
+    frame.bench_function("gpu-session-caustic", |b| {
         b.iter(|| {
             session.frame().unwrap();
             session.context().wait().unwrap();

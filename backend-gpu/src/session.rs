@@ -3,9 +3,9 @@
 //! frame to frame, and each [`GpuSession::frame`] adds one progressive pass
 //! (the estimator of `prismatic_core::progressive`: pilot-pass first radii,
 //! radii shrinking with α, grid levels for small radii, the mean of the
-//! passes) on the caller's queue without waiting for the device. [`GpuSession::update`] diffs a changed
-//! scene against the current one and invalidates only what the change
-//! touches ([`Change`]).
+//! passes) on the caller's queue without waiting for the device.
+//! [`GpuSession::update`] diffs a changed scene against the current one and
+//! invalidates only what the change touches ([`Change`]).
 
 use crate::context::GpuContext;
 use crate::layout::SessionParams;

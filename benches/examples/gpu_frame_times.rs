@@ -14,7 +14,8 @@
 //! back to back with one wait at the end (throughput, what an engine's
 //! frame loop sees), the host's time to submit a frame, and the same
 //! session with a 1×1 image (photons and grid only) to say which half
-//! bounds the frame.
+//! bounds the frame, and the grid levels the session built (bit l: cells
+//! of the pass radius / 4^l).
 //!
 //! `cargo run --release -p prismatic-benches --example gpu_frame_times -- [FRAMES] [--skip-frames] [--session-only]`
 
@@ -208,11 +209,11 @@ fn session_frames(configs: &[Config], frames: usize) {
     use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
     println!();
     println!(
-        "| session | first frame | frame (waited) | frames back to back | fps | host submit | photons+grid only (1x1) |"
+        "| session | first frame | frame (waited) | frames back to back | fps | host submit | photons+grid only (1x1) | grid levels |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
     for c in configs {
-        let run = |width: u32, height: u32| -> Result<[Duration; 4], String> {
+        let run = |width: u32, height: u32| -> Result<([Duration; 4], u32), String> {
             let ctx = GpuContext::new(AdapterChoice::Any).map_err(|e| e.to_string())?;
             let s = scene(c, width, height, c.photons);
             let mut session = GpuSession::new(ctx, &s, GpuOptions::default()).map_err(|e| e.to_string())?;
@@ -236,11 +237,11 @@ fn session_frames(configs: &[Config], frames: usize) {
             }
             session.context().wait().map_err(|e| e.to_string())?;
             let n = frames as u32;
-            Ok([first, waited[frames / 2], t.elapsed() / n, submit / n])
+            Ok(([first, waited[frames / 2], t.elapsed() / n, submit / n], session.grid_levels()))
         };
         match (run(c.width, c.height), run(1, 1)) {
-            (Ok([first, waited, piped, submit]), Ok([_, alone, ..])) => println!(
-                "| {} | {:.1} ms | {:.2} ms | {:.2} ms | {:.1} | {:.2} ms | {:.2} ms |",
+            (Ok(([first, waited, piped, submit], levels)), Ok(([_, alone, ..], _))) => println!(
+                "| {} | {:.1} ms | {:.2} ms | {:.2} ms | {:.1} | {:.2} ms | {:.2} ms | {levels:#05b} |",
                 c.label,
                 ms(first),
                 ms(waited),

@@ -140,8 +140,6 @@ pub struct GpuSession {
     buffers: SceneBuffers,
     photons: PhotonPass,
     levels: GridLevels,
-    /// The current pass's settings (the gathers' level set per dispatch).
-    settings: SessionParams,
     /// The image: row-major `vec4<f32>`, linear RGB, exposure applied.
     pixels: wgpu::Buffer,
     /// Visible-point slots per pixel.
@@ -204,7 +202,6 @@ impl GpuSession {
             buffers,
             photons,
             levels,
-            settings: SessionParams::default(),
             pixels,
             slots: render::FIRST_POINTS_PER_PIXEL,
             needed,
@@ -498,8 +495,8 @@ impl GpuSession {
             ..SessionParams::default()
         };
         self.levels.forget(&self.ctx)?;
-        let emitted = self.photon_pass(&pilot, settings)?;
-        self.gather_chunks(Finish::FirstRadii, false)?;
+        let emitted = self.photon_pass(&pilot)?;
+        self.gather_chunks(Finish::FirstRadii, false, settings)?;
         self.levels.read_used(&self.ctx)?;
         Ok(emitted)
     }
@@ -510,19 +507,17 @@ impl GpuSession {
         let k = self.passes;
         let pass = photon_pass_scene(&self.scene, self.scene.scene.render.alpha, k);
         let settings = SessionParams { inv_passes: 1.0 / (f64::from(k) + 1.0) as f32, ..SessionParams::default() };
-        let emitted = self.photon_pass(&pass, settings)?;
-        self.gather_chunks(Finish::Accumulate, k == 0)?;
+        let emitted = self.photon_pass(&pass)?;
+        self.gather_chunks(Finish::Accumulate, k == 0, settings)?;
         Ok(emitted)
     }
 
     /// Traces `pass`'s photons (its seed and photon count) and grids them
-    /// at every built level for its radius; keeps the session params for
-    /// the gather that follows.
-    fn photon_pass(&mut self, pass: &PreparedScene, settings: SessionParams) -> Result<u64, BackendError> {
+    /// at every built level for its radius.
+    fn photon_pass(&mut self, pass: &PreparedScene) -> Result<u64, BackendError> {
         let r = &pass.scene.render;
         let p = &mut self.buffers.params;
         (p.seed, p.radius) = (r.seed, r.radius);
-        self.settings = settings;
         let emissions = r.photons.min(self.photons.emissions());
         if self.photons.capacity() == 0 {
             return Ok(0);
@@ -535,9 +530,10 @@ impl GpuSession {
 
     /// Every chunk: sums emptied and radii set, the gather level by level
     /// (in segments on a software device), then `finish` (first radii or
-    /// accumulation); `first_pass` empties the pixels' sums first.
-    fn gather_chunks(&mut self, finish: Finish, first_pass: bool) -> Result<(), BackendError> {
-        let steps = self.gather_steps()?;
+    /// accumulation) with the pass's `settings`; `first_pass` empties the
+    /// pixels' sums first.
+    fn gather_chunks(&mut self, finish: Finish, first_pass: bool, settings: SessionParams) -> Result<(), BackendError> {
+        let steps = self.gather_steps(settings.pilot != 0)?;
         let r_pass = self.buffers.params.radius;
         for chunk in &self.chunks {
             let slot_count = chunk.count * u64::from(self.slots);
@@ -546,14 +542,14 @@ impl GpuSession {
                 let p = &mut self.buffers.params;
                 (p.pixel_offset, p.pixel_count, p.points_per_pixel) =
                     (chunk.offset as u32, chunk.count as u32, self.slots);
-                let mut settings = SessionParams { built_levels: self.levels.built(), ..self.settings };
+                let mut session = SessionParams { built_levels: self.levels.built(), ..settings };
                 if let Some(GatherStep { level, segment }) = *step {
                     p.inv_cell = levels::inv_cell(r_pass, level);
                     (p.gather_first, p.gather_span) = (segment.saturating_mul(self.span), self.span);
-                    settings.level = level as u32;
+                    session.level = level as u32;
                 }
                 self.buffers.write_params(&self.ctx.queue);
-                self.ctx.queue.write_buffer(&self.session_params, 0, bytemuck::bytes_of(&settings));
+                self.ctx.queue.write_buffer(&self.session_params, 0, bytemuck::bytes_of(&session));
                 self.ctx.checked("gathering the pass", || {
                     let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
                     let coarsest = [groups.gather(0), &groups.session];
@@ -585,10 +581,9 @@ impl GpuSession {
     /// pilot's radii are all the pass radius: level 0 alone) in as many
     /// segments as its widest bucket needs on a software device; one empty
     /// step when there are no photons (the sums are still set and finished).
-    fn gather_steps(&self) -> Result<Vec<Option<GatherStep>>, BackendError> {
+    fn gather_steps(&self, pilot: bool) -> Result<Vec<Option<GatherStep>>, BackendError> {
         let mut steps = Vec::new();
         if self.photons.capacity() > 0 {
-            let pilot = self.settings.pilot != 0;
             for (level, grid) in self.levels.iter().take(if pilot { 1 } else { GRID_LEVELS }) {
                 let segments = match self.span {
                     u32::MAX => 1,

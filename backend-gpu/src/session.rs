@@ -170,7 +170,7 @@ impl GpuSession {
         let buffers = ctx
             .checked("uploading the scene", || SceneBuffers::upload(&ctx.device, &pipelines.scene_layout, &encoded))?;
         let window = window(&ctx, options);
-        let photons = photon_pass(&ctx, &pipelines, scene, window)?;
+        let photons = photon_pass(&ctx, &pipelines, scene, &buffers, window)?;
         let levels = GridLevels::new(&ctx, &pipelines, &buffers, &photons)?;
         let small = |label: &str, size: usize, usage: wgpu::BufferUsages| {
             ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -260,7 +260,7 @@ impl GpuSession {
         let window = window(&self.ctx, self.options);
         let mut rebind = regrouped;
         if !self.photons.fits(scene, window) {
-            self.photons = photon_pass(&self.ctx, &self.pipelines, scene, window)?;
+            self.photons = photon_pass(&self.ctx, &self.pipelines, scene, &self.buffers, window)?;
             self.levels.reallocate(&self.ctx, &self.pipelines, &self.buffers, &self.photons)?;
             rebind = true;
         }
@@ -627,9 +627,10 @@ fn photon_pass(
     ctx: &GpuContext,
     pipelines: &Pipelines,
     scene: &PreparedScene,
+    buffers: &SceneBuffers,
     window: u32,
 ) -> Result<PhotonPass, BackendError> {
-    let pass = PhotonPass::new(ctx, pipelines, scene, window)?;
+    let pass = PhotonPass::new(ctx, pipelines, scene, buffers, window)?;
     let bound = u64::from(pass.emissions()) * u64::from(crate::trace::slots_per_emission(scene));
     if bound > u64::from(pass.capacity()) {
         return Err(BackendError::OutOfMemory(format!(

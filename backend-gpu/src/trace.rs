@@ -59,8 +59,9 @@ fn storage(ctx: &GpuContext, label: &str, bytes: u64) -> wgpu::Buffer {
 }
 
 /// The photon pass's device buffers: the canonical map (room for every
-/// photon the scene can store), one chunk's scratch, and the cursor and
-/// tallies. A session keeps them from pass to pass; a one-off trace makes
+/// photon the scene can store), one chunk's scratch, its scan and
+/// compaction bindings, and the cursor and tallies. A session keeps them
+/// from pass to pass, so a pass allocates nothing; a one-off trace makes
 /// them for one.
 pub struct PhotonPass {
     /// The map, in canonical order once a pass has run.
@@ -71,22 +72,27 @@ pub struct PhotonPass {
     slots: u32,
     /// Emissions per chunk.
     chunk: u32,
-    scratch: wgpu::Buffer,
     counts: wgpu::Buffer,
     offsets: wgpu::Buffer,
     /// One u32: photons stored so far (saturating at `u32::MAX`).
     cursor: wgpu::Buffer,
     tallies: wgpu::Buffer,
+    /// The trace's and the compaction's bindings (they also hold the chunk's scratch).
     trace_group: wgpu::BindGroup,
+    /// The scan of a whole chunk's `offsets` (a shorter last chunk's tail is zeroed).
+    scan: Scan,
+    compact_group: wgpu::BindGroup,
 }
 
 impl PhotonPass {
     /// Buffers for the photon passes of `scene` (its photon count, bands and
-    /// wavelength sampling) with `window` photons per binding.
+    /// wavelength sampling) with `window` photons per binding, bound to
+    /// `scene_buffers`' params.
     pub fn new(
         ctx: &GpuContext,
         pipelines: &Pipelines,
         scene: &PreparedScene,
+        scene_buffers: &SceneBuffers,
         window: u32,
     ) -> Result<Self, BackendError> {
         let total = if scene.plan.caustics.on { scene.scene.render.photons } else { 0 };
@@ -114,7 +120,34 @@ impl PhotonPass {
                 wgpu::BindGroupEntry { binding: 2, resource: tallies.as_entire_binding() },
             ],
         });
-        Ok(PhotonPass { photons, total, slots, chunk, scratch, counts, offsets, cursor, tallies, trace_group })
+        let scan = Scan::new(&ctx.device, pipelines, &offsets, chunk);
+        let mut entries = vec![
+            wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 1, resource: scratch.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 2, resource: counts.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 3, resource: offsets.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 4, resource: cursor.as_entire_binding() },
+            wgpu::BindGroupEntry { binding: 5, resource: scan.total().as_entire_binding() },
+        ];
+        entries.extend(photons.entries(6));
+        let compact_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("prismatic compact"),
+            layout: &pipelines.compact_layout,
+            entries: &entries,
+        });
+        Ok(PhotonPass {
+            photons,
+            total,
+            slots,
+            chunk,
+            counts,
+            offsets,
+            cursor,
+            tallies,
+            trace_group,
+            scan,
+            compact_group,
+        })
     }
 
     /// Whether these buffers hold `scene`'s passes (same photons, same slots per emission).
@@ -171,25 +204,14 @@ impl PhotonPass {
                     WORKGROUP_SIZE,
                 );
                 encoder.copy_buffer_to_buffer(&self.counts, 0, &self.offsets, 0, u64::from(len) * 4);
-                let scan = Scan::new(&ctx.device, pipelines, &self.offsets, len);
-                scan.record(pipelines, &mut encoder);
-                let mut entries = vec![
-                    wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: self.scratch.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 2, resource: self.counts.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 3, resource: self.offsets.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 4, resource: self.cursor.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 5, resource: scan.total().as_entire_binding() },
-                ];
-                entries.extend(self.photons.entries(6));
-                let compact_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("prismatic compact"),
-                    layout: &pipelines.compact_layout,
-                    entries: &entries,
-                });
+                if len < chunk {
+                    // The scan covers a whole chunk: a shorter chunk's tail adds nothing.
+                    encoder.clear_buffer(&self.offsets, u64::from(len) * 4, None);
+                }
+                self.scan.record(pipelines, &mut encoder);
                 let slots_total = u64::from(len) * u64::from(slots);
-                dispatch(&mut encoder, &pipelines.compact, &[&compact_group], slots_total, WORKGROUP_SIZE);
-                dispatch(&mut encoder, &pipelines.advance, &[&compact_group], 1, 1);
+                dispatch(&mut encoder, &pipelines.compact, &[&self.compact_group], slots_total, WORKGROUP_SIZE);
+                dispatch(&mut encoder, &pipelines.advance, &[&self.compact_group], 1, 1);
                 ctx.queue.submit([encoder.finish()]);
             })?;
             start += len;
@@ -224,7 +246,7 @@ pub fn trace(
     window: u32,
     progress: &mut dyn Progress,
 ) -> Result<DeviceMap, BackendError> {
-    let pass = PhotonPass::new(ctx, pipelines, scene, window)?;
+    let pass = PhotonPass::new(ctx, pipelines, scene, scene_buffers, window)?;
     pass.record(ctx, pipelines, scene_buffers, pass.emissions(), progress)?;
     let stored = pass.stored(ctx)?;
     Ok(DeviceMap { photons: pass.photons, stored, tallies: pass.tallies })

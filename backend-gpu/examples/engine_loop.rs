@@ -44,11 +44,13 @@ fn scene(light_x: f32) -> PreparedScene {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    // The engine's device: any adapter, with the limits prismatic needs.
+    // The engine's device: any adapter, with the limits prismatic needs
+    // (and timestamp queries where the adapter has them, for stage times).
     let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
     let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default()))?;
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
         required_limits: prismatic_gpu::required_limits(&adapter.limits()),
+        required_features: adapter.features() & prismatic_gpu::timestamp_features(),
         ..Default::default()
     }))?;
     // The texture the engine samples (a sprite, a UI quad, a material).
@@ -78,8 +80,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         let submit = t.elapsed();
         // ... the engine records and submits its own frame here, sampling `texture` ...
         device.poll(wgpu::PollType::wait_indefinitely())?; // (only to time the GPU in this example)
+        // A recent frame's GPU time per stage (read back without waiting).
+        let gpu = session.stage_times().map_or(String::new(), |s| {
+            let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+            format!("; GPU: photons {:.2}, grid {:.2}, gather {:.2} ms", ms(s.photons), ms(s.grid), ms(s.gather))
+        });
         println!(
-            "frame {frame}: pass {} ({} photons), submitted in {:.2} ms, done in {:.2} ms",
+            "frame {frame}: pass {} ({} photons), submitted in {:.2} ms, done in {:.2} ms{gpu}",
             pass.passes,
             pass.photons,
             submit.as_secs_f64() * 1e3,

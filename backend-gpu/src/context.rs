@@ -91,6 +91,8 @@ impl GpuContext {
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("prismatic"),
             required_limits: required_limits(&adapter.limits()),
+            // Stage times for sessions where the adapter has timestamps (optional).
+            required_features: adapter.features() & crate::timing::timestamp_features(),
             ..Default::default()
         }))
         .map_err(|e| BackendError::NoDevice {

@@ -30,11 +30,13 @@ mod scan;
 mod scene;
 mod session;
 pub mod shaders;
+mod timing;
 mod trace;
 
 pub use context::{AdapterChoice, GpuContext, STORAGE_BUFFERS_NEEDED, describe, is_hardware, required_limits};
 pub use render::{PIXEL_BYTES, SOFTWARE_GATHER_SPAN};
 pub use session::{Change, GpuSession, SessionFrame};
+pub use timing::{StageTimes, timestamp_features};
 
 use photons::PhotonArray;
 use pipelines::Pipelines;

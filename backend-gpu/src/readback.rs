@@ -1,12 +1,12 @@
-//! A u32 read back from the device without waiting: the copy and the
+//! Values read back from the device without waiting: the copy and the
 //! mapping are submitted now; a later frame, after polling the device,
-//! looks whether the value has come.
+//! looks whether the bytes have come.
 
 use crate::context::GpuContext;
 use prismatic_core::BackendError;
 use std::sync::{Arc, Mutex};
 
-/// The first u32 of a device buffer, on its way to the host.
+/// The first bytes of a device buffer, on their way to the host.
 pub struct PendingRead {
     staging: wgpu::Buffer,
     mapped: Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>,
@@ -16,15 +16,21 @@ impl PendingRead {
     /// Submits a copy of `source`'s first u32 and starts mapping it;
     /// `what` names it in errors.
     pub fn start(ctx: &GpuContext, source: &wgpu::Buffer, what: &str) -> Result<Self, BackendError> {
+        Self::start_bytes(ctx, source, 4, what)
+    }
+
+    /// Submits a copy of `source`'s first `size` bytes (a multiple of 4)
+    /// and starts mapping it; `what` names it in errors.
+    pub fn start_bytes(ctx: &GpuContext, source: &wgpu::Buffer, size: u64, what: &str) -> Result<Self, BackendError> {
         let staging = ctx.checked(&format!("reading {what}"), || {
             let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("prismatic readback"),
-                size: 4,
+                size,
                 usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             });
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
-            encoder.copy_buffer_to_buffer(source, 0, &staging, 0, 4);
+            encoder.copy_buffer_to_buffer(source, 0, &staging, 0, size);
             ctx.queue.submit([encoder.finish()]);
             staging
         })?;
@@ -38,20 +44,24 @@ impl PendingRead {
         Ok(PendingRead { staging, mapped })
     }
 
-    /// The value when the mapping has completed (the caller polls the
+    /// The first u32 when the mapping has completed (the caller polls the
     /// device first), `None` while it has not; never waits.
     pub fn value(&self) -> Result<Option<u32>, BackendError> {
+        Ok(self.bytes()?.map(|bytes| u32::from_le_bytes(bytes[..4].try_into().expect("4 bytes"))))
+    }
+
+    /// The bytes when the mapping has completed (the caller polls the
+    /// device first), `None` while it has not; never waits.
+    pub fn bytes(&self) -> Result<Option<Vec<u8>>, BackendError> {
         let Some(result) = self.mapped.lock().ok().and_then(|mut m| m.take()) else { return Ok(None) };
         result.map_err(|e| BackendError::Device(format!("mapping a value read back: {e}")))?;
-        let value = {
-            let bytes = self
-                .staging
-                .slice(..)
-                .get_mapped_range()
-                .map_err(|e| BackendError::Device(format!("reading a mapped buffer: {e}")))?;
-            u32::from_le_bytes(bytes[..4].try_into().expect("4 bytes"))
-        };
+        let bytes = self
+            .staging
+            .slice(..)
+            .get_mapped_range()
+            .map_err(|e| BackendError::Device(format!("reading a mapped buffer: {e}")))?
+            .to_vec();
         self.staging.unmap();
-        Ok(Some(value))
+        Ok(Some(bytes))
     }
 }

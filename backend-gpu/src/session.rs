@@ -15,6 +15,7 @@ use crate::readback::PendingRead;
 use crate::render::{PIXEL_BYTES, POINT_BYTES, pixel_buffer, pixel_chunks, pixels_per_chunk, read_image};
 use crate::scene::{EncodedScene, SceneBuffers};
 use crate::shaders::{WORKGROUP_SIZE, stack_size};
+use crate::timing::{Stage, StageTimer, StageTimes};
 use crate::trace::PhotonPass;
 use crate::{GpuOptions, photons, render};
 use prismatic_core::progressive::{GRID_LEVELS, photon_pass_scene, photons_per_path, pilot_scene};
@@ -155,6 +156,8 @@ pub struct GpuSession {
     slots_learnt: bool,
     /// The view pass's "points needed" on its way back.
     pending_slots: Option<PendingRead>,
+    /// GPU stage times, where the device has timestamps.
+    timer: Option<StageTimer>,
 }
 
 impl GpuSession {
@@ -192,6 +195,7 @@ impl GpuSession {
             )
         })?;
         let pixels = pixel_buffer(&ctx, scene.scene.render.width, scene.scene.render.height)?;
+        let timer = StageTimer::new(&ctx);
         Ok(GpuSession {
             ctx,
             pipelines,
@@ -211,6 +215,7 @@ impl GpuSession {
             stale: Change::Size,
             slots_learnt: false,
             pending_slots: None,
+            timer,
         })
     }
 
@@ -288,8 +293,12 @@ impl GpuSession {
         if redone >= Change::Size {
             self.allocate_chunks()?;
         }
+        if let Some(timer) = &mut self.timer {
+            timer.begin(&self.ctx);
+        }
         if redone >= Change::View {
             self.trace_view()?;
+            self.stamp(Stage::View);
         }
         if redone >= Change::Photons {
             photons += self.pilot()?;
@@ -297,7 +306,18 @@ impl GpuSession {
         }
         photons += self.pass()?;
         self.passes += 1;
+        if let Some(timer) = &mut self.timer {
+            timer.finish(&self.ctx)?;
+        }
         Ok(SessionFrame { passes: self.passes, photons, redone })
+    }
+
+    /// The GPU time of each stage of the last frame whose timestamps have
+    /// come back (read without waiting, usually a frame or two late);
+    /// `None` before then, or when the device has no timestamp queries
+    /// (an engine's device needs [`crate::timestamp_features`] for them).
+    pub fn stage_times(&self) -> Option<StageTimes> {
+        self.timer.as_ref().and_then(StageTimer::last)
     }
 
     /// Copies the image into `texture` (its size; `Rgba32Float`,
@@ -462,7 +482,8 @@ impl GpuSession {
     /// it had, the next frame allocates enough and traces the view again)
     /// and the grid levels the first radii need (built for the next pass).
     fn check_reads(&mut self) -> Result<(), BackendError> {
-        if self.pending_slots.is_none() && !self.levels.reading() {
+        let timing = self.timer.as_ref().is_some_and(StageTimer::reading);
+        if self.pending_slots.is_none() && !self.levels.reading() && !timing {
             return Ok(());
         }
         self.ctx
@@ -479,7 +500,17 @@ impl GpuSession {
         if self.levels.adopt(&self.ctx, &self.pipelines, &self.buffers, &self.photons)? && !self.chunks.is_empty() {
             self.bind_chunks()?;
         }
+        if let Some(timer) = &mut self.timer {
+            timer.check()?;
+        }
         Ok(())
+    }
+
+    /// Stamps the end of `stage` when timing.
+    fn stamp(&mut self, stage: Stage) {
+        if let Some(timer) = &mut self.timer {
+            timer.end(&self.ctx, stage);
+        }
     }
 
     /// The pilot pass: photons at 1/8 of a pass, gathered within the
@@ -497,6 +528,7 @@ impl GpuSession {
         self.levels.forget(&self.ctx)?;
         let emitted = self.photon_pass(&pilot)?;
         self.gather_chunks(Finish::FirstRadii, false, settings)?;
+        self.stamp(Stage::Gather);
         self.levels.read_used(&self.ctx)?;
         Ok(emitted)
     }
@@ -509,6 +541,7 @@ impl GpuSession {
         let settings = SessionParams { inv_passes: 1.0 / (f64::from(k) + 1.0) as f32, ..SessionParams::default() };
         let emitted = self.photon_pass(&pass)?;
         self.gather_chunks(Finish::Accumulate, k == 0, settings)?;
+        self.stamp(Stage::Gather);
         Ok(emitted)
     }
 
@@ -523,8 +556,10 @@ impl GpuSession {
             return Ok(0);
         }
         self.photons.record(&self.ctx, &self.pipelines, &mut self.buffers, emissions, &mut NoProgress)?;
+        self.stamp(Stage::Photons);
         // `rebuild` leaves the grid's mask and window in the params for the gather.
         self.levels.rebuild(&self.ctx, &self.pipelines, &mut self.buffers, &self.photons, r.radius)?;
+        self.stamp(Stage::Grid);
         Ok(u64::from(emissions))
     }
 

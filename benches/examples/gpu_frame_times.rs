@@ -14,8 +14,10 @@
 //! back to back with one wait at the end (throughput, what an engine's
 //! frame loop sees), the host's time to submit a frame, and the same
 //! session with a 1×1 image (photons and grid only) to say which half
-//! bounds the frame, and the grid levels the session built (bit l: cells
-//! of the pass radius / 4^l).
+//! bounds the frame, the GPU time of its stages (photons, grid, gather;
+//! median over the waited frames, where the adapter has timestamp
+//! queries) and the grid levels the session built (bit l: cells of the
+//! pass radius / 4^l).
 //!
 //! `cargo run --release -p prismatic-benches --example gpu_frame_times -- [FRAMES] [--skip-frames] [--session-only]`
 
@@ -209,11 +211,11 @@ fn session_frames(configs: &[Config], frames: usize) {
     use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
     println!();
     println!(
-        "| session | first frame | frame (waited) | frames back to back | fps | host submit | photons+grid only (1x1) | grid levels |"
+        "| session | first frame | frame (waited) | frames back to back | fps | host submit | photons+grid only (1x1) | GPU photons / grid / gather | grid levels |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for c in configs {
-        let run = |width: u32, height: u32| -> Result<([Duration; 4], u32), String> {
+        let run = |width: u32, height: u32| -> Result<([Duration; 4], String, u32), String> {
             let ctx = GpuContext::new(AdapterChoice::Any).map_err(|e| e.to_string())?;
             let s = scene(c, width, height, c.photons);
             let mut session = GpuSession::new(ctx, &s, GpuOptions::default()).map_err(|e| e.to_string())?;
@@ -221,14 +223,31 @@ fn session_frames(configs: &[Config], frames: usize) {
             session.frame().map_err(|e| e.to_string())?;
             session.context().wait().map_err(|e| e.to_string())?;
             let first = t.elapsed();
-            let mut waited = Vec::with_capacity(frames);
+            let (mut waited, mut stages) = (Vec::with_capacity(frames), Vec::with_capacity(frames));
             for _ in 0..frames {
                 let t = Instant::now();
                 session.frame().map_err(|e| e.to_string())?;
                 session.context().wait().map_err(|e| e.to_string())?;
                 waited.push(t.elapsed());
+                // The frame before this one's, come back while this one was waited for.
+                stages.extend(session.stage_times().filter(|t| t.view.is_zero()));
             }
             waited.sort();
+            let median = |stage: fn(&prismatic_gpu::StageTimes) -> Duration| {
+                let mut times: Vec<Duration> = stages.iter().map(stage).collect();
+                times.sort();
+                times[times.len() / 2]
+            };
+            let gpu = if stages.is_empty() {
+                "no timestamps".to_string()
+            } else {
+                format!(
+                    "{:.2} / {:.2} / {:.2} ms",
+                    ms(median(|t| t.photons)),
+                    ms(median(|t| t.grid)),
+                    ms(median(|t| t.gather))
+                )
+            };
             let (t, mut submit) = (Instant::now(), Duration::ZERO);
             for _ in 0..frames {
                 let s = Instant::now();
@@ -237,11 +256,11 @@ fn session_frames(configs: &[Config], frames: usize) {
             }
             session.context().wait().map_err(|e| e.to_string())?;
             let n = frames as u32;
-            Ok(([first, waited[frames / 2], t.elapsed() / n, submit / n], session.grid_levels()))
+            Ok(([first, waited[frames / 2], t.elapsed() / n, submit / n], gpu, session.grid_levels()))
         };
         match (run(c.width, c.height), run(1, 1)) {
-            (Ok(([first, waited, piped, submit], levels)), Ok(([_, alone, ..], _))) => println!(
-                "| {} | {:.1} ms | {:.2} ms | {:.2} ms | {:.1} | {:.2} ms | {:.2} ms | {levels:#05b} |",
+            (Ok(([first, waited, piped, submit], gpu, levels)), Ok(([_, alone, ..], ..))) => println!(
+                "| {} | {:.1} ms | {:.2} ms | {:.2} ms | {:.1} | {:.2} ms | {:.2} ms | {gpu} | {levels:#05b} |",
                 c.label,
                 ms(first),
                 ms(waited),

@@ -168,3 +168,31 @@ fn the_caustic_follows_the_light() {
     let after = s.image().unwrap();
     assert!(compare_images(&before, &after).is_err(), "moving the light changed nothing");
 }
+
+#[test]
+fn stage_times_come_back_a_frame_later_and_add_up_to_the_frame() {
+    let scene = small("sphere", 20_000);
+    let Some(mut s) = session(&scene, GpuOptions::default()) else { return };
+    let timestamps = s.context().device.features().contains(prismatic_gpu::timestamp_features());
+    // Lavapipe has timestamp queries: CI times its sessions' stages.
+    assert!(timestamps || std::env::var_os("CI").is_none(), "CI=true and the adapter has no timestamp queries");
+    frames(&mut s, 1);
+    assert_eq!(s.stage_times(), None, "times before the frame's stamps came back");
+    s.image().unwrap(); // waits for the device, so the stamps are mapped
+    frames(&mut s, 1);
+    if !timestamps {
+        assert_eq!(s.stage_times(), None);
+        return;
+    }
+    // The first frame's: view rays, then the pilot's and the pass's photons, grid and gather.
+    let t = s.stage_times().expect("the first frame's stage times");
+    for (stage, time) in [("view", t.view), ("photons", t.photons), ("grid", t.grid), ("gather", t.gather)] {
+        assert!(time > std::time::Duration::ZERO, "{stage} took no time: {t:?}");
+    }
+    assert_eq!(t.frame, t.view + t.photons + t.grid + t.gather);
+    s.image().unwrap();
+    frames(&mut s, 1);
+    let later = s.stage_times().expect("the second frame's stage times");
+    assert_eq!(later.view, std::time::Duration::ZERO, "a frame after the first traces no view rays: {later:?}");
+    assert!(later.photons > std::time::Duration::ZERO && later.gather > std::time::Duration::ZERO, "{later:?}");
+}

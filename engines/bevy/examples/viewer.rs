@@ -4,7 +4,9 @@
 //! Mouse drag: orbit the camera. Wheel: zoom. Arrow keys / PageUp /
 //! PageDown: move the light. 3 / 7 / N: the paper's 3 or 7 bands, or 16
 //! physically based bands. E: switch the estimator (paper / density).
-//! The window title shows the frame time, photons per second and passes.
+//! The window title shows the frame time, photons per second, the GPU time
+//! of the photon pass, grid and gather (where the adapter has timestamps)
+//! and passes.
 //!
 //! `cargo run --release -p prismatic-bevy --example viewer [-- --size 960x540] [--photons 100000] [--screenshot FILE.png [FRAMES]]`
 //! (with `--screenshot`, the window is saved after FRAMES frames, 60 by
@@ -193,10 +195,14 @@ fn switch_settings(keys: Res<ButtonInput<KeyCode>>, mut settings: ResMut<Caustic
 fn show_stats(stats: Res<CausticStats>, settings: Res<CausticSettings>, mut window: Single<&mut Window>) {
     let s = stats.get();
     let r = &settings.0;
+    let gpu = s.gpu.map_or(String::new(), |t| {
+        let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+        format!(" | GPU photons {:.1}, grid {:.1}, gather {:.1} ms", ms(t.photons), ms(t.grid), ms(t.gather))
+    });
     let title = match &s.error {
         Some(e) => format!("prismatic: {e}"),
         None => format!(
-            "prismatic | {:.1} ms/frame | {:.1} M photons/s | pass {} | {} bands, {:?} | {}x{}",
+            "prismatic | {:.1} ms/frame | {:.1} M photons/s{gpu} | pass {} | {} bands, {:?} | {}x{}",
             s.frame_seconds * 1e3,
             s.photons as f64 / s.frame_seconds.max(1e-9) / 1e6,
             s.passes,

@@ -24,6 +24,7 @@ mod mirror;
 
 pub use mirror::{CausticCamera, CausticLight, CausticShape, Glass, Receiver};
 pub use prismatic_core;
+pub use prismatic_gpu::StageTimes;
 
 use bevy::asset::RenderAssetUsages;
 use bevy::image::Image;
@@ -115,6 +116,10 @@ pub struct Stats {
     pub frame_seconds: f64,
     /// Seconds the last frame's submit took on the host.
     pub submit_seconds: f64,
+    /// The GPU time of each stage of a recent frame (timestamps come back
+    /// a frame or two late), where the device has timestamp queries (Bevy's
+    /// default device settings ask for every feature the adapter has).
+    pub gpu: Option<StageTimes>,
     /// Scene generation the image shows.
     pub generation: u64,
     /// Why the scene or the session failed, if it did (the last good
@@ -206,18 +211,19 @@ fn render_caustics(
         let session = live.session.as_mut().expect("made above");
         let frame = session.frame()?;
         session.copy_to_texture(&target.texture)?;
-        Ok::<_, prismatic_core::BackendError>(frame)
+        Ok::<_, prismatic_core::BackendError>((frame, session.stage_times()))
     })();
     let now = Instant::now();
     let interval = live.last_pass.map_or(0.0, |t| (now - t).as_secs_f64());
     live.last_pass = Some(now);
     match result {
-        Ok(frame) => stats.set(|s| {
+        Ok((frame, gpu)) => stats.set(|s| {
             *s = Stats {
                 passes: frame.passes,
                 photons: frame.photons,
                 frame_seconds: interval,
                 submit_seconds: start.elapsed().as_secs_f64(),
+                gpu,
                 generation: scene.generation,
                 error: None,
             }

@@ -127,6 +127,14 @@ fn the_caustic_is_there_and_follows_the_light_entity() {
     let stats = apps.main.world().resource::<CausticStats>().get();
     assert_eq!(stats.error, None);
     assert!(stats.passes >= 3, "passes accumulate while nothing changes: {stats:?}");
+    // Bevy asks for every feature the adapter has; lavapipe has timestamps.
+    let device = apps.main.world().resource::<RenderDevice>().wgpu_device().clone();
+    if device.features().contains(prismatic_gpu::timestamp_features()) {
+        let gpu = stats.gpu.unwrap_or_else(|| panic!("no GPU stage times after 6 waited frames: {stats:?}"));
+        assert!(gpu.gather > std::time::Duration::ZERO, "{gpu:?}");
+    } else {
+        assert!(std::env::var_os("CI").is_none(), "CI=true and Bevy's device has no timestamp queries");
+    }
     let before = read_image(&mut apps);
     assert!(before.iter().all(|l| l.is_finite()), "non-finite pixels");
     let (centre_before, contrast) = caustic(&before);

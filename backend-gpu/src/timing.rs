@@ -1,0 +1,195 @@
+//! GPU timestamps between a session frame's stages, where the device has
+//! them (`TIMESTAMP_QUERY` and `TIMESTAMP_QUERY_INSIDE_ENCODERS`): each
+//! stamp is written in queue order after the stage's submissions, the
+//! stamps are resolved on the device and read back without waiting, a
+//! frame or more later. A frame whose stamps would overlap a read still
+//! on its way is not timed.
+
+use crate::context::GpuContext;
+use crate::readback::PendingRead;
+use prismatic_core::BackendError;
+use std::time::Duration;
+
+/// A session frame's stages, in the order a frame runs them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    /// The view rays: direct light and visible points (after a change only).
+    View,
+    /// The photon pass: trace and compaction into the map.
+    Photons,
+    /// The grid of every built level rebuilt over the new map.
+    Grid,
+    /// The gather at the visible points, and the first radii or the sums.
+    Gather,
+}
+
+/// GPU time of one session frame, per stage. A stage that ran twice (the
+/// pilot pass's and the pass's photons after a change) is summed; a stage
+/// the frame did not run is zero. Each stage is the time from the stamp
+/// before its first submission to the stamp after its last, so idle time
+/// while the host records the stage counts in it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct StageTimes {
+    /// The view rays.
+    pub view: Duration,
+    /// The photon passes.
+    pub photons: Duration,
+    /// The grid rebuilds.
+    pub grid: Duration,
+    /// The gathers.
+    pub gather: Duration,
+    /// The whole frame, first stamp to last.
+    pub frame: Duration,
+}
+
+/// Stamps a frame writes at most: its start, the view, and photons, grid
+/// and gather for the pilot pass and the pass.
+const MAX_STAMPS: u32 = 8;
+
+/// A session's timestamp queries and the last frame's times that came back.
+pub struct StageTimer {
+    queries: wgpu::QuerySet,
+    resolved: wgpu::Buffer,
+    /// Nanoseconds per timestamp tick.
+    period: f64,
+    /// The stage that ended at each stamp after the first, this frame.
+    stages: Vec<Stage>,
+    /// Whether this frame writes stamps.
+    timing: bool,
+    pending: Option<(PendingRead, Vec<Stage>)>,
+    last: Option<StageTimes>,
+}
+
+impl StageTimer {
+    /// A timer on `ctx`'s device; `None` when the device lacks timestamps.
+    pub fn new(ctx: &GpuContext) -> Option<Self> {
+        if !ctx.device.features().contains(timestamp_features()) {
+            return None;
+        }
+        let queries = ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
+            label: Some("prismatic stage stamps"),
+            ty: wgpu::QueryType::Timestamp,
+            count: MAX_STAMPS,
+        });
+        let resolved = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("prismatic stage stamps resolved"),
+            size: u64::from(MAX_STAMPS) * 8,
+            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let period = f64::from(ctx.queue.get_timestamp_period());
+        Some(StageTimer { queries, resolved, period, stages: Vec::new(), timing: false, pending: None, last: None })
+    }
+
+    /// Starts a frame: its first stamp, unless the last timed frame's
+    /// stamps are still on their way back.
+    pub fn begin(&mut self, ctx: &GpuContext) {
+        self.stages.clear();
+        self.timing = self.pending.is_none();
+        if self.timing {
+            self.write(ctx, 0);
+        }
+    }
+
+    /// Stamps the end of `stage`: the time since the last stamp is its.
+    pub fn end(&mut self, ctx: &GpuContext, stage: Stage) {
+        let index = self.stages.len() as u32 + 1;
+        if self.timing && index < MAX_STAMPS {
+            self.stages.push(stage);
+            self.write(ctx, index);
+        }
+    }
+
+    /// Ends the frame: resolves its stamps and starts reading them back.
+    pub fn finish(&mut self, ctx: &GpuContext) -> Result<(), BackendError> {
+        if !self.timing || self.stages.is_empty() {
+            return Ok(());
+        }
+        let stamps = self.stages.len() as u32 + 1;
+        ctx.checked("resolving the stage stamps", || {
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            encoder.resolve_query_set(&self.queries, 0..stamps, &self.resolved, 0);
+            ctx.queue.submit([encoder.finish()]);
+        })?;
+        let read = PendingRead::start_bytes(ctx, &self.resolved, u64::from(stamps) * 8, "the stage stamps")?;
+        self.pending = Some((read, std::mem::take(&mut self.stages)));
+        Ok(())
+    }
+
+    /// Takes the stamps if they have come (the caller has polled the device).
+    pub fn check(&mut self) -> Result<(), BackendError> {
+        let Some((read, stages)) = &self.pending else { return Ok(()) };
+        let Some(bytes) = read.bytes()? else { return Ok(()) };
+        let ticks: Vec<u64> = bytemuck::pod_collect_to_vec(&bytes);
+        self.last = Some(stage_times(&ticks, stages, self.period));
+        self.pending = None;
+        Ok(())
+    }
+
+    /// Whether stamps are on their way back.
+    pub fn reading(&self) -> bool {
+        self.pending.is_some()
+    }
+
+    /// The last timed frame's stage times that came back.
+    pub fn last(&self) -> Option<StageTimes> {
+        self.last
+    }
+}
+
+/// The features stage times need; a device the backend creates requests
+/// them when its adapter has them.
+pub fn timestamp_features() -> wgpu::Features {
+    wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
+}
+
+impl StageTimer {
+    /// Writes stamp `index` after everything submitted so far.
+    fn write(&self, ctx: &GpuContext, index: u32) {
+        let mut encoder = ctx.device.create_command_encoder(&Default::default());
+        encoder.write_timestamp(&self.queries, index);
+        ctx.queue.submit([encoder.finish()]);
+    }
+}
+
+/// Stage times from `ticks` (the frame's stamps in order; stamp i + 1
+/// ends `stages[i]`) at `period` nanoseconds a tick. A stamp earlier than
+/// the one before it (a counter that wrapped or was reset) counts zero.
+fn stage_times(ticks: &[u64], stages: &[Stage], period: f64) -> StageTimes {
+    let span = |a: u64, b: u64| Duration::from_nanos((b.saturating_sub(a) as f64 * period) as u64);
+    let mut times = StageTimes::default();
+    for (pair, stage) in ticks.windows(2).zip(stages) {
+        let t = span(pair[0], pair[1]);
+        match stage {
+            Stage::View => times.view += t,
+            Stage::Photons => times.photons += t,
+            Stage::Grid => times.grid += t,
+            Stage::Gather => times.gather += t,
+        }
+    }
+    times.frame = times.view + times.photons + times.grid + times.gather;
+    times
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stages_take_the_time_since_the_stamp_before_them_and_repeated_stages_add_up() {
+        let stages = [Stage::Photons, Stage::Grid, Stage::Gather, Stage::Photons, Stage::Grid, Stage::Gather];
+        let ticks = [100, 150, 160, 400, 450, 470, 1000];
+        let t = stage_times(&ticks, &stages, 2.0);
+        let ns = Duration::from_nanos;
+        assert_eq!(t.photons, ns(2 * (50 + 50)));
+        assert_eq!(t.grid, ns(2 * (10 + 20)));
+        assert_eq!(t.gather, ns(2 * (240 + 530)));
+        assert_eq!((t.view, t.frame), (Duration::ZERO, ns(2 * 900)));
+    }
+
+    #[test]
+    fn a_stamp_before_the_one_before_it_counts_zero() {
+        let t = stage_times(&[500, 100, 300], &[Stage::View, Stage::Gather], 1.0);
+        assert_eq!((t.view, t.gather), (Duration::ZERO, Duration::from_nanos(200)));
+    }
+}

@@ -195,7 +195,7 @@ impl GpuSession {
             )
         })?;
         let pixels = pixel_buffer(&ctx, scene.scene.render.width, scene.scene.render.height)?;
-        let timer = StageTimer::new(&ctx);
+        let timer = StageTimer::new(&ctx)?;
         Ok(GpuSession {
             ctx,
             pipelines,
@@ -294,11 +294,11 @@ impl GpuSession {
             self.allocate_chunks()?;
         }
         if let Some(timer) = &mut self.timer {
-            timer.begin(&self.ctx);
+            timer.begin(&self.ctx)?;
         }
         if redone >= Change::View {
             self.trace_view()?;
-            self.stamp(Stage::View);
+            self.stamp(Stage::View)?;
         }
         if redone >= Change::Photons {
             photons += self.pilot()?;
@@ -507,9 +507,10 @@ impl GpuSession {
     }
 
     /// Stamps the end of `stage` when timing.
-    fn stamp(&mut self, stage: Stage) {
-        if let Some(timer) = &mut self.timer {
-            timer.end(&self.ctx, stage);
+    fn stamp(&mut self, stage: Stage) -> Result<(), BackendError> {
+        match &mut self.timer {
+            Some(timer) => timer.end(&self.ctx, stage),
+            None => Ok(()),
         }
     }
 
@@ -528,7 +529,7 @@ impl GpuSession {
         self.levels.forget(&self.ctx)?;
         let emitted = self.photon_pass(&pilot)?;
         self.gather_chunks(Finish::FirstRadii, false, settings)?;
-        self.stamp(Stage::Gather);
+        self.stamp(Stage::Gather)?;
         self.levels.read_used(&self.ctx)?;
         Ok(emitted)
     }
@@ -541,7 +542,7 @@ impl GpuSession {
         let settings = SessionParams { inv_passes: 1.0 / (f64::from(k) + 1.0) as f32, ..SessionParams::default() };
         let emitted = self.photon_pass(&pass)?;
         self.gather_chunks(Finish::Accumulate, k == 0, settings)?;
-        self.stamp(Stage::Gather);
+        self.stamp(Stage::Gather)?;
         Ok(emitted)
     }
 
@@ -556,10 +557,10 @@ impl GpuSession {
             return Ok(0);
         }
         self.photons.record(&self.ctx, &self.pipelines, &mut self.buffers, emissions, &mut NoProgress)?;
-        self.stamp(Stage::Photons);
+        self.stamp(Stage::Photons)?;
         // `rebuild` leaves the grid's mask and window in the params for the gather.
         self.levels.rebuild(&self.ctx, &self.pipelines, &mut self.buffers, &self.photons, r.radius)?;
-        self.stamp(Stage::Grid);
+        self.stamp(Stage::Grid)?;
         Ok(u64::from(emissions))
     }
 

@@ -62,42 +62,44 @@ pub struct StageTimer {
 
 impl StageTimer {
     /// A timer on `ctx`'s device; `None` when the device lacks timestamps.
-    pub fn new(ctx: &GpuContext) -> Option<Self> {
+    pub fn new(ctx: &GpuContext) -> Result<Option<Self>, BackendError> {
         if !ctx.device.features().contains(timestamp_features()) {
-            return None;
+            return Ok(None);
         }
-        let queries = ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
-            label: Some("prismatic stage stamps"),
-            ty: wgpu::QueryType::Timestamp,
-            count: MAX_STAMPS,
-        });
-        let resolved = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("prismatic stage stamps resolved"),
-            size: u64::from(MAX_STAMPS) * 8,
-            usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
-            mapped_at_creation: false,
-        });
+        let (queries, resolved) = ctx.checked("allocating the stage stamps", || {
+            let queries = ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
+                label: Some("prismatic stage stamps"),
+                ty: wgpu::QueryType::Timestamp,
+                count: MAX_STAMPS,
+            });
+            let resolved = ctx.device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("prismatic stage stamps resolved"),
+                size: u64::from(MAX_STAMPS) * 8,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            (queries, resolved)
+        })?;
         let period = f64::from(ctx.queue.get_timestamp_period());
-        Some(StageTimer { queries, resolved, period, stages: Vec::new(), timing: false, pending: None, last: None })
+        Ok(Some(StageTimer { queries, resolved, period, stages: Vec::new(), timing: false, pending: None, last: None }))
     }
 
     /// Starts a frame: its first stamp, unless the last timed frame's
     /// stamps are still on their way back.
-    pub fn begin(&mut self, ctx: &GpuContext) {
+    pub fn begin(&mut self, ctx: &GpuContext) -> Result<(), BackendError> {
         self.stages.clear();
         self.timing = self.pending.is_none();
-        if self.timing {
-            self.write(ctx, 0);
-        }
+        if self.timing { self.write(ctx, 0) } else { Ok(()) }
     }
 
     /// Stamps the end of `stage`: the time since the last stamp is its.
-    pub fn end(&mut self, ctx: &GpuContext, stage: Stage) {
+    pub fn end(&mut self, ctx: &GpuContext, stage: Stage) -> Result<(), BackendError> {
         let index = self.stages.len() as u32 + 1;
-        if self.timing && index < MAX_STAMPS {
-            self.stages.push(stage);
-            self.write(ctx, index);
+        if !self.timing || index >= MAX_STAMPS {
+            return Ok(());
         }
+        self.stages.push(stage);
+        self.write(ctx, index)
     }
 
     /// Ends the frame: resolves its stamps and starts reading them back.
@@ -145,10 +147,12 @@ pub fn timestamp_features() -> wgpu::Features {
 
 impl StageTimer {
     /// Writes stamp `index` after everything submitted so far.
-    fn write(&self, ctx: &GpuContext, index: u32) {
-        let mut encoder = ctx.device.create_command_encoder(&Default::default());
-        encoder.write_timestamp(&self.queries, index);
-        ctx.queue.submit([encoder.finish()]);
+    fn write(&self, ctx: &GpuContext, index: u32) -> Result<(), BackendError> {
+        ctx.checked("writing a stage stamp", || {
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            encoder.write_timestamp(&self.queries, index);
+            ctx.queue.submit([encoder.finish()]);
+        })
     }
 }
 

@@ -111,30 +111,33 @@ impl PhotonPass {
                 storage(ctx, "prismatic tallies", dispatched_groups(groups) * std::mem::size_of::<Tally>() as u64),
             )
         })?;
-        let trace_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("prismatic trace"),
-            layout: &pipelines.trace_layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: scratch.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 1, resource: counts.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: tallies.as_entire_binding() },
-            ],
-        });
-        let scan = Scan::new(&ctx.device, pipelines, &offsets, chunk);
-        let mut entries = vec![
-            wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 1, resource: scratch.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 2, resource: counts.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 3, resource: offsets.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 4, resource: cursor.as_entire_binding() },
-            wgpu::BindGroupEntry { binding: 5, resource: scan.total().as_entire_binding() },
-        ];
-        entries.extend(photons.entries(6));
-        let compact_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("prismatic compact"),
-            layout: &pipelines.compact_layout,
-            entries: &entries,
-        });
+        let (trace_group, scan, compact_group) = ctx.checked("binding the photon pass", || {
+            let trace_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("prismatic trace"),
+                layout: &pipelines.trace_layout,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: scratch.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: counts.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: tallies.as_entire_binding() },
+                ],
+            });
+            let scan = Scan::new(&ctx.device, pipelines, &offsets, chunk);
+            let mut entries = vec![
+                wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: scratch.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: counts.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: offsets.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 4, resource: cursor.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 5, resource: scan.total().as_entire_binding() },
+            ];
+            entries.extend(photons.entries(6));
+            let compact_group = ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("prismatic compact"),
+                layout: &pipelines.compact_layout,
+                entries: &entries,
+            });
+            (trace_group, scan, compact_group)
+        })?;
         Ok(PhotonPass {
             photons,
             total,

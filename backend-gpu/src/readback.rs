@@ -9,6 +9,8 @@ use std::sync::{Arc, Mutex};
 /// The first bytes of a device buffer, on their way to the host.
 pub struct PendingRead {
     staging: wgpu::Buffer,
+    /// Bytes read: the start of `staging`.
+    size: u64,
     mapped: Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>,
 }
 
@@ -16,32 +18,34 @@ impl PendingRead {
     /// Submits a copy of `source`'s first u32 and starts mapping it;
     /// `what` names it in errors.
     pub fn start(ctx: &GpuContext, source: &wgpu::Buffer, what: &str) -> Result<Self, BackendError> {
-        Self::start_bytes(ctx, source, 4, what)
+        let staging = ctx.checked(&format!("reading {what}"), || staging_buffer(&ctx.device, 4))?;
+        Self::start_in(ctx, source, staging, 4, what)
     }
 
     /// Submits a copy of `source`'s first `size` bytes (a multiple of 4)
-    /// and starts mapping it; `what` names it in errors.
-    pub fn start_bytes(ctx: &GpuContext, source: &wgpu::Buffer, size: u64, what: &str) -> Result<Self, BackendError> {
-        let staging = ctx.checked(&format!("reading {what}"), || {
-            let staging = ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("prismatic readback"),
-                size,
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
+    /// into the caller's `staging` buffer (from [`staging_buffer`], at
+    /// least `size` bytes, not mapped: a read repeated every frame
+    /// allocates nothing) and starts mapping it; `what` names it in errors.
+    pub fn start_in(
+        ctx: &GpuContext,
+        source: &wgpu::Buffer,
+        staging: wgpu::Buffer,
+        size: u64,
+        what: &str,
+    ) -> Result<Self, BackendError> {
+        ctx.checked(&format!("reading {what}"), || {
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
             encoder.copy_buffer_to_buffer(source, 0, &staging, 0, size);
             ctx.queue.submit([encoder.finish()]);
-            staging
         })?;
         let mapped = Arc::new(Mutex::new(None));
         let done = Arc::clone(&mapped);
-        staging.slice(..).map_async(wgpu::MapMode::Read, move |r| {
+        staging.slice(..size).map_async(wgpu::MapMode::Read, move |r| {
             if let Ok(mut slot) = done.lock() {
                 *slot = Some(r);
             }
         });
-        Ok(PendingRead { staging, mapped })
+        Ok(PendingRead { staging, size, mapped })
     }
 
     /// The first u32 when the mapping has completed (the caller polls the
@@ -57,11 +61,21 @@ impl PendingRead {
         result.map_err(|e| BackendError::Device(format!("mapping a value read back: {e}")))?;
         let bytes = self
             .staging
-            .slice(..)
+            .slice(..self.size)
             .get_mapped_range()
             .map_err(|e| BackendError::Device(format!("reading a mapped buffer: {e}")))?
             .to_vec();
         self.staging.unmap();
         Ok(Some(bytes))
     }
+}
+
+/// A host-readable buffer of `size` bytes for [`PendingRead`]s.
+pub fn staging_buffer(device: &wgpu::Device, size: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some("prismatic readback"),
+        size,
+        usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
 }

@@ -6,7 +6,7 @@
 //! on its way is not timed.
 
 use crate::context::GpuContext;
-use crate::readback::PendingRead;
+use crate::readback::{PendingRead, staging_buffer};
 use prismatic_core::BackendError;
 use std::time::Duration;
 
@@ -50,6 +50,8 @@ const MAX_STAMPS: u32 = 8;
 pub struct StageTimer {
     queries: wgpu::QuerySet,
     resolved: wgpu::Buffer,
+    /// Where the resolved stamps are read back (one read at a time).
+    staging: wgpu::Buffer,
     /// Nanoseconds per timestamp tick.
     period: f64,
     /// The stage that ended at each stamp after the first, this frame.
@@ -66,7 +68,7 @@ impl StageTimer {
         if !ctx.device.features().contains(timestamp_features()) {
             return Ok(None);
         }
-        let (queries, resolved) = ctx.checked("allocating the stage stamps", || {
+        let (queries, resolved, staging) = ctx.checked("allocating the stage stamps", || {
             let queries = ctx.device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("prismatic stage stamps"),
                 ty: wgpu::QueryType::Timestamp,
@@ -78,10 +80,19 @@ impl StageTimer {
                 usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             });
-            (queries, resolved)
+            (queries, resolved, staging_buffer(&ctx.device, u64::from(MAX_STAMPS) * 8))
         })?;
         let period = f64::from(ctx.queue.get_timestamp_period());
-        Ok(Some(StageTimer { queries, resolved, period, stages: Vec::new(), timing: false, pending: None, last: None }))
+        Ok(Some(StageTimer {
+            queries,
+            resolved,
+            staging,
+            period,
+            stages: Vec::new(),
+            timing: false,
+            pending: None,
+            last: None,
+        }))
     }
 
     /// Starts a frame: its first stamp, unless the last timed frame's
@@ -113,7 +124,8 @@ impl StageTimer {
             encoder.resolve_query_set(&self.queries, 0..stamps, &self.resolved, 0);
             ctx.queue.submit([encoder.finish()]);
         })?;
-        let read = PendingRead::start_bytes(ctx, &self.resolved, u64::from(stamps) * 8, "the stage stamps")?;
+        let size = u64::from(stamps) * 8;
+        let read = PendingRead::start_in(ctx, &self.resolved, self.staging.clone(), size, "the stage stamps")?;
         self.pending = Some((read, std::mem::take(&mut self.stages)));
         Ok(())
     }

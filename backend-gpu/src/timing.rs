@@ -38,8 +38,13 @@ pub struct StageTimes {
     pub grid: Duration,
     /// The gathers.
     pub gather: Duration,
-    /// The whole frame, first stamp to last.
-    pub frame: Duration,
+}
+
+impl StageTimes {
+    /// The whole frame, first stamp to last: the stages' sum.
+    pub fn frame(&self) -> Duration {
+        self.view + self.photons + self.grid + self.gather
+    }
 }
 
 /// Stamps a frame writes at most: its start, the view, and photons, grid
@@ -183,7 +188,6 @@ fn stage_times(ticks: &[u64], stages: &[Stage], period: f64) -> StageTimes {
             Stage::Gather => times.gather += t,
         }
     }
-    times.frame = times.view + times.photons + times.grid + times.gather;
     times
 }
 
@@ -200,7 +204,7 @@ mod tests {
         assert_eq!(t.photons, ns(2 * (50 + 50)));
         assert_eq!(t.grid, ns(2 * (10 + 20)));
         assert_eq!(t.gather, ns(2 * (240 + 530)));
-        assert_eq!((t.view, t.frame), (Duration::ZERO, ns(2 * 900)));
+        assert_eq!((t.view, t.frame()), (Duration::ZERO, ns(2 * 900)));
     }
 
     #[test]

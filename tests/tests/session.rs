@@ -170,15 +170,17 @@ fn the_caustic_follows_the_light() {
 }
 
 #[test]
-fn stage_times_come_back_a_frame_later_and_add_up_to_the_frame() {
+fn stage_times_come_back_a_frame_later_and_fit_in_the_frames_wall_time() {
     let scene = small("sphere", 20_000);
     let Some(mut s) = session(&scene, GpuOptions::default()) else { return };
     let timestamps = s.context().device.features().contains(prismatic_gpu::timestamp_features());
     // Lavapipe has timestamp queries: CI times its sessions' stages.
     assert!(timestamps || std::env::var_os("CI").is_none(), "CI=true and the adapter has no timestamp queries");
+    let start = std::time::Instant::now();
     frames(&mut s, 1);
     assert_eq!(s.stage_times(), None, "times before the frame's stamps came back");
     s.image().unwrap(); // waits for the device, so the stamps are mapped
+    let wall = start.elapsed();
     frames(&mut s, 1);
     if !timestamps {
         assert_eq!(s.stage_times(), None);
@@ -189,7 +191,8 @@ fn stage_times_come_back_a_frame_later_and_add_up_to_the_frame() {
     for (stage, time) in [("view", t.view), ("photons", t.photons), ("grid", t.grid), ("gather", t.gather)] {
         assert!(time > std::time::Duration::ZERO, "{stage} took no time: {t:?}");
     }
-    assert_eq!(t.frame, t.view + t.photons + t.grid + t.gather);
+    // Ticks scaled by the queue's timestamp period: the GPU's frame fits in the host's.
+    assert!(t.frame() <= wall, "GPU frame {:?} longer than the host's {wall:?}: {t:?}", t.frame());
     s.image().unwrap();
     frames(&mut s, 1);
     let later = s.stage_times().expect("the second frame's stage times");

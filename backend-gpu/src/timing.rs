@@ -47,6 +47,18 @@ impl StageTimes {
     }
 }
 
+/// `view 14.10, photons 0.52, grid 0.31, gather 3.05 ms`, without the view
+/// when the frame traced none (the frames that follow no change).
+impl std::fmt::Display for StageTimes {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let ms = |d: Duration| d.as_secs_f64() * 1e3;
+        if !self.view.is_zero() {
+            write!(f, "view {:.2}, ", ms(self.view))?;
+        }
+        write!(f, "photons {:.2}, grid {:.2}, gather {:.2} ms", ms(self.photons), ms(self.grid), ms(self.gather))
+    }
+}
+
 /// Stamps a frame writes at most: its start, the view, and photons, grid
 /// and gather for the pilot pass and the pass.
 const MAX_STAMPS: u32 = 8;
@@ -211,5 +223,14 @@ mod tests {
     fn a_stamp_before_the_one_before_it_counts_zero() {
         let t = stage_times(&[500, 100, 300], &[Stage::View, Stage::Gather], 1.0);
         assert_eq!((t.view, t.gather), (Duration::ZERO, Duration::from_nanos(200)));
+    }
+
+    #[test]
+    fn shown_in_milliseconds_with_the_view_only_when_it_ran() {
+        let us = Duration::from_micros;
+        let t = StageTimes { view: Duration::ZERO, photons: us(520), grid: us(310), gather: us(3054) };
+        assert_eq!(t.to_string(), "photons 0.52, grid 0.31, gather 3.05 ms");
+        let t = StageTimes { view: us(14_100), ..t };
+        assert_eq!(t.to_string(), "view 14.10, photons 0.52, grid 0.31, gather 3.05 ms");
     }
 }

@@ -211,7 +211,7 @@ fn session_frames(configs: &[Config], frames: usize) {
     use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
     println!();
     println!(
-        "| session | first frame | frame (waited) | frames back to back | fps | host submit | photons+grid only (1x1) | GPU photons / grid / gather | grid levels |"
+        "| session | first frame | frame (waited) | frames back to back | fps | host submit | photons+grid only (1x1) | GPU stages (median) | grid levels |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     for c in configs {
@@ -241,12 +241,13 @@ fn session_frames(configs: &[Config], frames: usize) {
             let gpu = if stages.is_empty() {
                 "no timestamps".to_string()
             } else {
-                format!(
-                    "{:.2} / {:.2} / {:.2} ms",
-                    ms(median(|t| t.photons)),
-                    ms(median(|t| t.grid)),
-                    ms(median(|t| t.gather))
-                )
+                let t = prismatic_gpu::StageTimes {
+                    view: Duration::ZERO,
+                    photons: median(|t| t.photons),
+                    grid: median(|t| t.grid),
+                    gather: median(|t| t.gather),
+                };
+                t.to_string()
             };
             let (t, mut submit) = (Instant::now(), Duration::ZERO);
             for _ in 0..frames {

@@ -195,10 +195,7 @@ fn switch_settings(keys: Res<ButtonInput<KeyCode>>, mut settings: ResMut<Caustic
 fn show_stats(stats: Res<CausticStats>, settings: Res<CausticSettings>, mut window: Single<&mut Window>) {
     let s = stats.get();
     let r = &settings.0;
-    let gpu = s.gpu.map_or(String::new(), |t| {
-        let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
-        format!(" | GPU photons {:.1}, grid {:.1}, gather {:.1} ms", ms(t.photons), ms(t.grid), ms(t.gather))
-    });
+    let gpu = s.gpu.map_or(String::new(), |t| format!(" | GPU {t}"));
     let title = match &s.error {
         Some(e) => format!("prismatic: {e}"),
         None => format!(

@@ -1,14 +1,14 @@
 //! The hash grid of the CPU backend and its gather: the core's `PhotonGrid`
-//! and `gather`, with the photons copied into bucket order as structure-of-
+//! and `gather_counted`, with the photons copied into bucket order as structure-of-
 //! arrays records, so that a query tests eight photons at a time against
 //! the radius and the surface side.
 
 use crate::simd::{Vec3x8, lt};
-use glam::{DVec3, IVec3, Vec3};
-use prismatic_core::bands::{BandTable, MAX_BANDS};
-use prismatic_core::gather::{GatherQuery, paper_hue};
+use glam::{IVec3, Vec3};
+use prismatic_core::bands::BandTable;
+use prismatic_core::gather::{GatherQuery, GatherSums, finish};
 use prismatic_core::grid::{bucket_mask, bucket_of, cell_of};
-use prismatic_core::photon::{Photon, WHITE_BAND};
+use prismatic_core::photon::Photon;
 use prismatic_core::scene::Estimator;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -210,28 +210,10 @@ impl CpuGrid {
         self.len() == 0
     }
 
-    /// Caustic irradiance at `q` (the core's `gather`, same estimators).
-    /// `counts` is scratch space of `MAX_BANDS + 1` integers, left zeroed.
-    pub fn gather(
-        &self,
-        bands: &BandTable,
-        estimator: Estimator,
-        q: &GatherQuery,
-        counts: &mut [u32; MAX_BANDS + 1],
-    ) -> Vec3 {
-        self.gather_counted(bands, estimator, q, counts).0
-    }
-
-    /// [`CpuGrid::gather`], and how many photons it accepted (the core's `gather_counted`).
-    pub fn gather_counted(
-        &self,
-        bands: &BandTable,
-        estimator: Estimator,
-        q: &GatherQuery,
-        counts: &mut [u32; MAX_BANDS + 1],
-    ) -> (Vec3, u32) {
+    /// Caustic irradiance at `q` and how many photons it accepted (the
+    /// core's `gather_counted`, same estimators).
+    pub fn gather_counted(&self, bands: &BandTable, estimator: Estimator, q: &GatherQuery) -> (Vec3, u32) {
         let r2 = q.radius * q.radius;
-        let area = std::f64::consts::PI * f64::from(r2);
         let inv = 1.0 / self.cell_size;
         let lo = cell_of(q.point - Vec3::splat(q.radius), inv);
         let hi = cell_of(q.point + Vec3::splat(q.radius), inv);
@@ -239,9 +221,7 @@ impl CpuGrid {
         let lane_index = f32x8::new([0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0]);
         let mut seen = [0u32; 8];
         let mut n_seen = 0;
-        let mut density = DVec3::ZERO;
-        let mut flux = 0.0f64;
-        let mut found = 0u32;
+        let mut sums = GatherSums::default();
         for z in lo.z..=hi.z.min(lo.z.saturating_add(1)) {
             for y in lo.y..=hi.y.min(lo.y.saturating_add(1)) {
                 for x in lo.x..=hi.x.min(lo.x.saturating_add(1)) {
@@ -262,32 +242,15 @@ impl CpuGrid {
                         let front = lt(d.dot(qn), f32x8::ZERO);
                         let real = lt(lane_index, f32x8::splat((end - i) as f32));
                         let accepted = (inside & front & real).to_bitmask();
-                        found += accepted.count_ones();
                         for lane in (0..8).filter(|l| accepted & (1 << l) != 0) {
-                            let (band, f) = (self.band[i + lane], self.flux[i + lane]);
-                            match estimator {
-                                Estimator::Density => density += bands.rgb_of_flux(band, f).as_dvec3(),
-                                Estimator::Paper => {
-                                    counts[if band == WHITE_BAND { MAX_BANDS } else { usize::from(band) }] += 1;
-                                    flux += f64::from(f);
-                                }
-                            }
+                            sums.add(estimator, bands, self.band[i + lane], self.flux[i + lane]);
                         }
                         i += 8;
                     }
                 }
             }
         }
-        let irradiance = match estimator {
-            Estimator::Density => (density / area).as_vec3(),
-            Estimator::Paper => {
-                let hue = paper_hue(bands, counts);
-                counts[..bands.len()].fill(0);
-                counts[MAX_BANDS] = 0;
-                hue.as_vec3() * (flux / area) as f32
-            }
-        };
-        (irradiance, found)
+        (finish(estimator, bands.len(), &sums, q.radius), sums.found)
     }
 }
 
@@ -362,13 +325,12 @@ mod tests {
             (0..40).map(|i| (Vec3::new(next() - 0.5, 0.0, next() - 0.5), 0.008 + 0.002 * (i % 2) as f32)).collect();
         let near = CpuGrid::build_near(&photons, 0.01, queries.par_iter().copied());
         assert!(near.len() < photons.len() / 4, "{} of {}", near.len(), photons.len());
-        let mut counts = [0; MAX_BANDS + 1];
         for estimator in [Estimator::Density, Estimator::Paper] {
             for &(point, radius) in &queries {
                 let q = GatherQuery { point, normal: Vec3::Y, radius };
-                let whole = one.gather_counted(&bands, estimator, &q, &mut counts);
+                let whole = one.gather_counted(&bands, estimator, &q);
                 assert!(whole.1 > 0, "a query with no photons tests nothing");
-                assert_eq!(near.gather_counted(&bands, estimator, &q, &mut counts), whole);
+                assert_eq!(near.gather_counted(&bands, estimator, &q), whole);
             }
         }
     }

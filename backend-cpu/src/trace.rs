@@ -13,12 +13,13 @@
 
 use crate::emit::Emitters;
 use crate::intersect::{HitX8, RayX8, intersect_scene};
-use crate::simd::{Vec3x8, ge, lt, random_f32};
+use crate::optics::{offset_origin, reflect, scatter_dielectric};
+use crate::simd::{Vec3x8, lt, random_f32};
 use prismatic_core::photon::{Photon, TraceStats, WHITE_BAND, oct_encode};
-use prismatic_core::prepared::{PreparedScene, Surface};
+use prismatic_core::prepared::PreparedScene;
 use prismatic_core::rng::dim;
 use prismatic_core::scene::WavelengthSampling;
-use prismatic_core::tolerance::{SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL};
+use prismatic_core::surface::Surface;
 use prismatic_core::trace::sample_band;
 use wide::{f32x8, u32x8};
 
@@ -410,65 +411,4 @@ fn lanes(mask: f32x8) -> impl Iterator<Item = usize> {
 fn scatter_dims(band: u32x8, bounces: u32x8) -> u32x8 {
     let slot = (band + u32x8::ONE) & u32x8::splat(0xFFFF);
     u32x8::splat(dim::PATH) + slot * u32x8::splat(dim::PER_BAND) + bounces
-}
-
-/// Mirror reflection, `d − n·(2·(d·n))`.
-#[inline]
-pub fn reflect(d: Vec3x8, n: Vec3x8) -> Vec3x8 {
-    d - n * (f32x8::splat(2.0) * d.dot(n))
-}
-
-/// `prismatic_core::prepared::offset_origin` per lane.
-#[inline]
-pub fn offset_origin(p: Vec3x8, n: Vec3x8, dir: Vec3x8) -> Vec3x8 {
-    let eps = f32x8::splat(SURFACE_OFFSET_ABS) + f32x8::splat(SURFACE_OFFSET_REL) * p.abs_max_element();
-    let ne = n * eps;
-    Vec3x8::select(ge(dir.dot(n), f32x8::ZERO), p + ne, p - ne)
-}
-
-/// `prismatic_core::trace::scatter_dielectric` per lane: returns the facing
-/// normal and the new direction (reflected where `u < R` or under total
-/// internal reflection, refracted otherwise).
-#[inline]
-pub fn scatter_dielectric(d: Vec3x8, outward: Vec3x8, ior: f32x8, u: f32x8) -> (Vec3x8, Vec3x8) {
-    let (n, n1, n2) = interface(d, outward, ior);
-    let r = fresnel(-d.dot(n), n1, n2);
-    let (tir, refracted) = refract(d, n, n1, n2);
-    (n, Vec3x8::select(lt(u, r) | tir, reflect(d, n), refracted))
-}
-
-/// `prismatic_core::optics::interface`: facing normal and the indices on either side.
-#[inline]
-pub fn interface(d: Vec3x8, outward: Vec3x8, ior: f32x8) -> (Vec3x8, f32x8, f32x8) {
-    let entering = lt(d.dot(outward), f32x8::ZERO);
-    (Vec3x8::select(entering, outward, -outward), entering.select(f32x8::ONE, ior), entering.select(ior, f32x8::ONE))
-}
-
-#[inline]
-fn cos2_transmitted(cos_i: f32x8, eta: f32x8) -> f32x8 {
-    let eta2 = eta * eta;
-    (f32x8::ONE - eta2) + eta2 * cos_i * cos_i
-}
-
-/// `prismatic_core::optics::fresnel` per lane.
-#[inline]
-pub fn fresnel(cos_i: f32x8, n1: f32x8, n2: f32x8) -> f32x8 {
-    let cos_i = cos_i.max(f32x8::ZERO).min(f32x8::ONE);
-    let cos2_t = cos2_transmitted(cos_i, n1 / n2);
-    let tir = !cos2_t.simd_gt(f32x8::ZERO);
-    let cos_t = cos2_t.max(f32x8::ZERO).sqrt();
-    let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
-    let rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i);
-    let r = (f32x8::splat(0.5) * (rs * rs + rp * rp)).max(f32x8::ZERO).min(f32x8::ONE);
-    n1.simd_eq(n2).select(f32x8::ZERO, tir.select(f32x8::ONE, r))
-}
-
-/// `prismatic_core::optics::refract` per lane: (total internal reflection mask, direction).
-#[inline]
-pub fn refract(d: Vec3x8, n: Vec3x8, n1: f32x8, n2: f32x8) -> (f32x8, Vec3x8) {
-    let eta = n1 / n2;
-    let cos_i = (-d.dot(n)).max(f32x8::ZERO).min(f32x8::ONE);
-    let cos2_t = cos2_transmitted(cos_i, eta);
-    let cos_t = cos2_t.max(f32x8::ZERO).sqrt();
-    (lt(cos2_t, f32x8::ZERO), (d * eta + n * (eta * cos_i - cos_t)).normalize())
 }

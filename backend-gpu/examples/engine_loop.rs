@@ -7,7 +7,7 @@
 
 use prismatic_core::dispersion::Dispersion;
 use prismatic_core::scene::{Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape};
-use prismatic_core::{PreparedScene, Vec3};
+use prismatic_core::{NoProgress, PreparedScene, Render, Vec3};
 use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
 use std::time::Instant;
 
@@ -65,17 +65,18 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         view_formats: &[],
     });
 
-    // prismatic on the engine's device: one session for the scene's life.
-    let mut session =
-        GpuSession::new(GpuContext::from_device(device.clone(), queue)?, &scene(-2.5), GpuOptions::default())?;
+    // prismatic on the engine's device: one session (the GPU's render) for the scene's life,
+    // timing its stages with GPU timestamps.
+    let options = GpuOptions { stage_times: true, ..GpuOptions::default() };
+    let mut session = GpuSession::new(GpuContext::from_device(device.clone(), queue)?, &scene(-2.5), options)?;
     for frame in 0..40 {
         if frame == 20 {
-            // The light moved: the session diffs the scene and restarts the passes.
+            // The light moved: the render diffs the scene and restarts the passes.
             let change = session.update(&scene(-1.0))?;
             println!("frame {frame}: the light moved ({change:?})");
         }
         let t = Instant::now();
-        let pass = session.frame()?; // one progressive pass, submitted, not waited for
+        let pass = session.next_pass(&mut NoProgress)?; // one pass, submitted, not waited for
         session.copy_to_texture(&texture)?; // into the engine's texture, on the device
         let submit = t.elapsed();
         // ... the engine records and submits its own frame here, sampling `texture` ...
@@ -83,9 +84,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         // A recent frame's GPU time per stage (read back without waiting).
         let gpu = session.stage_times().map_or(String::new(), |t| format!("; GPU: {t}"));
         println!(
-            "frame {frame}: pass {} ({} photons), submitted in {:.2} ms, done in {:.2} ms{gpu}",
-            pass.passes,
-            pass.photons,
+            "frame {frame}: pass {pass} ({} photons), submitted in {:.2} ms, done in {:.2} ms{gpu}",
+            session.scene().scene.render.photons,
             submit.as_secs_f64() * 1e3,
             t.elapsed().as_secs_f64() * 1e3
         );

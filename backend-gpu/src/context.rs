@@ -1,9 +1,11 @@
 //! The device the backend works on: its own (adapter chosen here) or a
-//! caller's (a game engine's `Device` and `Queue`), the limits it needs,
-//! and the translation of wgpu errors (validation, out of memory, device
-//! lost) into `BackendError`s.
+//! caller's (a game engine's `Device` and `Queue`), the limits and features
+//! it needs, the translation of wgpu errors (validation, out of memory,
+//! device lost) into `BackendError`s, and the count of the bytes that cross
+//! between host and device (every write and read goes through it).
 
 use prismatic_core::BackendError;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
 /// Storage buffers the grid build binds, the most of any stage (four
@@ -11,7 +13,10 @@ use std::sync::{Arc, Mutex};
 /// their cursor and the widest bucket's size).
 pub const STORAGE_BUFFERS_NEEDED: u32 = 11;
 
-/// A device and queue with what the backend knows about them.
+/// A device and queue with what the backend knows about them. Clones share
+/// the device and the count of bytes moved ([`GpuContext::counting_apart`]
+/// makes one with a count of its own).
+#[derive(Clone)]
 pub struct GpuContext {
     /// The device.
     pub device: wgpu::Device,
@@ -20,6 +25,20 @@ pub struct GpuContext {
     /// The adapter, when the backend chose it.
     pub adapter: Option<wgpu::AdapterInfo>,
     lost: Arc<Mutex<Option<String>>>,
+    traffic: Arc<Traffic>,
+}
+
+/// Bytes written to the device and read back from it.
+#[derive(Debug, Default)]
+struct Traffic {
+    uploaded: AtomicU64,
+    read_back: AtomicU64,
+}
+
+/// The features stage times need; a device the backend creates requests
+/// them when its adapter has them.
+pub fn timestamp_features() -> wgpu::Features {
+    wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
 }
 
 /// Which adapters an own device may run on.
@@ -92,7 +111,7 @@ impl GpuContext {
             label: Some("prismatic"),
             required_limits: required_limits(&adapter.limits()),
             // Stage times for sessions where the adapter has timestamps (optional).
-            required_features: adapter.features() & crate::timing::timestamp_features(),
+            required_features: adapter.features() & timestamp_features(),
             ..Default::default()
         }))
         .map_err(|e| BackendError::NoDevice {
@@ -120,7 +139,37 @@ impl GpuContext {
                  {STORAGE_BUFFERS_NEEDED}; create it with prismatic_gpu::required_limits(&adapter.limits())"
             )));
         }
-        Ok(GpuContext { device, queue, adapter: None, lost: Arc::new(Mutex::new(None)) })
+        Ok(GpuContext { device, queue, adapter: None, lost: Arc::new(Mutex::new(None)), traffic: Arc::default() })
+    }
+
+    /// The same device and queue with a count of bytes moved of its own,
+    /// starting at zero (a render counts its own traffic).
+    pub fn counting_apart(&self) -> Self {
+        GpuContext { traffic: Arc::default(), ..self.clone() }
+    }
+
+    /// Bytes written to the device and read back from it through this
+    /// context (and its clones) so far.
+    pub fn traffic(&self) -> (u64, u64) {
+        (self.traffic.uploaded.load(Ordering::Relaxed), self.traffic.read_back.load(Ordering::Relaxed))
+    }
+
+    /// Writes `data` into `buffer` at `offset` (visible to the next submit), counted.
+    pub fn write(&self, buffer: &wgpu::Buffer, offset: u64, data: &[u8]) {
+        self.traffic.uploaded.fetch_add(data.len() as u64, Ordering::Relaxed);
+        self.queue.write_buffer(buffer, offset, data);
+    }
+
+    /// A buffer made with `contents` (an upload, counted) and `usage`.
+    pub fn buffer_with(&self, label: &str, contents: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
+        use wgpu::util::DeviceExt;
+        self.traffic.uploaded.fetch_add(contents.len() as u64, Ordering::Relaxed);
+        self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
+    }
+
+    /// Counts `bytes` read back (for reads that map their own staging buffers).
+    pub fn count_read(&self, bytes: u64) {
+        self.traffic.read_back.fetch_add(bytes, Ordering::Relaxed);
     }
 
     /// Notes the device's loss, so that the next piece of work says so
@@ -177,11 +226,12 @@ impl GpuContext {
         self.check_lost()
     }
 
-    /// Copies `size` bytes at `offset` of `buffer` to the host.
+    /// Copies `size` bytes at `offset` of `buffer` to the host (waits for the device).
     pub fn read(&self, buffer: &wgpu::Buffer, offset: u64, size: u64) -> Result<Vec<u8>, BackendError> {
         if size == 0 {
             return Ok(Vec::new());
         }
+        self.count_read(size);
         let staging = self.checked("readback buffer", || {
             let staging = self.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some("prismatic readback"),

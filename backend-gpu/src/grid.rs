@@ -9,7 +9,6 @@ use crate::pipelines::{Pipelines, dispatch};
 use crate::scan::Scan;
 use crate::scene::SceneBuffers;
 use crate::shaders::WORKGROUP_SIZE;
-use crate::trace::DeviceMap;
 use prismatic_core::BackendError;
 use prismatic_core::grid::bucket_mask;
 
@@ -43,25 +42,6 @@ impl DeviceGrid {
         let bytes = ctx.read(&self.widest, 0, 4)?;
         Ok(u32::from_le_bytes(bytes[..4].try_into().expect("4 bytes")))
     }
-}
-
-/// Builds the grid over `map` for the scene's gather radius.
-pub fn build(
-    ctx: &GpuContext,
-    pipelines: &Pipelines,
-    scene_buffers: &mut SceneBuffers,
-    map: &DeviceMap,
-) -> Result<DeviceGrid, BackendError> {
-    let stored = map.stored;
-    let grid = DeviceGrid::new(ctx, pipelines, scene_buffers, &map.photons, stored)?;
-    if stored > 0 {
-        grid.rebuild(ctx, pipelines, scene_buffers, stored, None)?;
-    } else {
-        let p = &mut scene_buffers.params;
-        (p.stored, p.grid_mask, p.window) = (0, 0, map.photons.window);
-        scene_buffers.write_params(&ctx.queue);
-    }
-    Ok(grid)
 }
 
 impl DeviceGrid {
@@ -108,7 +88,7 @@ impl DeviceGrid {
                 layout: &pipelines.grid_layout,
                 entries: &entries,
             });
-            (group, Scan::new(&ctx.device, pipelines, &cells, (buckets + 1) as u32))
+            (group, Scan::new(ctx, pipelines, &cells, (buckets + 1) as u32))
         })?;
         Ok(DeviceGrid { cells, sorted, widest, build: Some(build), bound, cursor })
     }
@@ -130,7 +110,7 @@ impl DeviceGrid {
         let buckets = self.cells.size() / 4 - 1;
         let p = &mut scene_buffers.params;
         (p.stored, p.grid_mask, p.window) = (stored, (buckets - 1) as u32, self.sorted.window);
-        scene_buffers.write_params(&ctx.queue);
+        scene_buffers.write_params(ctx);
         ctx.checked("building the grid", || {
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
             if let Some(count) = count {
@@ -181,10 +161,11 @@ mod tests {
         let radius = 0.01;
         let mut encoded = crate::scene::EncodedScene::default();
         encoded.params.inv_cell = 1.0 / (2.0 * radius);
-        let mut buffers = SceneBuffers::upload(&ctx.device, &pipelines.scene_layout, &encoded);
+        let mut buffers = SceneBuffers::upload(&ctx, &pipelines.scene_layout, &encoded);
         let window = crate::photons::window_for(&ctx.limits());
-        let map = DeviceMap::uploaded(&ctx, PhotonArray::upload(&ctx, &photons, window).unwrap(), photons.len() as u32);
-        let grid = build(&ctx, &pipelines, &mut buffers, &map).unwrap();
+        let map = PhotonArray::upload(&ctx, &photons, window).unwrap();
+        let grid = DeviceGrid::new(&ctx, &pipelines, &buffers, &map, photons.len() as u32).unwrap();
+        grid.rebuild(&ctx, &pipelines, &mut buffers, photons.len() as u32, None).unwrap();
         let core = prismatic_core::grid::PhotonGrid::build(&photons, radius);
         let cells = ctx.read(&grid.cells, 0, grid.cells.size()).unwrap();
         let cells: Vec<u32> = bytemuck::pod_collect_to_vec(&cells);

@@ -56,11 +56,10 @@ pub struct Params {
     pub gather_first: u32,
     /// Photons of each bucket the current gather pass reads (at most).
     pub gather_span: u32,
-    /// Always 0: lets a shader hide a value from the compiler's algebra
-    /// (see `opaque` in gather.wgsl).
-    pub zero: u32,
-    /// Padding.
-    pub _pad0: u32,
+    /// A gather's sums (colour) are in fixed point of 2^`sum_shift` per unit.
+    pub sum_shift: i32,
+    /// A gather's flux sum is in fixed point of 2^`flux_shift` per watt.
+    pub flux_shift: i32,
     /// Flux of one emitted white photon.
     pub flux: f32,
     /// Gather radius.
@@ -225,8 +224,10 @@ pub struct Tally {
 const _: () = assert!(core::mem::size_of::<Tally>() == 64);
 
 /// A view ray's diffuse hit waiting for its caustic gather (progressive
-/// photon mapping's "hit point"): where, facing which way, what the caustic
-/// radiance there is worth to its pixel, and the gather's running sums.
+/// photon mapping's "hit point"): where, facing which way, within which
+/// radius, what the caustic radiance there is worth to its pixel, and the
+/// gather's running sums in fixed point (i64 as `[lo, hi]` words: integer
+/// sums do not depend on the order the photons come in).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct VisiblePoint {
@@ -236,24 +237,38 @@ pub struct VisiblePoint {
     pub total: u32,
     /// The surface normal on the side the view ray came from.
     pub normal: [f32; 3],
-    /// Flux gathered so far.
-    pub flux: f32,
+    /// The gather radius at this point in this pass.
+    pub radius: f32,
     /// tint × albedo / π × exposure: pixel radiance per unit caustic irradiance.
     pub weight: [f32; 3],
-    /// The gather radius at this point (the scene's in a frame; its own in
-    /// a progressive pass).
-    pub radius: f32,
-    /// Density estimator: Σ C_b Φ N; paper estimator: Σ C_b.
-    pub sums: [f32; 3],
-    /// Compensation (Kahan) of `flux`: millions of photons in one gather
-    /// must not drift.
-    pub flux_c: f32,
-    /// Compensation (Kahan) of `sums`.
-    pub sums_c: [f32; 3],
     /// Photons accepted so far (a white photon counts once).
     pub found: u32,
+    /// Density estimator: Σ C_b Φ N; paper estimator: Σ C_b; in 2^`sum_shift` per unit.
+    pub sums: [[u32; 2]; 3],
+    /// Σ Φ in 2^`flux_shift` per watt.
+    pub flux: [u32; 2],
 }
 const _: () = assert!(core::mem::size_of::<VisiblePoint>() == 80);
+
+/// A render's statistics on the device: the passes' trace tallies summed
+/// (counts as `[lo, hi]` u64 words, flux in f32; the order of [`Tally`]),
+/// the visible points, and the smallest and largest first-radius ratio
+/// (f32 bits: positive floats order as their bits).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct RunStats {
+    /// Emitted, paths, segments, specular paths, stored.
+    pub counts: [[u32; 2]; 5],
+    /// Flux emitted, stored, escaped, direct, depth limited.
+    pub flux: [f32; 5],
+    /// Visible points.
+    pub points: u32,
+    /// Smallest first radius / R, as f32 bits.
+    pub min_ratio: u32,
+    /// Largest first radius / R, as f32 bits.
+    pub max_ratio: u32,
+}
+const _: () = assert!(core::mem::size_of::<RunStats>() == 72);
 
 /// A live session's per-pass settings (group 1 of its progressive entries).
 #[repr(C)]
@@ -265,8 +280,8 @@ pub struct SessionParams {
     pub neighbours: f32,
     /// 1 / passes summed, this pass included.
     pub inv_passes: f32,
-    /// 1 for the pilot pass: every radius the scene's.
-    pub pilot: u32,
+    /// 1 when every point gathers within the pass radius (the pilot, fixed radii).
+    pub whole_radius: u32,
     /// The grid level a `gather_level` dispatch serves.
     pub level: u32,
     /// Bit l set when grid level l is built (bit 0 always is).

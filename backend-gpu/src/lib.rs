@@ -3,19 +3,16 @@
 //! Every stage runs on the device in WGSL (`src/shaders/`), each a twin of
 //! the core stage of the same name: emit + trace (same counter-based RNG,
 //! bit for bit), compaction into canonical (emission, band) order, hash-grid
-//! build (count, prefix sum, scatter), ray tracing into visible points, and
-//! the gather at them. Buffers stay on the device between stages;
-//! [`GpuBackend::frame`] renders reading back only a photon count and two
-//! sizes (visible points needed, widest bucket on software devices), and
-//! the photon map is read back only when asked for
-//! ([`Backend::trace_photons`]).
+//! build (count, prefix sum, scatter), the view rays into visible points,
+//! and the gather at them. A render ([`GpuSession`], the backend's
+//! implementation of the render protocol) keeps the scene, photon map,
+//! grids, visible points and exact sums on the device: a pass uploads a
+//! few uniforms and reads nothing back; the image, the sums and the
+//! statistics are read back when asked for.
 //!
-//! An engine embeds a [`GpuSession`] on its own device ([`GpuContext::from_device`]):
-//! it keeps the scene, photon map, grid, visible points and running sums on
-//! the device and adds one progressive pass per frame without waiting for
-//! it; [`GpuSession::update`] redoes only what a scene change invalidates
-//! ([`Change`]). One-off frames go into a caller's buffer or storage
-//! texture ([`GpuBackend::render_into_buffer`], [`GpuBackend::render_into_texture`]).
+//! An engine embeds a [`GpuSession`] on its own device
+//! ([`GpuContext::from_device`]), runs a pass per frame and copies the
+//! image into its texture on the device.
 
 mod context;
 mod grid;
@@ -23,9 +20,8 @@ pub mod layout;
 mod levels;
 mod photons;
 mod pipelines;
-mod progressive;
+mod pixels;
 mod readback;
-mod render;
 mod scan;
 mod scene;
 mod session;
@@ -33,18 +29,15 @@ pub mod shaders;
 mod timing;
 mod trace;
 
-pub use context::{AdapterChoice, GpuContext, STORAGE_BUFFERS_NEEDED, describe, is_hardware, required_limits};
-pub use render::{PIXEL_BYTES, SOFTWARE_GATHER_SPAN};
-pub use session::{Change, GpuSession, SessionFrame};
-pub use timing::{StageTimes, timestamp_features};
+pub use context::{
+    AdapterChoice, GpuContext, STORAGE_BUFFERS_NEEDED, describe, is_hardware, required_limits, timestamp_features,
+};
+pub use pixels::{PIXEL_BYTES, SOFTWARE_GATHER_SPAN};
+pub use session::{GpuSession, PASSES_IN_FLIGHT};
 
-use photons::PhotonArray;
 use pipelines::Pipelines;
-use prismatic_core::backend::{Backend, BackendError, Progress, Stage};
-use prismatic_core::progressive::PassGather;
-use prismatic_core::visible::VisiblePoint;
-use prismatic_core::{Image, PhotonMap, PreparedScene, TraceStats};
-use scene::{EncodedScene, SceneBuffers};
+use prismatic_core::{Backend, BackendError, PreparedScene, Render};
+use std::sync::Arc;
 
 /// Options that change how the work is cut, not what it computes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -52,27 +45,21 @@ pub struct GpuOptions {
     /// Photons per storage binding; `None`: as many as the device allows.
     /// Tests set it small to run the multi-binding paths on small scenes.
     pub window_photons: Option<u32>,
-    /// Photons of each grid bucket one gather pass reads; `None`: all of
-    /// them in one pass on a hardware GPU, [`SOFTWARE_GATHER_SPAN`] on a
-    /// software device (whose invocations may not loop long).
+    /// Photons of each grid bucket one gather dispatch reads; `None`: all
+    /// of them in one dispatch on a hardware GPU, [`SOFTWARE_GATHER_SPAN`]
+    /// on a software device (whose invocations may not loop long).
     pub gather_span: Option<u32>,
+    /// Time each pass's stages with GPU timestamps, where the device has
+    /// them ([`timestamp_features`]): a pass then also reads its stamps back
+    /// (64 bytes, without waiting), so it is off unless asked for.
+    pub stage_times: bool,
 }
 
-/// The wgpu backend.
+/// The wgpu backend: a device and the pipelines its renders share.
 pub struct GpuBackend {
     ctx: GpuContext,
-    pipelines: Pipelines,
+    pipelines: Arc<Pipelines>,
     options: GpuOptions,
-    gatherer: render::Gatherer,
-    /// The last frame's pixels (reused while the image size stays).
-    pixels: Option<wgpu::Buffer>,
-}
-
-/// What a device-resident frame did.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct FrameInfo {
-    /// Photons in the caustic map.
-    pub stored: u32,
 }
 
 impl GpuBackend {
@@ -87,12 +74,10 @@ impl GpuBackend {
         Ok(Self::with_context(GpuContext::from_device(device, queue)?, GpuOptions::default()))
     }
 
-    /// A backend on `ctx` with `options`.
+    /// A backend on `ctx` with `options` (compiles every pipeline).
     pub fn with_context(ctx: GpuContext, options: GpuOptions) -> Self {
-        let pipelines = Pipelines::new(&ctx.device);
-        let software = ctx.device.adapter_info().device_type == wgpu::DeviceType::Cpu;
-        let span = options.gather_span.unwrap_or(if software { SOFTWARE_GATHER_SPAN } else { u32::MAX });
-        GpuBackend { ctx, pipelines, options, gatherer: render::Gatherer::new(span), pixels: None }
+        let pipelines = Arc::new(Pipelines::new(&ctx.device));
+        GpuBackend { ctx, pipelines, options }
     }
 
     /// The adapter, when the backend chose it.
@@ -100,121 +85,15 @@ impl GpuBackend {
         self.ctx.adapter.as_ref()
     }
 
-    /// Visible-point slots per pixel of the render: grows, once, to what
-    /// the scenes rendered so far needed (a re-render of that frame).
-    pub fn points_per_pixel(&self) -> u32 {
-        self.gatherer.points_per_pixel()
-    }
-
     /// The device and queue (to share with the caller).
     pub fn context(&self) -> &GpuContext {
         &self.ctx
     }
 
-    fn window(&self) -> u32 {
-        let device = photons::window_for(&self.ctx.limits());
-        self.options.window_photons.map_or(device, |w| w.clamp(1, device))
-    }
-
-    fn upload(&self, scene: &PreparedScene) -> Result<SceneBuffers, BackendError> {
-        let encoded = EncodedScene::new(scene);
-        self.ctx.checked("uploading the scene", || {
-            SceneBuffers::upload(&self.ctx.device, &self.pipelines.scene_layout, &encoded)
-        })
-    }
-
-    fn trace_on_device(
-        &mut self,
-        scene: &PreparedScene,
-        buffers: &mut SceneBuffers,
-        progress: &mut dyn Progress,
-    ) -> Result<trace::DeviceMap, BackendError> {
-        let window = self.window();
-        trace::trace(&self.ctx, &self.pipelines, buffers, scene, window, progress)
-    }
-
-    fn pixels_for(&mut self, scene: &PreparedScene) -> Result<wgpu::Buffer, BackendError> {
-        let r = &scene.scene.render;
-        let bytes = (u64::from(r.width) * u64::from(r.height) * PIXEL_BYTES).max(PIXEL_BYTES);
-        match &self.pixels {
-            Some(b) if b.size() == bytes => Ok(b.clone()),
-            _ => {
-                let b = render::pixel_buffer(&self.ctx, r.width, r.height)?;
-                self.pixels = Some(b.clone());
-                Ok(b)
-            }
-        }
-    }
-
-    /// A whole frame on the device, into `pixels`: trace, compaction, grid,
-    /// render. Nothing is read back but the photon count and the render's
-    /// visible-point check. Returns the scene's buffers and the photon map
-    /// for passes that follow on the same frame.
-    fn frame_into(
-        &mut self,
-        scene: &PreparedScene,
-        pixels: &wgpu::Buffer,
-        progress: &mut dyn Progress,
-    ) -> Result<(FrameInfo, SceneBuffers, trace::DeviceMap), BackendError> {
-        let mut buffers = self.upload(scene)?;
-        let map = self.trace_on_device(scene, &mut buffers, progress)?;
-        let grid = grid::build(&self.ctx, &self.pipelines, &mut buffers, &map)?;
-        render::render(&self.ctx, &mut self.pipelines, &mut buffers, &grid, &mut self.gatherer, pixels)?;
-        Ok((FrameInfo { stored: map.stored }, buffers, map))
-    }
-
-    /// Renders a frame into the backend's own pixel buffer and waits for it.
-    pub fn frame(&mut self, scene: &PreparedScene) -> Result<FrameInfo, BackendError> {
-        let pixels = self.pixels_for(scene)?;
-        let (info, ..) = self.frame_into(scene, &pixels, &mut prismatic_core::NoProgress)?;
-        self.ctx.wait()?;
-        Ok(info)
-    }
-
-    /// [`GpuBackend::frame`], then the image read back.
-    pub fn frame_image(&mut self, scene: &PreparedScene) -> Result<(FrameInfo, Image), BackendError> {
-        let info = self.frame(scene)?;
-        let r = &scene.scene.render;
-        let pixels = self.pixels_for(scene)?;
-        Ok((info, render::read_image(&self.ctx, &pixels, r.width, r.height)?))
-    }
-
-    /// Renders a frame into the caller's `buffer` (`STORAGE` usage, at
-    /// least width × height × [`PIXEL_BYTES`]): row-major `vec4<f32>`,
-    /// linear RGB with exposure applied, alpha 1. Returns when the frame is
-    /// done (the render reads back whether every pixel had its visible points).
-    pub fn render_into_buffer(
-        &mut self,
-        scene: &PreparedScene,
-        buffer: &wgpu::Buffer,
-    ) -> Result<FrameInfo, BackendError> {
-        Ok(self.frame_into(scene, buffer, &mut prismatic_core::NoProgress)?.0)
-    }
-
-    /// Renders a frame into the caller's storage texture (the image's size;
-    /// `Rgba32Float`, `Rgba16Float` or `Rgba8Unorm`; `STORAGE_BINDING`
-    /// usage) with a copy on the device; the copy is submitted, not waited for.
-    pub fn render_into_texture(
-        &mut self,
-        scene: &PreparedScene,
-        texture: &wgpu::Texture,
-    ) -> Result<FrameInfo, BackendError> {
-        let pixels = self.pixels_for(scene)?;
-        let (info, mut buffers, _) = self.frame_into(scene, &pixels, &mut prismatic_core::NoProgress)?;
-        render::copy_to_texture(&self.ctx, &mut self.pipelines, &mut buffers, &pixels, texture)?;
-        Ok(info)
-    }
-}
-
-impl GpuBackend {
-    /// Uploads `photons` and builds their grid, waiting for the device
-    /// (the `grid/gpu` bench: the stage alone).
-    pub fn build_grid(&mut self, scene: &PreparedScene, photons: &PhotonMap) -> Result<(), BackendError> {
-        let mut buffers = self.upload(scene)?;
-        let array = PhotonArray::upload(&self.ctx, &photons.photons, self.window())?;
-        let map = trace::DeviceMap::uploaded(&self.ctx, array, photons.photons.len() as u32);
-        grid::build(&self.ctx, &self.pipelines, &mut buffers, &map)?;
-        self.ctx.wait()
+    /// A session of `scene` on the backend's device: [`Backend::prepare`]
+    /// with the session's own type (for its texture copy and pixel buffer).
+    pub fn session(&self, scene: &PreparedScene) -> Result<GpuSession, BackendError> {
+        GpuSession::with_pipelines(self.ctx.clone(), Arc::clone(&self.pipelines), scene, self.options)
     }
 }
 
@@ -223,60 +102,7 @@ impl Backend for GpuBackend {
         "gpu"
     }
 
-    fn trace_photons(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> Result<PhotonMap, BackendError> {
-        let mut buffers = self.upload(scene)?;
-        let map = self.trace_on_device(scene, &mut buffers, progress)?;
-        let photons = map.photons.read(&self.ctx, map.stored)?;
-        Ok(PhotonMap { photons, stats: map.stats(&self.ctx)? })
-    }
-
-    fn render(
-        &mut self,
-        scene: &PreparedScene,
-        photons: &PhotonMap,
-        progress: &mut dyn Progress,
-    ) -> Result<Image, BackendError> {
-        let mut buffers = self.upload(scene)?;
-        let window = self.window();
-        let stored = photons.photons.len() as u32;
-        let map =
-            trace::DeviceMap::uploaded(&self.ctx, PhotonArray::upload(&self.ctx, &photons.photons, window)?, stored);
-        let grid = grid::build(&self.ctx, &self.pipelines, &mut buffers, &map)?;
-        let pixels = self.pixels_for(scene)?;
-        render::render(&self.ctx, &mut self.pipelines, &mut buffers, &grid, &mut self.gatherer, &pixels)?;
-        let r = &scene.scene.render;
-        let image = render::read_image(&self.ctx, &pixels, r.width, r.height)?;
-        progress.advance(Stage::Render, u64::from(r.height), u64::from(r.height));
-        Ok(image)
-    }
-
-    /// The whole frame on the device: the photon map is never read back.
-    fn trace_and_render(
-        &mut self,
-        scene: &PreparedScene,
-        progress: &mut dyn Progress,
-    ) -> Result<(TraceStats, Image), BackendError> {
-        let pixels = self.pixels_for(scene)?;
-        let (_, _, map) = self.frame_into(scene, &pixels, progress)?;
-        let r = &scene.scene.render;
-        let image = render::read_image(&self.ctx, &pixels, r.width, r.height)?;
-        progress.advance(Stage::Render, u64::from(r.height), u64::from(r.height));
-        Ok((map.stats(&self.ctx)?, image))
-    }
-
-    /// A pass on the device: trace, grids, gather at the points; the
-    /// points' sums are read back (the photon map is not).
-    fn gather_pass(
-        &mut self,
-        scene: &PreparedScene,
-        points: &[VisiblePoint],
-        radii: &[f32],
-    ) -> Result<PassGather, BackendError> {
-        let mut buffers = self.upload(scene)?;
-        let map = self.trace_on_device(scene, &mut buffers, &mut prismatic_core::NoProgress)?;
-        let span = self.gatherer.span;
-        let (irradiance, photons) =
-            progressive::gather_pass(&self.ctx, &self.pipelines, &mut buffers, &map, span, scene, points, radii)?;
-        Ok(PassGather { irradiance, photons, stats: map.stats(&self.ctx)? })
+    fn prepare(&mut self, scene: &PreparedScene) -> Result<Box<dyn Render>, BackendError> {
+        Ok(Box::new(self.session(scene)?))
     }
 }

@@ -1,9 +1,10 @@
 //! Bind-group layouts and compute pipelines of every stage, compiled once
-//! per backend (the render pipeline once per view-ray stack size, the
-//! texture copy once per texel format).
+//! per backend and shared by its renders (the view pipeline once per
+//! view-ray stack size, the texture copy once per texel format).
 
 use crate::shaders::{self, WINDOWS};
 use std::collections::HashMap;
+use std::sync::Mutex;
 
 /// What a binding holds.
 #[derive(Clone, Copy)]
@@ -76,9 +77,12 @@ fn pipeline(
     })
 }
 
+/// A texture copy's layout and pipeline.
+pub type TextureCopy = (wgpu::BindGroupLayout, wgpu::ComputePipeline);
+
 /// Every layout and pipeline of the backend.
 pub struct Pipelines {
-    /// Group 0 of trace and render: params and the scene's six buffers.
+    /// Group 0 of trace and view: params and the scene's six buffers.
     pub scene_layout: wgpu::BindGroupLayout,
     /// Group 1 of trace: scratch photons, counts, tallies.
     pub trace_layout: wgpu::BindGroupLayout,
@@ -88,10 +92,14 @@ pub struct Pipelines {
     pub scan_layout: wgpu::BindGroupLayout,
     /// Grid: params, cells, cursor, map windows, sorted windows, widest bucket.
     pub grid_layout: wgpu::BindGroupLayout,
-    /// Group 1 of render: pixels, visible points, points per pixel, points needed.
-    pub render_layout: wgpu::BindGroupLayout,
-    /// Gather: params, bands, cells, points per pixel, visible points, pixels, sorted windows.
+    /// Group 1 of the view: pixels, visible points, points per pixel, points needed, statistics.
+    pub view_layout: wgpu::BindGroupLayout,
+    /// Group 0 of a session's passes: params, bands, cells, points per pixel, visible points, pixels, sorted windows.
     pub gather_layout: wgpu::BindGroupLayout,
+    /// Group 1 of a session's passes: radius ratios, sums, base pixels, session params, levels used, statistics.
+    pub session_layout: wgpu::BindGroupLayout,
+    /// The tally fold: tallies, statistics.
+    pub stats_layout: wgpu::BindGroupLayout,
     /// Emit + trace.
     pub trace: wgpu::ComputePipeline,
     /// Compaction scatter.
@@ -108,14 +116,6 @@ pub struct Pipelines {
     pub grid_scatter: wgpu::ComputePipeline,
     /// The widest bucket's size.
     pub grid_widest: wgpu::ComputePipeline,
-    /// One segment of the gather at every visible point.
-    pub gather: wgpu::ComputePipeline,
-    /// Visible points' caustics into their pixels.
-    pub resolve: wgpu::ComputePipeline,
-    /// gather.wgsl `gather_points`: a progressive pass at uploaded visible points.
-    pub gather_points: wgpu::ComputePipeline,
-    /// Group 1 of a session's progressive entries: radius ratios, sums, base pixels, session params, levels used.
-    pub session_layout: wgpu::BindGroupLayout,
     /// session.wgsl `first_radius`: first radii from the pilot's gather.
     pub first_radius: wgpu::ComputePipeline,
     /// session.wgsl `begin_pass`: sums emptied, this pass's radii.
@@ -124,8 +124,10 @@ pub struct Pipelines {
     pub gather_level: wgpu::ComputePipeline,
     /// session.wgsl `accumulate`: the pass added to the pixels' sums.
     pub accumulate: wgpu::ComputePipeline,
-    render: HashMap<u32, wgpu::ComputePipeline>,
-    texture: HashMap<wgpu::TextureFormat, (wgpu::BindGroupLayout, wgpu::ComputePipeline)>,
+    /// stats.wgsl `fold_tallies`: a pass's tallies added to the statistics.
+    pub fold_tallies: wgpu::ComputePipeline,
+    view: Mutex<HashMap<u32, wgpu::ComputePipeline>>,
+    texture: Mutex<HashMap<wgpu::TextureFormat, TextureCopy>>,
 }
 
 impl Pipelines {
@@ -146,27 +148,22 @@ impl Pipelines {
             &[with_windows(with_windows(vec![Uniform, ReadWrite, ReadWrite], Read), ReadWrite), vec![ReadWrite]]
                 .concat(),
         );
-        let render_layout = layout(device, "prismatic render", &[ReadWrite, ReadWrite, ReadWrite, ReadWrite]);
+        let view_layout = layout(device, "prismatic view", &[ReadWrite, ReadWrite, ReadWrite, ReadWrite, ReadWrite]);
         let gather_layout = layout(
             device,
             "prismatic gather",
             &with_windows(vec![Uniform, Read, Read, Read, ReadWrite, ReadWrite], Read),
         );
-        let session_layout = layout(device, "prismatic session", &[ReadWrite, ReadWrite, Read, Uniform, ReadWrite]);
+        let session_layout =
+            layout(device, "prismatic session", &[ReadWrite, ReadWrite, Read, Uniform, ReadWrite, ReadWrite]);
+        let stats_layout = layout(device, "prismatic statistics", &[Read, ReadWrite]);
         let session_src = shaders::session();
         let session =
             |label: &str, entry: &str| pipeline(device, label, &session_src, entry, &[&gather_layout, &session_layout]);
-        let (first_radius, begin_pass, gather_level, accumulate) = (
-            session("prismatic first radius", "first_radius"),
-            session("prismatic begin pass", "begin_pass"),
-            session("prismatic gather level", "gather_level"),
-            session("prismatic accumulate", "accumulate"),
-        );
         let trace_src = shaders::trace();
         let compact_src = shaders::compact();
         let scan_src = shaders::scan();
         let grid_src = shaders::grid();
-        let gather_src = shaders::gather();
         Pipelines {
             trace: pipeline(device, "prismatic trace", &trace_src, "main", &[&scene_layout, &trace_layout]),
             compact: pipeline(device, "prismatic compact", &compact_src, "scatter", &[&compact_layout]),
@@ -176,53 +173,64 @@ impl Pipelines {
             grid_count: pipeline(device, "prismatic grid count", &grid_src, "count", &[&grid_layout]),
             grid_scatter: pipeline(device, "prismatic grid scatter", &grid_src, "scatter", &[&grid_layout]),
             grid_widest: pipeline(device, "prismatic grid widest", &grid_src, "widest", &[&grid_layout]),
-            gather: pipeline(device, "prismatic gather", &gather_src, "gather", &[&gather_layout]),
-            resolve: pipeline(device, "prismatic resolve", &gather_src, "resolve", &[&gather_layout]),
-            gather_points: pipeline(device, "prismatic gather points", &gather_src, "gather_points", &[&gather_layout]),
-            first_radius,
-            begin_pass,
-            gather_level,
-            accumulate,
-            session_layout,
+            first_radius: session("prismatic first radius", "first_radius"),
+            begin_pass: session("prismatic begin pass", "begin_pass"),
+            gather_level: session("prismatic gather level", "gather_level"),
+            accumulate: session("prismatic accumulate", "accumulate"),
+            fold_tallies: pipeline(
+                device,
+                "prismatic fold tallies",
+                &shaders::stats(),
+                "fold_tallies",
+                &[&stats_layout],
+            ),
             scene_layout,
             trace_layout,
             compact_layout,
             scan_layout,
             grid_layout,
-            render_layout,
+            view_layout,
             gather_layout,
-            render: HashMap::new(),
-            texture: HashMap::new(),
+            session_layout,
+            stats_layout,
+            view: Mutex::new(HashMap::new()),
+            texture: Mutex::new(HashMap::new()),
         }
     }
 
-    /// The render pipeline for a view-ray stack of `stack` entries.
-    pub fn render(&mut self, device: &wgpu::Device, stack: u32) -> &wgpu::ComputePipeline {
-        let Pipelines { render, scene_layout, render_layout, .. } = self;
-        render.entry(stack).or_insert_with(|| {
-            pipeline(device, "prismatic render", &shaders::render(stack), "main", &[scene_layout, render_layout])
-        })
+    /// The view pipeline for a view-ray stack of `stack` entries.
+    pub fn view(&self, device: &wgpu::Device, stack: u32) -> wgpu::ComputePipeline {
+        let mut cache = self.view.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        cache
+            .entry(stack)
+            .or_insert_with(|| {
+                let layouts = [&self.scene_layout, &self.view_layout];
+                pipeline(device, "prismatic view", &shaders::view(stack), "main", &layouts)
+            })
+            .clone()
     }
 
     /// The copy into a storage texture of `format`, with its layout; `None`
     /// for formats the copy does not write.
-    pub fn texture_copy(
-        &mut self,
-        device: &wgpu::Device,
-        format: wgpu::TextureFormat,
-    ) -> Option<&(wgpu::BindGroupLayout, wgpu::ComputePipeline)> {
+    pub fn texture_copy(&self, device: &wgpu::Device, format: wgpu::TextureFormat) -> Option<TextureCopy> {
         let name = match format {
             wgpu::TextureFormat::Rgba32Float => "rgba32float",
             wgpu::TextureFormat::Rgba16Float => "rgba16float",
             wgpu::TextureFormat::Rgba8Unorm => "rgba8unorm",
             _ => return None,
         };
-        Some(self.texture.entry(format).or_insert_with(|| {
-            use Slot::*;
-            let layout = layout(device, "prismatic to texture", &[Uniform, Read, Texture(format)]);
-            let p = pipeline(device, "prismatic to texture", &shaders::to_texture(name), "main", &[&layout]);
-            (layout, p)
-        }))
+        let mut cache = self.texture.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        Some(
+            cache
+                .entry(format)
+                .or_insert_with(|| {
+                    use Slot::*;
+                    let layout = layout(device, "prismatic to texture", &[Uniform, Read, Texture(format)]);
+                    let p = pipeline(device, "prismatic to texture", &shaders::to_texture(name), "main", &[&layout]);
+                    (layout, p)
+                })
+                .clone(),
+        )
     }
 }
 

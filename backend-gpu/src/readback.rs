@@ -38,6 +38,7 @@ impl PendingRead {
             encoder.copy_buffer_to_buffer(source, 0, &staging, 0, size);
             ctx.queue.submit([encoder.finish()]);
         })?;
+        ctx.count_read(size);
         let mapped = Arc::new(Mutex::new(None));
         let done = Arc::clone(&mapped);
         staging.slice(..size).map_async(wgpu::MapMode::Read, move |r| {

@@ -4,10 +4,10 @@
 //! scratch buffers and bindings once; a grid keeps its own and records it
 //! every rebuild.
 
+use crate::context::GpuContext;
 use crate::layout::ScanParams;
 use crate::pipelines::{Pipelines, dispatch};
 use crate::shaders::{SCAN_BLOCK, SCAN_THREADS};
-use wgpu::util::DeviceExt;
 
 /// An in-place exclusive scan of the first `n` u32s of one buffer.
 pub struct Scan {
@@ -20,7 +20,8 @@ pub struct Scan {
 
 impl Scan {
     /// The scan of the first `n` u32s of `data`, its scratch allocated.
-    pub fn new(device: &wgpu::Device, pipelines: &Pipelines, data: &wgpu::Buffer, n: u32) -> Self {
+    pub fn new(ctx: &GpuContext, pipelines: &Pipelines, data: &wgpu::Buffer, n: u32) -> Self {
+        let device = &ctx.device;
         let mut levels = Vec::new();
         let (mut data, mut n) = (data.clone(), n);
         loop {
@@ -31,11 +32,11 @@ impl Scan {
                 usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
                 mapped_at_creation: false,
             });
-            let params = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("prismatic scan params"),
-                contents: bytemuck::bytes_of(&ScanParams { n, ..ScanParams::default() }),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
+            let params = ctx.buffer_with(
+                "prismatic scan params",
+                bytemuck::bytes_of(&ScanParams { n, ..ScanParams::default() }),
+                wgpu::BufferUsages::UNIFORM,
+            );
             let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("prismatic scan"),
                 layout: &pipelines.scan_layout,

@@ -4,6 +4,7 @@
 //! bases, CDFs, per-band indices) are computed here with the core's own
 //! functions, so the shaders start from the same bits.
 
+use crate::context::GpuContext;
 use crate::layout::{GpuBand, GpuLight, GpuObject, GpuSurface, Params};
 use crate::shaders::kind::*;
 use bytemuck::Pod;
@@ -12,11 +13,10 @@ use prismatic_core::PreparedScene;
 use prismatic_core::camera::PinholeCamera;
 use prismatic_core::geometry::{Primitive, basis};
 use prismatic_core::math::{cos, radians};
-use prismatic_core::prepared::Surface;
 use prismatic_core::projection::Targets;
 use prismatic_core::scene::{Estimator, Light, WavelengthSampling};
+use prismatic_core::surface::Surface;
 use prismatic_core::trace::photon_flux;
-use wgpu::util::DeviceExt;
 
 /// The scene's records, ready to upload.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -244,34 +244,30 @@ const STORAGE_LABELS: [&str; 6] = [
 ];
 
 /// A storage buffer holding `items` (at least one element: bindings cannot be empty).
-pub fn storage_init<T: Pod + Default>(device: &wgpu::Device, label: &str, items: &[T]) -> wgpu::Buffer {
+pub fn storage_init<T: Pod + Default>(ctx: &GpuContext, label: &str, items: &[T]) -> wgpu::Buffer {
     let fallback = [T::default()];
     let items = if items.is_empty() { &fallback[..] } else { items };
-    device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-        label: Some(label),
-        contents: bytemuck::cast_slice(items),
-        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-    })
+    ctx.buffer_with(label, bytemuck::cast_slice(items), wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST)
 }
 
 impl SceneBuffers {
     /// Uploads `encoded` and binds it with `layout`.
-    pub fn upload(device: &wgpu::Device, layout: &wgpu::BindGroupLayout, encoded: &EncodedScene) -> Self {
-        let params_buffer = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("prismatic params"),
-            contents: bytemuck::bytes_of(&encoded.params),
-            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
-        });
+    pub fn upload(ctx: &GpuContext, layout: &wgpu::BindGroupLayout, encoded: &EncodedScene) -> Self {
+        let params_buffer = ctx.buffer_with(
+            "prismatic params",
+            bytemuck::bytes_of(&encoded.params),
+            wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        );
         let [objects, surfaces, lights, bands, geometry, tables] = STORAGE_LABELS;
         let storage = vec![
-            storage_init(device, objects, &encoded.objects),
-            storage_init(device, surfaces, &encoded.surfaces),
-            storage_init(device, lights, &encoded.lights),
-            storage_init(device, bands, &encoded.bands),
-            storage_init(device, geometry, &encoded.geometry),
-            storage_init(device, tables, &encoded.tables),
+            storage_init(ctx, objects, &encoded.objects),
+            storage_init(ctx, surfaces, &encoded.surfaces),
+            storage_init(ctx, lights, &encoded.lights),
+            storage_init(ctx, bands, &encoded.bands),
+            storage_init(ctx, geometry, &encoded.geometry),
+            storage_init(ctx, tables, &encoded.tables),
         ];
-        SceneBuffers::bind(device, layout, params_buffer, storage, encoded.params)
+        SceneBuffers::bind(&ctx.device, layout, params_buffer, storage, encoded.params)
     }
 
     /// The bind group over `params_buffer` and the six `storage` buffers.
@@ -304,8 +300,7 @@ impl SceneBuffers {
     /// (other stages' bind groups hold it).
     pub fn update(
         &mut self,
-        device: &wgpu::Device,
-        queue: &wgpu::Queue,
+        ctx: &GpuContext,
         layout: &wgpu::BindGroupLayout,
         old: &EncodedScene,
         new: &EncodedScene,
@@ -325,20 +320,17 @@ impl SceneBuffers {
         for (i, (was, now)) in pairs.into_iter().enumerate() {
             if now.len() as u64 > self.storage[i].size() {
                 reallocated[i] = true;
-                self.storage[i] = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                    label: Some(STORAGE_LABELS[i]),
-                    contents: now,
-                    usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
-                });
+                self.storage[i] =
+                    ctx.buffer_with(STORAGE_LABELS[i], now, wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST);
             } else if let Some((start, end)) = changed_range(was, now) {
-                queue.write_buffer(&self.storage[i], start as u64, &now[start..end]);
+                ctx.write(&self.storage[i], start as u64, &now[start..end]);
             }
         }
         self.params = new.params;
-        self.write_params(queue);
+        self.write_params(ctx);
         if reallocated.contains(&true) {
             *self = SceneBuffers::bind(
-                device,
+                &ctx.device,
                 layout,
                 self.params_buffer.clone(),
                 std::mem::take(&mut self.storage),
@@ -354,8 +346,8 @@ impl SceneBuffers {
     }
 
     /// Writes the host copy of the settings to the device (visible to the next submit).
-    pub fn write_params(&self, queue: &wgpu::Queue) {
-        queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.params));
+    pub fn write_params(&self, ctx: &GpuContext) {
+        ctx.write(&self.params_buffer, 0, bytemuck::bytes_of(&self.params));
     }
 }
 

@@ -98,7 +98,7 @@ fn prelude(stack: u32) -> String {
     u("PROJECTION_NONE", kind::PROJECTION_NONE);
     u("PROJECTION_CONES", kind::PROJECTION_CONES);
     u("PROJECTION_DISCS", kind::PROJECTION_DISCS);
-    u("GRID_LEVELS", prismatic_core::progressive::GRID_LEVELS as u32);
+    u("GRID_LEVELS", prismatic_core::schedule::GRID_LEVELS as u32);
     let mut f = |name: &str, v: f32| writeln!(s, "const {name}: f32 = {v:e};").unwrap();
     f("PI", std::f32::consts::PI);
     f("BIG", f32::MAX);
@@ -108,7 +108,7 @@ fn prelude(stack: u32) -> String {
     f("BARYCENTRIC_EPS", BARYCENTRIC_EPS);
     f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);
     f("VISIBLE_NM_LO", VISIBLE_NM.0);
-    f("MIN_RADIUS_FRACTION", prismatic_core::progressive::MIN_RADIUS_FRACTION);
+    f("MIN_RADIUS_FRACTION", prismatic_core::schedule::MIN_RADIUS_FRACTION);
     for (i, c) in SIN_COEFFS.iter().enumerate() {
         f(&format!("SIN_C{i}"), *c);
     }
@@ -152,7 +152,15 @@ fn photon_windows(name: &str, group: u32, first: u32, writable: bool) -> String 
 }
 
 const COMMON: &str = include_str!("shaders/common.wgsl");
+const FIXED: &str = include_str!("shaders/fixed.wgsl");
 const SCENE: &str = include_str!("shaders/scene.wgsl");
+
+/// The functions every pipeline shares (RNG, optics, the estimator's last
+/// step, fixed-point sums) behind the prelude, with no bindings and no
+/// entry point: tests append an entry point that runs them on their own.
+pub fn library() -> String {
+    [prelude(0), COMMON.into(), FIXED.into()].concat()
+}
 
 /// Emit + trace (entry `main`).
 pub fn trace() -> String {
@@ -189,24 +197,29 @@ pub fn grid() -> String {
     .concat()
 }
 
-/// Ray tracing into pixels and visible points (entry `main`) with a
+/// The view rays into pixels and visible points (entry `main`) with a
 /// view-ray stack of `stack` entries.
-pub fn render(stack: u32) -> String {
-    [prelude(stack), COMMON.into(), SCENE.into(), include_str!("shaders/render.wgsl").into()].concat()
+pub fn view(stack: u32) -> String {
+    [prelude(stack), COMMON.into(), SCENE.into(), include_str!("shaders/view.wgsl").into()].concat()
 }
 
-/// The gather at visible points (entries `gather`, `resolve`); the sorted
-/// photons are bindings 6–9.
-pub fn gather() -> String {
-    [prelude(0), COMMON.into(), include_str!("shaders/gather.wgsl").into(), photon_windows("sorted", 0, 6, false)]
-        .concat()
-}
-
-/// A live session's progressive passes (entries `first_radius`,
-/// `begin_pass`, `gather_level`, `accumulate`): the gather's bindings plus
-/// group 1 (radius ratios, sums, base pixels, session params, levels used).
+/// A session's passes (entries `first_radius`, `begin_pass`,
+/// `gather_level`, `accumulate`): the gather's bindings in group 0 (the
+/// sorted photons are bindings 6–9) and group 1 (radius ratios, sums, base
+/// pixels, session params, levels used, statistics).
 pub fn session() -> String {
-    [gather(), include_str!("shaders/session.wgsl").into()].concat()
+    [
+        library(),
+        include_str!("shaders/gather.wgsl").into(),
+        photon_windows("sorted", 0, 6, false),
+        include_str!("shaders/session.wgsl").into(),
+    ]
+    .concat()
+}
+
+/// A pass's trace tallies added to the render's statistics (entry `fold_tallies`).
+pub fn stats() -> String {
+    [library(), include_str!("shaders/stats.wgsl").into()].concat()
 }
 
 /// Copies a rendered pixel buffer into a storage texture of `format` (a WGSL texel format).

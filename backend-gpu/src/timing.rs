@@ -1,63 +1,14 @@
-//! GPU timestamps between a session frame's stages, where the device has
+//! GPU timestamps between a session pass's stages, where the device has
 //! them (`TIMESTAMP_QUERY` and `TIMESTAMP_QUERY_INSIDE_ENCODERS`): each
 //! stamp is written in queue order after the stage's submissions, the
 //! stamps are resolved on the device and read back without waiting, a
 //! frame or more later. A frame whose stamps would overlap a read still
 //! on its way is not timed.
 
-use crate::context::GpuContext;
+use crate::context::{GpuContext, timestamp_features};
 use crate::readback::{PendingRead, staging_buffer};
-use prismatic_core::BackendError;
+use prismatic_core::{BackendError, Stage, StageTimes};
 use std::time::Duration;
-
-/// A session frame's stages, in the order a frame runs them.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Stage {
-    /// The view rays: direct light and visible points (after a change only).
-    View,
-    /// The photon pass: trace and compaction into the map.
-    Photons,
-    /// The grid of every built level rebuilt over the new map.
-    Grid,
-    /// The gather at the visible points, and the first radii or the sums.
-    Gather,
-}
-
-/// GPU time of one session frame, per stage. A stage that ran twice (the
-/// pilot pass's and the pass's photons after a change) is summed; a stage
-/// the frame did not run is zero. Each stage is the time from the stamp
-/// before its first submission to the stamp after its last, so idle time
-/// while the host records the stage counts in it.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct StageTimes {
-    /// The view rays.
-    pub view: Duration,
-    /// The photon passes.
-    pub photons: Duration,
-    /// The grid rebuilds.
-    pub grid: Duration,
-    /// The gathers.
-    pub gather: Duration,
-}
-
-impl StageTimes {
-    /// The whole frame, first stamp to last: the stages' sum.
-    pub fn frame(&self) -> Duration {
-        self.view + self.photons + self.grid + self.gather
-    }
-}
-
-/// `view 14.10, photons 0.52, grid 0.31, gather 3.05 ms`, without the view
-/// when the frame traced none (the frames that follow no change).
-impl std::fmt::Display for StageTimes {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let ms = |d: Duration| d.as_secs_f64() * 1e3;
-        if !self.view.is_zero() {
-            write!(f, "view {:.2}, ", ms(self.view))?;
-        }
-        write!(f, "photons {:.2}, grid {:.2}, gather {:.2} ms", ms(self.photons), ms(self.grid), ms(self.gather))
-    }
-}
 
 /// Stamps a frame writes at most: its start, the view, and photons, grid
 /// and gather for the pilot pass and the pass.
@@ -168,12 +119,6 @@ impl StageTimer {
     }
 }
 
-/// The features stage times need; a device the backend creates requests
-/// them when its adapter has them.
-pub fn timestamp_features() -> wgpu::Features {
-    wgpu::Features::TIMESTAMP_QUERY | wgpu::Features::TIMESTAMP_QUERY_INSIDE_ENCODERS
-}
-
 impl StageTimer {
     /// Writes stamp `index` after everything submitted so far.
     fn write(&self, ctx: &GpuContext, index: u32) -> Result<(), BackendError> {
@@ -192,13 +137,7 @@ fn stage_times(ticks: &[u64], stages: &[Stage], period: f64) -> StageTimes {
     let span = |a: u64, b: u64| Duration::from_nanos((b.saturating_sub(a) as f64 * period) as u64);
     let mut times = StageTimes::default();
     for (pair, stage) in ticks.windows(2).zip(stages) {
-        let t = span(pair[0], pair[1]);
-        match stage {
-            Stage::View => times.view += t,
-            Stage::Photons => times.photons += t,
-            Stage::Grid => times.grid += t,
-            Stage::Gather => times.gather += t,
-        }
+        times.add(*stage, span(pair[0], pair[1]));
     }
     times
 }
@@ -223,14 +162,5 @@ mod tests {
     fn a_stamp_before_the_one_before_it_counts_zero() {
         let t = stage_times(&[500, 100, 300], &[Stage::View, Stage::Gather], 1.0);
         assert_eq!((t.view, t.gather), (Duration::ZERO, Duration::from_nanos(200)));
-    }
-
-    #[test]
-    fn shown_in_milliseconds_with_the_view_only_when_it_ran() {
-        let us = Duration::from_micros;
-        let t = StageTimes { view: Duration::ZERO, photons: us(520), grid: us(310), gather: us(3054) };
-        assert_eq!(t.to_string(), "photons 0.52, grid 0.31, gather 3.05 ms");
-        let t = StageTimes { view: us(14_100), ..t };
-        assert_eq!(t.to_string(), "view 14.10, photons 0.52, grid 0.31, gather 3.05 ms");
     }
 }

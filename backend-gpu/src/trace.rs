@@ -2,8 +2,10 @@
 //! go in chunks (a chunk's scratch fits one binding and its dispatch the
 //! workgroup limits); per chunk: emit + trace, prefix sum of the per-emission
 //! counts, scatter into the canonical map after the chunks before it, and
-//! a one-invocation pass that moves the map's cursor. Only the cursor and
-//! the per-workgroup tallies are read back, once, at the end.
+//! a one-invocation pass that moves the map's cursor. Nothing is read back:
+//! the cursor goes into the grid's params on the device, and the
+//! per-workgroup tallies are added to the render's statistics there
+//! (stats.wgsl), or read when a caller asks for a pass's photon map.
 
 use crate::context::GpuContext;
 use crate::layout::Tally;
@@ -12,36 +14,13 @@ use crate::pipelines::{MAX_WORKGROUPS, Pipelines, dispatch};
 use crate::scan::Scan;
 use crate::scene::SceneBuffers;
 use crate::shaders::WORKGROUP_SIZE;
-use prismatic_core::backend::{Progress, Stage};
-use prismatic_core::prepared::Surface;
 use prismatic_core::scene::WavelengthSampling;
-use prismatic_core::{BackendError, PreparedScene, TraceStats};
+use prismatic_core::surface::Surface;
+use prismatic_core::{BackendError, PreparedScene, Progress, Stage, TraceStats};
 
 /// Largest chunk of emissions per dispatch (keeps progress reports coming
 /// and the scratch small).
 pub const MAX_CHUNK: u32 = 1 << 20;
-
-/// A photon map on the device, in canonical order.
-pub struct DeviceMap {
-    /// The photons.
-    pub photons: PhotonArray,
-    /// How many there are.
-    pub stored: u32,
-    /// Per-workgroup statistics ([`DeviceMap::stats`] adds them up).
-    tallies: wgpu::Buffer,
-}
-
-impl DeviceMap {
-    /// A map of `photons` that did not come from a photon pass (no statistics).
-    pub fn uploaded(ctx: &GpuContext, photons: PhotonArray, stored: u32) -> Self {
-        DeviceMap { photons, stored, tallies: storage(ctx, "prismatic tallies", std::mem::size_of::<Tally>() as u64) }
-    }
-
-    /// What the pass did (reads the per-workgroup tallies back).
-    pub fn stats(&self, ctx: &GpuContext) -> Result<TraceStats, BackendError> {
-        read_stats(ctx, &self.tallies)
-    }
-}
 
 /// Scratch slots per emission: every band when white photons split, else one.
 pub fn slots_per_emission(scene: &PreparedScene) -> u32 {
@@ -121,7 +100,7 @@ impl PhotonPass {
                     wgpu::BindGroupEntry { binding: 2, resource: tallies.as_entire_binding() },
                 ],
             });
-            let scan = Scan::new(&ctx.device, pipelines, &offsets, chunk);
+            let scan = Scan::new(ctx, pipelines, &offsets, chunk);
             let mut entries = vec![
                 wgpu::BindGroupEntry { binding: 0, resource: scene_buffers.params_buffer.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 1, resource: scratch.as_entire_binding() },
@@ -192,7 +171,7 @@ impl PhotonPass {
             let p = &mut scene_buffers.params;
             (p.chunk_start, p.chunk_len, p.slots, p.window, p.capacity) =
                 (start, len, slots, window, self.photons.capacity);
-            scene_buffers.write_params(&ctx.queue);
+            scene_buffers.write_params(ctx);
             ctx.checked("tracing photons", || {
                 let mut encoder = ctx.device.create_command_encoder(&Default::default());
                 if start == 0 {
@@ -218,9 +197,25 @@ impl PhotonPass {
                 ctx.queue.submit([encoder.finish()]);
             })?;
             start += len;
-            progress.advance(Stage::Trace, u64::from(start), u64::from(total));
+            progress.advance(Stage::Photons, u64::from(start), u64::from(total));
         }
         Ok(())
+    }
+
+    /// The per-workgroup tallies of the last pass.
+    pub fn tallies(&self) -> &wgpu::Buffer {
+        &self.tallies
+    }
+
+    /// What the last pass did (waits for the device and reads its tallies).
+    pub fn stats(&self, ctx: &GpuContext) -> Result<TraceStats, BackendError> {
+        read_stats(ctx, &self.tallies)
+    }
+
+    /// The last pass's photon map, in canonical order (waits for the device).
+    pub fn read_map(&self, ctx: &GpuContext) -> Result<prismatic_core::PhotonMap, BackendError> {
+        let stored = self.stored(ctx)?;
+        Ok(prismatic_core::PhotonMap { photons: self.photons.read(ctx, stored)?, stats: self.stats(ctx)? })
     }
 
     /// Waits for the pass and reads its photon count; an error when the
@@ -240,27 +235,13 @@ impl PhotonPass {
     }
 }
 
-/// Traces the scene's photons into a device-resident canonical map.
-pub fn trace(
-    ctx: &GpuContext,
-    pipelines: &Pipelines,
-    scene_buffers: &mut SceneBuffers,
-    scene: &PreparedScene,
-    window: u32,
-    progress: &mut dyn Progress,
-) -> Result<DeviceMap, BackendError> {
-    let pass = PhotonPass::new(ctx, pipelines, scene, scene_buffers, window)?;
-    pass.record(ctx, pipelines, scene_buffers, pass.emissions(), progress)?;
-    let stored = pass.stored(ctx)?;
-    Ok(DeviceMap { photons: pass.photons, stored, tallies: pass.tallies })
-}
-
 /// Workgroups a dispatch of `groups` runs: x·y of its 2D grid (one tally each).
 fn dispatched_groups(groups: u64) -> u64 {
     groups.min(MAX_WORKGROUPS) * groups.div_ceil(MAX_WORKGROUPS)
 }
 
-/// Adds the workgroups' tallies up in u64 and f64.
+/// Adds the workgroups' tallies of the last pass up in u64 and f64 (waits
+/// for the device).
 fn read_stats(ctx: &GpuContext, tallies: &wgpu::Buffer) -> Result<TraceStats, BackendError> {
     let bytes = ctx.read(tallies, 0, tallies.size())?;
     let mut s = TraceStats::default();

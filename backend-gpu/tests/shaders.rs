@@ -4,7 +4,7 @@
 
 use naga::valid::{Capabilities, ValidationFlags, Validator};
 use prismatic_gpu::layout::{
-    GpuBand, GpuLight, GpuObject, GpuSurface, Params, ScanParams, SessionParams, Tally, VisiblePoint,
+    GpuBand, GpuLight, GpuObject, GpuSurface, Params, RunStats, ScanParams, SessionParams, Tally, VisiblePoint,
 };
 use prismatic_gpu::shaders;
 use std::mem::{offset_of, size_of};
@@ -24,10 +24,10 @@ fn sources() -> Vec<(&'static str, String)> {
         ("compact", shaders::compact()),
         ("scan", shaders::scan()),
         ("grid", shaders::grid()),
-        ("render", shaders::render(shaders::stack_size(12))),
-        ("render-deepest", shaders::render(shaders::stack_size(prismatic_core::scene::MAX_DEPTH))),
-        ("gather", shaders::gather()),
+        ("view", shaders::view(shaders::stack_size(12))),
+        ("view-deepest", shaders::view(shaders::stack_size(prismatic_core::scene::MAX_DEPTH))),
         ("session", shaders::session()),
+        ("stats", shaders::stats()),
         ("to_texture", shaders::to_texture("rgba16float")),
     ]
 }
@@ -57,7 +57,6 @@ macro_rules! rust_layout {
 fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
     let trace = module("trace", &shaders::trace());
     let scan = module("scan", &shaders::scan());
-    let gather = module("gather", &shaders::gather());
     let session = module("session", &shaders::session());
     let photon = rust_layout!(prismatic_core::Photon { position, flux, direction_oct, emission, band });
     let (size, mut fields) = wgsl_layout(&trace, "Photon");
@@ -91,8 +90,8 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 points_per_pixel,
                 gather_first,
                 gather_span,
-                zero,
-                _pad0,
+                sum_shift,
+                flux_shift,
                 flux,
                 radius,
                 inv_cell,
@@ -158,7 +157,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 pilot_scale,
                 neighbours,
                 inv_passes,
-                pilot,
+                whole_radius,
                 level,
                 built_levels,
                 _pad0,
@@ -168,9 +167,10 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
         ("ScanParams", &scan, rust_layout!(ScanParams { n, _pad0, _pad1, _pad2 })),
         (
             "VisiblePoint",
-            &gather,
-            rust_layout!(VisiblePoint { position, total, normal, flux, weight, radius, sums, flux_c, sums_c, found }),
+            &session,
+            rust_layout!(VisiblePoint { position, total, normal, radius, weight, found, sums, flux }),
         ),
+        ("RunStats", &session, rust_layout!(RunStats { counts, flux, points, min_ratio, max_ratio })),
     ];
     for (name, module, rust) in cases {
         assert_eq!(wgsl_layout(module, name), rust, "{name}: WGSL (size, offsets) vs Rust");

@@ -8,7 +8,7 @@
 //! a warning and left out; what makes no sense (a missing buffer, an index
 //! out of range, a NaN) is an error naming the element's glTF path.
 
-use crate::scene_file::{SceneDocument, SceneFileError};
+use crate::scene_file::document::{SceneDocument, SceneFileError};
 use glam::{Mat4, Vec3};
 use gltf::khr_lights_punctual::Kind;
 use prismatic_core::Dispersion;

@@ -11,6 +11,8 @@ pub mod obj;
 pub mod output;
 pub mod partial;
 pub mod passes;
+pub mod progress_bar;
+pub mod render_job;
 pub mod scene_file;
 pub mod study;
 

@@ -1,20 +1,20 @@
 //! `prismatic`: render dispersion caustics, dump photon maps, list built-in scenes.
 
-use anyhow::{Context, Result};
+use anyhow::Result;
 use clap::{Args, Parser, Subcommand};
 use prismatic_cli::backends::{self, BackendChoice};
 use prismatic_cli::builtin::{BUILTIN_SCENES, GENERATED_SCENES, find, find_generated, names};
 use prismatic_cli::output::{PendingFile, write_image, write_photon_csv, write_png};
-use prismatic_cli::partial::{Partial, fingerprint};
+use prismatic_cli::partial::Partial;
 use prismatic_cli::passes::{parse_passes, parse_seconds};
-use prismatic_cli::scene_file::{SceneFileError, parse_bands, parse_estimator, parse_wavelengths};
+use prismatic_cli::progress_bar::ProgressBar;
+use prismatic_cli::render_job::{Output, RenderJob};
+use prismatic_cli::scene_file::{SceneFileError, parse_bands, parse_estimator, parse_radius_mode, parse_wavelengths};
 use prismatic_cli::study::progress::StudyBar;
 use prismatic_cli::study::{self, StudyOptions, report};
 use prismatic_core::bands::BandSpec;
-use prismatic_core::progressive::ProgressiveRender;
-use prismatic_core::scene::{Estimator, WavelengthSampling};
-use prismatic_core::{PreparedScene, Progress, Stage, TraceStats};
-use std::io::{IsTerminal, Write};
+use prismatic_core::scene::{Estimator, RadiusMode, WavelengthSampling};
+use prismatic_core::{PreparedScene, TraceStats};
 use std::ops::Range;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -35,7 +35,7 @@ enum Command {
         #[command(flatten)]
         job: JobArgs,
         /// Passes: N (passes 0..N) or A..B (passes A to B-1, e.g. for --partial);
-        /// default: the scene's `passes`.
+        /// default: the scene's `passes`, or with --time as many as fit.
         #[arg(long, value_parser = parse_passes)]
         passes: Option<Range<u32>>,
         /// Stop after the pass that crosses this many seconds.
@@ -60,10 +60,13 @@ enum Command {
         #[arg(short, long, default_value = "prismatic.png")]
         output: PathBuf,
     },
-    /// Trace a scene's caustic photons and write them as CSV.
+    /// Trace the caustic photons of one pass of a scene's render and write them as CSV.
     Photons {
         #[command(flatten)]
         job: JobArgs,
+        /// The pass whose photons to write (each pass has its own seed).
+        #[arg(long, default_value_t = 0)]
+        pass: u32,
         /// Output CSV.
         #[arg(short, long, default_value = "photons.csv")]
         output: PathBuf,
@@ -109,9 +112,13 @@ struct JobArgs {
     /// White photons to emit.
     #[arg(long)]
     photons: Option<u32>,
-    /// Gather radius.
+    /// Gather radius (with progressive radii: the largest first radius).
     #[arg(long)]
     radius: Option<f32>,
+    /// Gather radii: progressive (per point, shrinking pass by pass) or
+    /// fixed (the scene's radius everywhere, the paper's frame).
+    #[arg(long, value_parser = parse_radius_mode)]
+    radius_mode: Option<RadiusMode>,
     /// RNG seed.
     #[arg(long)]
     seed: Option<u32>,
@@ -237,57 +244,46 @@ fn run(cli: Cli) -> Result<()> {
             print!("{}", s.source);
             Ok(())
         }
-        Command::Render { job, passes, time, partial, save_every, output } => {
-            let target = match &partial {
-                Some(file) => Target::Partial(file.clone()),
-                None => Target::Image(output),
+        Command::Render { job: args, passes, time, partial, save_every, output } => {
+            let output = match partial {
+                Some(file) => Output::Partial(file),
+                None => Output::Image(output),
             };
-            let out = PendingFile::create(target.path())?;
-            let (name, scene, _) = prepare(&job)?;
-            let range = passes.unwrap_or(0..scene.scene.render.passes);
-            let mut selected = backends::select(job.backend)?;
+            let out = PendingFile::create(output.path())?;
+            let (name, scene, _) = prepare(&args)?;
+            let passes = passes.unwrap_or(if time.is_some() { 0..u32::MAX } else { 0..scene.scene.render.passes });
+            let seconds = |s: Option<f64>| s.map(Duration::from_secs_f64);
+            let job = RenderJob { passes, time: seconds(time), save_every: seconds(save_every), output };
+            let mut selected = backends::select(args.backend)?;
             if let Some(note) = &selected.note {
                 eprintln!("{note}");
             }
-            let backend = selected.backend.as_mut();
+            let mut render = selected.backend.prepare(&scene)?;
             let mut bar = ProgressBar::new();
-            let t0 = Instant::now();
-            let mut render = ProgressiveRender::prepare(backend, &scene, &mut bar)?;
-            let prepared = t0.elapsed();
-            let budget = time.map(Duration::from_secs_f64);
-            let save_every = save_every.map(Duration::from_secs_f64);
-            let mut stats = TraceStats::default();
-            let mut last_save = Instant::now();
-            for (done, k) in range.clone().enumerate() {
-                stats.merge(&render.run_pass(backend, k)?);
-                bar.pass(done as u32 + 1, range.len() as u32, stats.emitted, t0.elapsed(), budget);
-                if budget.is_some_and(|b| t0.elapsed() >= b) {
-                    break;
-                }
-                if save_every.is_some_and(|e| last_save.elapsed() >= e) && done + 1 < range.len() {
-                    let snapshot = PendingFile::create(target.path())?;
-                    target.write(snapshot, &render, &scene, backend.name())?;
-                    last_save = Instant::now();
-                }
-            }
-            let elapsed = t0.elapsed();
+            let report = job.run(render.as_mut(), out, &mut bar);
             bar.finish();
-            let summed = render.accumulation().pass_count();
-            target.write(out, &render, &scene, backend.name())?;
-            let radii = render.initial_radii();
-            let (lo, hi) = radii.iter().fold((f32::INFINITY, 0.0f32), |(lo, hi), &r| (lo.min(r), hi.max(r)));
+            let report = report?;
+            let s = &report.stats;
+            let radii = match s.first_radii {
+                Some((lo, hi)) => format!("{lo:.4}–{hi:.4}"),
+                None => "none".into(),
+            };
+            let traffic = match (s.uploaded, s.read_back) {
+                (0, 0) => String::new(),
+                (up, down) => format!("; {} uploaded, {} read back", bytes(up), bytes(down)),
+            };
             println!(
-                "{name}: {} backend, {summed} passes ({}), {}; {} visible points, first radii {}; view rays and \
-                 pilot in {}, passes in {} ({:.1} ms a pass); wrote {} ({}x{})",
-                backend.name(),
-                pass_list(&render.accumulation().passes),
-                photon_summary(&scene, &stats),
-                render.points().points.len(),
-                if radii.is_empty() { "none".to_string() } else { format!("{lo:.4}–{hi:.4}") },
-                secs(prepared),
-                secs(elapsed - prepared),
-                (elapsed - prepared).as_secs_f64() * 1e3 / f64::from(summed.max(1)),
-                target.path().display(),
+                "{name}: {} backend, {} passes ({}), {}; {} visible points, first radii {radii}; view rays and \
+                 pilot in {}, passes in {} ({:.1} ms a pass){traffic}; wrote {} ({}x{})",
+                render.backend(),
+                s.passes,
+                pass_list(&report.passes),
+                photon_summary(&scene, &s.trace),
+                s.visible_points,
+                secs(report.prepared),
+                secs(report.passing),
+                report.passing.as_secs_f64() * 1e3 / f64::from(s.passes.max(1)),
+                job.output.path().display(),
                 scene.scene.render.width,
                 scene.scene.render.height
             );
@@ -320,63 +316,25 @@ fn run(cli: Cli) -> Result<()> {
             );
             Ok(())
         }
-        Command::Photons { job, output } => {
+        Command::Photons { job, pass, output } => {
             let out = PendingFile::create(&output)?;
             let (name, scene, origin) = prepare(&job)?;
             let mut selected = backends::select(job.backend)?;
+            let mut render = selected.backend.prepare(&scene)?;
             let mut bar = ProgressBar::new();
             let t0 = Instant::now();
-            let map = selected.backend.trace_photons(&scene, &mut bar)?;
+            let map = render.photon_map(pass, &mut bar)?;
             let t_trace = t0.elapsed();
             bar.finish();
             out.commit(|w| write_photon_csv(w, &map, &scene.bands, origin))?;
             println!(
-                "{name}: {} backend, {}; trace {}; wrote {}",
-                selected.backend.name(),
+                "{name}: {} backend, pass {pass}, {}; trace {}; wrote {}",
+                render.backend(),
                 photon_summary(&scene, &map.stats),
                 secs(t_trace),
                 output.display()
             );
             Ok(())
-        }
-    }
-}
-
-/// Where a render goes: an image, or a partial render's raw sums.
-enum Target {
-    Image(PathBuf),
-    Partial(PathBuf),
-}
-
-impl Target {
-    fn path(&self) -> &std::path::Path {
-        match self {
-            Target::Image(p) | Target::Partial(p) => p,
-        }
-    }
-
-    /// Writes what the passes so far give into `out` (a complete file or nothing).
-    fn write(&self, out: PendingFile, render: &ProgressiveRender, scene: &PreparedScene, backend: &str) -> Result<()> {
-        match self {
-            Target::Image(path) => {
-                let image = render.image();
-                if !image.is_finite() {
-                    anyhow::bail!(
-                        "the render produced non-finite pixels; nothing was written (please report this scene)"
-                    );
-                }
-                out.commit(|w| write_image(w, path, &image, scene.scene.render.tone_map))
-            }
-            Target::Partial(_) => {
-                let partial = Partial {
-                    fingerprint: fingerprint(scene),
-                    backend: backend.to_string(),
-                    tone_map: scene.scene.render.tone_map,
-                    base: render.points().base.clone(),
-                    sums: render.accumulation().clone(),
-                };
-                out.commit(|w| partial.write(w))
-            }
         }
     }
 }
@@ -397,6 +355,7 @@ fn prepare(job: &JobArgs) -> Result<(String, PreparedScene, glam::DVec3)> {
     r.bands = job.bands.unwrap_or(r.bands);
     r.photons = job.photons.unwrap_or(r.photons);
     r.radius = job.radius.unwrap_or(r.radius);
+    r.radius_mode = job.radius_mode.unwrap_or(r.radius_mode);
     r.seed = job.seed.unwrap_or(r.seed);
     r.estimator = job.estimator.unwrap_or(r.estimator);
     r.wavelengths = job.wavelengths.unwrap_or(r.wavelengths);
@@ -417,6 +376,7 @@ fn blame_flag(job: &JobArgs, e: SceneFileError) -> SceneFileError {
         ("render.bands", "--bands", job.bands.is_some()),
         ("render.photons", "--photons", job.photons.is_some()),
         ("render.radius", "--radius", job.radius.is_some()),
+        ("render.radius_mode", "--radius-mode", job.radius_mode.is_some()),
         ("render.seed", "--seed", job.seed.is_some()),
         ("render.estimator", "--estimator", job.estimator.is_some()),
         ("render.wavelengths", "--wavelengths", job.wavelengths.is_some()),
@@ -473,63 +433,11 @@ fn secs(d: Duration) -> String {
     format!("{:.2} s", d.as_secs_f64())
 }
 
-/// A one-line progress bar on stderr, shown only when stderr is a terminal.
-struct ProgressBar {
-    enabled: bool,
-    last: Option<(Stage, u64)>,
-}
-
-impl ProgressBar {
-    fn new() -> Self {
-        ProgressBar { enabled: std::io::stderr().is_terminal(), last: None }
-    }
-
-    fn finish(&mut self) {
-        if self.enabled && self.last.is_some() {
-            eprint!("\r{:78}\r", "");
-        }
-    }
-
-    /// After pass `done` of `total`: photons so far, time, and an estimate of what is left.
-    fn pass(&mut self, done: u32, total: u32, photons: u64, elapsed: Duration, budget: Option<Duration>) {
-        if !self.enabled {
-            return;
-        }
-        self.last = Some((Stage::Trace, u64::from(done)));
-        let per_pass = elapsed.as_secs_f64() / f64::from(done);
-        let mut left = per_pass * f64::from(total - done);
-        if let Some(b) = budget {
-            left = left.min((b.as_secs_f64() - elapsed.as_secs_f64()).max(0.0));
-        }
-        let filled = (done as usize * 25) / total.max(1) as usize;
-        eprint!(
-            "\rpass {done}/{total} [{}{}] {:.2} M photons, {:.1} s, ~{:.1} s left  ",
-            "#".repeat(filled),
-            " ".repeat(25 - filled),
-            photons as f64 / 1e6,
-            elapsed.as_secs_f64(),
-            left
-        );
-        std::io::stderr().flush().context("stderr").ok();
-    }
-}
-
-impl Progress for ProgressBar {
-    fn advance(&mut self, stage: Stage, done: u64, total: u64) {
-        if !self.enabled || total == 0 {
-            return;
-        }
-        let percent = done * 100 / total;
-        if self.last == Some((stage, percent)) {
-            return;
-        }
-        self.last = Some((stage, percent));
-        let label = match stage {
-            Stage::Trace => "tracing photons",
-            Stage::Render => "rendering",
-        };
-        let filled = (percent / 4) as usize;
-        eprint!("\r{label:<16} [{}{}] {percent:3}%", "#".repeat(filled), " ".repeat(25 - filled));
-        std::io::stderr().flush().context("stderr").ok();
+/// "12.3 MB", "456 B".
+fn bytes(n: u64) -> String {
+    match n {
+        0..1_000 => format!("{n} B"),
+        1_000..1_000_000 => format!("{:.1} kB", n as f64 / 1e3),
+        _ => format!("{:.1} MB", n as f64 / 1e6),
     }
 }

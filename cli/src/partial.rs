@@ -10,8 +10,8 @@
 //! of everything before it.
 
 use crate::scene_file::SceneFileError;
+use prismatic_core::Accumulation;
 use prismatic_core::color::ToneMap;
-use prismatic_core::progressive::Accumulation;
 use prismatic_core::{Image, PreparedScene, Vec3};
 use std::io::Write;
 use std::path::Path;

@@ -223,34 +223,84 @@ fn bad_flag_values_are_reported_against_the_flag() {
     assert!(files_in(dir.path()).is_empty());
 }
 
+/// Partial renders of passes 0..4 and 4..8, merged, are the bytes of one
+/// render of 8 passes, PNG and EXR: on the CPU and on the GPU (whose sums
+/// are fixed point on the device too).
 #[test]
 fn partial_renders_merge_into_the_image_of_one_run_bit_for_bit() {
+    for backend in ["cpu", "gpu"] {
+        let dir = tempfile::tempdir().unwrap();
+        let run = |extra: &[&str]| {
+            let mut args = vec!["render", "sphere", "--backend", backend];
+            args.extend(SMALL);
+            args.extend(extra);
+            let o = prismatic(&args, dir.path());
+            o.status.success().then(|| text(&o).0).ok_or_else(|| text(&o).1)
+        };
+        let out = match run(&["--passes", "8", "-o", "whole.png"]) {
+            Err(err) if backend == "gpu" && err.contains("no GPU adapter") && std::env::var_os("CI").is_none() => {
+                eprintln!("SKIPPING the gpu backend: no GPU adapter on this machine: {err}");
+                continue;
+            }
+            out => out.unwrap_or_else(|err| panic!("{backend}: {err}")),
+        };
+        assert!(out.contains("8 passes (0..8)"), "{backend}: {out}");
+        for extra in [
+            &["--passes", "8", "-o", "whole.exr"][..],
+            &["--passes", "0..4", "--partial", "a.partial"],
+            &["--passes", "4..8", "--partial", "b.partial"],
+        ] {
+            run(extra).unwrap_or_else(|err| panic!("{backend}: {err}"));
+        }
+        for (merged, whole) in [("merged.png", "whole.png"), ("merged.exr", "whole.exr")] {
+            let o = prismatic(&["merge", "b.partial", "a.partial", "-o", merged], dir.path());
+            let (out, err) = text(&o);
+            assert!(o.status.success(), "{backend}: {err}");
+            assert!(out.contains("8 passes: 0..8"), "{backend}: {out}");
+            let read = |f: &str| std::fs::read(dir.path().join(f)).unwrap();
+            assert!(read(merged) == read(whole), "{backend}: {merged} differs from {whole}");
+        }
+        // The EXR is linear float RGB of the image's size.
+        let exr = image::open(dir.path().join("whole.exr")).expect("a readable EXR").to_rgb32f();
+        assert_eq!(exr.dimensions(), (48, 36));
+        assert!(exr.pixels().any(|p| p.0[0] > 1.0), "{backend}: the caustic is brighter than white in linear RGB");
+    }
+}
+
+/// Partials of different backends are refused: the backends agree within
+/// the parity tolerances, not bit for bit.
+#[test]
+fn partials_of_different_backends_are_refused() {
     let dir = tempfile::tempdir().unwrap();
-    let run = |extra: &[&str]| {
-        let mut args = vec!["render", "sphere"];
+    for (backend, passes, file) in [("reference", "0..1", "r.partial"), ("cpu", "1..2", "c.partial")] {
+        let mut args = vec!["render", "prism", "--backend", backend, "--passes", passes, "--partial", file];
         args.extend(SMALL);
-        args.extend(extra);
         let o = prismatic(&args, dir.path());
         assert!(o.status.success(), "{}", text(&o).1);
-        text(&o).0
-    };
-    let out = run(&["--passes", "4", "-o", "whole.png"]);
-    assert!(out.contains("4 passes (0..4)"), "{out}");
-    run(&["--passes", "4", "-o", "whole.exr"]);
-    run(&["--passes", "0..1", "--partial", "a.partial"]);
-    run(&["--passes", "1..4", "--partial", "b.partial"]);
-    for (merged, whole) in [("merged.png", "whole.png"), ("merged.exr", "whole.exr")] {
-        let o = prismatic(&["merge", "b.partial", "a.partial", "-o", merged], dir.path());
-        let (out, err) = text(&o);
-        assert!(o.status.success(), "{err}");
-        assert!(out.contains("4 passes: 0..4"), "{out}");
-        let read = |f: &str| std::fs::read(dir.path().join(f)).unwrap();
-        assert!(read(merged) == read(whole), "{merged} differs from {whole}");
     }
-    // The EXR is linear float RGB of the image's size.
-    let exr = image::open(dir.path().join("whole.exr")).expect("a readable EXR").to_rgb32f();
-    assert_eq!(exr.dimensions(), (48, 36));
-    assert!(exr.pixels().any(|p| p.0[0] > 1.0), "the caustic is brighter than white in linear RGB");
+    let o = prismatic(&["merge", "r.partial", "c.partial", "-o", "m.png"], dir.path());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        text(&o).1.contains("c.partial: rendered by the cpu backend, the first partial by reference"),
+        "{}",
+        text(&o).1
+    );
+    assert!(!dir.path().join("m.png").exists());
+}
+
+/// `--time` without `--passes` renders until the time is up (not the
+/// scene's pass count).
+#[test]
+fn a_time_budget_alone_runs_passes_until_it_is_spent() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut args = vec!["render", "prism", "--time", "1", "-o", "t.png"];
+    args.extend(SMALL);
+    let o = prismatic(&args, dir.path());
+    let (out, err) = text(&o);
+    assert!(o.status.success(), "{err}");
+    let passes: u32 = out.split(" passes (").next().and_then(|s| s.rsplit(' ').next()).unwrap().parse().unwrap();
+    // The prism's 16 passes of 3000 photons take well under a second.
+    assert!(passes > 16, "{passes} passes in a second: {out}");
 }
 
 #[test]

@@ -95,8 +95,8 @@ fn a_gltf_prism_traces_the_photons_of_the_same_scene_in_toml() {
     toml.scene.render.photons = 4000;
     let mut from_gltf = gltf.scene.clone();
     from_gltf.render.photons = 4000;
-    let a = trace::trace_photons(&PreparedScene::new(from_gltf).unwrap());
-    let b = trace::trace_photons(&PreparedScene::new(toml.scene).unwrap());
+    let a = trace::trace_photons(&PreparedScene::new(from_gltf).unwrap(), &mut prismatic_core::NoProgress);
+    let b = trace::trace_photons(&PreparedScene::new(toml.scene).unwrap(), &mut prismatic_core::NoProgress);
     assert!(a.photons.iter().any(|p| p.band != prismatic_core::photon::WHITE_BAND), "the prism splits bands");
     assert_eq!(a, b);
 }
@@ -215,7 +215,7 @@ fn the_dispersion_test_grid_spreads_colour_only_where_the_extension_says() {
             let mut scene = doc.scene.clone();
             scene.objects = vec![scene.objects[0].clone(), object.clone()];
             scene.render.photons = 3000;
-            let map = trace::trace_photons(&PreparedScene::new(scene).unwrap());
+            let map = trace::trace_photons(&PreparedScene::new(scene).unwrap(), &mut prismatic_core::NoProgress);
             assert!(map.photons.len() > 100, "row {row} column {column}: {} photons", map.photons.len());
             if row == 0 {
                 for p in &map.photons {
@@ -272,7 +272,7 @@ fn a_gltf_placed_in_a_scene_file_brings_its_meshes_and_materials() {
     );
     let trace = |mut s: prismatic_core::Scene| {
         (s.render.photons, s.render.radius) = (3000, 0.05);
-        trace::trace_photons(&PreparedScene::new(s).unwrap())
+        trace::trace_photons(&PreparedScene::new(s).unwrap(), &mut prismatic_core::NoProgress)
     };
     assert_eq!(trace(placed.scene.clone()), trace(alone.scene.clone()));
 

@@ -13,10 +13,14 @@
 //! - `density`: Σ N·C_i·Φ / (π r²) over the photons (each band photon
 //!   carries 1/N of the white flux, see [`BandTable::rgb_of_flux`]).
 //!
+//! A gather is two steps, each with a twin in every backend: the photons
+//! found add to a point's [`GatherSums`] ([`GatherSums::add`]), and
+//! [`finish`] turns the sums into irradiance (WGSL `finish_estimate`).
+//!
 //! Only photons arriving at the front of the surface (`dot(dir, n) < 0` for
 //! the normal facing the viewer) count, so light does not bleed through thin walls.
 
-use crate::bands::{BandTable, MAX_BANDS};
+use crate::bands::BandTable;
 use crate::grid::PhotonGrid;
 use crate::photon::{Photon, WHITE_BAND};
 use crate::scene::Estimator;
@@ -34,6 +38,51 @@ pub struct GatherQuery {
     pub radius: f32,
 }
 
+/// What a gather adds up at a point, in f64 and integers (neither stalls
+/// at 2^24 photons).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GatherSums {
+    /// `density`: Σ N·C_i·Φ; `paper`: W = Σ C_i T_i (a white photon adds (1, 1, 1)).
+    pub sums: DVec3,
+    /// `paper`: Total = Σ T_i, a white photon counting N.
+    pub total: u64,
+    /// Σ Φ of the photons found.
+    pub flux: f64,
+    /// Photons found (a white photon counts once).
+    pub found: u32,
+}
+
+impl GatherSums {
+    /// Adds a photon of `band` carrying `flux` that the gather accepted.
+    #[inline]
+    pub fn add(&mut self, estimator: Estimator, bands: &BandTable, band: u16, flux: f32) {
+        self.found += 1;
+        self.flux += f64::from(flux);
+        match estimator {
+            Estimator::Density => self.sums += bands.rgb_of_flux(band, flux).as_dvec3(),
+            Estimator::Paper if band == WHITE_BAND => {
+                self.sums += DVec3::ONE;
+                self.total += bands.len() as u64;
+            }
+            Estimator::Paper => {
+                self.sums += bands.band(usize::from(band)).weight.as_dvec3();
+                self.total += 1;
+            }
+        }
+    }
+}
+
+/// The estimator's last step: caustic irradiance from the sums of a
+/// gather within `radius`, with `bands` bands. Black when nothing was found.
+pub fn finish(estimator: Estimator, bands: usize, g: &GatherSums, radius: f32) -> Vec3 {
+    let area = PI * f64::from(radius) * f64::from(radius);
+    match estimator {
+        Estimator::Density => (g.sums / area).as_vec3(),
+        Estimator::Paper if g.total == 0 => Vec3::ZERO,
+        Estimator::Paper => (g.sums * (bands as f64 / g.total as f64)).as_vec3() * (g.flux / area) as f32,
+    }
+}
+
 /// Caustic irradiance (linear RGB) at `q` from the photons of `grid`.
 pub fn gather(grid: &PhotonGrid, photons: &[Photon], bands: &BandTable, estimator: Estimator, q: &GatherQuery) -> Vec3 {
     gather_counted(grid, photons, bands, estimator, q).0
@@ -48,53 +97,14 @@ pub fn gather_counted(
     q: &GatherQuery,
 ) -> (Vec3, u32) {
     let r2 = q.radius * q.radius;
-    let area = PI * f64::from(r2);
-    let mut accepted = 0u32;
-    let irradiance = match estimator {
-        Estimator::Density => {
-            let mut sum = DVec3::ZERO;
-            grid.for_each_candidate(q.point, q.radius, |i| {
-                let p = &photons[i as usize];
-                if accepts(p, q, r2) {
-                    sum += bands.rgb_of_flux(p.band, p.flux).as_dvec3();
-                    accepted += 1;
-                }
-            });
-            (sum / area).as_vec3()
+    let mut sums = GatherSums::default();
+    grid.for_each_candidate(q.point, q.radius, |i| {
+        let p = &photons[i as usize];
+        if accepts(p, q, r2) {
+            sums.add(estimator, bands, p.band, p.flux);
         }
-        Estimator::Paper => {
-            // counts[i] = T_i for band i; counts[MAX_BANDS] = white photons.
-            let mut counts = [0u32; MAX_BANDS + 1];
-            let mut flux = 0.0f64;
-            grid.for_each_candidate(q.point, q.radius, |i| {
-                let p = &photons[i as usize];
-                if accepts(p, q, r2) {
-                    let slot = if p.band == WHITE_BAND { MAX_BANDS } else { usize::from(p.band) };
-                    counts[slot] += 1;
-                    flux += f64::from(p.flux);
-                    accepted += 1;
-                }
-            });
-            paper_hue(bands, &counts).as_vec3() * (flux / area) as f32
-        }
-    };
-    (irradiance, accepted)
-}
-
-/// The paper's hue N·W/Total from integer band counts (`counts[MAX_BANDS]`
-/// holds white photons); black when nothing was gathered.
-pub fn paper_hue(bands: &BandTable, counts: &[u32; MAX_BANDS + 1]) -> DVec3 {
-    let n = bands.len();
-    let white = u64::from(counts[MAX_BANDS]);
-    let total: u64 = counts[..n].iter().map(|&c| u64::from(c)).sum::<u64>() + white * n as u64;
-    if total == 0 {
-        return DVec3::ZERO;
-    }
-    let mut w = DVec3::splat(white as f64);
-    for (band, &t) in bands.bands().iter().zip(&counts[..n]) {
-        w += band.weight.as_dvec3() * f64::from(t);
-    }
-    w * (n as f64 / total as f64)
+    });
+    (finish(estimator, bands.len(), &sums, q.radius), sums.found)
 }
 
 #[inline]

@@ -3,9 +3,20 @@
 //! A `no_std` + `alloc` crate that owns everything a backend needs to agree on:
 //! the scene model and its validation, spectral bands and dispersion models,
 //! the photon and photon-map types (GPU-ready, `#[repr(C)]` + `Pod`), the
-//! counter-based RNG, scalar geometry and optics, the scalar reference photon
-//! tracer and renderer, the gather estimators, the spatial hash grid, and the
-//! [`Backend`] trait. It knows nothing of threads, SIMD, GPUs or files.
+//! counter-based RNG, scalar geometry and optics, the gather estimators,
+//! the spatial hash grid, the pass schedule, the exact sums, the render
+//! protocol ([`Backend`], [`Render`]) and the scalar reference backend. It
+//! knows nothing of threads, SIMD, GPUs or files.
+//!
+//! Its modules form four layers, each using only the ones above it (and
+//! [`progress`], a leaf every layer may use):
+//!
+//! | layer | modules | what |
+//! |---|---|---|
+//! | model | `scene`, `validate`, `bands`, `cie`, `color`, `dispersion`, `image`, `mesh` | what the user described |
+//! | kernels | `math`, `rng`, `tolerance`, `geometry`, `camera`, `optics`, `photon`, `grid`, `gather`, `visible` | pure functions, mirrored in packets and WGSL |
+//! | plan | `surface`, `reach`, `projection`, `effects`, `prepared`, `schedule` | what a render of this scene will do |
+//! | pipeline | `emit`, `trace`, `view`, `accumulation`, `protocol`, `host`, `reference` | the reference backend and the protocol |
 
 #![cfg_attr(not(feature = "std"), no_std)]
 
@@ -14,41 +25,56 @@ compile_error!("feature `std` cannot be used on a bare-metal target: build with 
 
 extern crate alloc;
 
-pub mod backend;
+pub mod progress;
+
 pub mod bands;
-pub mod camera;
 pub mod cie;
 pub mod color;
 pub mod dispersion;
-pub mod effects;
-pub mod emit;
+pub mod image;
+pub mod mesh;
+pub mod scene;
+pub mod validate;
+
+pub mod camera;
 pub mod gather;
 pub mod geometry;
 pub mod grid;
-pub mod image;
 pub mod math;
-pub mod mesh;
 pub mod optics;
 pub mod photon;
-pub mod prepared;
-pub mod progressive;
-pub mod projection;
-pub mod render;
 pub mod rng;
-pub mod scene;
 pub mod tolerance;
-pub mod trace;
 pub mod visible;
 
-pub use backend::{Backend, BackendError, NoProgress, Progress, ReferenceBackend, Stage};
+pub mod effects;
+pub mod prepared;
+pub mod projection;
+pub mod reach;
+pub mod schedule;
+pub mod surface;
+
+pub mod accumulation;
+pub mod emit;
+pub mod host;
+pub mod protocol;
+pub mod reference;
+pub mod trace;
+pub mod view;
+
+pub use accumulation::{Accumulation, MergeError};
 pub use bands::{Band, BandSpec, BandTable};
 pub use dispersion::{Dispersion, Glass};
 pub use effects::{Effect, EffectPlan};
 pub use image::Image;
 pub use photon::{Photon, PhotonMap, TraceStats};
 pub use prepared::PreparedScene;
+pub use progress::{NoProgress, Progress, Stage, StageTimes};
+pub use protocol::{Backend, BackendError, Change, Render, RenderStats};
+pub use reference::ReferenceBackend;
 pub use scene::{
-    Camera, Checker, Estimator, Light, Material, Object, RenderSettings, Scene, SceneError, Shape, WavelengthSampling,
+    Camera, Checker, Estimator, Light, Material, Object, RadiusMode, RenderSettings, Scene, SceneError, Shape,
+    WavelengthSampling,
 };
 
 /// Re-exported so that users of the scene model need not depend on glam themselves.

@@ -9,9 +9,9 @@
 //! of targets that cover its sample (targets may overlap); samples outside
 //! the light's own cone or disc get weight 0 and are not traced.
 
-use crate::effects::light_reaches;
 use crate::geometry::basis;
 use crate::math::{cos, radians, sin_cos_turns, sqrt};
+use crate::reach::light_reaches;
 use crate::scene::Light;
 use alloc::vec::Vec;
 use glam::Vec3;

@@ -1,5 +1,5 @@
 //! The scalar reference photon tracer: the specification every backend's
-//! `trace_photons` is compared with.
+//! photon pass is compared with.
 //!
 //! White photons leave the lights; at the first dispersive dielectric a
 //! white photon splits into one photon per band (each with 1/N of the flux)
@@ -13,23 +13,20 @@
 //! with a counter-based random number, so the result is a pure function of
 //! the scene and the seed.
 
-use crate::backend::{NoProgress, Progress, Stage};
 use crate::emit::emit;
 use crate::geometry::Ray;
 use crate::optics::{fresnel, interface, reflect, refract};
 use crate::photon::{Photon, PhotonMap, TraceStats, WHITE_BAND, oct_encode};
-use crate::prepared::{DielectricOptics, Hit, PreparedScene, Surface, offset_origin};
+use crate::prepared::{Hit, PreparedScene, offset_origin};
+use crate::progress::{Progress, Stage};
 use crate::rng::{dim, random_f32};
 use crate::scene::WavelengthSampling;
+use crate::surface::{DielectricOptics, Surface};
 use alloc::vec::Vec;
 
-/// Traces every white photon of the scene's render settings.
-pub fn trace_photons(scene: &PreparedScene) -> PhotonMap {
-    trace_photons_with_progress(scene, &mut NoProgress)
-}
-
-/// [`trace_photons`], reporting progress about a hundred times.
-pub fn trace_photons_with_progress(scene: &PreparedScene, progress: &mut dyn Progress) -> PhotonMap {
+/// Traces every white photon of the scene's render settings, reporting
+/// progress about a hundred times.
+pub fn trace_photons(scene: &PreparedScene, progress: &mut dyn Progress) -> PhotonMap {
     // The effect plan may skip the photon pass altogether.
     let total = if scene.plan.caustics.on { scene.scene.render.photons } else { 0 };
     let chunk = (total / 100).max(1024);
@@ -38,7 +35,7 @@ pub fn trace_photons_with_progress(scene: &PreparedScene, progress: &mut dyn Pro
     while start < total {
         let end = start.saturating_add(chunk).min(total);
         trace_range(scene, start..end, &mut map.photons, &mut map.stats);
-        progress.advance(Stage::Trace, u64::from(end), u64::from(total));
+        progress.advance(Stage::Photons, u64::from(end), u64::from(total));
         start = end;
     }
     map

@@ -27,6 +27,6 @@ pub struct VisiblePoints {
     /// Direct light, ambient and background, exposure applied.
     pub base: Image,
     /// The points, in the order the backend traced them (sums over them do
-    /// not depend on that order: see [`crate::progressive::Accumulation`]).
+    /// not depend on that order: see [`crate::accumulation::Accumulation`]).
     pub points: Vec<VisiblePoint>,
 }

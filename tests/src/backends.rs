@@ -1,6 +1,9 @@
 //! Every backend that exists, so that a test body is written once and run on
-//! each (the scalar reference first: it is the specification).
+//! each (the scalar reference first: it is the specification), and the two
+//! read-outs most tests want, through the render protocol: a pass's photon
+//! map, and the paper's fixed-radius frame.
 
+use prismatic_core::scene::RadiusMode;
 use prismatic_core::{Backend, Image, NoProgress, PhotonMap, PreparedScene, ReferenceBackend};
 use prismatic_cpu::CpuBackend;
 use prismatic_gpu::{AdapterChoice, GpuBackend, GpuOptions};
@@ -30,16 +33,29 @@ pub fn every_backend() -> Vec<Box<dyn Backend>> {
     backends
 }
 
-/// Traces `scene`'s photons on `backend`, panicking with the backend's name on error.
+/// The photon map of pass 0 of `scene` on `backend`, panicking with the backend's name on error.
 pub fn trace(backend: &mut dyn Backend, scene: &PreparedScene) -> PhotonMap {
     let name = backend.name();
-    backend.trace_photons(scene, &mut NoProgress).unwrap_or_else(|e| panic!("{name}: trace: {e}"))
+    let mut render = backend.prepare(scene).unwrap_or_else(|e| panic!("{name}: prepare: {e}"));
+    render.photon_map(0, &mut NoProgress).unwrap_or_else(|e| panic!("{name}: photon map: {e}"))
 }
 
-/// Traces and renders `scene` on `backend`.
-pub fn trace_and_render(backend: &mut dyn Backend, scene: &PreparedScene) -> (PhotonMap, Image) {
-    let map = trace(backend, scene);
+/// `scene` with the paper's fixed radius: every pass gathers within the
+/// scene's radius at every point (the rest of the prepared scene, a plan
+/// a test forced included, as it is).
+pub fn fixed(scene: &PreparedScene) -> PreparedScene {
+    let mut fixed = scene.clone();
+    fixed.scene.render.radius_mode = RadiusMode::Fixed;
+    fixed
+}
+
+/// The paper's frame of `scene` on `backend`: pass 0 gathered within the
+/// scene's radius at every point, and that pass's photon map.
+pub fn frame(backend: &mut dyn Backend, scene: &PreparedScene) -> (PhotonMap, Image) {
     let name = backend.name();
-    let image = backend.render(scene, &map, &mut NoProgress).unwrap_or_else(|e| panic!("{name}: render: {e}"));
+    let mut render = backend.prepare(&fixed(scene)).unwrap_or_else(|e| panic!("{name}: prepare: {e}"));
+    render.run_pass(0, &mut NoProgress).unwrap_or_else(|e| panic!("{name}: pass: {e}"));
+    let image = render.image().unwrap_or_else(|e| panic!("{name}: image: {e}"));
+    let map = render.photon_map(0, &mut NoProgress).unwrap_or_else(|e| panic!("{name}: photon map: {e}"));
     (map, image)
 }

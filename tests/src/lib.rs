@@ -4,7 +4,8 @@
 pub mod backends;
 pub mod parity;
 pub mod random_scene;
-pub mod tolerance;
+
+pub use prismatic_conformance::tolerance;
 
 use prismatic_core::bands::BandSpec;
 use prismatic_core::dispersion::Dispersion;

@@ -3,11 +3,15 @@
 //! Descartes angles. Small renders; the physics suite checks the numbers finely.
 
 use prismatic_core::photon::WHITE_BAND;
-use prismatic_core::render::render;
 use prismatic_core::scene::Light;
-use prismatic_core::trace::trace_photons;
-use prismatic_core::{PhotonMap, PreparedScene, Vec3};
+use prismatic_core::{Backend, NoProgress, PhotonMap, PreparedScene, ReferenceBackend, Vec3};
+use prismatic_tests::backends::fixed;
 use prismatic_tests::descartes_deg;
+
+/// The scalar reference's photon tracer (the scene's own seed).
+fn trace_photons(scene: &PreparedScene) -> PhotonMap {
+    prismatic_core::trace::trace_photons(scene, &mut NoProgress)
+}
 
 fn builtin(name: &str, photons: u32, side: u32) -> PreparedScene {
     prismatic_tests::builtin(name, |r| (r.photons, r.width, r.height) = (photons, side, side))
@@ -19,10 +23,11 @@ fn every_built_in_scene_renders_finite_and_its_caustic_adds_light() {
         [("caustic", 20_000), ("sphere", 20_000), ("prism", 4_000), ("recombine", 4_000), ("rainbow", 100_000)];
     for (name, photons) in scenes {
         let scene = builtin(name, photons, 64);
-        let map = trace_photons(&scene);
-        assert!(map.stats.stored > 0, "{name}: no caustic photons");
-        let with = render(&scene, &map);
-        let without = render(&scene, &PhotonMap::default());
+        let mut render = ReferenceBackend.prepare(&fixed(&scene)).unwrap();
+        render.run_pass(0, &mut NoProgress).unwrap();
+        assert!(render.stats().unwrap().trace.stored > 0, "{name}: no caustic photons");
+        let with = render.image().unwrap();
+        let without = render.base().unwrap();
         assert!(with.is_finite(), "{name}: non-finite pixels");
         let brighter =
             with.pixels.iter().zip(&without.pixels).filter(|(a, b)| a.element_sum() > b.element_sum() + 1e-3).count();
@@ -80,7 +85,7 @@ fn rainbow_bows_peak_at_the_descartes_angles() {
     let map = trace_photons(&scene);
     for (band, k) in [(2usize, 1u32), (12, 1), (2, 2), (12, 2)] {
         let n = f64::from(match &scene.surfaces[1] {
-            prismatic_core::prepared::Surface::Dielectric(g) => g.band_ior[band],
+            prismatic_core::surface::Surface::Dielectric(g) => g.band_ior[band],
             _ => unreachable!("object 1 is the water drop"),
         });
         // Angle between the returning photon and the beam's reverse (+z).

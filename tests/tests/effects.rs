@@ -4,10 +4,10 @@
 
 use prismatic_core::bands::BandSpec;
 use prismatic_core::dispersion::{Dispersion, Glass};
-use prismatic_core::prepared::Surface;
 use prismatic_core::scene::{Light, Object, Shape};
-use prismatic_core::{Image, NoProgress, PhotonMap, PreparedScene, Scene, Vec3};
-use prismatic_tests::backends::{every_backend, trace_and_render};
+use prismatic_core::surface::Surface;
+use prismatic_core::{Image, NoProgress, PreparedScene, ReferenceBackend, Scene, Vec3};
+use prismatic_tests::backends::{every_backend, frame, trace};
 use prismatic_tests::random_scene::random_scene;
 use prismatic_tests::{camera, glass, prepare, settings, white};
 
@@ -42,13 +42,12 @@ fn a_scene_without_mirrors_or_glass_traces_no_photons_and_renders_the_same() {
     let mut forced = scene.clone();
     forced.plan.caustics.on = true;
     for mut backend in every_backend() {
-        let (map, image) = trace_and_render(backend.as_mut(), &scene);
+        let (map, image) = frame(backend.as_mut(), &scene);
         assert_eq!(map.stats.emitted, 0, "{}: the photon pass ran", backend.name());
         assert!(map.photons.is_empty());
-        let forced_map = backend.trace_photons(&forced, &mut NoProgress).unwrap();
+        let (forced_map, forced_image) = frame(backend.as_mut(), &forced);
         assert_eq!(forced_map.stats.emitted, 4000);
         assert!(forced_map.photons.is_empty(), "{}: chalk made caustics", backend.name());
-        let forced_image = backend.render(&forced, &PhotonMap::default(), &mut NoProgress).unwrap();
         assert_eq!(image.pixels, forced_image.pixels, "{}", backend.name());
     }
 }
@@ -66,8 +65,8 @@ fn constant_index_glass_traces_white_photons_only_with_a_seventh_of_the_segments
         }
     }
     for mut backend in every_backend() {
-        let (white_map, white_image) = trace_and_render(backend.as_mut(), &scene);
-        let (split_map, split_image) = trace_and_render(backend.as_mut(), &split);
+        let (white_map, white_image) = frame(backend.as_mut(), &scene);
+        let (split_map, split_image) = frame(backend.as_mut(), &split);
         let name = backend.name();
         assert!(white_map.photons.iter().all(|p| p.band == prismatic_core::photon::WHITE_BAND), "{name}");
         assert!(split_map.photons.iter().all(|p| p.band < 7), "{name}");
@@ -98,7 +97,7 @@ fn glass_outside_every_light_cone_skips_the_photon_pass_and_says_why() {
     );
     assert!(scene.plan.summary().contains("skipped: caustics"), "{}", scene.plan.summary());
     for mut backend in every_backend() {
-        let (map, _) = trace_and_render(backend.as_mut(), &scene);
+        let (map, _) = frame(backend.as_mut(), &scene);
         assert_eq!(map.stats.emitted, 0, "{}", backend.name());
     }
     // Aimed at the sphere, the pass runs.
@@ -128,11 +127,9 @@ fn the_plan_never_skips_light_that_would_show() {
         skipped_caustics += usize::from(!scene.plan.caustics.on);
         let mut forced = scene.clone();
         forced.simulate_everything();
-        let planned = prismatic_core::trace::trace_photons(&scene);
-        let full = prismatic_core::trace::trace_photons(&forced);
+        let (planned, a) = frame(&mut ReferenceBackend, &scene);
+        let (full, b) = frame(&mut ReferenceBackend, &forced);
         assert_eq!(planned.photons, full.photons, "seed {seed}: {}", scene.plan.summary());
-        let a = prismatic_core::render::render(&scene, &planned);
-        let b = prismatic_core::render::render(&forced, &full);
         assert_eq!(a.pixels, b.pixels, "seed {seed}: {}", scene.plan.summary());
     }
     assert!(skipped_caustics >= 5, "only {skipped_caustics} scenes exercised a skipped photon pass");
@@ -156,9 +153,9 @@ fn projection_maps_store_the_same_caustic_from_ten_times_fewer_photons() {
     let ten_times = builtin("sphere", AIMED * 10, false);
     for mut backend in every_backend() {
         let name = backend.name();
-        let (map_aimed, image_aimed) = trace_and_render(backend.as_mut(), &aimed);
-        let (map_whole, image_whole) = trace_and_render(backend.as_mut(), &whole);
-        let map_ten = backend.trace_photons(&ten_times, &mut NoProgress).unwrap();
+        let (map_aimed, image_aimed) = frame(backend.as_mut(), &aimed);
+        let (map_whole, image_whole) = frame(backend.as_mut(), &whole);
+        let map_ten = trace(backend.as_mut(), &ten_times);
         assert_eq!(map_aimed.stats.specular_paths, u64::from(AIMED), "{name}: every aimed photon meets the glass");
         assert!(
             map_aimed.stats.stored > map_ten.stats.stored,
@@ -190,6 +187,6 @@ fn a_beam_that_lies_wholly_on_its_prism_has_nothing_to_aim() {
         "{}",
         scene.plan.projection.reason
     );
-    let map = prismatic_core::trace::trace_photons(&scene);
+    let map = prismatic_core::trace::trace_photons(&scene, &mut NoProgress);
     assert_eq!(map.stats.specular_paths, 2_000, "every photon of the beam already meets the prism");
 }

@@ -1,7 +1,7 @@
 //! The gather estimators against fields of photons with a known answer.
 
-use prismatic_core::bands::{BandSpec, BandTable, MAX_BANDS};
-use prismatic_core::gather::{GatherQuery, gather, paper_hue};
+use prismatic_core::bands::{BandSpec, BandTable};
+use prismatic_core::gather::{GatherQuery, GatherSums, finish, gather};
 use prismatic_core::grid::PhotonGrid;
 use prismatic_core::photon::{WHITE_BAND, oct_encode};
 use prismatic_core::rng::random_f32;
@@ -52,23 +52,33 @@ fn paper_and_density_agree_on_evenly_split_light() {
 }
 
 #[test]
-fn paper_hue_is_w_over_total_scaled_so_white_is_white() {
+fn the_paper_hue_is_w_over_total_scaled_so_white_is_white() {
     let bands = BandTable::new(BandSpec::Paper7);
-    let mut counts = [0u32; MAX_BANDS + 1];
-    assert_eq!(paper_hue(&bands, &counts).as_vec3(), Vec3::ZERO, "no photons: black, not NaN");
-    counts[0] = 10; // red only
-    let red = paper_hue(&bands, &counts).as_vec3();
+    // A disc of unit area, and photons whose flux sums to 1: the estimate is the hue.
+    let radius = (1.0 / std::f32::consts::PI).sqrt();
+    let hue = |g: &GatherSums| finish(Estimator::Paper, 7, g, radius);
+    let gathered = |photons: &[u16]| {
+        let mut g = GatherSums::default();
+        for &band in photons {
+            g.add(Estimator::Paper, &bands, band, 1.0 / photons.len() as f32);
+        }
+        g
+    };
+    assert_eq!(hue(&GatherSums::default()), Vec3::ZERO, "no photons: black, not NaN");
+    let red = hue(&gathered(&[0; 10]));
     assert!((red - Vec3::new(7.0 * 0.265, 0.0, 0.0)).length() < 1e-6, "{red}");
-    counts = [0; MAX_BANDS + 1];
-    counts[MAX_BANDS] = 3; // white photons count once in every band
-    assert!((paper_hue(&bands, &counts).as_vec3() - Vec3::ONE).length() < 1e-6);
+    // White photons count once in every band.
+    assert!((hue(&gathered(&[WHITE_BAND; 3])) - Vec3::ONE).length() < 1e-6);
     // Counts beyond 2^24 stay exact: integer counting.
-    counts = [0; MAX_BANDS + 1];
-    counts[4] = (1 << 24) + 1;
-    counts[3] = 1;
-    let hue = paper_hue(&bands, &counts);
-    let expected_b = 7.0 * 0.498 * f64::from((1u32 << 24) + 1) / f64::from((1u32 << 24) + 2);
-    assert!((hue.z - expected_b).abs() < 1e-6 * expected_b, "{hue}");
+    let many = f64::from((1u32 << 24) + 1);
+    let g = GatherSums {
+        sums: bands.band(4).weight.as_dvec3() * many + bands.band(3).weight.as_dvec3(),
+        total: (1 << 24) + 2,
+        flux: 1.0,
+        found: (1 << 24) + 2,
+    };
+    let expected_b = 7.0 * 0.498 * many / f64::from((1u32 << 24) + 2);
+    assert!((f64::from(hue(&g).z) - expected_b).abs() < 1e-6 * expected_b, "{}", hue(&g));
 }
 
 #[test]

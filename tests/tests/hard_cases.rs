@@ -11,11 +11,12 @@ use prismatic_core::gather::{GatherQuery, gather};
 use prismatic_core::geometry::{Primitive, Ray, mesh_triangles, prism_faces};
 use prismatic_core::grid::PhotonGrid;
 use prismatic_core::photon::{Photon, PhotonMap, WHITE_BAND, oct_encode};
-use prismatic_core::prepared::{Surface, offset_origin};
+use prismatic_core::prepared::offset_origin;
 use prismatic_core::scene::{Estimator, Light, MaterialKind, Object, Shape};
+use prismatic_core::surface::Surface;
 use prismatic_core::{Backend, BackendError, BandTable, Image, NoProgress, PreparedScene, Scene, Vec3};
 use prismatic_cpu::CpuGrid;
-use prismatic_tests::backends::{every_backend, trace, trace_and_render};
+use prismatic_tests::backends::{every_backend, fixed, frame, trace};
 use prismatic_tests::parity::compare_maps_allowing;
 use prismatic_tests::tolerance::{KNIFE_EDGE_OUTLIER_FRACTION, OUTLIER_FRACTION};
 use prismatic_tests::{PrismExperiment, builtin, camera, glass, prepare, settings, sphere_in_a_catcher, white};
@@ -40,9 +41,13 @@ fn assert_finite(case: &str, map: &PhotonMap, image: Option<&Image>) {
     }
 }
 
-fn render(backend: &mut dyn Backend, scene: &PreparedScene, map: &PhotonMap) -> Image {
+/// The paper's frame of `scene` on `backend` (pass 0 at the scene's radius):
+/// its photon map, its image and its image without caustics.
+fn frame_and_base(backend: &mut dyn Backend, scene: &PreparedScene) -> (PhotonMap, Image, Image) {
     let name = backend.name();
-    backend.render(scene, map, &mut NoProgress).unwrap_or_else(|e| panic!("{name}: render: {e}"))
+    let (map, image) = frame(backend, scene);
+    let mut render = backend.prepare(&fixed(scene)).unwrap_or_else(|e| panic!("{name}: prepare: {e}"));
+    (map, image, render.base().unwrap_or_else(|e| panic!("{name}: base: {e}")))
 }
 
 /// Mean of all channels over each 8×8 block of pixels.
@@ -91,7 +96,7 @@ fn grazing_and_tangent_rays_on_a_sphere() {
         let max_turn = 2.0 * cos_max.asin().to_degrees() + 2.0 * (6e-7 / cos_max).to_degrees();
         for mut backend in every_backend() {
             let case = format!("{} with a beam of radius {beam_radius}", backend.name());
-            let (map, image) = trace_and_render(backend.as_mut(), &scene);
+            let (map, image) = frame(backend.as_mut(), &scene);
             assert_finite(&case, &map, Some(&image));
             let s = map.stats;
             assert_eq!(s.flux_escaped, 0.0, "{case}");
@@ -276,10 +281,10 @@ fn a_scene_far_from_the_origin_renders_as_at_the_origin() {
     let home = load(0.0);
     for mut backend in every_backend() {
         let name = backend.name();
-        let (home_map, home_image) = trace_and_render(backend.as_mut(), &home);
+        let (home_map, home_image) = frame(backend.as_mut(), &home);
         for by in [1e4, 1e6] {
             let case = format!("{name}, moved by {by}");
-            let (map, image) = trace_and_render(backend.as_mut(), &load(by));
+            let (map, image) = frame(backend.as_mut(), &load(by));
             assert_finite(&case, &map, Some(&image));
             let stored = |m: &PhotonMap| m.photons.len() as f64;
             assert!(
@@ -316,14 +321,12 @@ fn small_sphere(edit: impl FnOnce(&mut prismatic_core::RenderSettings)) -> Prepa
 /// stored flux evenly, the tiny one catches next to nothing.
 #[test]
 fn tiny_and_huge_gather_radii() {
+    // The photons do not depend on the radius: the same map gathered in each.
     for mut backend in every_backend() {
         let name = backend.name();
-        let base = small_sphere(|_| {});
-        let map = trace(backend.as_mut(), &base);
-        let no_caustic = render(backend.as_mut(), &base, &PhotonMap::default());
         for radius in [1e-6f32, 100.0] {
             let scene = small_sphere(|r| r.radius = radius);
-            let image = render(backend.as_mut(), &scene, &map);
+            let (map, image, no_caustic) = frame_and_base(backend.as_mut(), &scene);
             let case = format!("{name}, radius {radius}");
             assert_finite(&case, &map, Some(&image));
             let added = image_energy(&image) - image_energy(&no_caustic);
@@ -362,7 +365,7 @@ fn index_one_and_diamond() {
         };
         *dispersion = Glass::Diamond.dispersion();
         let diamond = prepare(diamond.scene);
-        let (map, image) = trace_and_render(backend.as_mut(), &diamond);
+        let (map, image) = frame(backend.as_mut(), &diamond);
         assert_finite(&format!("{name}, diamond"), &map, Some(&image));
         let s = map.stats;
         let accounted = s.flux_stored + s.flux_direct + s.flux_depth_limited + s.flux_escaped;
@@ -437,54 +440,62 @@ fn degenerate_triangles_change_nothing() {
     }
 }
 
-/// A photon map whose photons all lie far from anything the camera sees:
-/// every gather finds zero photons (the paper's W/Total with Total = 0) and
-/// the image is the one without a caustic, bit for bit.
+/// A camera that sees only floor far from every caustic photon: every
+/// gather finds zero photons (the paper's W/Total with Total = 0) and the
+/// image is the one without a caustic, bit for bit.
 #[test]
 fn an_empty_gather_adds_nothing() {
     for estimator in [Estimator::Paper, Estimator::Density] {
-        let scene = small_sphere(|r| r.estimator = estimator);
-        let far = Photon {
-            position: [500.0, 0.0, 500.0],
-            flux: 1.0,
-            direction_oct: oct_encode(Vec3::NEG_Y).to_array(),
-            emission: 0,
-            band: 3,
-            bounces: 2,
-        };
-        let map = PhotonMap { photons: vec![far; 100], ..PhotonMap::default() };
+        let mut scene = small_sphere(|r| r.estimator = estimator).scene;
+        (scene.camera.position, scene.camera.look_at) = (Vec3::new(30.0, 2.0, 30.0), Vec3::new(30.0, 0.0, 25.0));
+        let scene = prepare(scene);
         for mut backend in every_backend() {
             let name = backend.name();
-            let image = render(backend.as_mut(), &scene, &map);
-            let none = render(backend.as_mut(), &scene, &PhotonMap::default());
+            let (map, image, none) = frame_and_base(backend.as_mut(), &scene);
+            assert!(!map.photons.is_empty(), "{name}: the caustic photons exist, away from the camera");
             assert_finite(name, &map, Some(&image));
             assert_eq!(image.pixels, none.pixels, "{name}, {estimator:?}: an empty gather changed the image");
         }
     }
 }
 
-/// A floor seen from straight above by a one-pixel camera, for gathers at a known point.
-fn one_pixel_floor(estimator: Estimator, radius: f32) -> PreparedScene {
-    let mut render = settings(0, BandSpec::Paper3);
+/// A floor seen from the side by a one-pixel camera, and a beam of `power`
+/// folded by a mirror onto the floor right where the pixel looks: every
+/// caustic photon lands within the gather `radius` of the pixel's point.
+fn beam_into_one_pixel(estimator: Estimator, photons: u32, power: f32, radius: f32) -> PreparedScene {
+    let mut render = settings(photons, BandSpec::Paper3);
     (render.width, render.height, render.estimator, render.radius, render.ambient) = (1, 1, estimator, radius, 0.0);
     let mut cam = camera();
-    (cam.position, cam.look_at, cam.up, cam.fov_deg) = (Vec3::new(0.0, 5.0, 0.0), Vec3::ZERO, Vec3::Z, 1e-3);
+    (cam.position, cam.look_at, cam.up, cam.fov_deg) = (Vec3::new(3.0, 3.0, 0.0), Vec3::ZERO, Vec3::Z, 1e-3);
+    let mirror = prismatic_core::Material { name: "mirror".into(), kind: MaterialKind::Mirror };
     prepare(Scene {
         render,
         camera: cam,
-        lights: vec![Light::Point { position: Vec3::new(50.0, 50.0, 50.0), power: 1e-30 }],
-        materials: vec![white("floor")],
-        objects: vec![Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 }],
+        lights: vec![Light::Beam { position: Vec3::new(-3.0, 2.0, 0.0), direction: Vec3::X, radius: 0.1, power }],
+        materials: vec![white("floor"), mirror],
+        objects: vec![
+            Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
+            Object {
+                shape: Shape::Disk {
+                    center: Vec3::new(0.0, 2.0, 0.0),
+                    normal: Vec3::new(-1.0, -1.0, 0.0),
+                    radius: 0.3,
+                    inner_radius: 0.0,
+                },
+                material: 1,
+            },
+        ],
     })
 }
 
 /// More than 2^24 photons in one gather: the counts and sums stay exact
 /// (an f32 counter stops at 2^24; an f32 sum of 2^24 photons drifts by
-/// percent). The paper hue of 2^24 + 3 band-0 photons and 3 band-1 photons
-/// and the density estimate both come out as the closed form says. A GPU
-/// whose storage bindings cannot hold that many photons (lavapipe: 4 × 2^22)
-/// must say so and name the CPU backend; it is then held to the closed form
-/// at 2^22 + 3 photons, where a plain f32 sum already drifts by 1 to 4 %.
+/// percent). The pixel that gathers 2^24 + 3 white photons of one beam has
+/// the closed form's radiance, albedo/π · P/(πr²), with either estimator. A
+/// GPU whose storage bindings cannot hold that many photons (lavapipe: 4 ×
+/// 2^22) must say so and name the CPU backend; it is then held to the
+/// closed form at 2^22 + 3 photons, where a plain f32 sum already drifts by
+/// 1 to 4 %.
 #[test]
 fn more_than_two_to_the_24_photons_in_one_gather() {
     for estimator in [Estimator::Paper, Estimator::Density] {
@@ -502,38 +513,21 @@ fn more_than_two_to_the_24_photons_in_one_gather() {
     }
 }
 
-/// `many` band-0 photons and 3 band-1 photons in one pixel's gather,
-/// against the closed form.
-fn one_dense_gather(backend: &mut dyn Backend, estimator: Estimator, many: usize) -> Result<(), BackendError> {
-    let photon = |band: u16| Photon {
-        position: [0.0, 0.0, 0.0],
-        flux: 1.0 / 3.0,
-        direction_oct: oct_encode(Vec3::NEG_Y).to_array(),
-        emission: 0,
-        band,
-        bounces: 1,
-    };
-    let mut photons = vec![photon(0); many];
-    photons.extend([photon(1); 3]);
-    let map = PhotonMap { photons, ..PhotonMap::default() };
-    let radius = 0.5;
+/// [`beam_into_one_pixel`] with `photons` photons, against the closed form.
+fn one_dense_gather(backend: &mut dyn Backend, estimator: Estimator, photons: u32) -> Result<(), BackendError> {
+    let (power, radius) = (3.0f32, 0.5f32);
+    let scene = fixed(&beam_into_one_pixel(estimator, photons, power, radius));
+    let mut render = backend.prepare(&scene)?;
+    render.run_pass(0, &mut NoProgress)?;
+    let stats = render.stats()?;
+    assert_eq!(stats.trace.stored, u64::from(photons), "{}: every photon reaches the floor", backend.name());
     let area = std::f64::consts::PI * f64::from(radius) * f64::from(radius);
-    let scene = one_pixel_floor(estimator, radius);
-    let bands = &scene.bands;
-    let flux = f64::from(1.0f32 / 3.0) * (many + 3) as f64;
-    let hue = bands.band(0).weight.as_dvec3() * many as f64 + bands.band(1).weight.as_dvec3() * 3.0;
-    let expected = match estimator {
-        // N·W/Total · ΣΦ/(πr²), with integer counts.
-        Estimator::Paper => hue * (3.0 / (many + 3) as f64) * (flux / area),
-        Estimator::Density => hue * 3.0 * f64::from(1.0f32 / 3.0) / area,
-    };
-    // Radiance leaving the white floor: albedo/π times the irradiance.
-    let expected = expected * (0.8 / std::f64::consts::PI);
-    let image = backend.render(&scene, &map, &mut NoProgress)?;
-    let got = image.pixels[0].as_dvec3() / f64::from(scene.scene.render.exposure);
+    // Radiance leaving the white floor: albedo/π times the irradiance P/(πr²), white.
+    let expected = 0.8 / std::f64::consts::PI * f64::from(power) / area;
+    let got = render.image()?.pixels[0].as_dvec3() / f64::from(scene.scene.render.exposure);
     assert!(
-        (got - expected).abs().max_element() <= 1e-5 * expected.max_element(),
-        "{}, {estimator:?}, {many} photons: {got} vs {expected}",
+        (got - glam::DVec3::splat(expected)).abs().max_element() <= 1e-5 * expected,
+        "{}, {estimator:?}, {photons} photons: {got} vs {expected}",
         backend.name()
     );
     Ok(())
@@ -564,7 +558,6 @@ fn photons_on_cell_borders_are_found() {
         }
         let core_grid = PhotonGrid::build(&photons, radius);
         let cpu_grid = CpuGrid::build(&photons, radius);
-        let mut counts = [0u32; prismatic_core::bands::MAX_BANDS + 1];
         for i in -8..=8 {
             for k in -8..=8 {
                 for (dx, dz) in [(0.0, 0.0), (radius, 0.0), (radius, radius)] {
@@ -577,7 +570,7 @@ fn photons_on_cell_borders_are_found() {
                         .sum::<Vec3>()
                         / (std::f32::consts::PI * radius * radius);
                     let from_core = gather(&core_grid, &photons, &bands, Estimator::Density, &q);
-                    let from_cpu = cpu_grid.gather(&bands, Estimator::Density, &q, &mut counts);
+                    let from_cpu = cpu_grid.gather_counted(&bands, Estimator::Density, &q).0;
                     for (what, got) in [("core", from_core), ("cpu", from_cpu)] {
                         assert!(
                             (got - brute).abs().max_element() <= 1e-5 * brute.max_element().max(1.0),
@@ -602,8 +595,8 @@ fn one_band_and_256_bands() {
     });
     for mut backend in every_backend() {
         let name = backend.name();
-        let (map1, image1) = trace_and_render(backend.as_mut(), &one);
-        let (map256, image256) = trace_and_render(backend.as_mut(), &many);
+        let (map1, image1) = frame(backend.as_mut(), &one);
+        let (map256, image256) = frame(backend.as_mut(), &many);
         assert_finite(&format!("{name}, 1 band"), &map1, Some(&image1));
         assert_finite(&format!("{name}, 256 bands"), &map256, Some(&image256));
         assert!(map1.photons.iter().all(|p| p.band == WHITE_BAND), "{name}: one band cannot split");

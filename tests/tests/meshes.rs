@@ -30,8 +30,8 @@ fn as_mesh(mut scene: Scene) -> Scene {
 #[test]
 fn a_mesh_prism_disperses_like_the_analytic_prism() {
     let analytic = experiment().scene(Glass::Bk7.dispersion(), settings(2000, BandSpec::Paper7));
-    let a = trace_photons(&prepare(analytic.clone()));
-    let m = trace_photons(&prepare(as_mesh(analytic)));
+    let a = trace_photons(&prepare(analytic.clone()), &mut prismatic_core::NoProgress);
+    let m = trace_photons(&prepare(as_mesh(analytic)), &mut prismatic_core::NoProgress);
     // The same photons take the same branches; positions agree to f32 precision.
     let twice = |map: &prismatic_core::PhotonMap| map.photons.iter().filter(|p| p.bounces == 2).count();
     assert!(twice(&a) > 12_000, "most of 2000 × 7 band photons refract twice");

@@ -3,14 +3,15 @@
 //! thread count.
 
 use prismatic_cli::load_scene;
-use prismatic_core::{Backend, NoProgress, PreparedScene, ReferenceBackend};
+use prismatic_core::{Backend, PreparedScene, ReferenceBackend};
 use prismatic_cpu::CpuBackend;
+use prismatic_tests::backends::{frame, trace};
 use prismatic_tests::parity::{Output, assert_parity};
 use prismatic_tests::random_scene::random_scene;
 
+/// The paper's frame on `backend`: pass 0's photon map and its image at the scene's radius.
 fn run(backend: &mut dyn Backend, scene: &PreparedScene) -> Output {
-    let map = backend.trace_photons(scene, &mut NoProgress).expect("trace");
-    let image = backend.render(scene, &map, &mut NoProgress).expect("render");
+    let (map, image) = frame(backend, scene);
     Output { backend: backend.name(), map, image }
 }
 
@@ -96,7 +97,7 @@ fn cpu_matches_the_reference_with_projection_maps_on_every_light_kind() {
     let flux_stored = |photons: u32, projection_maps: bool| {
         let mut s = scene.scene.clone();
         (s.render.photons, s.render.projection_maps) = (photons, projection_maps);
-        prismatic_cpu::trace_photons(&PreparedScene::new(s).unwrap()).stats.flux_stored
+        trace(&mut CpuBackend::new(), &PreparedScene::new(s).unwrap()).stats.flux_stored
     };
     let (aimed, whole) = (flux_stored(40_000, true), flux_stored(800_000, false));
     assert!((aimed - whole).abs() < 0.04 * whole, "caustic flux {aimed} aimed vs {whole} unaimed");

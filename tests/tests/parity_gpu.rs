@@ -1,19 +1,20 @@
 //! The GPU backend against the scalar reference and the CPU backend: photon
 //! maps and images on every built-in scene and on random scenes, photon
-//! maps split over several storage bindings, determinism between runs, and
-//! the device-resident frame against trace + render.
+//! maps split over several storage bindings, determinism between runs, an
+//! engine's texture on the engine's device, and pixels with many visible
+//! points.
 
 use prismatic_cli::load_scene;
-use prismatic_core::{Backend, NoProgress, PreparedScene, ReferenceBackend};
+use prismatic_core::{Backend, NoProgress, PreparedScene, ReferenceBackend, Render};
 use prismatic_cpu::CpuBackend;
 use prismatic_gpu::{GpuBackend, GpuOptions};
-use prismatic_tests::backends::gpu_backend;
+use prismatic_tests::backends::{fixed, frame, gpu_backend, trace};
 use prismatic_tests::parity::{Output, assert_parity, compare_images};
 use prismatic_tests::random_scene::random_scene;
 
+/// The paper's frame on `backend`: pass 0's photon map and its image at the scene's radius.
 fn run(backend: &mut dyn Backend, scene: &PreparedScene) -> Output {
-    let map = backend.trace_photons(scene, &mut NoProgress).expect("trace");
-    let image = backend.render(scene, &map, &mut NoProgress).expect("render");
+    let (map, image) = frame(backend, scene);
     Output { backend: backend.name(), map, image }
 }
 
@@ -67,43 +68,39 @@ fn gpu_matches_the_reference_and_the_cpu_on_random_scenes() {
 #[test]
 fn gpu_photon_map_is_identical_between_runs_and_over_several_bindings() {
     let Some(mut gpu) = gpu() else { return };
-    let scene = PreparedScene::new(random_scene(3, 20_000, 48)).unwrap();
-    let first = gpu.trace_photons(&scene, &mut NoProgress).expect("trace");
-    let second = gpu.trace_photons(&scene, &mut NoProgress).expect("trace");
+    // The prism's beam lies on the glass: nearly every photon stores all
+    // seven bands, so a map cut into windows of a quarter of its bound
+    // fills the four bindings of the multi-binding path.
+    let scene = built_in("prism", 4_000);
+    let first = trace(&mut gpu, &scene);
+    let second = trace(&mut gpu, &scene);
     assert_eq!(first.photons, second.photons, "two runs with one seed differ");
-    // Windows of 1,000 photons: the map spans the four bindings' worth of
-    // the multi-binding path, and emissions go in many chunks.
-    let n = first.photons.len() as u32;
-    // Gathers in segments of 16 photons per bucket: many gather passes.
-    let options = GpuOptions { window_photons: Some(n.div_ceil(4).next_multiple_of(8)), gather_span: Some(16) };
+    let bound = scene.scene.render.photons * scene.bands.len() as u32;
+    assert!(first.photons.len() as u32 > bound * 3 / 4, "{} photons fill only 3 of 4 windows", first.photons.len());
+    // Gathers in segments of 16 photons per bucket: many gather dispatches.
+    let options = GpuOptions {
+        window_photons: Some(bound.div_ceil(4).next_multiple_of(8)),
+        gather_span: Some(16),
+        ..GpuOptions::default()
+    };
     let mut small = gpu_backend(options).unwrap();
-    let split = small.trace_photons(&scene, &mut NoProgress).expect("trace in windows");
+    let (split, windowed) = frame(&mut small, &scene);
     assert_eq!(first.photons, split.photons, "the map differs when split over bindings");
-    let whole = gpu.render(&scene, &first, &mut NoProgress).unwrap();
-    let windowed = small.render(&scene, &first, &mut NoProgress).unwrap();
+    let (_, whole) = frame(&mut gpu, &scene);
     compare_images(&whole, &windowed).expect("render over several bindings");
 }
 
-#[test]
-fn gpu_frame_on_the_device_matches_trace_then_render() {
-    let Some(mut gpu) = gpu() else { return };
-    let scene = built_in("prism", 4_000);
-    let map = gpu.trace_photons(&scene, &mut NoProgress).unwrap();
-    let image = gpu.render(&scene, &map, &mut NoProgress).unwrap();
-    let (info, frame) = gpu.frame_image(&scene).unwrap();
-    assert_eq!(info.stored as usize, map.photons.len());
-    compare_images(&image, &frame).expect("frame vs trace + render");
-}
-
-/// An engine's view: the backend built on a device it did not create,
-/// rendering into the engine's own storage texture; the texels equal the
-/// frame the backend reads back itself.
+/// An engine's view: the backend built on a device it did not create, its
+/// session's image copied into the engine's own storage texture; the
+/// texels equal the image read out.
 #[test]
 fn gpu_renders_into_an_engines_texture_on_the_engines_device() {
     let Some(own) = gpu() else { return };
     let (device, queue) = (own.context().device.clone(), own.context().queue.clone());
-    let mut engine = GpuBackend::from_device(device.clone(), queue.clone()).expect("embed");
-    let scene = built_in("prism", 4_000);
+    let engine = GpuBackend::from_device(device.clone(), queue.clone()).expect("embed");
+    let scene = fixed(&built_in("prism", 4_000));
+    let mut session = engine.session(&scene).expect("session");
+    session.run_pass(0, &mut NoProgress).expect("pass");
     let (w, h) = (scene.scene.render.width, scene.scene.render.height);
     let texture = device.create_texture(&wgpu::TextureDescriptor {
         label: Some("engine target"),
@@ -115,7 +112,7 @@ fn gpu_renders_into_an_engines_texture_on_the_engines_device() {
         usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::COPY_SRC,
         view_formats: &[],
     });
-    engine.render_into_texture(&scene, &texture).expect("render into texture");
+    session.copy_to_texture(&texture).expect("copy into the texture");
     let bytes_per_row = w * 16; // 96 × 16 = 1536, a multiple of 256
     let readback = device.create_buffer(&wgpu::BufferDescriptor {
         label: None,
@@ -135,17 +132,16 @@ fn gpu_renders_into_an_engines_texture_on_the_engines_device() {
     queue.submit([encoder.finish()]);
     let bytes = engine.context().read(&readback, 0, readback.size()).expect("read texels");
     let texels: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
-    let (_, frame) = engine.frame_image(&scene).unwrap();
     let mut image = prismatic_core::Image::new(w, h);
     for (px, t) in image.pixels.iter_mut().zip(texels) {
         *px = prismatic_core::Vec3::new(t[0], t[1], t[2]);
     }
-    compare_images(&frame, &image).expect("texture vs frame");
+    compare_images(&session.image().unwrap(), &image).expect("texture vs the image read out");
 }
 
-/// Pixels with more visible points than the render's first guess of slots
+/// Pixels with more visible points than a session's first guess of slots
 /// (16 physical bands through the sphere: 32 and more per pixel) are
-/// rendered again with enough, and the image matches the reference.
+/// traced again with enough, and the image matches the reference.
 #[test]
 fn gpu_gives_pixels_with_many_visible_points_enough_slots() {
     let Some(mut gpu) = gpu() else { return };
@@ -154,7 +150,9 @@ fn gpu_gives_pixels_with_many_visible_points_enough_slots() {
     (doc.scene.render.width, doc.scene.render.height) = (48, 48);
     doc.scene.render.bands = prismatic_core::bands::BandSpec::Physical(16);
     let scene = PreparedScene::new(doc.scene).unwrap();
-    let first = gpu.points_per_pixel();
     check("gpu-sphere-16-bands", &scene, &mut gpu);
-    assert!(gpu.points_per_pixel() > first, "{} slots per pixel, as at first", gpu.points_per_pixel());
+    let mut session = gpu.session(&scene).unwrap();
+    let first = session.points_per_pixel();
+    session.run_pass(0, &mut NoProgress).unwrap();
+    assert!(session.points_per_pixel() > first, "{} slots per pixel, as at first", session.points_per_pixel());
 }

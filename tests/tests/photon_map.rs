@@ -31,7 +31,7 @@ fn sphere_scene(dispersion: Dispersion, bands: BandSpec, photons: u32, seed: u32
 }
 
 fn trace(scene: Scene) -> PhotonMap {
-    trace_photons(&prepare(scene))
+    trace_photons(&prepare(scene), &mut prismatic_core::NoProgress)
 }
 
 #[test]
@@ -88,7 +88,7 @@ fn photons_that_reach_a_diffuse_surface_directly_are_not_stored() {
     scene.objects.remove(0); // no glass: only direct light
     let mut scene = prepare(scene);
     scene.plan.caustics.on = true; // the effect plan would skip the pass; run it anyway
-    let map = trace_photons(&scene);
+    let map = trace_photons(&scene, &mut prismatic_core::NoProgress);
     assert!(map.photons.is_empty());
     assert_eq!(map.stats.stored, 0);
     assert!(map.stats.flux_direct > 0.0);
@@ -108,7 +108,7 @@ fn same_seed_gives_the_same_photon_map_bit_for_bit() {
 #[test]
 fn tracing_in_chunks_gives_the_same_map_as_in_one_go() {
     let scene = prepare(sphere_scene(Glass::Bk7.dispersion(), BandSpec::Paper7, 3000, 7));
-    let whole = trace_photons(&scene);
+    let whole = trace_photons(&scene, &mut prismatic_core::NoProgress);
     let mut chunked = PhotonMap::default();
     for start in (0..3000).step_by(700) {
         let end = (start + 700).min(3000);

@@ -6,8 +6,8 @@
 use prismatic_core::bands::BandSpec;
 use prismatic_core::dispersion::{Dispersion, Glass};
 use prismatic_core::photon::{PhotonMap, WHITE_BAND};
-use prismatic_core::prepared::Surface;
 use prismatic_core::scene::{Light, RenderSettings};
+use prismatic_core::surface::Surface;
 use prismatic_core::{PreparedScene, Scene};
 use prismatic_tests::backends::{every_backend, trace};
 use prismatic_tests::{PrismExperiment, descartes_deg, prepare, settings, snell_path_2d, sphere_in_a_catcher};

@@ -4,10 +4,10 @@
 //! other, and every backend against the reference.
 
 use prismatic_core::photon::WHITE_BAND;
-use prismatic_core::prepared::Surface;
+use prismatic_core::surface::Surface;
 use prismatic_core::trace::sample_band;
-use prismatic_core::{BandSpec, Glass, PreparedScene, WavelengthSampling};
-use prismatic_tests::backends::{every_backend, trace, trace_and_render};
+use prismatic_core::{Backend, BandSpec, Glass, NoProgress, PreparedScene, ReferenceBackend, WavelengthSampling};
+use prismatic_tests::backends::{every_backend, fixed, frame, trace};
 use prismatic_tests::parity::{Output, assert_parity};
 use prismatic_tests::{PrismExperiment, builtin, prepare, settings};
 
@@ -22,7 +22,7 @@ fn single_band_photons_carry_the_whole_flux_and_keep_one_band() {
         let mut render = settings(20_000, bands);
         render.wavelengths = sampling;
         let scene = prepare(exp.scene(Glass::Bk7.dispersion(), render));
-        let map = prismatic_core::trace::trace_photons(&scene);
+        let map = prismatic_core::trace::trace_photons(&scene, &mut NoProgress);
         let flux = prismatic_core::trace::photon_flux(&scene);
         // One path per emitted photon: nothing splits.
         assert_eq!(map.stats.paths, map.stats.emitted, "{sampling:?}");
@@ -55,11 +55,13 @@ fn continuous_photons_deviate_as_snell_law_says_at_their_own_wavelength() {
     for mut backend in every_backend() {
         let scene = prepare(exp.scene(glass.clone(), render.clone()));
         let map = trace(backend.as_mut(), &scene);
+        // The map is pass 0's: its wavelengths are drawn with pass 0's seed.
+        let pass = prismatic_core::schedule::pass_scene(&scene, 0);
         let phi = exp.beam_angle();
         let mut spread = (f64::INFINITY, f64::NEG_INFINITY);
         let mut checked = 0;
         for p in map.photons.iter().filter(|p| p.bounces == 2) {
-            let (band, lambda) = sample_band(&scene, p.emission);
+            let (band, lambda) = sample_band(&pass, p.emission);
             let lambda = lambda.expect("continuous sampling draws a wavelength");
             let (lo, hi) = scene.bands.band(usize::from(band)).interval_nm;
             assert!((lo..=hi).contains(&lambda), "λ {lambda} outside band {band} ({lo}–{hi})");
@@ -129,9 +131,9 @@ fn every_sampling_lights_the_caustic_with_the_same_expected_energy() {
             r.height = 64;
             r.estimator = prismatic_core::Estimator::Density;
         });
-        let map = prismatic_core::trace::trace_photons(&scene);
-        let with = prismatic_core::render::render(&scene, &map).pixels;
-        let without = prismatic_core::render::render(&scene, &Default::default()).pixels;
+        let mut render = ReferenceBackend.prepare(&fixed(&scene)).unwrap();
+        render.run_pass(0, &mut NoProgress).unwrap();
+        let (with, without) = (render.image().unwrap().pixels, render.base().unwrap().pixels);
         with.iter().zip(&without).map(|(a, b)| (*a - *b).as_dvec3()).sum::<glam::DVec3>()
     };
     let split = energy(WavelengthSampling::Split);
@@ -156,10 +158,10 @@ fn every_backend_matches_the_reference_for_every_sampling() {
                 r.height = 64;
             });
             let mut backends = every_backend();
-            let (map, image) = trace_and_render(backends[0].as_mut(), &scene);
+            let (map, image) = frame(backends[0].as_mut(), &scene);
             let expected = Output { backend: backends[0].name(), map, image };
             for backend in &mut backends[1..] {
-                let (map, image) = trace_and_render(backend.as_mut(), &scene);
+                let (map, image) = frame(backend.as_mut(), &scene);
                 let got = Output { backend: backend.name(), map, image };
                 assert_parity(&format!("{}-{name}-{}", backend.name(), sampling.name()), &scene, &expected, &got);
             }

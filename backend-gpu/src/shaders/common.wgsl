@@ -28,8 +28,8 @@ struct Params {
     points_per_pixel: u32,
     gather_first: u32,
     gather_span: u32,
-    zero: u32,
-    _pad0: u32,
+    sum_shift: i32,
+    flux_shift: i32,
     flux: f32,
     radius: f32,
     inv_cell: f32,
@@ -113,18 +113,26 @@ struct GpuBand {
     _pad: f32,
 }
 
-// Twin of prismatic_gpu::layout::VisiblePoint.
+// Twin of prismatic_gpu::layout::VisiblePoint (sums and flux are i64
+// fixed-point sums, see fixed.wgsl).
 struct VisiblePoint {
     position: vec3<f32>,
     total: u32,
     normal: vec3<f32>,
-    flux: f32,
-    weight: vec3<f32>,
     radius: f32,
-    sums: vec3<f32>,
-    flux_c: f32,
-    sums_c: vec3<f32>,
+    weight: vec3<f32>,
     found: u32,
+    sums: array<vec2<u32>, 3>,
+    flux: vec2<u32>,
+}
+
+// Twin of prismatic_gpu::layout::RunStats.
+struct RunStats {
+    counts: array<vec2<u32>, 5>,
+    flux: array<f32, 5>,
+    points: atomic<u32>,
+    min_ratio: atomic<u32>,
+    max_ratio: atomic<u32>,
 }
 
 // Twin of prismatic_gpu::layout::Tally.
@@ -285,6 +293,21 @@ fn facing_interface(d: vec3<f32>, outward: vec3<f32>, ior: f32) -> Interface {
         return Interface(outward, 1.0, ior);
     }
     return Interface(-outward, ior, 1.0);
+}
+
+// ---- gather.rs ----
+
+// gather::finish: caustic irradiance from a gather's sums within `radius`
+// (`estimator` as Params encodes it, `band_count` bands).
+fn finish_estimate(estimator: u32, band_count: u32, sums: vec3<f32>, total: u32, flux: f32, radius: f32) -> vec3<f32> {
+    let area = PI * radius * radius;
+    if estimator == ESTIMATOR_DENSITY {
+        return sums / area;
+    }
+    if total == 0u {
+        return vec3<f32>(0.0);
+    }
+    return sums * (f32(band_count) / f32(total)) * (flux / area);
 }
 
 // tolerance::surface_offset and prepared::offset_origin

@@ -1,12 +1,12 @@
-// A live session's progressive passes at resident visible points: twin of
-// prismatic_core::progressive. The view pass leaves each pixel's direct
-// light (kept as `base`) and its visible points; the pilot's gather at the
-// scene's radius R gives each point its first radius (`first_radius`, as a
-// fraction of R) and marks the grid levels those radii fall in; each pass
-// empties the points' sums and sets their radii (`begin_pass`), gathers
-// level by level (`gather_level`, each point in the grid of its own cell
-// size), then adds each pixel's caustic to its running sum and writes
-// base + mean (`accumulate`).
+// A session's passes at resident visible points: twin of the core's host
+// driver (prismatic_core::host) over prismatic_core::schedule. The view
+// pass leaves each pixel's direct light (kept as `base`) and its visible
+// points; the pilot's gather at the scene's radius R gives each point its
+// first radius (`first_radius`, as a fraction of R) and marks the grid
+// levels those radii fall in; each pass empties the points' sums and sets
+// their radii (`begin_pass`), gathers level by level (`gather_level`, each
+// point in the grid of its own cell size), then adds each point's caustic
+// to its pixel's exact sums and writes base + mean (`accumulate`).
 
 struct SessionParams {
     // A full pass's photons per pilot photon.
@@ -15,8 +15,8 @@ struct SessionParams {
     neighbours: f32,
     // 1 / passes summed, this pass included.
     inv_passes: f32,
-    // 1 for the pilot pass: every radius the scene's.
-    pilot: u32,
+    // 1 when every point gathers within the pass radius (the pilot, fixed radii).
+    whole_radius: u32,
     // The grid level this gather dispatch serves (params.inv_cell is its cell).
     level: u32,
     // Bit l set when level l's grid is built (bit 0 always is).
@@ -26,13 +26,15 @@ struct SessionParams {
 }
 
 @group(1) @binding(0) var<storage, read_write> radius_ratio: array<f32>;
-@group(1) @binding(1) var<storage, read_write> accum: array<vec4<f32>>;
+// Per pixel, three i64 sums (R, G, B) of weight × caustic in 2^32 per unit.
+@group(1) @binding(1) var<storage, read_write> accum: array<vec2<u32>>;
 @group(1) @binding(2) var<storage, read> base: array<vec4<f32>>;
 @group(1) @binding(3) var<uniform> session: SessionParams;
 // Bit l set when some point's first radius falls in grid level l.
 @group(1) @binding(4) var<storage, read_write> levels_used: atomic<u32>;
+@group(1) @binding(5) var<storage, read_write> run_stats: RunStats;
 
-// progressive::level_of: the finest grid level whose radius (r_pass / 4^l)
+// schedule::level_of: the finest grid level whose radius (r_pass / 4^l)
 // is at least r.
 fn level_of(r: f32, r_pass: f32) -> u32 {
     var level = 0u;
@@ -42,7 +44,7 @@ fn level_of(r: f32, r_pass: f32) -> u32 {
     return level;
 }
 
-// progressive::initial_radius over R: the fraction of R that would hold
+// schedule::initial_radius over R: the fraction of R that would hold
 // `neighbours` photons of a full pass, given what the pilot found within R.
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn first_radius(
@@ -65,10 +67,18 @@ fn first_radius(
     if (atomicLoad(&levels_used) & bit) == 0u {
         atomicOr(&levels_used, bit);
     }
+    // Positive floats order as their bits.
+    let bits = bitcast<u32>(ratio);
+    if bits < atomicLoad(&run_stats.min_ratio) {
+        atomicMin(&run_stats.min_ratio, bits);
+    }
+    if bits > atomicLoad(&run_stats.max_ratio) {
+        atomicMax(&run_stats.max_ratio, bits);
+    }
 }
 
 // A pass's start: sums emptied, radius r_1 · s_k (params.radius is R · s_k);
-// the pilot's radius is R.
+// the pass radius where every point gathers within it.
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn begin_pass(
     @builtin(workgroup_id) wid: vec3<u32>,
@@ -81,12 +91,10 @@ fn begin_pass(
     }
     var vp = points[i];
     vp.total = 0u;
-    vp.flux = 0.0;
-    vp.sums = vec3<f32>(0.0);
-    vp.flux_c = 0.0;
-    vp.sums_c = vec3<f32>(0.0);
     vp.found = 0u;
-    vp.radius = select(radius_ratio[i] * params.radius, params.radius, session.pilot != 0u);
+    vp.sums = array<vec2<u32>, 3>(vec2<u32>(0u), vec2<u32>(0u), vec2<u32>(0u));
+    vp.flux = vec2<u32>(0u);
+    vp.radius = select(radius_ratio[i] * params.radius, params.radius, session.whole_radius != 0u);
     points[i] = vp;
 }
 
@@ -115,8 +123,9 @@ fn gather_level(
     points[i] = vp;
 }
 
-// A pass's end: each pixel's points' caustic added to its sum; the pixel
-// is its direct light plus the mean caustic of the passes so far.
+// A pass's end: each of the pixel's points adds weight × caustic to the
+// pixel's sums, in fixed point (Accumulation::add_pass); the pixel shows
+// its direct light plus the mean caustic of the passes so far.
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn accumulate(
     @builtin(workgroup_id) wid: vec3<u32>,
@@ -127,7 +136,19 @@ fn accumulate(
     if k >= params.pixel_count {
         return;
     }
-    let sum = accum[k].xyz + pixel_caustic(k);
-    accum[k] = vec4<f32>(sum, 0.0);
-    pixels[k] = vec4<f32>(base[k].xyz + sum * session.inv_passes, 1.0);
+    var sum = array<vec2<u32>, 3>(accum[3u * k], accum[3u * k + 1u], accum[3u * k + 2u]);
+    let n = min(point_counts[k], params.points_per_pixel);
+    for (var slot = 0u; slot < n; slot++) {
+        let vp = points[slot * params.pixel_count + k];
+        let c = vp.weight * point_caustic(vp);
+        for (var ch = 0u; ch < 3u; ch++) {
+            sum[ch] = i64_add(sum[ch], to_fixed(c[ch], 32));
+        }
+    }
+    var mean = vec3<f32>(0.0);
+    for (var ch = 0u; ch < 3u; ch++) {
+        accum[3u * k + ch] = sum[ch];
+        mean[ch] = from_fixed(sum[ch], 32) * session.inv_passes;
+    }
+    pixels[k] = vec4<f32>(base[k].xyz + mean, 1.0);
 }

@@ -12,8 +12,7 @@ pub mod report;
 use crate::backends::{BackendChoice, select};
 use anyhow::{Context, Result};
 use error::{RenderError, StripeSums, mean_delta_e, rmse, stripe_error};
-use prismatic_core::progressive::ProgressiveRender;
-use prismatic_core::scene::Shape;
+use prismatic_core::scene::{RadiusMode, Shape};
 use prismatic_core::{Backend, BandSpec, Estimator, Light, NoProgress, PreparedScene, WavelengthSampling};
 use reference::{Reference, ReferenceSpec};
 use std::path::PathBuf;
@@ -26,8 +25,8 @@ pub const MAX_BAND_PATHS: u64 = 100_000_000;
 
 /// Gather radius: the scene's, or shrinking over passes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum RadiusMode {
-    /// The scene's radius, one pass with all photons.
+pub enum RadiusPlan {
+    /// The scene's radius, one pass with all photons (the paper's frame).
     Fixed,
     /// The renderer's progressive photon mapping: `passes` passes sharing
     /// the photons, per-point radii shrinking with the scene's α.
@@ -49,7 +48,7 @@ pub struct Series {
     /// Estimator.
     pub estimator: Estimator,
     /// Radius.
-    pub radius: RadiusMode,
+    pub radius: RadiusPlan,
     /// Backend.
     pub backend: BackendChoice,
     /// Largest photon count for this series (the scalar reference is slow).
@@ -77,7 +76,7 @@ pub(crate) fn series(label: &str, bands: BandSpec, sampling: WavelengthSampling,
         bands,
         sampling,
         estimator,
-        radius: RadiusMode::Fixed,
+        radius: RadiusPlan::Fixed,
         backend: BackendChoice::Cpu,
         max_photons: u32::MAX,
     }
@@ -102,11 +101,11 @@ impl StudyPlan {
         s.push(series("16 continuous", BandSpec::Physical(16), Continuous, d));
         for (bands, passes) in [(7, 4), (16, 8)] {
             let mut progressive = series(&format!("{bands} bands progressive"), BandSpec::Physical(bands), Split, d);
-            progressive.radius = RadiusMode::Progressive { passes };
+            progressive.radius = RadiusPlan::Progressive { passes };
             s.push(progressive);
         }
         let mut paper_progressive = series("paper7 progressive", BandSpec::Paper7, Split, Estimator::Paper);
-        paper_progressive.radius = RadiusMode::Progressive { passes: 16 };
+        paper_progressive.radius = RadiusPlan::Progressive { passes: 16 };
         s.push(paper_progressive);
         let mut scalar = series("paper7 reference backend", BandSpec::Paper7, Split, Estimator::Paper);
         scalar.backend = BackendChoice::Reference;
@@ -129,7 +128,7 @@ impl StudyPlan {
         let scale = 96.0 / size.0.max(size.1) as f32;
         let small = (((size.0 as f32 * scale) as u32).max(8), ((size.1 as f32 * scale) as u32).max(8));
         let mut progressive = series("16 bands progressive", BandSpec::Physical(16), Split, d);
-        progressive.radius = RadiusMode::Progressive { passes: 4 };
+        progressive.radius = RadiusPlan::Progressive { passes: 4 };
         let mut scalar = series("paper7 reference backend", BandSpec::Paper7, Split, Estimator::Paper);
         scalar.backend = BackendChoice::Reference;
         scalar.max_photons = 10_000;
@@ -162,10 +161,10 @@ pub struct StudyRow {
     pub photons: u32,
     /// Photons stored (all passes).
     pub stored: u64,
-    /// Seconds tracing photons.
-    pub trace_s: f64,
-    /// Seconds building the grid, ray tracing and gathering.
-    pub render_s: f64,
+    /// Seconds of the whole render: view rays, pilot, passes, read-out.
+    pub seconds: f64,
+    /// Seconds of it tracing photons, where the backend times its stages.
+    pub trace_s: Option<f64>,
     /// The errors.
     pub error: RenderError,
     /// On the Pareto front of (time, ΔE00) over every row.
@@ -175,7 +174,7 @@ pub struct StudyRow {
 impl StudyRow {
     /// Total seconds.
     pub fn total_s(&self) -> f64 {
-        self.trace_s + self.render_s
+        self.seconds
     }
 }
 
@@ -353,8 +352,8 @@ pub fn has_stripes(scene: &PreparedScene) -> bool {
         && s.objects.iter().any(|o| matches!(o.shape, Shape::Prism { .. }))
 }
 
-/// Renders `scene` with `setting` and `photons`, timing each stage, and
-/// measures the error against `reference`.
+/// Renders `scene` with `setting` and `photons` through the render
+/// protocol, timing it, and measures the error against `reference`.
 pub fn measure(
     scene: &PreparedScene,
     setting: &Series,
@@ -367,37 +366,36 @@ pub fn measure(
     s.render.bands = setting.bands;
     s.render.wavelengths = setting.sampling;
     s.render.estimator = setting.estimator;
-    let (image, trace_s, render_s, stored, stripe) = match setting.radius {
-        RadiusMode::Fixed => {
-            s.render.photons = photons;
-            let configured = PreparedScene::new(s)?;
-            let t0 = Instant::now();
-            let map = backend.trace_photons(&configured, &mut NoProgress)?;
-            let trace_s = t0.elapsed().as_secs_f64();
-            let t1 = Instant::now();
-            let image = backend.render(&configured, &map, &mut NoProgress)?;
-            let render_s = t1.elapsed().as_secs_f64();
-            let stripe = stripes.then(|| {
-                let mut own = StripeSums::new(&configured.bands);
-                own.add(&map);
-                stripe_error(&own, &configured.bands, &reference.stripes)
-            });
-            (image, trace_s, render_s, map.stats.stored, stripe.flatten())
+    let passes = match setting.radius {
+        RadiusPlan::Fixed => {
+            s.render.radius_mode = RadiusMode::Fixed;
+            1
         }
-        // The renderer's own progressive path (`prismatic render`): view
-        // rays and pilot once, then passes. Its photon maps stay inside the
-        // backend, so it has no stripe sums; its time is all "render".
-        RadiusMode::Progressive { passes } => {
-            s.render.photons = photons.div_ceil(passes);
-            let configured = PreparedScene::new(s)?;
-            let t0 = Instant::now();
-            let mut render = ProgressiveRender::prepare(backend, &configured, &mut NoProgress)?;
-            let mut stored = 0;
-            for k in 0..passes {
-                stored += render.run_pass(backend, k)?.stored;
-            }
-            (render.image(), 0.0, t0.elapsed().as_secs_f64(), stored, None)
+        RadiusPlan::Progressive { passes } => passes,
+    };
+    s.render.photons = photons.div_ceil(passes);
+    let configured = PreparedScene::new(s)?;
+    let t0 = Instant::now();
+    let mut render = backend.prepare(&configured)?;
+    render.ready(&mut NoProgress)?;
+    let mut trace_s = render.stage_times().map(|_| 0.0);
+    for k in 0..passes {
+        render.run_pass(k, &mut NoProgress)?;
+        trace_s = trace_s.zip(render.stage_times()).map(|(t, times)| t + times.photons.as_secs_f64());
+    }
+    let image = render.image()?;
+    let seconds = t0.elapsed().as_secs_f64();
+    let stored = render.stats()?.trace.stored;
+    // The band stripes of the fixed radius's one pass, from its photons
+    // traced again (not timed).
+    let stripe = match setting.radius {
+        RadiusPlan::Fixed if stripes => {
+            let map = render.photon_map(0, &mut NoProgress)?;
+            let mut own = StripeSums::new(&configured.bands);
+            own.add(&map);
+            stripe_error(&own, &configured.bands, &reference.stripes)
         }
+        _ => None,
     };
     let tone_map = scene.scene.render.tone_map;
     let error = RenderError {
@@ -405,7 +403,7 @@ pub fn measure(
         rmse: rmse(&image, &reference.image),
         stripe,
     };
-    Ok(StudyRow { setting: setting.clone(), photons, stored, trace_s, render_s, error, pareto: false })
+    Ok(StudyRow { setting: setting.clone(), photons, stored, seconds, trace_s, error, pareto: false })
 }
 
 /// The paper's Table 5 at its photon count: ray tracing alone, photon

@@ -1,13 +1,13 @@
 //! The reference render a study measures error against: physically based
 //! bands at high N, the `density` estimator, and the renderer's own
-//! progressive photon mapping (per-point radii, [`ProgressiveRender`]) until
+//! progressive photon mapping (a backend's render, per-point radii) until
 //! doubling the passes no longer changes the image; cached on disk by the
 //! hash of everything it depends on.
 
 use super::error::{StripeSums, caustic_mask, mean_delta_e};
 use crate::output::{read_exr, write_exr};
 use anyhow::{Context, Result};
-use prismatic_core::progressive::{DEFAULT_ALPHA, ProgressiveRender, photon_pass_scene};
+use prismatic_core::scene::DEFAULT_ALPHA;
 use prismatic_core::{Backend, BandSpec, Estimator, Image, NoProgress, PreparedScene, WavelengthSampling};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -142,20 +142,20 @@ fn build(
 ) -> Result<Reference> {
     let t0 = Instant::now();
     let tone_map = scene.scene.render.tone_map;
-    let mut render = ProgressiveRender::prepare(backend, scene, &mut NoProgress)?;
-    let without_caustics = render.points().base.clone();
+    let mut render = backend.prepare(scene)?;
+    let without_caustics = render.base()?;
     let mut stripes = StripeSums::new(&scene.bands);
     let mut checkpoint: Option<Image> = None;
     let (mut last_change, mut converged) = (f64::INFINITY, false);
     for k in 1..=spec.max_passes {
-        render.run_pass(backend, k - 1)?;
+        render.run_pass(k - 1, &mut NoProgress)?;
         if stripes_wanted {
             // The pass's photons again, for their positions (the pass's own
             // map stays inside the backend).
-            stripes.add(&backend.trace_photons(&photon_pass_scene(scene, spec.alpha, k - 1), &mut NoProgress)?);
+            stripes.add(&render.photon_map(k - 1, &mut NoProgress)?);
         }
         if k.is_power_of_two() {
-            let image = render.image();
+            let image = render.image()?;
             if let Some(previous) = &checkpoint {
                 let mask = caustic_mask(&image, &without_caustics, tone_map);
                 last_change = mean_delta_e(&image, previous, &mask, tone_map);
@@ -168,14 +168,14 @@ fn build(
             checkpoint = Some(image);
         }
     }
-    let image = render.image();
+    let image = render.image()?;
     let mask = caustic_mask(&image, &without_caustics, tone_map);
     Ok(Reference {
         image,
         without_caustics,
         mask,
         stripes,
-        passes: render.accumulation().pass_count(),
+        passes: render.stats()?.passes,
         last_change,
         converged,
         seconds: t0.elapsed().as_secs_f64(),

@@ -2,7 +2,7 @@
 //! report (tables, the cheapest settings under the ΔE00 thresholds, the
 //! paper's Table 5) and the plot, written into one folder.
 
-use super::{RadiusMode, StudyResult, StudyRow, plot};
+use super::{RadiusPlan, StudyResult, StudyRow, plot};
 use crate::output::PendingFile;
 use anyhow::Result;
 use std::fmt::Write as _;
@@ -53,23 +53,23 @@ pub fn write_all(result: &StudyResult, dir: &Path, machine: &str) -> Result<Writ
     Ok(w)
 }
 
-fn radius(r: RadiusMode) -> String {
+fn radius(r: RadiusPlan) -> String {
     match r {
-        RadiusMode::Fixed => "fixed".into(),
-        RadiusMode::Progressive { passes } => format!("progressive/{passes}"),
+        RadiusPlan::Fixed => "fixed".into(),
+        RadiusPlan::Progressive { passes } => format!("progressive/{passes}"),
     }
 }
 
 /// Every point, one per line.
 pub fn csv(result: &StudyResult) -> String {
     let mut s = String::from(
-        "scene,series,bands,wavelengths,estimator,radius,backend,photons,stored,trace_s,render_s,total_s,delta_e00,rmse_linear,stripe_error,pareto\n",
+        "scene,series,bands,wavelengths,estimator,radius,backend,photons,stored,trace_s,total_s,delta_e00,rmse_linear,stripe_error,pareto\n",
     );
     for r in &result.rows {
         let st = &r.setting;
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{},{:.6},{:.6},{:.6},{:.4},{:.6},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{:.6},{:.4},{:.6},{},{}",
             result.scene,
             r.setting.label,
             st.bands,
@@ -79,8 +79,7 @@ pub fn csv(result: &StudyResult) -> String {
             format!("{:?}", st.backend).to_lowercase(),
             r.photons,
             r.stored,
-            r.trace_s,
-            r.render_s,
+            r.trace_s.map_or(String::new(), |t| format!("{t:.6}")),
             r.total_s(),
             r.error.delta_e,
             r.error.rmse,
@@ -155,18 +154,17 @@ pub fn markdown(result: &StudyResult, machine: &str, plot: &Path) -> String {
     let stripes = result.rows.iter().any(|r| r.error.stripe.is_some());
     let _ = writeln!(
         s,
-        "\n| series | photons | trace | render | total | ΔE00 | RMSE (linear) |{} Pareto |",
+        "\n| series | photons | photon trace | total | ΔE00 | RMSE (linear) |{} Pareto |",
         if stripes { " stripe error |" } else { "" }
     );
-    let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|{}---|", if stripes { "---:|" } else { "" });
+    let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|{}---|", if stripes { "---:|" } else { "" });
     for r in &result.rows {
         let _ = writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {:.2} | {:.4} |{} {} |",
+            "| {} | {} | {} | {} | {:.2} | {:.4} |{} {} |",
             r.setting.label,
             photons(r.photons),
-            seconds(r.trace_s),
-            seconds(r.render_s),
+            r.trace_s.map_or("–".into(), seconds),
             seconds(r.total_s()),
             r.error.delta_e,
             r.error.rmse,
@@ -217,8 +215,8 @@ mod tests {
             setting,
             photons: 1,
             stored: 0,
-            trace_s: t,
-            render_s: 0.0,
+            seconds: t,
+            trace_s: None,
             error: RenderError { delta_e: e, rmse: 0.0, stripe: None },
             pareto: false,
         }
@@ -230,7 +228,7 @@ mod tests {
         mark_pareto(&mut rows);
         let front: Vec<bool> = rows.iter().map(|r| r.pareto).collect();
         assert_eq!(front, [true, true, false, false, true, true]);
-        assert_eq!(cheapest_below(&rows, 3.5).map(|r| r.trace_s), Some(2.0));
+        assert_eq!(cheapest_below(&rows, 3.5).map(|r| r.seconds), Some(2.0));
         assert!(cheapest_below(&rows, 0.5).is_none());
     }
 }

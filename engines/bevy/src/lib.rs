@@ -8,7 +8,7 @@
 //! [`Receiver`], all placed by their `Transform`s. Each frame the plugin
 //! mirrors them into a prismatic scene; when it differs from the last one,
 //! the session is updated (and redoes only what the change invalidates,
-//! see [`prismatic_gpu::Change`]), then one progressive pass runs and the
+//! see [`prismatic_core::Change`]), then one progressive pass runs and the
 //! image is copied on the device into [`CausticImage`], a linear
 //! `Rgba32Float` Bevy image the app shows as it likes (a sprite, a UI
 //! node, a material's texture).
@@ -24,7 +24,7 @@ mod mirror;
 
 pub use mirror::{CausticCamera, CausticLight, CausticShape, Glass, Receiver};
 pub use prismatic_core;
-pub use prismatic_gpu::StageTimes;
+pub use prismatic_core::StageTimes;
 
 use bevy::asset::RenderAssetUsages;
 use bevy::image::Image;
@@ -35,8 +35,8 @@ use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat, T
 use bevy::render::renderer::{RenderDevice, RenderQueue};
 use bevy::render::texture::GpuImage;
 use bevy::render::{Render, RenderApp, RenderSystems};
-use prismatic_core::PreparedScene;
 use prismatic_core::scene::RenderSettings;
+use prismatic_core::{NoProgress, PreparedScene, Render as _};
 use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
 use std::sync::{Arc, Mutex};
 use std::time::Instant;
@@ -110,7 +110,7 @@ pub struct CausticStats(pub Arc<Mutex<Stats>>);
 pub struct Stats {
     /// Passes in the image now.
     pub passes: u32,
-    /// White photons emitted by the last frame.
+    /// White photons a frame's pass emits.
     pub photons: u64,
     /// Seconds between the last two frames' passes (the app's frame time).
     pub frame_seconds: f64,
@@ -204,23 +204,25 @@ fn render_caustics(
             Some(_) => {}
             None => {
                 let ctx = GpuContext::from_device(device.wgpu_device().clone(), (**queue).clone())?;
-                live.session = Some(GpuSession::new(ctx, &scene.scene, GpuOptions::default())?);
+                let options = GpuOptions { stage_times: true, ..GpuOptions::default() };
+                live.session = Some(GpuSession::new(ctx, &scene.scene, options)?);
             }
         }
         live.generation = scene.generation;
         let session = live.session.as_mut().expect("made above");
-        let frame = session.frame()?;
+        session.next_pass(&mut NoProgress)?;
         session.copy_to_texture(&target.texture)?;
-        Ok::<_, prismatic_core::BackendError>((frame, session.stage_times()))
+        let passes = session.passes().iter().map(|(a, b)| b - a).sum();
+        Ok::<_, prismatic_core::BackendError>((passes, session.stage_times()))
     })();
     let now = Instant::now();
     let interval = live.last_pass.map_or(0.0, |t| (now - t).as_secs_f64());
     live.last_pass = Some(now);
     match result {
-        Ok((frame, gpu)) => stats.set(|s| {
+        Ok((passes, gpu)) => stats.set(|s| {
             *s = Stats {
-                passes: frame.passes,
-                photons: frame.photons,
+                passes,
+                photons: u64::from(scene.scene.scene.render.photons),
                 frame_seconds: interval,
                 submit_seconds: start.elapsed().as_secs_f64(),
                 gpu,

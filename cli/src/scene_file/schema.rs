@@ -1,10 +1,11 @@
-//! The TOML scene-file format: parsing into a core [`Scene`], with errors
-//! that name the file, the key, its line and the reason.
-//!
-//! Parsing keeps the source span of every key it reads, so that problems the
-//! core's validation finds later (`object[1].radius: must be greater than 0`)
-//! are reported at the right line too. Unknown keys are errors.
+//! The scene-file schema: which tables and keys a scene has
+//! (`[render]`, `[camera]`, `[[light]]`, `[material.NAME]`, `[[object]]`),
+//! what each means and its default, read into a core [`Scene`]. Meshes
+//! come from OBJ files, dispersion tables from CSV files, placed glTF
+//! files through the glTF importer.
 
+use super::names::{parse_bands, parse_estimator, parse_radius_mode, parse_wavelengths};
+use super::reader::{LOCAL_FRAME_RADIUS, Reader, Result, Table, join};
 use crate::gltf_scene;
 use crate::ior_table;
 use crate::obj;
@@ -13,330 +14,16 @@ use prismatic_core::bands::BandSpec;
 use prismatic_core::color::ToneMap;
 use prismatic_core::dispersion::{Dispersion, Glass};
 use prismatic_core::scene::{
-    Camera, Checker, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape, WavelengthSampling,
+    Camera, Checker, Estimator, Light, Material, MaterialKind, Object, RadiusMode, RenderSettings, Shape,
+    WavelengthSampling,
 };
-use prismatic_core::{Scene, SceneError, Vec3};
-use std::collections::HashMap;
-use std::fmt;
+use prismatic_core::{Scene, Vec3};
 use std::ops::Range;
-use std::path::{Path, PathBuf};
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
-/// A problem with a scene file.
-#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
-pub struct SceneFileError {
-    /// The file (or built-in scene name).
-    pub file: String,
-    /// 1-based line of the offending key, where known.
-    pub line: Option<usize>,
-    /// Dotted key (`object[2].radius`); empty for syntax errors.
-    pub key: String,
-    /// What is wrong.
-    pub reason: String,
-}
-
-impl fmt::Display for SceneFileError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.file)?;
-        if let Some(line) = self.line {
-            write!(f, ":{line}")?;
-        }
-        if !self.key.is_empty() {
-            write!(f, ": {}", self.key)?;
-        }
-        write!(f, ": {}", self.reason)
-    }
-}
-
-/// A parsed (not yet validated) scene with the source positions of its keys.
-#[derive(Clone, Debug)]
-pub struct SceneDocument {
-    /// The scene, before validation (command-line overrides go here).
-    pub scene: Scene,
-    /// World position of the scene's local frame: every position in `scene`
-    /// is relative to it (see [`LOCAL_FRAME_RADIUS`]).
-    pub origin: DVec3,
-    /// What the reader left out of the file (glTF elements prismatic cannot
-    /// represent), one line each, for the user to see.
-    pub warnings: Vec<String>,
-    file: String,
-    lines: HashMap<String, usize>,
-    /// For files that are not scene files: what the file calls the element
-    /// behind a scene key (`object[2]` → `meshes[1].primitives[0]`).
-    elements: Vec<(String, String)>,
-}
-
-impl SceneDocument {
-    /// A scene read from `file` by another reader, which has no lines to
-    /// point at but names its elements: errors about the scene key in the
-    /// first of a pair of `elements` name the second instead.
-    pub fn from_scene(scene: Scene, file: &str, warnings: Vec<String>, elements: Vec<(String, String)>) -> Self {
-        SceneDocument { scene, origin: DVec3::ZERO, warnings, file: file.to_string(), lines: HashMap::new(), elements }
-    }
-
-    /// Validates the scene, reporting problems at their key's line.
-    pub fn validate(&self) -> Result<(), SceneFileError> {
-        self.scene.validate().map_err(|e| self.error(e))
-    }
-
-    /// Turns a core error into a file error with the key's line.
-    pub fn error(&self, e: SceneError) -> SceneFileError {
-        // Nested keys (`ior.bands[3]`) fall back to their nearest recorded parent.
-        let mut key = e.key.as_str();
-        let line = loop {
-            if let Some(&l) = self.lines.get(key) {
-                break Some(l);
-            }
-            match key.rfind(['.', '[']) {
-                Some(i) => key = &key[..i],
-                None => break None,
-            }
-        };
-        SceneFileError { file: self.file.clone(), line, key: self.element(e.key), reason: e.reason }
-    }
-
-    /// `key` with the file's name for its element, where the reader gave one.
-    fn element(&self, key: String) -> String {
-        let named = self.elements.iter().find_map(|(scene_key, name)| {
-            let rest = key.strip_prefix(scene_key.as_str())?;
-            (rest.is_empty() || rest.starts_with(['.', '['])).then(|| format!("{name}{rest}"))
-        });
-        named.unwrap_or(key)
-    }
-}
-
-/// Reads and parses a scene file; OBJ meshes are resolved relative to it.
-pub fn load(path: &Path) -> Result<SceneDocument, SceneFileError> {
-    let label = path.display().to_string();
-    let source = std::fs::read_to_string(path).map_err(|e| SceneFileError {
-        file: label.clone(),
-        line: None,
-        key: String::new(),
-        reason: format!("cannot read the file: {e}"),
-    })?;
-    parse(&source, &label, path.parent())
-}
-
-/// Parses scene-file text. `file` names it in errors; `base` resolves mesh paths.
-pub fn parse(source: &str, file: &str, base: Option<&Path>) -> Result<SceneDocument, SceneFileError> {
-    let mut p = Parser {
-        source,
-        file,
-        base: base.map(Path::to_path_buf),
-        lines: HashMap::new(),
-        origin: DVec3::ZERO,
-        warnings: Vec::new(),
-    };
-    let root = DeTable::parse(source).map_err(|e| SceneFileError {
-        file: file.to_string(),
-        line: e.span().map(|s| p.line_of(s.start)),
-        key: String::new(),
-        reason: format!("TOML syntax error: {}", e.message()),
-    })?;
-    let scene = p.scene(root.get_ref(), root.span())?;
-    Ok(SceneDocument {
-        scene,
-        origin: p.origin,
-        warnings: p.warnings,
-        file: file.to_string(),
-        lines: p.lines,
-        elements: Vec::new(),
-    })
-}
-
-/// Parses, validates and prepares `source` (no file access beyond OBJ
-/// paths, no rendering): what the fuzz target and its proptest twin run.
-/// Rejects bad input with a [`SceneFileError`]; never panics.
-pub fn check_source(source: &str) -> Result<prismatic_core::PreparedScene, SceneFileError> {
-    let doc = parse(source, "fuzz.toml", None)?;
-    doc.validate()?;
-    prismatic_core::PreparedScene::new(doc.scene.clone()).map_err(|e| doc.error(e))
-}
-
-struct Parser<'s> {
-    source: &'s str,
-    file: &'s str,
-    base: Option<PathBuf>,
-    lines: HashMap<String, usize>,
-    /// Subtracted (in f64) from every position read.
-    origin: DVec3,
-    /// What was left out of placed glTF files.
-    warnings: Vec<String>,
-}
-
-/// A scene whose camera lies farther than this from the world origin (in
-/// any coordinate) is recentred on its camera: positions are read in f64
-/// and stored in f32 relative to the camera, where f32 is precise. Closer
-/// scenes keep world coordinates (f32 resolves 6e-5 at 1,024).
-pub const LOCAL_FRAME_RADIUS: f64 = 1024.0;
-
-type Result<T, E = SceneFileError> = std::result::Result<T, E>;
-
-/// A table being read, with its key prefix.
-struct Table<'a, 'i> {
-    key: String,
-    span: Range<usize>,
-    entries: &'a DeTable<'i>,
-}
-
-impl<'s> Parser<'s> {
-    fn line_of(&self, offset: usize) -> usize {
-        self.source[..offset.min(self.source.len())].matches('\n').count() + 1
-    }
-
-    fn err(&self, key: &str, span: &Range<usize>, reason: impl Into<String>) -> SceneFileError {
-        SceneFileError {
-            file: self.file.to_string(),
-            line: Some(self.line_of(span.start)),
-            key: key.to_string(),
-            reason: reason.into(),
-        }
-    }
-
-    fn table<'a, 'i>(&self, key: &str, v: &'a Spanned<DeValue<'i>>) -> Result<Table<'a, 'i>> {
-        match v.get_ref() {
-            DeValue::Table(t) => Ok(Table { key: key.to_string(), span: v.span(), entries: t }),
-            other => Err(self.err(key, &v.span(), format!("must be a table, got {}", other.type_str()))),
-        }
-    }
-
-    /// Rejects keys of `t` not in `allowed`, and records the lines of the others.
-    fn check_keys(&mut self, t: &Table<'_, '_>, allowed: &[&str]) -> Result<()> {
-        for (k, v) in t.entries.iter() {
-            let name = k.get_ref().as_ref();
-            let key = join(&t.key, name);
-            if !allowed.contains(&name) {
-                return Err(self.err(&key, &k.span(), format!("unknown key; expected one of: {}", allowed.join(", "))));
-            }
-            let line = self.line_of(v.span().start);
-            self.lines.insert(key, line);
-        }
-        Ok(())
-    }
-
-    fn get<'a, 'i>(&self, t: &Table<'a, 'i>, field: &str) -> Option<&'a Spanned<DeValue<'i>>> {
-        t.entries.iter().find(|(k, _)| k.get_ref().as_ref() == field).map(|(_, v)| v)
-    }
-
-    fn required<'a, 'i>(&self, t: &Table<'a, 'i>, field: &str) -> Result<&'a Spanned<DeValue<'i>>> {
-        self.get(t, field).ok_or_else(|| self.err(&join(&t.key, field), &t.span, "is required but missing"))
-    }
-
-    fn number(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<f64> {
-        match v.get_ref() {
-            DeValue::Float(f) => {
-                f.as_str().parse::<f64>().map_err(|_| self.err(key, &v.span(), "is not a valid number"))
-            }
-            DeValue::Integer(i) => i64::from_str_radix(i.as_str(), i.radix())
-                .map(|i| i as f64)
-                .map_err(|_| self.err(key, &v.span(), "is not a valid number")),
-            other => Err(self.err(key, &v.span(), format!("must be a number, got {}", other.type_str()))),
-        }
-    }
-
-    fn float(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<f32> {
-        let x = self.number(key, v)?;
-        if x.is_finite() && x.abs() > f64::from(f32::MAX) {
-            return Err(self.err(key, &v.span(), format!("{x} is out of range")));
-        }
-        Ok(x as f32)
-    }
-
-    fn uint(&self, key: &str, v: &Spanned<DeValue<'_>>, max: u64) -> Result<u64> {
-        match v.get_ref() {
-            DeValue::Integer(i) => match i64::from_str_radix(i.as_str(), i.radix()) {
-                Ok(n) if n >= 0 && n as u64 <= max => Ok(n as u64),
-                Ok(n) => Err(self.err(key, &v.span(), format!("must be between 0 and {max}, got {n}"))),
-                Err(_) => Err(self.err(key, &v.span(), "is not a valid integer")),
-            },
-            other => Err(self.err(key, &v.span(), format!("must be a whole number, got {}", other.type_str()))),
-        }
-    }
-
-    fn boolean(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<bool> {
-        v.get_ref()
-            .as_bool()
-            .ok_or_else(|| self.err(key, &v.span(), format!("must be true or false, got {}", v.get_ref().type_str())))
-    }
-
-    fn string<'a>(&self, key: &str, v: &'a Spanned<DeValue<'_>>) -> Result<&'a str> {
-        v.get_ref()
-            .as_str()
-            .ok_or_else(|| self.err(key, &v.span(), format!("must be a string, got {}", v.get_ref().type_str())))
-    }
-
-    fn array<'a, 'i>(&self, key: &str, v: &'a Spanned<DeValue<'i>>) -> Result<&'a [Spanned<DeValue<'i>>]> {
-        match v.get_ref() {
-            DeValue::Array(a) => Ok(a),
-            other => Err(self.err(key, &v.span(), format!("must be an array, got {}", other.type_str()))),
-        }
-    }
-
-    fn floats(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Vec<f64>> {
-        self.array(key, v)?.iter().enumerate().map(|(i, x)| self.number(&format!("{key}[{i}]"), x)).collect()
-    }
-
-    /// A direction or a colour (not moved with the local frame).
-    fn vec3(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Vec3> {
-        let p = self.dvec3(key, v)?;
-        match (0..3).find(|&i| p[i].is_finite() && p[i].abs() > f64::from(f32::MAX)) {
-            Some(i) => Err(self.err(&format!("{key}[{i}]"), &v.span(), format!("{} is out of range", p[i]))),
-            None => Ok(p.as_vec3()),
-        }
-    }
-
-    fn dvec3(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<DVec3> {
-        let a = self.array(key, v)?;
-        if a.len() != 3 {
-            return Err(self.err(
-                key,
-                &v.span(),
-                format!("must be an array of three numbers, got {} elements", a.len()),
-            ));
-        }
-        let c: Vec<f64> =
-            a.iter().enumerate().map(|(i, x)| self.number(&format!("{key}[{i}]"), x)).collect::<Result<_>>()?;
-        Ok(DVec3::new(c[0], c[1], c[2]))
-    }
-
-    /// A position: read in f64, relative to the scene's local frame, then f32.
-    fn point(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Vec3> {
-        let p = self.dvec3(key, v)?;
-        self.local(p).ok_or_else(|| self.err(key, &v.span(), format!("{p} is out of range")))
-    }
-
-    /// A file the scene names (mesh, index table, glTF), relative to the scene file.
-    fn beside(&self, rel: &str) -> PathBuf {
-        self.base.as_deref().map_or_else(|| PathBuf::from(rel), |b| b.join(rel))
-    }
-
-    /// World position `p` in the local frame (`None` beyond f32's range).
-    fn local(&self, p: DVec3) -> Option<Vec3> {
-        let local = p - self.origin;
-        (!local.is_finite() || local.abs().max_element() <= f64::from(f32::MAX)).then(|| local.as_vec3())
-    }
-
-    fn opt<T>(
-        &self,
-        t: &Table<'_, '_>,
-        field: &str,
-        read: impl FnOnce(&Self, &str, &Spanned<DeValue<'_>>) -> Result<T>,
-    ) -> Result<Option<T>> {
-        self.get(t, field).map(|v| read(self, &join(&t.key, field), v)).transpose()
-    }
-
-    fn req<T>(
-        &self,
-        t: &Table<'_, '_>,
-        field: &str,
-        read: impl FnOnce(&Self, &str, &Spanned<DeValue<'_>>) -> Result<T>,
-    ) -> Result<T> {
-        let v = self.required(t, field)?;
-        read(self, &join(&t.key, field), v)
-    }
-
-    fn scene(&mut self, root: &DeTable<'_>, span: Range<usize>) -> Result<Scene> {
+impl Reader<'_> {
+    pub fn scene(&mut self, root: &DeTable<'_>, span: Range<usize>) -> Result<Scene> {
         let root = Table { key: String::new(), span, entries: root };
         self.check_keys(&root, &["render", "camera", "light", "material", "object"])?;
         let render = match self.get(&root, "render") {
@@ -400,6 +87,7 @@ impl<'s> Parser<'s> {
                 "height",
                 "photons",
                 "radius",
+                "radius_mode",
                 "bands",
                 "estimator",
                 "wavelengths",
@@ -422,6 +110,7 @@ impl<'s> Parser<'s> {
             height: self.opt(t, "height", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.height, |x| x as u32),
             photons: self.opt(t, "photons", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.photons, |x| x as u32),
             radius: self.opt(t, "radius", Self::float)?.unwrap_or(d.radius),
+            radius_mode: self.opt(t, "radius_mode", Self::radius_mode)?.unwrap_or(d.radius_mode),
             bands: self.opt(t, "bands", Self::bands)?.unwrap_or(d.bands),
             estimator: self.opt(t, "estimator", Self::estimator)?.unwrap_or(d.estimator),
             wavelengths: self.opt(t, "wavelengths", Self::wavelengths)?.unwrap_or(d.wavelengths),
@@ -467,6 +156,10 @@ impl<'s> Parser<'s> {
 
     fn wavelengths(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<WavelengthSampling> {
         parse_wavelengths(self.string(key, v)?).map_err(|reason| self.err(key, &v.span(), reason))
+    }
+
+    fn radius_mode(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<RadiusMode> {
+        parse_radius_mode(self.string(key, v)?).map_err(|reason| self.err(key, &v.span(), reason))
     }
 
     fn camera(&mut self, t: &Table<'_, '_>) -> Result<Camera> {
@@ -789,35 +482,4 @@ impl<'s> Parser<'s> {
             .collect::<Result<Vec<_>>>()?;
         Ok(Shape::Mesh { positions, triangles })
     }
-}
-
-fn join(prefix: &str, field: &str) -> String {
-    if prefix.is_empty() { field.to_string() } else { format!("{prefix}.{field}") }
-}
-
-/// Parses a band table name: `paper3`, `paper7` or a number of bands.
-pub fn parse_bands(s: &str) -> std::result::Result<BandSpec, String> {
-    match s {
-        "paper3" => Ok(BandSpec::Paper3),
-        "paper7" => Ok(BandSpec::Paper7),
-        _ => s
-            .parse::<u16>()
-            .map(BandSpec::Physical)
-            .map_err(|_| format!("must be \"paper3\", \"paper7\" or a number of bands, got \"{s}\"")),
-    }
-}
-
-/// Parses an estimator name.
-pub fn parse_estimator(s: &str) -> std::result::Result<Estimator, String> {
-    match s {
-        "paper" => Ok(Estimator::Paper),
-        "density" => Ok(Estimator::Density),
-        _ => Err(format!("unknown estimator \"{s}\"; expected paper or density")),
-    }
-}
-
-/// Parses a wavelength-sampling name.
-pub fn parse_wavelengths(s: &str) -> std::result::Result<WavelengthSampling, String> {
-    WavelengthSampling::from_name(s)
-        .ok_or_else(|| format!("unknown wavelength sampling \"{s}\"; expected split, random_band or continuous"))
 }

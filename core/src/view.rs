@@ -1,12 +1,17 @@
-//! The scalar reference renderer: the specification of every backend's `render`.
+//! The scalar reference view pass: the specification of every backend's
+//! view rays.
 //!
 //! One primary ray per pixel centre. At a diffuse hit the pixel gets
 //! `albedo/π · (E_direct + E_caustic) + albedo · ambient`, where E_direct is
 //! the ray-traced irradiance from each light (with shadow rays; glass casts
 //! a full shadow because the light it passes on arrives as caustic photons)
-//! and E_caustic is the gathered photon irradiance ([`crate::gather`]): the
-//! caustic is added to the ray-traced colour, not mixed with it, which is
-//! the physically consistent blend (the two estimate disjoint light paths).
+//! and E_caustic is the gathered photon irradiance: the caustic is added to
+//! the ray-traced colour, not mixed with it, which is the physically
+//! consistent blend (the two estimate disjoint light paths). The view pass
+//! leaves the caustic out: each diffuse hit that needs it becomes a visible
+//! point whose weight says what a unit of caustic irradiance there adds to
+//! the pixel, and every photon pass gathers there.
+//!
 //! Mirrors reflect; dielectrics trace both the Fresnel-weighted reflection
 //! and the refraction, to `max_depth`, dropping branches whose share of the
 //! pixel (Fresnel factors times, after a split, the band's largest RGB
@@ -14,17 +19,16 @@
 //! view ray splits into one ray per band, each weighted by the band's RGB
 //! weight C_i.
 
-use crate::backend::{NoProgress, Progress, Stage};
 use crate::camera::PinholeCamera;
-use crate::gather::{GatherQuery, gather};
 use crate::geometry::Ray;
-use crate::grid::PhotonGrid;
 use crate::image::Image;
 use crate::math::{cos, radians};
 use crate::optics::{fresnel, interface, reflect, refract};
-use crate::photon::{Photon, PhotonMap, WHITE_BAND};
-use crate::prepared::{Hit, PreparedScene, Surface, offset_origin};
+use crate::photon::WHITE_BAND;
+use crate::prepared::{Hit, PreparedScene, offset_origin};
+use crate::progress::{Progress, Stage};
 use crate::scene::Light;
+use crate::surface::Surface;
 use crate::tolerance::MIN_VIEW_WEIGHT;
 use crate::visible::{VisiblePoint, VisiblePoints};
 use alloc::vec::Vec;
@@ -41,39 +45,29 @@ struct ViewPath {
     tint: Vec3,
 }
 
-/// Everything a pixel needs: the scene, the photons and their grid, the camera.
-pub struct RenderContext<'a> {
+/// Everything a pixel's view rays need: the scene and the camera.
+pub struct ViewContext<'a> {
     /// The scene.
     pub scene: &'a PreparedScene,
-    /// The caustic photons.
-    pub photons: &'a [Photon],
-    /// Their grid.
-    pub grid: &'a PhotonGrid,
     /// The camera.
     pub camera: PinholeCamera,
 }
 
-impl<'a> RenderContext<'a> {
-    /// Sets up rendering of `scene` with photons already gridded.
-    pub fn new(scene: &'a PreparedScene, photons: &'a [Photon], grid: &'a PhotonGrid) -> Self {
+impl<'a> ViewContext<'a> {
+    /// Sets up the view rays of `scene`.
+    pub fn new(scene: &'a PreparedScene) -> Self {
         let r = &scene.scene.render;
-        RenderContext { scene, photons, grid, camera: PinholeCamera::new(&scene.scene.camera, r.width, r.height) }
-    }
-
-    /// Linear RGB of pixel (x, y), exposure applied.
-    pub fn pixel(&self, x: u32, y: u32) -> Vec3 {
-        let path = ViewPath { band: WHITE_BAND, depth: 0, weight: 1.0, tint: Vec3::ONE };
-        self.radiance(&self.camera.ray(x, y), path, &mut None) * self.scene.scene.render.exposure
+        ViewContext { scene, camera: PinholeCamera::new(&scene.scene.camera, r.width, r.height) }
     }
 
     /// Pixel (x, y) without its caustic, exposure applied; the diffuse hits
     /// whose caustic it needs are appended to `points` (their weight includes
     /// the exposure and their pixel is the row-major index of (x, y)).
-    pub fn pixel_visible_points(&self, x: u32, y: u32, points: &mut Vec<VisiblePoint>) -> Vec3 {
+    pub fn pixel(&self, x: u32, y: u32, points: &mut Vec<VisiblePoint>) -> Vec3 {
         let exposure = self.scene.scene.render.exposure;
         let path = ViewPath { band: WHITE_BAND, depth: 0, weight: 1.0, tint: Vec3::splat(exposure) };
         let first = points.len();
-        let radiance = self.radiance(&self.camera.ray(x, y), path, &mut Some(points)) * exposure;
+        let radiance = self.radiance(&self.camera.ray(x, y), path, points) * exposure;
         let pixel = y * self.scene.scene.render.width + x;
         for p in &mut points[first..] {
             p.pixel = pixel;
@@ -81,10 +75,10 @@ impl<'a> RenderContext<'a> {
         radiance
     }
 
-    /// Radiance arriving along `ray` on `path`. With a visible-point sink
-    /// the caustic is left out and each diffuse hit that needs it is
-    /// recorded instead (weighted by the path's tint).
-    fn radiance(&self, ray: &Ray, path: ViewPath, points: &mut Option<&mut Vec<VisiblePoint>>) -> Vec3 {
+    /// Radiance arriving along `ray` on `path`, less the caustic: each
+    /// diffuse hit that needs it is recorded in `points` instead (weighted
+    /// by the path's tint).
+    fn radiance(&self, ray: &Ray, path: ViewPath, points: &mut Vec<VisiblePoint>) -> Vec3 {
         let settings = &self.scene.scene.render;
         let Some(hit) = self.scene.intersect(ray, f32::INFINITY) else {
             return settings.background;
@@ -122,7 +116,7 @@ impl<'a> RenderContext<'a> {
         hit: &Hit,
         ior: f32,
         path: ViewPath,
-        points: &mut Option<&mut Vec<VisiblePoint>>,
+        points: &mut Vec<VisiblePoint>,
     ) -> Vec3 {
         let (n, n1, n2) = interface(ray.direction, hit.normal, ior);
         let cos_i = -ray.direction.dot(n);
@@ -144,28 +138,18 @@ impl<'a> RenderContext<'a> {
         sum
     }
 
-    /// Radiance leaving a diffuse hit toward the viewer; its caustic part
-    /// gathered here, or left to a visible point when there is a sink.
-    fn shade_diffuse(&self, ray: &Ray, hit: &Hit, tint: Vec3, points: &mut Option<&mut Vec<VisiblePoint>>) -> Vec3 {
+    /// Radiance leaving a diffuse hit toward the viewer, less its caustic,
+    /// which is left to a visible point (when the plan traces caustics).
+    fn shade_diffuse(&self, ray: &Ray, hit: &Hit, tint: Vec3, points: &mut Vec<VisiblePoint>) -> Vec3 {
         let n = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
         let surface = &self.scene.surfaces[hit.object];
         let albedo = surface.albedo_at(hit.point, n);
         let settings = &self.scene.scene.render;
         let direct: f32 = (0..self.scene.scene.lights.len()).map(|i| self.direct_irradiance(i, hit.point, n)).sum();
-        let caustic = match points {
-            Some(points) => {
-                if self.scene.plan.caustics.on {
-                    points.push(VisiblePoint { point: hit.point, normal: n, weight: tint * albedo / PI, pixel: 0 });
-                }
-                Vec3::ZERO
-            }
-            None if self.photons.is_empty() => Vec3::ZERO,
-            None => {
-                let query = GatherQuery { point: hit.point, normal: n, radius: settings.radius };
-                gather(self.grid, self.photons, &self.scene.bands, settings.estimator, &query)
-            }
-        };
-        albedo * (caustic + Vec3::splat(direct)) * (1.0 / PI) + albedo * settings.ambient
+        if self.scene.plan.caustics.on {
+            points.push(VisiblePoint { point: hit.point, normal: n, weight: tint * albedo / PI, pixel: 0 });
+        }
+        albedo * Vec3::splat(direct) * (1.0 / PI) + albedo * settings.ambient
     }
 
     /// Irradiance from light `index` at `p` (unit normal `n`), zero when in
@@ -224,37 +208,17 @@ impl<'a> RenderContext<'a> {
 }
 
 /// Traces every pixel's view rays once with the scalar reference: the
-/// image without caustics and the visible points that need them.
-pub fn visible_points_with_progress(scene: &PreparedScene, progress: &mut dyn Progress) -> VisiblePoints {
-    let grid = PhotonGrid::build(&[], scene.scene.render.radius);
-    let ctx = RenderContext::new(scene, &[], &grid);
+/// image without caustics and the visible points that need them,
+/// reporting progress after every row.
+pub fn visible_points(scene: &PreparedScene, progress: &mut dyn Progress) -> VisiblePoints {
+    let ctx = ViewContext::new(scene);
     let (w, h) = (scene.scene.render.width, scene.scene.render.height);
     let mut out = VisiblePoints { base: Image::new(w, h), points: Vec::new() };
     for y in 0..h {
         for x in 0..w {
-            out.base.pixels[(y * w + x) as usize] = ctx.pixel_visible_points(x, y, &mut out.points);
+            out.base.pixels[(y * w + x) as usize] = ctx.pixel(x, y, &mut out.points);
         }
-        progress.advance(Stage::Render, u64::from(y) + 1, u64::from(h));
+        progress.advance(Stage::View, u64::from(y) + 1, u64::from(h));
     }
     out
-}
-
-/// Renders the whole image with the scalar reference: grid build, then every pixel.
-pub fn render(scene: &PreparedScene, map: &PhotonMap) -> Image {
-    render_with_progress(scene, map, &mut NoProgress)
-}
-
-/// [`render`], reporting progress after every row.
-pub fn render_with_progress(scene: &PreparedScene, map: &PhotonMap, progress: &mut dyn Progress) -> Image {
-    let grid = PhotonGrid::build(&map.photons, scene.scene.render.radius);
-    let ctx = RenderContext::new(scene, &map.photons, &grid);
-    let (w, h) = (scene.scene.render.width, scene.scene.render.height);
-    let mut image = Image::new(w, h);
-    for (y, row) in image.pixels.chunks_mut(w as usize).enumerate() {
-        for (x, px) in row.iter_mut().enumerate() {
-            *px = ctx.pixel(x as u32, y as u32);
-        }
-        progress.advance(Stage::Render, y as u64 + 1, u64::from(h));
-    }
-    image
 }

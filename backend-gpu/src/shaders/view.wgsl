@@ -1,4 +1,4 @@
-// Ray tracing: twin of prismatic_core::render, less the caustic gather.
+// The view rays: twin of prismatic_core::view.
 // One invocation per pixel. WGSL has no recursion, so the reference's
 // recursion becomes a stack of pending rays, each with the RGB tint and
 // the weight it carries back to the pixel (as the CPU backend's queue
@@ -15,6 +15,8 @@
 // The most visible points any pixel wanted, when some pixel wanted more
 // than `points_per_pixel` (else left alone).
 @group(1) @binding(3) var<storage, read_write> points_needed: atomic<u32>;
+// The render's statistics: this pass counts the visible points.
+@group(1) @binding(4) var<storage, read_write> run_stats: RunStats;
 
 struct Pending {
     origin: vec3<f32>,
@@ -49,7 +51,7 @@ fn spawn_ray(origin: vec3<f32>, dir: vec3<f32>, band: u32, depth: u32, weight: f
     spawn(Pending(origin, weight, dir, band, tint, depth, vec3<f32>(0.0), NO_SPLIT, 0u));
 }
 
-// RenderContext::through_dielectric: the Fresnel-weighted reflection and refraction.
+// ViewContext::through_dielectric: the Fresnel-weighted reflection and refraction.
 fn through_dielectric(e: Pending, ior: f32, band: u32, weight: f32, tint: vec3<f32>) {
     let f = facing_interface(e.dir, e.normal, ior);
     let cos_i = -dot(e.dir, f.n);
@@ -98,7 +100,7 @@ fn visible_point(light: vec3<f32>, p: vec3<f32>, n: vec3<f32>, shadows: bool) ->
     return vec4<f32>(l, dist);
 }
 
-// RenderContext::direct_irradiance
+// ViewContext::direct_irradiance
 fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     let shadows = l.shadows != 0u;
     if l.kind == LIGHT_BEAM {
@@ -136,13 +138,14 @@ var<private> point_count: u32;
 // the pixel. Points past the pixel's slots are counted, not written.
 fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>) {
     if point_count < params.points_per_pixel {
+        let none = vec2<u32>(0u);
         points[point_count * params.pixel_count + pixel_index] =
-            VisiblePoint(point, 0u, normal, 0.0, weight, params.radius, vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0u);
+            VisiblePoint(point, 0u, normal, params.radius, weight, 0u, array<vec2<u32>, 3>(none, none, none), none);
     }
     point_count++;
 }
 
-// RenderContext::shade_diffuse, less the caustic (see add_visible_point);
+// ViewContext::shade_diffuse, less the caustic (see add_visible_point);
 // `tint` is the view ray's.
 fn shade_diffuse(dir: vec3<f32>, hit: Hit, tint: vec3<f32>) -> vec3<f32> {
     let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
@@ -199,7 +202,7 @@ fn visit(e: Pending) -> vec3<f32> {
     return vec3<f32>(0.0);
 }
 
-// RenderContext::pixel: radiance through the pixel centre, exposure
+// ViewContext::pixel: radiance through the pixel centre, exposure
 // applied, but for the caustics of its visible points.
 fn pixel(x: u32, y: u32) -> vec3<f32> {
     let d = params.cam_corner + params.cam_right * (f32(x) + 0.5) + params.cam_down * (f32(y) + 0.5);
@@ -237,5 +240,8 @@ fn main(
     point_counts[k] = point_count;
     if point_count > params.points_per_pixel {
         atomicMax(&points_needed, point_count);
+    }
+    if point_count > 0u {
+        atomicAdd(&run_stats.points, min(point_count, params.points_per_pixel));
     }
 }

@@ -1,29 +1,27 @@
-//! Packet rendering: the core's `render`, eight rays per packet, threads over tiles.
+//! Packet view rays: the core's view pass (`prismatic_core::view`), eight
+//! rays per packet, threads over tiles.
 //!
 //! A tile's primary rays go eight pixels to a packet. Where the reference
 //! recurses (mirrors, the two Fresnel branches at glass, one ray per band at
-//! the first dispersive glass) this renderer queues the next rays with the
+//! the first dispersive glass) this tracer queues the next rays with the
 //! weight and RGB tint they carry and the pixel they belong to, and traces
 //! the queue in packets of eight too, until it is empty: the same sum over
 //! paths as the reference, in a different order. Shading (direct light with
-//! shadow-ray packets, checker albedo) is lane-parallel; the gather is a
-//! per-lane walk over the grid's cells. For progressive rendering the same
-//! loop leaves visible points instead of gathering.
+//! shadow-ray packets, checker albedo) is lane-parallel; each diffuse hit
+//! that needs the caustic becomes a visible point.
 
-use crate::grid::CpuGrid;
 use crate::intersect::{RayX8, intersect_scene, occluded};
+use crate::optics::{fresnel, interface, offset_origin, reflect, refract};
 use crate::simd::{Vec3x8, ge, gt, lt};
-use crate::trace::{fresnel, interface, offset_origin, reflect, refract};
 use glam::Vec3;
 use prismatic_core::Image;
-use prismatic_core::bands::MAX_BANDS;
 use prismatic_core::camera::PinholeCamera;
-use prismatic_core::gather::GatherQuery;
 use prismatic_core::math::{cos, radians};
 use prismatic_core::optics;
 use prismatic_core::photon::WHITE_BAND;
-use prismatic_core::prepared::{PreparedScene, Surface};
+use prismatic_core::prepared::PreparedScene;
 use prismatic_core::scene::Light;
+use prismatic_core::surface::Surface;
 use prismatic_core::tolerance::MIN_VIEW_WEIGHT;
 use prismatic_core::visible::{VisiblePoint, VisiblePoints};
 use rayon::prelude::*;
@@ -48,23 +46,9 @@ struct ViewRay {
     pixel: u32,
 }
 
-/// Renders the image with the photons of `grid`.
-pub fn render(scene: &PreparedScene, grid: &CpuGrid) -> Image {
-    trace_view_rays(scene, grid, false).0
-}
-
-/// Traces the view rays once without gathering: the image without caustics
-/// and the visible points (tile by tile, so their order does not depend on
-/// the thread count).
+/// Traces the view rays: the image without caustics and the visible points
+/// (tile by tile, so their order does not depend on the thread count).
 pub fn visible_points(scene: &PreparedScene) -> VisiblePoints {
-    let empty = CpuGrid::build(&[], scene.scene.render.radius);
-    let (base, points) = trace_view_rays(scene, &empty, true);
-    VisiblePoints { base, points }
-}
-
-/// The tile loop: every pixel's view rays in packets, gathering from `grid`
-/// or (with `record`) leaving visible points instead.
-fn trace_view_rays(scene: &PreparedScene, grid: &CpuGrid, record: bool) -> (Image, Vec<VisiblePoint>) {
     let r = &scene.scene.render;
     let camera = PinholeCamera::new(&scene.scene.camera, r.width, r.height);
     let mut image = Image::new(r.width, r.height);
@@ -90,13 +74,7 @@ fn trace_view_rays(scene: &PreparedScene, grid: &CpuGrid, record: bool) -> (Imag
                     pixel: k as u32,
                 });
             }
-            let mut shader = Shader {
-                scene,
-                grid,
-                counts: Box::new([0; MAX_BANDS + 1]),
-                points: record.then(Vec::new),
-                first_pixel: (tile * tile_pixels) as u32,
-            };
+            let mut shader = Shader { scene, points: Vec::new(), first_pixel: (tile * tile_pixels) as u32 };
             let mut sum = vec![Vec3::ZERO; pixels.len()];
             while !queue.is_empty() {
                 let take = queue.len().min(8);
@@ -108,18 +86,16 @@ fn trace_view_rays(scene: &PreparedScene, grid: &CpuGrid, record: bool) -> (Imag
             for (p, s) in pixels.iter_mut().zip(sum) {
                 *p = s * r.exposure;
             }
-            shader.points.unwrap_or_default()
+            shader.points
         })
         .collect();
-    (image, tiles.concat())
+    VisiblePoints { base: image, points: tiles.concat() }
 }
 
 struct Shader<'a> {
     scene: &'a PreparedScene,
-    grid: &'a CpuGrid,
-    counts: Box<[u32; MAX_BANDS + 1]>,
-    /// Where diffuse hits go instead of a gather, when recording.
-    points: Option<Vec<VisiblePoint>>,
+    /// The tile's visible points.
+    points: Vec<VisiblePoint>,
     /// The tile's first pixel (ray pixels are relative to it).
     first_pixel: u32,
 }
@@ -186,8 +162,8 @@ impl Shader<'_> {
         }
     }
 
-    /// Radiance toward the viewer at diffuse hits (lanes in `mask`).
-    /// When recording, the caustic is left to a visible point per lane.
+    /// Radiance toward the viewer at diffuse hits (lanes in `mask`), less
+    /// the caustic, which is left to a visible point per lane.
     fn shade_diffuse(
         &mut self,
         rays: &[ViewRay],
@@ -210,25 +186,17 @@ impl Shader<'_> {
         for i in lanes(mask) {
             let (pi, ni) = (p.lane(i), n.lane(i));
             let albedo = self.scene.surfaces[objects[i] as usize].albedo_at(pi, ni);
-            let caustic = if let Some(points) = &mut self.points {
-                if self.scene.plan.caustics.on {
-                    let weight = rays[i].tint * albedo / PI * settings.exposure;
-                    let pixel = self.first_pixel + rays[i].pixel;
-                    points.push(VisiblePoint { point: pi, normal: ni, weight, pixel });
-                }
-                Vec3::ZERO
-            } else if self.grid.is_empty() {
-                Vec3::ZERO
-            } else {
-                let query = GatherQuery { point: pi, normal: ni, radius: settings.radius };
-                self.grid.gather(&self.scene.bands, settings.estimator, &query, &mut self.counts)
-            };
-            out[i] = albedo * (caustic + Vec3::splat(direct[i])) * (1.0 / PI) + albedo * settings.ambient;
+            if self.scene.plan.caustics.on {
+                let weight = rays[i].tint * albedo / PI * settings.exposure;
+                let pixel = self.first_pixel + rays[i].pixel;
+                self.points.push(VisiblePoint { point: pi, normal: ni, weight, pixel });
+            }
+            out[i] = albedo * Vec3::splat(direct[i]) * (1.0 / PI) + albedo * settings.ambient;
         }
         out
     }
 
-    /// `RenderContext::direct_irradiance` for eight points (shadow rays if `shadows`).
+    /// `ViewContext::direct_irradiance` for eight points (shadow rays if `shadows`).
     fn direct_irradiance(&self, light: &Light, shadows: bool, p: Vec3x8, n: Vec3x8, mask: f32x8) -> f32x8 {
         match light {
             Light::Spot { position, direction, cone_deg, power } => {

@@ -1,0 +1,238 @@
+//! A session's photon passes on the device, on the core's schedule
+//! (`prismatic_core::schedule`): the pilot pass that gives each visible
+//! point its first radius (progressive radii only), and pass `k`: its
+//! photons traced and gridded at every built level, gathered at the points
+//! level by level (in bucket segments on a software device), added to the
+//! pixels' exact sums, and its trace tallies added to the statistics.
+
+use super::GpuSession;
+use crate::layout::{RunStats, SessionParams};
+use crate::levels;
+use crate::pipelines::dispatch;
+use crate::shaders::WORKGROUP_SIZE;
+use prismatic_core::scene::{Estimator, RadiusMode};
+use prismatic_core::schedule::{GRID_LEVELS, PilotScale, pass_scene, pilot_scene};
+use prismatic_core::trace::photon_flux;
+use prismatic_core::{BackendError, NoProgress, PreparedScene, Progress, Stage};
+
+/// Units a gather's largest possible term is worth at most: 2^30 of them
+/// (an i64 sum holds 2^33 such terms; one term keeps 30 bits below it).
+const TERM_BITS: i32 = 30;
+
+impl GpuSession {
+    /// Empties the pixels' sums and the statistics of the passes (a change
+    /// of the photons or more starts the passes again).
+    pub(super) fn empty_sums(&mut self) -> Result<(), BackendError> {
+        let none = RunStats { min_ratio: f32::INFINITY.to_bits(), ..RunStats::default() };
+        let points = std::mem::offset_of!(RunStats, points);
+        let (before, after) = (&bytemuck::bytes_of(&none)[..points], &bytemuck::bytes_of(&none)[points + 4..]);
+        self.ctx.write(&self.run_stats, 0, before);
+        self.ctx.write(&self.run_stats, points as u64 + 4, after);
+        self.ctx.checked("emptying the sums", || {
+            let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+            for chunk in &self.points.chunks {
+                encoder.clear_buffer(&chunk.sums, 0, None);
+            }
+            self.ctx.queue.submit([encoder.finish()]);
+        })
+    }
+
+    /// The pilot pass (progressive radii only): photons at 1/8 of a pass,
+    /// gathered within the scene's radius; each point's first radius from
+    /// what it found, and the grid levels those radii need marked.
+    pub(super) fn pilot(&mut self) -> Result<(), BackendError> {
+        let Some(pilot) = pilot_scene(&self.scene) else { return Ok(()) };
+        let scale = PilotScale::new(&self.scene, &pilot);
+        let settings = SessionParams {
+            pilot_scale: scale.scale,
+            neighbours: scale.neighbours,
+            inv_passes: 1.0,
+            whole_radius: 1,
+            ..SessionParams::default()
+        };
+        self.levels.forget(&self.ctx)?;
+        self.trace_photons(&pilot, &mut NoProgress)?;
+        self.stamp(Stage::Photons)?;
+        self.grid_photons(&pilot)?;
+        self.gather_chunks(Finish::FirstRadii, settings)?;
+        self.stamp(Stage::Gather)?;
+        self.levels.read_used(&self.ctx)?;
+        Ok(())
+    }
+
+    /// Photon pass `k`, gathered at the points with their radii and added to
+    /// the pixels' sums; `summed` passes are in the image with it.
+    pub(super) fn pass(&mut self, k: u32, summed: u32, progress: &mut dyn Progress) -> Result<(), BackendError> {
+        let pass = pass_scene(&self.scene, k);
+        let fixed = self.scene.scene.render.radius_mode == RadiusMode::Fixed;
+        let settings = SessionParams {
+            inv_passes: 1.0 / summed as f32,
+            whole_radius: u32::from(fixed),
+            ..SessionParams::default()
+        };
+        self.trace_photons(&pass, progress)?;
+        self.fold_tallies()?;
+        self.stamp(Stage::Photons)?;
+        self.grid_photons(&pass)?;
+        self.gather_chunks(Finish::Accumulate, settings)?;
+        self.stamp(Stage::Gather)
+    }
+
+    /// Traces `pass`'s photons (its seed and photon count) into the map.
+    pub(super) fn trace_photons(
+        &mut self,
+        pass: &PreparedScene,
+        progress: &mut dyn Progress,
+    ) -> Result<(), BackendError> {
+        let r = &pass.scene.render;
+        let (sum_shift, flux_shift) = gather_shifts(pass);
+        let p = &mut self.buffers.params;
+        (p.seed, p.radius, p.flux, p.sum_shift, p.flux_shift) =
+            (r.seed, r.radius, photon_flux(pass), sum_shift, flux_shift);
+        if self.photons.capacity() > 0 {
+            let emissions = r.photons.min(self.photons.emissions());
+            self.photons.record(&self.ctx, &self.pipelines, &mut self.buffers, emissions, progress)?;
+        }
+        Ok(())
+    }
+
+    /// Adds the last photon pass's tallies to the statistics (on the device).
+    fn fold_tallies(&mut self) -> Result<(), BackendError> {
+        self.ctx.checked("adding up the statistics", || {
+            let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+            dispatch(&mut encoder, &self.pipelines.fold_tallies, &[&self.fold_group], 1, 1);
+            self.ctx.queue.submit([encoder.finish()]);
+        })
+    }
+
+    /// Grids the map at every built level for `pass`'s radius.
+    fn grid_photons(&mut self, pass: &PreparedScene) -> Result<(), BackendError> {
+        if self.photons.capacity() > 0 {
+            // `rebuild` leaves the grid's mask and window in the params for the gather.
+            let radius = pass.scene.render.radius;
+            self.levels.rebuild(&self.ctx, &self.pipelines, &mut self.buffers, &self.photons, radius)?;
+        }
+        self.stamp(Stage::Grid)
+    }
+
+    /// Every chunk: the points' sums emptied and radii set, the gather
+    /// level by level (in segments on a software device), then `finish`
+    /// (first radii or the pixels' sums) with the pass's `settings`.
+    fn gather_chunks(&mut self, finish: Finish, settings: SessionParams) -> Result<(), BackendError> {
+        let steps = self.gather_steps(settings.whole_radius != 0)?;
+        let r_pass = self.buffers.params.radius;
+        let slots = self.points.slots;
+        for chunk in &self.points.chunks {
+            let slot_count = chunk.count * u64::from(slots);
+            let groups = chunk.groups();
+            for (i, step) in steps.iter().enumerate() {
+                let p = &mut self.buffers.params;
+                (p.pixel_offset, p.pixel_count, p.points_per_pixel) = (chunk.offset as u32, chunk.count as u32, slots);
+                let mut session = SessionParams { built_levels: self.levels.built(), ..settings };
+                if let Some(GatherStep { level, segment }) = *step {
+                    p.inv_cell = levels::inv_cell(r_pass, level);
+                    (p.gather_first, p.gather_span) = (segment.saturating_mul(self.span), self.span);
+                    session.level = level as u32;
+                }
+                self.buffers.write_params(&self.ctx);
+                self.ctx.write(&self.session_params, 0, bytemuck::bytes_of(&session));
+                self.ctx.checked("gathering the pass", || {
+                    let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+                    let coarsest = [groups.gather(0), &groups.session];
+                    if i == 0 {
+                        dispatch(&mut encoder, &self.pipelines.begin_pass, &coarsest, slot_count, WORKGROUP_SIZE);
+                    }
+                    if let Some(GatherStep { level, .. }) = *step {
+                        let both = [groups.gather(level), &groups.session];
+                        dispatch(&mut encoder, &self.pipelines.gather_level, &both, slot_count, WORKGROUP_SIZE);
+                    }
+                    if i + 1 == steps.len() {
+                        let (pipeline, invocations) = match finish {
+                            Finish::FirstRadii => (&self.pipelines.first_radius, slot_count),
+                            Finish::Accumulate => (&self.pipelines.accumulate, chunk.count),
+                        };
+                        dispatch(&mut encoder, pipeline, &coarsest, invocations, WORKGROUP_SIZE);
+                    }
+                    self.ctx.queue.submit([encoder.finish()]);
+                })?;
+            }
+        }
+        Ok(())
+    }
+
+    /// The gather dispatches of this pass, in order: each built level (when
+    /// every radius is the pass radius: level 0 alone) in as many segments
+    /// as its widest bucket needs on a software device (read back: a wait);
+    /// one empty step when there are no photons (the sums are still set
+    /// and finished).
+    fn gather_steps(&self, whole_radius: bool) -> Result<Vec<Option<GatherStep>>, BackendError> {
+        let mut steps = Vec::new();
+        if self.photons.capacity() > 0 {
+            for (level, grid) in self.levels.iter().take(if whole_radius { 1 } else { GRID_LEVELS }) {
+                let segments = match self.span {
+                    u32::MAX => 1,
+                    span => grid.widest_bucket(&self.ctx, &self.pipelines)?.div_ceil(span).max(1),
+                };
+                steps.extend((0..segments).map(|segment| Some(GatherStep { level, segment })));
+            }
+        }
+        if steps.is_empty() {
+            steps.push(None);
+        }
+        Ok(steps)
+    }
+}
+
+/// The powers of two that put a pass's gather sums in fixed point (colour
+/// sums, flux sum): the largest term a photon can add is worth at most
+/// 2^[`TERM_BITS`] units. A photon carries at most the white flux Φ (a
+/// projection map's weights are below 1); the density estimator adds
+/// Φ·max(1, N·max|C_i|) at most, the paper's max(1, max|C_i|).
+pub fn gather_shifts(pass: &PreparedScene) -> (i32, i32) {
+    let flux = photon_flux(pass);
+    let weight = pass.bands.bands().iter().map(|b| b.weight.abs().max_element()).fold(1.0f32, f32::max);
+    let term = match pass.scene.render.estimator {
+        Estimator::Density => flux * (weight * pass.bands.len() as f32).max(1.0),
+        Estimator::Paper => weight,
+    };
+    (TERM_BITS - exponent(term), TERM_BITS - exponent(flux))
+}
+
+/// The e with 2^(e−1) ≤ x < 2^e for a positive normal `x` (0 for zero or
+/// non-normal values: any shift serves sums of nothing).
+fn exponent(x: f32) -> i32 {
+    if !x.is_normal() {
+        return 0;
+    }
+    ((x.to_bits() >> 23) & 0xff) as i32 - 126
+}
+
+/// One gather dispatch: a grid level's points, one segment of each bucket.
+#[derive(Clone, Copy)]
+struct GatherStep {
+    level: usize,
+    segment: u32,
+}
+
+/// What follows a chunk's gather.
+#[derive(Clone, Copy)]
+enum Finish {
+    /// The pilot's: each point's first radius (per slot).
+    FirstRadii,
+    /// A pass's: the pixels' sums and image (per pixel).
+    Accumulate,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::exponent;
+
+    #[test]
+    fn the_exponent_bounds_its_value() {
+        for x in [1e-30f32, 3e-7, 0.1, 0.5, 1.0, 1.5, 2.0, 1000.0, 3e30] {
+            let e = exponent(x);
+            assert!(2f32.powi(e - 1) <= x && x < 2f32.powi(e), "{x}: {e}");
+        }
+        assert_eq!((exponent(0.0), exponent(f32::NAN)), (0, 0));
+    }
+}

@@ -1,0 +1,330 @@
+//! The WGSL twins of the core's kernels, each run on its own in a small
+//! compute pipeline (on lavapipe where there is no GPU) against the core on
+//! generated inputs (`prismatic_conformance::twins`): the optics (interface,
+//! Fresnel, reflection, refraction: grazing angles, total internal
+//! reflection, indices within 1e-6 of 1, glass in a denser medium), the
+//! estimator's last step (`finish_estimate` against `gather::finish`), and
+//! the fixed-point sums (`to_fixed`, `i64_add` against Rust's `as i64` and
+//! `saturating_add`). A drift in one copy fails here before a whole-image
+//! parity test sees it.
+
+use bytemuck::{Pod, Zeroable};
+use prismatic_conformance::twins::{
+    Agreement, FinishCase, SurfaceAnswer, SurfaceCase, check_finish, check_surface, finish_case, fixed_answer,
+    fixed_input, surface_case,
+};
+use prismatic_core::{Estimator, Vec3};
+use prismatic_gpu::{AdapterChoice, GpuContext, shaders};
+use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
+use std::sync::OnceLock;
+use wgpu::util::DeviceExt;
+
+/// The entry points, one per kernel and module, each reading its inputs
+/// from binding 0 and writing its answers to binding 1.
+const OPTICS: &str = r#"
+struct SurfaceIn {
+    d: vec3<f32>,
+    ior: f32,
+    outward: vec3<f32>,
+    _pad: f32,
+}
+
+struct SurfaceOut {
+    normal: vec3<f32>,
+    n1: f32,
+    reflected: vec3<f32>,
+    n2: f32,
+    refracted: vec4<f32>,
+    fresnel: f32,
+    _pad0: f32,
+    _pad1: f32,
+    _pad2: f32,
+}
+
+@group(0) @binding(0) var<storage, read> surface_in: array<SurfaceIn>;
+@group(0) @binding(1) var<storage, read_write> surface_out: array<SurfaceOut>;
+
+@compute @workgroup_size(64)
+fn optics(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&surface_in) {
+        return;
+    }
+    let c = surface_in[id.x];
+    let f = facing_interface(c.d, c.outward, c.ior);
+    let r = fresnel(-dot(c.d, f.n), f.n1, f.n2);
+    surface_out[id.x] =
+        SurfaceOut(f.n, f.n1, reflect_dir(c.d, f.n), f.n2, refract_dir(c.d, f.n, f.n1, f.n2), r, 0.0, 0.0, 0.0);
+}
+"#;
+
+const FINISH: &str = r#"
+struct FinishIn {
+    sums: vec3<f32>,
+    flux: f32,
+    estimator: u32,
+    bands: u32,
+    total: u32,
+    radius: f32,
+}
+
+@group(0) @binding(0) var<storage, read> finish_in: array<FinishIn>;
+@group(0) @binding(1) var<storage, read_write> finish_out: array<vec4<f32>>;
+
+@compute @workgroup_size(64)
+fn finish(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&finish_in) {
+        return;
+    }
+    let c = finish_in[id.x];
+    finish_out[id.x] = vec4<f32>(finish_estimate(c.estimator, c.bands, c.sums, c.total, c.flux, c.radius), 0.0);
+}
+"#;
+
+const FIXED: &str = r#"
+struct FixedIn {
+    x: f32,
+    shift: i32,
+    a: vec2<u32>,
+    b: vec2<u32>,
+    _pad: vec2<u32>,
+}
+
+@group(0) @binding(0) var<storage, read> fixed_in: array<FixedIn>;
+@group(0) @binding(1) var<storage, read_write> fixed_out: array<vec4<u32>>;
+
+@compute @workgroup_size(64)
+fn fixed(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&fixed_in) {
+        return;
+    }
+    let c = fixed_in[id.x];
+    fixed_out[id.x] = vec4<u32>(to_fixed(c.x, c.shift), i64_add(c.a, c.b));
+}
+"#;
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct SurfaceIn {
+    d: [f32; 3],
+    ior: f32,
+    outward: [f32; 3],
+    _pad: f32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct SurfaceOut {
+    normal: [f32; 3],
+    n1: f32,
+    reflected: [f32; 3],
+    n2: f32,
+    refracted: [f32; 4],
+    fresnel: f32,
+    _pad: [f32; 3],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct FinishIn {
+    sums: [f32; 3],
+    flux: f32,
+    estimator: u32,
+    bands: u32,
+    total: u32,
+    radius: f32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct FixedIn {
+    x: f32,
+    shift: i32,
+    a: [u32; 2],
+    b: [u32; 2],
+    _pad: [u32; 2],
+}
+
+/// The device and one pipeline per entry point, made once for every test.
+struct Twins {
+    ctx: GpuContext,
+    pipelines: [(&'static str, wgpu::ComputePipeline); 3],
+}
+
+fn twins() -> Option<&'static Twins> {
+    static TWINS: OnceLock<Option<Twins>> = OnceLock::new();
+    TWINS
+        .get_or_init(|| {
+            let ctx = match GpuContext::new(AdapterChoice::Any) {
+                Ok(ctx) => ctx,
+                Err(e) if std::env::var_os("CI").is_some() => panic!("CI=true and no GPU adapter: {e}"),
+                Err(e) => {
+                    eprintln!("SKIPPING the WGSL twins on this machine: {e}");
+                    return None;
+                }
+            };
+            let pipeline = |entry: &'static str, source: &str| {
+                let module = ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some(entry),
+                    source: wgpu::ShaderSource::Wgsl([shaders::library(), source.into()].concat().into()),
+                });
+                let pipeline = ctx.device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some(entry),
+                    layout: None,
+                    module: &module,
+                    entry_point: Some(entry),
+                    compilation_options: Default::default(),
+                    cache: None,
+                });
+                (entry, pipeline)
+            };
+            let pipelines = [pipeline("optics", OPTICS), pipeline("finish", FINISH), pipeline("fixed", FIXED)];
+            Some(Twins { ctx, pipelines })
+        })
+        .as_ref()
+}
+
+impl Twins {
+    /// Runs entry point `entry` on `inputs`; its answers, `O` per input.
+    fn run<I: Pod, O: Pod>(&self, entry: &str, inputs: &[I]) -> Vec<O> {
+        let (device, queue) = (&self.ctx.device, &self.ctx.queue);
+        let pipeline = &self.pipelines.iter().find(|(name, _)| *name == entry).expect("an entry point").1;
+        let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("twin inputs"),
+            contents: bytemuck::cast_slice(inputs),
+            usage: wgpu::BufferUsages::STORAGE,
+        });
+        let size = (inputs.len() * size_of::<O>()) as u64;
+        let output = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("twin answers"),
+            size,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("twins"),
+            layout: &pipeline.get_bind_group_layout(0),
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: input.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 1, resource: output.as_entire_binding() },
+            ],
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, Some(&group), &[]);
+            pass.dispatch_workgroups((inputs.len() as u32).div_ceil(64), 1, 1);
+        }
+        queue.submit([encoder.finish()]);
+        bytemuck::pod_collect_to_vec(&self.ctx.read(&output, 0, size).expect("the answers"))
+    }
+}
+
+/// The WGSL's optics on `cases`.
+fn wgsl_optics(twins: &Twins, cases: &[SurfaceCase]) -> Vec<SurfaceAnswer> {
+    let inputs: Vec<SurfaceIn> = cases
+        .iter()
+        .map(|c| SurfaceIn { d: c.d.to_array(), ior: c.ior, outward: c.outward.to_array(), _pad: 0.0 })
+        .collect();
+    let answers: Vec<SurfaceOut> = twins.run("optics", &inputs);
+    answers
+        .iter()
+        .map(|a| SurfaceAnswer {
+            normal: Vec3::from(a.normal),
+            n1: a.n1,
+            n2: a.n2,
+            fresnel: a.fresnel,
+            reflected: Vec3::from(a.reflected),
+            refracted: (a.refracted[3] != 0.0).then(|| Vec3::new(a.refracted[0], a.refracted[1], a.refracted[2])),
+        })
+        .collect()
+}
+
+/// How far the WGSL optics may stray: a few ulps of a unit vector (the
+/// compiler may fuse multiply-adds).
+const OPTICS_ABS: f32 = 2e-6;
+
+/// How far the WGSL estimate may stray, relative: f32 throughout where the
+/// core finishes in f64.
+const FINISH_REL: f32 = 1e-6;
+
+fn config(cases: u32) -> ProptestConfig {
+    ProptestConfig {
+        cases,
+        // A fixed seed keeps CI reproducible; PROPTEST_RNG_SEED=<number> explores other cases.
+        rng_seed: std::env::var("PROPTEST_RNG_SEED")
+            .ok()
+            .and_then(|s| s.parse().ok())
+            .unwrap_or(RngSeed::Fixed(0x76a5)),
+        ..ProptestConfig::default()
+    }
+}
+
+proptest! {
+    #![proptest_config(config(8))]
+
+    #[test]
+    fn wgsl_optics_are_the_cores(cases in prop::collection::vec(surface_case(), 1024)) {
+        let Some(twins) = twins() else { return Ok(()) };
+        for (case, got) in cases.iter().zip(wgsl_optics(twins, &cases)) {
+            if let Err(e) = check_surface(case, &got, Agreement::Within(OPTICS_ABS)) {
+                return Err(TestCaseError::fail(e));
+            }
+        }
+    }
+
+    #[test]
+    fn the_wgsl_estimate_is_the_cores(cases in prop::collection::vec(finish_case(), 1024)) {
+        let Some(twins) = twins() else { return Ok(()) };
+        let inputs: Vec<FinishIn> = cases
+            .iter()
+            .map(|c: &FinishCase| FinishIn {
+                sums: c.sums,
+                flux: c.flux,
+                estimator: match c.estimator {
+                    Estimator::Paper => 0,
+                    Estimator::Density => 1,
+                },
+                bands: c.bands,
+                total: c.total,
+                radius: c.radius,
+            })
+            .collect();
+        let answers: Vec<[f32; 4]> = twins.run("finish", &inputs);
+        for (case, got) in cases.iter().zip(answers) {
+            if let Err(e) = check_finish(case, Vec3::new(got[0], got[1], got[2]), FINISH_REL) {
+                return Err(TestCaseError::fail(e));
+            }
+        }
+    }
+
+    #[test]
+    fn wgsl_fixed_point_is_rusts_i64(
+        cases in prop::collection::vec((fixed_input(), -20i32..100, any::<i64>(), any::<i64>()), 1024),
+    ) {
+        let Some(twins) = twins() else { return Ok(()) };
+        let words = |v: i64| [v as u32, (v >> 32) as u32];
+        let inputs: Vec<FixedIn> = cases
+            .iter()
+            .map(|&(x, shift, a, b)| FixedIn { x, shift, a: words(a), b: words(b), _pad: [0; 2] })
+            .collect();
+        let answers: Vec<[u32; 4]> = twins.run("fixed", &inputs);
+        for (&(x, shift, a, b), got) in cases.iter().zip(answers) {
+            let value = |lo: u32, hi: u32| ((u64::from(hi) << 32) | u64::from(lo)) as i64;
+            prop_assert_eq!(value(got[0], got[1]), fixed_answer(x, shift), "to_fixed({:e} = {:#x}, {})", x, x.to_bits(), shift);
+            prop_assert_eq!(value(got[2], got[3]), a.saturating_add(b), "i64_add({}, {})", a, b);
+        }
+    }
+}
+
+/// The twin tests bite: a case whose refraction is off by 1e-5 fails the optics check.
+#[test]
+fn a_drifted_copy_is_caught() {
+    let Some(twins) = twins() else { return };
+    let case = SurfaceCase { d: Vec3::new(0.6, -0.8, 0.0), outward: Vec3::Y, ior: 1.5 };
+    let mut got = wgsl_optics(twins, &[case])[0];
+    assert!(check_surface(&case, &got, Agreement::Within(OPTICS_ABS)).is_ok(), "{got:?}");
+    got.refracted = got.refracted.map(|t| t + Vec3::new(1e-5, 0.0, 0.0));
+    assert!(check_surface(&case, &got, Agreement::Within(OPTICS_ABS)).is_err());
+}

@@ -1,0 +1,37 @@
+//! The names of settings as scene files and command-line flags write
+//! them: band tables, estimators, wavelength sampling, radius modes.
+
+use prismatic_core::bands::BandSpec;
+use prismatic_core::scene::{Estimator, RadiusMode, WavelengthSampling};
+
+/// Parses a band table name: `paper3`, `paper7` or a number of bands.
+pub fn parse_bands(s: &str) -> Result<BandSpec, String> {
+    match s {
+        "paper3" => Ok(BandSpec::Paper3),
+        "paper7" => Ok(BandSpec::Paper7),
+        _ => s
+            .parse::<u16>()
+            .map(BandSpec::Physical)
+            .map_err(|_| format!("must be \"paper3\", \"paper7\" or a number of bands, got \"{s}\"")),
+    }
+}
+
+/// Parses an estimator name.
+pub fn parse_estimator(s: &str) -> Result<Estimator, String> {
+    match s {
+        "paper" => Ok(Estimator::Paper),
+        "density" => Ok(Estimator::Density),
+        _ => Err(format!("unknown estimator \"{s}\"; expected paper or density")),
+    }
+}
+
+/// Parses a wavelength-sampling name.
+pub fn parse_wavelengths(s: &str) -> Result<WavelengthSampling, String> {
+    WavelengthSampling::from_name(s)
+        .ok_or_else(|| format!("unknown wavelength sampling \"{s}\"; expected split, random_band or continuous"))
+}
+
+/// Parses a radius-mode name.
+pub fn parse_radius_mode(s: &str) -> Result<RadiusMode, String> {
+    RadiusMode::from_name(s).ok_or_else(|| format!("unknown radius mode \"{s}\"; expected progressive or fixed"))
+}

@@ -1,0 +1,102 @@
+//! Comparisons under the rules of [`crate::tolerance`]: photon maps (key by
+//! key, with a stated number of outliers, and flux per band) and images
+//! (pixel by pixel, with a stated number of outlier pixels).
+
+use crate::tolerance::*;
+use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::{Image, PhotonMap};
+
+/// What a comparison found.
+#[derive(Debug, Default)]
+pub struct ParityReport {
+    /// Photons compared.
+    pub matched: usize,
+    /// Keys missing on one side, or matched photons that landed elsewhere.
+    pub outliers: usize,
+    /// Worst relative difference of per-band total flux.
+    pub worst_band_flux: f64,
+}
+
+/// Compares two photon maps (both in canonical order).
+pub fn compare_maps(expected: &PhotonMap, got: &PhotonMap, bands: usize) -> Result<ParityReport, String> {
+    compare_maps_allowing(expected, got, bands, OUTLIER_FRACTION)
+}
+
+/// [`compare_maps`] with `outlier_fraction` of the photons allowed to be
+/// outliers, and each band's total flux allowed to move by as much (an
+/// outlier photon missing from a band takes its flux along).
+pub fn compare_maps_allowing(
+    expected: &PhotonMap,
+    got: &PhotonMap,
+    bands: usize,
+    outlier_fraction: f64,
+) -> Result<ParityReport, String> {
+    let (a, b) = (&expected.photons, &got.photons);
+    let mut report = ParityReport::default();
+    let (mut i, mut j) = (0, 0);
+    while i < a.len() || j < b.len() {
+        match (a.get(i), b.get(j)) {
+            (Some(x), Some(y)) if x.key() == y.key() => {
+                let position_ok = (0..3).all(|k| close(x.position[k], y.position[k], POSITION_REL, POSITION_ABS));
+                if !position_ok || !close(x.flux, y.flux, FLUX_REL, 0.0) {
+                    report.outliers += 1;
+                }
+                report.matched += 1;
+                i += 1;
+                j += 1;
+            }
+            (Some(x), Some(y)) if x.key() < y.key() => {
+                report.outliers += 1;
+                i += 1;
+            }
+            (Some(_), None) => {
+                report.outliers += 1;
+                i += 1;
+            }
+            _ => {
+                report.outliers += 1;
+                j += 1;
+            }
+        }
+    }
+    let allowed = MIN_OUTLIERS.max((outlier_fraction * a.len().max(b.len()) as f64) as usize);
+    if report.outliers > allowed {
+        return Err(format!("{} outlier photons of {} (allowed {allowed})", report.outliers, a.len()));
+    }
+    let per_band = |m: &PhotonMap| {
+        let mut f = vec![0.0f64; bands + 1];
+        for p in &m.photons {
+            f[if p.band == WHITE_BAND { bands } else { usize::from(p.band) }] += f64::from(p.flux);
+        }
+        f
+    };
+    let (fa, fb) = (per_band(expected), per_band(got));
+    let total: f64 = fa.iter().sum();
+    for (band, (x, y)) in fa.iter().zip(&fb).enumerate() {
+        // Bands that carry almost nothing are compared against the whole map's flux.
+        let rel = (x - y).abs() / x.abs().max(y.abs()).max(1e-3 * total).max(f64::MIN_POSITIVE);
+        report.worst_band_flux = report.worst_band_flux.max(rel);
+        if rel > BAND_FLUX_REL.max(outlier_fraction) {
+            return Err(format!("band {band}: total flux {x} vs {y} ({:.3} % apart)", rel * 100.0));
+        }
+    }
+    Ok(report)
+}
+
+/// Compares two images pixel by pixel.
+pub fn compare_images(expected: &Image, got: &Image) -> Result<usize, String> {
+    if (expected.width, expected.height) != (got.width, got.height) {
+        return Err(format!("sizes differ: {}x{} vs {}x{}", expected.width, expected.height, got.width, got.height));
+    }
+    let bad = expected
+        .pixels
+        .iter()
+        .zip(&got.pixels)
+        .filter(|(a, b)| !(0..3).all(|k| close(a[k], b[k], PIXEL_REL, PIXEL_ABS)))
+        .count();
+    let allowed = (PIXEL_OUTLIER_FRACTION * expected.pixels.len() as f64).ceil() as usize;
+    if bad > allowed {
+        return Err(format!("{bad} of {} pixels differ (allowed {allowed})", expected.pixels.len()));
+    }
+    Ok(bad)
+}

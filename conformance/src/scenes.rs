@@ -1,0 +1,148 @@
+//! The scenes the suite renders, built in code (small: the scalar reference
+//! renders each in well under a second): a dispersive glass sphere on a
+//! checkered floor under a spot light (caustic, band split, visible points
+//! seen through glass), a prism fanning a beam onto a wall (split bands),
+//! a mirror folding a beam onto a floor (no dispersion), and a room with
+//! no mirror or glass (no caustics at all).
+
+use glam::Vec3;
+use prismatic_core::dispersion::{Dispersion, Glass};
+use prismatic_core::scene::{Camera, Checker, Light, Material, MaterialKind, Object, RenderSettings, Shape};
+use prismatic_core::{BandSpec, Estimator, PreparedScene, Scene};
+
+/// A small render: `side`² pixels, `photons` photons a pass, paper7, `density`.
+fn settings(side: u32, photons: u32, radius: f32) -> RenderSettings {
+    RenderSettings {
+        width: side,
+        height: side,
+        photons,
+        radius,
+        bands: BandSpec::Paper7,
+        estimator: Estimator::Density,
+        ..RenderSettings::default()
+    }
+}
+
+fn material(name: &str, kind: MaterialKind) -> Material {
+    Material { name: name.into(), kind }
+}
+
+fn diffuse(name: &str, albedo: f32) -> Material {
+    material(name, MaterialKind::Diffuse { albedo: Vec3::splat(albedo), checker: None })
+}
+
+fn glass(name: &str, dispersion: Dispersion) -> Material {
+    material(name, MaterialKind::Dielectric { dispersion, outside: Dispersion::Constant(1.0) })
+}
+
+fn prepared(scene: Scene) -> PreparedScene {
+    PreparedScene::new(scene).unwrap_or_else(|e| panic!("a conformance scene is invalid: {e}"))
+}
+
+/// The paper's sphere: dispersive glass on a checkered floor under a spot light.
+pub fn glass_sphere() -> PreparedScene {
+    let checker = Checker { size: 0.5, albedo: Vec3::splat(0.35), offset: Vec3::ZERO };
+    prepared(Scene {
+        render: settings(48, 12_000, 0.08),
+        camera: Camera {
+            position: Vec3::new(3.0, 2.4, 3.2),
+            look_at: Vec3::new(0.3, 0.4, 0.0),
+            up: Vec3::Y,
+            fov_deg: 40.0,
+        },
+        lights: vec![Light::Spot {
+            position: Vec3::new(-1.5, 6.0, -0.5),
+            direction: Vec3::new(1.5, -6.0, 0.5),
+            cone_deg: 30.0,
+            power: 40.0,
+        }],
+        materials: vec![
+            material("floor", MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: Some(checker) }),
+            glass("glass", Glass::Sf11.dispersion()),
+        ],
+        objects: vec![
+            Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
+            Object { shape: Shape::Sphere { center: Vec3::new(0.0, 1.0, 0.0), radius: 0.8 }, material: 1 },
+        ],
+    })
+}
+
+/// A beam through a 60° prism of dense flint, fanned onto a wall the camera faces.
+pub fn prism() -> PreparedScene {
+    let h = 3f32.sqrt();
+    prepared(Scene {
+        render: settings(40, 4_000, 0.1),
+        camera: Camera {
+            position: Vec3::new(-1.0, 1.0, 7.0),
+            look_at: Vec3::new(5.0, -2.0, 0.0),
+            up: Vec3::Y,
+            fov_deg: 50.0,
+        },
+        // At 60° incidence on the left face's middle: out of the right face
+        // about 66° lower, onto the wall near y = −2.4.
+        lights: vec![Light::Beam {
+            position: Vec3::new(-3.96, -1.13, 0.0),
+            direction: Vec3::new(0.866, 0.5, 0.0),
+            radius: 0.15,
+            power: 5.0,
+        }],
+        materials: vec![glass("flint", Glass::Sf11.dispersion()), diffuse("wall", 0.8)],
+        objects: vec![
+            Object {
+                shape: Shape::Prism {
+                    vertices: [Vec3::new(-1.0, 0.0, -1.0), Vec3::new(1.0, 0.0, -1.0), Vec3::new(0.0, h, -1.0)],
+                    extrude: Vec3::new(0.0, 0.0, 2.0),
+                },
+                material: 0,
+            },
+            Object { shape: Shape::Plane { point: Vec3::new(5.0, 0.0, 0.0), normal: Vec3::NEG_X }, material: 1 },
+        ],
+    })
+}
+
+/// A beam folded by a mirror onto a floor: a caustic without dispersion.
+pub fn mirror() -> PreparedScene {
+    prepared(Scene {
+        render: settings(32, 3_000, 0.15),
+        camera: Camera {
+            position: Vec3::new(0.0, 6.0, 4.0),
+            look_at: Vec3::new(0.0, 0.0, 0.0),
+            up: Vec3::Y,
+            fov_deg: 50.0,
+        },
+        lights: vec![Light::Beam { position: Vec3::new(-3.0, 2.0, 0.0), direction: Vec3::X, radius: 0.4, power: 2.0 }],
+        materials: vec![diffuse("floor", 0.7), material("mirror", MaterialKind::Mirror)],
+        objects: vec![
+            Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
+            Object {
+                shape: Shape::Disk {
+                    center: Vec3::new(0.0, 2.0, 0.0),
+                    normal: Vec3::new(-1.0, -1.0, 0.0),
+                    radius: 0.8,
+                    inner_radius: 0.0,
+                },
+                material: 1,
+            },
+        ],
+    })
+}
+
+/// A floor and a diffuse ball under a point light: nothing specular, so no
+/// caustic photon is traced and the image is its view pass's.
+pub fn no_caustics() -> PreparedScene {
+    prepared(Scene {
+        render: settings(24, 2_000, 0.1),
+        camera: Camera { position: Vec3::new(0.0, 2.0, 5.0), look_at: Vec3::ZERO, up: Vec3::Y, fov_deg: 45.0 },
+        lights: vec![Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 30.0 }],
+        materials: vec![diffuse("floor", 0.7), diffuse("ball", 0.5)],
+        objects: vec![
+            Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
+            Object { shape: Shape::Sphere { center: Vec3::new(0.0, 0.6, 0.0), radius: 0.6 }, material: 1 },
+        ],
+    })
+}
+
+/// The scenes with caustics, by name.
+pub fn with_caustics() -> Vec<(&'static str, PreparedScene)> {
+    vec![("glass sphere", glass_sphere()), ("prism", prism()), ("mirror", mirror())]
+}

@@ -1,0 +1,191 @@
+//! The test bodies every backend must pass, each a function of the backend
+//! under test. The scalar reference ([`ReferenceBackend`]) is the
+//! specification: results are compared with its under the rules of
+//! [`crate::compare`], and a backend's own results with each other bit for
+//! bit where the protocol promises it (passes merge exactly, run in any
+//! order, an update gives a fresh render's sums).
+
+use crate::compare::{compare_images, compare_maps};
+use crate::scenes;
+use prismatic_core::scene::{Light, RadiusMode};
+use prismatic_core::{
+    Accumulation, Backend, BackendError, BandSpec, Change, NoProgress, PhotonMap, PreparedScene, ReferenceBackend,
+    Render, Scene,
+};
+
+/// A render of `scene` on `backend`, panicking with the backend's name.
+fn prepare(backend: &mut dyn Backend, scene: &PreparedScene) -> Box<dyn Render> {
+    let name = backend.name();
+    backend.prepare(scene).unwrap_or_else(|e| panic!("{name}: prepare: {e}"))
+}
+
+/// `render` after running `passes` in order.
+fn run(render: &mut dyn Render, passes: impl IntoIterator<Item = u32>) {
+    for k in passes {
+        render.run_pass(k, &mut NoProgress).unwrap_or_else(|e| panic!("{}: pass {k}: {e}", render.backend()));
+    }
+}
+
+fn sums(render: &mut dyn Render) -> Accumulation {
+    render.sums().unwrap_or_else(|e| panic!("{}: sums: {e}", render.backend()))
+}
+
+fn photon_map(render: &mut dyn Render, pass: u32) -> PhotonMap {
+    render.photon_map(pass, &mut NoProgress).unwrap_or_else(|e| panic!("{}: photon map: {e}", render.backend()))
+}
+
+/// `scene` with `edit` applied to its description.
+fn edited(scene: &PreparedScene, edit: impl FnOnce(&mut Scene)) -> PreparedScene {
+    let mut s = scene.scene.clone();
+    edit(&mut s);
+    PreparedScene::new(s).unwrap_or_else(|e| panic!("an edited conformance scene is invalid: {e}"))
+}
+
+/// The photon map of a pass is the reference's (same keys in canonical
+/// order, positions and flux within the parity tolerances), with the same
+/// emissions, for several passes.
+pub fn photon_maps_match_the_reference(backend: &mut dyn Backend) {
+    for (name, scene) in scenes::with_caustics() {
+        let mut reference = prepare(&mut ReferenceBackend, &scene);
+        let mut got = prepare(backend, &scene);
+        for pass in [0, 3] {
+            let (expected, map) = (photon_map(reference.as_mut(), pass), photon_map(got.as_mut(), pass));
+            let case = format!("{}, {name}, pass {pass}", backend.name());
+            assert!(map.is_canonical(), "{case}: not in canonical order");
+            assert!(!expected.photons.is_empty(), "{case}: the reference stores no photon to compare");
+            assert_eq!(map.stats.emitted, expected.stats.emitted, "{case}: emitted");
+            compare_maps(&expected, &map, scene.bands.len()).unwrap_or_else(|e| panic!("{case}: {e}"));
+        }
+    }
+}
+
+/// The paper's frame (one pass, fixed radius) and a progressive render's
+/// first passes give the reference's image, and the same visible points.
+pub fn images_match_the_reference(backend: &mut dyn Backend) {
+    for (name, scene) in scenes::with_caustics() {
+        for mode in [RadiusMode::Fixed, RadiusMode::Progressive] {
+            let scene = edited(&scene, |s| s.render.radius_mode = mode);
+            let passes = if mode == RadiusMode::Fixed { 1 } else { 3 };
+            let case = format!("{}, {name}, {} radii, {passes} passes", backend.name(), mode.name());
+            let mut reference = prepare(&mut ReferenceBackend, &scene);
+            let mut got = prepare(backend, &scene);
+            run(reference.as_mut(), 0..passes);
+            run(got.as_mut(), 0..passes);
+            let (expected, image) = (reference.image().unwrap(), got.image().unwrap());
+            compare_images(&reference.base().unwrap(), &got.base().unwrap())
+                .unwrap_or_else(|e| panic!("{case}: image without caustics: {e}"));
+            compare_images(&expected, &image).unwrap_or_else(|e| panic!("{case}: {e}"));
+            let (want, have) = (reference.stats().unwrap(), got.stats().unwrap());
+            assert_eq!(have.visible_points, want.visible_points, "{case}: visible points");
+            assert_eq!(have.passes, passes, "{case}: passes");
+        }
+    }
+}
+
+/// Partial renders of passes `0..2` and `2..4` merge into the sums of one
+/// render of `0..4`, bit for bit, and so into its image.
+pub fn partial_renders_merge_into_one_run(backend: &mut dyn Backend) {
+    let scene = scenes::glass_sphere();
+    let mut whole = prepare(backend, &scene);
+    run(whole.as_mut(), 0..4);
+    let (mut first, mut second) = (prepare(backend, &scene), prepare(backend, &scene));
+    run(first.as_mut(), 0..2);
+    run(second.as_mut(), 2..4);
+    let mut merged = sums(first.as_mut());
+    merged.merge(&sums(second.as_mut())).expect("disjoint passes");
+    let name = backend.name();
+    assert_eq!(merged.passes, [(0, 4)], "{name}");
+    assert_eq!(merged, sums(whole.as_mut()), "{name}: merged partials differ from one run");
+    assert_eq!(first.base().unwrap(), whole.base().unwrap(), "{name}: the base differs between renders");
+    assert_eq!(merged.image(&first.base().unwrap()), whole.image().unwrap(), "{name}: images differ");
+}
+
+/// Passes run in any order sum to the same bits; a pass is summed once;
+/// the next pass is the lowest one not summed.
+pub fn passes_run_in_any_order_and_once(backend: &mut dyn Backend) {
+    let scene = scenes::prism();
+    let mut in_order = prepare(backend, &scene);
+    run(in_order.as_mut(), 0..4);
+    let mut shuffled = prepare(backend, &scene);
+    run(shuffled.as_mut(), [2, 0, 3]);
+    let name = backend.name();
+    assert_eq!(shuffled.passes(), [(0, 1), (2, 4)], "{name}");
+    assert_eq!(shuffled.next_pass(&mut NoProgress).unwrap(), 1, "{name}: the next pass fills the gap");
+    assert_eq!(sums(shuffled.as_mut()), sums(in_order.as_mut()), "{name}: order changed the sums");
+    assert_eq!(shuffled.run_pass(2, &mut NoProgress), Err(BackendError::PassRepeated(2)), "{name}");
+    assert_eq!(sums(shuffled.as_mut()).pass_count(), 4, "{name}: a refused pass changed the sums");
+}
+
+/// An update says what it invalidates, starts the passes again where it
+/// invalidates the photons, and the render then gives the sums of a fresh
+/// render of the new scene.
+pub fn updates_give_a_fresh_renders_sums(backend: &mut dyn Backend) {
+    let scene = scenes::glass_sphere();
+    let moved = |s: &mut Scene| {
+        if let Light::Spot { position, .. } = &mut s.lights[0] {
+            position.x += 0.4;
+        }
+    };
+    let edits: Vec<(Change, PreparedScene)> = vec![
+        (Change::None, edited(&scene, |s| s.render.passes = 3)),
+        (Change::Photons, edited(&scene, |s| s.render.seed += 1)),
+        (Change::Photons, edited(&scene, |s| s.render.photons += 3_000)),
+        (Change::Photons, edited(&scene, |s| s.render.radius_mode = RadiusMode::Fixed)),
+        (Change::View, edited(&scene, moved)),
+        (Change::View, edited(&scene, |s| s.camera.position.x += 0.3)),
+        (Change::View, edited(&scene, |s| s.render.bands = BandSpec::Paper3)),
+        (Change::Size, edited(&scene, |s| (s.render.width, s.render.height) = (40, 28))),
+    ];
+    let name = backend.name();
+    for (change, new) in edits {
+        let mut render = prepare(backend, &scene);
+        run(render.as_mut(), 0..2);
+        assert_eq!(render.update(&new).unwrap(), change, "{name}: {change:?}");
+        let kept = if change >= Change::Photons { 0 } else { 2 };
+        assert_eq!(sums(render.as_mut()).pass_count(), kept, "{name}: {change:?}: passes after the update");
+        if change >= Change::Photons {
+            run(render.as_mut(), 0..2);
+        }
+        let mut fresh = prepare(backend, &new);
+        run(fresh.as_mut(), 0..2);
+        assert_eq!(sums(render.as_mut()), sums(fresh.as_mut()), "{name}: {change:?}: not a fresh render's sums");
+        assert_eq!(render.base().unwrap(), fresh.base().unwrap(), "{name}: {change:?}: not a fresh render's base");
+    }
+}
+
+/// Before any pass a render reads out its base and empty sums, and its
+/// statistics count the passes, the photons and the visible points.
+pub fn read_outs_and_statistics(backend: &mut dyn Backend) {
+    let scene = scenes::glass_sphere();
+    let name = backend.name();
+    let mut reference = prepare(&mut ReferenceBackend, &scene);
+    let mut render = prepare(backend, &scene);
+    let empty = sums(render.as_mut());
+    let r = &scene.scene.render;
+    assert_eq!((empty.pass_count(), empty.width, empty.height), (0, r.width, r.height), "{name}");
+    assert!(empty.sums.iter().all(|s| *s == [0; 3]), "{name}: sums before any pass");
+    compare_images(&reference.base().unwrap(), &render.base().unwrap()).unwrap_or_else(|e| panic!("{name}: {e}"));
+    assert_eq!(render.stats().unwrap().passes, 0, "{name}");
+    run(render.as_mut(), 0..2);
+    let stats = render.stats().unwrap();
+    let stored: u64 = (0..2).map(|k| photon_map(render.as_mut(), k).stats.stored).sum();
+    assert_eq!(stats.passes, 2, "{name}");
+    assert_eq!(stats.trace.emitted, 2 * u64::from(r.photons), "{name}: photons emitted");
+    assert_eq!(stats.trace.stored, stored, "{name}: photons stored, against the passes' maps");
+    assert_eq!(stats.visible_points, reference.stats().unwrap().visible_points, "{name}: visible points");
+    let (lo, hi) = stats.first_radii.unwrap_or_else(|| panic!("{name}: no first radii"));
+    assert!(0.0 < lo && lo <= hi && hi <= r.radius, "{name}: first radii {lo}..{hi} of {}", r.radius);
+}
+
+/// A scene without mirrors or glass traces no caustic photon and its image
+/// is its base, bit for bit.
+pub fn a_scene_without_caustics_is_its_base(backend: &mut dyn Backend) {
+    let scene = scenes::no_caustics();
+    let mut render = prepare(backend, &scene);
+    run(render.as_mut(), 0..2);
+    let name = backend.name();
+    assert_eq!(render.image().unwrap(), render.base().unwrap(), "{name}");
+    let stats = render.stats().unwrap();
+    assert_eq!((stats.trace.stored, stats.visible_points), (0, 0), "{name}: {stats:?}");
+    assert!(photon_map(render.as_mut(), 0).photons.is_empty(), "{name}");
+}

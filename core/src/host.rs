@@ -1,0 +1,204 @@
+//! The render protocol on the host: [`HostRender`] drives three kernels
+//! (view rays, photon trace, gather at the visible points) through the pass
+//! schedule and keeps the exact sums. The scalar reference and the CPU's
+//! packets are both this driver over their own kernels.
+
+use crate::accumulation::Accumulation;
+use crate::image::Image;
+use crate::photon::{PhotonMap, TraceStats};
+use crate::prepared::PreparedScene;
+use crate::progress::{Progress, StageTimes};
+use crate::protocol::{BackendError, Change, Render, RenderStats};
+use crate::schedule::{PilotScale, pass_scene, pass_shrink, pilot_scene};
+use crate::visible::{VisiblePoint, VisiblePoints};
+use alloc::vec;
+use alloc::vec::Vec;
+use glam::Vec3;
+
+/// What one pass's gather found at each visible point.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PassGather {
+    /// Caustic irradiance (linear RGB, before the point's weight).
+    pub irradiance: Vec<Vec3>,
+    /// Photons accepted within the point's radius.
+    pub photons: Vec<u32>,
+    /// What the pass's photon trace did.
+    pub stats: TraceStats,
+}
+
+/// The stages a host backend implements; [`HostRender`] runs the rest.
+/// Each has a scalar twin of the same job in the reference
+/// ([`crate::reference`]).
+pub trait HostKernels: Send {
+    /// The backend's name.
+    fn name(&self) -> &'static str;
+
+    /// Traces every pixel's view rays: the image without caustics and the
+    /// visible points that need them (in an order that does not depend on
+    /// the thread count).
+    fn visible_points(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> VisiblePoints;
+
+    /// Traces `scene`'s photons (its seed and count) into the caustic map, in canonical order.
+    fn trace(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> PhotonMap;
+
+    /// One pass: traces `scene`'s photons and gathers them at `points`,
+    /// each within its own radius (`radii`, at most the scene's radius).
+    fn pass(&mut self, scene: &PreparedScene, points: &[VisiblePoint], radii: &[f32]) -> PassGather;
+
+    /// Host time per stage of the last pass, where the kernels measure it.
+    fn stage_times(&self) -> Option<StageTimes> {
+        None
+    }
+}
+
+/// A live render on the host: the visible points and first radii of the
+/// current scene, and the sums of the passes run since they were traced.
+pub struct HostRender<K> {
+    kernels: K,
+    scene: PreparedScene,
+    /// What the next pass or read-out must redo.
+    stale: Change,
+    view: VisiblePoints,
+    radii: Vec<f32>,
+    sums: Accumulation,
+    trace: TraceStats,
+}
+
+impl<K: HostKernels> HostRender<K> {
+    /// A render of `scene` on `kernels`; nothing is traced yet.
+    pub fn new(kernels: K, scene: &PreparedScene) -> Self {
+        let r = &scene.scene.render;
+        HostRender {
+            kernels,
+            scene: scene.clone(),
+            stale: Change::View,
+            view: VisiblePoints { base: Image::new(r.width, r.height), points: Vec::new() },
+            radii: Vec::new(),
+            sums: Accumulation::new(r.width, r.height),
+            trace: TraceStats::default(),
+        }
+    }
+
+    /// The visible points (traced when stale).
+    pub fn visible_points(&mut self, progress: &mut dyn Progress) -> &VisiblePoints {
+        self.bring_up_to_date(progress);
+        &self.view
+    }
+
+    /// Each visible point's first radius (traced when stale).
+    pub fn first_radii(&mut self, progress: &mut dyn Progress) -> &[f32] {
+        self.bring_up_to_date(progress);
+        &self.radii
+    }
+
+    /// Redoes what the last update invalidated: the view rays, the pilot.
+    fn bring_up_to_date(&mut self, progress: &mut dyn Progress) {
+        let stale = core::mem::take(&mut self.stale);
+        if stale >= Change::View {
+            self.view = self.kernels.visible_points(&self.scene, progress);
+        }
+        if stale >= Change::Photons {
+            self.radii = self.first_radii_now();
+        }
+    }
+
+    /// The pilot pass: each point's first radius from the photons it finds
+    /// within the scene's radius (the scene's radius with fixed radii).
+    fn first_radii_now(&mut self) -> Vec<f32> {
+        let points = &self.view.points;
+        let r0 = self.scene.scene.render.radius;
+        match pilot_scene(&self.scene) {
+            Some(pilot) if !points.is_empty() => {
+                let scale = PilotScale::new(&self.scene, &pilot);
+                let found = self.kernels.pass(&pilot, points, &vec![r0; points.len()]);
+                found.photons.iter().map(|&n| scale.first_radius(r0, n)).collect()
+            }
+            _ => vec![r0; points.len()],
+        }
+    }
+}
+
+impl<K: HostKernels> Render for HostRender<K> {
+    fn backend(&self) -> &'static str {
+        self.kernels.name()
+    }
+
+    fn scene(&self) -> &PreparedScene {
+        &self.scene
+    }
+
+    fn update(&mut self, scene: &PreparedScene) -> Result<Change, BackendError> {
+        let change = Change::between(&self.scene.scene, &scene.scene);
+        self.scene = scene.clone();
+        if change >= Change::Photons {
+            // The passes start again (the points and radii follow when needed).
+            let r = &scene.scene.render;
+            self.sums = Accumulation::new(r.width, r.height);
+            self.trace = TraceStats::default();
+        }
+        self.stale = self.stale.max(change);
+        Ok(change)
+    }
+
+    fn ready(&mut self, progress: &mut dyn Progress) -> Result<(), BackendError> {
+        self.bring_up_to_date(progress);
+        Ok(())
+    }
+
+    fn run_pass(&mut self, pass: u32, progress: &mut dyn Progress) -> Result<(), BackendError> {
+        self.bring_up_to_date(progress);
+        if self.sums.contains(pass) {
+            return Err(BackendError::PassRepeated(pass));
+        }
+        let points = &self.view.points;
+        if points.is_empty() {
+            self.sums.add_pass(pass, &[], &[]);
+            return Ok(());
+        }
+        let scene = pass_scene(&self.scene, pass);
+        let shrink = pass_shrink(&self.scene, pass);
+        let r_pass = scene.scene.render.radius;
+        let radii: Vec<f32> = self.radii.iter().map(|&r| (r * shrink).min(r_pass)).collect();
+        let found = self.kernels.pass(&scene, points, &radii);
+        self.sums.add_pass(pass, points, &found.irradiance);
+        self.trace.merge(&found.stats);
+        Ok(())
+    }
+
+    fn passes(&self) -> &[(u32, u32)] {
+        &self.sums.passes
+    }
+
+    fn base(&mut self) -> Result<Image, BackendError> {
+        Ok(self.visible_points(&mut crate::progress::NoProgress).base.clone())
+    }
+
+    fn sums(&mut self) -> Result<Accumulation, BackendError> {
+        self.bring_up_to_date(&mut crate::progress::NoProgress);
+        Ok(self.sums.clone())
+    }
+
+    fn photon_map(&mut self, pass: u32, progress: &mut dyn Progress) -> Result<PhotonMap, BackendError> {
+        Ok(self.kernels.trace(&pass_scene(&self.scene, pass), progress))
+    }
+
+    fn stats(&mut self) -> Result<RenderStats, BackendError> {
+        self.bring_up_to_date(&mut crate::progress::NoProgress);
+        let first_radii = self
+            .radii
+            .iter()
+            .fold(None, |range: Option<(f32, f32)>, &r| Some(range.map_or((r, r), |(lo, hi)| (lo.min(r), hi.max(r)))));
+        Ok(RenderStats {
+            passes: self.sums.pass_count(),
+            trace: self.trace,
+            visible_points: self.view.points.len() as u64,
+            first_radii,
+            uploaded: 0,
+            read_back: 0,
+        })
+    }
+
+    fn stage_times(&self) -> Option<StageTimes> {
+        self.kernels.stage_times()
+    }
+}

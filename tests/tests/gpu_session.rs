@@ -1,0 +1,176 @@
+//! The GPU's render (the session an engine embeds) where it differs from
+//! the other backends: its work cut into bucket segments and several
+//! storage bindings, grid levels built from what the pilot read back, the
+//! device's own image following a moved light, stage times from GPU
+//! timestamps, and the bytes a pass moves. The protocol's promises are the
+//! conformance suite's (backend-gpu/tests/conformance.rs).
+
+use prismatic_core::scene::Light;
+use prismatic_core::{Backend, Image, NoProgress, PreparedScene, ReferenceBackend, Render, Vec3};
+use prismatic_gpu::{AdapterChoice, GpuContext, GpuOptions, GpuSession};
+use prismatic_tests::builtin;
+use prismatic_tests::parity::compare_images;
+use std::time::Duration;
+
+fn small(name: &str, photons: u32) -> PreparedScene {
+    builtin(name, |r| {
+        (r.width, r.height, r.photons) = (80, 80, photons);
+    })
+}
+
+/// A session on the best adapter (lavapipe in CI, where a missing adapter fails).
+fn session(scene: &PreparedScene, options: GpuOptions) -> Option<GpuSession> {
+    match GpuContext::new(AdapterChoice::Any) {
+        Ok(ctx) => Some(GpuSession::new(ctx, scene, options).unwrap_or_else(|e| panic!("session: {e}"))),
+        Err(e) if std::env::var_os("CI").is_some() => panic!("CI=true and no GPU adapter: {e}"),
+        Err(e) => {
+            eprintln!("SKIPPING the GPU session on this machine: {e}");
+            None
+        }
+    }
+}
+
+fn passes(render: &mut dyn Render, n: u32) {
+    for _ in 0..n {
+        render.next_pass(&mut NoProgress).unwrap_or_else(|e| panic!("pass: {e}"));
+    }
+}
+
+/// The reference's render of `passes` passes.
+fn reference(scene: &PreparedScene, n: u32) -> Image {
+    let mut render = ReferenceBackend.prepare(scene).unwrap();
+    passes(render.as_mut(), n);
+    render.image().unwrap()
+}
+
+/// The image the device shows (its pixel buffer), read back.
+fn shown(s: &GpuSession) -> Image {
+    let r = &s.scene().scene.render;
+    let bytes = s.context().read(s.pixels(), 0, u64::from(r.width * r.height) * prismatic_gpu::PIXEL_BYTES).unwrap();
+    let rgba: Vec<[f32; 4]> = bytemuck::pod_collect_to_vec(&bytes);
+    let mut image = Image::new(r.width, r.height);
+    for (p, v) in image.pixels.iter_mut().zip(rgba) {
+        *p = Vec3::new(v[0], v[1], v[2]);
+    }
+    image
+}
+
+#[test]
+fn sessions_in_bucket_segments_and_several_bindings_match_the_reference() {
+    let options = GpuOptions { window_photons: Some(50_000), gather_span: Some(16), ..GpuOptions::default() };
+    let scene = small("sphere", 20_000);
+    let Some(mut s) = session(&scene, options) else { return };
+    passes(&mut s, 2);
+    // The segments' widest-bucket reads wait, so the second pass has the finer levels.
+    assert!(s.grid_levels() > 0b1, "no finer level built (levels {:#b})", s.grid_levels());
+    compare_images(&reference(&scene, 2), &s.image().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+}
+
+#[test]
+fn small_first_radii_are_gathered_in_finer_grid_levels() {
+    // Within 4× the sphere scene's radius its caustic is dense: the pilot
+    // gives many points first radii of a quarter of that or less, gathered
+    // in finer grids.
+    let scene = builtin("sphere", |r| {
+        (r.width, r.height, r.photons) = (80, 80, 20_000);
+        r.radius *= 4.0;
+    });
+    let Some(mut s) = session(&scene, GpuOptions::default()) else { return };
+    assert_eq!(s.grid_levels(), 0b1, "before the pilot, the pass radius's grid alone");
+    passes(&mut s, 1);
+    s.context().wait().unwrap(); // the pilot's mark of the levels comes back
+    passes(&mut s, 2);
+    assert!(s.grid_levels() > 0b1, "no finer level built (levels {:#b})", s.grid_levels());
+    assert_eq!(s.grid_levels() & 1, 1, "level 0 serves the points of levels not built");
+    compare_images(&reference(&scene, 3), &s.image().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// `light` moved by `dx` along x.
+fn moved(light: &Light, dx: f32) -> Light {
+    let mut l = light.clone();
+    match &mut l {
+        Light::Spot { position, .. } | Light::Point { position, .. } | Light::Beam { position, .. } => {
+            *position += Vec3::new(dx, 0.0, 0.0);
+        }
+    }
+    l
+}
+
+/// An engine's view: the image the device shows is the mean of the passes
+/// (the host's image of the sums), and it follows the light when it moves.
+#[test]
+fn the_devices_image_is_the_passes_mean_and_follows_the_light() {
+    let scene = small("sphere", 20_000);
+    let Some(mut s) = session(&scene, GpuOptions::default()) else { return };
+    passes(&mut s, 2);
+    let before = shown(&s);
+    compare_images(&s.image().unwrap(), &before).unwrap_or_else(|e| panic!("shown vs read out: {e}"));
+    let mut edited = scene.scene.clone();
+    edited.lights[0] = moved(&edited.lights[0], 0.6);
+    s.update(&PreparedScene::new(edited).unwrap()).unwrap();
+    passes(&mut s, 2);
+    let after = shown(&s);
+    assert!(compare_images(&before, &after).is_err(), "moving the light changed nothing");
+}
+
+#[test]
+fn stage_times_come_back_a_pass_later_and_fit_in_the_passes_wall_time() {
+    let scene = small("sphere", 20_000);
+    let Some(mut s) = session(&scene, GpuOptions { stage_times: true, ..GpuOptions::default() }) else { return };
+    let timestamps = s.context().device.features().contains(prismatic_gpu::timestamp_features());
+    // Lavapipe has timestamp queries: CI times its sessions' stages.
+    assert!(timestamps || std::env::var_os("CI").is_none(), "CI=true and the adapter has no timestamp queries");
+    let start = std::time::Instant::now();
+    passes(&mut s, 1);
+    assert_eq!(s.stage_times(), None, "times before the pass's stamps came back");
+    s.context().wait().unwrap(); // the stamps are mapped
+    let wall = start.elapsed();
+    passes(&mut s, 1);
+    if !timestamps {
+        assert_eq!(s.stage_times(), None);
+        return;
+    }
+    // The first pass's: view rays, then the pilot's and the pass's photons, grid and gather.
+    let t = s.stage_times().expect("the first pass's stage times");
+    for (stage, time) in [("view", t.view), ("photons", t.photons), ("grid", t.grid), ("gather", t.gather)] {
+        assert!(time > Duration::ZERO, "{stage} took no time: {t:?}");
+    }
+    // Ticks scaled by the queue's timestamp period: the GPU's pass fits in the host's.
+    assert!(t.frame() <= wall, "GPU pass {:?} longer than the host's {wall:?}: {t:?}", t.frame());
+    s.context().wait().unwrap();
+    passes(&mut s, 1);
+    let later = s.stage_times().expect("the second pass's stage times");
+    assert_eq!(later.view, Duration::ZERO, "a pass after the first traces no view rays: {later:?}");
+    assert!(later.photons > Duration::ZERO && later.gather > Duration::ZERO, "{later:?}");
+}
+
+/// A pass uploads a few uniforms and reads nothing back on a device that
+/// gathers in one dispatch; the read-outs move what they read. (Sessions
+/// that time their stages also read each pass's stamps back.)
+#[test]
+fn a_pass_moves_a_few_uniforms_and_nothing_back() {
+    let scene = small("sphere", 20_000);
+    // One gather dispatch per level, as on a hardware GPU (no widest-bucket reads).
+    let options = GpuOptions { gather_span: Some(u32::MAX), ..GpuOptions::default() };
+    let Some(mut s) = session(&scene, options) else { return };
+    passes(&mut s, 2);
+    let traffic = |s: &mut GpuSession| {
+        let stats = s.stats().unwrap();
+        (stats.uploaded, stats.read_back)
+    };
+    let (up0, down0) = traffic(&mut s);
+    passes(&mut s, 4);
+    let (up1, down1) = traffic(&mut s);
+    // The statistics read itself (72 bytes) is the only thing read back.
+    let stats_read = size_of::<prismatic_gpu::layout::RunStats>() as u64;
+    assert_eq!(down1 - down0, stats_read, "the passes read back {} bytes", down1 - down0 - stats_read);
+    let per_pass = (up1 - up0) / 4;
+    assert!(per_pass < 4096, "a pass uploads {per_pass} bytes");
+    let r = &scene.scene.render;
+    let (_, down2) = {
+        s.image().unwrap();
+        traffic(&mut s)
+    };
+    // The image: its base (16 bytes a pixel) and its sums (24), plus the statistics again.
+    assert_eq!(down2 - down1, u64::from(r.width * r.height) * (16 + 24) + stats_read);
+}

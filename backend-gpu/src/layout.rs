@@ -50,8 +50,8 @@ pub struct Params {
     pub grid_mask: u32,
     /// Photon capacity of the map (scatter drops what does not fit).
     pub capacity: u32,
-    /// Visible-point slots per pixel of the current render chunk.
-    pub points_per_pixel: u32,
+    /// Visible points the current chunk's array holds.
+    pub point_capacity: u32,
     /// Photons of each bucket skipped by the current gather pass.
     pub gather_first: u32,
     /// Photons of each bucket the current gather pass reads (at most).
@@ -247,13 +247,21 @@ pub struct VisiblePoint {
     pub sums: [[u32; 2]; 3],
     /// Σ Φ in 2^`flux_shift` per watt.
     pub flux: [u32; 2],
+    /// The pixel it belongs to, within its chunk.
+    pub pixel: u32,
+    /// Its first radius as a fraction of the scene's radius.
+    pub ratio: f32,
+    /// Padding.
+    pub _pad0: u32,
+    /// Padding.
+    pub _pad1: u32,
 }
-const _: () = assert!(core::mem::size_of::<VisiblePoint>() == 80);
+const _: () = assert!(core::mem::size_of::<VisiblePoint>() == 96);
 
 /// A render's statistics on the device: the passes' trace tallies summed
 /// (counts as `[lo, hi]` u64 words, flux in f32; the order of [`Tally`]),
-/// the visible points, and the smallest and largest first-radius ratio
-/// (f32 bits: positive floats order as their bits).
+/// and the smallest and largest first-radius ratio (f32 bits: positive
+/// floats order as their bits).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct RunStats {
@@ -261,12 +269,12 @@ pub struct RunStats {
     pub counts: [[u32; 2]; 5],
     /// Flux emitted, stored, escaped, direct, depth limited.
     pub flux: [f32; 5],
-    /// Visible points.
-    pub points: u32,
     /// Smallest first radius / R, as f32 bits.
     pub min_ratio: u32,
     /// Largest first radius / R, as f32 bits.
     pub max_ratio: u32,
+    /// Padding.
+    pub _pad: u32,
 }
 const _: () = assert!(core::mem::size_of::<RunStats>() == 72);
 

@@ -92,11 +92,11 @@ pub struct Pipelines {
     pub scan_layout: wgpu::BindGroupLayout,
     /// Grid: params, cells, cursor, map windows, sorted windows, widest bucket.
     pub grid_layout: wgpu::BindGroupLayout,
-    /// Group 1 of the view: pixels, visible points, points per pixel, points needed, statistics.
+    /// Group 1 of the view: pixels, visible points, points appended.
     pub view_layout: wgpu::BindGroupLayout,
-    /// Group 0 of a session's passes: params, bands, cells, points per pixel, visible points, pixels, sorted windows.
+    /// Group 0 of a session's passes: params, bands, cells, points appended, visible points, pixels, sorted windows.
     pub gather_layout: wgpu::BindGroupLayout,
-    /// Group 1 of a session's passes: radius ratios, sums, base pixels, session params, levels used, statistics.
+    /// Group 1 of a session's passes: sums, base pixels, session params, levels used, statistics.
     pub session_layout: wgpu::BindGroupLayout,
     /// The tally fold: tallies, statistics.
     pub stats_layout: wgpu::BindGroupLayout,
@@ -124,6 +124,8 @@ pub struct Pipelines {
     pub gather_level: wgpu::ComputePipeline,
     /// session.wgsl `accumulate`: the pass added to the pixels' sums.
     pub accumulate: wgpu::ComputePipeline,
+    /// session.wgsl `show`: the pixels' base plus mean caustic.
+    pub show: wgpu::ComputePipeline,
     /// stats.wgsl `fold_tallies`: a pass's tallies added to the statistics.
     pub fold_tallies: wgpu::ComputePipeline,
     view: Mutex<HashMap<u32, wgpu::ComputePipeline>>,
@@ -148,14 +150,13 @@ impl Pipelines {
             &[with_windows(with_windows(vec![Uniform, ReadWrite, ReadWrite], Read), ReadWrite), vec![ReadWrite]]
                 .concat(),
         );
-        let view_layout = layout(device, "prismatic view", &[ReadWrite, ReadWrite, ReadWrite, ReadWrite, ReadWrite]);
+        let view_layout = layout(device, "prismatic view", &[ReadWrite, ReadWrite, ReadWrite]);
         let gather_layout = layout(
             device,
             "prismatic gather",
             &with_windows(vec![Uniform, Read, Read, Read, ReadWrite, ReadWrite], Read),
         );
-        let session_layout =
-            layout(device, "prismatic session", &[ReadWrite, ReadWrite, Read, Uniform, ReadWrite, ReadWrite]);
+        let session_layout = layout(device, "prismatic session", &[ReadWrite, Read, Uniform, ReadWrite, ReadWrite]);
         let stats_layout = layout(device, "prismatic statistics", &[Read, ReadWrite]);
         let session_src = shaders::session();
         let session =
@@ -177,6 +178,7 @@ impl Pipelines {
             begin_pass: session("prismatic begin pass", "begin_pass"),
             gather_level: session("prismatic gather level", "gather_level"),
             accumulate: session("prismatic accumulate", "accumulate"),
+            show: session("prismatic show", "show"),
             fold_tallies: pipeline(
                 device,
                 "prismatic fold tallies",

@@ -4,7 +4,6 @@
 //! texture, or read back.
 
 use crate::context::GpuContext;
-use crate::layout::VisiblePoint;
 use crate::pipelines::{Pipelines, dispatch};
 use crate::scene::SceneBuffers;
 use crate::shaders::WORKGROUP_SIZE;
@@ -19,23 +18,21 @@ pub const PIXEL_BYTES: u64 = 16;
 /// gather in a dense caustic exceeds, and silently drops what was left).
 pub const SOFTWARE_GATHER_SPAN: u32 = 4096;
 
-/// Visible-point slots per pixel before any frame has asked for more.
-pub(crate) const FIRST_POINTS_PER_PIXEL: u32 = 16;
+/// Bytes of per-pixel data (visible points, sums) one chunk of pixels may use.
+const CHUNK_BUDGET: u64 = 1 << 28;
 
-/// Bytes of visible points one chunk of pixels may use.
-const POINT_BUDGET: u64 = 1 << 28;
-
-pub(crate) const POINT_BYTES: u64 = std::mem::size_of::<VisiblePoint>() as u64;
-
-/// Pixels per chunk with `points_per_pixel` slots each: within one binding
-/// for the pixels and for the points, and within [`POINT_BUDGET`]; a
-/// multiple of 16 so that each chunk's pixel offset meets the storage-offset
-/// alignment (256 bytes).
-pub(crate) fn pixels_per_chunk(limits: &wgpu::Limits, points_per_pixel: u32) -> u64 {
+/// Pixels per chunk whose own data takes `bytes_per_pixel` (besides the
+/// pixel itself): within one binding for the pixels and for that data, and
+/// within [`CHUNK_BUDGET`]; a multiple of 16 so that each chunk's pixel
+/// offset meets the storage-offset alignment (256 bytes).
+pub(crate) fn pixels_per_chunk(limits: &wgpu::Limits, bytes_per_pixel: f64) -> u64 {
     let align = u64::from(limits.min_storage_buffer_offset_alignment).max(PIXEL_BYTES) / PIXEL_BYTES;
     let binding = limits.max_storage_buffer_binding_size;
-    let by_points = binding.min(POINT_BUDGET) / (POINT_BYTES * u64::from(points_per_pixel.max(1)));
-    ((binding / PIXEL_BYTES).min(by_points) / align * align).max(align)
+    let by_data = match bytes_per_pixel {
+        b if b > 0.0 => (binding.min(CHUNK_BUDGET) as f64 / b) as u64,
+        _ => u64::MAX,
+    };
+    ((binding / PIXEL_BYTES).min(by_data) / align * align).max(align)
 }
 
 /// (first pixel, pixels) of each chunk of `chunk` pixels over a `total`-pixel image.
@@ -78,7 +75,7 @@ pub fn copy_to_texture(
     })?;
     let view = target.create_view(&Default::default());
     let total = u64::from(w) * u64::from(h);
-    let chunk = pixels_per_chunk(&ctx.limits(), 0);
+    let chunk = pixels_per_chunk(&ctx.limits(), 0.0);
     for (offset, count) in pixel_chunks(total, chunk) {
         let p = &mut scene_buffers.params;
         (p.pixel_offset, p.pixel_count) = (offset as u32, count as u32);

@@ -87,7 +87,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 stored,
                 grid_mask,
                 capacity,
-                points_per_pixel,
+                point_capacity,
                 gather_first,
                 gather_span,
                 sum_shift,
@@ -168,9 +168,22 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
         (
             "VisiblePoint",
             &session,
-            rust_layout!(VisiblePoint { position, total, normal, radius, weight, found, sums, flux }),
+            rust_layout!(VisiblePoint {
+                position,
+                total,
+                normal,
+                radius,
+                weight,
+                found,
+                sums,
+                flux,
+                pixel,
+                ratio,
+                _pad0,
+                _pad1
+            }),
         ),
-        ("RunStats", &session, rust_layout!(RunStats { counts, flux, points, min_ratio, max_ratio })),
+        ("RunStats", &session, rust_layout!(RunStats { counts, flux, min_ratio, max_ratio, _pad })),
     ];
     for (name, module, rust) in cases {
         assert_eq!(wgsl_layout(module, name), rust, "{name}: WGSL (size, offsets) vs Rust");

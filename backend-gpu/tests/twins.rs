@@ -90,8 +90,15 @@ struct FixedIn {
     _pad: vec2<u32>,
 }
 
+struct FixedOut {
+    to_fixed: vec2<u32>,
+    i64_add: vec2<u32>,
+    add_term: vec2<u32>,
+    _pad: vec2<u32>,
+}
+
 @group(0) @binding(0) var<storage, read> fixed_in: array<FixedIn>;
-@group(0) @binding(1) var<storage, read_write> fixed_out: array<vec4<u32>>;
+@group(0) @binding(1) var<storage, read_write> fixed_out: array<FixedOut>;
 
 @compute @workgroup_size(64)
 fn fixed(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -99,7 +106,7 @@ fn fixed(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let c = fixed_in[id.x];
-    fixed_out[id.x] = vec4<u32>(to_fixed(c.x, c.shift), i64_add(c.a, c.b));
+    fixed_out[id.x] = FixedOut(to_fixed(c.x, c.shift), i64_add(c.a, c.b), add_term(c.a, c.x, c.shift), vec2<u32>(0u));
 }
 "#;
 
@@ -309,11 +316,16 @@ proptest! {
             .iter()
             .map(|&(x, shift, a, b)| FixedIn { x, shift, a: words(a), b: words(b), _pad: [0; 2] })
             .collect();
-        let answers: Vec<[u32; 4]> = twins.run("fixed", &inputs);
+        let answers: Vec<[u32; 8]> = twins.run("fixed", &inputs);
         for (&(x, shift, a, b), got) in cases.iter().zip(answers) {
             let value = |lo: u32, hi: u32| ((u64::from(hi) << 32) | u64::from(lo)) as i64;
-            prop_assert_eq!(value(got[0], got[1]), fixed_answer(x, shift), "to_fixed({:e} = {:#x}, {})", x, x.to_bits(), shift);
+            let term = fixed_answer(x, shift);
+            prop_assert_eq!(value(got[0], got[1]), term, "to_fixed({:e} = {:#x}, {})", x, x.to_bits(), shift);
             prop_assert_eq!(value(got[2], got[3]), a.saturating_add(b), "i64_add({}, {})", a, b);
+            // A gather's terms are finite and below 2^31 units: there add_term is i64_add of to_fixed.
+            if x.is_finite() && term.unsigned_abs() < 1 << 31 {
+                prop_assert_eq!(value(got[4], got[5]), a.wrapping_add(term), "add_term({}, {:e}, {})", a, x, shift);
+            }
         }
     }
 }

@@ -67,10 +67,10 @@ pub struct GpuSession {
     passes: Vec<(u32, u32)>,
     /// What the next pass or read-out must redo.
     stale: Change,
-    /// Whether a view pass has told how many slots a pixel needs.
-    slots_learnt: bool,
-    /// The view pass's "points needed" on its way back.
-    pending_slots: Option<PendingRead>,
+    /// Whether a view pass has told how many visible points the chunks need.
+    room_learnt: bool,
+    /// The last view pass's point counts on their way back.
+    pending_totals: Option<PendingRead>,
     /// GPU stage times, where asked for and the device has timestamps.
     timer: Option<StageTimer>,
     /// The last submission of each pass the device may still be running.
@@ -140,8 +140,8 @@ impl GpuSession {
             fold_group,
             passes: Vec::new(),
             stale: Change::Size,
-            slots_learnt: false,
-            pending_slots: None,
+            room_learnt: false,
+            pending_totals: None,
             timer,
             in_flight: VecDeque::new(),
         })
@@ -166,10 +166,10 @@ impl GpuSession {
         pixels::copy_to_texture(&self.ctx, &self.pipelines, &mut self.buffers, &self.pixels, texture)
     }
 
-    /// Visible-point slots per pixel now (grows, once, to what the scene's
-    /// pixels need).
-    pub fn points_per_pixel(&self) -> u32 {
-        self.points.slots
+    /// Room for visible points now (grows to what the scene's view passes
+    /// found, with an eighth to spare).
+    pub fn point_capacity(&self) -> u64 {
+        self.points.capacity()
     }
 
     /// The grid levels built now: bit l for level l (cells of the pass
@@ -178,8 +178,8 @@ impl GpuSession {
         self.levels.built()
     }
 
-    /// Redoes what the last update (or a shortage of visible-point slots)
-    /// invalidated: buffers, view rays, the pilot pass.
+    /// Redoes what the last update (or a shortage of room for visible
+    /// points) invalidated: buffers, view rays, the pilot pass.
     fn bring_up_to_date(&mut self) -> Result<(), BackendError> {
         self.check_reads()?;
         let redone = std::mem::take(&mut self.stale);

@@ -24,10 +24,7 @@ impl GpuSession {
     /// of the photons or more starts the passes again).
     pub(super) fn empty_sums(&mut self) -> Result<(), BackendError> {
         let none = RunStats { min_ratio: f32::INFINITY.to_bits(), ..RunStats::default() };
-        let points = std::mem::offset_of!(RunStats, points);
-        let (before, after) = (&bytemuck::bytes_of(&none)[..points], &bytemuck::bytes_of(&none)[points + 4..]);
-        self.ctx.write(&self.run_stats, 0, before);
-        self.ctx.write(&self.run_stats, points as u64 + 4, after);
+        self.ctx.write(&self.run_stats, 0, bytemuck::bytes_of(&none));
         self.ctx.checked("emptying the sums", || {
             let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
             for chunk in &self.points.chunks {
@@ -121,13 +118,13 @@ impl GpuSession {
     fn gather_chunks(&mut self, finish: Finish, settings: SessionParams) -> Result<(), BackendError> {
         let steps = self.gather_steps(settings.whole_radius != 0)?;
         let r_pass = self.buffers.params.radius;
-        let slots = self.points.slots;
         for chunk in &self.points.chunks {
-            let slot_count = chunk.count * u64::from(slots);
+            let points = chunk.capacity;
             let groups = chunk.groups();
             for (i, step) in steps.iter().enumerate() {
                 let p = &mut self.buffers.params;
-                (p.pixel_offset, p.pixel_count, p.points_per_pixel) = (chunk.offset as u32, chunk.count as u32, slots);
+                (p.pixel_offset, p.pixel_count, p.point_capacity) =
+                    (chunk.offset as u32, chunk.count as u32, chunk.capacity as u32);
                 let mut session = SessionParams { built_levels: self.levels.built(), ..settings };
                 if let Some(GatherStep { level, segment }) = *step {
                     p.inv_cell = levels::inv_cell(r_pass, level);
@@ -140,18 +137,22 @@ impl GpuSession {
                     let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
                     let coarsest = [groups.gather(0), &groups.session];
                     if i == 0 {
-                        dispatch(&mut encoder, &self.pipelines.begin_pass, &coarsest, slot_count, WORKGROUP_SIZE);
+                        dispatch(&mut encoder, &self.pipelines.begin_pass, &coarsest, points, WORKGROUP_SIZE);
                     }
                     if let Some(GatherStep { level, .. }) = *step {
                         let both = [groups.gather(level), &groups.session];
-                        dispatch(&mut encoder, &self.pipelines.gather_level, &both, slot_count, WORKGROUP_SIZE);
+                        dispatch(&mut encoder, &self.pipelines.gather_level, &both, points, WORKGROUP_SIZE);
                     }
                     if i + 1 == steps.len() {
-                        let (pipeline, invocations) = match finish {
-                            Finish::FirstRadii => (&self.pipelines.first_radius, slot_count),
-                            Finish::Accumulate => (&self.pipelines.accumulate, chunk.count),
-                        };
-                        dispatch(&mut encoder, pipeline, &coarsest, invocations, WORKGROUP_SIZE);
+                        match finish {
+                            Finish::FirstRadii => {
+                                dispatch(&mut encoder, &self.pipelines.first_radius, &coarsest, points, WORKGROUP_SIZE);
+                            }
+                            Finish::Accumulate => {
+                                dispatch(&mut encoder, &self.pipelines.accumulate, &coarsest, points, WORKGROUP_SIZE);
+                                dispatch(&mut encoder, &self.pipelines.show, &coarsest, chunk.count, WORKGROUP_SIZE);
+                            }
+                        }
                     }
                     self.ctx.queue.submit([encoder.finish()]);
                 })?;
@@ -219,7 +220,7 @@ struct GatherStep {
 enum Finish {
     /// The pilot's: each point's first radius (per slot).
     FirstRadii,
-    /// A pass's: the pixels' sums and image (per pixel).
+    /// A pass's: the pixels' sums (per point), then their image (per pixel).
     Accumulate,
 }
 

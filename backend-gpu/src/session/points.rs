@@ -1,39 +1,50 @@
-//! The visible points on the device: per chunk of pixels (each chunk's
-//! buffers fit one binding), `slots` points per pixel, their first radii,
-//! the pixels' exact sums and direct light, and the bind groups of the view
-//! pass, the gathers (one per built grid level) and the session's entries.
+//! The visible points on the device, per chunk of pixels (each chunk's
+//! buffers fit one binding): the points the view pass appends (each with
+//! its pixel and first radius), the pixels' exact sums and direct light,
+//! and the bind groups of the view pass, the gathers (one per built grid
+//! level) and the session's entries. A chunk's room for points follows
+//! what the view passes found, with an eighth to spare.
 
 use super::GpuSession;
 use crate::context::GpuContext;
-use crate::pixels::{FIRST_POINTS_PER_PIXEL, PIXEL_BYTES, POINT_BYTES, pixel_chunks, pixels_per_chunk};
+use crate::layout::VisiblePoint;
+use crate::pixels::{PIXEL_BYTES, pixel_chunks, pixels_per_chunk};
+use crate::readback::PendingRead;
 use prismatic_core::BackendError;
 use prismatic_core::schedule::GRID_LEVELS;
+
+/// Bytes of a visible point.
+pub const POINT_BYTES: u64 = size_of::<VisiblePoint>() as u64;
 
 /// Bytes of a pixel's sums: three i64 (R, G, B).
 pub const SUM_BYTES: u64 = 24;
 
+/// Room for visible points per pixel before a view pass has counted them.
+const FIRST_POINTS_PER_PIXEL: f64 = 2.0;
+
 /// Every chunk's points and what sizes them.
 pub struct PointChunks {
-    /// Visible-point slots per pixel.
-    pub slots: u32,
-    /// The most visible points a pixel wanted, where more than its slots.
-    pub needed: wgpu::Buffer,
+    /// Room for visible points per pixel, on average.
+    pub per_pixel: f64,
     /// The chunks, in pixel order.
     pub chunks: Vec<PointChunk>,
+    /// Every chunk's appended count, copied together after a view pass to
+    /// be read back in one piece.
+    totals: wgpu::Buffer,
 }
 
-/// A chunk of pixels' visible points, their first radii and the pixels' sums.
+/// A chunk of pixels, its visible points and the pixels' sums.
 pub struct PointChunk {
     /// First pixel.
     pub offset: u64,
     /// Pixels.
     pub count: u64,
-    /// `slots` visible points per pixel, slot-major.
+    /// Room for visible points.
+    pub capacity: u64,
+    /// The visible points, appended by the view pass.
     pub points: wgpu::Buffer,
-    /// Per pixel: visible points it wanted.
-    pub counts: wgpu::Buffer,
-    /// Per slot: the first radius as a fraction of the scene's.
-    pub ratio: wgpu::Buffer,
+    /// One u32: points the view pass appended (past the capacity: counted only).
+    pub total: wgpu::Buffer,
     /// Per pixel: Σ over passes and points of weight × caustic, three i64
     /// in 2^32 per unit (`prismatic_core::Accumulation`'s sums).
     pub sums: wgpu::Buffer,
@@ -67,28 +78,66 @@ impl PointChunk {
 }
 
 impl PointChunks {
-    /// No chunks yet, [`FIRST_POINTS_PER_PIXEL`] slots.
+    /// No chunks yet, room for [`FIRST_POINTS_PER_PIXEL`] points a pixel.
     pub fn new(ctx: &GpuContext) -> Result<Self, BackendError> {
-        let needed = ctx.checked("allocating the session", || {
-            ctx.device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("prismatic points needed"),
-                size: 16,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            })
+        let totals = counts_buffer(ctx, 1)?;
+        Ok(PointChunks { per_pixel: FIRST_POINTS_PER_PIXEL, chunks: Vec::new(), totals })
+    }
+
+    /// Room for points in all chunks.
+    pub fn capacity(&self) -> u64 {
+        self.chunks.iter().map(|c| c.capacity).sum()
+    }
+
+    /// Copies every chunk's count into one buffer and starts reading it back.
+    pub fn read_totals(&self, ctx: &GpuContext) -> Result<PendingRead, BackendError> {
+        ctx.checked("reading the visible-point counts", || {
+            let mut encoder = ctx.device.create_command_encoder(&Default::default());
+            for (i, chunk) in self.chunks.iter().enumerate() {
+                encoder.copy_buffer_to_buffer(&chunk.total, 0, &self.totals, 4 * i as u64, 4);
+            }
+            ctx.queue.submit([encoder.finish()]);
         })?;
-        Ok(PointChunks { slots: FIRST_POINTS_PER_PIXEL, needed, chunks: Vec::new() })
+        let staging = crate::readback::staging_buffer(&ctx.device, self.totals.size());
+        PendingRead::start_in(ctx, &self.totals, staging, 4 * self.chunks.len() as u64, "the visible-point counts")
+    }
+
+    /// Whether every chunk had room for the counts `totals` (one per chunk,
+    /// as [`PointChunks::read_totals`] reads them); when not, the room per
+    /// pixel grows to what the fullest chunk needed and an eighth more.
+    pub fn had_room(&mut self, totals: &[u32]) -> bool {
+        let mut fits = true;
+        for (chunk, &total) in self.chunks.iter().zip(totals) {
+            if u64::from(total) > chunk.capacity {
+                fits = false;
+                self.per_pixel = self.per_pixel.max(f64::from(total) / chunk.count as f64 * 1.125);
+            }
+        }
+        fits
     }
 }
 
+/// A storage buffer of `n` u32 counts, readable back.
+fn counts_buffer(ctx: &GpuContext, n: u64) -> Result<wgpu::Buffer, BackendError> {
+    ctx.checked("allocating visible-point counts", || {
+        ctx.device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("prismatic visible-point counts"),
+            size: (4 * n).max(16),
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        })
+    })
+}
+
 impl GpuSession {
-    /// Allocates the visible points' buffers for the current slots and
-    /// binds every chunk.
+    /// Allocates the visible points' buffers for the current room per pixel
+    /// and binds every chunk.
     pub(super) fn allocate_points(&mut self) -> Result<(), BackendError> {
         let r = &self.scene.scene.render;
         let total = u64::from(r.width) * u64::from(r.height);
-        let slots = self.points.slots;
-        let chunk = pixels_per_chunk(&self.ctx.limits(), slots).min(total.max(1).next_multiple_of(16));
+        let per_pixel = self.points.per_pixel;
+        let bytes_per_pixel = (POINT_BYTES as f64 * per_pixel).max(SUM_BYTES as f64);
+        let chunk = pixels_per_chunk(&self.ctx.limits(), bytes_per_pixel).min(total.max(1).next_multiple_of(16));
         let ctx = &self.ctx;
         let buffer = |label: &str, size: u64| {
             ctx.device.create_buffer(&wgpu::BufferDescriptor {
@@ -99,20 +148,23 @@ impl GpuSession {
             })
         };
         self.points.chunks.clear();
+        // Counts of the old chunks on their way back say nothing of the new ones.
+        self.pending_totals = None;
         for (offset, count) in pixel_chunks(total, chunk) {
-            let points = count * u64::from(slots);
+            let capacity = ((count as f64 * per_pixel).ceil() as u64).max(64);
             let chunk = ctx.checked("allocating visible points", || PointChunk {
                 offset,
                 count,
-                points: buffer("prismatic visible points", points * POINT_BYTES),
-                counts: buffer("prismatic points per pixel", count * 4),
-                ratio: buffer("prismatic radius ratios", points * 4),
+                capacity,
+                points: buffer("prismatic visible points", capacity * POINT_BYTES),
+                total: buffer("prismatic visible-point count", 4),
                 sums: buffer("prismatic caustic sums", count * SUM_BYTES),
                 base: buffer("prismatic direct light", count * PIXEL_BYTES),
                 groups: None,
             })?;
             self.points.chunks.push(chunk);
         }
+        self.points.totals = counts_buffer(ctx, self.points.chunks.len() as u64)?;
         self.bind_points()
     }
 
@@ -136,9 +188,7 @@ impl GpuSession {
                     &[
                         wgpu::BindGroupEntry { binding: 0, resource: pixel_slice.clone() },
                         wgpu::BindGroupEntry { binding: 1, resource: chunk.points.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 2, resource: chunk.counts.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 3, resource: self.points.needed.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 4, resource: self.run_stats.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 2, resource: chunk.total.as_entire_binding() },
                     ],
                 );
                 let mut gather: Vec<Option<wgpu::BindGroup>> = vec![None; GRID_LEVELS];
@@ -147,7 +197,7 @@ impl GpuSession {
                         wgpu::BindGroupEntry { binding: 0, resource: self.buffers.params_buffer.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 1, resource: self.buffers.bands().as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 2, resource: grid.cells.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 3, resource: chunk.counts.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 3, resource: chunk.total.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 4, resource: chunk.points.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 5, resource: pixel_slice.clone() },
                     ];
@@ -158,12 +208,11 @@ impl GpuSession {
                     "prismatic session sums",
                     &p.session_layout,
                     &[
-                        wgpu::BindGroupEntry { binding: 0, resource: chunk.ratio.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 1, resource: chunk.sums.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 2, resource: chunk.base.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 3, resource: self.session_params.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 4, resource: self.levels.used.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 5, resource: self.run_stats.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 0, resource: chunk.sums.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 1, resource: chunk.base.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 2, resource: self.session_params.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 3, resource: self.levels.used.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 4, resource: self.run_stats.as_entire_binding() },
                     ],
                 );
                 ChunkGroups { view, gather, session }

@@ -35,6 +35,11 @@ impl GpuSession {
     /// The statistics: the passes' trace tallies, the visible points and
     /// their first radii (the device's), the bytes moved (the context's).
     pub(super) fn read_stats(&self) -> Result<RenderStats, BackendError> {
+        let mut points = 0;
+        for chunk in &self.points.chunks {
+            let total = u32::from_le_bytes(self.ctx.read(&chunk.total, 0, 4)?[..4].try_into().expect("4 bytes"));
+            points += u64::from(total).min(chunk.capacity);
+        }
         let bytes = self.ctx.read(&self.run_stats, 0, size_of::<RunStats>() as u64)?;
         let s: RunStats = bytemuck::pod_read_unaligned(&bytes);
         let [emitted, paths, segments, specular_paths, stored] = s.counts.map(|w| i64_from_words(w) as u64);
@@ -53,7 +58,7 @@ impl GpuSession {
         };
         let r0 = self.scene.scene.render.radius;
         let first_radii = match self.scene.scene.render.radius_mode {
-            _ if s.points == 0 => None,
+            _ if points == 0 => None,
             RadiusMode::Fixed => Some((r0, r0)),
             RadiusMode::Progressive => Some((f32::from_bits(s.min_ratio) * r0, f32::from_bits(s.max_ratio) * r0)),
         };
@@ -61,7 +66,7 @@ impl GpuSession {
         Ok(RenderStats {
             passes: count_passes(&self.passes),
             trace,
-            visible_points: u64::from(s.points),
+            visible_points: points,
             first_radii,
             uploaded,
             read_back,

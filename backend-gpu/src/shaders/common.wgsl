@@ -25,7 +25,7 @@ struct Params {
     stored: u32,
     grid_mask: u32,
     capacity: u32,
-    points_per_pixel: u32,
+    point_capacity: u32,
     gather_first: u32,
     gather_span: u32,
     sum_shift: i32,
@@ -124,15 +124,19 @@ struct VisiblePoint {
     found: u32,
     sums: array<vec2<u32>, 3>,
     flux: vec2<u32>,
+    pixel: u32,
+    ratio: f32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 // Twin of prismatic_gpu::layout::RunStats.
 struct RunStats {
     counts: array<vec2<u32>, 5>,
     flux: array<f32, 5>,
-    points: atomic<u32>,
     min_ratio: atomic<u32>,
     max_ratio: atomic<u32>,
+    _pad: u32,
 }
 
 // Twin of prismatic_gpu::layout::Tally.

@@ -58,6 +58,18 @@ fn to_fixed(x: f32, shift: i32) -> vec2<u32> {
     return select(magnitude, i64_neg(magnitude), negative);
 }
 
+// sum + trunc(x · 2^shift) where |x · 2^shift| < 2^31 (a gather's terms:
+// the host's shifts keep each below 2^30): the same value as
+// i64_add(sum, to_fixed(x, shift)) for such terms, in a few operations
+// (the inner loop of every gather runs it). Clamped rather than wrapped
+// should a term ever exceed that.
+fn add_term(sum: vec2<u32>, x: f32, shift: i32) -> vec2<u32> {
+    let v = i32(clamp(ldexp(x, shift), -2147483520.0, 2147483520.0));
+    let lo = sum.x + bitcast<u32>(v);
+    let carry = select(0u, 1u, lo < sum.x);
+    return vec2<u32>(lo, sum.y + select(0u, 0xffffffffu, v < 0) + carry);
+}
+
 // An i64 as the nearest f32 (or close to it: two roundings).
 fn i64_to_f32(a: vec2<u32>) -> f32 {
     return f32(bitcast<i32>(a.y)) * 4294967296.0 + f32(a.x);

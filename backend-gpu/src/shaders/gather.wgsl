@@ -12,7 +12,8 @@
 @group(0) @binding(0) var<uniform> params: Params;
 @group(0) @binding(1) var<storage, read> bands: array<GpuBand>;
 @group(0) @binding(2) var<storage, read> cells: array<u32>;
-@group(0) @binding(3) var<storage, read> point_counts: array<u32>;
+// The chunk's visible points: how many the view pass appended, and the points.
+@group(0) @binding(3) var<storage, read> point_total: u32;
 @group(0) @binding(4) var<storage, read_write> points: array<VisiblePoint>;
 @group(0) @binding(5) var<storage, read_write> pixels: array<vec4<f32>>;
 
@@ -71,10 +72,11 @@ fn gather_segment(vp: ptr<function, VisiblePoint>) {
                 } else {
                     (*vp).total += n_bands;
                 }
-                for (var k = 0u; k < 3u; k++) {
-                    (*vp).sums[k] = i64_add((*vp).sums[k], to_fixed(add[k], params.sum_shift));
-                }
-                (*vp).flux = i64_add((*vp).flux, to_fixed(p.flux, params.flux_shift));
+                // Unrolled: a varying index into the sums costs a software device dearly.
+                (*vp).sums[0] = add_term((*vp).sums[0], add.x, params.sum_shift);
+                (*vp).sums[1] = add_term((*vp).sums[1], add.y, params.sum_shift);
+                (*vp).sums[2] = add_term((*vp).sums[2], add.z, params.sum_shift);
+                (*vp).flux = add_term((*vp).flux, p.flux, params.flux_shift);
             }
         }
     }
@@ -88,10 +90,7 @@ fn point_caustic(vp: VisiblePoint) -> vec3<f32> {
     return finish_estimate(params.estimator, params.band_count, sums, vp.total, flux, vp.radius);
 }
 
-// Whether slot-major index `i` holds a visible point of the current chunk
-// (slot j of pixel k is at `j * pixel_count + k`).
+// Whether index `i` holds a visible point of the current chunk.
 fn is_point(i: u32) -> bool {
-    let slot = i / params.pixel_count;
-    let k = i - slot * params.pixel_count;
-    return slot < params.points_per_pixel && slot < point_counts[k];
+    return i < min(point_total, params.point_capacity);
 }

@@ -5,8 +5,8 @@
 // first radius (`first_radius`, as a fraction of R) and marks the grid
 // levels those radii fall in; each pass empties the points' sums and sets
 // their radii (`begin_pass`), gathers level by level (`gather_level`, each
-// point in the grid of its own cell size), then adds each point's caustic
-// to its pixel's exact sums and writes base + mean (`accumulate`).
+// point in the grid of its own cell size), adds each point's caustic to
+// its pixel's exact sums (`accumulate`) and shows base + mean (`show`).
 
 struct SessionParams {
     // A full pass's photons per pilot photon.
@@ -25,14 +25,14 @@ struct SessionParams {
     _pad1: u32,
 }
 
-@group(1) @binding(0) var<storage, read_write> radius_ratio: array<f32>;
-// Per pixel, three i64 sums (R, G, B) of weight × caustic in 2^32 per unit.
-@group(1) @binding(1) var<storage, read_write> accum: array<vec2<u32>>;
-@group(1) @binding(2) var<storage, read> base: array<vec4<f32>>;
-@group(1) @binding(3) var<uniform> session: SessionParams;
+// Per pixel, three i64 sums (R, G, B) of weight × caustic in 2^32 per
+// unit, as `[lo, hi]` words, added to with atomics (exact, in any order).
+@group(1) @binding(0) var<storage, read_write> accum: array<atomic<u32>>;
+@group(1) @binding(1) var<storage, read> base: array<vec4<f32>>;
+@group(1) @binding(2) var<uniform> session: SessionParams;
 // Bit l set when some point's first radius falls in grid level l.
-@group(1) @binding(4) var<storage, read_write> levels_used: atomic<u32>;
-@group(1) @binding(5) var<storage, read_write> run_stats: RunStats;
+@group(1) @binding(3) var<storage, read_write> levels_used: atomic<u32>;
+@group(1) @binding(4) var<storage, read_write> run_stats: RunStats;
 
 // schedule::level_of: the finest grid level whose radius (r_pass / 4^l)
 // is at least r.
@@ -61,7 +61,7 @@ fn first_radius(
     if expected > session.neighbours {
         ratio = clamp(sqrt(session.neighbours / expected), MIN_RADIUS_FRACTION, 1.0);
     }
-    radius_ratio[i] = ratio;
+    points[i].ratio = ratio;
     let bit = 1u << level_of(ratio * params.radius, params.radius);
     // Most points find their level marked already: a load, not a write, to one address.
     if (atomicLoad(&levels_used) & bit) == 0u {
@@ -94,7 +94,7 @@ fn begin_pass(
     vp.found = 0u;
     vp.sums = array<vec2<u32>, 3>(vec2<u32>(0u), vec2<u32>(0u), vec2<u32>(0u));
     vp.flux = vec2<u32>(0u);
-    vp.radius = select(radius_ratio[i] * params.radius, params.radius, session.whole_radius != 0u);
+    vp.radius = select(vp.ratio * params.radius, params.radius, session.whole_radius != 0u);
     points[i] = vp;
 }
 
@@ -111,23 +111,53 @@ fn gather_level(
     if !is_point(i) {
         return;
     }
-    var vp = points[i];
-    var level = level_of(vp.radius, params.radius);
+    // The level from the radius alone: most points are another level's.
+    var level = level_of(points[i].radius, params.radius);
     while level > 0u && (session.built_levels & (1u << level)) == 0u {
         level--;
     }
     if level != session.level {
         return;
     }
+    var vp = points[i];
     gather_segment(&vp);
     points[i] = vp;
 }
 
-// A pass's end: each of the pixel's points adds weight × caustic to the
-// pixel's sums, in fixed point (Accumulation::add_pass); the pixel shows
-// its direct light plus the mean caustic of the passes so far.
+// Adds the i64 `v` to the sum whose low word is `accum[word]`: exact
+// modulo 2^64 whatever order the points come in (a carry out of the low
+// word goes into the high one). Unlike the host's saturating sums it wraps
+// past 2^31 units of radiance, which no render reaches.
+fn add_to_sum(word: u32, v: vec2<u32>) {
+    let old = atomicAdd(&accum[word], v.x);
+    let high = v.y + select(0u, 1u, old > ~v.x);
+    if high != 0u {
+        atomicAdd(&accum[word + 1u], high);
+    }
+}
+
+// A pass's end, per point: weight × caustic added to its pixel's sums in
+// fixed point (Accumulation::add_pass).
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn accumulate(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let i = flat_index(wid, nwg, lid);
+    if !is_point(i) {
+        return;
+    }
+    let vp = points[i];
+    let c = vp.weight * point_caustic(vp);
+    for (var ch = 0u; ch < 3u; ch++) {
+        add_to_sum(6u * vp.pixel + 2u * ch, to_fixed(c[ch], 32));
+    }
+}
+
+// Then, per pixel: its direct light plus the mean caustic of the passes so far.
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn show(
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) nwg: vec3<u32>,
     @builtin(local_invocation_index) lid: u32,
@@ -136,19 +166,11 @@ fn accumulate(
     if k >= params.pixel_count {
         return;
     }
-    var sum = array<vec2<u32>, 3>(accum[3u * k], accum[3u * k + 1u], accum[3u * k + 2u]);
-    let n = min(point_counts[k], params.points_per_pixel);
-    for (var slot = 0u; slot < n; slot++) {
-        let vp = points[slot * params.pixel_count + k];
-        let c = vp.weight * point_caustic(vp);
-        for (var ch = 0u; ch < 3u; ch++) {
-            sum[ch] = i64_add(sum[ch], to_fixed(c[ch], 32));
-        }
-    }
     var mean = vec3<f32>(0.0);
     for (var ch = 0u; ch < 3u; ch++) {
-        accum[3u * k + ch] = sum[ch];
-        mean[ch] = from_fixed(sum[ch], 32) * session.inv_passes;
+        let word = 6u * k + 2u * ch;
+        let sum = vec2<u32>(atomicLoad(&accum[word]), atomicLoad(&accum[word + 1u]));
+        mean[ch] = from_fixed(sum, 32) * session.inv_passes;
     }
     pixels[k] = vec4<f32>(base[k].xyz + mean, 1.0);
 }

@@ -5,18 +5,16 @@
 // does); the split of a white view ray into bands is a stack entry that
 // hands out one band at a time. Direct light, ambient and background go
 // straight into the pixel; each diffuse hit that needs the caustic becomes
-// a visible point for gather.wgsl (slot j of pixel k at
-// `j * pixel_count + k`), so that no invocation runs a gather: a
-// software device caps the loop iterations of one invocation.
+// a visible point for gather.wgsl, appended to the chunk's points with the
+// pixel it belongs to, so that no invocation runs a gather (a software
+// device caps the loop iterations of one invocation) and the gathers run
+// over the points there are, not over slots per pixel.
 
 @group(1) @binding(0) var<storage, read_write> pixels: array<vec4<f32>>;
 @group(1) @binding(1) var<storage, read_write> points: array<VisiblePoint>;
-@group(1) @binding(2) var<storage, read_write> point_counts: array<u32>;
-// The most visible points any pixel wanted, when some pixel wanted more
-// than `points_per_pixel` (else left alone).
-@group(1) @binding(3) var<storage, read_write> points_needed: atomic<u32>;
-// The render's statistics: this pass counts the visible points.
-@group(1) @binding(4) var<storage, read_write> run_stats: RunStats;
+// Points appended so far; those past `point_capacity` are counted, not
+// written (the host reads the count back and traces again with room).
+@group(1) @binding(2) var<storage, read_write> point_total: atomic<u32>;
 
 struct Pending {
     origin: vec3<f32>,
@@ -131,18 +129,17 @@ fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
 }
 
 var<private> pixel_index: u32;
-var<private> point_count: u32;
 
 // A diffuse hit's caustic, left to the gather pass: the point, its normal
-// on the viewer's side, and what unit caustic irradiance there adds to
-// the pixel. Points past the pixel's slots are counted, not written.
+// on the viewer's side, what unit caustic irradiance there adds to the
+// pixel, and the pixel (within the chunk).
 fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>) {
-    if point_count < params.points_per_pixel {
+    let i = atomicAdd(&point_total, 1u);
+    if i < params.point_capacity {
         let none = vec2<u32>(0u);
-        points[point_count * params.pixel_count + pixel_index] =
-            VisiblePoint(point, 0u, normal, params.radius, weight, 0u, array<vec2<u32>, 3>(none, none, none), none);
+        let sums = array<vec2<u32>, 3>(none, none, none);
+        points[i] = VisiblePoint(point, 0u, normal, params.radius, weight, 0u, sums, none, pixel_index, 1.0, 0u, 0u);
     }
-    point_count++;
 }
 
 // ViewContext::shade_diffuse, less the caustic (see add_visible_point);
@@ -235,13 +232,5 @@ fn main(
     }
     let i = params.pixel_offset + k;
     pixel_index = k;
-    point_count = 0u;
     pixels[k] = vec4<f32>(pixel(i % params.width, i / params.width), 1.0);
-    point_counts[k] = point_count;
-    if point_count > params.points_per_pixel {
-        atomicMax(&points_needed, point_count);
-    }
-    if point_count > 0u {
-        atomicAdd(&run_stats.points, min(point_count, params.points_per_pixel));
-    }
 }

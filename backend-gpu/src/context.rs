@@ -8,10 +8,11 @@ use prismatic_core::BackendError;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
-/// Storage buffers the grid build binds, the most of any stage (four
-/// photon windows each of the map and its sorted copy, the cell starts,
-/// their cursor and the widest bucket's size).
-pub const STORAGE_BUFFERS_NEEDED: u32 = 11;
+/// Storage buffers a session's gather binds, the most of any stage: the
+/// bands, cells, point count, visible points, pixels and four windows of
+/// the sorted photons (group 0), the pixels' sums and direct light, the
+/// levels used, the statistics and the level lists (group 1).
+pub const STORAGE_BUFFERS_NEEDED: u32 = 14;
 
 /// A device and queue with what the backend knows about them. Clones share
 /// the device and the count of bytes moved ([`GpuContext::counting_apart`]
@@ -155,20 +156,20 @@ impl GpuContext {
     }
 
     /// Writes `data` into `buffer` at `offset` (visible to the next submit), counted.
-    pub fn write(&self, buffer: &wgpu::Buffer, offset: u64, data: &[u8]) {
+    pub(crate) fn write(&self, buffer: &wgpu::Buffer, offset: u64, data: &[u8]) {
         self.traffic.uploaded.fetch_add(data.len() as u64, Ordering::Relaxed);
         self.queue.write_buffer(buffer, offset, data);
     }
 
     /// A buffer made with `contents` (an upload, counted) and `usage`.
-    pub fn buffer_with(&self, label: &str, contents: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
+    pub(crate) fn buffer_with(&self, label: &str, contents: &[u8], usage: wgpu::BufferUsages) -> wgpu::Buffer {
         use wgpu::util::DeviceExt;
         self.traffic.uploaded.fetch_add(contents.len() as u64, Ordering::Relaxed);
         self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor { label: Some(label), contents, usage })
     }
 
     /// Counts `bytes` read back (for reads that map their own staging buffers).
-    pub fn count_read(&self, bytes: u64) {
+    pub(crate) fn count_read(&self, bytes: u64) {
         self.traffic.read_back.fetch_add(bytes, Ordering::Relaxed);
     }
 

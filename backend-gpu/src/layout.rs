@@ -251,10 +251,11 @@ pub struct VisiblePoint {
     pub pixel: u32,
     /// Its first radius as a fraction of the scene's radius.
     pub ratio: f32,
-    /// Padding.
-    pub _pad0: u32,
-    /// Padding.
-    pub _pad1: u32,
+    /// The grid level it gathers in this pass.
+    pub level: u32,
+    /// Photons in the fullest bucket its disc touches this pass (set by a
+    /// pass's first gather segment: later segments skip the point past it).
+    pub widest: u32,
 }
 const _: () = assert!(core::mem::size_of::<VisiblePoint>() == 96);
 

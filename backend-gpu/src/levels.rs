@@ -4,9 +4,11 @@
 //! at a quarter and a sixteenth of it, so that a point in a dense caustic
 //! scans cells of its own size rather than the pass radius's. The pilot's
 //! `first_radius` marks on the device which levels the points need; the
-//! mark is read back without waiting, and until it comes (or for a point
-//! whose level is not built) the next coarser grid serves: the gather finds
-//! the same photons in any grid whose cells are at least its diameter.
+//! mark is read back without waiting on a hardware GPU (a software device,
+//! which gathers in segments, waits for it), and until it comes (or for a
+//! point whose level is not built) the next coarser grid serves: the
+//! gather finds the same photons in any grid whose cells are at least its
+//! diameter.
 
 use crate::context::GpuContext;
 use crate::grid::DeviceGrid;

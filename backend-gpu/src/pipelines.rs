@@ -2,7 +2,7 @@
 //! per backend and shared by its renders (the view pipeline once per
 //! view-ray stack size, the texture copy once per texel format).
 
-use crate::shaders::{self, WINDOWS};
+use crate::shaders::{self, MAX_WORKGROUPS, WINDOWS};
 use std::collections::HashMap;
 use std::sync::Mutex;
 
@@ -96,8 +96,10 @@ pub struct Pipelines {
     pub view_layout: wgpu::BindGroupLayout,
     /// Group 0 of a session's passes: params, bands, cells, points appended, visible points, pixels, sorted windows.
     pub gather_layout: wgpu::BindGroupLayout,
-    /// Group 1 of a session's passes: sums, base pixels, session params, levels used, statistics.
+    /// Group 1 of a session's passes: sums, base pixels, session params, levels used, statistics, level lists.
     pub session_layout: wgpu::BindGroupLayout,
+    /// The gathers' dispatch arguments: points per level, the arguments.
+    pub level_dispatch_layout: wgpu::BindGroupLayout,
     /// The tally fold: tallies, statistics.
     pub stats_layout: wgpu::BindGroupLayout,
     /// Emit + trace.
@@ -116,6 +118,10 @@ pub struct Pipelines {
     pub grid_scatter: wgpu::ComputePipeline,
     /// The widest bucket's size.
     pub grid_widest: wgpu::ComputePipeline,
+    /// session.wgsl `list_points`: the points listed by grid level.
+    pub list_points: wgpu::ComputePipeline,
+    /// level_dispatch.wgsl: the indirect arguments of each level's gather.
+    pub level_dispatches: wgpu::ComputePipeline,
     /// session.wgsl `first_radius`: first radii from the pilot's gather.
     pub first_radius: wgpu::ComputePipeline,
     /// session.wgsl `begin_pass`: sums emptied, this pass's radii.
@@ -156,7 +162,9 @@ impl Pipelines {
             "prismatic gather",
             &with_windows(vec![Uniform, Read, Read, Read, ReadWrite, ReadWrite], Read),
         );
-        let session_layout = layout(device, "prismatic session", &[ReadWrite, Read, Uniform, ReadWrite, ReadWrite]);
+        let session_layout =
+            layout(device, "prismatic session", &[ReadWrite, Read, Uniform, ReadWrite, ReadWrite, ReadWrite]);
+        let level_dispatch_layout = layout(device, "prismatic level dispatches", &[Read, ReadWrite]);
         let stats_layout = layout(device, "prismatic statistics", &[Read, ReadWrite]);
         let session_src = shaders::session();
         let session =
@@ -176,6 +184,14 @@ impl Pipelines {
             grid_widest: pipeline(device, "prismatic grid widest", &grid_src, "widest", &[&grid_layout]),
             first_radius: session("prismatic first radius", "first_radius"),
             begin_pass: session("prismatic begin pass", "begin_pass"),
+            list_points: session("prismatic list points", "list_points"),
+            level_dispatches: pipeline(
+                device,
+                "prismatic level dispatches",
+                &shaders::level_dispatch(),
+                "level_dispatches",
+                &[&level_dispatch_layout],
+            ),
             gather_level: session("prismatic gather level", "gather_level"),
             accumulate: session("prismatic accumulate", "accumulate"),
             show: session("prismatic show", "show"),
@@ -194,6 +210,7 @@ impl Pipelines {
             view_layout,
             gather_layout,
             session_layout,
+            level_dispatch_layout,
             stats_layout,
             view: Mutex::new(HashMap::new()),
             texture: Mutex::new(HashMap::new()),
@@ -249,8 +266,8 @@ pub fn dispatch(
         return;
     }
     let workgroups = invocations.div_ceil(u64::from(group_size));
-    let x = workgroups.min(MAX_WORKGROUPS) as u32;
-    let y = workgroups.div_ceil(MAX_WORKGROUPS) as u32;
+    let max = u64::from(MAX_WORKGROUPS);
+    let (x, y) = (workgroups.min(max) as u32, workgroups.div_ceil(max) as u32);
     let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: None, timestamp_writes: None });
     pass.set_pipeline(pipeline);
     for (i, g) in groups.iter().enumerate() {
@@ -259,5 +276,19 @@ pub fn dispatch(
     pass.dispatch_workgroups(x, y, 1);
 }
 
-/// Workgroups per dispatch dimension (WebGPU's guaranteed minimum).
-pub const MAX_WORKGROUPS: u64 = 65_535;
+/// Dispatches `pipeline` with the workgroup counts (x, y, z as u32) that
+/// `args` holds at `offset`, written there by an earlier dispatch.
+pub fn dispatch_indirect(
+    encoder: &mut wgpu::CommandEncoder,
+    pipeline: &wgpu::ComputePipeline,
+    groups: &[&wgpu::BindGroup],
+    args: &wgpu::Buffer,
+    offset: u64,
+) {
+    let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: None, timestamp_writes: None });
+    pass.set_pipeline(pipeline);
+    for (i, g) in groups.iter().enumerate() {
+        pass.set_bind_group(i as u32, Some(*g), &[]);
+    }
+    pass.dispatch_workgroups_indirect(args, offset);
+}

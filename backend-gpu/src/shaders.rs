@@ -15,6 +15,9 @@ use std::fmt::Write as _;
 
 /// Invocations per workgroup of the per-photon and per-pixel passes.
 pub const WORKGROUP_SIZE: u32 = 64;
+/// Workgroups per dispatch dimension (WebGPU's guaranteed minimum); larger
+/// dispatches are split over two dimensions.
+pub const MAX_WORKGROUPS: u32 = 65_535;
 /// Invocations per workgroup of the prefix sum.
 pub const SCAN_THREADS: u32 = 256;
 /// Elements each prefix-sum invocation scans.
@@ -67,6 +70,7 @@ fn prelude(stack: u32) -> String {
     let mut s = String::from("// Written by prismatic_gpu::shaders from the Rust constants.\n");
     let mut u = |name: &str, v: u32| writeln!(s, "const {name}: u32 = {v}u;").unwrap();
     u("WORKGROUP_SIZE", WORKGROUP_SIZE);
+    u("MAX_WORKGROUPS", MAX_WORKGROUPS);
     u("SCAN_THREADS", SCAN_THREADS);
     u("SCAN_PER_THREAD", SCAN_PER_THREAD);
     u("SCAN_BLOCK", SCAN_BLOCK);
@@ -204,9 +208,10 @@ pub fn view(stack: u32) -> String {
 }
 
 /// A session's passes (entries `first_radius`, `begin_pass`,
-/// `gather_level`, `accumulate`): the gather's bindings in group 0 (the
-/// sorted photons are bindings 6–9) and group 1 (radius ratios, sums, base
-/// pixels, session params, levels used, statistics).
+/// `list_points`, `gather_level`, `accumulate`, `show`): the gather's
+/// bindings in group 0 (the sorted photons are bindings 6–9) and group 1
+/// (the pixels' sums, their direct light, session params, levels used,
+/// statistics, the points' lists by level).
 pub fn session() -> String {
     [
         library(),
@@ -215,6 +220,11 @@ pub fn session() -> String {
         include_str!("shaders/session.wgsl").into(),
     ]
     .concat()
+}
+
+/// The gathers' indirect dispatch arguments, per grid level (entry `level_dispatches`).
+pub fn level_dispatch() -> String {
+    [prelude(0), include_str!("shaders/level_dispatch.wgsl").into()].concat()
 }
 
 /// A pass's trace tallies added to the render's statistics (entry `fold_tallies`).

@@ -10,10 +10,10 @@
 use crate::context::GpuContext;
 use crate::layout::Tally;
 use crate::photons::{PHOTON_BYTES, PhotonArray};
-use crate::pipelines::{MAX_WORKGROUPS, Pipelines, dispatch};
+use crate::pipelines::{Pipelines, dispatch};
 use crate::scan::Scan;
 use crate::scene::SceneBuffers;
-use crate::shaders::WORKGROUP_SIZE;
+use crate::shaders::{MAX_WORKGROUPS, WORKGROUP_SIZE};
 use prismatic_core::scene::WavelengthSampling;
 use prismatic_core::surface::Surface;
 use prismatic_core::{BackendError, PreparedScene, Progress, Stage, TraceStats};
@@ -237,7 +237,8 @@ impl PhotonPass {
 
 /// Workgroups a dispatch of `groups` runs: x·y of its 2D grid (one tally each).
 fn dispatched_groups(groups: u64) -> u64 {
-    groups.min(MAX_WORKGROUPS) * groups.div_ceil(MAX_WORKGROUPS)
+    let max = u64::from(MAX_WORKGROUPS);
+    groups.min(max) * groups.div_ceil(max)
 }
 
 /// Adds the workgroups' tallies of the last pass up in u64 and f64 (waits

@@ -179,8 +179,8 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 flux,
                 pixel,
                 ratio,
-                _pad0,
-                _pad1
+                level,
+                widest
             }),
         ),
         ("RunStats", &session, rust_layout!(RunStats { counts, flux, min_ratio, max_ratio, _pad })),

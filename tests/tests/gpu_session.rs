@@ -2,7 +2,8 @@
 //! the other backends: its work cut into bucket segments and several
 //! storage bindings, grid levels built from what the pilot read back, the
 //! device's own image following a moved light, stage times from GPU
-//! timestamps, and the bytes a pass moves. The protocol's promises are the
+//! timestamps, the bytes a pass moves, and a device with no more storage
+//! bindings than the backend says it needs. The protocol's promises are the
 //! conformance suite's (backend-gpu/tests/conformance.rs).
 
 use prismatic_core::scene::Light;
@@ -83,6 +84,38 @@ fn small_first_radii_are_gathered_in_finer_grid_levels() {
     assert!(s.grid_levels() > 0b1, "no finer level built (levels {:#b})", s.grid_levels());
     assert_eq!(s.grid_levels() & 1, 1, "level 0 serves the points of levels not built");
     compare_images(&reference(&scene, 3), &s.image().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// An engine that gives its device the storage bindings
+/// `STORAGE_BUFFERS_NEEDED` says and no more: every pipeline compiles and
+/// a render with finer grid levels (the session's widest stage) runs.
+#[test]
+fn a_device_with_just_the_storage_buffers_needed_renders() {
+    // Skipped (outside CI) where there is no adapter at all.
+    let Some(_) = session(&small("prism", 1_000), GpuOptions::default()) else { return };
+    let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+    let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions::default())).unwrap();
+    let limits = wgpu::Limits {
+        max_storage_buffers_per_shader_stage: prismatic_gpu::STORAGE_BUFFERS_NEEDED,
+        ..prismatic_gpu::required_limits(&adapter.limits())
+    };
+    let descriptor = wgpu::DeviceDescriptor { required_limits: limits, ..Default::default() };
+    let (device, queue) = pollster::block_on(adapter.request_device(&descriptor)).unwrap();
+    let errors = std::sync::Arc::new(std::sync::Mutex::new(Vec::new()));
+    let seen = errors.clone();
+    device.on_uncaptured_error(std::sync::Arc::new(move |e| seen.lock().unwrap().push(e.to_string())));
+    let scene = builtin("sphere", |r| {
+        (r.width, r.height, r.photons) = (80, 80, 20_000);
+        r.radius *= 4.0;
+    });
+    let ctx = GpuContext::from_device(device, queue).unwrap();
+    let mut s = GpuSession::new(ctx, &scene, GpuOptions::default()).unwrap_or_else(|e| panic!("session: {e}"));
+    passes(&mut s, 1);
+    s.context().wait().unwrap();
+    passes(&mut s, 1);
+    assert!(s.grid_levels() > 0b1, "no finer level built (levels {:#b})", s.grid_levels());
+    compare_images(&reference(&scene, 2), &s.image().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(*errors.lock().unwrap(), Vec::<String>::new());
 }
 
 /// `light` moved by `dx` along x.

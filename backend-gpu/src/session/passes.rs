@@ -2,13 +2,15 @@
 //! (`prismatic_core::schedule`): the pilot pass that gives each visible
 //! point its first radius (progressive radii only), and pass `k`: its
 //! photons traced and gridded at every built level, gathered at the points
-//! level by level (in bucket segments on a software device), added to the
-//! pixels' exact sums, and its trace tallies added to the statistics.
+//! level by level (each level's gather dispatched over its own points, in
+//! bucket segments on a software device), added to the pixels' exact sums,
+//! and its trace tallies added to the statistics.
 
 use super::GpuSession;
+use super::points::{LEVEL_ARGS_BYTES, LEVEL_HEADER_BYTES};
 use crate::layout::{RunStats, SessionParams};
 use crate::levels;
-use crate::pipelines::dispatch;
+use crate::pipelines::{dispatch, dispatch_indirect};
 use crate::shaders::WORKGROUP_SIZE;
 use prismatic_core::scene::{Estimator, RadiusMode};
 use prismatic_core::schedule::{GRID_LEVELS, PilotScale, pass_scene, pilot_scene};
@@ -36,7 +38,9 @@ impl GpuSession {
 
     /// The pilot pass (progressive radii only): photons at 1/8 of a pass,
     /// gathered within the scene's radius; each point's first radius from
-    /// what it found, and the grid levels those radii need marked.
+    /// what it found, and the grid levels those radii need marked (read
+    /// back without waiting on a hardware GPU: its first pass may gather in
+    /// coarser levels).
     pub(super) fn pilot(&mut self) -> Result<(), BackendError> {
         let Some(pilot) = pilot_scene(&self.scene) else { return Ok(()) };
         let scale = PilotScale::new(&self.scene, &pilot);
@@ -54,6 +58,13 @@ impl GpuSession {
         self.gather_chunks(Finish::FirstRadii, settings)?;
         self.stamp(Stage::Gather)?;
         self.levels.read_used(&self.ctx)?;
+        if self.span != u32::MAX {
+            // A device that gathers in segments waits for each pass's widest
+            // buckets anyway: it waits for the mark too, so that the first
+            // pass gathers in the levels its radii need.
+            self.ctx.wait()?;
+            self.adopt_levels()?;
+        }
         Ok(())
     }
 
@@ -112,9 +123,10 @@ impl GpuSession {
         self.stamp(Stage::Grid)
     }
 
-    /// Every chunk: the points' sums emptied and radii set, the gather
-    /// level by level (in segments on a software device), then `finish`
-    /// (first radii or the pixels' sums) with the pass's `settings`.
+    /// Every chunk: the points' sums emptied, radii set and listed by grid
+    /// level, the gather level by level (in segments on a software device),
+    /// then `finish` (first radii or the pixels' sums) with the pass's
+    /// `settings`.
     fn gather_chunks(&mut self, finish: Finish, settings: SessionParams) -> Result<(), BackendError> {
         let steps = self.gather_steps(settings.whole_radius != 0)?;
         let r_pass = self.buffers.params.radius;
@@ -137,11 +149,17 @@ impl GpuSession {
                     let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
                     let coarsest = [groups.gather(0), &groups.session];
                     if i == 0 {
+                        encoder.clear_buffer(&chunk.level_lists, 0, Some(LEVEL_HEADER_BYTES));
                         dispatch(&mut encoder, &self.pipelines.begin_pass, &coarsest, points, WORKGROUP_SIZE);
+                        dispatch(&mut encoder, &self.pipelines.list_points, &coarsest, points, WORKGROUP_SIZE);
+                        let args = [&groups.level_dispatch];
+                        let levels = GRID_LEVELS as u64;
+                        dispatch(&mut encoder, &self.pipelines.level_dispatches, &args, levels, levels as u32);
                     }
                     if let Some(GatherStep { level, .. }) = *step {
                         let both = [groups.gather(level), &groups.session];
-                        dispatch(&mut encoder, &self.pipelines.gather_level, &both, points, WORKGROUP_SIZE);
+                        let offset = LEVEL_ARGS_BYTES * level as u64;
+                        dispatch_indirect(&mut encoder, &self.pipelines.gather_level, &both, &chunk.level_args, offset);
                     }
                     if i + 1 == steps.len() {
                         match finish {

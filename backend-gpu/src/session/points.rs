@@ -1,9 +1,11 @@
 //! The visible points on the device, per chunk of pixels (each chunk's
 //! buffers fit one binding): the points the view pass appends (each with
 //! its pixel and first radius), the pixels' exact sums and direct light,
-//! and the bind groups of the view pass, the gathers (one per built grid
-//! level) and the session's entries. A chunk's room for points follows
-//! what the view passes found, with an eighth to spare.
+//! the points listed by grid level with the gathers' indirect dispatch
+//! arguments, and the bind groups of the view pass, the gathers (one per
+//! built grid level), the session's entries and the dispatch arguments.
+//! A chunk's room for points follows what the view passes found, with an
+//! eighth to spare.
 
 use super::GpuSession;
 use crate::context::GpuContext;
@@ -18,6 +20,12 @@ pub const POINT_BYTES: u64 = size_of::<VisiblePoint>() as u64;
 
 /// Bytes of a pixel's sums: three i64 (R, G, B).
 pub const SUM_BYTES: u64 = 24;
+
+/// Bytes before the level lists' indices: a count and a cursor per level.
+pub const LEVEL_HEADER_BYTES: u64 = 8 * GRID_LEVELS as u64;
+
+/// Bytes of one level's indirect dispatch arguments (x, y, z).
+pub const LEVEL_ARGS_BYTES: u64 = 12;
 
 /// Room for visible points per pixel before a view pass has counted them.
 const FIRST_POINTS_PER_PIXEL: f64 = 2.0;
@@ -50,6 +58,11 @@ pub struct PointChunk {
     pub sums: wgpu::Buffer,
     /// Per pixel: the direct light (the view pass's pixels).
     pub base: wgpu::Buffer,
+    /// This pass's points by grid level: per level a count and a cursor,
+    /// then the points' indices (session.wgsl's `LevelLists`).
+    pub level_lists: wgpu::Buffer,
+    /// Per grid level, its gather's indirect dispatch arguments.
+    pub level_args: wgpu::Buffer,
     groups: Option<ChunkGroups>,
 }
 
@@ -61,6 +74,8 @@ pub struct ChunkGroups {
     gather: Vec<Option<wgpu::BindGroup>>,
     /// The session entries' group 1.
     pub session: wgpu::BindGroup,
+    /// The dispatch arguments' group 0.
+    pub level_dispatch: wgpu::BindGroup,
 }
 
 impl ChunkGroups {
@@ -139,14 +154,15 @@ impl GpuSession {
         let bytes_per_pixel = (POINT_BYTES as f64 * per_pixel).max(SUM_BYTES as f64);
         let chunk = pixels_per_chunk(&self.ctx.limits(), bytes_per_pixel).min(total.max(1).next_multiple_of(16));
         let ctx = &self.ctx;
-        let buffer = |label: &str, size: u64| {
+        let buffer_for = |label: &str, size: u64, usage: wgpu::BufferUsages| {
             ctx.device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: size.max(16),
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | usage,
                 mapped_at_creation: false,
             })
         };
+        let buffer = |label: &str, size: u64| buffer_for(label, size, wgpu::BufferUsages::COPY_SRC);
         self.points.chunks.clear();
         // Counts of the old chunks on their way back say nothing of the new ones.
         self.pending_totals = None;
@@ -160,6 +176,12 @@ impl GpuSession {
                 total: buffer("prismatic visible-point count", 4),
                 sums: buffer("prismatic caustic sums", count * SUM_BYTES),
                 base: buffer("prismatic direct light", count * PIXEL_BYTES),
+                level_lists: buffer("prismatic level lists", LEVEL_HEADER_BYTES + 4 * capacity),
+                level_args: buffer_for(
+                    "prismatic level dispatches",
+                    LEVEL_ARGS_BYTES * GRID_LEVELS as u64,
+                    wgpu::BufferUsages::INDIRECT,
+                ),
                 groups: None,
             })?;
             self.points.chunks.push(chunk);
@@ -213,9 +235,23 @@ impl GpuSession {
                         wgpu::BindGroupEntry { binding: 2, resource: self.session_params.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 3, resource: self.levels.used.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 4, resource: self.run_stats.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 5, resource: chunk.level_lists.as_entire_binding() },
                     ],
                 );
-                ChunkGroups { view, gather, session }
+                let counts = wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                    buffer: &chunk.level_lists,
+                    offset: 0,
+                    size: wgpu::BufferSize::new(4 * GRID_LEVELS as u64),
+                });
+                let level_dispatch = group(
+                    "prismatic level dispatches",
+                    &p.level_dispatch_layout,
+                    &[
+                        wgpu::BindGroupEntry { binding: 0, resource: counts },
+                        wgpu::BindGroupEntry { binding: 1, resource: chunk.level_args.as_entire_binding() },
+                    ],
+                );
+                ChunkGroups { view, gather, session, level_dispatch }
             })?;
             chunk.groups = Some(groups);
         }

@@ -74,13 +74,20 @@ impl GpuSession {
                 self.passes.clear();
             }
         }
+        self.adopt_levels()?;
+        if let Some(timer) = &mut self.timer {
+            timer.check()?;
+        }
+        Ok(())
+    }
+
+    /// Builds the grid levels the pilot's mark names once it has come back
+    /// (binding the points again when the set changed).
+    pub(super) fn adopt_levels(&mut self) -> Result<(), BackendError> {
         if self.levels.adopt(&self.ctx, &self.pipelines, &self.buffers, &self.photons)?
             && !self.points.chunks.is_empty()
         {
             self.bind_points()?;
-        }
-        if let Some(timer) = &mut self.timer {
-            timer.check()?;
         }
         Ok(())
     }

@@ -126,8 +126,8 @@ struct VisiblePoint {
     flux: vec2<u32>,
     pixel: u32,
     ratio: f32,
-    _pad0: u32,
-    _pad1: u32,
+    level: u32,
+    widest: u32,
 }
 
 // Twin of prismatic_gpu::layout::RunStats.

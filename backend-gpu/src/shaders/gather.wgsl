@@ -26,7 +26,8 @@ fn step_limit(lo: i32, hi: i32) -> i32 {
 }
 
 // GatherSums::add over this pass's segment of the (at most 8) buckets the
-// disc around the point touches.
+// disc around the point touches; the point's `widest` grows to the fullest
+// of them (begin_pass empties it).
 fn gather_segment(vp: ptr<function, VisiblePoint>) {
     let point = (*vp).position;
     let normal = (*vp).normal;
@@ -55,6 +56,7 @@ fn gather_segment(vp: ptr<function, VisiblePoint>) {
         if dup || size <= params.gather_first {
             continue;
         }
+        (*vp).widest = max((*vp).widest, size);
         seen[seen_count] = b;
         seen_count++;
         let first = start + params.gather_first;

@@ -3,10 +3,12 @@
 // pass leaves each pixel's direct light (kept as `base`) and its visible
 // points; the pilot's gather at the scene's radius R gives each point its
 // first radius (`first_radius`, as a fraction of R) and marks the grid
-// levels those radii fall in; each pass empties the points' sums and sets
-// their radii (`begin_pass`), gathers level by level (`gather_level`, each
-// point in the grid of its own cell size), adds each point's caustic to
-// its pixel's exact sums (`accumulate`) and shows base + mean (`show`).
+// levels those radii fall in; each pass empties the points' sums, sets
+// their radii and counts the points of each grid level (`begin_pass`),
+// lists them level by level (`list_points`), gathers each level's list in
+// its grid (`gather_level`, dispatched indirectly over that list alone),
+// adds each point's caustic to its pixel's exact sums (`accumulate`) and
+// shows base + mean (`show`).
 
 struct SessionParams {
     // A full pass's photons per pilot photon.
@@ -33,6 +35,15 @@ struct SessionParams {
 // Bit l set when some point's first radius falls in grid level l.
 @group(1) @binding(3) var<storage, read_write> levels_used: atomic<u32>;
 @group(1) @binding(4) var<storage, read_write> run_stats: RunStats;
+
+// This pass's points by grid level: how many each level has, a cursor
+// each for listing them, and the points' indices, level 0's first.
+struct LevelLists {
+    counts: array<atomic<u32>, GRID_LEVELS>,
+    cursors: array<atomic<u32>, GRID_LEVELS>,
+    points: array<u32>,
+}
+@group(1) @binding(5) var<storage, read_write> level_lists: LevelLists;
 
 // schedule::level_of: the finest grid level whose radius (r_pass / 4^l)
 // is at least r.
@@ -78,7 +89,10 @@ fn first_radius(
 }
 
 // A pass's start: sums emptied, radius r_1 · s_k (params.radius is R · s_k);
-// the pass radius where every point gathers within it.
+// the pass radius where every point gathers within it. The point's grid
+// level is its radius's, or the next coarser one built (level 0, the pass
+// radius, always is); each level's points are counted (level_lists.counts
+// and cursors are zero before).
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn begin_pass(
     @builtin(workgroup_id) wid: vec3<u32>,
@@ -94,15 +108,29 @@ fn begin_pass(
     vp.found = 0u;
     vp.sums = array<vec2<u32>, 3>(vec2<u32>(0u), vec2<u32>(0u), vec2<u32>(0u));
     vp.flux = vec2<u32>(0u);
+    vp.widest = 0u;
     vp.radius = select(vp.ratio * params.radius, params.radius, session.whole_radius != 0u);
+    vp.level = level_of(vp.radius, params.radius);
+    while vp.level > 0u && (session.built_levels & (1u << vp.level)) == 0u {
+        vp.level--;
+    }
     points[i] = vp;
+    atomicAdd(&level_lists.counts[vp.level], 1u);
 }
 
-// A pass's gather at the points of grid level `session.level`: a point
-// whose own level has no grid uses the next coarser one that has (level 0,
-// the pass radius, always has).
+// The first entry of `level`'s points in level_lists.points.
+fn level_start(level: u32) -> u32 {
+    var start = 0u;
+    for (var l = 0u; l < level; l++) {
+        start += atomicLoad(&level_lists.counts[l]);
+    }
+    return start;
+}
+
+// Then each point's index into its level's list (in no particular order:
+// every point gathers into its own sums).
 @compute @workgroup_size(WORKGROUP_SIZE)
-fn gather_level(
+fn list_points(
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) nwg: vec3<u32>,
     @builtin(local_invocation_index) lid: u32,
@@ -111,12 +139,27 @@ fn gather_level(
     if !is_point(i) {
         return;
     }
-    // The level from the radius alone: most points are another level's.
-    var level = level_of(points[i].radius, params.radius);
-    while level > 0u && (session.built_levels & (1u << level)) == 0u {
-        level--;
+    let level = points[i].level;
+    let slot = level_start(level) + atomicAdd(&level_lists.cursors[level], 1u);
+    level_lists.points[slot] = i;
+}
+
+// A pass's gather at the points of grid level `session.level`, one
+// invocation per point of its list (level_dispatch.wgsl sized the
+// dispatch); a point whose buckets the earlier segments read to the end
+// is done.
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn gather_level(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let j = flat_index(wid, nwg, lid);
+    if j >= atomicLoad(&level_lists.counts[session.level]) {
+        return;
     }
-    if level != session.level {
+    let i = level_lists.points[level_start(session.level) + j];
+    if params.gather_first > 0u && points[i].widest <= params.gather_first {
         return;
     }
     var vp = points[i];

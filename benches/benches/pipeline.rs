@@ -3,15 +3,17 @@
 //! fixed radius) of the `sphere` and `prism` scenes, and on 1,000,000
 //! photons:
 //!
-//! - `trace/<backend>`: a pass's photon map (throughput in white photons);
-//!   `trace/cpu-1t` and `trace/cpu-2t` pin the thread count;
+//! - `trace/<backend>`: a pass's photon map, `Render::photon_map` (a new
+//!   map each call; throughput in white photons); `trace/cpu-1t` and
+//!   `trace/cpu-2t` pin the thread count;
 //! - `grid/<kernel>`: the hash-grid build over a pass's photons (counting sort);
 //! - `view/<backend>`: a render prepared and its view rays traced;
 //! - `frame/<backend>`: the paper's frame (view rays, one pass, image);
 //! - `effects/<scene>/{planned,unplanned}`: what the effect plan saves;
 //! - `progressive/<backend>-<threads>t/<photons>/pass-<k>`: pass k of a
 //!   progressive render of `sphere` as `prismatic render` runs it (radii
-//!   shrink with k), on a render whose view rays and pilot are traced, and
+//!   shrink with k), on a render whose view rays, pilot and pass 1 are
+//!   traced, and
 //!   `progressive/prepare`: the view rays and the pilot pass.
 
 use criterion::{BatchSize, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
@@ -125,7 +127,9 @@ fn effects_group(c: &mut Criterion) {
 /// radius and 7 paper bands) at 65k (the scene's) and 1M photons a pass;
 /// pass 2 against pass 64 shows whether a pass's cost stays flat, 1 against
 /// 2 threads how the gather scales. Each measurement runs its pass on a
-/// render made (view rays and pilot traced) outside the timing.
+/// render made outside the timing (view rays, pilot and pass 1 traced, so
+/// that the kernels' buffers have grown to a pass's size, as they have for
+/// every pass of a render after its first).
 fn progressive_group(c: &mut Criterion) {
     let mut g = c.benchmark_group("progressive");
     g.sample_size(10);
@@ -147,7 +151,7 @@ fn progressive_group(c: &mut Criterion) {
                 let id = BenchmarkId::new(format!("cpu-{threads}t/{photons}"), format!("pass-{k}"));
                 let ready = || {
                     let mut render = backend.clone().prepare(&scene).unwrap();
-                    render.ready(&mut NoProgress).unwrap();
+                    render.run_pass(0, &mut NoProgress).unwrap();
                     render
                 };
                 g.bench_function(id, |b| {

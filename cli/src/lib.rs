@@ -14,6 +14,7 @@ pub mod passes;
 pub mod progress_bar;
 pub mod render_job;
 pub mod scene_file;
+pub mod settings;
 pub mod study;
 
 use scene_file::{SceneDocument, SceneFileError};

@@ -10,6 +10,7 @@ use prismatic_cli::passes::{parse_passes, parse_seconds};
 use prismatic_cli::progress_bar::ProgressBar;
 use prismatic_cli::render_job::{Output, RenderJob};
 use prismatic_cli::scene_file::{SceneFileError, parse_bands, parse_estimator, parse_radius_mode, parse_wavelengths};
+use prismatic_cli::settings::{Settings, SettingsSource};
 use prismatic_cli::study::progress::StudyBar;
 use prismatic_cli::study::{self, StudyOptions, report};
 use prismatic_core::bands::BandSpec;
@@ -253,14 +254,14 @@ fn run(cli: Cli) -> Result<()> {
             let (name, scene, _) = prepare(&args)?;
             let passes = passes.unwrap_or(if time.is_some() { 0..u32::MAX } else { 0..scene.scene.render.passes });
             let seconds = |s: Option<f64>| s.map(Duration::from_secs_f64);
-            let job = RenderJob { passes, time: seconds(time), save_every: seconds(save_every), output };
+            let job = RenderJob { passes, time: seconds(time), save_every: seconds(save_every) };
             let mut selected = backends::select(args.backend)?;
             if let Some(note) = &selected.note {
                 eprintln!("{note}");
             }
             let mut render = selected.backend.prepare(&scene)?;
             let mut bar = ProgressBar::new();
-            let report = job.run(render.as_mut(), out, &mut bar);
+            let report = job.run_into(render.as_mut(), &output, out, &mut bar);
             bar.finish();
             let report = report?;
             let s = &report.stats;
@@ -283,7 +284,7 @@ fn run(cli: Cli) -> Result<()> {
                 secs(report.prepared),
                 secs(report.passing),
                 report.passing.as_secs_f64() * 1e3 / f64::from(s.passes.max(1)),
-                job.output.path().display(),
+                output.path().display(),
                 scene.scene.render.width,
                 scene.scene.render.height
             );
@@ -344,50 +345,35 @@ fn pass_list(ranges: &[(u32, u32)]) -> String {
     ranges.iter().map(|(a, b)| format!("{a}..{b}")).collect::<Vec<_>>().join(", ")
 }
 
-/// Loads the scene, applies the command-line overrides and validates. Also
+/// Loads the scene, applies the command-line settings and validates. Also
 /// returns the world position of the scene's local frame.
 fn prepare(job: &JobArgs) -> Result<(String, PreparedScene, glam::DVec3)> {
-    let mut doc = prismatic_cli::load_scene(&job.scene)?;
+    let doc = prismatic_cli::load_scene(&job.scene)?;
     for w in &doc.warnings {
         eprintln!("warning: {}: {w}", job.scene);
     }
-    let r = &mut doc.scene.render;
-    r.bands = job.bands.unwrap_or(r.bands);
-    r.photons = job.photons.unwrap_or(r.photons);
-    r.radius = job.radius.unwrap_or(r.radius);
-    r.radius_mode = job.radius_mode.unwrap_or(r.radius_mode);
-    r.seed = job.seed.unwrap_or(r.seed);
-    r.estimator = job.estimator.unwrap_or(r.estimator);
-    r.wavelengths = job.wavelengths.unwrap_or(r.wavelengths);
-    r.width = job.width.unwrap_or(r.width);
-    r.height = job.height.unwrap_or(r.height);
-    doc.validate().map_err(|e| blame_flag(job, e))?;
-    let scene = PreparedScene::new(doc.scene.clone()).map_err(|e| blame_flag(job, doc.error(e)))?;
+    let origin = doc.origin;
+    let scene = job.settings().prepare(doc, SettingsSource::CommandLine)?;
     println!("{}", scene.plan.summary());
     if job.explain {
         print!("{}", scene.plan.explain());
     }
-    Ok((job.scene.clone(), scene, doc.origin))
+    Ok((job.scene.clone(), scene, origin))
 }
 
-/// A value that came from a flag is reported against the flag, not the scene file.
-fn blame_flag(job: &JobArgs, e: SceneFileError) -> SceneFileError {
-    let given = [
-        ("render.bands", "--bands", job.bands.is_some()),
-        ("render.photons", "--photons", job.photons.is_some()),
-        ("render.radius", "--radius", job.radius.is_some()),
-        ("render.radius_mode", "--radius-mode", job.radius_mode.is_some()),
-        ("render.seed", "--seed", job.seed.is_some()),
-        ("render.estimator", "--estimator", job.estimator.is_some()),
-        ("render.wavelengths", "--wavelengths", job.wavelengths.is_some()),
-        ("render.width", "--width", job.width.is_some()),
-        ("render.height", "--height", job.height.is_some()),
-    ];
-    match given.iter().find(|(key, _, set)| *set && e.key == *key) {
-        Some((_, flag, _)) => {
-            SceneFileError { file: "command line".into(), line: None, key: (*flag).into(), reason: e.reason }
+impl JobArgs {
+    fn settings(&self) -> Settings {
+        Settings {
+            bands: self.bands,
+            photons: self.photons,
+            radius: self.radius,
+            radius_mode: self.radius_mode,
+            seed: self.seed,
+            estimator: self.estimator,
+            wavelengths: self.wavelengths,
+            width: self.width,
+            height: self.height,
         }
-        None => e,
     }
 }
 

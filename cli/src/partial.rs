@@ -12,7 +12,7 @@
 use crate::scene_file::SceneFileError;
 use prismatic_core::Accumulation;
 use prismatic_core::color::ToneMap;
-use prismatic_core::{Image, PreparedScene, Vec3};
+use prismatic_core::{Image, PreparedScene, Render, Vec3};
 use std::io::Write;
 use std::path::Path;
 
@@ -46,6 +46,18 @@ fn fnv1a(bytes: &[u8]) -> u64 {
 }
 
 impl Partial {
+    /// The partial of `render`'s passes: its base and `sums`.
+    pub fn of(render: &dyn Render, base: Image, sums: Accumulation) -> Partial {
+        let scene = render.scene();
+        Partial {
+            fingerprint: fingerprint(scene),
+            backend: render.backend().to_string(),
+            tone_map: scene.scene.render.tone_map,
+            base,
+            sums,
+        }
+    }
+
     /// The file's bytes.
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut out = Vec::with_capacity(MAGIC.len() + self.base.pixels.len() * 36 + 64);

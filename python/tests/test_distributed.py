@@ -43,14 +43,16 @@ class Cluster:
         return proc
 
     def close(self):
-        for proc in self.procs:
+        # Workers first, then the scheduler (started first); a process that
+        # has not stopped after 5 s is killed.
+        for proc in reversed(self.procs):
             if proc.poll() is None:
                 proc.terminate()
-        for proc in self.procs:
             try:
-                proc.wait(timeout=20)
+                proc.wait(timeout=5)
             except subprocess.TimeoutExpired:
                 proc.kill()
+                proc.wait()
 
 
 @pytest.fixture

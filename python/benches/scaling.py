@@ -25,7 +25,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__)
 CLI = os.environ.get("PRISMATIC", os.path.join(ROOT, "target", "release", "prismatic"))
 
 
-def best(f, repeats):
+def median_time(f, repeats):
     """Median of `repeats` wall times of f()."""
     times = []
     for _ in range(repeats):
@@ -42,9 +42,9 @@ def overhead(repeats):
     with tempfile.TemporaryDirectory() as d:
         out = os.path.join(d, "x.exr")
         for _ in range(repeats):
-            cli.append(best(lambda: subprocess.run([CLI, "render", *settings, "-o", out], check=True,
+            cli.append(median_time(lambda: subprocess.run([CLI, "render", *settings, "-o", out], check=True,
                                                    capture_output=True), 1))
-            py.append(best(lambda: prismatic.render("sphere", backend="cpu", progress=False), 1))
+            py.append(median_time(lambda: prismatic.render("sphere", backend="cpu", progress=False), 1))
     cli, py = statistics.median(cli), statistics.median(py)
     print(f"| one render of `sphere` (16 passes × 65k photons, 400×400, cpu) | median of {repeats}, alternating |")
     print("|---|---:|")
@@ -56,7 +56,7 @@ def overhead(repeats):
 def speedup(passes, chunks, workers):
     from dask.distributed import Client, LocalCluster
 
-    one = best(lambda: prismatic.render("sphere", passes=passes, backend="cpu", progress=False), 3)
+    one = median_time(lambda: prismatic.render("sphere", passes=passes, backend="cpu", progress=False), 3)
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
                            env={"RAYON_NUM_THREADS": "1"})
     print(f"| `sphere`, {passes} passes, cpu | wall (median of 3) |")
@@ -67,7 +67,7 @@ def speedup(passes, chunks, workers):
         # Warm the workers (the module imported).
         prismatic.distributed.render("sphere", passes=workers, chunk=1, client=client, backend="cpu", progress=False)
         for chunk in chunks:
-            dist = best(lambda: prismatic.distributed.render("sphere", passes=passes, chunk=chunk, client=client,
+            dist = median_time(lambda: prismatic.distributed.render("sphere", passes=passes, chunk=chunk, client=client,
                                                              backend="cpu", progress=False), 3)
             print(f"| local cluster, {workers} workers × 1 thread, ranges of {chunk} | {dist:.2f} s ({one / dist:.2f}×) |")
     cluster.close()
@@ -83,8 +83,8 @@ def tasks_per_second(tasks, workers):
     with Client(cluster) as client:
         client.wait_for_workers(workers)
         prismatic.distributed.render("sphere", passes=workers, chunk=1, client=client, progress=False, **tiny)
-        one_task = best(lambda: prismatic.render_partial("sphere", (0, 1), **tiny), 5)
-        wall = best(lambda: prismatic.distributed.render("sphere", passes=tasks, chunk=1, client=client,
+        one_task = median_time(lambda: prismatic.render_partial("sphere", (0, 1), **tiny), 5)
+        wall = median_time(lambda: prismatic.distributed.render("sphere", passes=tasks, chunk=1, client=client,
                                                          progress=False, **tiny), 1)
     cluster.close()
     print("| scheduling | figure |")
@@ -103,8 +103,8 @@ def merge_cost(sizes, repeats):
         parts = [prismatic.render_partial("sphere", (k, k + 1), **s) for k in range(repeats + 1)]
         merged = prismatic._prismatic.Merge()
         merged.add(parts[0])
-        add = statistics.median(best(lambda: merged.add(p), 1) for p in parts[1:])
-        image = best(merged.image, repeats)
+        add = statistics.median(median_time(lambda: merged.add(p), 1) for p in parts[1:])
+        image = median_time(merged.image, repeats)
         print(f"| {w}×{h} | {len(parts[0]) / 1e6:.1f} MB | {1e3 * add:.1f} ms | {1e3 * image:.1f} ms |")
     print()
 

@@ -1,28 +1,12 @@
 //! Packet ray–scene intersection: the core's `Primitive::intersect` and
 //! `PreparedScene::intersect`, eight rays at a time, operation for operation.
 
+use crate::bvh::{intersect_mesh, mesh_hits_any};
+use crate::ray::{RayX8, in_range, surface_skin};
 use crate::simd::{Vec3x8, ge, gt, lt};
-use prismatic_core::geometry::{HalfSpace, Primitive, Triangle};
+use prismatic_core::geometry::{HalfSpace, Primitive};
 use prismatic_core::prepared::PreparedScene;
-use prismatic_core::tolerance::{BARYCENTRIC_EPS, SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL, SURFACE_SKIN_FACTOR};
 use wide::f32x8;
-
-/// Eight rays.
-#[derive(Clone, Copy, Debug)]
-pub struct RayX8 {
-    /// Origins.
-    pub origin: Vec3x8,
-    /// Unit directions.
-    pub dir: Vec3x8,
-}
-
-impl RayX8 {
-    /// Points at parameter `t`.
-    #[inline]
-    pub fn at(&self, t: f32x8) -> Vec3x8 {
-        self.origin + self.dir * t
-    }
-}
 
 /// The nearest hits of eight rays: `object` is −1 where a ray hit nothing.
 #[derive(Clone, Copy, Debug)]
@@ -55,8 +39,10 @@ pub fn intersect_scene(scene: &PreparedScene, ray: &RayX8, t_max: f32x8) -> HitX
 pub fn occluded(scene: &PreparedScene, ray: &RayX8, dist: f32x8) -> f32x8 {
     let mut blocked = f32x8::ZERO;
     for prim in &scene.primitives {
-        let (mask, _, _) = intersect_primitive(prim, ray, dist);
-        blocked |= mask;
+        blocked |= match prim {
+            Primitive::Mesh(bvh) => mesh_hits_any(bvh, ray, dist),
+            _ => intersect_primitive(prim, ray, dist).0,
+        };
         if blocked.all() {
             break;
         }
@@ -82,45 +68,8 @@ fn intersect_primitive(prim: &Primitive, ray: &RayX8, t_max: f32x8) -> (f32x8, f
             (valid & in_range(t, t_max) & inside, t, n)
         }
         Primitive::Convex { faces } => convex(ray, faces, t_max),
-        Primitive::Mesh { triangles, bound_center, bound_radius } => {
-            if !sphere_any(ray, Vec3x8::splat(*bound_center), *bound_radius, t_max).any() {
-                return (f32x8::ZERO, t_max, Vec3x8::ZERO);
-            }
-            let skin = surface_skin(ray.origin);
-            let (mut hit, mut best_t, mut best_n) = (f32x8::ZERO, t_max, Vec3x8::ZERO);
-            let mut best_entering = f32x8::ZERO;
-            for tri in triangles {
-                let limit = hit.select((best_t + skin).min(t_max), t_max);
-                let (mask, t) = triangle(ray, tri, limit, skin);
-                if mask.any() {
-                    // The core's `nearer_triangle`, per lane.
-                    let entering = lt(Vec3x8::splat(tri.normal).dot(ray.dir), f32x8::ZERO);
-                    let same = !(entering ^ best_entering);
-                    let nearer = (entering & !best_entering)
-                        | (!entering & best_entering & lt(t, best_t - skin))
-                        | (same & lt(t, best_t));
-                    let take = mask & (!hit | nearer);
-                    hit |= take;
-                    best_t = take.select(t, best_t);
-                    best_n = Vec3x8::select(take, Vec3x8::splat(tri.normal), best_n);
-                    best_entering = take.select(entering, best_entering);
-                }
-            }
-            (hit, best_t, best_n)
-        }
+        Primitive::Mesh(bvh) => intersect_mesh(bvh, ray, t_max),
     }
-}
-
-/// `prismatic_core::tolerance::surface_skin` per lane.
-#[inline]
-fn surface_skin(origin: Vec3x8) -> f32x8 {
-    let offset = f32x8::splat(SURFACE_OFFSET_ABS) + f32x8::splat(SURFACE_OFFSET_REL) * origin.abs_max_element();
-    f32x8::splat(SURFACE_SKIN_FACTOR) * offset
-}
-
-#[inline]
-fn in_range(t: f32x8, t_max: f32x8) -> f32x8 {
-    gt(t, f32x8::ZERO) & lt(t, t_max)
 }
 
 #[inline]
@@ -149,15 +98,6 @@ fn sphere(ray: &RayX8, center: Vec3x8, radius: f32, t_max: f32x8) -> (f32x8, f32
     let t = near_ok.select(near, far);
     let mask = valid & (near_ok | in_range(far, t_max));
     (mask, t, (ray.at(t) - center) / r)
-}
-
-#[inline]
-fn sphere_any(ray: &RayX8, center: Vec3x8, radius: f32, t_max: f32x8) -> f32x8 {
-    let f = ray.origin - center;
-    let b = f.dot(ray.dir);
-    let perp = f - ray.dir * b;
-    let r = f32x8::splat(radius);
-    !gt(perp.length_squared(), r * r) & !gt(-b - r, t_max)
 }
 
 #[inline]
@@ -199,24 +139,4 @@ fn convex(ray: &RayX8, faces: &[HalfSpace], t_max: f32x8) -> (f32x8, f32x8, Vec3
         normal = Vec3x8::select(face.simd_eq(f32x8::splat(k as f32)), Vec3x8::splat(f.normal), normal);
     }
     (mask, enter_ok.select(t_enter, t_exit), normal)
-}
-
-#[inline]
-fn triangle(ray: &RayX8, tri: &Triangle, t_max: f32x8, skin: f32x8) -> (f32x8, f32x8) {
-    let (e1, e2) = (Vec3x8::splat(tri.e1), Vec3x8::splat(tri.e2));
-    let p = ray.dir.cross(e2);
-    let det = e1.dot(p);
-    let valid = !lt(det.abs(), f32x8::splat(1e-12));
-    let inv = f32x8::ONE / det;
-    let s = ray.origin - Vec3x8::splat(tri.v0);
-    let u = s.dot(p) * inv;
-    let q = s.cross(e1);
-    let v = ray.dir.dot(q) * inv;
-    let t = e2.dot(q) * inv;
-    let (lo, hi) = (f32x8::splat(-BARYCENTRIC_EPS), f32x8::splat(1.0 + BARYCENTRIC_EPS));
-    let inside = ge(u, lo) & !gt(u, hi) & ge(v, lo) & !gt(u + v, hi);
-    let n = Vec3x8::splat(tri.normal);
-    let height = n.dot(ray.origin - Vec3x8::splat(tri.v0));
-    let in_skin = gt(height, f32x8::ZERO) & lt(height, skin) & lt(n.dot(ray.dir), f32x8::ZERO);
-    (valid & !in_skin & inside & in_range(t, t_max), t)
 }

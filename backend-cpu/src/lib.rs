@@ -9,12 +9,14 @@
 //! compare it with; the renders are the core's
 //! [`HostRender`] over [`PacketKernels`].
 
+mod bvh;
 mod emit;
 mod grid;
 mod intersect;
 mod kernels;
 pub mod optics;
 mod pass;
+mod ray;
 pub mod simd;
 mod trace;
 mod view;

@@ -12,8 +12,9 @@
 //! operation, so the photon map is the reference's bit for bit.
 
 use crate::emit::Emitters;
-use crate::intersect::{HitX8, RayX8, intersect_scene};
+use crate::intersect::{HitX8, intersect_scene};
 use crate::optics::{offset_origin, reflect, scatter_dielectric};
+use crate::ray::RayX8;
 use crate::simd::{Vec3x8, lt, random_f32};
 use prismatic_core::photon::{Photon, TraceStats, WHITE_BAND, oct_encode};
 use prismatic_core::prepared::PreparedScene;

@@ -10,8 +10,9 @@
 //! shadow-ray packets, checker albedo) is lane-parallel; each diffuse hit
 //! that needs the caustic becomes a visible point.
 
-use crate::intersect::{RayX8, intersect_scene, occluded};
+use crate::intersect::{intersect_scene, occluded};
 use crate::optics::{fresnel, interface, offset_origin, reflect, refract};
+use crate::ray::RayX8;
 use crate::simd::{Vec3x8, ge, gt, lt};
 use glam::Vec3;
 use prismatic_core::Image;

@@ -98,8 +98,8 @@ const _: () = assert!(core::mem::size_of::<Params>() == 208);
 /// An object's primitive. Kinds: 0 sphere (`a` centre, `ra` radius), 1 plane
 /// (`a` point, `n` normal), 2 disc (`a` centre, `n` normal, `ra` radius²,
 /// `rb` hole radius²), 3 convex (`count` faces from `first` in the geometry
-/// buffer), 4 mesh (`count` triangles of 4 vec4s from `first`, bounding
-/// sphere `a`, `ra`).
+/// buffer), 4 mesh (hierarchy nodes of 2 vec4s from `first`, `count`
+/// triangles of 4 vec4s from `second`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuObject {
@@ -109,8 +109,8 @@ pub struct GpuObject {
     pub first: u32,
     /// Number of records.
     pub count: u32,
-    /// Padding.
-    pub _pad: u32,
+    /// Second list's first record (a mesh's triangles).
+    pub second: u32,
     /// Centre or point.
     pub a: [f32; 3],
     /// First radius-like value.

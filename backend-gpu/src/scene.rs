@@ -122,11 +122,15 @@ impl EncodedScene {
                 self.geometry.extend(faces.iter().map(|f| v4(f.normal, f.offset)));
                 GpuObject { kind: 3, count: faces.len() as u32, ..o }
             }
-            Primitive::Mesh { triangles, bound_center, bound_radius } => {
-                for t in triangles {
+            Primitive::Mesh(bvh) => {
+                for n in &bvh.nodes {
+                    self.geometry.extend([v4(n.lo, f32::from_bits(n.first)), v4(n.hi, f32::from_bits(n.count))]);
+                }
+                let second = self.geometry.len() as u32;
+                for t in &bvh.triangles {
                     self.geometry.extend([v4(t.v0, 0.0), v4(t.e1, 0.0), v4(t.e2, 0.0), v4(t.normal, 0.0)]);
                 }
-                GpuObject { kind: 4, count: triangles.len() as u32, a: v3(*bound_center), ra: *bound_radius, ..o }
+                GpuObject { kind: 4, count: bvh.triangles.len() as u32, second, ..o }
             }
         }
     }

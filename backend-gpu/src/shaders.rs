@@ -103,6 +103,7 @@ fn prelude(stack: u32) -> String {
     u("PROJECTION_CONES", kind::PROJECTION_CONES);
     u("PROJECTION_DISCS", kind::PROJECTION_DISCS);
     u("GRID_LEVELS", prismatic_core::schedule::GRID_LEVELS as u32);
+    u("MAX_BVH_DEPTH", prismatic_core::bvh::MAX_DEPTH as u32);
     let mut f = |name: &str, v: f32| writeln!(s, "const {name}: f32 = {v:e};").unwrap();
     f("PI", std::f32::consts::PI);
     f("BIG", f32::MAX);
@@ -110,6 +111,7 @@ fn prelude(stack: u32) -> String {
     f("SURFACE_OFFSET_ABS", SURFACE_OFFSET_ABS);
     f("SURFACE_SKIN_FACTOR", SURFACE_SKIN_FACTOR);
     f("BARYCENTRIC_EPS", BARYCENTRIC_EPS);
+    f("BOX_MARGIN", prismatic_core::bvh::BOX_MARGIN);
     f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);
     f("VISIBLE_NM_LO", VISIBLE_NM.0);
     f("MIN_RADIUS_FRACTION", prismatic_core::schedule::MIN_RADIUS_FRACTION);

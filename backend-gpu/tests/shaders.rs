@@ -110,7 +110,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 _pad6,
             }),
         ),
-        ("GpuObject", &trace, rust_layout!(GpuObject { kind, first, count, _pad, a, ra, n, rb })),
+        ("GpuObject", &trace, rust_layout!(GpuObject { kind, first, count, second, a, ra, n, rb })),
         (
             "GpuSurface",
             &trace,

@@ -1,7 +1,7 @@
 //! The scenes the suite renders, built in code (small: the scalar reference
 //! renders each in well under a second): a dispersive glass sphere on a
 //! checkered floor under a spot light (caustic, band split, visible points
-//! seen through glass), a prism fanning a beam onto a wall (split bands),
+//! seen through glass; once more as a closed triangle mesh), a prism fanning a beam onto a wall (split bands),
 //! a mirror folding a beam onto a floor (no dispersion), and a room with
 //! no mirror or glass (no caustics at all).
 
@@ -142,7 +142,65 @@ pub fn no_caustics() -> PreparedScene {
     })
 }
 
+/// The paper's sphere as a closed mesh of `4 · rings²` triangles: every
+/// backend's hierarchy traversal.
+pub fn glass_mesh_sphere(rings: u32) -> PreparedScene {
+    let mut scene = glass_sphere().scene;
+    scene.objects[1].shape = sphere_mesh(Vec3::new(0.0, 1.0, 0.0), 0.8, rings);
+    prepared(scene)
+}
+
+/// A closed sphere mesh, wound outward: `rings` rings of `2 · rings`
+/// quads split in two, `4 · rings²` triangles of which the `4 · rings` at
+/// the poles have no area (dropped when the scene is prepared).
+pub fn sphere_mesh(center: Vec3, radius: f32, rings: u32) -> Shape {
+    let segments = 2 * rings;
+    let mut positions = Vec::with_capacity(((rings + 1) * segments) as usize);
+    for r in 0..=rings {
+        let theta = core::f32::consts::PI * r as f32 / rings as f32;
+        for s in 0..segments {
+            let phi = core::f32::consts::TAU * s as f32 / segments as f32;
+            let dir = match r {
+                0 => Vec3::Y,
+                _ if r == rings => -Vec3::Y,
+                _ => Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin()),
+            };
+            positions.push(center + radius * dir);
+        }
+    }
+    let mut triangles = Vec::with_capacity((2 * rings * segments) as usize);
+    for r in 0..rings {
+        for s in 0..segments {
+            let (a, b) = (r * segments + s, r * segments + (s + 1) % segments);
+            let (c, d) = (a + segments, b + segments);
+            triangles.extend([[a, b, c], [b, d, c]]);
+        }
+    }
+    Shape::Mesh { positions, triangles }
+}
+
 /// The scenes with caustics, by name.
 pub fn with_caustics() -> Vec<(&'static str, PreparedScene)> {
-    vec![("glass sphere", glass_sphere()), ("prism", prism()), ("mirror", mirror())]
+    vec![
+        ("glass sphere", glass_sphere()),
+        ("glass mesh sphere", glass_mesh_sphere(12)),
+        ("prism", prism()),
+        ("mirror", mirror()),
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_sphere_mesh_is_closed_and_wound_outward() {
+        let Shape::Mesh { positions, triangles } = sphere_mesh(Vec3::Y, 0.8, 6) else { unreachable!() };
+        assert_eq!(triangles.len(), 4 * 36);
+        assert_eq!(prismatic_core::mesh::open_edge(&positions, &triangles), None);
+        for t in prismatic_core::geometry::mesh_triangles(&positions, &triangles) {
+            let centroid = t.v0 + (t.e1 + t.e2) / 3.0;
+            assert!(t.normal.dot(centroid - Vec3::Y) > 0.0, "inward triangle at {centroid}");
+        }
+    }
 }

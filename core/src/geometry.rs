@@ -1,35 +1,15 @@
-//! Rays, primitives ready for intersection, and robust ray–primitive tests.
+//! Primitives ready for intersection and robust ray–primitive tests.
 //!
 //! Normals returned by intersections are geometric and point out of the
 //! object (for planes and discs: along their stated normal); callers decide
 //! the facing side with the sign of `dot(direction, normal)`.
 
-use crate::tolerance::BARYCENTRIC_EPS;
+use crate::bvh::MeshBvh;
 use alloc::vec::Vec;
 use glam::Vec3;
 
-/// A ray with a unit direction.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Ray {
-    /// Origin.
-    pub origin: Vec3,
-    /// Unit direction.
-    pub direction: Vec3,
-}
-
-impl Ray {
-    /// A ray from `origin` along `direction` (normalised here).
-    #[inline]
-    pub fn new(origin: Vec3, direction: Vec3) -> Self {
-        Ray { origin, direction: direction.normalize() }
-    }
-
-    /// The point at parameter `t`.
-    #[inline]
-    pub fn at(&self, t: f32) -> Vec3 {
-        self.origin + self.direction * t
-    }
-}
+pub use crate::ray::Ray;
+pub use crate::triangle::{Triangle, mesh_triangles};
 
 /// A plane `normal · x = offset` bounding a convex solid (inside where `<`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,19 +18,6 @@ pub struct HalfSpace {
     pub normal: Vec3,
     /// Signed offset.
     pub offset: f32,
-}
-
-/// One triangle, stored for Möller–Trumbore.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Triangle {
-    /// First corner.
-    pub v0: Vec3,
-    /// Edge v1 − v0.
-    pub e1: Vec3,
-    /// Edge v2 − v0.
-    pub e2: Vec3,
-    /// Unit face normal (counter-clockwise winding).
-    pub normal: Vec3,
 }
 
 /// A shape prepared for intersection.
@@ -88,15 +55,9 @@ pub enum Primitive {
         /// Bounding planes.
         faces: Vec<HalfSpace>,
     },
-    /// Triangle mesh with a bounding sphere.
-    Mesh {
-        /// Triangles (degenerate ones removed).
-        triangles: Vec<Triangle>,
-        /// Bounding-sphere centre.
-        bound_center: Vec3,
-        /// Bounding-sphere radius.
-        bound_radius: f32,
-    },
+    /// Triangle mesh (degenerate triangles removed) in a bounding volume
+    /// hierarchy.
+    Mesh(MeshBvh),
 }
 
 /// Nearest hit of a ray with a primitive: distance and outward unit normal.
@@ -126,22 +87,25 @@ impl Primitive {
                 (d2 <= *radius2 && d2 >= *inner_radius2).then_some(SurfaceHit { t, normal: *normal })
             }
             Primitive::Convex { faces } => intersect_convex(ray, faces, t_min, t_max),
-            Primitive::Mesh { triangles, bound_center, bound_radius } => {
-                intersect_sphere_any(ray, *bound_center, *bound_radius, t_max)?;
-                let skin = crate::tolerance::surface_skin(ray.origin);
-                let mut best: Option<SurfaceHit> = None;
-                for tri in triangles {
-                    let limit = best.map_or(t_max, |b| (b.t + skin).min(t_max));
-                    if let Some(t) = intersect_triangle(ray, tri, t_min, limit, skin) {
-                        let entering = tri.normal.dot(ray.direction) < 0.0;
-                        if best.is_none_or(|b| nearer_triangle(t, entering, b, ray.direction, skin)) {
-                            best = Some(SurfaceHit { t, normal: tri.normal });
-                        }
-                    }
-                }
-                best
-            }
+            Primitive::Mesh(bvh) => bvh
+                .intersect(ray, t_min, t_max)
+                .map(|(t, index)| SurfaceHit { t, normal: bvh.triangles[index as usize].normal }),
         }
+    }
+
+    /// Whether the ray meets the primitive with `t_min < t < t_max`
+    /// (`intersect(..).is_some()`, stopping at a mesh's first triangle hit).
+    pub fn hits(&self, ray: &Ray, t_min: f32, t_max: f32) -> bool {
+        match self {
+            Primitive::Mesh(bvh) => bvh.hits_any(ray, t_min, t_max),
+            _ => self.intersect(ray, t_min, t_max).is_some(),
+        }
+    }
+
+    /// A mesh primitive over `positions` and `triangles` (degenerate
+    /// triangles left out).
+    pub fn mesh(positions: &[Vec3], triangles: &[[u32; 3]]) -> Self {
+        Primitive::Mesh(crate::bvh_build::build(mesh_triangles(positions, triangles)))
     }
 }
 
@@ -178,18 +142,6 @@ fn intersect_sphere(ray: &Ray, center: Vec3, radius: f32, t_min: f32, t_max: f32
         return None;
     };
     Some(SurfaceHit { t, normal: (ray.at(t) - center) / radius })
-}
-
-/// Cheap conservative test: can the ray meet the sphere before `t_max`?
-fn intersect_sphere_any(ray: &Ray, center: Vec3, radius: f32, t_max: f32) -> Option<()> {
-    let f = ray.origin - center;
-    let b = f.dot(ray.direction);
-    let perp = f - ray.direction * b;
-    if perp.length_squared() > radius * radius {
-        return None;
-    }
-    // Entry point beyond t_max?
-    (-b - radius <= t_max).then_some(())
 }
 
 fn intersect_convex(ray: &Ray, faces: &[HalfSpace], t_min: f32, t_max: f32) -> Option<SurfaceHit> {
@@ -233,51 +185,6 @@ fn intersect_convex(ray: &Ray, faces: &[HalfSpace], t_min: f32, t_max: f32) -> O
     }
 }
 
-/// Whether a triangle hit at `t` (`entering`: against its normal) beats the
-/// best so far. A ray through an edge or a vertex hits every triangle there
-/// at the same t up to rounding; within the skin, a triangle the ray enters
-/// wins over one it leaves, so that a ray entering a closed mesh through a
-/// vertex is not taken to be leaving it.
-#[inline]
-fn nearer_triangle(t: f32, entering: bool, best: SurfaceHit, d: Vec3, skin: f32) -> bool {
-    let best_entering = best.normal.dot(d) < 0.0;
-    match (entering, best_entering) {
-        (true, false) => true, // t < best.t + skin: the limit passed to the test
-        (false, true) => t < best.t - skin,
-        _ => t < best.t,
-    }
-}
-
-/// Möller–Trumbore, two-sided, on the triangle widened by
-/// [`BARYCENTRIC_EPS`] so that shared edges have no cracks; a ray that would enter the triangle from
-/// within `skin` outside its plane misses it (see `tolerance::surface_skin`).
-#[inline]
-fn intersect_triangle(ray: &Ray, tri: &Triangle, t_min: f32, t_max: f32, skin: f32) -> Option<f32> {
-    let p = ray.direction.cross(tri.e2);
-    let det = tri.e1.dot(p);
-    if det.abs() < 1e-12 {
-        return None;
-    }
-    let height = tri.normal.dot(ray.origin - tri.v0);
-    if height > 0.0 && height < skin && tri.normal.dot(ray.direction) < 0.0 {
-        return None;
-    }
-    let inv = 1.0 / det;
-    let s = ray.origin - tri.v0;
-    let u = s.dot(p) * inv;
-    let (lo, hi) = (-BARYCENTRIC_EPS, 1.0 + BARYCENTRIC_EPS);
-    if !(lo..=hi).contains(&u) {
-        return None;
-    }
-    let q = s.cross(tri.e1);
-    let v = ray.direction.dot(q) * inv;
-    if v < lo || u + v > hi {
-        return None;
-    }
-    let t = tri.e2.dot(q) * inv;
-    (t > t_min && t < t_max).then_some(t)
-}
-
 /// The prism's five bounding planes, outward.
 pub fn prism_faces(vertices: [Vec3; 3], extrude: Vec3) -> Vec<HalfSpace> {
     let [a, b, c] = vertices;
@@ -295,20 +202,6 @@ pub fn prism_faces(vertices: [Vec3; 3], extrude: Vec3) -> Vec<HalfSpace> {
         push(p, (q - p).cross(extrude));
     }
     faces
-}
-
-/// Mesh triangles without the degenerate (zero-area) ones.
-pub fn mesh_triangles(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Triangle> {
-    triangles
-        .iter()
-        .filter_map(|t| {
-            let [v0, v1, v2] = t.map(|i| positions[i as usize]);
-            let (e1, e2) = (v1 - v0, v2 - v0);
-            let n = e1.cross(e2);
-            let scale = e1.length_squared().max(e2.length_squared());
-            (n.length() > 1e-7 * scale && scale > 0.0).then(|| Triangle { v0, e1, e2, normal: n.normalize() })
-        })
-        .collect()
 }
 
 /// An orthonormal basis around unit `n` (Duff et al. 2017, branchless).

@@ -6,7 +6,8 @@
 //! counter-based RNG, scalar geometry and optics, the gather estimators,
 //! the spatial hash grid, the pass schedule, the exact sums, the render
 //! protocol ([`Backend`], [`Render`]) and the scalar reference backend. It
-//! knows nothing of threads, SIMD, GPUs or files.
+//! knows nothing of threads, SIMD, GPUs or files (with `std`, a mesh's
+//! hierarchy is built by obvhs, which may use threads of its own).
 //!
 //! Its modules form four layers, each using only the ones above it (and
 //! [`progress`], a leaf every layer may use):
@@ -14,7 +15,7 @@
 //! | layer | modules | what |
 //! |---|---|---|
 //! | model | `scene`, `validate`, `bands`, `cie`, `color`, `dispersion`, `image`, `mesh` | what the user described |
-//! | kernels | `math`, `rng`, `tolerance`, `geometry`, `camera`, `optics`, `photon`, `grid`, `gather`, `visible` | pure functions, mirrored in packets and WGSL |
+//! | kernels | `math`, `rng`, `tolerance`, `ray`, `triangle`, `bvh`, `bvh_build`, `geometry`, `camera`, `optics`, `photon`, `grid`, `gather`, `visible` | pure functions, mirrored in packets and WGSL |
 //! | plan | `surface`, `reach`, `projection`, `effects`, `prepared`, `schedule` | what a render of this scene will do |
 //! | pipeline | `emit`, `trace`, `view`, `accumulation`, `protocol`, `host`, `reference` | the reference backend and the protocol |
 
@@ -36,6 +37,8 @@ pub mod mesh;
 pub mod scene;
 pub mod validate;
 
+pub mod bvh;
+pub mod bvh_build;
 pub mod camera;
 pub mod gather;
 pub mod geometry;
@@ -43,8 +46,10 @@ pub mod grid;
 pub mod math;
 pub mod optics;
 pub mod photon;
+pub mod ray;
 pub mod rng;
 pub mod tolerance;
+pub mod triangle;
 pub mod visible;
 
 pub mod effects;

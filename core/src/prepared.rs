@@ -4,7 +4,7 @@
 
 use crate::bands::BandTable;
 use crate::effects::EffectPlan;
-use crate::geometry::{Primitive, Ray, mesh_triangles, prism_faces};
+use crate::geometry::{Primitive, Ray, prism_faces};
 use crate::scene::{Scene, SceneError, Shape};
 use crate::surface::Surface;
 use crate::tolerance;
@@ -97,7 +97,7 @@ impl PreparedScene {
     /// True when something blocks the segment from `origin` along unit `dir` before `dist`.
     pub fn occluded(&self, origin: Vec3, dir: Vec3, dist: f32) -> bool {
         let ray = Ray { origin, direction: dir };
-        self.primitives.iter().any(|p| p.intersect(&ray, 0.0, dist).is_some())
+        self.primitives.iter().any(|p| p.hits(&ray, 0.0, dist))
     }
 }
 
@@ -112,14 +112,7 @@ fn primitive(shape: &Shape) -> Primitive {
             inner_radius2: inner_radius * inner_radius,
         },
         Shape::Prism { vertices, extrude } => Primitive::Convex { faces: prism_faces(*vertices, *extrude) },
-        Shape::Mesh { positions, triangles } => {
-            let tris = mesh_triangles(positions, triangles);
-            let (lo, hi) =
-                positions.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), p| (lo.min(*p), hi.max(*p)));
-            let center = (lo + hi) * 0.5;
-            let radius = positions.iter().map(|p| (*p - center).length()).fold(0.0f32, f32::max) * 1.0001 + 1e-6;
-            Primitive::Mesh { triangles: tris, bound_center: center, bound_radius: radius }
-        }
+        Shape::Mesh { positions, triangles } => Primitive::mesh(positions, triangles),
     }
 }
 

@@ -8,7 +8,7 @@
 use prismatic_core::bands::BandSpec;
 use prismatic_core::dispersion::{Dispersion, Glass};
 use prismatic_core::gather::{GatherQuery, gather};
-use prismatic_core::geometry::{Primitive, Ray, mesh_triangles, prism_faces};
+use prismatic_core::geometry::{Primitive, Ray, prism_faces};
 use prismatic_core::grid::PhotonGrid;
 use prismatic_core::photon::{Photon, PhotonMap, WHITE_BAND, oct_encode};
 use prismatic_core::prepared::offset_origin;
@@ -159,11 +159,7 @@ fn prism_primitives() -> Vec<(&'static str, Primitive, Vec<Vec3>)> {
     // Two end caps and three side quads split along a diagonal.
     let triangles: [[u32; 3]; 8] =
         [[0, 2, 1], [3, 4, 5], [0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4], [2, 0, 3], [2, 3, 5]];
-    let mesh = Primitive::Mesh {
-        triangles: mesh_triangles(&corners, &triangles),
-        bound_center: Vec3::new(0.0, 0.6, 0.0),
-        bound_radius: 2.0,
-    };
+    let mesh = Primitive::mesh(&corners, &triangles);
     // Points on every edge (including the quads' diagonals) and every vertex.
     let mut targets = corners.clone();
     let mut edges: Vec<[usize; 2]> = Vec::new();

@@ -63,7 +63,7 @@ struct GpuObject {
     kind: u32,
     first: u32,
     count: u32,
-    _pad: u32,
+    second: u32,
     a: vec3<f32>,
     ra: f32,
     n: vec3<f32>,

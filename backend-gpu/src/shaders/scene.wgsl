@@ -7,7 +7,8 @@
 @group(0) @binding(2) var<storage, read> surfaces: array<GpuSurface>;
 @group(0) @binding(3) var<storage, read> lights: array<GpuLight>;
 @group(0) @binding(4) var<storage, read> bands: array<GpuBand>;
-// Convex faces (normal, offset), triangles (v0, e1, e2, normal), projection targets.
+// Convex faces (normal, offset), mesh nodes (lo, first; hi, count as bits),
+// triangles (v0, e1, e2, normal), projection targets.
 @group(0) @binding(5) var<storage, read> geometry: array<vec4<f32>>;
 // Per-band indices, n(λ) curves, light and projection CDFs.
 @group(0) @binding(6) var<storage, read> tables: array<f32>;
@@ -144,44 +145,150 @@ fn hit_triangle(o: vec3<f32>, d: vec3<f32>, tri: u32, t_min: f32, t_max: f32, sk
     return -1.0;
 }
 
-fn hit_mesh(o: vec3<f32>, d: vec3<f32>, obj: GpuObject, t_min: f32, t_max: f32) -> SurfaceHit {
-    // Bounding sphere first (geometry::intersect_sphere_any).
-    let f = o - obj.a;
-    let b = dot(f, d);
-    let perp = f - d * b;
-    if dot(perp, perp) > obj.ra * obj.ra || -b - obj.ra > t_max {
-        return no_hit();
+// bvh::inverse_direction
+fn inverse_direction(d: vec3<f32>) -> vec3<f32> {
+    let tiny = 1e-30;
+    let guarded = vec3<f32>(copysign(tiny, d.x), copysign(tiny, d.y), copysign(tiny, d.z));
+    return 1.0 / select(d, guarded, abs(d) < vec3<f32>(tiny));
+}
+
+// bvh::box_entry for node record `node` (lo, first; hi, count): the entry
+// distance, or -1 when the ray misses the box before `limit`.
+fn box_entry(o: vec3<f32>, inv: vec3<f32>, node: u32, limit: f32) -> f32 {
+    let a = (geometry[node].xyz - o) * inv;
+    let b = (geometry[node + 1u].xyz - o) * inv;
+    let lo = min(a, b);
+    let hi = max(a, b);
+    let near = max(max(max(lo.x, lo.y), lo.z), 0.0);
+    let far = min(min(hi.x, hi.y), hi.z);
+    if near <= far && near <= limit * BOX_MARGIN {
+        return near;
     }
-    let skin = SURFACE_SKIN_FACTOR * surface_offset(o);
-    var best = no_hit();
-    for (var i = 0u; i < obj.count; i++) {
-        let tri = obj.first + 4u * i;
-        var limit = t_max;
-        if best.ok {
-            limit = min(best.t + skin, t_max);
-        }
-        let t = hit_triangle(o, d, tri, t_min, limit, skin);
-        if t < 0.0 {
-            continue;
-        }
-        let normal = geometry[tri + 3u].xyz;
-        let entering = dot(normal, d) < 0.0;
-        var better = !best.ok;
-        if best.ok {
-            let best_entering = dot(best.normal, d) < 0.0;
-            if entering && !best_entering {
-                better = true;
-            } else if !entering && best_entering {
-                better = t < best.t - skin;
-            } else {
-                better = t < best.t;
+    return -1.0;
+}
+
+// The mesh's traversal state: NearestTriangle, or the any-hit flag.
+struct MeshSearch {
+    skin: f32,
+    has_enter: bool,
+    t_enter: f32,
+    i_enter: u32,
+    has_leave: bool,
+    t_leave: f32,
+    i_leave: u32,
+    any: bool,
+}
+
+// NearestTriangle::reach
+fn search_reach(s: MeshSearch) -> f32 {
+    var r = BIG;
+    if s.has_enter {
+        r = s.t_enter;
+    }
+    if s.has_leave {
+        r = min(r, s.t_leave + s.skin);
+    }
+    return r;
+}
+
+// MeshBvh::intersect (any_hit false) and MeshBvh::hits_any (true): nodes
+// from record obj.first, triangles from record obj.second.
+fn search_mesh(o: vec3<f32>, d: vec3<f32>, obj: GpuObject, t_min: f32, t_max: f32, any_hit: bool) -> MeshSearch {
+    var s = MeshSearch(SURFACE_SKIN_FACTOR * surface_offset(o), false, 0.0, 0u, false, 0.0, 0u, false);
+    let inv = inverse_direction(d);
+    var limit = t_max;
+    if box_entry(o, inv, obj.first, limit) < 0.0 {
+        return s;
+    }
+    var pending: array<u32, MAX_BVH_DEPTH>;
+    var depth = 0u;
+    var node = 0u;
+    loop {
+        let record = obj.first + 2u * node;
+        let first = bitcast<u32>(geometry[record].w);
+        let count = bitcast<u32>(geometry[record + 1u].w);
+        var descend = false;
+        if count > 0u {
+            for (var index = first; index < first + count; index++) {
+                let tri = obj.second + 4u * index;
+                let t = hit_triangle(o, d, tri, t_min, t_max, s.skin);
+                if t < 0.0 {
+                    continue;
+                }
+                if any_hit {
+                    s.any = true;
+                    return s;
+                }
+                if t > search_reach(s) {
+                    continue;
+                }
+                if dot(geometry[tri + 3u].xyz, d) < 0.0 {
+                    if !s.has_enter || t < s.t_enter || (t == s.t_enter && index < s.i_enter) {
+                        s.has_enter = true;
+                        s.t_enter = t;
+                        s.i_enter = index;
+                    }
+                } else if !s.has_leave || t < s.t_leave || (t == s.t_leave && index < s.i_leave) {
+                    s.has_leave = true;
+                    s.t_leave = t;
+                    s.i_leave = index;
+                }
+            }
+            limit = min(search_reach(s), t_max);
+        } else {
+            let ta = box_entry(o, inv, obj.first + 2u * first, limit);
+            let tb = box_entry(o, inv, obj.first + 2u * (first + 1u), limit);
+            if ta >= 0.0 && tb >= 0.0 {
+                var near = first;
+                var far = first + 1u;
+                if tb < ta {
+                    near = first + 1u;
+                    far = first;
+                }
+                pending[depth] = far;
+                depth++;
+                node = near;
+                descend = true;
+            } else if ta >= 0.0 {
+                node = first;
+                descend = true;
+            } else if tb >= 0.0 {
+                node = first + 1u;
+                descend = true;
             }
         }
-        if better {
-            best = SurfaceHit(true, t, normal);
+        if !descend {
+            // Pop the next node still within reach.
+            var found = false;
+            loop {
+                if depth == 0u {
+                    break;
+                }
+                depth--;
+                if box_entry(o, inv, obj.first + 2u * pending[depth], limit) >= 0.0 {
+                    node = pending[depth];
+                    found = true;
+                    break;
+                }
+            }
+            if !found {
+                return s;
+            }
         }
     }
-    return best;
+    return s;
+}
+
+// Primitive::intersect for a mesh: NearestTriangle::result.
+fn hit_mesh(o: vec3<f32>, d: vec3<f32>, obj: GpuObject, t_min: f32, t_max: f32) -> SurfaceHit {
+    let s = search_mesh(o, d, obj, t_min, t_max, false);
+    if s.has_enter && (!s.has_leave || s.t_enter < s.t_leave + s.skin) {
+        return SurfaceHit(true, s.t_enter, geometry[obj.second + 4u * s.i_enter + 3u].xyz);
+    }
+    if s.has_leave {
+        return SurfaceHit(true, s.t_leave, geometry[obj.second + 4u * s.i_leave + 3u].xyz);
+    }
+    return no_hit();
 }
 
 fn hit_object(obj: GpuObject, o: vec3<f32>, d: vec3<f32>, t_min: f32, t_max: f32) -> SurfaceHit {
@@ -231,10 +338,15 @@ fn intersect_scene(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> Hit {
     return best;
 }
 
-// PreparedScene::occluded
+// PreparedScene::occluded (Primitive::hits)
 fn occluded(o: vec3<f32>, d: vec3<f32>, dist: f32) -> bool {
     for (var i = 0u; i < params.object_count; i++) {
-        if hit_object(objects[i], o, d, 0.0, dist).ok {
+        let obj = objects[i];
+        if obj.kind == 4u {
+            if search_mesh(o, d, obj, 0.0, dist, true).any {
+                return true;
+            }
+        } else if hit_object(obj, o, d, 0.0, dist).ok {
             return true;
         }
     }

@@ -1,0 +1,209 @@
+//! Building a mesh's [`MeshBvh`]: with `std`, obvhs's PLOC builder with
+//! reinsertion (multi-threaded, surface-area quality); without `std`, or
+//! when a tree would be deeper than [`MAX_DEPTH`], a median split on the
+//! longest axis of the triangles' centres.
+
+use crate::bvh::{BvhNode, MeshBvh};
+use crate::triangle::Triangle;
+use alloc::vec::Vec;
+use glam::Vec3;
+
+/// Triangles per leaf of the median split.
+const MEDIAN_LEAF: usize = 4;
+
+/// The hierarchy over `triangles` (reordered into leaf order).
+pub fn build(triangles: Vec<Triangle>) -> MeshBvh {
+    if triangles.is_empty() {
+        return MeshBvh::default();
+    }
+    #[cfg(feature = "std")]
+    {
+        let bvh = sah::build(&triangles);
+        if depth(&bvh.nodes) <= crate::bvh::MAX_DEPTH {
+            return bvh;
+        }
+    }
+    median_split(triangles)
+}
+
+/// Inner nodes on the longest path from the root to a leaf.
+#[cfg(any(feature = "std", test))]
+fn depth(nodes: &[BvhNode]) -> usize {
+    let mut deepest = 0;
+    let mut stack = Vec::from([(0u32, 0usize)]);
+    while let Some((i, d)) = stack.pop() {
+        let n = nodes[i as usize];
+        if n.count == 0 {
+            stack.extend([(n.first, d + 1), (n.first + 1, d + 1)]);
+        } else {
+            deepest = deepest.max(d);
+        }
+    }
+    deepest
+}
+
+fn bounds(tris: &[Triangle]) -> (Vec3, Vec3) {
+    tris.iter()
+        .map(Triangle::padded_bounds)
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), (a, b)| (lo.min(a), hi.max(b)))
+}
+
+fn centre(t: &Triangle) -> Vec3 {
+    t.v0 + (t.e1 + t.e2) / 3.0
+}
+
+/// Halves the centres' longest extent by count, down to [`MEDIAN_LEAF`]
+/// triangles: depth ⌈log₂(n / 4)⌉, far below [`MAX_DEPTH`].
+fn median_split(mut triangles: Vec<Triangle>) -> MeshBvh {
+    let mut nodes = Vec::with_capacity(2 * triangles.len() / MEDIAN_LEAF + 1);
+    let (lo, hi) = bounds(&triangles);
+    nodes.push(BvhNode { lo, hi, first: 0, count: triangles.len() as u32 });
+    let mut todo = Vec::from([0usize]);
+    while let Some(i) = todo.pop() {
+        let BvhNode { first, count, .. } = nodes[i];
+        if (count as usize) <= MEDIAN_LEAF {
+            continue;
+        }
+        let range = first as usize..(first + count) as usize;
+        let tris = &mut triangles[range.clone()];
+        let (clo, chi) =
+            tris.iter().map(centre).fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), c| (lo.min(c), hi.max(c)));
+        let axis = (chi - clo).max_position();
+        let half = tris.len() / 2;
+        tris.select_nth_unstable_by(half, |a, b| centre(a)[axis].total_cmp(&centre(b)[axis]));
+        let child = nodes.len() as u32;
+        for (start, len) in [(first, half as u32), (first + half as u32, count - half as u32)] {
+            let (lo, hi) = bounds(&triangles[start as usize..(start + len) as usize]);
+            nodes.push(BvhNode { lo, hi, first: start, count: len });
+        }
+        nodes[i].first = child;
+        nodes[i].count = 0;
+        todo.extend([child as usize, child as usize + 1]);
+    }
+    MeshBvh { nodes, triangles }
+}
+
+#[cfg(feature = "std")]
+mod sah {
+    //! obvhs's builder over the triangles' padded boxes.
+    use super::*;
+    use obvhs::BvhBuildParams;
+    use obvhs::aabb::Aabb;
+    use obvhs::bvh2::builder::build_bvh2;
+
+    pub fn build(triangles: &[Triangle]) -> MeshBvh {
+        let boxes: Vec<Aabb> = triangles
+            .iter()
+            .map(|t| {
+                let (lo, hi) = t.padded_bounds();
+                Aabb::new(lo.into(), hi.into())
+            })
+            .collect();
+        let params = BvhBuildParams { max_prims_per_leaf: 4, ..BvhBuildParams::medium_build() };
+        let bvh = build_bvh2(&boxes, params, &mut std::time::Duration::default());
+        let nodes = bvh
+            .nodes
+            .iter()
+            .map(|n| BvhNode {
+                lo: n.aabb.min.into(),
+                hi: n.aabb.max.into(),
+                first: n.first_index,
+                count: n.prim_count,
+            })
+            .collect();
+        let triangles = bvh.primitive_indices.iter().map(|&i| triangles[i as usize]).collect();
+        MeshBvh { nodes, triangles }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::ray::Ray;
+    use crate::rng::random_f32;
+    use crate::triangle::{NearestTriangle, intersect_triangle, mesh_triangles};
+
+    /// A closed, bumpy sphere of `2 · rings · segments` triangles.
+    fn sphere_mesh(rings: u32, segments: u32) -> Vec<Triangle> {
+        let mut positions = Vec::new();
+        for r in 0..=rings {
+            let theta = core::f32::consts::PI * r as f32 / rings as f32;
+            for s in 0..segments {
+                let phi = core::f32::consts::TAU * s as f32 / segments as f32;
+                let radius = 1.0 + 0.05 * (5.0 * phi).sin() * (3.0 * theta).sin();
+                positions.push(radius * Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()));
+            }
+        }
+        let mut tris = Vec::new();
+        for r in 0..rings {
+            for s in 0..segments {
+                let (a, b) = (r * segments + s, r * segments + (s + 1) % segments);
+                let (c, d) = (a + segments, b + segments);
+                tris.extend([[a, c, b], [b, c, d]]);
+            }
+        }
+        mesh_triangles(&positions, &tris)
+    }
+
+    /// Every triangle offered in order: the specification the tree must match.
+    fn brute_force(tris: &[Triangle], ray: &Ray, t_max: f32) -> Option<(f32, Vec3)> {
+        let mut nearest = NearestTriangle::new(crate::tolerance::surface_skin(ray.origin));
+        for (i, tri) in tris.iter().enumerate() {
+            if let Some(t) = intersect_triangle(ray, tri, 0.0, t_max, nearest.skin) {
+                nearest.offer(t, i as u32, tri.normal.dot(ray.direction) < 0.0);
+            }
+        }
+        nearest.result().map(|(t, i)| (t, tris[i as usize].normal))
+    }
+
+    fn check_against_brute_force(bvh: &MeshBvh, label: &str) {
+        for k in 0..3000u32 {
+            let mut dimension = 0;
+            let mut u = || {
+                dimension += 1;
+                random_f32(7, k, dimension) * 2.0 - 1.0
+            };
+            // From outside, from inside, and from points on the surface.
+            let origin = match k % 3 {
+                0 => Vec3::new(u(), u(), u()).normalize_or(Vec3::X) * 3.0,
+                1 => Vec3::new(u(), u(), u()) * 0.5,
+                _ => {
+                    let t = &bvh.triangles[(k as usize * 7919) % bvh.triangles.len()];
+                    t.v0 + t.e1 * 0.3 + t.e2 * 0.3
+                }
+            };
+            let target = Vec3::new(u(), u(), u()) * 0.9;
+            let ray = Ray::new(origin, target - origin);
+            let t_max = if k % 5 == 0 { 1.5 } else { f32::INFINITY };
+            let tree = bvh.intersect(&ray, 0.0, t_max).map(|(t, i)| (t, bvh.triangles[i as usize].normal));
+            assert_eq!(tree, brute_force(&bvh.triangles, &ray, t_max), "{label}: ray {k} {ray:?}");
+            assert_eq!(bvh.hits_any(&ray, 0.0, t_max), tree.is_some(), "{label}: any hit, ray {k}");
+        }
+    }
+
+    #[test]
+    fn the_tree_finds_the_hit_that_testing_every_triangle_finds() {
+        let tris = sphere_mesh(24, 40);
+        check_against_brute_force(&build(tris.clone()), "default builder");
+        check_against_brute_force(&median_split(tris), "median split");
+    }
+
+    #[test]
+    fn trees_are_shallow_and_hold_every_triangle_once() {
+        let tris = sphere_mesh(60, 90);
+        for (label, bvh) in [("default", build(tris.clone())), ("median", median_split(tris.clone()))] {
+            assert_eq!(bvh.triangles.len(), tris.len(), "{label}");
+            assert!(depth(&bvh.nodes) <= crate::bvh::MAX_DEPTH, "{label}");
+            let leaves: u32 = bvh.nodes.iter().map(|n| n.count).sum();
+            assert_eq!(leaves as usize, tris.len(), "{label}: every triangle in exactly one leaf");
+            // Every triangle lies inside its leaf's box.
+            for n in bvh.nodes.iter().filter(|n| n.count > 0) {
+                for t in &bvh.triangles[n.first as usize..(n.first + n.count) as usize] {
+                    let (lo, hi) = t.padded_bounds();
+                    assert!(lo.cmpge(n.lo).all() && hi.cmple(n.hi).all(), "{label}");
+                }
+            }
+        }
+        assert_eq!(build(Vec::new()), MeshBvh::default());
+    }
+}

@@ -30,7 +30,9 @@ fn box_entry(origin: Vec3x8, inv: Vec3x8, node: &BvhNode, limit: f32x8) -> (f32x
     let (e, f) = ((lo.z - origin.z) * inv.z, (hi.z - origin.z) * inv.z);
     let near = a.min(b).max(c.min(d)).max(e.min(f)).max(f32x8::ZERO);
     let far = a.max(b).min(c.max(d)).min(e.max(f));
-    (!gt(near, far) & !gt(near, limit * f32x8::splat(BOX_MARGIN)), near)
+    // As the scalar `near <= far && near <= limit`: false for NaN lanes (rays
+    // from a point at infinity, in lanes a packet does not use).
+    (ge(far, near) & ge(limit * f32x8::splat(BOX_MARGIN), near), near)
 }
 
 /// Visits the leaves any lane may hit before its limit, nearer child first

@@ -88,7 +88,10 @@ pub fn describe(info: &wgpu::AdapterInfo) -> String {
 impl GpuContext {
     /// Creates a device on the best adapter (`choice` says which count).
     pub fn new(choice: AdapterChoice) -> Result<Self, BackendError> {
-        let instance = wgpu::Instance::new(wgpu::InstanceDescriptor::new_without_display_handle_from_env());
+        // Only the backends searched below (no EGL opened for nothing).
+        let mut descriptor = wgpu::InstanceDescriptor::new_without_display_handle_from_env();
+        descriptor.backends &= wgpu::Backends::PRIMARY;
+        let instance = wgpu::Instance::new(descriptor);
         let adapters = pollster::block_on(instance.enumerate_adapters(wgpu::Backends::PRIMARY));
         let seen: Vec<String> = adapters.iter().map(|a| describe(&a.get_info())).collect();
         let best = adapters

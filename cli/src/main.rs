@@ -170,7 +170,23 @@ impl StudyArgs {
 /// Exit status for bad input (scene files, arguments), as clap uses for usage errors.
 const EXIT_BAD_INPUT: u8 = 2;
 
+/// Without `XDG_RUNTIME_DIR` there is no Wayland session, yet Mesa's
+/// Vulkan drivers (lavapipe among them) ask libwayland for a display while
+/// `auto` lists the adapters, and libwayland prints "error:
+/// XDG_RUNTIME_DIR is invalid or not set" twice on renders that work.
+/// Naming a display socket that does not exist makes that lookup fail
+/// quietly. Called first in `main`, before any thread exists.
+#[allow(unsafe_code)] // set_var: sound before any thread starts (see above)
+fn quiet_missing_wayland_session() {
+    let unset = |name: &str| std::env::var_os(name).is_none_or(|v| v.is_empty());
+    if cfg!(target_os = "linux") && unset("XDG_RUNTIME_DIR") && unset("WAYLAND_DISPLAY") && unset("WAYLAND_SOCKET") {
+        // SAFETY: no other thread exists yet to read the environment.
+        unsafe { std::env::set_var("WAYLAND_DISPLAY", "/nonexistent/prismatic-has-no-wayland-session") };
+    }
+}
+
 fn main() -> ExitCode {
+    quiet_missing_wayland_session();
     let cli = Cli::parse();
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,

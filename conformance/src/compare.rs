@@ -100,3 +100,22 @@ pub fn compare_images(expected: &Image, got: &Image) -> Result<usize, String> {
     }
     Ok(bad)
 }
+
+/// Pearson correlation of two images' channel values (1: the same picture
+/// up to brightness and offset). Images of different sizes correlate 0.
+pub fn image_correlation(a: &Image, b: &Image) -> f64 {
+    if (a.width, a.height) != (b.width, b.height) {
+        return 0.0;
+    }
+    let values = |img: &Image| img.pixels.iter().flat_map(|p| p.to_array()).map(f64::from).collect::<Vec<_>>();
+    let (x, y) = (values(a), values(b));
+    let n = x.len() as f64;
+    let (mx, my) = (x.iter().sum::<f64>() / n, y.iter().sum::<f64>() / n);
+    let (mut sxy, mut sxx, mut syy) = (0.0, 0.0, 0.0);
+    for (u, v) in x.iter().zip(&y) {
+        sxy += (u - mx) * (v - my);
+        sxx += (u - mx) * (u - mx);
+        syy += (v - my) * (v - my);
+    }
+    if sxx == 0.0 || syy == 0.0 { 0.0 } else { sxy / (sxx * syy).sqrt() }
+}

@@ -1,6 +1,6 @@
 //! Building a mesh's [`MeshBvh`]: with `std`, obvhs's PLOC builder with
 //! reinsertion (multi-threaded, surface-area quality); without `std`, or
-//! when a tree would be deeper than [`MAX_DEPTH`], a median split on the
+//! when a tree would be deeper than [`MAX_DEPTH`](crate::bvh::MAX_DEPTH), a median split on the
 //! longest axis of the triangles' centres.
 
 use crate::bvh::{BvhNode, MeshBvh};

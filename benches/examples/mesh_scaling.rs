@@ -1,0 +1,78 @@
+//! Render time against triangle count: the built-in `sphere` scene with its
+//! sphere as a closed glass mesh of about 1k, 10k, 100k and 1M triangles,
+//! beside the analytic sphere, on the cpu and gpu backends. Per row: the
+//! hierarchy's build time and memory per triangle, a render's time (prepared,
+//! then PASSES passes at 200×200), photon paths per second (one pass's photon
+//! map) and the image's correlation with the analytic sphere's.
+//!
+//! `cargo run --release -p prismatic-benches --example mesh_scaling -- [PASSES] [--cpu-only]`
+
+use prismatic_conformance::compare::image_correlation;
+use prismatic_conformance::scenes::sphere_mesh;
+use prismatic_core::geometry::Primitive;
+use prismatic_core::scene::Shape;
+use prismatic_core::{Backend, Image, NoProgress, PreparedScene};
+use prismatic_cpu::CpuBackend;
+use prismatic_gpu::{AdapterChoice, GpuBackend};
+use std::time::Instant;
+
+/// Rings of the sphere meshes: 4 · rings² triangles (less the poles').
+const RINGS: [u32; 4] = [16, 50, 158, 500];
+
+fn scene(rings: Option<u32>) -> PreparedScene {
+    let mut doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
+    (doc.scene.render.width, doc.scene.render.height) = (200, 200);
+    if let Some(rings) = rings {
+        let Shape::Sphere { center, radius } = doc.scene.objects[1].shape else { panic!("object 1 is the sphere") };
+        doc.scene.objects[1].shape = sphere_mesh(center, radius, rings);
+    }
+    PreparedScene::new(doc.scene).expect("valid")
+}
+
+/// (render seconds, photon paths per second, image).
+fn render(backend: &mut dyn Backend, scene: &PreparedScene, passes: u32) -> (f64, f64, Image) {
+    let start = Instant::now();
+    let mut render = backend.prepare(scene).expect("prepare");
+    for pass in 0..passes {
+        render.run_pass(pass, &mut NoProgress).expect("pass");
+    }
+    let image = render.image().expect("image");
+    let seconds = start.elapsed().as_secs_f64();
+    let start = Instant::now();
+    let map = render.photon_map(passes, &mut NoProgress).expect("photon map");
+    let rate = map.stats.emitted as f64 / start.elapsed().as_secs_f64();
+    (seconds, rate, image)
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let passes = args.iter().find_map(|a| a.parse().ok()).unwrap_or(2);
+    let mut backends: Vec<Box<dyn Backend>> = vec![Box::new(CpuBackend::new())];
+    if !args.iter().any(|a| a == "--cpu-only") {
+        backends.push(Box::new(GpuBackend::new(AdapterChoice::Any).expect("a GPU adapter (lavapipe will do)")));
+    }
+    println!(
+        "| backend | sphere | triangles | build ms | bytes/triangle | render s ({passes} passes) | × analytic | photon paths/s | correlation |"
+    );
+    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    for backend in &mut backends {
+        let analytic = scene(None);
+        let (base_s, base_rate, base_image) = render(backend.as_mut(), &analytic, passes);
+        let name = backend.name();
+        println!("| {name} | analytic | – | – | – | {base_s:.2} | 1.0 | {base_rate:.3e} | 1 |");
+        for rings in RINGS {
+            let start = Instant::now();
+            let mesh = scene(Some(rings));
+            let build_ms = start.elapsed().as_secs_f64() * 1e3;
+            let Primitive::Mesh(bvh) = &mesh.primitives[1] else { unreachable!() };
+            let triangles = bvh.triangles.len();
+            let per_triangle = bvh.bytes() as f64 / triangles as f64;
+            let (s, rate, image) = render(backend.as_mut(), &mesh, passes);
+            let r = image_correlation(&base_image, &image);
+            println!(
+                "| {name} | mesh | {triangles} | {build_ms:.0} | {per_triangle:.0} | {s:.2} | {:.2} | {rate:.3e} | {r:.4} |",
+                s / base_s
+            );
+        }
+    }
+}

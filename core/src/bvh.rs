@@ -15,10 +15,6 @@ use glam::Vec3;
 /// log₂ of the triangle count).
 pub const MAX_DEPTH: usize = 64;
 
-/// Largest triangle count of one mesh: backends carry triangle indices in
-/// f32 lanes, exact up to 2²⁴.
-pub const MAX_TRIANGLES: usize = 1 << 24;
-
 /// A box slab test passes when the box starts no farther than this factor
 /// times the search limit: a margin for the rounding of the slab distances
 /// against the triangle test's own.

@@ -10,6 +10,11 @@ use alloc::vec::Vec;
 use core::fmt;
 use glam::Vec3;
 
+/// Most triangles one mesh may have: the CPU backend carries a hit's
+/// triangle index in f32 lanes (the tie rule of
+/// [`NearestTriangle`](crate::triangle::NearestTriangle)), exact up to 2²⁴.
+pub const MAX_MESH_TRIANGLES: usize = 1 << 24;
+
 /// The most white photons one render may emit (each may store up to N band
 /// photons of 32 bytes: beyond this the map would not fit in memory).
 pub const MAX_PHOTONS: u32 = 100_000_000;

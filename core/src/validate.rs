@@ -5,7 +5,9 @@
 
 use crate::bands::{BandSpec, MAX_BANDS};
 use crate::dispersion::{Dispersion, MAX_SELLMEIER_TERMS};
-use crate::scene::{Light, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_PHOTONS, Material, MaterialKind, Scene, SceneError, Shape};
+use crate::scene::{
+    Light, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_MESH_TRIANGLES, MAX_PHOTONS, Material, MaterialKind, Scene, SceneError, Shape,
+};
 use alloc::format;
 use alloc::string::{String, ToString};
 use glam::Vec3;
@@ -340,6 +342,12 @@ fn validate_shape(c: &Check<'_>, shape: &Shape) -> Result<(), SceneError> {
         Shape::Mesh { positions, triangles } => {
             if triangles.is_empty() {
                 return Err(c.err("triangles", "the mesh has no triangles"));
+            }
+            if triangles.len() > MAX_MESH_TRIANGLES {
+                return Err(c.err(
+                    "triangles",
+                    format!("{} triangles: one mesh holds at most {MAX_MESH_TRIANGLES}", triangles.len()),
+                ));
             }
             for (i, p) in positions.iter().enumerate() {
                 c.vector(&format!("positions[{i}]"), *p)?;

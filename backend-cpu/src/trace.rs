@@ -21,7 +21,7 @@ use prismatic_core::prepared::PreparedScene;
 use prismatic_core::rng::dim;
 use prismatic_core::scene::WavelengthSampling;
 use prismatic_core::surface::Surface;
-use prismatic_core::trace::sample_band;
+use prismatic_core::trace::{absorbed, sample_band};
 use wide::{f32x8, u32x8};
 
 /// A lane mask with every bit set.
@@ -35,6 +35,8 @@ struct ObjectOptics {
     dielectric: f32x8,
     /// Dielectric that splits white light.
     dispersive: f32x8,
+    /// Coloured dielectric (absorbs inside).
+    absorbing: f32x8,
     /// n for white light (non-dispersive glass only).
     white_ior: f32x8,
     /// n per band, eight bands per vector.
@@ -76,6 +78,7 @@ impl<'a> TraceContext<'a> {
                     mirror: mask(matches!(s, Surface::Mirror)),
                     dielectric: mask(glass.is_some()),
                     dispersive: mask(glass.is_some_and(|g| g.splits_photons)),
+                    absorbing: mask(glass.is_some_and(|g| g.absorption.is_some())),
                     white_ior: f32x8::splat(glass.map_or(1.0, |g| g.white_ior)),
                     band_ior,
                 }
@@ -92,6 +95,7 @@ struct LaneSurfaces {
     mirror: f32x8,
     dielectric: f32x8,
     dispersive: f32x8,
+    absorbing: f32x8,
     /// Index of refraction for this lane: white for white packets, the band's for band packets.
     ior: f32x8,
 }
@@ -107,6 +111,7 @@ impl TraceContext<'_> {
             mirror: f32x8::ZERO,
             dielectric: f32x8::ZERO,
             dispersive: f32x8::ZERO,
+            absorbing: f32x8::ZERO,
             ior: f32x8::ONE,
         };
         for o in &self.objects {
@@ -115,6 +120,7 @@ impl TraceContext<'_> {
             s.mirror |= m & o.mirror;
             s.dielectric |= m & o.dielectric;
             s.dispersive |= m & o.dispersive;
+            s.absorbing |= m & o.absorbing;
             let ior = match band_chunk {
                 Some(c) => o.band_ior[c],
                 None => o.white_ior,
@@ -222,6 +228,7 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
         let point = ray.at(hit.t);
         let ended = end_paths(ctx, &mut sink, active, &s, point, dir, flux, emission, band, bounces, None);
         let mut go_on = active & !ended;
+        go_on &= !absorb_lanes(ctx, &mut sink, go_on & s.absorbing, &hit, dir, flux, [emission, band, bounces]);
         let split = go_on & s.dispersive & bytemuck::cast::<u32x8, f32x8>(band.simd_eq(white));
         if split_all {
             // White photons at dispersive glass: their bands leave from here, in band packets.
@@ -281,6 +288,7 @@ fn trace_bands(
             mirror: f32x8::ZERO,
             dielectric: f32x8::splat(ON),
             dispersive: f32x8::ZERO,
+            absorbing: f32x8::ZERO,
             ior: ctx.objects[object].band_ior[chunk],
         };
         let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
@@ -296,6 +304,7 @@ fn trace_bands(
             let ended =
                 end_paths(ctx, sink, active, &s, point, dir, flux, emission_v, band, bounces, Some(&mut stored));
             active &= !ended;
+            active &= !absorb_lanes(ctx, sink, active & s.absorbing, &hit, dir, flux, [emission_v, band, bounces]);
             let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
             (origin, dir) = scatter(point, dir, hit.normal, &s, u, origin, active, dir);
             bounces += bytemuck::cast::<f32x8, u32x8>(active) & u32x8::ONE;
@@ -354,6 +363,38 @@ fn end_paths(
         }
     }
     missed | diffuse | too_deep
+}
+
+/// The lanes of `at_glass` (hits on coloured glass) whose path the glass
+/// absorbs on the segment just ended: the reference's
+/// [`absorbed`](prismatic_core::trace::absorbed), lane by lane with the
+/// core's own `exp`, so the same paths survive. Their flux is tallied.
+fn absorb_lanes(
+    ctx: &TraceContext<'_>,
+    sink: &mut Sink,
+    at_glass: f32x8,
+    hit: &HitX8,
+    dir: Vec3x8,
+    flux: f32x8,
+    [emission, band, bounces]: [u32x8; 3],
+) -> f32x8 {
+    if !at_glass.any() {
+        return f32x8::ZERO;
+    }
+    let seed = ctx.scene.scene.render.seed;
+    let (objects, t, f) = (hit.object.as_array(), hit.t.as_array(), flux.as_array());
+    let (e, b, k) = (emission.as_array(), band.as_array(), bounces.as_array());
+    let mut out = [0.0f32; 8];
+    for i in lanes(at_glass) {
+        let Surface::Dielectric(glass) = &ctx.scene.surfaces[objects[i] as usize] else { continue };
+        let band = b[i] as u16;
+        let u = || prismatic_core::rng::random_f32(seed, e[i], dim::absorb(band, k[i]));
+        if absorbed(glass, dir.lane(i), hit.normal.lane(i), t[i], band, u) {
+            out[i] = ON;
+            sink.stats.flux_absorbed += f64::from(f[i]);
+        }
+    }
+    f32x8::new(out)
 }
 
 /// New origins and directions of the lanes in `go_on` (mirror reflection or

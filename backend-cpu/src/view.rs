@@ -8,7 +8,8 @@
 //! the queue in packets of eight too, until it is empty: the same sum over
 //! paths as the reference, in a different order. Shading (direct light with
 //! shadow-ray packets, checker albedo) is lane-parallel; each diffuse hit
-//! that needs the caustic becomes a visible point.
+//! that needs the caustic becomes a visible point. A ray that crossed
+//! coloured glass keeps the reference's transmittance in its tint.
 
 use crate::intersect::{intersect_scene, occluded};
 use crate::optics::{fresnel, interface, offset_origin, reflect, refract};
@@ -24,6 +25,7 @@ use prismatic_core::prepared::PreparedScene;
 use prismatic_core::scene::Light;
 use prismatic_core::surface::Surface;
 use prismatic_core::tolerance::MIN_VIEW_WEIGHT;
+use prismatic_core::view::glass_transmittance;
 use prismatic_core::visible::{VisiblePoint, VisiblePoints};
 use rayon::prelude::*;
 use std::f32::consts::PI;
@@ -132,12 +134,23 @@ impl Shader<'_> {
         }
         let mut at_glass = 0u32;
         let mut glass_ior = [1.0f32; 8];
-        for (i, r) in rays.iter().enumerate() {
+        // The rays as they arrive: what coloured glass left of those that crossed it.
+        let mut arrived = [rays[0]; 8];
+        arrived[..rays.len()].copy_from_slice(rays);
+        let t = hit.t.to_array();
+        for (i, r) in arrived[..rays.len()].iter_mut().enumerate() {
             if object[i] < 0.0 || diffuse.to_bitmask() & (1 << i) != 0 || r.depth >= self.scene.plan.max_depth {
                 continue;
             }
             let (p, n) = (point.lane(i), hit.normal.lane(i));
-            match &self.scene.surfaces[object[i] as usize] {
+            let surface = &self.scene.surfaces[object[i] as usize];
+            if let Surface::Dielectric(glass) = surface {
+                let kept = glass_transmittance(glass, r.dir, n, t[i], r.band);
+                r.tint *= kept;
+                r.weight *= kept.max_element();
+            }
+            let r = &*r;
+            match surface {
                 // Band rays at glass: Fresnel and refraction for the whole packet at once, below.
                 Surface::Mirror => {
                     let d = optics::reflect(r.dir, n);
@@ -159,7 +172,7 @@ impl Shader<'_> {
             }
         }
         if at_glass != 0 {
-            spawn_packet_at_glass(rays, at_glass, point, hit.normal, f32x8::new(glass_ior), queue);
+            spawn_packet_at_glass(&arrived[..rays.len()], at_glass, point, hit.normal, f32x8::new(glass_ior), queue);
         }
     }
 

@@ -32,7 +32,11 @@ fn scene(light_x: f32) -> PreparedScene {
             material("floor", MaterialKind::Diffuse { albedo: Vec3::splat(0.85), checker: None }),
             material(
                 "glass",
-                MaterialKind::Dielectric { dispersion: Dispersion::Paper, outside: Dispersion::Constant(1.0) },
+                MaterialKind::Dielectric {
+                    dispersion: Dispersion::Paper,
+                    outside: Dispersion::Constant(1.0),
+                    attenuation: None,
+                },
             ),
         ],
         objects: vec![

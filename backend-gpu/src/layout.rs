@@ -146,8 +146,13 @@ pub struct GpuSurface {
     pub checker_offset: [f32; 3],
     /// Samples in the n(λ) curve.
     pub curve_len: u32,
+    /// Absorption coefficient per RGB channel (coloured glass).
+    pub absorption: [f32; 3],
+    /// Index of the per-band absorption coefficients in the tables buffer
+    /// (N bands, then the white photon's).
+    pub absorption_first: u32,
 }
-const _: () = assert!(core::mem::size_of::<GpuSurface>() == 64);
+const _: () = assert!(core::mem::size_of::<GpuSurface>() == 80);
 
 /// A light. Kinds: 0 spot, 1 point, 2 beam. Projection kinds: 0 none,
 /// 1 cones, 2 discs (targets are vec4s in the geometry buffer: axis and
@@ -216,10 +221,10 @@ pub struct Tally {
     pub counts: [u32; 5],
     /// Padding.
     pub _pad0: [u32; 3],
-    /// Flux emitted, stored, escaped, direct, depth limited.
-    pub flux: [f32; 5],
+    /// Flux emitted, stored, escaped, direct, depth limited, absorbed.
+    pub flux: [f32; 6],
     /// Padding.
-    pub _pad1: [u32; 3],
+    pub _pad1: [u32; 2],
 }
 const _: () = assert!(core::mem::size_of::<Tally>() == 64);
 
@@ -268,14 +273,12 @@ const _: () = assert!(core::mem::size_of::<VisiblePoint>() == 96);
 pub struct RunStats {
     /// Emitted, paths, segments, specular paths, stored.
     pub counts: [[u32; 2]; 5],
-    /// Flux emitted, stored, escaped, direct, depth limited.
-    pub flux: [f32; 5],
+    /// Flux emitted, stored, escaped, direct, depth limited, absorbed.
+    pub flux: [f32; 6],
     /// Smallest first radius / R, as f32 bits.
     pub min_ratio: u32,
     /// Largest first radius / R, as f32 bits.
     pub max_ratio: u32,
-    /// Padding.
-    pub _pad: u32,
 }
 const _: () = assert!(core::mem::size_of::<RunStats>() == 72);
 

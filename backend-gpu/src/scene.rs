@@ -162,6 +162,13 @@ impl EncodedScene {
                 if g.splits_view_rays {
                     s.flags |= SURFACE_SPLITS_VIEW_RAYS;
                 }
+                if let Some(a) = &g.absorption {
+                    s.flags |= SURFACE_ABSORBS;
+                    s.absorption = v3(a.rgb);
+                    s.absorption_first = self.tables.len() as u32;
+                    self.tables.extend_from_slice(&a.band);
+                    self.tables.push(a.white);
+                }
                 if let Some(curve) = &g.spectrum {
                     s.flags |= SURFACE_HAS_CURVE;
                     s.curve_first = self.tables.len() as u32;

@@ -43,6 +43,8 @@ pub mod kind {
     pub const SURFACE_HAS_CHECKER: u32 = 4;
     /// The dielectric has an n(λ) curve.
     pub const SURFACE_HAS_CURVE: u32 = 8;
+    /// The dielectric absorbs (coloured glass).
+    pub const SURFACE_ABSORBS: u32 = 16;
     /// Spot light.
     pub const LIGHT_SPOT: u32 = 0;
     /// Point light.
@@ -84,6 +86,7 @@ fn prelude(stack: u32) -> String {
     u("DIM_WAVELENGTH", dim::WAVELENGTH);
     u("DIM_PATH", dim::PATH);
     u("DIM_PER_BAND", dim::PER_BAND);
+    u("DIM_ABSORB", dim::ABSORB);
     u("WAVELENGTHS_SPLIT", 0);
     u("WAVELENGTHS_RANDOM_BAND", 1);
     u("WAVELENGTHS_CONTINUOUS", 2);
@@ -96,6 +99,7 @@ fn prelude(stack: u32) -> String {
     u("SURFACE_SPLITS_VIEW_RAYS", kind::SURFACE_SPLITS_VIEW_RAYS);
     u("SURFACE_HAS_CHECKER", kind::SURFACE_HAS_CHECKER);
     u("SURFACE_HAS_CURVE", kind::SURFACE_HAS_CURVE);
+    u("SURFACE_ABSORBS", kind::SURFACE_ABSORBS);
     u("LIGHT_SPOT", kind::LIGHT_SPOT);
     u("LIGHT_POINT", kind::LIGHT_POINT);
     u("LIGHT_BEAM", kind::LIGHT_BEAM);

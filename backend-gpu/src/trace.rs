@@ -253,12 +253,13 @@ fn read_stats(ctx: &GpuContext, tallies: &wgpu::Buffer) -> Result<TraceStats, Ba
         s.segments += segments;
         s.specular_paths += specular;
         s.stored += stored;
-        let [fe, fs, fx, fd, fl] = t.flux.map(f64::from);
+        let [fe, fs, fx, fd, fl, fa] = t.flux.map(f64::from);
         s.flux_emitted += fe;
         s.flux_stored += fs;
         s.flux_escaped += fx;
         s.flux_direct += fd;
         s.flux_depth_limited += fl;
+        s.flux_absorbed += fa;
     }
     Ok(s)
 }

@@ -125,6 +125,8 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 checker_size,
                 checker_offset,
                 curve_len,
+                absorption,
+                absorption_first,
             }),
         ),
         (
@@ -183,7 +185,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 widest
             }),
         ),
-        ("RunStats", &session, rust_layout!(RunStats { counts, flux, min_ratio, max_ratio, _pad })),
+        ("RunStats", &session, rust_layout!(RunStats { counts, flux, min_ratio, max_ratio })),
     ];
     for (name, module, rust) in cases {
         assert_eq!(wgsl_layout(module, name), rust, "{name}: WGSL (size, offsets) vs Rust");

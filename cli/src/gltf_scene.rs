@@ -12,7 +12,7 @@ use crate::scene_file::document::{SceneDocument, SceneFileError};
 use glam::{Mat4, Vec3};
 use gltf::khr_lights_punctual::Kind;
 use prismatic_core::Dispersion;
-use prismatic_core::scene::{Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape};
+use prismatic_core::scene::{Attenuation, Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape};
 use std::path::Path;
 
 /// A material counts as a mirror at this metalness or more...
@@ -229,10 +229,11 @@ fn material(m: &gltf::Material<'_>, warnings: &mut Vec<String>) -> Material {
         if pbr.roughness_factor() > 0.0 {
             unused.push("roughness of the transmission (glass is smooth)");
         }
-        if m.volume().is_some_and(|v| v.attenuation_distance().is_finite()) {
-            unused.push("volume attenuation (glass is clear)");
+        MaterialKind::Dielectric {
+            dispersion: dispersion(m),
+            outside: Dispersion::Constant(1.0),
+            attenuation: attenuation(m, &mut unused),
         }
-        MaterialKind::Dielectric { dispersion: dispersion(m), outside: Dispersion::Constant(1.0) }
     } else if pbr.metallic_factor() >= MIRROR_METALLIC && pbr.roughness_factor() <= MIRROR_ROUGHNESS {
         MaterialKind::Mirror
     } else {
@@ -255,6 +256,25 @@ fn material_path(m: &gltf::Material<'_>) -> String {
 
 /// n(λ) of a transmissive material: `KHR_materials_ior` (default 1.5) and
 /// `KHR_materials_dispersion`, whose `dispersion` is 20/V_d (0: none).
+/// Beer–Lambert absorption from `KHR_materials_volume`: `attenuationColor`
+/// after `attenuationDistance` (channels of 0 kept at 1e-4, so the
+/// coefficient stays finite). A thin-walled material (`thicknessFactor` 0)
+/// has no volume by the extension's rule; the thickness itself is a hint
+/// for rasterisers (this renderer traces the real geometry).
+fn attenuation(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option<Attenuation> {
+    let volume = m.volume()?;
+    let distance = volume.attenuation_distance();
+    if !distance.is_finite() || distance <= 0.0 {
+        return None;
+    }
+    if volume.thickness_factor() == 0.0 {
+        unused.push("volume attenuation of a thin-walled material (thicknessFactor 0)");
+        return None;
+    }
+    let color = Vec3::from(volume.attenuation_color()).clamp(Vec3::splat(1e-4), Vec3::ONE);
+    Some(Attenuation { color, distance })
+}
+
 fn dispersion(m: &gltf::Material<'_>) -> Dispersion {
     let ior = m.ior().unwrap_or(1.5);
     let spread = m

@@ -1,5 +1,5 @@
 //! Writes small glTF 2.0 documents: triangle meshes, materials with the
-//! transmission, IOR and dispersion extensions, punctual lights and a
+//! transmission, IOR, dispersion and volume extensions, punctual lights and a
 //! camera, with the binary data in the file (a base64 data URI). The
 //! project writes its own glTF scenes and test files with it.
 
@@ -24,6 +24,9 @@ pub struct GltfMaterial {
     pub ior: f32,
     /// `KHR_materials_dispersion` (0: none).
     pub dispersion: f32,
+    /// `KHR_materials_volume`'s `attenuationColor` and `attenuationDistance`
+    /// (`None`: clear glass).
+    pub attenuation: Option<([f32; 3], f32)>,
 }
 
 impl GltfMaterial {
@@ -37,6 +40,7 @@ impl GltfMaterial {
             transmission: 0.0,
             ior: 1.5,
             dispersion: 0.0,
+            attenuation: None,
         }
     }
 
@@ -50,6 +54,7 @@ impl GltfMaterial {
             transmission: 1.0,
             ior,
             dispersion,
+            attenuation: None,
         }
     }
 }
@@ -178,7 +183,7 @@ impl GltfDocument {
         let uri = format!("data:application/octet-stream;base64,{}", base64::encode(&bin));
         let mut doc = json!({
             "asset": { "version": "2.0", "generator": "prismatic" },
-            "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_dispersion"],
+            "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_dispersion", "KHR_materials_volume"],
             "scene": 0,
             "scenes": [{ "nodes": (0..nodes.len()).collect::<Vec<_>>() }],
             "nodes": nodes,
@@ -214,6 +219,12 @@ fn material_json(m: &GltfMaterial) -> Value {
         extensions.insert("KHR_materials_ior".into(), json!({ "ior": m.ior }));
         if m.dispersion > 0.0 {
             extensions.insert("KHR_materials_dispersion".into(), json!({ "dispersion": m.dispersion }));
+        }
+        if let Some((color, distance)) = m.attenuation {
+            extensions.insert(
+                "KHR_materials_volume".into(),
+                json!({ "thicknessFactor": 1.0, "attenuationColor": color, "attenuationDistance": distance }),
+            );
         }
     }
     json!({

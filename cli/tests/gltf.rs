@@ -4,7 +4,7 @@
 //! element, exit 2 and write nothing.
 
 use prismatic_cli::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, prism};
-use prismatic_core::scene::{Light, Shape};
+use prismatic_core::scene::{Light, MaterialKind, Shape};
 use prismatic_core::{PreparedScene, trace};
 use std::path::Path;
 use std::process::Command;
@@ -292,4 +292,25 @@ fn a_gltf_placed_in_a_scene_file_brings_its_meshes_and_materials() {
     let e = prismatic_cli::scene_file::parse(&scene(""), "scene.toml", Some(dir.path())).map(|_| ()).unwrap_err();
     assert_eq!(e.key, "object[0].path", "{e}");
     assert!(e.reason.contains("prism.gltf"), "{e}");
+}
+
+#[test]
+fn volume_attenuation_makes_coloured_glass_and_thin_walls_stay_clear() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    doc.materials[1].attenuation = Some(([0.9, 0.4, 0.1], 0.5));
+    let scene = prismatic_cli::load_scene(write(dir.path(), "amber.gltf", &doc).to_str().unwrap()).unwrap();
+    scene.validate().unwrap();
+    let MaterialKind::Dielectric { attenuation: Some(a), .. } = &scene.scene.materials[1].kind else {
+        panic!("coloured glass expected, got {:?}", scene.scene.materials[1].kind)
+    };
+    assert_eq!((a.color.to_array(), a.distance), ([0.9, 0.4, 0.1], 0.5));
+    assert!(!scene.warnings.join("\n").contains("attenuation"), "{:?}", scene.warnings);
+    // A thin-walled material (thicknessFactor 0) has no volume: clear glass and a warning.
+    let json = doc.to_json().replace("\"thicknessFactor\": 1.0", "\"thicknessFactor\": 0.0");
+    let path = dir.path().join("thin.gltf");
+    std::fs::write(&path, json).unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    assert!(matches!(&scene.scene.materials[1].kind, MaterialKind::Dielectric { attenuation: None, .. }));
+    assert!(scene.warnings.join("\n").contains("thin-walled"), "{:?}", scene.warnings);
 }

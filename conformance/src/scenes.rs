@@ -1,13 +1,16 @@
 //! The scenes the suite renders, built in code (small: the scalar reference
 //! renders each in well under a second): a dispersive glass sphere on a
 //! checkered floor under a spot light (caustic, band split, visible points
-//! seen through glass; once more as a closed triangle mesh), a prism fanning a beam onto a wall (split bands),
+//! seen through glass; once more as a closed triangle mesh, once more in
+//! amber glass that absorbs), a prism fanning a beam onto a wall (split bands),
 //! a mirror folding a beam onto a floor (no dispersion), and a room with
 //! no mirror or glass (no caustics at all).
 
 use glam::Vec3;
 use prismatic_core::dispersion::{Dispersion, Glass};
-use prismatic_core::scene::{Camera, Checker, Light, Material, MaterialKind, Object, RenderSettings, Shape};
+use prismatic_core::scene::{
+    Attenuation, Camera, Checker, Light, Material, MaterialKind, Object, RenderSettings, Shape,
+};
 use prismatic_core::{BandSpec, Estimator, PreparedScene, Scene};
 
 /// A small render: `side`² pixels, `photons` photons a pass, paper7, `density`.
@@ -32,7 +35,7 @@ fn diffuse(name: &str, albedo: f32) -> Material {
 }
 
 fn glass(name: &str, dispersion: Dispersion) -> Material {
-    material(name, MaterialKind::Dielectric { dispersion, outside: Dispersion::Constant(1.0) })
+    material(name, MaterialKind::Dielectric { dispersion, outside: Dispersion::Constant(1.0), attenuation: None })
 }
 
 fn prepared(scene: Scene) -> PreparedScene {
@@ -65,6 +68,17 @@ pub fn glass_sphere() -> PreparedScene {
             Object { shape: Shape::Sphere { center: Vec3::new(0.0, 1.0, 0.0), radius: 0.8 }, material: 1 },
         ],
     })
+}
+
+/// The paper's sphere in amber glass: Beer–Lambert absorption on the
+/// photon paths and on the view rays through it.
+pub fn coloured_glass_sphere() -> PreparedScene {
+    let mut scene = glass_sphere().scene;
+    let MaterialKind::Dielectric { attenuation, .. } = &mut scene.materials[1].kind else {
+        unreachable!("material 1 is the glass")
+    };
+    *attenuation = Some(Attenuation { color: Vec3::new(0.95, 0.6, 0.25), distance: 1.0 });
+    prepared(scene)
 }
 
 /// A beam through a 60° prism of dense flint, fanned onto a wall the camera faces.
@@ -184,6 +198,7 @@ pub fn with_caustics() -> Vec<(&'static str, PreparedScene)> {
     vec![
         ("glass sphere", glass_sphere()),
         ("glass mesh sphere", glass_mesh_sphere(12)),
+        ("coloured glass sphere", coloured_glass_sphere()),
         ("prism", prism()),
         ("mirror", mirror()),
     ]

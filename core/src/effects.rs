@@ -60,6 +60,7 @@ impl EffectPlan {
         let specular: Vec<usize> =
             (0..surfaces.len()).filter(|&k| !matches!(surfaces[k], Surface::Diffuse { .. })).collect();
         let dispersive = |k: usize| matches!(&surfaces[k], Surface::Dielectric(g) if g.is_dispersive());
+        let chromatic = |k: usize| matches!(&surfaces[k], Surface::Dielectric(g) if g.is_chromatic());
         let lit: Vec<usize> = specular
             .iter()
             .copied()
@@ -93,13 +94,14 @@ impl EffectPlan {
         // every dispersive glass counts once any specular object is lit.
         let band_splitting = if !caustics.on {
             Effect::off("no photon pass")
-        } else if specular.iter().any(|&k| dispersive(k)) {
+        } else if specular.iter().any(|&k| chromatic(k)) {
+            let glass = if specular.iter().any(|&k| dispersive(k)) { "dispersive" } else { "coloured" };
             match scene.render.wavelengths {
-                WavelengthSampling::Split => Effect::on(format!("{n_bands} bands at dispersive glass")),
-                w => Effect::on(format!("one of {n_bands} bands per photon at dispersive glass ({})", w.name())),
+                WavelengthSampling::Split => Effect::on(format!("{n_bands} bands at {glass} glass")),
+                w => Effect::on(format!("one of {n_bands} bands per photon at {glass} glass ({})", w.name())),
             }
         } else {
-            Effect::off("no glass disperses (constant index): photons stay white")
+            Effect::off("no glass disperses or absorbs (constant index, clear): photons stay white")
         };
         let aspect = scene.render.width as f32 / scene.render.height as f32;
         let seen = |k: usize| camera_sees(&scene.camera, aspect, bounds[k].0, bounds[k].1);
@@ -179,7 +181,7 @@ impl EffectPlan {
         self.max_depth = max_depth;
         for s in surfaces {
             if let Surface::Dielectric(g) = s {
-                (g.splits_photons, g.splits_view_rays) = (g.dispersive, g.dispersive);
+                (g.splits_photons, g.splits_view_rays) = (g.is_chromatic(), g.dispersive);
             }
         }
     }

@@ -52,6 +52,7 @@ pub mod tolerance;
 pub mod triangle;
 pub mod visible;
 
+pub mod absorption;
 pub mod effects;
 pub mod prepared;
 pub mod projection;

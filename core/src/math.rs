@@ -51,6 +51,16 @@ mod imp {
     pub fn floor(x: f32) -> f32 {
         x.floor()
     }
+    /// `exp` of the platform (std) or of libm (no_std).
+    #[inline]
+    pub fn exp(x: f32) -> f32 {
+        x.exp()
+    }
+    /// Natural `ln` of the platform (std) or of libm (no_std).
+    #[inline]
+    pub fn ln(x: f32) -> f32 {
+        x.ln()
+    }
     /// `sqrt_f64` of the platform (std) or of libm (no_std).
     #[inline]
     pub fn sqrt_f64(x: f64) -> f64 {
@@ -104,6 +114,16 @@ mod imp {
     #[inline]
     pub fn floor(x: f32) -> f32 {
         libm::floorf(x)
+    }
+    /// `exp` of the platform (std) or of libm (no_std).
+    #[inline]
+    pub fn exp(x: f32) -> f32 {
+        libm::expf(x)
+    }
+    /// Natural `ln` of the platform (std) or of libm (no_std).
+    #[inline]
+    pub fn ln(x: f32) -> f32 {
+        libm::logf(x)
     }
     /// `sqrt_f64` of the platform (std) or of libm (no_std).
     #[inline]

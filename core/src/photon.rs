@@ -102,6 +102,8 @@ pub struct TraceStats {
     pub flux_direct: f64,
     /// Flux of paths ended by the depth limit.
     pub flux_depth_limited: f64,
+    /// Flux absorbed inside coloured glass.
+    pub flux_absorbed: f64,
 }
 
 impl TraceStats {
@@ -117,6 +119,7 @@ impl TraceStats {
         self.flux_escaped += o.flux_escaped;
         self.flux_direct += o.flux_direct;
         self.flux_depth_limited += o.flux_depth_limited;
+        self.flux_absorbed += o.flux_absorbed;
     }
 }
 

@@ -68,7 +68,7 @@ impl PreparedScene {
         let plan = EffectPlan::new(&scene, &surfaces);
         for s in &mut surfaces {
             if let Surface::Dielectric(g) = s {
-                g.splits_photons = g.dispersive && plan.band_splitting.on;
+                g.splits_photons = g.is_chromatic() && plan.band_splitting.on;
                 g.splits_view_rays = g.dispersive && plan.view_dispersion.on;
             }
         }

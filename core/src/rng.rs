@@ -51,6 +51,17 @@ pub mod dim {
     pub fn scatter(band: u16, bounce: u32) -> u32 {
         PATH + (band as u32).wrapping_add(1) % 0x1_0000 * PER_BAND + bounce
     }
+
+    /// Added to a scattering dimension for the absorption decision at the
+    /// same hit: above every scattering dimension (those end below 2²²).
+    pub const ABSORB: u32 = 1 << 24;
+
+    /// The dimension of the decision whether the path of `band` survives
+    /// the glass it crossed before `bounce` (coloured glass).
+    #[inline]
+    pub fn absorb(band: u16, bounce: u32) -> u32 {
+        scatter(band, bounce) + ABSORB
+    }
 }
 
 #[cfg(test)]

@@ -278,7 +278,7 @@ pub enum MaterialKind {
         /// Optional checker texture.
         checker: Option<Checker>,
     },
-    /// Smooth non-absorbing dielectric with a dispersion model.
+    /// Smooth dielectric with a dispersion model, clear or coloured.
     Dielectric {
         /// n(λ).
         dispersion: Dispersion,
@@ -286,9 +286,23 @@ pub enum MaterialKind {
         /// the ratio of the two indices matters at an interface, so glass in
         /// water is glass with the relative index n_glass/n_water.
         outside: Dispersion,
+        /// Beer–Lambert absorption inside (`None`: clear glass).
+        attenuation: Option<Attenuation>,
     },
     /// Perfect mirror.
     Mirror,
+}
+
+/// Beer–Lambert absorption inside a dielectric, stated as glTF's
+/// `KHR_materials_volume` states it: white light that travels `distance`
+/// inside keeps the fraction `color` of each linear RGB channel, so the
+/// absorption coefficient of channel c is −ln(color_c)/distance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Attenuation {
+    /// Fraction of each channel left after `distance`, each in (0, 1].
+    pub color: Vec3,
+    /// The distance at which `color` is reached (world units, > 0).
+    pub distance: f32,
 }
 
 /// A named material (`[material.NAME]`).

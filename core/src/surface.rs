@@ -1,7 +1,8 @@
 //! How each object's surface scatters light, ready for tracing: diffuse
 //! albedo (with its checker), mirror, or a dielectric's relative indices of
-//! refraction per band and as a function of wavelength.
+//! refraction per band and as a function of wavelength, and its absorption.
 
+use crate::absorption::Absorption;
 use crate::bands::{BandTable, VISIBLE_NM};
 use crate::dispersion::Dispersion;
 use crate::photon::WHITE_BAND;
@@ -44,6 +45,8 @@ pub struct DielectricOptics {
     /// their own wavelength ([`crate::WavelengthSampling::Continuous`]);
     /// `None` when a per-band table gives the index (no wavelength axis).
     pub spectrum: Option<IorCurve>,
+    /// Beer–Lambert absorption inside (`None`: clear glass).
+    pub absorption: Option<Absorption>,
 }
 
 /// A relative index of refraction sampled every nanometre over the visible
@@ -104,6 +107,13 @@ impl DielectricOptics {
     pub fn is_dispersive(&self) -> bool {
         self.dispersive
     }
+
+    /// True when the bands leave the glass differently, by their index or
+    /// by their absorption: white photons split into bands here.
+    #[inline]
+    pub fn is_chromatic(&self) -> bool {
+        self.dispersive || self.absorption.is_some()
+    }
 }
 
 impl Surface {
@@ -114,7 +124,7 @@ impl Surface {
         match material {
             MaterialKind::Diffuse { albedo, checker } => Surface::Diffuse { albedo: *albedo, checker: checker.clone() },
             MaterialKind::Mirror => Surface::Mirror,
-            MaterialKind::Dielectric { dispersion, outside } => {
+            MaterialKind::Dielectric { dispersion, outside, attenuation } => {
                 // Snell's law and Fresnel depend only on the ratio of the
                 // indices, so the optics carry the relative index n/n_outside.
                 let per_band =
@@ -131,6 +141,7 @@ impl Surface {
                     splits_photons: false,
                     splits_view_rays: false,
                     spectrum: IorCurve::new(dispersion, outside),
+                    absorption: attenuation.as_ref().and_then(|a| Absorption::new(a, bands)),
                 })
             }
         }

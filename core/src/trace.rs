@@ -9,7 +9,9 @@
 //! band with all its flux (see [`sample_band`]). A photon that reaches a diffuse surface
 //! after at least one specular interaction is stored (the dispersion caustic
 //! map, L S+ D paths); one that reaches it directly is direct light, which
-//! the renderer ray traces instead. Fresnel chooses reflection or refraction
+//! the renderer ray traces instead. Inside coloured glass a path survives
+//! each segment with its band's Beer–Lambert transmittance (see
+//! [`absorbed`]). Fresnel chooses reflection or refraction
 //! with a counter-based random number, so the result is a pure function of
 //! the scene and the seed.
 
@@ -23,6 +25,7 @@ use crate::rng::{dim, random_f32};
 use crate::scene::WavelengthSampling;
 use crate::surface::{DielectricOptics, Surface};
 use alloc::vec::Vec;
+use glam::Vec3;
 
 /// Traces every white photon of the scene's render settings, reporting
 /// progress about a hundred times.
@@ -119,6 +122,14 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
             stats.flux_depth_limited += f64::from(p.flux);
             return;
         }
+        if let Surface::Dielectric(glass) = surface
+            && absorbed(glass, p.ray.direction, hit.normal, hit.t, p.band, || {
+                random_f32(settings.seed, index, dim::absorb(p.band, p.bounces))
+            })
+        {
+            stats.flux_absorbed += f64::from(p.flux);
+            return;
+        }
         if p.bounces == 0 {
             stats.specular_paths += 1;
         }
@@ -160,6 +171,17 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
         }
         p.bounces += 1;
     }
+}
+
+/// Whether coloured `glass` absorbs the photon path of `band` on a segment
+/// of length `t` along `dir` that ends on it (outward `normal` there). Only
+/// a segment that ran inside (it meets the glass from within) can be
+/// absorbed, with probability 1 − e^(−σt) against the uniform number `u`
+/// ([`dim::absorb`]): Russian roulette, so survivors keep their flux and
+/// both estimators (counts and flux) stay unbiased.
+pub fn absorbed(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t: f32, band: u16, u: impl FnOnce() -> f32) -> bool {
+    let Some(absorption) = &glass.absorption else { return false };
+    dir.dot(normal) > 0.0 && u() >= absorption.transmittance(band, t)
 }
 
 /// The band a white photon continues as when it does not split

@@ -6,7 +6,8 @@
 use crate::bands::{BandSpec, MAX_BANDS};
 use crate::dispersion::{Dispersion, MAX_SELLMEIER_TERMS};
 use crate::scene::{
-    Light, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_MESH_TRIANGLES, MAX_PHOTONS, Material, MaterialKind, Scene, SceneError, Shape,
+    Attenuation, Light, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_MESH_TRIANGLES, MAX_PHOTONS, Material, MaterialKind, Scene,
+    SceneError, Shape,
 };
 use alloc::format;
 use alloc::string::{String, ToString};
@@ -203,11 +204,29 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             Ok(())
         }
         MaterialKind::Mirror => Ok(()),
-        MaterialKind::Dielectric { dispersion, outside } => {
+        MaterialKind::Dielectric { dispersion, outside, attenuation } => {
             validate_dispersion(c, "ior", dispersion, bands)?;
-            validate_dispersion(c, "outside_ior", outside, bands)
+            validate_dispersion(c, "outside_ior", outside, bands)?;
+            match attenuation {
+                Some(a) => validate_attenuation(c, a),
+                None => Ok(()),
+            }
         }
     }
+}
+
+fn validate_attenuation(c: &Check<'_>, a: &Attenuation) -> Result<(), SceneError> {
+    c.vector("attenuation_color", a.color)?;
+    if !(a.color.min_element() > 0.0 && a.color.max_element() <= 1.0) {
+        let [r, g, b] = a.color.to_array();
+        return Err(c.err(
+            "attenuation_color",
+            format!(
+                "each channel must be in (0, 1] (the fraction left after attenuation_distance), got [{r}, {g}, {b}]"
+            ),
+        ));
+    }
+    c.positive("attenuation_distance", a.distance)
 }
 
 fn validate_dispersion(c: &Check<'_>, key: &str, d: &Dispersion, bands: BandSpec) -> Result<(), SceneError> {

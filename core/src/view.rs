@@ -17,7 +17,9 @@
 //! pixel (Fresnel factors times, after a split, the band's largest RGB
 //! weight) falls below [`MIN_VIEW_WEIGHT`]. At the first dispersive glass a
 //! view ray splits into one ray per band, each weighted by the band's RGB
-//! weight C_i.
+//! weight C_i. A ray that crossed coloured glass keeps its Beer–Lambert
+//! transmittance (per RGB channel for white rays, the band's for a band;
+//! see [`glass_transmittance`]).
 
 use crate::camera::PinholeCamera;
 use crate::geometry::Ray;
@@ -28,7 +30,7 @@ use crate::photon::WHITE_BAND;
 use crate::prepared::{Hit, PreparedScene, offset_origin};
 use crate::progress::{Progress, Stage};
 use crate::scene::Light;
-use crate::surface::Surface;
+use crate::surface::{DielectricOptics, Surface};
 use crate::tolerance::MIN_VIEW_WEIGHT;
 use crate::visible::{VisiblePoint, VisiblePoints};
 use alloc::vec::Vec;
@@ -83,8 +85,15 @@ impl<'a> ViewContext<'a> {
         let Some(hit) = self.scene.intersect(ray, f32::INFINITY) else {
             return settings.background;
         };
+        let surface = &self.scene.surfaces[hit.object];
+        // What coloured glass left of the ray, when it crossed glass to get here.
+        let kept = match surface {
+            Surface::Dielectric(glass) => glass_transmittance(glass, ray.direction, hit.normal, hit.t, path.band),
+            _ => Vec3::ONE,
+        };
+        let path = ViewPath { weight: path.weight * kept.max_element(), tint: path.tint * kept, ..path };
         let ViewPath { band, depth, weight, tint } = path;
-        match &self.scene.surfaces[hit.object] {
+        kept * match surface {
             Surface::Diffuse { .. } => self.shade_diffuse(ray, &hit, tint, points),
             _ if depth >= self.scene.plan.max_depth => Vec3::ZERO,
             Surface::Mirror => {
@@ -204,6 +213,17 @@ impl<'a> ViewContext<'a> {
         }
         let origin = offset_origin(p, n, l);
         (!self.scene.occluded(origin, l, (light - origin).length())).then_some((l, dist, cos_s))
+    }
+}
+
+/// What a view ray of `band` keeps of each RGB channel on a segment of
+/// length `t` along `dir` that ends on `glass` (outward `normal` there):
+/// the Beer–Lambert transmittance when the segment ran inside coloured
+/// glass, else all of it.
+pub fn glass_transmittance(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t: f32, band: u16) -> Vec3 {
+    match &glass.absorption {
+        Some(absorption) if dir.dot(normal) > 0.0 => absorption.view_transmittance(band, t),
+        _ => Vec3::ONE,
     }
 }
 

@@ -29,7 +29,10 @@ pub fn white(name: &str) -> Material {
 
 /// A dielectric called `name`.
 pub fn glass(name: &str, dispersion: Dispersion) -> Material {
-    Material { name: name.into(), kind: MaterialKind::Dielectric { dispersion, outside: Dispersion::Constant(1.0) } }
+    Material {
+        name: name.into(),
+        kind: MaterialKind::Dielectric { dispersion, outside: Dispersion::Constant(1.0), attenuation: None },
+    }
 }
 
 /// The prism experiment in the xy-plane, as a closed-form problem.

@@ -92,7 +92,7 @@ fn every_ior_form_parses() {
         let g = doc.scene.materials.iter().find(|m| m.name == "g").unwrap();
         assert_eq!(
             g.kind,
-            MaterialKind::Dielectric { dispersion: expected, outside: Dispersion::Constant(1.0) },
+            MaterialKind::Dielectric { dispersion: expected, outside: Dispersion::Constant(1.0), attenuation: None },
             "{text}"
         );
     }
@@ -261,4 +261,42 @@ fn bad_measured_tables_name_the_file_line_and_reason() {
         assert_eq!(e.key, "material.g.ior.table", "{e}");
         assert!(e.reason.contains(reason), "{e}: expected {reason:?}");
     }
+}
+
+/// A sphere of coloured glass beside `MINIMAL`'s floor; `keys` are the glass's extra lines.
+fn coloured_glass(keys: &str) -> String {
+    format!(
+        "{MINIMAL}\n[material.amber]\nkind = \"dielectric\"\nior = 1.5\n{keys}\n\n[[object]]\nshape = \"sphere\"\nmaterial = \"amber\"\ncenter = [0, 1, 0]\nradius = 0.5\n"
+    )
+}
+
+#[test]
+fn coloured_glass_parses_and_bad_attenuation_is_rejected_with_its_line() {
+    let doc =
+        parse(&coloured_glass("attenuation_color = [0.9, 0.5, 0.2]\nattenuation_distance = 2"), "test.toml", None)
+            .expect("parses");
+    doc.validate().expect("valid");
+    let amber = doc.scene.materials.iter().find(|m| m.name == "amber").expect("the amber material");
+    let MaterialKind::Dielectric { attenuation: Some(a), .. } = &amber.kind else {
+        panic!("coloured glass expected, got {:?}", amber.kind)
+    };
+    assert_eq!((a.color.to_array(), a.distance), ([0.9, 0.5, 0.2], 2.0));
+    assert_error(
+        &coloured_glass("attenuation_color = [0.9, 0.5, 0.2]"),
+        "material.amber.attenuation_distance",
+        Some("[material.amber]"),
+        "missing",
+    );
+    assert_error(
+        &coloured_glass("attenuation_color = [0.9, 0, 0.2]\nattenuation_distance = 2"),
+        "material.amber.attenuation_color",
+        Some("attenuation_color"),
+        "(0, 1]",
+    );
+    assert_error(
+        &coloured_glass("attenuation_color = [0.9, 0.5, 0.2]\nattenuation_distance = -2"),
+        "material.amber.attenuation_distance",
+        Some("attenuation_distance"),
+        "greater than 0",
+    );
 }

@@ -43,7 +43,8 @@ impl GpuSession {
         let bytes = self.ctx.read(&self.run_stats, 0, size_of::<RunStats>() as u64)?;
         let s: RunStats = bytemuck::pod_read_unaligned(&bytes);
         let [emitted, paths, segments, specular_paths, stored] = s.counts.map(|w| i64_from_words(w) as u64);
-        let [flux_emitted, flux_stored, flux_escaped, flux_direct, flux_depth_limited] = s.flux.map(f64::from);
+        let [flux_emitted, flux_stored, flux_escaped, flux_direct, flux_depth_limited, flux_absorbed] =
+            s.flux.map(f64::from);
         let trace = TraceStats {
             emitted,
             paths,
@@ -55,6 +56,7 @@ impl GpuSession {
             flux_escaped,
             flux_direct,
             flux_depth_limited,
+            flux_absorbed,
         };
         let r0 = self.scene.scene.render.radius;
         let first_radii = match self.scene.scene.render.radius_mode {

@@ -82,6 +82,8 @@ struct GpuSurface {
     checker_size: f32,
     checker_offset: vec3<f32>,
     curve_len: u32,
+    absorption: vec3<f32>,
+    absorption_first: u32,
 }
 
 // Twin of prismatic_gpu::layout::GpuLight.
@@ -132,20 +134,24 @@ struct VisiblePoint {
 
 // Twin of prismatic_gpu::layout::RunStats.
 struct RunStats {
-    counts: array<vec2<u32>, 5>,
-    flux: array<f32, 5>,
+    counts: array<vec2<u32>, TALLY_COUNTS>,
+    flux: array<f32, TALLY_FLUXES>,
     min_ratio: atomic<u32>,
     max_ratio: atomic<u32>,
-    _pad: u32,
 }
 
 // Twin of prismatic_gpu::layout::Tally.
 struct Tally {
-    counts: array<u32, 5>,
+    counts: array<u32, TALLY_COUNTS>,
     _pad0: array<u32, 3>,
-    flux: array<f32, 5>,
-    _pad1: array<u32, 3>,
+    flux: array<f32, TALLY_FLUXES>,
+    _pad1: array<u32, 2>,
 }
+
+// Tallied counts: emitted, paths, segments, specular paths, stored.
+const TALLY_COUNTS: u32 = 5u;
+// Tallied fluxes: emitted, stored, escaped, direct, depth limited, absorbed.
+const TALLY_FLUXES: u32 = 6u;
 
 // Twin of prismatic_gpu::layout::ScanParams.
 struct ScanParams {
@@ -174,6 +180,11 @@ fn random_f32(seed: u32, index: u32, dimension: u32) -> f32 {
 // rng::dim::scatter
 fn scatter_dim(band: u32, bounce: u32) -> u32 {
     return DIM_PATH + ((band + 1u) % 65536u) * DIM_PER_BAND + bounce;
+}
+
+// rng::dim::absorb
+fn absorb_dim(band: u32, bounce: u32) -> u32 {
+    return scatter_dim(band, bounce) + DIM_ABSORB;
 }
 
 // ---- math.rs ----

@@ -361,6 +361,26 @@ fn band_ior(s: GpuSurface, band: u32) -> f32 {
     return tables[s.ior_first + band];
 }
 
+// Absorption::coefficient: σ of a band, or of a white photon (after the bands).
+fn absorption_coefficient(s: GpuSurface, band: u32) -> f32 {
+    if band == WHITE_BAND {
+        return tables[s.absorption_first + params.band_count];
+    }
+    return tables[s.absorption_first + band];
+}
+
+// view::glass_transmittance: what a view ray keeps of each channel on a
+// segment of length t that ends on the glass (only a segment inside counts).
+fn glass_transmittance(s: GpuSurface, dir: vec3<f32>, normal: vec3<f32>, t: f32, band: u32) -> vec3<f32> {
+    if (s.flags & SURFACE_ABSORBS) == 0u || !(dot(dir, normal) > 0.0) {
+        return vec3<f32>(1.0);
+    }
+    if band == WHITE_BAND {
+        return vec3<f32>(exp(-s.absorption.x * t), exp(-s.absorption.y * t), exp(-s.absorption.z * t));
+    }
+    return vec3<f32>(exp(-absorption_coefficient(s, band) * t));
+}
+
 // IorCurve::at
 fn curve_at(s: GpuSurface, lambda_nm: f32) -> f32 {
     let x = clamp(lambda_nm - VISIBLE_NM_LO, 0.0, f32(s.curve_len - 1u));

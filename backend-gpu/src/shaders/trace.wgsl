@@ -9,14 +9,14 @@
 @group(1) @binding(2) var<storage, read_write> tallies: array<Tally>;
 
 // Emitted, paths, segments, specular paths, stored.
-var<private> tally_counts: array<u32, 5>;
-// Flux emitted, stored, escaped, direct, depth limited.
-var<private> tally_flux: array<f32, 5>;
+var<private> tally_counts: array<u32, TALLY_COUNTS>;
+// Flux emitted, stored, escaped, direct, depth limited, absorbed.
+var<private> tally_flux: array<f32, TALLY_FLUXES>;
 var<private> slot_base: u32;
 var<private> slot_used: u32;
 
-var<workgroup> reduce_counts: array<u32, 5u * WORKGROUP_SIZE>;
-var<workgroup> reduce_flux: array<f32, 5u * WORKGROUP_SIZE>;
+var<workgroup> reduce_counts: array<u32, TALLY_COUNTS * WORKGROUP_SIZE>;
+var<workgroup> reduce_flux: array<f32, TALLY_FLUXES * WORKGROUP_SIZE>;
 
 struct Path {
     origin: vec3<f32>,
@@ -86,6 +86,14 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
         if (*p).bounces >= params.max_depth {
             tally_flux[4] += (*p).flux;
             return FOLLOW_END;
+        }
+        // trace::absorbed: a segment inside coloured glass ends here.
+        if (s.flags & SURFACE_ABSORBS) != 0u && dot((*p).dir, hit.normal) > 0.0 {
+            let u = random_f32(seed, index, absorb_dim((*p).band, (*p).bounces));
+            if u >= exp(-absorption_coefficient(s, (*p).band) * hit.t) {
+                tally_flux[5] += (*p).flux;
+                return FOLLOW_END;
+            }
         }
         if (*p).bounces == 0u {
             tally_counts[3] += 1u;
@@ -157,15 +165,19 @@ fn main(
         trace_emitted(params.chunk_start + k);
         counts[k] = slot_used;
     }
-    for (var j = 0u; j < 5u; j++) {
+    for (var j = 0u; j < TALLY_COUNTS; j++) {
         reduce_counts[j * WORKGROUP_SIZE + lid] = tally_counts[j];
+    }
+    for (var j = 0u; j < TALLY_FLUXES; j++) {
         reduce_flux[j * WORKGROUP_SIZE + lid] = tally_flux[j];
     }
     workgroupBarrier();
     for (var stride = WORKGROUP_SIZE / 2u; stride > 0u; stride /= 2u) {
         if lid < stride {
-            for (var j = 0u; j < 5u; j++) {
+            for (var j = 0u; j < TALLY_COUNTS; j++) {
                 reduce_counts[j * WORKGROUP_SIZE + lid] += reduce_counts[j * WORKGROUP_SIZE + lid + stride];
+            }
+            for (var j = 0u; j < TALLY_FLUXES; j++) {
                 reduce_flux[j * WORKGROUP_SIZE + lid] += reduce_flux[j * WORKGROUP_SIZE + lid + stride];
             }
         }
@@ -173,8 +185,10 @@ fn main(
     }
     if lid == 0u {
         let slot = wid.y * nwg.x + wid.x;
-        for (var j = 0u; j < 5u; j++) {
+        for (var j = 0u; j < TALLY_COUNTS; j++) {
             tallies[slot].counts[j] += reduce_counts[j * WORKGROUP_SIZE];
+        }
+        for (var j = 0u; j < TALLY_FLUXES; j++) {
             tallies[slot].flux[j] += reduce_flux[j * WORKGROUP_SIZE];
         }
     }

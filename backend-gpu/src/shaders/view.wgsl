@@ -189,12 +189,15 @@ fn visit(e: Pending) -> vec3<f32> {
         spawn_ray(offset_origin(hit.point, hit.normal, d), d, e.band, e.depth + 1u, e.weight, e.tint);
         return vec3<f32>(0.0);
     }
-    var at = Pending(hit.point, e.weight, e.dir, e.band, e.tint, e.depth, hit.normal, NO_SPLIT, hit.object);
+    // What coloured glass left of a ray that crossed it.
+    let kept = glass_transmittance(s, e.dir, hit.normal, hit.t, e.band);
+    let weight = e.weight * max(kept.x, max(kept.y, kept.z));
+    var at = Pending(hit.point, weight, e.dir, e.band, e.tint * kept, e.depth, hit.normal, NO_SPLIT, hit.object);
     if e.band == WHITE_BAND && (s.flags & SURFACE_SPLITS_VIEW_RAYS) != 0u {
         at.next_band = 0u;
         spawn(at);
     } else {
-        through_dielectric(at, band_ior(s, e.band), e.band, e.weight, e.tint);
+        through_dielectric(at, band_ior(s, e.band), e.band, at.weight, at.tint);
     }
     return vec3<f32>(0.0);
 }

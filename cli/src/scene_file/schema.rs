@@ -14,7 +14,7 @@ use prismatic_core::bands::BandSpec;
 use prismatic_core::color::ToneMap;
 use prismatic_core::dispersion::{Dispersion, Glass};
 use prismatic_core::scene::{
-    Camera, Checker, Estimator, Light, Material, MaterialKind, Object, RadiusMode, RenderSettings, Shape,
+    Attenuation, Camera, Checker, Estimator, Light, Material, MaterialKind, Object, RadiusMode, RenderSettings, Shape,
     WavelengthSampling,
 };
 use prismatic_core::{Scene, Vec3};
@@ -236,10 +236,20 @@ impl Reader<'_> {
                 }
             }
             "dielectric" => {
-                self.check_keys(t, &["kind", "ior", "outside_ior"])?;
+                self.check_keys(t, &["kind", "ior", "outside_ior", "attenuation_color", "attenuation_distance"])?;
                 let dispersion = self.req(t, "ior", |p, k, v| p.ior(k, v))?;
                 let outside = self.opt(t, "outside_ior", |p, k, v| p.ior(k, v))?.unwrap_or(Dispersion::Constant(1.0));
-                MaterialKind::Dielectric { dispersion, outside }
+                // Coloured glass names both halves of Beer–Lambert's law, as glTF does.
+                let coloured = ["attenuation_color", "attenuation_distance"].iter().any(|k| self.get(t, k).is_some());
+                let attenuation = if coloured {
+                    Some(Attenuation {
+                        color: self.req(t, "attenuation_color", Self::vec3)?,
+                        distance: self.req(t, "attenuation_distance", Self::float)?,
+                    })
+                } else {
+                    None
+                };
+                MaterialKind::Dielectric { dispersion, outside, attenuation }
             }
             "mirror" => {
                 self.check_keys(t, &["kind"])?;

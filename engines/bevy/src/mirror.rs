@@ -120,9 +120,11 @@ fn build_scene(settings: &CausticSettings, entities: &SceneEntities) -> Result<S
     let mut scene_objects = Vec::new();
     for (i, (shape, at, glass, receiver)) in objects.iter().enumerate() {
         let kind = match (glass, receiver) {
-            (Some(g), None) => {
-                MaterialKind::Dielectric { dispersion: g.dispersion.clone(), outside: Dispersion::Constant(1.0) }
-            }
+            (Some(g), None) => MaterialKind::Dielectric {
+                dispersion: g.dispersion.clone(),
+                outside: Dispersion::Constant(1.0),
+                attenuation: None,
+            },
             (None, Some(r)) => MaterialKind::Diffuse { albedo: r.albedo, checker: r.checker.clone() },
             _ => return Err(format!("object {i} needs exactly one of Glass and Receiver")),
         };

@@ -13,10 +13,15 @@ pub struct BuiltinScene {
 }
 
 /// Every built-in scene file.
-pub const BUILTIN_SCENES: [BuiltinScene; 5] = [
+pub const BUILTIN_SCENES: [BuiltinScene; 6] = [
+    BuiltinScene {
+        name: "spectrum",
+        description: "a prism's spectrum on a wall behind the paper's glass sphere and its caustic (the default)",
+        source: include_str!("../../scenes/spectrum.toml"),
+    },
     BuiltinScene {
         name: "caustic",
-        description: "the sphere scene seen close up: the caustic's rim split into its colours (the default)",
+        description: "the sphere scene seen close up: the caustic's rim split into its colours",
         source: include_str!("../../scenes/caustic.toml"),
     },
     BuiltinScene {
@@ -42,7 +47,7 @@ pub const BUILTIN_SCENES: [BuiltinScene; 5] = [
 ];
 
 /// What `render` and `photons` render when no scene is named.
-pub const DEFAULT_SCENE: &str = "caustic";
+pub const DEFAULT_SCENE: &str = "spectrum";
 
 /// The built-in scene called `name`.
 pub fn find(name: &str) -> Option<&'static BuiltinScene> {

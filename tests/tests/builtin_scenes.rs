@@ -19,8 +19,14 @@ fn builtin(name: &str, photons: u32, side: u32) -> PreparedScene {
 
 #[test]
 fn every_built_in_scene_renders_finite_and_its_caustic_adds_light() {
-    let scenes =
-        [("caustic", 20_000), ("sphere", 20_000), ("prism", 4_000), ("recombine", 4_000), ("rainbow", 100_000)];
+    let scenes = [
+        ("spectrum", 20_000),
+        ("caustic", 20_000),
+        ("sphere", 20_000),
+        ("prism", 4_000),
+        ("recombine", 4_000),
+        ("rainbow", 100_000),
+    ];
     for (name, photons) in scenes {
         let scene = builtin(name, photons, 64);
         let mut render = ReferenceBackend.prepare(&fixed(&scene)).unwrap();
@@ -100,5 +106,56 @@ fn rainbow_bows_peak_at_the_descartes_angles() {
             (peak - expected).abs() < 0.5,
             "band {band}, {k} reflection(s): peak {peak}°, Descartes {expected:.2}°"
         );
+    }
+}
+
+/// Hue in degrees (0 red, 60 yellow, 120 green, 240 blue, 270+ violet) and
+/// saturation of an 8-bit sRGB pixel.
+fn hue_and_saturation([r, g, b]: [u8; 3]) -> (f32, f32) {
+    let [r, g, b] = [r, g, b].map(|c| f32::from(c) / 255.0);
+    let (max, min) = (r.max(g).max(b), r.min(g).min(b));
+    let chroma = max - min;
+    if chroma <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let h = if max == r {
+        60.0 * ((g - b) / chroma).rem_euclid(6.0)
+    } else if max == g {
+        60.0 * ((b - r) / chroma + 2.0)
+    } else {
+        60.0 * ((r - g) / chroma + 4.0)
+    };
+    (h, chroma / max)
+}
+
+/// The no-argument render shows the whole spectrum at a glance: the
+/// displayed image has strongly coloured pixels of every hue from red
+/// through yellow, green and blue to violet.
+#[test]
+fn the_first_image_shows_red_through_violet() {
+    let name = prismatic_cli::builtin::DEFAULT_SCENE;
+    let scene = prismatic_tests::builtin(name, |r| r.passes = 4);
+    let mut render = prismatic_cpu::CpuBackend::new().prepare(&scene).unwrap();
+    for pass in 0..4 {
+        render.run_pass(pass, &mut NoProgress).unwrap();
+    }
+    let image = render.image().unwrap();
+    let tone_map = scene.scene.render.tone_map;
+    let hues: Vec<f32> = image
+        .pixels
+        .iter()
+        .map(|&p| hue_and_saturation(prismatic_core::color::to_srgb8(tone_map.apply(p))))
+        .filter(|&(_, s)| s > 0.6)
+        .map(|(h, _)| h)
+        .collect();
+    for (colour, lo, hi) in [
+        ("red", 345.0, 375.0),
+        ("yellow", 45.0, 70.0),
+        ("green", 90.0, 150.0),
+        ("blue", 200.0, 245.0),
+        ("violet", 245.0, 290.0),
+    ] {
+        let count = hues.iter().filter(|&&h| (lo..hi).contains(&h) || (lo..hi).contains(&(h + 360.0))).count();
+        assert!(count >= 20, "{name}: only {count} saturated {colour} pixels (hue {lo}°–{hi}°)");
     }
 }

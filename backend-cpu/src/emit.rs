@@ -40,8 +40,7 @@ impl Emitters {
     /// Precomputes the light frames.
     pub fn new(scene: &PreparedScene) -> Self {
         let lights = scene
-            .scene
-            .lights
+            .emitters
             .iter()
             .map(|l| match l {
                 Light::Spot { position, direction, cone_deg, .. } => {
@@ -67,6 +66,7 @@ impl Emitters {
                         radius: f32x8::splat(*radius),
                     }
                 }
+                Light::Sun { .. } => unreachable!("a sun emits as its beam (PreparedScene::emitters)"),
             })
             .collect();
         let cdf = scene.light_cdf.iter().map(|&c| f32x8::splat(c)).collect();

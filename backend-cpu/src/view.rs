@@ -239,6 +239,17 @@ impl Shader<'_> {
                 let blocked = occluded(self.scene, &shadow, lit.select(along, f32x8::ZERO));
                 (lit & !blocked).select(f32x8::splat(power / (PI * radius * radius)) * cos_s, f32x8::ZERO)
             }
+            Light::Sun { direction, irradiance } => {
+                let to_sun = Vec3x8::splat(-direction.normalize());
+                let cos_s = to_sun.dot(n);
+                let lit = mask & gt(cos_s, f32x8::ZERO);
+                if !lit.any() || !shadows {
+                    return lit.select(f32x8::splat(*irradiance) * cos_s, f32x8::ZERO);
+                }
+                let shadow = RayX8 { origin: offset_origin(p, n, to_sun), dir: to_sun };
+                let blocked = occluded(self.scene, &shadow, lit.select(f32x8::splat(f32::INFINITY), f32x8::ZERO));
+                (lit & !blocked).select(f32x8::splat(*irradiance) * cos_s, f32x8::ZERO)
+            }
         }
     }
 

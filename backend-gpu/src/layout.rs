@@ -154,7 +154,9 @@ pub struct GpuSurface {
 }
 const _: () = assert!(core::mem::size_of::<GpuSurface>() == 80);
 
-/// A light. Kinds: 0 spot, 1 point, 2 beam. Projection kinds: 0 none,
+/// A light. Kinds: 0 spot, 1 point, 2 beam (a sun is the beam it emits
+/// from, with `sun` set: lit everywhere, not only inside the disc, with
+/// its irradiance in `cos_max`). Projection kinds: 0 none,
 /// 1 cones, 2 discs (targets are vec4s in the geometry buffer: axis and
 /// cos θ_max, or centre and radius; their CDF is in the tables buffer).
 #[repr(C)]
@@ -174,7 +176,7 @@ pub struct GpuLight {
     pub power: f32,
     /// Unit axis (spot, beam).
     pub axis: [f32; 3],
-    /// cos of the spot's half-angle.
+    /// cos of the spot's half-angle; a sun's irradiance.
     pub cos_max: f32,
     /// First basis vector around the axis.
     pub tangent: [f32; 3],
@@ -188,8 +190,10 @@ pub struct GpuLight {
     pub proj_first: u32,
     /// First CDF entry in the tables buffer.
     pub proj_cdf: u32,
+    /// 1 for a sun.
+    pub sun: u32,
     /// Padding.
-    pub _pad: [u32; 2],
+    pub _pad: u32,
 }
 const _: () = assert!(core::mem::size_of::<GpuLight>() == 96);
 

@@ -59,9 +59,13 @@ impl EncodedScene {
         }
         let light_cdf = e.tables.len() as u32;
         e.tables.extend_from_slice(&scene.light_cdf);
-        for (i, light) in scene.scene.lights.iter().enumerate() {
+        for (i, (light, emitter)) in scene.scene.lights.iter().zip(&scene.emitters).enumerate() {
             let shadows = scene.plan.shadows.get(i).is_some_and(|s| s.on);
-            let l = e.light(light, scene.plan.projections.get(i).and_then(Option::as_ref), shadows);
+            let mut l = e.light(emitter, scene.plan.projections.get(i).and_then(Option::as_ref), shadows);
+            if let Light::Sun { irradiance, .. } = light {
+                l.sun = 1;
+                l.cos_max = *irradiance;
+            }
             e.lights.push(l);
         }
         for band in scene.bands.bands() {
@@ -209,6 +213,7 @@ impl EncodedScene {
                 l.bitangent = v3(b);
                 l.radius = *radius;
             }
+            Light::Sun { .. } => unreachable!("a sun emits as its beam (PreparedScene::emitters)"),
         }
         if let Some(p) = projection {
             l.proj_first = self.geometry.len() as u32;

@@ -147,6 +147,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 proj_scale,
                 proj_first,
                 proj_cdf,
+                sun,
                 _pad,
             }),
         ),

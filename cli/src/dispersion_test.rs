@@ -2,9 +2,10 @@
 //! `DispersionTest` sample model: a grid of glass prisms on a floor, the
 //! index of refraction growing down the rows (1.0, 1.33, 1.5, 1.76, 2.42)
 //! and `KHR_materials_dispersion` along the columns (0, 0.5, 1, 2, 5), lit
-//! from the side by a distant spot light so that each prism throws its
-//! caustic onto the floor. The project writes it as glTF and reads it back
-//! through the glTF importer, so the scene is also a test of both.
+//! from the side by the sun (a directional light) so that each prism throws
+//! its caustic onto the floor, with a backdrop wall behind the grid. The
+//! project writes it as glTF and reads it back through the glTF importer,
+//! so the scene is also a test of both.
 
 use crate::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, prism};
 use prismatic_core::color::ToneMap;
@@ -17,8 +18,9 @@ pub const IORS: [f32; 5] = [1.0, 1.33, 1.5, 1.76, 2.42];
 pub const DISPERSIONS: [f32; 5] = [0.0, 0.5, 1.0, 2.0, 5.0];
 /// Distance between neighbouring prisms.
 pub const SPACING: f32 = 1.2;
-/// The light comes from −x, 60° above the floor, from this far away.
-const LIGHT_DISTANCE: f32 = 14.0;
+/// The sun's irradiance on a surface facing it (W/m²; the spot light this
+/// scene had, 700 W/sr from 14 units away, gave the same).
+const SUN_IRRADIANCE: f32 = 700.0 / (14.0 * 14.0);
 
 /// Where the prism of `row` and `column` stands (its centre on the floor).
 pub fn prism_centre(row: usize, column: usize) -> [f32; 2] {
@@ -35,6 +37,15 @@ pub fn document() -> GltfDocument {
         material: 0,
         translation: [0.0; 3],
     }];
+    // The backdrop: a wall along the far edge of the floor, facing the grid.
+    materials.push(GltfMaterial::diffuse("backdrop", [0.55, 0.6, 0.7]));
+    meshes.push(GltfMesh {
+        name: "backdrop".into(),
+        positions: vec![[-7.0, 0.0, -7.0], [7.0, 0.0, -7.0], [7.0, 5.0, -7.0], [-7.0, 5.0, -7.0]],
+        indices: vec![0, 1, 2, 0, 2, 3],
+        material: 1,
+        translation: [0.0; 3],
+    });
     for (row, &ior) in IORS.iter().enumerate() {
         for (column, &dispersion) in DISPERSIONS.iter().enumerate() {
             materials.push(GltfMaterial::glass(&format!("n {ior}, dispersion {dispersion}"), ior, dispersion));
@@ -52,18 +63,15 @@ pub fn document() -> GltfDocument {
             });
         }
     }
+    // The sun 60° above the floor, from −x (the backdrop, edge-on to it,
+    // is lit by the ambient term only: a dark wall the prisms refract).
     let elevation = 60f32.to_radians();
     let direction = [elevation.cos(), -elevation.sin(), 0.0];
     GltfDocument {
         materials,
         meshes,
-        lights: vec![GltfLight::Spot {
-            position: [-LIGHT_DISTANCE * direction[0], -LIGHT_DISTANCE * direction[1], 0.0],
-            direction,
-            intensity: 700.0,
-            outer_cone: 17f32.to_radians(),
-        }],
-        camera: Some(GltfCamera { position: [0.0, 7.5, 6.5], look_at: [0.6, 0.0, 0.2], yfov: 48f32.to_radians() }),
+        lights: vec![GltfLight::Directional { direction, intensity: SUN_IRRADIANCE }],
+        camera: Some(GltfCamera { position: [0.0, 6.0, 9.0], look_at: [0.6, 0.6, -1.0], yfov: 48f32.to_radians() }),
     }
 }
 
@@ -72,7 +80,7 @@ pub fn document() -> GltfDocument {
 pub fn settings(render: &mut RenderSettings) {
     render.bands = BandSpec::Physical(16);
     render.estimator = Estimator::Density;
-    render.photons = 400_000;
+    render.photons = 200_000;
     render.radius = 0.03;
     render.ambient = 0.05;
     render.tone_map = ToneMap::Reinhard;

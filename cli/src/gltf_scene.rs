@@ -117,12 +117,11 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
             let position = world.transform_point3(Vec3::ZERO);
             // A glTF light shines down its node's −Z.
             let direction = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
-            // Intensity is read as W/sr (prismatic is radiometric; no lm → W).
+            // Intensity is read as W/sr, a directional light's as W/m²
+            // (prismatic is radiometric; no lm → W).
             let intensity = light.intensity();
             let light_path = format!("{node_path}.extensions.KHR_lights_punctual");
-            if !matches!(light.kind(), Kind::Directional) {
-                out.elements.push((format!("light[{}]", out.lights.len()), light_path.clone()));
-            }
+            out.elements.push((format!("light[{}]", out.lights.len()), light_path));
             match light.kind() {
                 Kind::Point => {
                     out.lights.push(Light::Point { position, power: 4.0 * std::f32::consts::PI * intensity })
@@ -136,9 +135,7 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
                         power: solid_angle * intensity,
                     });
                 }
-                Kind::Directional => {
-                    out.warnings.push(format!("{light_path}: directional lights are left out (spot and point only)"))
-                }
+                Kind::Directional => out.lights.push(Light::Sun { direction, irradiance: intensity }),
             }
         }
         if let (Some(camera), None) = (node.camera(), &out.camera) {
@@ -308,7 +305,7 @@ fn scene(parts: Result<GltfScene, GltfError>, file: &str) -> Result<SceneDocumen
     let camera = parts.camera.unwrap_or_else(|| framing_camera(centre, size));
     let mut lights = parts.lights;
     if lights.is_empty() {
-        warnings.push("no spot or point light: a spot light above the scene is added".into());
+        warnings.push("no light: a spot light above the scene is added".into());
         lights.push(Light::Spot {
             position: centre + Vec3::new(0.0, size, 0.0),
             direction: Vec3::NEG_Y,

@@ -96,6 +96,14 @@ pub enum GltfLight {
         /// Intensity.
         intensity: f32,
     },
+    /// A directional light (the sun): intensity read as W/m² (prismatic
+    /// reads lux as W/m²).
+    Directional {
+        /// Direction it shines.
+        direction: [f32; 3],
+        /// Intensity.
+        intensity: f32,
+    },
 }
 
 /// A perspective camera.
@@ -158,6 +166,9 @@ impl GltfDocument {
                 ),
                 GltfLight::Point { position, intensity } => {
                     (json!({ "type": "point", "intensity": intensity }), position, [0.0, 0.0, -1.0])
+                }
+                GltfLight::Directional { direction, intensity } => {
+                    (json!({ "type": "directional", "intensity": intensity }), [0.0; 3], direction)
                 }
             };
             lights.push(light);

@@ -39,47 +39,65 @@ fn render_writes_a_png_and_reports_what_it_did() {
 }
 
 #[test]
-fn render_defaults_to_the_caustic_scene_and_prismatic_png() {
+fn render_defaults_to_the_spectrum_scene_and_prismatic_png() {
     let o = Command::new(env!("CARGO_BIN_EXE_prismatic")).args(["render", "--help"]).output().unwrap();
     let (out, _) = text(&o);
-    assert!(out.contains("[default: caustic]") && out.contains("[default: prismatic.png]"), "{out}");
+    assert!(out.contains("[default: spectrum]") && out.contains("[default: prismatic.png]"), "{out}");
 }
 
-/// The first image a user sees shows dispersion: saturated colours of
-/// several hues, where the overview of the same scene (`sphere`) has almost
-/// none (0.16 % of its pixels, all red to yellow).
+/// Hue in degrees (0 red, 60 yellow, 120 green, 240 blue, 270 violet) and
+/// saturation of an 8-bit sRGB pixel.
+fn hue_and_saturation(rgb: [u8; 3]) -> (f32, f32) {
+    let [r, g, b] = rgb.map(|c| f32::from(c) / 255.0);
+    let (max, min) = (r.max(g).max(b), r.min(g).min(b));
+    let chroma = max - min;
+    if chroma <= 0.0 {
+        return (0.0, 0.0);
+    }
+    let sextant = if max == r {
+        ((g - b) / chroma).rem_euclid(6.0)
+    } else if max == g {
+        (b - r) / chroma + 2.0
+    } else {
+        (r - g) / chroma + 4.0
+    };
+    (60.0 * sextant, chroma / max)
+}
+
+/// The first image a user sees shows the whole spectrum at a glance:
+/// saturated pixels of every hue from red through yellow, green and blue to
+/// violet (the previous first image, `caustic`, had no green).
 #[test]
-fn the_default_render_shows_the_caustic_in_colour() {
+fn the_default_render_shows_red_through_violet() {
     let dir = tempfile::tempdir().unwrap();
-    let colourful = |scene: Option<&str>| {
+    let hue_counts = |scene: Option<&str>| {
         let mut args = vec!["render", "--passes", "4", "-o", "out.png"];
         args.extend(scene);
         let o = prismatic(&args, dir.path());
         assert!(o.status.success(), "{}", text(&o).1);
         let img = image::open(dir.path().join("out.png")).unwrap().to_rgb8();
-        let mut hues = [0u32; 6];
-        for p in img.pixels() {
-            let [r, g, b] = p.0.map(|c| f32::from(c) / 255.0);
-            let (max, min) = (r.max(g).max(b), r.min(g).min(b));
-            if max > 0.3 && (max - min) / max > 0.5 {
-                // The hue's sextant: 0 red–yellow, 1 yellow–green, ... 5 magenta–red.
-                let h = if max == r {
-                    ((g - b) / (max - min)).rem_euclid(6.0)
-                } else if max == g {
-                    (b - r) / (max - min) + 2.0
-                } else {
-                    (r - g) / (max - min) + 4.0
-                };
-                hues[(h as usize).min(5)] += 1;
-            }
-        }
-        (hues.iter().sum::<u32>() as f32 / (img.width() * img.height()) as f32, hues)
+        let hues: Vec<f32> = img
+            .pixels()
+            .map(|p| hue_and_saturation(p.0))
+            .filter(|&(_, saturation)| saturation > 0.6)
+            .map(|(h, _)| h)
+            .collect();
+        [
+            ("red", 345.0, 375.0),
+            ("yellow", 45.0, 70.0),
+            ("green", 90.0, 150.0),
+            ("blue", 200.0, 245.0),
+            ("violet", 245.0, 290.0),
+        ]
+        .map(|(colour, lo, hi)| {
+            (colour, hues.iter().filter(|&&h| (lo..hi).contains(&h) || (lo..hi).contains(&(h + 360.0))).count())
+        })
     };
-    let (default, hues) = colourful(None);
-    let (overview, _) = colourful(Some("sphere"));
-    assert!(default > 0.015, "{:.2} % saturated pixels", 100.0 * default);
-    assert!(default > 5.0 * overview, "default {default}, overview {overview}");
-    assert!(hues.iter().filter(|&&n| n > 100).count() >= 3, "hues {hues:?}");
+    for (colour, count) in hue_counts(None) {
+        assert!(count >= 20, "only {count} saturated {colour} pixels in the default render");
+    }
+    let caustic = hue_counts(Some("caustic"));
+    assert!(caustic.iter().any(|&(_, count)| count < 20), "the old first image had every hue too: {caustic:?}");
 }
 
 #[test]
@@ -136,7 +154,11 @@ fn unknown_scenes_and_bad_flags_exit_2() {
     let dir = tempfile::tempdir().unwrap();
     let o = prismatic(&["render", "teapot"], dir.path());
     assert_eq!(o.status.code(), Some(2));
-    assert!(text(&o).1.contains("built-in scenes are: caustic, sphere, prism, recombine, rainbow, dispersion-test"));
+    assert!(
+        text(&o)
+            .1
+            .contains("built-in scenes are: spectrum, caustic, sphere, prism, recombine, rainbow, dispersion-test")
+    );
     let o = prismatic(&["render", "sphere", "--bands", "0"], dir.path());
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o).1.contains("--bands: must be"), "{}", text(&o).1);

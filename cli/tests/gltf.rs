@@ -112,7 +112,7 @@ fn what_prismatic_cannot_represent_is_a_warning_not_a_failure() {
     scene.validate().unwrap();
     let warnings = scene.warnings.join("\n");
     assert!(warnings.contains("materials[1] (glass): left out: roughness of the transmission"), "{warnings}");
-    assert!(warnings.contains("no spot or point light"), "{warnings}");
+    assert!(warnings.contains("no light: a spot light"), "{warnings}");
     // The binary prints them and renders.
     let out = dir.path().join("rough.png");
     let run = Command::new(env!("CARGO_BIN_EXE_prismatic"))
@@ -200,11 +200,12 @@ fn the_dispersion_test_grid_spreads_colour_only_where_the_extension_says() {
     use prismatic_core::scene::MaterialKind;
     let doc = prismatic_cli::load_scene("dispersion-test").unwrap_or_else(|e| panic!("{e}"));
     assert!(doc.warnings.is_empty(), "{:?}", doc.warnings);
-    let Light::Spot { position: light, .. } = doc.scene.lights[0] else { panic!("a spot light") };
+    let Light::Sun { direction: sun, .. } = doc.scene.lights[0] else { panic!("the sun") };
     for (row, ior) in IORS.iter().enumerate() {
         let mut spans = Vec::new();
         for column in 0..DISPERSIONS.len() {
-            let object = &doc.scene.objects[1 + row * DISPERSIONS.len() + column];
+            // Objects: the floor, the backdrop, then the prisms row by row.
+            let object = &doc.scene.objects[2 + row * DISPERSIONS.len() + column];
             let MaterialKind::Dielectric { dispersion, .. } = &doc.scene.materials[object.material].kind else {
                 panic!("row {row} column {column} is not glass")
             };
@@ -219,8 +220,7 @@ fn the_dispersion_test_grid_spreads_colour_only_where_the_extension_says() {
             assert!(map.photons.len() > 100, "row {row} column {column}: {} photons", map.photons.len());
             if row == 0 {
                 for p in &map.photons {
-                    let straight = (p.pos() - light).normalize();
-                    assert!((p.direction() - straight).length() < 1e-3, "n = 1 bent a photon: {p:?}");
+                    assert!((p.direction() - sun.normalize()).length() < 1e-3, "n = 1 bent a photon: {p:?}");
                 }
             }
             // The widest distance between bands of one white photon.
@@ -313,4 +313,24 @@ fn volume_attenuation_makes_coloured_glass_and_thin_walls_stay_clear() {
     let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
     assert!(matches!(&scene.scene.materials[1].kind, MaterialKind::Dielectric { attenuation: None, .. }));
     assert!(scene.warnings.join("\n").contains("thin-walled"), "{:?}", scene.warnings);
+}
+
+#[test]
+fn a_directional_light_becomes_the_sun() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    doc.lights = vec![GltfLight::Directional { direction: [1.0, -2.0, 0.5], intensity: 4.0 }];
+    let scene = prismatic_cli::load_scene(write(dir.path(), "sun.gltf", &doc).to_str().unwrap()).unwrap();
+    scene.validate().unwrap();
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let [Light::Sun { direction, irradiance }] = scene.scene.lights.as_slice() else {
+        panic!("one sun expected, got {:?}", scene.scene.lights)
+    };
+    assert!((*direction - glam::Vec3::new(1.0, -2.0, 0.5).normalize()).length() < 1e-5, "{direction}");
+    assert_eq!(*irradiance, 4.0);
+    // Its photons leave toward the prism (the only glass), across its
+    // bounding sphere: at least half of them meet it.
+    let prepared = PreparedScene::new(scene.scene).unwrap();
+    let s = trace::trace_photons(&prepared, &mut prismatic_core::NoProgress).stats;
+    assert!(s.specular_paths * 2 > s.emitted, "{s:?}");
 }

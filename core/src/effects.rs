@@ -7,7 +7,7 @@
 
 use crate::projection::Projection;
 use crate::reach::{bounds, camera_sees, light_reaches};
-use crate::scene::{Scene, WavelengthSampling};
+use crate::scene::{Light, Scene, WavelengthSampling};
 use crate::surface::Surface;
 use alloc::format;
 use alloc::string::String;
@@ -54,8 +54,9 @@ pub struct EffectPlan {
 }
 
 impl EffectPlan {
-    /// Decides the plan for `scene`, whose objects have `surfaces`.
-    pub fn new(scene: &Scene, surfaces: &[Surface]) -> Self {
+    /// Decides the plan for `scene`, whose objects have `surfaces` and whose
+    /// lights emit photons as `emitters` (a sun as its beam).
+    pub fn new(scene: &Scene, emitters: &[Light], surfaces: &[Surface]) -> Self {
         let bounds: Vec<(Vec3, f32)> = scene.objects.iter().map(|o| bounds(&o.shape)).collect();
         let specular: Vec<usize> =
             (0..surfaces.len()).filter(|&k| !matches!(surfaces[k], Surface::Diffuse { .. })).collect();
@@ -64,7 +65,7 @@ impl EffectPlan {
         let lit: Vec<usize> = specular
             .iter()
             .copied()
-            .filter(|&k| scene.lights.iter().any(|l| light_reaches(l, bounds[k].0, bounds[k].1)))
+            .filter(|&k| emitters.iter().any(|l| light_reaches(l, bounds[k].0, bounds[k].1)))
             .collect();
         let has_diffuse = surfaces.iter().any(|s| matches!(s, Surface::Diffuse { .. }));
         let n_bands = crate::bands::BandTable::new(scene.render.bands).len();
@@ -131,14 +132,14 @@ impl EffectPlan {
         } else {
             (scene.render.max_depth, String::from("render.max_depth"))
         };
-        let mut projections: Vec<Option<Projection>> = scene.lights.iter().map(|_| None).collect();
+        let mut projections: Vec<Option<Projection>> = emitters.iter().map(|_| None).collect();
         let projection = if !caustics.on {
             Effect::off("no photon pass")
         } else if !scene.render.projection_maps {
             Effect::off("render.projection_maps = false")
         } else {
             let spheres: Vec<(Vec3, f32)> = specular.iter().map(|&k| bounds[k]).collect();
-            projections = scene.lights.iter().map(|l| Projection::new(l, &spheres)).collect();
+            projections = emitters.iter().map(|l| Projection::new(l, &spheres)).collect();
             let aimed: Vec<f32> = projections.iter().flatten().map(|p| p.scale).collect();
             if aimed.is_empty() {
                 Effect::off("no gain: the lights' mirrors and glass fill their emission")

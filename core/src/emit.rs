@@ -30,7 +30,7 @@ pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
     let light = scene.light_cdf.iter().position(|&c| u < c).unwrap_or(scene.light_cdf.len() - 1);
     let u1 = random_f32(seed, index, dim::DIRECTION);
     let u2 = random_f32(seed, index, dim::DIRECTION + 1);
-    let source = &scene.scene.lights[light];
+    let source = &scene.emitters[light];
     if let Some(projection) = &scene.plan.projections[light] {
         let u_target = random_f32(seed, index, dim::TARGET);
         let (v1, v2) = match source {
@@ -61,5 +61,6 @@ pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
             let origin = *position + (t * cos_phi + b * sin_phi) * r;
             Emitted { origin, direction: axis, light, weight: 1.0 }
         }
+        Light::Sun { .. } => unreachable!("a sun emits as its beam (PreparedScene::emitters)"),
     }
 }

@@ -5,7 +5,8 @@
 use crate::bands::BandTable;
 use crate::effects::EffectPlan;
 use crate::geometry::{Primitive, Ray, prism_faces};
-use crate::scene::{Scene, SceneError, Shape};
+use crate::reach;
+use crate::scene::{Light, Scene, SceneError, Shape};
 use crate::surface::Surface;
 use crate::tolerance;
 use alloc::vec::Vec;
@@ -35,6 +36,9 @@ pub struct PreparedScene {
     pub primitives: Vec<Primitive>,
     /// One surface per object.
     pub surfaces: Vec<Surface>,
+    /// What each light emits photons as: the light itself, or for a sun
+    /// the beam over the scene's mirrors and glass ([`crate::reach::sun_beam`]).
+    pub emitters: Vec<Light>,
     /// Cumulative light-selection probabilities (by power).
     pub light_cdf: Vec<f32>,
     /// Σ light power.
@@ -51,10 +55,24 @@ impl PreparedScene {
         let primitives = scene.objects.iter().map(|o| primitive(&o.shape)).collect();
         let surfaces: Vec<Surface> =
             scene.objects.iter().map(|o| Surface::new(&scene.materials[o.material].kind, &bands)).collect();
-        let total_power: f32 = scene.lights.iter().map(|l| l.power()).sum();
-        let mut acc = 0.0;
-        let mut light_cdf: Vec<f32> = scene
+        let bounds: Vec<(Vec3, f32)> = scene.objects.iter().map(|o| reach::bounds(&o.shape)).collect();
+        let specular: Vec<(Vec3, f32)> = bounds
+            .iter()
+            .zip(&surfaces)
+            .filter(|(_, s)| !matches!(s, Surface::Diffuse { .. }))
+            .map(|(b, _)| *b)
+            .collect();
+        let emitters: Vec<Light> = scene
             .lights
+            .iter()
+            .map(|l| match l {
+                Light::Sun { direction, irradiance } => reach::sun_beam(*direction, *irradiance, &specular, &bounds),
+                other => other.clone(),
+            })
+            .collect();
+        let total_power: f32 = emitters.iter().map(|l| l.power()).sum();
+        let mut acc = 0.0;
+        let mut light_cdf: Vec<f32> = emitters
             .iter()
             .map(|l| {
                 acc += l.power();
@@ -65,14 +83,14 @@ impl PreparedScene {
             *last = 1.0;
         }
         let mut surfaces = surfaces;
-        let plan = EffectPlan::new(&scene, &surfaces);
+        let plan = EffectPlan::new(&scene, &emitters, &surfaces);
         for s in &mut surfaces {
             if let Surface::Dielectric(g) = s {
                 g.splits_photons = g.is_chromatic() && plan.band_splitting.on;
                 g.splits_view_rays = g.dispersive && plan.view_dispersion.on;
             }
         }
-        Ok(PreparedScene { scene, bands, primitives, surfaces, light_cdf, total_power, plan })
+        Ok(PreparedScene { scene, bands, primitives, surfaces, emitters, light_cdf, total_power, plan })
     }
 
     /// Simulates every effect, ignoring the plan (see [`EffectPlan::simulate_everything`]).

@@ -47,7 +47,31 @@ pub fn light_reaches(light: &Light, c: Vec3, r: f32) -> bool {
             let off_axis = (c - *position - axis * along).length();
             along > -r && off_axis <= radius + r
         }
+        Light::Sun { .. } => true,
     }
+}
+
+/// The beam a sun's photons leave from: a disc across the sun's direction
+/// that covers the spheres of `targets` (the scene's mirrors and glass),
+/// placed beyond every bounded object of `scene_bounds` as seen from the
+/// sun, with the sun's irradiance over its area. A photon that would miss
+/// every target could only light a diffuse surface directly, which the view
+/// pass ray traces, so nothing outside the disc is lost. With no targets
+/// the disc covers every bounded object (or the unit sphere).
+pub fn sun_beam(direction: Vec3, irradiance: f32, targets: &[(Vec3, f32)], scene_bounds: &[(Vec3, f32)]) -> Light {
+    let axis = direction.normalize();
+    let finite: alloc::vec::Vec<(Vec3, f32)> = scene_bounds.iter().copied().filter(|b| b.1.is_finite()).collect();
+    let cover = if !targets.is_empty() { targets } else { &finite[..] };
+    let (center, radius) = if cover.is_empty() {
+        (Vec3::ZERO, 1.0)
+    } else {
+        let center = cover.iter().map(|b| b.0).sum::<Vec3>() / cover.len() as f32;
+        (center, cover.iter().map(|(c, r)| (*c - center).length() + r).fold(0.0, f32::max))
+    };
+    // Back from the centre, past every bounded object on the sun's side.
+    let back = finite.iter().map(|(c, r)| (center - *c).dot(axis) + r).fold(radius, f32::max);
+    let position = center - axis * (back * 1.01 + 1e-3);
+    Light::Beam { position, direction: axis, radius, power: irradiance * core::f32::consts::PI * radius * radius }
 }
 
 /// Can the camera see into the sphere (centre `c`, radius `r`)? Tests the

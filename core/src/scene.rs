@@ -244,13 +244,25 @@ pub enum Light {
         /// Flux in W.
         power: f32,
     },
+    /// Parallel light from one direction (the sun, glTF's directional
+    /// light): it lights everything it reaches, with `irradiance` on a
+    /// surface that faces it. Its photons leave a disc over the scene's
+    /// mirrors and glass ([`crate::reach::sun_beam`]).
+    Sun {
+        /// Direction of travel (from the sun into the scene).
+        direction: Vec3,
+        /// Irradiance in W/m² on a surface facing the sun.
+        irradiance: f32,
+    },
 }
 
 impl Light {
-    /// The light's flux.
+    /// The light's flux in W; a sun's depends on how much of the scene it
+    /// covers and is its beam's ([`crate::prepared::PreparedScene::emitters`]), so 0 here.
     pub fn power(&self) -> f32 {
         match self {
             Light::Spot { power, .. } | Light::Point { power, .. } | Light::Beam { power, .. } => *power,
+            Light::Sun { .. } => 0.0,
         }
     }
 }

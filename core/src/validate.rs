@@ -190,6 +190,10 @@ fn validate_light(c: &Check<'_>, light: &Light) -> Result<(), SceneError> {
             c.positive("radius", *radius)?;
             c.positive("power", *power)
         }
+        Light::Sun { direction, irradiance } => {
+            c.direction("direction", *direction)?;
+            c.positive("irradiance", *irradiance)
+        }
     }
 }
 

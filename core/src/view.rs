@@ -195,6 +195,15 @@ impl<'a> ViewContext<'a> {
                 }
                 power / (PI * radius * radius) * cos_s
             }
+            Light::Sun { direction, irradiance } => {
+                let to_sun = -direction.normalize();
+                let cos_s = to_sun.dot(n);
+                if cos_s <= 0.0 || (shadows && self.scene.occluded(offset_origin(p, n, to_sun), to_sun, f32::INFINITY))
+                {
+                    return 0.0;
+                }
+                irradiance * cos_s
+            }
         }
     }
 

@@ -118,6 +118,7 @@ fn the_plan_never_skips_light_that_would_show() {
                 Light::Spot { position, direction, .. } | Light::Beam { position, direction, .. } => {
                     *direction = aim - *position;
                 }
+                Light::Sun { direction, .. } => *direction = aim,
                 Light::Point { .. } => {}
             }
         }

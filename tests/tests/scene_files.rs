@@ -300,3 +300,19 @@ fn coloured_glass_parses_and_bad_attenuation_is_rejected_with_its_line() {
         "greater than 0",
     );
 }
+
+#[test]
+fn a_sun_parses_and_needs_a_direction_and_a_positive_irradiance() {
+    let sun = "kind = \"sun\"\ndirection = [1, -2, 0]\nirradiance = 5";
+    let source = MINIMAL.replace("kind = \"point\"\nposition = [0, 4, 0]\npower = 10", sun);
+    let doc = parse(&source, "test.toml", None).expect("parses");
+    doc.validate().expect("valid");
+    assert!(matches!(doc.scene.lights[0], prismatic_core::scene::Light::Sun { irradiance: 5.0, .. }));
+    assert_error(
+        &source.replace("irradiance = 5", "irradiance = 0"),
+        "light[0].irradiance",
+        Some("irradiance"),
+        "greater than 0",
+    );
+    assert_error(&source.replace("irradiance = 5", "power = 5"), "light[0].power", Some("power"), "unknown key");
+}

@@ -102,7 +102,8 @@ struct GpuLight {
     proj_scale: f32,
     proj_first: u32,
     proj_cdf: u32,
-    _pad: vec2<u32>,
+    sun: u32,
+    _pad: u32,
 }
 
 // Twin of prismatic_gpu::layout::GpuBand.

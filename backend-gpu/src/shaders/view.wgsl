@@ -101,6 +101,14 @@ fn visible_point(light: vec3<f32>, p: vec3<f32>, n: vec3<f32>, shadows: bool) ->
 // ViewContext::direct_irradiance
 fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     let shadows = l.shadows != 0u;
+    if l.sun != 0u {
+        // A sun: its irradiance (in cos_max) wherever it is not blocked.
+        let cos_s = -dot(l.axis, n);
+        if cos_s <= 0.0 || (shadows && occluded(offset_origin(p, n, -l.axis), -l.axis, BIG)) {
+            return 0.0;
+        }
+        return l.cos_max * cos_s;
+    }
     if l.kind == LIGHT_BEAM {
         let along = dot(p - l.position, l.axis);
         let cos_s = -dot(l.axis, n);

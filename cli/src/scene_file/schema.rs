@@ -200,12 +200,19 @@ impl Reader<'_> {
                     power: self.req(t, "power", Self::float)?,
                 }
             }
+            "sun" => {
+                self.check_keys(t, &["kind", "direction", "irradiance"])?;
+                Light::Sun {
+                    direction: self.req(t, "direction", Self::vec3)?,
+                    irradiance: self.req(t, "irradiance", Self::float)?,
+                }
+            }
             other => {
                 let v = self.required(t, "kind")?;
                 return Err(self.err(
                     &join(&t.key, "kind"),
                     &v.span(),
-                    format!("unknown light kind \"{other}\"; expected spot, point or beam"),
+                    format!("unknown light kind \"{other}\"; expected spot, point, beam or sun"),
                 ));
             }
         })

@@ -117,6 +117,20 @@ fn view_scene(ior: Dispersion, bands: BandSpec) -> PreparedScene {
 /// Rays the view pass prunes (share below 1/1000) and f32: well under this.
 const VIEW_TOLERANCE: f32 = 3e-3;
 
+/// Asserts that every backend's middle pixel of `scene` (looking straight
+/// through the slab) is `expected`.
+fn assert_seen_through_the_slab(scene: &PreparedScene, expected: Vec3) {
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let (_, image) = frame(backend.as_mut(), scene);
+        let got = image.pixels[4];
+        assert!(
+            (got - expected).abs().max_element() < VIEW_TOLERANCE,
+            "{name}: through the slab {got}, Beer–Lambert says {expected}"
+        );
+    }
+}
+
 #[test]
 fn a_view_ray_through_a_coloured_slab_keeps_beer_lambert_per_channel() {
     // Clear-index glass: the white ray keeps each channel's own fraction.
@@ -127,15 +141,7 @@ fn a_view_ray_through_a_coloured_slab_keeps_beer_lambert_per_channel() {
         slab_view(1.5, tau(COLOR.y)) as f32,
         slab_view(1.5, tau(COLOR.z)) as f32,
     );
-    for mut backend in every_backend() {
-        let name = backend.name();
-        let (_, image) = frame(backend.as_mut(), &scene);
-        let got = image.pixels[4];
-        assert!(
-            (got - expected).abs().max_element() < VIEW_TOLERANCE,
-            "{name}: through the slab {got}, Beer–Lambert says {expected}"
-        );
-    }
+    assert_seen_through_the_slab(&scene, expected);
 }
 
 #[test]
@@ -154,13 +160,5 @@ fn band_view_rays_through_coloured_dispersive_glass_keep_their_bands_fraction() 
             info.weight * slab_view(f64::from(glass.band_ior[b]), tau) as f32
         })
         .sum();
-    for mut backend in every_backend() {
-        let name = backend.name();
-        let (_, image) = frame(backend.as_mut(), &scene);
-        let got = image.pixels[4];
-        assert!(
-            (got - expected).abs().max_element() < VIEW_TOLERANCE,
-            "{name}: through the slab {got}, Beer–Lambert per band says {expected}"
-        );
-    }
+    assert_seen_through_the_slab(&scene, expected);
 }

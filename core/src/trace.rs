@@ -1,10 +1,11 @@
 //! The scalar reference photon tracer: the specification every backend's
 //! photon pass is compared with.
 //!
-//! White photons leave the lights; at the first dispersive dielectric a
-//! white photon splits into one photon per band (each with 1/N of the flux)
-//! and each band continues with its own index of refraction; non-dispersive
-//! glass and mirrors never split. With [`WavelengthSampling::RandomBand`] or
+//! White photons leave the lights (a sun's from its beam, see
+//! [`PreparedScene::emitters`]); at the first dispersive or coloured
+//! dielectric a white photon splits into one photon per band (each with 1/N
+//! of the flux) and each band continues with its own index of refraction
+//! and absorption; clear non-dispersive glass and mirrors never split. With [`WavelengthSampling::RandomBand`] or
 //! `Continuous` the white photon does not split but continues as one random
 //! band with all its flux (see [`sample_band`]). A photon that reaches a diffuse surface
 //! after at least one specular interaction is stored (the dispersion caustic

@@ -148,15 +148,14 @@ pub struct GpuSurface {
     pub curve_len: u32,
     /// Absorption coefficient per RGB channel (coloured glass).
     pub absorption: [f32; 3],
-    /// Index of the per-band absorption coefficients in the tables buffer
-    /// (N bands, then the white photon's).
+    /// Index of the per-band absorption coefficients in the tables buffer.
     pub absorption_first: u32,
 }
 const _: () = assert!(core::mem::size_of::<GpuSurface>() == 80);
 
 /// A light. Kinds: 0 spot, 1 point, 2 beam (a sun is the beam it emits
-/// from, with `sun` set: lit everywhere, not only inside the disc, with
-/// its irradiance in `cos_max`). Projection kinds: 0 none,
+/// from, with `sun` set: lit everywhere, not only inside the disc).
+/// Projection kinds: 0 none,
 /// 1 cones, 2 discs (targets are vec4s in the geometry buffer: axis and
 /// cos θ_max, or centre and radius; their CDF is in the tables buffer).
 #[repr(C)]
@@ -176,7 +175,7 @@ pub struct GpuLight {
     pub power: f32,
     /// Unit axis (spot, beam).
     pub axis: [f32; 3],
-    /// cos of the spot's half-angle; a sun's irradiance.
+    /// cos of the spot's half-angle.
     pub cos_max: f32,
     /// First basis vector around the axis.
     pub tangent: [f32; 3],

@@ -62,9 +62,8 @@ impl EncodedScene {
         for (i, (light, emitter)) in scene.scene.lights.iter().zip(&scene.emitters).enumerate() {
             let shadows = scene.plan.shadows.get(i).is_some_and(|s| s.on);
             let mut l = e.light(emitter, scene.plan.projections.get(i).and_then(Option::as_ref), shadows);
-            if let Light::Sun { irradiance, .. } = light {
+            if let Light::Sun { .. } = light {
                 l.sun = 1;
-                l.cos_max = *irradiance;
             }
             e.lights.push(l);
         }
@@ -171,7 +170,6 @@ impl EncodedScene {
                     s.absorption = v3(a.rgb);
                     s.absorption_first = self.tables.len() as u32;
                     self.tables.extend_from_slice(&a.band);
-                    self.tables.push(a.white);
                 }
                 if let Some(curve) = &g.spectrum {
                     s.flags |= SURFACE_HAS_CURVE;

@@ -25,10 +25,6 @@ pub struct Absorption {
     pub rgb: Vec3,
     /// σ per band of the render's band table.
     pub band: Vec<f32>,
-    /// σ of a white photon that does not split (the plan splits white
-    /// photons at coloured glass, so only a plan forced off meets it): the
-    /// channels' mean.
-    pub white: f32,
 }
 
 impl Absorption {
@@ -40,7 +36,7 @@ impl Absorption {
         if rgb.max_element() <= 0.0 {
             return None;
         }
-        let white = (rgb.x + rgb.y + rgb.z) / 3.0;
+        let white = white_coefficient(rgb);
         let band = bands
             .bands()
             .iter()
@@ -50,13 +46,13 @@ impl Absorption {
                 if sum > 0.0 { w.dot(rgb) / sum } else { white }
             })
             .collect();
-        Some(Absorption { rgb, band, white })
+        Some(Absorption { rgb, band })
     }
 
     /// σ for `band` ([`WHITE_BAND`]: the white photon's).
     #[inline]
     pub fn coefficient(&self, band: u16) -> f32 {
-        if band == WHITE_BAND { self.white } else { self.band[usize::from(band)] }
+        if band == WHITE_BAND { white_coefficient(self.rgb) } else { self.band[usize::from(band)] }
     }
 
     /// The fraction of a `band` photon or view ray that crosses `length` inside.
@@ -75,6 +71,14 @@ impl Absorption {
             Vec3::splat(self.transmittance(band, length))
         }
     }
+}
+
+/// σ of a white photon that does not split, the channels' mean (the plan
+/// splits white photons at coloured glass, so only a band without RGB
+/// weight meets it; WGSL `absorption_coefficient` has the same sum).
+#[inline]
+fn white_coefficient(rgb: Vec3) -> f32 {
+    (rgb.x + rgb.y + rgb.z) / 3.0
 }
 
 #[cfg(test)]

@@ -8,7 +8,7 @@ use prismatic_core::bands::BandSpec;
 use prismatic_core::dispersion::Dispersion;
 use prismatic_core::scene::{Camera, Light, Material, MaterialKind, Object, Shape};
 use prismatic_core::{PreparedScene, Scene, Vec3};
-use prismatic_tests::backends::{every_backend, frame, trace};
+use prismatic_tests::backends::{every_backend, trace};
 use prismatic_tests::{glass, prepare, settings};
 
 const IRRADIANCE: f32 = 3.0;
@@ -58,7 +58,7 @@ fn the_sun_lights_the_floor_with_e_cos_theta_and_objects_shadow_it() {
     let (sunny, shadowed) = (pixel_at(-3.0, 3.0), pixel_at(1.9, 0.0));
     for mut backend in every_backend() {
         let name = backend.name();
-        let (_, image) = frame(backend.as_mut(), &scene);
+        // The view pass alone: direct light and shadows, no caustic.
         let base = backend.prepare(&scene).unwrap().base().unwrap();
         let got = base.pixels[sunny];
         assert!(
@@ -66,7 +66,6 @@ fn the_sun_lights_the_floor_with_e_cos_theta_and_objects_shadow_it() {
             "{name}: sunlit floor {got}, expected {lit}"
         );
         assert!(base.pixels[shadowed].max_element() < 1e-6, "{name}: in the shadow {}", base.pixels[shadowed]);
-        assert!(image.is_finite(), "{name}");
     }
 }
 

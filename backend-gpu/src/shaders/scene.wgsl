@@ -361,10 +361,10 @@ fn band_ior(s: GpuSurface, band: u32) -> f32 {
     return tables[s.ior_first + band];
 }
 
-// Absorption::coefficient: σ of a band, or of a white photon (after the bands).
+// Absorption::coefficient: σ of a band, or of a white photon (the channels' mean).
 fn absorption_coefficient(s: GpuSurface, band: u32) -> f32 {
     if band == WHITE_BAND {
-        return tables[s.absorption_first + params.band_count];
+        return (s.absorption.x + s.absorption.y + s.absorption.z) / 3.0;
     }
     return tables[s.absorption_first + band];
 }

@@ -102,12 +102,13 @@ fn visible_point(light: vec3<f32>, p: vec3<f32>, n: vec3<f32>, shadows: bool) ->
 fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     let shadows = l.shadows != 0u;
     if l.sun != 0u {
-        // A sun: its irradiance (in cos_max) wherever it is not blocked.
+        // A sun: its beam's irradiance wherever it is not blocked, inside
+        // the disc or not.
         let cos_s = -dot(l.axis, n);
         if cos_s <= 0.0 || (shadows && occluded(offset_origin(p, n, -l.axis), -l.axis, BIG)) {
             return 0.0;
         }
-        return l.cos_max * cos_s;
+        return l.power / (PI * l.radius * l.radius) * cos_s;
     }
     if l.kind == LIGHT_BEAM {
         let along = dot(p - l.position, l.axis);

@@ -93,9 +93,10 @@ fn visit(bvh: &MeshBvh, ray: &RayX8, t_max: f32x8, mut leaf: impl FnMut(&BvhNode
     }
 }
 
-/// The nearest hit of each lane with `0 < t < t_max`: (mask, t, outward normal).
+/// The nearest hit of each lane with `0 < t < t_max`: (mask, t, outward
+/// normal, triangle index as a float).
 #[inline]
-pub fn intersect_mesh(bvh: &MeshBvh, ray: &RayX8, t_max: f32x8) -> (f32x8, f32x8, Vec3x8) {
+pub fn intersect_mesh(bvh: &MeshBvh, ray: &RayX8, t_max: f32x8) -> (f32x8, f32x8, Vec3x8, f32x8) {
     let inf = f32x8::splat(f32::INFINITY);
     let skin = surface_skin(ray.origin);
     // `NearestTriangle` per lane: infinity stands for "none".
@@ -125,7 +126,7 @@ pub fn intersect_mesh(bvh: &MeshBvh, ray: &RayX8, t_max: f32x8) -> (f32x8, f32x8
     });
     let pick_e = lt(te, tl + skin);
     let hit = lt(te, inf) | lt(tl, inf);
-    (hit, pick_e.select(te, tl), Vec3x8::select(pick_e, ne, nl))
+    (hit, pick_e.select(te, tl), Vec3x8::select(pick_e, ne, nl), hit.select(pick_e.select(ie, il), f32x8::ZERO))
 }
 
 /// Lanes that hit any triangle with `0 < t < t_max`.

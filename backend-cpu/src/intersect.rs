@@ -17,18 +17,27 @@ pub struct HitX8 {
     pub normal: Vec3x8,
     /// Object index as a float (exact for any realistic scene), −1 for none.
     pub object: f32x8,
+    /// A mesh's triangle hit as a float (exact up to `MAX_MESH_TRIANGLES`), else 0.
+    pub triangle: f32x8,
 }
 
 /// Nearest hit of each ray with the scene closer than `t_max` (per lane).
 #[inline]
 pub fn intersect_scene(scene: &PreparedScene, ray: &RayX8, t_max: f32x8) -> HitX8 {
-    let mut hit = HitX8 { t: t_max, normal: Vec3x8::ZERO, object: f32x8::splat(-1.0) };
+    let mut hit = HitX8 { t: t_max, normal: Vec3x8::ZERO, object: f32x8::splat(-1.0), triangle: f32x8::ZERO };
     for (k, prim) in scene.primitives.iter().enumerate() {
-        let (mask, t, normal) = intersect_primitive(prim, ray, hit.t);
+        let (mask, t, normal, triangle) = match prim {
+            Primitive::Mesh(bvh) => intersect_mesh(bvh, ray, hit.t),
+            _ => {
+                let (mask, t, normal) = intersect_primitive(prim, ray, hit.t);
+                (mask, t, normal, f32x8::ZERO)
+            }
+        };
         if mask.any() {
             hit.t = mask.select(t, hit.t);
             hit.normal = Vec3x8::select(mask, normal, hit.normal);
             hit.object = mask.select(f32x8::splat(k as f32), hit.object);
+            hit.triangle = mask.select(triangle, hit.triangle);
         }
     }
     hit
@@ -68,7 +77,10 @@ fn intersect_primitive(prim: &Primitive, ray: &RayX8, t_max: f32x8) -> (f32x8, f
             (valid & in_range(t, t_max) & inside, t, n)
         }
         Primitive::Convex { faces } => convex(ray, faces, t_max),
-        Primitive::Mesh(bvh) => intersect_mesh(bvh, ray, t_max),
+        Primitive::Mesh(bvh) => {
+            let (mask, t, normal, _) = intersect_mesh(bvh, ray, t_max);
+            (mask, t, normal)
+        }
     }
 }
 

@@ -11,7 +11,7 @@
 //! that needs the caustic becomes a visible point. A ray that crossed
 //! coloured glass keeps the reference's transmittance in its tint.
 
-use crate::intersect::{intersect_scene, occluded};
+use crate::intersect::{HitX8, intersect_scene, occluded};
 use crate::optics::{fresnel, interface, offset_origin, reflect, refract};
 use crate::ray::RayX8;
 use crate::simd::{Vec3x8, ge, gt, lt};
@@ -127,7 +127,7 @@ impl Shader<'_> {
         }
         let diffuse = f32x8::new(diffuse);
         if diffuse.any() {
-            let radiance = self.shade_diffuse(rays, &ray, &hit.normal, point, &hit.object, diffuse);
+            let radiance = self.shade_diffuse(rays, &ray, &hit, point, diffuse);
             for i in lanes(diffuse) {
                 sum[rays[i].pixel as usize] += rays[i].tint * radiance[i];
             }
@@ -178,28 +178,20 @@ impl Shader<'_> {
 
     /// Radiance toward the viewer at diffuse hits (lanes in `mask`), less
     /// the caustic, which is left to a visible point per lane.
-    fn shade_diffuse(
-        &mut self,
-        rays: &[ViewRay],
-        ray: &RayX8,
-        normal: &Vec3x8,
-        p: Vec3x8,
-        object: &f32x8,
-        mask: f32x8,
-    ) -> [Vec3; 8] {
+    fn shade_diffuse(&mut self, rays: &[ViewRay], ray: &RayX8, hit: &HitX8, p: Vec3x8, mask: f32x8) -> [Vec3; 8] {
         let settings = &self.scene.scene.render;
-        let facing = lt(ray.dir.dot(*normal), f32x8::ZERO);
-        let n = Vec3x8::select(facing, *normal, -*normal);
+        let facing = lt(ray.dir.dot(hit.normal), f32x8::ZERO);
+        let n = Vec3x8::select(facing, hit.normal, -hit.normal);
         let mut direct = f32x8::ZERO;
         for (light, plan) in self.scene.scene.lights.iter().zip(&self.scene.plan.shadows) {
             direct += self.direct_irradiance(light, plan.on, p, n, mask);
         }
-        let objects = object.to_array();
+        let (objects, triangles) = (hit.object.to_array(), hit.triangle.to_array());
         let direct = direct.to_array();
         let mut out = [Vec3::ZERO; 8];
         for i in lanes(mask) {
             let (pi, ni) = (p.lane(i), n.lane(i));
-            let albedo = self.scene.surfaces[objects[i] as usize].albedo_at(pi, ni);
+            let albedo = self.scene.albedo_at(objects[i] as usize, triangles[i] as u32, pi, ni);
             if self.scene.plan.caustics.on {
                 let weight = rays[i].tint * albedo / PI * settings.exposure;
                 let pixel = self.first_pixel + rays[i].pixel;

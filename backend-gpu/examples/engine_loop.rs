@@ -29,7 +29,7 @@ fn scene(light_x: f32) -> PreparedScene {
             power: 38.0,
         }],
         materials: vec![
-            material("floor", MaterialKind::Diffuse { albedo: Vec3::splat(0.85), checker: None }),
+            material("floor", MaterialKind::Diffuse { albedo: Vec3::splat(0.85), checker: None, texture: None }),
             material(
                 "glass",
                 MaterialKind::Dielectric {

@@ -150,8 +150,17 @@ pub struct GpuSurface {
     pub absorption: [f32; 3],
     /// Index of the per-band absorption coefficients in the tables buffer.
     pub absorption_first: u32,
+    /// Index of the texture in the tables buffer: 256 sRGB decoding
+    /// entries, then the texels (see `SURFACE_HAS_TEXTURE`).
+    pub texture_first: u32,
+    /// Texels per row.
+    pub texture_width: u32,
+    /// Rows.
+    pub texture_height: u32,
+    /// Record of the first triangle's texture coordinates in the geometry buffer.
+    pub uv_first: u32,
 }
-const _: () = assert!(core::mem::size_of::<GpuSurface>() == 80);
+const _: () = assert!(core::mem::size_of::<GpuSurface>() == 96);
 
 /// A light. Kinds: 0 spot, 1 point, 2 beam (a sun is the beam it emits
 /// from, with `sun` set: lit everywhere, not only inside the disc).

@@ -14,9 +14,22 @@ use prismatic_core::camera::PinholeCamera;
 use prismatic_core::geometry::{Primitive, basis};
 use prismatic_core::math::{cos, radians};
 use prismatic_core::projection::Targets;
-use prismatic_core::scene::{Estimator, Light, WavelengthSampling};
+use prismatic_core::scene::{Estimator, Filter, Light, Sampler, Texture, WavelengthSampling, Wrap};
 use prismatic_core::surface::Surface;
+use prismatic_core::texture::srgb_to_linear;
 use prismatic_core::trace::photon_flux;
+use std::collections::HashMap;
+
+/// A sampler's filter and wraps as surface flags.
+fn texture_flags(s: Sampler) -> u32 {
+    let wrap = |w: Wrap| match w {
+        Wrap::Repeat => WRAP_REPEAT,
+        Wrap::ClampToEdge => WRAP_CLAMP_TO_EDGE,
+        Wrap::MirroredRepeat => WRAP_MIRRORED_REPEAT,
+    };
+    let nearest = if s.filter == Filter::Nearest { SURFACE_TEXTURE_NEAREST } else { 0 };
+    nearest | wrap(s.wrap_u) << TEXTURE_WRAP_U_SHIFT | wrap(s.wrap_v) << TEXTURE_WRAP_V_SHIFT
+}
 
 /// The scene's records, ready to upload.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -53,8 +66,20 @@ impl EncodedScene {
             let o = e.object(prim);
             e.objects.push(o);
         }
-        for surface in &scene.surfaces {
-            let s = e.surface(surface);
+        // Each image once, however many objects show it (keyed by its shared texels).
+        let mut textures: HashMap<*const u32, u32> = HashMap::new();
+        for (surface, uvs) in scene.surfaces.iter().zip(&scene.texture_uvs) {
+            let mut s = e.surface(surface);
+            if let Surface::Diffuse { texture: Some(t), .. } = surface {
+                s.flags |= SURFACE_HAS_TEXTURE | texture_flags(t.sampler);
+                s.texture_width = t.width;
+                s.texture_height = t.height;
+                s.texture_first = *textures.entry(t.texels.as_ptr()).or_insert_with(|| e.texture(t));
+                s.uv_first = e.geometry.len() as u32;
+                for uv in uvs {
+                    e.geometry.extend([[uv.uv0.x, uv.uv0.y, uv.du1.x, uv.du1.y], [uv.du2.x, uv.du2.y, 0.0, 0.0]]);
+                }
+            }
             e.surfaces.push(s);
         }
         let light_cdf = e.tables.len() as u32;
@@ -140,7 +165,7 @@ impl EncodedScene {
 
     fn surface(&mut self, surface: &Surface) -> GpuSurface {
         match surface {
-            Surface::Diffuse { albedo, checker } => {
+            Surface::Diffuse { albedo, checker, .. } => {
                 let mut s = GpuSurface { kind: SURFACE_DIFFUSE, albedo: v3(*albedo), ..GpuSurface::default() };
                 if let Some(c) = checker {
                     s.flags |= SURFACE_HAS_CHECKER;
@@ -180,6 +205,15 @@ impl EncodedScene {
                 s
             }
         }
+    }
+
+    /// Appends the sRGB decoding table and the texels (exact integers
+    /// r + 256 g + 65536 b) to the tables; returns where they start.
+    fn texture(&mut self, t: &Texture) -> u32 {
+        let first = self.tables.len() as u32;
+        self.tables.extend((0..256).map(srgb_to_linear));
+        self.tables.extend(t.texels.iter().map(|&x| x as f32));
+        first
     }
 
     fn light(

@@ -8,6 +8,7 @@ use prismatic_core::math::{COS_COEFFS, SIN_COEFFS};
 use prismatic_core::photon::WHITE_BAND;
 use prismatic_core::rng::dim;
 use prismatic_core::scene::MAX_DEPTH;
+use prismatic_core::texture::TEXEL_LIMIT;
 use prismatic_core::tolerance::{
     BARYCENTRIC_EPS, MIN_VIEW_WEIGHT, SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL, SURFACE_SKIN_FACTOR,
 };
@@ -45,6 +46,20 @@ pub mod kind {
     pub const SURFACE_HAS_CURVE: u32 = 8;
     /// The dielectric absorbs (coloured glass).
     pub const SURFACE_ABSORBS: u32 = 16;
+    /// The diffuse surface has a texture.
+    pub const SURFACE_HAS_TEXTURE: u32 = 32;
+    /// Its texture is read by nearest texel (else bilinearly).
+    pub const SURFACE_TEXTURE_NEAREST: u32 = 64;
+    /// Where the texture's wrap along u sits in the flags (two bits, `WRAP_*`).
+    pub const TEXTURE_WRAP_U_SHIFT: u32 = 8;
+    /// Where the texture's wrap along v sits in the flags (two bits, `WRAP_*`).
+    pub const TEXTURE_WRAP_V_SHIFT: u32 = 10;
+    /// `Wrap::Repeat`.
+    pub const WRAP_REPEAT: u32 = 0;
+    /// `Wrap::ClampToEdge`.
+    pub const WRAP_CLAMP_TO_EDGE: u32 = 1;
+    /// `Wrap::MirroredRepeat`.
+    pub const WRAP_MIRRORED_REPEAT: u32 = 2;
     /// Spot light.
     pub const LIGHT_SPOT: u32 = 0;
     /// Point light.
@@ -100,6 +115,12 @@ fn prelude(stack: u32) -> String {
     u("SURFACE_HAS_CHECKER", kind::SURFACE_HAS_CHECKER);
     u("SURFACE_HAS_CURVE", kind::SURFACE_HAS_CURVE);
     u("SURFACE_ABSORBS", kind::SURFACE_ABSORBS);
+    u("SURFACE_HAS_TEXTURE", kind::SURFACE_HAS_TEXTURE);
+    u("SURFACE_TEXTURE_NEAREST", kind::SURFACE_TEXTURE_NEAREST);
+    u("TEXTURE_WRAP_U_SHIFT", kind::TEXTURE_WRAP_U_SHIFT);
+    u("TEXTURE_WRAP_V_SHIFT", kind::TEXTURE_WRAP_V_SHIFT);
+    u("WRAP_CLAMP_TO_EDGE", kind::WRAP_CLAMP_TO_EDGE);
+    u("WRAP_MIRRORED_REPEAT", kind::WRAP_MIRRORED_REPEAT);
     u("LIGHT_SPOT", kind::LIGHT_SPOT);
     u("LIGHT_POINT", kind::LIGHT_POINT);
     u("LIGHT_BEAM", kind::LIGHT_BEAM);
@@ -114,6 +135,7 @@ fn prelude(stack: u32) -> String {
     f("SURFACE_OFFSET_REL", SURFACE_OFFSET_REL);
     f("SURFACE_OFFSET_ABS", SURFACE_OFFSET_ABS);
     f("SURFACE_SKIN_FACTOR", SURFACE_SKIN_FACTOR);
+    f("TEXEL_LIMIT", TEXEL_LIMIT);
     f("BARYCENTRIC_EPS", BARYCENTRIC_EPS);
     f("BOX_MARGIN", prismatic_core::bvh::BOX_MARGIN);
     f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);

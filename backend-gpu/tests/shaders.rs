@@ -127,6 +127,10 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 curve_len,
                 absorption,
                 absorption_first,
+                texture_first,
+                texture_width,
+                texture_height,
+                uv_first,
             }),
         ),
         (

@@ -3,11 +3,12 @@
 //! index of refraction growing down the rows (1.0, 1.33, 1.5, 1.76, 2.42)
 //! and `KHR_materials_dispersion` along the columns (0, 0.5, 1, 2, 5), lit
 //! from the side by the sun (a directional light) so that each prism throws
-//! its caustic onto the floor, with a backdrop wall behind the grid. The
+//! its caustic onto the floor, with a backdrop wall behind the grid. Floor
+//! and wall are textured (tiles, and a grid the prisms refract). The
 //! project writes it as glTF and reads it back through the glTF importer,
 //! so the scene is also a test of both.
 
-use crate::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, prism};
+use crate::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, GltfTexture, prism};
 use prismatic_core::color::ToneMap;
 use prismatic_core::scene::RenderSettings;
 use prismatic_core::{BandSpec, Estimator};
@@ -27,22 +28,57 @@ pub fn prism_centre(row: usize, column: usize) -> [f32; 2] {
     [(column as f32 - 2.0) * SPACING, (row as f32 - 2.0) * SPACING]
 }
 
+/// glTF's code for repeat wrapping.
+const REPEAT: u32 = 10497;
+
+/// Pale stone tiles with dark joints, 2×2 tiles of 32 texels.
+fn tiles() -> GltfTexture {
+    let pixels = (0..64 * 64)
+        .map(|i| {
+            let (x, y) = (i % 64, i / 64);
+            let joint = x % 32 < 2 || y % 32 < 2;
+            // Alternate tiles a shade apart, as real stone varies.
+            let shade = if (x / 32 + y / 32) % 2 == 0 { 0 } else { 14 };
+            if joint { [96, 90, 84] } else { [226 - shade, 218 - shade, 200 - shade] }
+        })
+        .collect();
+    GltfTexture { width: 64, height: 64, pixels, nearest: false, wrap: [REPEAT; 2] }
+}
+
+/// Blue-grey graph paper: lines every 16 texels, whose bending shows what each prism refracts.
+fn graph_paper() -> GltfTexture {
+    let pixels = (0..64 * 64)
+        .map(|i| {
+            let (x, y) = (i % 64, i / 64);
+            if x % 16 == 0 || y % 16 == 0 { [40, 52, 82] } else { [150, 162, 186] }
+        })
+        .collect();
+    GltfTexture { width: 64, height: 64, pixels, nearest: false, wrap: [REPEAT; 2] }
+}
+
 /// The scene as a glTF document.
 pub fn document() -> GltfDocument {
-    let mut materials = vec![GltfMaterial::diffuse("floor", [0.85, 0.85, 0.85])];
+    let floor = GltfMaterial { base_color_texture: Some(tiles()), ..GltfMaterial::diffuse("floor", [0.9; 3]) };
+    let mut materials = vec![floor];
+    // One tile texture (two tiles a side) per 4 × 4 units.
     let mut meshes = vec![GltfMesh {
         name: "floor".into(),
         positions: vec![[-7.0, 0.0, -7.0], [7.0, 0.0, -7.0], [7.0, 0.0, 7.0], [-7.0, 0.0, 7.0]],
         indices: vec![0, 2, 1, 0, 3, 2],
+        uvs: vec![[0.0, 0.0], [3.5, 0.0], [3.5, 3.5], [0.0, 3.5]],
         material: 0,
         translation: [0.0; 3],
     }];
-    // The backdrop: a wall along the far edge of the floor, facing the grid.
-    materials.push(GltfMaterial::diffuse("backdrop", [0.55, 0.6, 0.7]));
+    // The backdrop: a wall along the far edge of the floor, facing the grid,
+    // its lines a unit apart.
+    let backdrop =
+        GltfMaterial { base_color_texture: Some(graph_paper()), ..GltfMaterial::diffuse("backdrop", [1.0; 3]) };
+    materials.push(backdrop);
     meshes.push(GltfMesh {
         name: "backdrop".into(),
         positions: vec![[-7.0, 0.0, -7.0], [7.0, 0.0, -7.0], [7.0, 5.0, -7.0], [-7.0, 5.0, -7.0]],
         indices: vec![0, 1, 2, 0, 2, 3],
+        uvs: vec![[0.0, 1.25], [3.5, 1.25], [3.5, 0.0], [0.0, 0.0]],
         material: 1,
         translation: [0.0; 3],
     });
@@ -58,6 +94,7 @@ pub fn document() -> GltfDocument {
                 name: format!("prism row {row} column {column}"),
                 positions,
                 indices,
+                uvs: Vec::new(),
                 material: materials.len() - 1,
                 translation: [x, 0.0, z],
             });

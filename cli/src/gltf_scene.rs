@@ -1,18 +1,26 @@
 //! glTF 2.0 scenes (`.gltf`, `.glb`): triangle meshes placed by their node
-//! transforms, materials from `pbrMetallicRoughness` and the transmission,
-//! IOR, volume and dispersion extensions, `KHR_lights_punctual` spot and
-//! point lights, and the first camera (else one that frames the scene).
+//! transforms, materials from `pbrMetallicRoughness` (with the base-colour
+//! texture on `TEXCOORD_0` and its sampler) and the transmission, IOR,
+//! volume and dispersion extensions, `KHR_lights_punctual` lights, and the
+//! first camera (else one that frames the scene).
 //!
-//! What prismatic cannot represent (textures, rough transmission, emission,
-//! skins, morph targets, lines and points) is reported once per element as
-//! a warning and left out; what makes no sense (a missing buffer, an index
-//! out of range, a NaN) is an error naming the element's glTF path.
+//! What prismatic cannot represent (other textures, rough transmission,
+//! emission, skins, morph targets, lines and points) is reported once per
+//! element as a warning and left out; what makes no sense (a missing
+//! buffer, an unreadable image, an index out of range, a NaN) is an error
+//! naming the element's glTF path.
 
 use crate::scene_file::document::{SceneDocument, SceneFileError};
-use glam::{Mat4, Vec3};
+use crate::texture_file;
+use glam::{Mat4, Vec2, Vec3};
 use gltf::khr_lights_punctual::Kind;
+use gltf::texture::{MagFilter, WrappingMode};
 use prismatic_core::Dispersion;
-use prismatic_core::scene::{Attenuation, Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape};
+use prismatic_core::scene::{
+    Attenuation, Camera, Filter, Light, Material, MaterialKind, Object, RenderSettings, Sampler, Scene, Shape, Texture,
+    Wrap,
+};
+use std::collections::HashMap;
 use std::path::Path;
 
 /// A material counts as a mirror at this metalness or more...
@@ -62,9 +70,10 @@ pub fn import(path: &Path) -> Result<GltfScene, GltfError> {
 /// Reads a glTF document from memory; `base` resolves its buffers' file names.
 pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, GltfError> {
     let gltf = gltf::Gltf::from_slice(bytes).map_err(|e| GltfError::new("", e.to_string()))?;
-    // Buffers only: images are textures, which prismatic does not use.
     let buffers = gltf::import_buffers(&gltf.document, base, gltf.blob.clone())
         .map_err(|e| GltfError::new("buffers", e.to_string()))?;
+    // Images are decoded when a material shows one, each once.
+    let mut images = Images { json: gltf.document.as_json(), base, buffers: &buffers, decoded: HashMap::new() };
     let mut out = GltfScene::default();
     let mut material_of: Vec<Option<usize>> = vec![None; gltf.document.materials().len() + 1];
     let scene = gltf.document.default_scene().or_else(|| gltf.document.scenes().next());
@@ -99,7 +108,7 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
                 let material = match material_of[slot] {
                     Some(m) => m,
                     None => {
-                        let m = material(&primitive.material(), &mut out.warnings);
+                        let m = material(&primitive.material(), &mut images, &mut out.warnings)?;
                         out.elements.push((format!("material.{}", m.name), material_path(&primitive.material())));
                         out.materials.push(m);
                         material_of[slot] = Some(out.materials.len() - 1);
@@ -198,17 +207,120 @@ fn mesh_shape(
     let flip = world.determinant() < 0.0;
     let triangles =
         indices.chunks_exact(3).map(|t| if flip { [t[0], t[2], t[1]] } else { [t[0], t[1], t[2]] }).collect();
-    Ok(Shape::Mesh { positions, triangles })
+    let uvs: Vec<Vec2> = match reader.read_tex_coords(0) {
+        Some(uv) => uv.into_f32().map(Vec2::from).collect(),
+        None => Vec::new(),
+    };
+    if !uvs.is_empty() && uvs.len() != positions.len() {
+        return Err(GltfError::new(
+            format!("{path}.attributes.TEXCOORD_0"),
+            format!("{} coordinates for {} vertices", uvs.len(), positions.len()),
+        ));
+    }
+    Ok(Shape::Mesh { positions, triangles, uvs })
+}
+
+/// The file's images, decoded once each, and where to find them.
+struct Images<'a> {
+    /// The document as written (the gltf crate panics on an image without a source).
+    json: &'a gltf::json::Root,
+    base: Option<&'a Path>,
+    buffers: &'a [gltf::buffer::Data],
+    /// By image index, with the default sampler.
+    decoded: HashMap<usize, Texture>,
+}
+
+impl Images<'_> {
+    /// The base-colour texture `info` names, with its sampler; `None` (and
+    /// a line in `unused`) when it reads a texture coordinate set other than 0.
+    fn base_color(
+        &mut self,
+        info: &gltf::texture::Info<'_>,
+        unused: &mut Vec<&'static str>,
+    ) -> Result<Option<Texture>, GltfError> {
+        if info.tex_coord() != 0 {
+            unused.push("baseColorTexture on a texture coordinate set other than 0");
+            return Ok(None);
+        }
+        let texture = info.texture();
+        let image = texture.source();
+        let decoded = match self.decoded.get(&image.index()) {
+            Some(t) => t.clone(),
+            None => {
+                let t = self.decode(&image)?;
+                self.decoded.insert(image.index(), t.clone());
+                t
+            }
+        };
+        let sampler = texture.sampler();
+        let wrap = |w: WrappingMode| match w {
+            WrappingMode::Repeat => Wrap::Repeat,
+            WrappingMode::ClampToEdge => Wrap::ClampToEdge,
+            WrappingMode::MirroredRepeat => Wrap::MirroredRepeat,
+        };
+        let filter = match sampler.mag_filter() {
+            Some(MagFilter::Nearest) => Filter::Nearest,
+            _ => Filter::Linear,
+        };
+        Ok(Some(Texture {
+            sampler: Sampler { filter, wrap_u: wrap(sampler.wrap_s()), wrap_v: wrap(sampler.wrap_t()) },
+            ..decoded
+        }))
+    }
+
+    /// An image's pixels as 8-bit sRGB texels (grey images as grey, alpha
+    /// left out, 16-bit channels to their high byte).
+    fn decode(&self, image: &gltf::Image<'_>) -> Result<Texture, GltfError> {
+        use gltf::image::Format;
+        let path = format!("images[{}]", image.index());
+        let json = &self.json.images[image.index()];
+        match (&json.buffer_view, &json.mime_type, &json.uri) {
+            (Some(_), None, _) => return Err(GltfError::new(&path, "an image in a buffer view needs a mimeType")),
+            (None, _, None) => return Err(GltfError::new(&path, "the image has neither a uri nor a bufferView")),
+            _ => {}
+        }
+        let name = match image.source() {
+            gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => format!("{path} ({uri})"),
+            _ => image.name().map_or_else(|| path.clone(), |n| format!("{path} ({n})")),
+        };
+        let data = gltf::image::Data::from_source(image.source(), self.base, self.buffers)
+            .map_err(|e| GltfError::new(&path, format!("cannot read the image: {e}")))?;
+        let (channels, bytes) = match data.format {
+            Format::R8 => (1, 1),
+            Format::R8G8 => (2, 1),
+            Format::R8G8B8 => (3, 1),
+            Format::R8G8B8A8 => (4, 1),
+            Format::R16 => (1, 2),
+            Format::R16G16 => (2, 2),
+            Format::R16G16B16 => (3, 2),
+            Format::R16G16B16A16 => (4, 2),
+            other => {
+                return Err(GltfError::new(&path, format!("{other:?} images are not supported as base colour")));
+            }
+        };
+        // The most significant byte of each channel (16-bit channels are native-endian).
+        let high = |px: &[u8], c: usize| {
+            if bytes == 1 { px[c] } else { u16::from_ne_bytes([px[2 * c], px[2 * c + 1]]).to_be_bytes()[0] }
+        };
+        let pixels = data
+            .pixels
+            .chunks_exact(channels * bytes)
+            .map(|px| if channels < 3 { [high(px, 0); 3] } else { [high(px, 0), high(px, 1), high(px, 2)] });
+        Ok(texture_file::from_rgb8(name, data.width, data.height, pixels, Sampler::default()))
+    }
 }
 
 /// The prismatic material of a glTF material; what it leaves out goes to `warnings`.
-fn material(m: &gltf::Material<'_>, warnings: &mut Vec<String>) -> Material {
+fn material(
+    m: &gltf::Material<'_>,
+    images: &mut Images<'_>,
+    warnings: &mut Vec<String>,
+) -> Result<Material, GltfError> {
     let path = material_path(m);
     let name = m.name().map_or_else(|| path.clone(), str::to_string);
     let pbr = m.pbr_metallic_roughness();
     let mut unused = Vec::new();
     for (texture, what) in [
-        (pbr.base_color_texture().is_some(), "baseColorTexture (the factor is used)"),
         (pbr.metallic_roughness_texture().is_some(), "metallicRoughnessTexture"),
         (m.normal_texture().is_some(), "normalTexture"),
         (m.occlusion_texture().is_some(), "occlusionTexture"),
@@ -226,24 +338,34 @@ fn material(m: &gltf::Material<'_>, warnings: &mut Vec<String>) -> Material {
         if pbr.roughness_factor() > 0.0 {
             unused.push("roughness of the transmission (glass is smooth)");
         }
+        if pbr.base_color_texture().is_some() {
+            unused.push("baseColorTexture of glass (its colour is the volume's attenuation)");
+        }
         MaterialKind::Dielectric {
             dispersion: dispersion(m),
             outside: Dispersion::Constant(1.0),
             attenuation: attenuation(m, &mut unused),
         }
     } else if pbr.metallic_factor() >= MIRROR_METALLIC && pbr.roughness_factor() <= MIRROR_ROUGHNESS {
+        if pbr.base_color_texture().is_some() {
+            unused.push("baseColorTexture of a mirror");
+        }
         MaterialKind::Mirror
     } else {
         if pbr.metallic_factor() >= MIRROR_METALLIC {
             unused.push("rough metal (rendered diffuse)");
         }
         let [r, g, b, _] = pbr.base_color_factor();
-        MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None }
+        let texture = match pbr.base_color_texture() {
+            Some(info) => images.base_color(&info, &mut unused)?,
+            None => None,
+        };
+        MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture }
     };
     if !unused.is_empty() {
         warnings.push(format!("{path} ({name}): left out: {}", unused.join(", ")));
     }
-    Material { name, kind }
+    Ok(Material { name, kind })
 }
 
 /// Where a material is in the file (`materials[3]`).

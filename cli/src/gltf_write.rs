@@ -1,7 +1,8 @@
-//! Writes small glTF 2.0 documents: triangle meshes, materials with the
-//! transmission, IOR, dispersion and volume extensions, punctual lights and a
-//! camera, with the binary data in the file (a base64 data URI). The
-//! project writes its own glTF scenes and test files with it.
+//! Writes small glTF 2.0 documents: triangle meshes (with texture
+//! coordinates), materials with a base-colour texture or the transmission,
+//! IOR, dispersion and volume extensions, punctual lights and a camera,
+//! with the binary data and PNG images in the file (a base64 data URI).
+//! The project writes its own glTF scenes and test files with it.
 
 use glam::{Mat3, Quat, Vec3};
 use serde_json::{Value, json};
@@ -27,6 +28,24 @@ pub struct GltfMaterial {
     /// `KHR_materials_volume`'s `attenuationColor` and `attenuationDistance`
     /// (`None`: clear glass).
     pub attenuation: Option<([f32; 3], f32)>,
+    /// `baseColorTexture` on `TEXCOORD_0`.
+    pub base_color_texture: Option<GltfTexture>,
+}
+
+/// An image (stored as PNG) with its sampler.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfTexture {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// 8-bit sRGB pixels, row by row from the top.
+    pub pixels: Vec<[u8; 3]>,
+    /// `magFilter` nearest (else linear).
+    pub nearest: bool,
+    /// `wrapS` and `wrapT` as glTF numbers them (10497 repeat, 33071
+    /// clamp to edge, 33648 mirrored repeat).
+    pub wrap: [u32; 2],
 }
 
 impl GltfMaterial {
@@ -41,6 +60,7 @@ impl GltfMaterial {
             ior: 1.5,
             dispersion: 0.0,
             attenuation: None,
+            base_color_texture: None,
         }
     }
 
@@ -55,6 +75,7 @@ impl GltfMaterial {
             ior,
             dispersion,
             attenuation: None,
+            base_color_texture: None,
         }
     }
 }
@@ -68,6 +89,8 @@ pub struct GltfMesh {
     pub positions: Vec<[f32; 3]>,
     /// Three indices a triangle, counter-clockwise seen from outside.
     pub indices: Vec<u32>,
+    /// Texture coordinates per vertex (`TEXCOORD_0`), or empty.
+    pub uvs: Vec<[f32; 2]>,
     /// Index into the document's materials.
     pub material: usize,
     /// The node's translation.
@@ -139,19 +162,29 @@ impl GltfDocument {
             let (lo, hi) = m.positions.iter().fold(([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]), |(lo, hi), p| {
                 (std::array::from_fn(|k| lo[k].min(p[k])), std::array::from_fn(|k| hi[k].max(p[k])))
             });
-            let position_view =
-                push_view(&mut bin, &mut views, m.positions.iter().flatten().flat_map(|x| x.to_le_bytes()), 34962);
-            let index_view = push_view(&mut bin, &mut views, m.indices.iter().flat_map(|x| x.to_le_bytes()), 34963);
+            let floats = |v: &[f32]| v.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+            let position_view = push_view(&mut bin, &mut views, floats(m.positions.as_flattened()), Some(34962));
+            let index_view =
+                push_view(&mut bin, &mut views, m.indices.iter().flat_map(|x| x.to_le_bytes()), Some(34963));
             accessors.push(json!({
                 "bufferView": position_view, "componentType": 5126, "count": m.positions.len(),
                 "type": "VEC3", "min": lo, "max": hi
             }));
+            let mut attributes = json!({ "POSITION": accessors.len() - 1 });
             accessors.push(
                 json!({ "bufferView": index_view, "componentType": 5125, "count": m.indices.len(), "type": "SCALAR" }),
             );
+            let indices = accessors.len() - 1;
+            if !m.uvs.is_empty() {
+                let uv_view = push_view(&mut bin, &mut views, floats(m.uvs.as_flattened()), Some(34962));
+                accessors.push(
+                    json!({ "bufferView": uv_view, "componentType": 5126, "count": m.uvs.len(), "type": "VEC2" }),
+                );
+                attributes["TEXCOORD_0"] = json!(accessors.len() - 1);
+            }
             meshes.push(json!({
                 "name": m.name,
-                "primitives": [{ "attributes": { "POSITION": 2 * i }, "indices": 2 * i + 1, "material": m.material }]
+                "primitives": [{ "attributes": attributes, "indices": indices, "material": m.material }]
             }));
             nodes.push(json!({ "name": m.name, "mesh": i, "translation": m.translation }));
         }
@@ -190,7 +223,22 @@ impl GltfDocument {
                 json!({ "name": "camera", "camera": 0, "translation": c.position, "rotation": rotation.to_array() }),
             );
         }
-        let materials: Vec<Value> = self.materials.iter().map(material_json).collect();
+        // Each material's texture: a PNG in the buffer, a sampler, an image and a texture of its own.
+        let (mut images, mut samplers, mut textures) = (Vec::new(), Vec::new(), Vec::new());
+        let mut materials: Vec<Value> = Vec::new();
+        for m in &self.materials {
+            let mut json = material_json(m);
+            if let Some(t) = &m.base_color_texture {
+                let png = encode_png(t);
+                let view = push_view(&mut bin, &mut views, png, None);
+                images.push(json!({ "bufferView": view, "mimeType": "image/png" }));
+                let mag = if t.nearest { 9728 } else { 9729 };
+                samplers.push(json!({ "magFilter": mag, "wrapS": t.wrap[0], "wrapT": t.wrap[1] }));
+                textures.push(json!({ "source": images.len() - 1, "sampler": samplers.len() - 1 }));
+                json["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": textures.len() - 1 });
+            }
+            materials.push(json);
+        }
         let uri = format!("data:application/octet-stream;base64,{}", base64::encode(&bin));
         let mut doc = json!({
             "asset": { "version": "2.0", "generator": "prismatic" },
@@ -208,18 +256,42 @@ impl GltfDocument {
         if !cameras.is_empty() {
             doc["cameras"] = Value::Array(cameras);
         }
+        if !textures.is_empty() {
+            doc["images"] = Value::Array(images);
+            doc["samplers"] = Value::Array(samplers);
+            doc["textures"] = Value::Array(textures);
+        }
         serde_json::to_string_pretty(&doc).expect("JSON values serialize")
     }
 }
 
 /// Appends `bytes` to `bin` (4-byte aligned) as a new buffer view; its index.
-fn push_view(bin: &mut Vec<u8>, views: &mut Vec<Value>, bytes: impl Iterator<Item = u8>, target: u32) -> usize {
+/// `target` is the buffer binding (`None` for images).
+fn push_view(
+    bin: &mut Vec<u8>,
+    views: &mut Vec<Value>,
+    bytes: impl IntoIterator<Item = u8>,
+    target: Option<u32>,
+) -> usize {
     let offset = bin.len();
     bin.extend(bytes);
     let length = bin.len() - offset;
     bin.resize(bin.len().next_multiple_of(4), 0);
-    views.push(json!({ "buffer": 0, "byteOffset": offset, "byteLength": length, "target": target }));
+    let mut view = json!({ "buffer": 0, "byteOffset": offset, "byteLength": length });
+    if let Some(target) = target {
+        view["target"] = json!(target);
+    }
+    views.push(view);
     views.len() - 1
+}
+
+/// The texture's pixels as PNG bytes.
+fn encode_png(t: &GltfTexture) -> Vec<u8> {
+    let raw: Vec<u8> = t.pixels.iter().flatten().copied().collect();
+    let image = image::RgbImage::from_raw(t.width, t.height, raw).expect("width × height pixels");
+    let mut png = std::io::Cursor::new(Vec::new());
+    image.write_to(&mut png, image::ImageFormat::Png).expect("PNG encoding into memory does not fail");
+    png.into_inner()
 }
 
 fn material_json(m: &GltfMaterial) -> Value {

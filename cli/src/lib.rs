@@ -16,6 +16,7 @@ pub mod render_job;
 pub mod scene_file;
 pub mod settings;
 pub mod study;
+pub mod texture_file;
 
 use scene_file::{SceneDocument, SceneFileError};
 use std::path::Path;

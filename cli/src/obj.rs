@@ -1,48 +1,73 @@
-//! A small Wavefront OBJ reader: vertices and faces (polygons are fan-triangulated).
+//! A small Wavefront OBJ reader: vertices, texture coordinates and faces
+//! (polygons are fan-triangulated).
 
-use glam::DVec3;
+use glam::{DVec3, Vec2};
+use std::collections::HashMap;
 use std::path::Path;
 
-/// Vertex positions (world coordinates, f64 as written) and triangles
-/// (indices into the positions).
-pub type MeshData = (Vec<DVec3>, Vec<[u32; 3]>);
+/// A mesh as read from an OBJ file.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MeshData {
+    /// Vertex positions (world coordinates, f64 as written).
+    pub positions: Vec<DVec3>,
+    /// Triangles as indices into `positions`.
+    pub triangles: Vec<[u32; 3]>,
+    /// Texture coordinates per position (v down the image, as glTF has
+    /// it: OBJ's v runs up), or empty when the faces name none.
+    pub uvs: Vec<Vec2>,
+}
 
-/// Reads `path` into positions and triangles; the error names the file and line.
+/// Reads `path`; the error names the file and line.
 pub fn load(path: &Path) -> Result<MeshData, String> {
     let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read OBJ file {}: {e}", path.display()))?;
     parse(&text).map_err(|(line, reason)| format!("{}:{line}: {reason}", path.display()))
 }
 
-/// Parses OBJ text; errors carry the 1-based line.
+/// Parses OBJ text; errors carry the 1-based line. When every face corner
+/// names a texture coordinate (`v/vt`), each (position, coordinate) pair
+/// gets a vertex of its own, so that seams keep both sides' coordinates;
+/// otherwise the mesh has no coordinates.
 pub fn parse(text: &str) -> Result<MeshData, (usize, String)> {
-    let mut positions = Vec::new();
+    let mut vertices: Vec<DVec3> = Vec::new();
+    let mut coords: Vec<Vec2> = Vec::new();
+    // Face corners as (position, texture coordinate) pairs, numbered in order of appearance.
+    let mut corner_ids: HashMap<(u32, Option<u32>), u32> = HashMap::new();
+    let mut corners: Vec<(u32, Option<u32>)> = Vec::new();
     let mut triangles = Vec::new();
     for (n, line) in text.lines().enumerate() {
         let line_no = n + 1;
         let mut words = line.split_whitespace();
         match words.next() {
             Some("v") => {
-                let c: Vec<f64> = words
-                    .take(3)
-                    .map(|w| w.parse::<f64>().map_err(|_| (line_no, format!("bad vertex coordinate \"{w}\""))))
-                    .collect::<Result<_, _>>()?;
+                let c = numbers(words.take(3), line_no, "vertex coordinate")?;
                 if c.len() != 3 {
                     return Err((line_no, "a vertex needs three coordinates".into()));
                 }
-                positions.push(DVec3::new(c[0], c[1], c[2]));
+                vertices.push(DVec3::new(c[0], c[1], c[2]));
+            }
+            Some("vt") => {
+                let c = numbers(words.take(2), line_no, "texture coordinate")?;
+                if c.is_empty() {
+                    return Err((line_no, "a texture coordinate needs u (and v)".into()));
+                }
+                let v = c.get(1).copied().unwrap_or(0.0);
+                coords.push(Vec2::new(c[0] as f32, (1.0 - v) as f32));
             }
             Some("f") => {
-                let idx: Vec<u32> = words
-                    .map(|w| {
-                        let first = w.split('/').next().unwrap_or("");
-                        let i: i64 = first.parse().map_err(|_| (line_no, format!("bad face index \"{w}\"")))?;
-                        let resolved = if i < 0 { positions.len() as i64 + i } else { i - 1 };
-                        if resolved < 0 || resolved >= positions.len() as i64 {
-                            return Err((line_no, format!("face index {i} refers to a vertex that does not exist")));
-                        }
-                        Ok(resolved as u32)
-                    })
-                    .collect::<Result<_, _>>()?;
+                let mut idx = Vec::new();
+                for w in words {
+                    let mut parts = w.split('/');
+                    let position = resolve(parts.next().unwrap_or(""), vertices.len(), line_no, w, "vertex")?;
+                    let coord = match parts.next() {
+                        Some(t) if !t.is_empty() => Some(resolve(t, coords.len(), line_no, w, "texture coordinate")?),
+                        _ => None,
+                    };
+                    let next = corners.len() as u32;
+                    idx.push(*corner_ids.entry((position, coord)).or_insert_with(|| {
+                        corners.push((position, coord));
+                        next
+                    }));
+                }
                 if idx.len() < 3 {
                     return Err((line_no, "a face needs at least three vertices".into()));
                 }
@@ -56,5 +81,64 @@ pub fn parse(text: &str) -> Result<MeshData, (usize, String)> {
     if triangles.is_empty() {
         return Err((text.lines().count().max(1), "the OBJ file has no faces".into()));
     }
-    Ok((positions, triangles))
+    if corners.iter().any(|c| c.1.is_none()) {
+        // Not every corner has coordinates: the mesh has none, and keeps the file's vertices.
+        let triangles = triangles.iter().map(|t: &[u32; 3]| t.map(|c| corners[c as usize].0)).collect();
+        return Ok(MeshData { positions: vertices, triangles, uvs: Vec::new() });
+    }
+    Ok(MeshData {
+        positions: corners.iter().map(|&(p, _)| vertices[p as usize]).collect(),
+        triangles,
+        uvs: corners.iter().filter_map(|&(_, t)| t.map(|t| coords[t as usize])).collect(),
+    })
+}
+
+fn numbers<'a>(words: impl Iterator<Item = &'a str>, line: usize, what: &str) -> Result<Vec<f64>, (usize, String)> {
+    words.map(|w| w.parse::<f64>().map_err(|_| (line, format!("bad {what} \"{w}\"")))).collect()
+}
+
+/// A 1-based (or negative, relative) OBJ index into a list of `len` items.
+fn resolve(text: &str, len: usize, line: usize, word: &str, what: &str) -> Result<u32, (usize, String)> {
+    let i: i64 = text.parse().map_err(|_| (line, format!("bad face index \"{word}\"")))?;
+    let resolved = if i < 0 { len as i64 + i } else { i - 1 };
+    if resolved < 0 || resolved >= len as i64 {
+        return Err((line, format!("face index {i} refers to a {what} that does not exist")));
+    }
+    Ok(resolved as u32)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn faces_without_texture_coordinates_keep_their_vertices() {
+        let m = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 9 9 9\nf 1 2 4 3\n").unwrap();
+        assert_eq!(m.positions.len(), 5);
+        assert_eq!(m.triangles, [[0, 1, 3], [0, 3, 2]]);
+        assert!(m.uvs.is_empty());
+    }
+
+    #[test]
+    fn texture_coordinates_give_one_vertex_per_pair_with_v_flipped() {
+        // Two triangles sharing an edge whose corners have different coordinates on each side (a seam).
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 0.5 0.25\n\
+                    f 1/1 2/2 3/3\nf 2/4/1 3/3/1 1/1/1\n";
+        let m = parse(text).unwrap();
+        assert_eq!(m.positions.len(), 4, "vertex 2 with two coordinates becomes two vertices");
+        assert_eq!(m.uvs.len(), 4);
+        assert_eq!(m.uvs[0], Vec2::new(0.0, 1.0));
+        assert_eq!(m.uvs[3], Vec2::new(0.5, 0.75));
+        assert_eq!(m.triangles, [[0, 1, 2], [3, 2, 0]]);
+        assert_eq!(m.positions[3], DVec3::X);
+    }
+
+    #[test]
+    fn a_missing_coordinate_is_an_error_and_corners_without_any_leave_the_mesh_without() {
+        let e = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/2 2 3\n").unwrap_err();
+        assert_eq!(e.0, 4);
+        assert!(e.1.contains("texture coordinate that does not exist"), "{}", e.1);
+        let m = parse("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2 3//1\n").unwrap();
+        assert_eq!((m.positions.len(), m.triangles[0], m.uvs.len()), (3, [0, 1, 2], 0));
+    }
 }

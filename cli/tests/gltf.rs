@@ -27,10 +27,11 @@ fn prism_document() -> GltfDocument {
                 name: "floor".into(),
                 positions: FLOOR.to_vec(),
                 indices: FLOOR_TRIANGLES.to_vec(),
+                uvs: Vec::new(),
                 material: 0,
                 translation: [0.0; 3],
             },
-            GltfMesh { name: "prism".into(), positions, indices, material: 1, translation: [0.0; 3] },
+            GltfMesh { name: "prism".into(), positions, indices, uvs: Vec::new(), material: 1, translation: [0.0; 3] },
         ],
         lights: vec![GltfLight::Spot {
             position: [0.0, 3.0, 0.0],
@@ -201,6 +202,11 @@ fn the_dispersion_test_grid_spreads_colour_only_where_the_extension_says() {
     let doc = prismatic_cli::load_scene("dispersion-test").unwrap_or_else(|e| panic!("{e}"));
     assert!(doc.warnings.is_empty(), "{:?}", doc.warnings);
     let Light::Sun { direction: sun, .. } = doc.scene.lights[0] else { panic!("the sun") };
+    // The floor and the backdrop are textured, through the importer.
+    for object in &doc.scene.objects[..2] {
+        let kind = &doc.scene.materials[object.material].kind;
+        assert!(matches!(kind, MaterialKind::Diffuse { texture: Some(_), .. }), "{kind:?}");
+    }
     for (row, ior) in IORS.iter().enumerate() {
         let mut spans = Vec::new();
         for column in 0..DISPERSIONS.len() {
@@ -333,4 +339,57 @@ fn a_directional_light_becomes_the_sun() {
     let prepared = PreparedScene::new(scene.scene).unwrap();
     let s = trace::trace_photons(&prepared, &mut prismatic_core::NoProgress).stats;
     assert!(s.specular_paths * 2 > s.emitted, "{s:?}");
+}
+
+#[test]
+fn a_base_colour_texture_is_read_with_its_sampler_and_texture_coordinates() {
+    use prismatic_cli::gltf_write::GltfTexture;
+    use prismatic_core::scene::{Filter, Wrap};
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    doc.materials[0].base_color_texture = Some(GltfTexture {
+        width: 2,
+        height: 2,
+        pixels: vec![[255, 0, 0], [0, 255, 0], [0, 0, 255], [10, 20, 30]],
+        nearest: true,
+        wrap: [33071, 33648],
+    });
+    doc.meshes[0].uvs = vec![[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 2.0]];
+    let scene = prismatic_cli::load_scene(write(dir.path(), "tiles.gltf", &doc).to_str().unwrap()).unwrap();
+    scene.validate().unwrap();
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let MaterialKind::Diffuse { texture: Some(t), albedo, .. } = &scene.scene.materials[0].kind else {
+        panic!("a textured floor expected, got {:?}", scene.scene.materials[0].kind)
+    };
+    assert_eq!(albedo.to_array(), [0.8; 3], "baseColorFactor multiplies the texture");
+    assert_eq!((t.width, t.height), (2, 2));
+    assert_eq!(t.texels[..], [255, 255 << 8, 255 << 16, 10 | 20 << 8 | 30 << 16]);
+    assert_eq!(
+        (t.sampler.filter, t.sampler.wrap_u, t.sampler.wrap_v),
+        (Filter::Nearest, Wrap::ClampToEdge, Wrap::MirroredRepeat)
+    );
+    assert!(t.name.starts_with("images[0]"), "{}", t.name);
+    let Shape::Mesh { uvs, .. } = &scene.scene.objects[0].shape else { panic!("a mesh") };
+    assert_eq!(uvs[2].to_array(), [2.0, 2.0]);
+    // An image that cannot be read, or has no usable source: an error naming it, exit 2, no image written.
+    let json = doc.to_json();
+    let in_buffer = "\"bufferView\": 5,\n      \"mimeType\": \"image/png\"";
+    assert!(json.contains(in_buffer), "{json}");
+    for (name, image, reason) in [
+        ("missing.gltf", "\"uri\": \"missing.png\"", "images[0]: cannot read the image"),
+        ("untyped.gltf", "\"bufferView\": 5", "images[0]: an image in a buffer view needs a mimeType"),
+    ] {
+        let path = dir.path().join(name);
+        std::fs::write(&path, json.replace(in_buffer, image)).unwrap();
+        let out = dir.path().join("out.png");
+        let run = Command::new(env!("CARGO_BIN_EXE_prismatic"))
+            .args(["render", path.to_str().unwrap(), "-o"])
+            .arg(&out)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert_eq!(run.status.code(), Some(2), "{name}: {stderr}");
+        assert!(stderr.contains(reason), "{name}: expected «{reason}» in {stderr}");
+        assert!(!out.exists(), "{name}");
+    }
 }

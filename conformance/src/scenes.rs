@@ -2,14 +2,16 @@
 //! renders each in well under a second): a dispersive glass sphere on a
 //! checkered floor under a spot light (caustic, band split, visible points
 //! seen through glass; once more as a closed triangle mesh, once more in
-//! amber glass that absorbs), a prism fanning a beam onto a wall (split bands),
+//! amber glass that absorbs, once more on a textured floor), a prism
+//! fanning a beam onto a wall (split bands),
 //! a mirror folding a beam onto a floor (no dispersion), and a room with
 //! no mirror or glass (no caustics at all).
 
 use glam::Vec3;
 use prismatic_core::dispersion::{Dispersion, Glass};
 use prismatic_core::scene::{
-    Attenuation, Camera, Checker, Light, Material, MaterialKind, Object, RenderSettings, Shape,
+    Attenuation, Camera, Checker, Filter, Light, Material, MaterialKind, Object, RenderSettings, Sampler, Shape,
+    Texture, Wrap,
 };
 use prismatic_core::{BandSpec, Estimator, PreparedScene, Scene};
 
@@ -31,7 +33,7 @@ fn material(name: &str, kind: MaterialKind) -> Material {
 }
 
 fn diffuse(name: &str, albedo: f32) -> Material {
-    material(name, MaterialKind::Diffuse { albedo: Vec3::splat(albedo), checker: None })
+    material(name, MaterialKind::Diffuse { albedo: Vec3::splat(albedo), checker: None, texture: None })
 }
 
 fn glass(name: &str, dispersion: Dispersion) -> Material {
@@ -60,7 +62,10 @@ pub fn glass_sphere() -> PreparedScene {
             power: 40.0,
         }],
         materials: vec![
-            material("floor", MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: Some(checker) }),
+            material(
+                "floor",
+                MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: Some(checker), texture: None },
+            ),
             glass("glass", Glass::Sf11.dispersion()),
         ],
         objects: vec![
@@ -78,6 +83,25 @@ pub fn coloured_glass_sphere() -> PreparedScene {
         unreachable!("material 1 is the glass")
     };
     *attenuation = Some(Attenuation { color: Vec3::new(0.95, 0.6, 0.25), distance: 1.0 });
+    prepared(scene)
+}
+
+/// The paper's sphere over a textured floor mesh (a coloured 8×8 image,
+/// bilinear, tiled three times with mirrored rows): the texture reaches
+/// the caustic through the visible points' weights.
+pub fn textured_floor() -> PreparedScene {
+    let mut scene = glass_sphere().scene;
+    let texels: Vec<u32> =
+        (0..64u32).map(|i| (40 + 25 * (i % 8)) | (230 - 25 * (i / 8)) << 8 | ((i * 37) % 256) << 16).collect();
+    let sampler = Sampler { filter: Filter::Linear, wrap_u: Wrap::Repeat, wrap_v: Wrap::MirroredRepeat };
+    let texture = Texture { name: "tiles".into(), width: 8, height: 8, texels: texels.into(), sampler };
+    scene.materials[0].kind = MaterialKind::Diffuse { albedo: Vec3::splat(0.9), checker: None, texture: Some(texture) };
+    let corners = [(-4.0, -4.0), (4.0, -4.0), (4.0, 4.0), (-4.0, 4.0)];
+    scene.objects[0].shape = Shape::Mesh {
+        positions: corners.iter().map(|&(x, z)| Vec3::new(x, 0.0, z)).collect(),
+        triangles: vec![[0, 2, 1], [0, 3, 2]],
+        uvs: corners.iter().map(|&(x, z)| glam::Vec2::new(x + 4.0, z + 4.0) * (3.0 / 8.0)).collect(),
+    };
     prepared(scene)
 }
 
@@ -190,7 +214,7 @@ pub fn sphere_mesh(center: Vec3, radius: f32, rings: u32) -> Shape {
             triangles.extend([[a, b, c], [b, d, c]]);
         }
     }
-    Shape::Mesh { positions, triangles }
+    Shape::Mesh { positions, triangles, uvs: Vec::new() }
 }
 
 /// The scenes with caustics, by name.
@@ -199,6 +223,7 @@ pub fn with_caustics() -> Vec<(&'static str, PreparedScene)> {
         ("glass sphere", glass_sphere()),
         ("glass mesh sphere", glass_mesh_sphere(12)),
         ("coloured glass sphere", coloured_glass_sphere()),
+        ("textured floor", textured_floor()),
         ("prism", prism()),
         ("mirror", mirror()),
     ]
@@ -210,7 +235,7 @@ mod tests {
 
     #[test]
     fn the_sphere_mesh_is_closed_and_wound_outward() {
-        let Shape::Mesh { positions, triangles } = sphere_mesh(Vec3::Y, 0.8, 6) else { unreachable!() };
+        let Shape::Mesh { positions, triangles, .. } = sphere_mesh(Vec3::Y, 0.8, 6) else { unreachable!() };
         assert_eq!(triangles.len(), 4 * 36);
         assert_eq!(prismatic_core::mesh::open_edge(&positions, &triangles), None);
         for t in prismatic_core::geometry::mesh_triangles(&positions, &triangles) {

@@ -42,6 +42,9 @@ pub struct MeshBvh {
     pub nodes: Vec<BvhNode>,
     /// Triangles, each leaf's contiguous.
     pub triangles: Vec<Triangle>,
+    /// For each of `triangles`, its index in the list the tree was built
+    /// from (texture coordinates and refits look the corners up by it).
+    pub sources: Vec<u32>,
 }
 
 /// A ray's reciprocal direction for slab tests: components of magnitude
@@ -62,9 +65,10 @@ pub fn box_entry(origin: Vec3, inv: Vec3, lo: Vec3, hi: Vec3, limit: f32) -> Opt
 }
 
 impl MeshBvh {
-    /// Memory of the nodes and triangles, in bytes.
+    /// Memory of the nodes, triangles and their sources, in bytes.
     pub fn bytes(&self) -> usize {
-        self.nodes.len() * core::mem::size_of::<BvhNode>() + self.triangles.len() * core::mem::size_of::<Triangle>()
+        self.nodes.len() * core::mem::size_of::<BvhNode>()
+            + self.triangles.len() * (core::mem::size_of::<Triangle>() + core::mem::size_of::<u32>())
     }
 
     /// The nearest hit with `t_min < t < t_max`: (t, index into `triangles`).

@@ -11,7 +11,8 @@ use glam::Vec3;
 /// Triangles per leaf of the median split.
 const MEDIAN_LEAF: usize = 4;
 
-/// The hierarchy over `triangles` (reordered into leaf order).
+/// The hierarchy over `triangles` (reordered into leaf order; `sources`
+/// says where each came from).
 pub fn build(triangles: Vec<Triangle>) -> MeshBvh {
     if triangles.is_empty() {
         return MeshBvh::default();
@@ -42,9 +43,8 @@ fn depth(nodes: &[BvhNode]) -> usize {
     deepest
 }
 
-fn bounds(tris: &[Triangle]) -> (Vec3, Vec3) {
-    tris.iter()
-        .map(Triangle::padded_bounds)
+fn bounds<'a>(tris: impl Iterator<Item = &'a Triangle>) -> (Vec3, Vec3) {
+    tris.map(Triangle::padded_bounds)
         .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), (a, b)| (lo.min(a), hi.max(b)))
 }
 
@@ -54,33 +54,37 @@ fn centre(t: &Triangle) -> Vec3 {
 
 /// Halves the centres' longest extent by count, down to [`MEDIAN_LEAF`]
 /// triangles: depth ⌈log₂(n / 4)⌉, far below [`MAX_DEPTH`].
-fn median_split(mut triangles: Vec<Triangle>) -> MeshBvh {
+fn median_split(triangles: Vec<Triangle>) -> MeshBvh {
     let mut nodes = Vec::with_capacity(2 * triangles.len() / MEDIAN_LEAF + 1);
-    let (lo, hi) = bounds(&triangles);
-    nodes.push(BvhNode { lo, hi, first: 0, count: triangles.len() as u32 });
+    let centres: Vec<Vec3> = triangles.iter().map(centre).collect();
+    let mut order: Vec<u32> = (0..triangles.len() as u32).collect();
+    let leaf_bounds = |order: &[u32]| bounds(order.iter().map(|&i| &triangles[i as usize]));
+    let (lo, hi) = leaf_bounds(&order);
+    nodes.push(BvhNode { lo, hi, first: 0, count: order.len() as u32 });
     let mut todo = Vec::from([0usize]);
     while let Some(i) = todo.pop() {
         let BvhNode { first, count, .. } = nodes[i];
         if (count as usize) <= MEDIAN_LEAF {
             continue;
         }
-        let range = first as usize..(first + count) as usize;
-        let tris = &mut triangles[range.clone()];
-        let (clo, chi) =
-            tris.iter().map(centre).fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), c| (lo.min(c), hi.max(c)));
+        let part = &mut order[first as usize..(first + count) as usize];
+        let (clo, chi) = part.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), &k| {
+            (lo.min(centres[k as usize]), hi.max(centres[k as usize]))
+        });
         let axis = (chi - clo).max_position();
-        let half = tris.len() / 2;
-        tris.select_nth_unstable_by(half, |a, b| centre(a)[axis].total_cmp(&centre(b)[axis]));
+        let half = part.len() / 2;
+        part.select_nth_unstable_by(half, |&a, &b| centres[a as usize][axis].total_cmp(&centres[b as usize][axis]));
         let child = nodes.len() as u32;
         for (start, len) in [(first, half as u32), (first + half as u32, count - half as u32)] {
-            let (lo, hi) = bounds(&triangles[start as usize..(start + len) as usize]);
+            let (lo, hi) = leaf_bounds(&order[start as usize..(start + len) as usize]);
             nodes.push(BvhNode { lo, hi, first: start, count: len });
         }
         nodes[i].first = child;
         nodes[i].count = 0;
         todo.extend([child as usize, child as usize + 1]);
     }
-    MeshBvh { nodes, triangles }
+    let triangles = order.iter().map(|&i| triangles[i as usize]).collect();
+    MeshBvh { nodes, triangles, sources: order }
 }
 
 #[cfg(feature = "std")]
@@ -112,7 +116,7 @@ mod sah {
             })
             .collect();
         let triangles = bvh.primitive_indices.iter().map(|&i| triangles[i as usize]).collect();
-        MeshBvh { nodes, triangles }
+        MeshBvh { nodes, triangles, sources: bvh.primitive_indices }
     }
 }
 
@@ -196,6 +200,12 @@ mod tests {
             assert!(depth(&bvh.nodes) <= crate::bvh::MAX_DEPTH, "{label}");
             let leaves: u32 = bvh.nodes.iter().map(|n| n.count).sum();
             assert_eq!(leaves as usize, tris.len(), "{label}: every triangle in exactly one leaf");
+            // `sources` is the permutation from the input to leaf order.
+            let mut seen = vec![false; tris.len()];
+            for (t, &k) in bvh.triangles.iter().zip(&bvh.sources) {
+                assert_eq!(*t, tris[k as usize], "{label}");
+                assert!(!core::mem::replace(&mut seen[k as usize], true), "{label}: source {k} twice");
+            }
             // Every triangle lies inside its leaf's box.
             for n in bvh.nodes.iter().filter(|n| n.count > 0) {
                 for t in &bvh.triangles[n.first as usize..(n.first + n.count) as usize] {

@@ -9,7 +9,7 @@ use alloc::vec::Vec;
 use glam::Vec3;
 
 pub use crate::ray::Ray;
-pub use crate::triangle::{Triangle, mesh_triangles};
+pub use crate::triangle::{Triangle, mesh_triangles, numbered_mesh_triangles};
 
 /// A plane `normal · x = offset` bounding a convex solid (inside where `<`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -67,6 +67,8 @@ pub struct SurfaceHit {
     pub t: f32,
     /// Outward geometric unit normal.
     pub normal: Vec3,
+    /// A mesh's triangle hit (index into its hierarchy's `triangles`); 0 for other shapes.
+    pub triangle: u32,
 }
 
 impl Primitive {
@@ -76,7 +78,7 @@ impl Primitive {
             Primitive::Sphere { center, radius } => intersect_sphere(ray, *center, *radius, t_min, t_max),
             Primitive::Plane { point, normal } => {
                 let t = plane_t(ray, *point, *normal)?;
-                (t > t_min && t < t_max).then_some(SurfaceHit { t, normal: *normal })
+                (t > t_min && t < t_max).then_some(SurfaceHit { t, normal: *normal, triangle: 0 })
             }
             Primitive::Disk { center, normal, radius2, inner_radius2 } => {
                 let t = plane_t(ray, *center, *normal)?;
@@ -84,12 +86,14 @@ impl Primitive {
                     return None;
                 }
                 let d2 = (ray.at(t) - *center).length_squared();
-                (d2 <= *radius2 && d2 >= *inner_radius2).then_some(SurfaceHit { t, normal: *normal })
+                (d2 <= *radius2 && d2 >= *inner_radius2).then_some(SurfaceHit { t, normal: *normal, triangle: 0 })
             }
             Primitive::Convex { faces } => intersect_convex(ray, faces, t_min, t_max),
-            Primitive::Mesh(bvh) => bvh
-                .intersect(ray, t_min, t_max)
-                .map(|(t, index)| SurfaceHit { t, normal: bvh.triangles[index as usize].normal }),
+            Primitive::Mesh(bvh) => bvh.intersect(ray, t_min, t_max).map(|(t, triangle)| SurfaceHit {
+                t,
+                normal: bvh.triangles[triangle as usize].normal,
+                triangle,
+            }),
         }
     }
 
@@ -103,9 +107,14 @@ impl Primitive {
     }
 
     /// A mesh primitive over `positions` and `triangles` (degenerate
-    /// triangles left out).
+    /// triangles left out); the hierarchy's `sources` index `triangles`.
     pub fn mesh(positions: &[Vec3], triangles: &[[u32; 3]]) -> Self {
-        Primitive::Mesh(crate::bvh_build::build(mesh_triangles(positions, triangles)))
+        let (numbers, kept): (Vec<u32>, Vec<Triangle>) = numbered_mesh_triangles(positions, triangles).unzip();
+        let mut bvh = crate::bvh_build::build(kept);
+        for s in &mut bvh.sources {
+            *s = numbers[*s as usize];
+        }
+        Primitive::Mesh(bvh)
     }
 }
 
@@ -141,7 +150,7 @@ fn intersect_sphere(ray: &Ray, center: Vec3, radius: f32, t_min: f32, t_max: f32
     } else {
         return None;
     };
-    Some(SurfaceHit { t, normal: (ray.at(t) - center) / radius })
+    Some(SurfaceHit { t, normal: (ray.at(t) - center) / radius, triangle: 0 })
 }
 
 fn intersect_convex(ray: &Ray, faces: &[HalfSpace], t_min: f32, t_max: f32) -> Option<SurfaceHit> {
@@ -177,9 +186,9 @@ fn intersect_convex(ray: &Ray, faces: &[HalfSpace], t_min: f32, t_max: f32) -> O
         return None;
     }
     if t_enter > t_min && t_enter < t_max {
-        Some(SurfaceHit { t: t_enter, normal: n_enter })
+        Some(SurfaceHit { t: t_enter, normal: n_enter, triangle: 0 })
     } else if t_exit > t_min && t_exit < t_max {
-        Some(SurfaceHit { t: t_exit, normal: n_exit })
+        Some(SurfaceHit { t: t_exit, normal: n_exit, triangle: 0 })
     } else {
         None
     }

@@ -8,9 +8,10 @@ use crate::geometry::{Primitive, Ray, prism_faces};
 use crate::reach;
 use crate::scene::{Light, Scene, SceneError, Shape};
 use crate::surface::Surface;
+use crate::texture::TriangleUv;
 use crate::tolerance;
 use alloc::vec::Vec;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// A hit with the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -23,6 +24,8 @@ pub struct Hit {
     pub normal: Vec3,
     /// Index of the object hit.
     pub object: usize,
+    /// The mesh triangle hit (see [`crate::geometry::SurfaceHit::triangle`]).
+    pub triangle: u32,
 }
 
 /// A validated scene plus the tables derived from it.
@@ -36,6 +39,9 @@ pub struct PreparedScene {
     pub primitives: Vec<Primitive>,
     /// One surface per object.
     pub surfaces: Vec<Surface>,
+    /// Per object, the texture coordinates of its mesh's triangles in the
+    /// hierarchy's order; empty unless its surface has a texture.
+    pub texture_uvs: Vec<Vec<TriangleUv>>,
     /// What each light emits photons as: the light itself, or for a sun
     /// the beam over the scene's mirrors and glass ([`crate::reach::sun_beam`]).
     pub emitters: Vec<Light>,
@@ -52,9 +58,27 @@ impl PreparedScene {
     pub fn new(scene: Scene) -> Result<Self, SceneError> {
         scene.validate()?;
         let bands = BandTable::new(scene.render.bands);
-        let primitives = scene.objects.iter().map(|o| primitive(&o.shape)).collect();
+        let primitives: Vec<Primitive> = scene.objects.iter().map(|o| primitive(&o.shape)).collect();
         let surfaces: Vec<Surface> =
             scene.objects.iter().map(|o| Surface::new(&scene.materials[o.material].kind, &bands)).collect();
+        let texture_uvs = scene
+            .objects
+            .iter()
+            .zip(&primitives)
+            .zip(&surfaces)
+            .map(|((o, p), s)| match (&o.shape, p, s) {
+                (
+                    Shape::Mesh { triangles, uvs, .. },
+                    Primitive::Mesh(bvh),
+                    Surface::Diffuse { texture: Some(_), .. },
+                ) => bvh
+                    .sources
+                    .iter()
+                    .map(|&k| TriangleUv::new(triangles[k as usize].map(|i| uvs[i as usize])))
+                    .collect(),
+                _ => Vec::new(),
+            })
+            .collect();
         let bounds: Vec<(Vec3, f32)> = scene.objects.iter().map(|o| reach::bounds(&o.shape)).collect();
         let specular: Vec<(Vec3, f32)> = bounds
             .iter()
@@ -90,7 +114,7 @@ impl PreparedScene {
                 g.splits_view_rays = g.dispersive && plan.view_dispersion.on;
             }
         }
-        Ok(PreparedScene { scene, bands, primitives, surfaces, emitters, light_cdf, total_power, plan })
+        Ok(PreparedScene { scene, bands, primitives, surfaces, texture_uvs, emitters, light_cdf, total_power, plan })
     }
 
     /// Simulates every effect, ignoring the plan (see [`EffectPlan::simulate_everything`]).
@@ -106,10 +130,22 @@ impl PreparedScene {
         for (object, prim) in self.primitives.iter().enumerate() {
             if let Some(h) = prim.intersect(ray, 0.0, limit) {
                 limit = h.t;
-                best = Some(Hit { t: h.t, point: ray.at(h.t), normal: h.normal, object });
+                best = Some(Hit { t: h.t, point: ray.at(h.t), normal: h.normal, object, triangle: h.triangle });
             }
         }
         best
+    }
+
+    /// The albedo of diffuse `object` at `point` (unit normal `normal`) on
+    /// its mesh triangle `triangle`: the surface's albedo (with its
+    /// checker), times its texture at the point's texture coordinates.
+    #[inline]
+    pub fn albedo_at(&self, object: usize, triangle: u32, point: Vec3, normal: Vec3) -> Vec3 {
+        let uv = match (&self.primitives[object], self.texture_uvs[object].get(triangle as usize)) {
+            (Primitive::Mesh(bvh), Some(uv)) => uv.at(&bvh.triangles[triangle as usize], point),
+            _ => Vec2::ZERO,
+        };
+        self.surfaces[object].albedo_at(point, normal, uv)
     }
 
     /// True when something blocks the segment from `origin` along unit `dir` before `dist`.
@@ -130,7 +166,7 @@ fn primitive(shape: &Shape) -> Primitive {
             inner_radius2: inner_radius * inner_radius,
         },
         Shape::Prism { vertices, extrude } => Primitive::Convex { faces: prism_faces(*vertices, *extrude) },
-        Shape::Mesh { positions, triangles } => Primitive::mesh(positions, triangles),
+        Shape::Mesh { positions, triangles, .. } => Primitive::mesh(positions, triangles),
     }
 }
 

@@ -6,9 +6,10 @@ use crate::bands::BandSpec;
 use crate::color::ToneMap;
 use crate::dispersion::Dispersion;
 use alloc::string::String;
+use alloc::sync::Arc;
 use alloc::vec::Vec;
 use core::fmt;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// Most triangles one mesh may have: the CPU backend carries a hit's
 /// triangle index in f32 lanes (the tie rule of
@@ -24,6 +25,10 @@ pub const MAX_DEPTH: u32 = 64;
 
 /// The largest image side.
 pub const MAX_IMAGE_SIDE: u32 = 16_384;
+
+/// The largest texture side: 4096² texels of 4 bytes are 64 MiB, half of
+/// what a GPU storage binding holds by default (128 MiB).
+pub const MAX_TEXTURE_SIDE: u32 = 4_096;
 
 /// A problem found in a scene: the key it belongs to and why it is wrong.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -280,15 +285,69 @@ pub struct Checker {
     pub offset: Vec3,
 }
 
+/// A base-colour image on a diffuse material (glTF's `baseColorTexture`),
+/// read at a mesh's texture coordinates: the albedo is multiplied by it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    /// Where the image came from (a file, a glTF image), for messages.
+    pub name: String,
+    /// Texels per row.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+    /// Texels row by row from the top (v = 0, as in glTF), each the 8-bit
+    /// sRGB-encoded channels packed as `r | g << 8 | b << 16`. Shared, so
+    /// that cloning a scene does not copy images.
+    pub texels: Arc<[u32]>,
+    /// How texels are looked up.
+    pub sampler: Sampler,
+}
+
+/// How a texture is read between and beyond its texels (glTF's sampler).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Sampler {
+    /// Between texels.
+    pub filter: Filter,
+    /// Beyond the image along u.
+    pub wrap_u: Wrap,
+    /// Beyond the image along v.
+    pub wrap_v: Wrap,
+}
+
+/// Texture filtering (no mipmaps: a minified texture is read like a magnified one).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Filter {
+    /// The texel the point falls in.
+    Nearest,
+    /// Bilinear interpolation of the four nearest texels, in linear light.
+    #[default]
+    Linear,
+}
+
+/// What a texture coordinate outside [0, 1] reads.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Wrap {
+    /// The image tiles the plane.
+    #[default]
+    Repeat,
+    /// The edge texels extend outward.
+    ClampToEdge,
+    /// The image tiles the plane, every other copy mirrored.
+    MirroredRepeat,
+}
+
 /// How a surface scatters light.
 #[derive(Clone, Debug, PartialEq)]
 pub enum MaterialKind {
-    /// Lambertian, optionally with a checker texture. Caustic photons are stored here.
+    /// Lambertian, optionally with a checker or an image texture. Caustic
+    /// photons are stored here.
     Diffuse {
         /// Albedo (reflectance) per RGB channel.
         albedo: Vec3,
         /// Optional checker texture.
         checker: Option<Checker>,
+        /// Optional image multiplying the albedo (on meshes with texture coordinates).
+        texture: Option<Texture>,
     },
     /// Smooth dielectric with a dispersion model, clear or coloured.
     Dielectric {
@@ -368,6 +427,9 @@ pub enum Shape {
         positions: Vec<Vec3>,
         /// Triangles as indices into `positions`.
         triangles: Vec<[u32; 3]>,
+        /// Texture coordinates per vertex (glTF's `TEXCOORD_0`: v down the
+        /// image), or empty when the mesh has none.
+        uvs: Vec<Vec2>,
     },
 }
 

@@ -6,9 +6,9 @@ use crate::absorption::Absorption;
 use crate::bands::{BandTable, VISIBLE_NM};
 use crate::dispersion::Dispersion;
 use crate::photon::WHITE_BAND;
-use crate::scene::{Checker, MaterialKind};
+use crate::scene::{Checker, MaterialKind, Texture};
 use alloc::vec::Vec;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// How an object's surface scatters light, ready for tracing.
 #[derive(Clone, Debug, PartialEq)]
@@ -19,6 +19,8 @@ pub enum Surface {
         albedo: Vec3,
         /// Optional checker.
         checker: Option<Checker>,
+        /// Optional image multiplying the albedo.
+        texture: Option<Texture>,
     },
     /// Perfect mirror.
     Mirror,
@@ -122,7 +124,9 @@ impl Surface {
     /// plan decides it ([`crate::prepared::PreparedScene::new`]).
     pub fn new(material: &MaterialKind, bands: &BandTable) -> Self {
         match material {
-            MaterialKind::Diffuse { albedo, checker } => Surface::Diffuse { albedo: *albedo, checker: checker.clone() },
+            MaterialKind::Diffuse { albedo, checker, texture } => {
+                Surface::Diffuse { albedo: *albedo, checker: checker.clone(), texture: texture.clone() }
+            }
             MaterialKind::Mirror => Surface::Mirror,
             MaterialKind::Dielectric { dispersion, outside, attenuation } => {
                 // Snell's law and Fresnel depend only on the ratio of the
@@ -147,18 +151,23 @@ impl Surface {
         }
     }
 
-    /// Albedo at world point `p` with unit normal `n` (checker evaluated a
-    /// hair below the surface so that planes through a cell border do not flicker).
+    /// Albedo at world point `p` with unit normal `n` and texture
+    /// coordinates `uv` (read only with a texture; the checker is evaluated
+    /// a hair below the surface so that planes through a cell border do not flicker).
     #[inline]
-    pub fn albedo_at(&self, p: Vec3, n: Vec3) -> Vec3 {
-        match self {
-            Surface::Diffuse { albedo, checker: None } => *albedo,
-            Surface::Diffuse { albedo, checker: Some(ch) } => {
+    pub fn albedo_at(&self, p: Vec3, n: Vec3, uv: Vec2) -> Vec3 {
+        let Surface::Diffuse { albedo, checker, texture } = self else { return Vec3::ZERO };
+        let base = match checker {
+            None => *albedo,
+            Some(ch) => {
                 let q = (p + ch.offset - n * (ch.size * 1e-3)) / ch.size;
                 let parity = (crate::math::floor(q.x) + crate::math::floor(q.y) + crate::math::floor(q.z)) as i64;
                 if parity.rem_euclid(2) == 0 { *albedo } else { ch.albedo }
             }
-            _ => Vec3::ZERO,
+        };
+        match texture {
+            None => base,
+            Some(t) => base * crate::texture::sample(t, uv),
         }
     }
 }

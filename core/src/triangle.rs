@@ -37,16 +37,21 @@ impl Triangle {
 
 /// Mesh triangles without the degenerate (zero-area) ones.
 pub fn mesh_triangles(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Triangle> {
-    triangles
-        .iter()
-        .filter_map(|t| {
-            let [v0, v1, v2] = t.map(|i| positions[i as usize]);
-            let (e1, e2) = (v1 - v0, v2 - v0);
-            let n = e1.cross(e2);
-            let scale = e1.length_squared().max(e2.length_squared());
-            (n.length() > 1e-7 * scale && scale > 0.0).then(|| Triangle { v0, e1, e2, normal: n.normalize() })
-        })
-        .collect()
+    numbered_mesh_triangles(positions, triangles).map(|(_, t)| t).collect()
+}
+
+/// The mesh's triangles that have an area, each with its index in `triangles`.
+pub fn numbered_mesh_triangles<'a>(
+    positions: &'a [Vec3],
+    triangles: &'a [[u32; 3]],
+) -> impl Iterator<Item = (u32, Triangle)> + 'a {
+    triangles.iter().enumerate().filter_map(|(k, t)| {
+        let [v0, v1, v2] = t.map(|i| positions[i as usize]);
+        let (e1, e2) = (v1 - v0, v2 - v0);
+        let n = e1.cross(e2);
+        let scale = e1.length_squared().max(e2.length_squared());
+        (n.length() > 1e-7 * scale && scale > 0.0).then(|| (k as u32, Triangle { v0, e1, e2, normal: n.normalize() }))
+    })
 }
 
 /// Möller–Trumbore, two-sided, on the triangle widened by

@@ -6,8 +6,8 @@
 use crate::bands::{BandSpec, MAX_BANDS};
 use crate::dispersion::{Dispersion, MAX_SELLMEIER_TERMS};
 use crate::scene::{
-    Attenuation, Light, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_MESH_TRIANGLES, MAX_PHOTONS, Material, MaterialKind, Scene,
-    SceneError, Shape,
+    Attenuation, Light, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_MESH_TRIANGLES, MAX_PHOTONS, MAX_TEXTURE_SIDE, Material,
+    MaterialKind, Scene, SceneError, Shape, Texture,
 };
 use alloc::format;
 use alloc::string::{String, ToString};
@@ -94,7 +94,21 @@ impl Scene {
                     ),
                 ));
             }
-            if let (MaterialKind::Dielectric { .. }, Shape::Mesh { positions, triangles }) =
+            if let MaterialKind::Diffuse { texture: Some(texture), .. } = &material.kind {
+                let has_uvs = matches!(&object.shape, Shape::Mesh { uvs, .. } if !uvs.is_empty());
+                if !has_uvs {
+                    return Err(c.err(
+                        "material",
+                        format!(
+                            "'{}' has the texture {}, which needs a mesh with texture coordinates (uvs); this {} has none",
+                            material.name,
+                            texture.name,
+                            object.shape.name()
+                        ),
+                    ));
+                }
+            }
+            if let (MaterialKind::Dielectric { .. }, Shape::Mesh { positions, triangles, .. }) =
                 (&material.kind, &object.shape)
                 && let Some((a, b)) = crate::mesh::open_edge(positions, triangles)
             {
@@ -199,13 +213,16 @@ fn validate_light(c: &Check<'_>, light: &Light) -> Result<(), SceneError> {
 
 fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(), SceneError> {
     match &m.kind {
-        MaterialKind::Diffuse { albedo, checker } => {
+        MaterialKind::Diffuse { albedo, checker, texture } => {
             c.colour("albedo", *albedo)?;
             if let Some(ch) = checker {
                 c.positive("checker.size", ch.size)?;
                 c.colour("checker.albedo", ch.albedo)?;
             }
-            Ok(())
+            match texture {
+                Some(t) => validate_texture(c, t),
+                None => Ok(()),
+            }
         }
         MaterialKind::Mirror => Ok(()),
         MaterialKind::Dielectric { dispersion, outside, attenuation } => {
@@ -216,6 +233,20 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
                 None => Ok(()),
             }
         }
+    }
+}
+
+fn validate_texture(c: &Check<'_>, t: &Texture) -> Result<(), SceneError> {
+    let (w, h) = (t.width, t.height);
+    if w == 0 || h == 0 || w > MAX_TEXTURE_SIDE || h > MAX_TEXTURE_SIDE {
+        return Err(c.err("texture", format!("{}: {w}×{h} texels; each side must be 1 to {MAX_TEXTURE_SIDE}", t.name)));
+    }
+    if t.texels.len() != w as usize * h as usize {
+        return Err(c.err("texture", format!("{}: {} texels for a {w}×{h} image", t.name, t.texels.len())));
+    }
+    match t.texels.iter().position(|&x| x >= 1 << 24) {
+        Some(i) => Err(c.err("texture", format!("{}: texel {i} is not three 8-bit channels", t.name))),
+        None => Ok(()),
     }
 }
 
@@ -362,7 +393,7 @@ fn validate_shape(c: &Check<'_>, shape: &Shape) -> Result<(), SceneError> {
             }
             Ok(())
         }
-        Shape::Mesh { positions, triangles } => {
+        Shape::Mesh { positions, triangles, uvs } => {
             if triangles.is_empty() {
                 return Err(c.err("triangles", "the mesh has no triangles"));
             }
@@ -383,7 +414,20 @@ fn validate_shape(c: &Check<'_>, shape: &Shape) -> Result<(), SceneError> {
                     ));
                 }
             }
-            Ok(())
+            if !uvs.is_empty() && uvs.len() != positions.len() {
+                return Err(c.err(
+                    "uvs",
+                    format!(
+                        "{} texture coordinates for {} positions: give one per position",
+                        uvs.len(),
+                        positions.len()
+                    ),
+                ));
+            }
+            match uvs.iter().position(|uv| !uv.is_finite()) {
+                Some(i) => Err(c.err(&format!("uvs[{i}]"), format!("must be finite, got {}", uvs[i]))),
+                None => Ok(()),
+            }
         }
     }
 }

@@ -151,8 +151,7 @@ impl<'a> ViewContext<'a> {
     /// which is left to a visible point (when the plan traces caustics).
     fn shade_diffuse(&self, ray: &Ray, hit: &Hit, tint: Vec3, points: &mut Vec<VisiblePoint>) -> Vec3 {
         let n = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
-        let surface = &self.scene.surfaces[hit.object];
-        let albedo = surface.albedo_at(hit.point, n);
+        let albedo = self.scene.albedo_at(hit.object, hit.triangle, hit.point, n);
         let settings = &self.scene.scene.render;
         let direct: f32 = (0..self.scene.scene.lights.len()).map(|i| self.direct_irradiance(i, hit.point, n)).sum();
         if self.scene.plan.caustics.on {

@@ -24,7 +24,10 @@ pub fn camera() -> Camera {
 
 /// A diffuse white material called `name`.
 pub fn white(name: &str) -> Material {
-    Material { name: name.into(), kind: MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: None } }
+    Material {
+        name: name.into(),
+        kind: MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: None, texture: None },
+    }
 }
 
 /// A dielectric called `name`.

@@ -62,6 +62,7 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
                 albedo: Vec3::new(0.3, 0.3, 0.5),
                 offset: Vec3::ZERO,
             }),
+            texture: None,
         },
     };
     let materials = vec![

@@ -316,3 +316,96 @@ fn a_sun_parses_and_needs_a_direction_and_a_positive_irradiance() {
     );
     assert_error(&source.replace("irradiance = 5", "power = 5"), "light[0].power", Some("power"), "unknown key");
 }
+
+/// `MINIMAL`'s floor replaced by a textured quad: `material` is the
+/// textured material's extra lines, `mesh` the quad's (positions,
+/// triangles, and uvs or an OBJ path).
+fn textured(material: &str, mesh: &str) -> String {
+    let floor = "[[object]]\nshape = \"plane\"\nmaterial = \"white\"\npoint = [0, 0, 0]\nnormal = [0, 1, 0]\n";
+    let quad = "positions = [[-1, 0, -1], [1, 0, -1], [1, 0, 1], [-1, 0, 1]]\ntriangles = [[0, 2, 1], [0, 3, 2]]";
+    let mesh = mesh.replace("QUAD", quad);
+    MINIMAL.replace(floor, "")
+        + &format!(
+            "[material.tiles]\nkind = \"diffuse\"\n{material}\n\n[[object]]\nshape = \"mesh\"\nmaterial = \"tiles\"\n{mesh}\n"
+        )
+}
+
+/// A 2×1 PNG (red, then blue) in `dir`.
+fn write_png(dir: &std::path::Path, name: &str) {
+    image::RgbImage::from_raw(2, 1, vec![255, 0, 0, 0, 0, 255]).unwrap().save(dir.join(name)).unwrap();
+}
+
+#[test]
+fn textures_are_read_beside_the_scene_with_their_sampler_and_the_mesh_uvs() {
+    use prismatic_core::scene::{Filter, Wrap};
+    let dir = tempfile::tempdir().unwrap();
+    write_png(dir.path(), "tiles.png");
+    let source = textured(
+        "texture = \"tiles.png\"\ntexture_filter = \"nearest\"\ntexture_wrap = \"mirrored_repeat\"",
+        "QUAD\nuvs = [[0, 0], [2, 0], [2, 2], [0, 2]]",
+    );
+    let doc = parse(&source, "test.toml", Some(dir.path())).unwrap_or_else(|e| panic!("{e}"));
+    doc.validate().unwrap_or_else(|e| panic!("{e}"));
+    let tiles = doc.scene.materials.iter().find(|m| m.name == "tiles").unwrap();
+    let MaterialKind::Diffuse { albedo, texture: Some(t), .. } = &tiles.kind else { panic!("{:?}", tiles.kind) };
+    assert_eq!(*albedo, prismatic_core::Vec3::ONE, "an image shows as it is by default");
+    assert_eq!((t.width, t.height, &t.texels[..]), (2, 1, &[255, 255 << 16][..]));
+    assert_eq!(
+        (t.sampler.filter, t.sampler.wrap_u, t.sampler.wrap_v),
+        (Filter::Nearest, Wrap::MirroredRepeat, Wrap::MirroredRepeat)
+    );
+    let Some(Shape::Mesh { uvs, .. }) = doc.scene.objects.last().map(|o| &o.shape) else { panic!("a mesh") };
+    assert_eq!(uvs[2].to_array(), [2.0, 2.0]);
+}
+
+#[test]
+fn obj_texture_coordinates_reach_the_mesh() {
+    let dir = tempfile::tempdir().unwrap();
+    write_png(dir.path(), "tiles.png");
+    let obj = "v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\nf 1/1 3/3 2/2\nf 1/1 4/4 3/3\n";
+    std::fs::write(dir.path().join("quad.obj"), obj).unwrap();
+    let doc = parse(&textured("texture = \"tiles.png\"", "path = \"quad.obj\""), "test.toml", Some(dir.path()))
+        .unwrap_or_else(|e| panic!("{e}"));
+    doc.validate().unwrap_or_else(|e| panic!("{e}"));
+    let Some(Shape::Mesh { uvs, positions, .. }) = doc.scene.objects.last().map(|o| &o.shape) else { panic!("a mesh") };
+    // OBJ's v runs up the image: vt (0, 1) is the image's top-left corner, glTF's (0, 0).
+    assert_eq!(uvs[0].to_array(), [0.0, 0.0]);
+    assert_eq!(positions[0].to_array(), [-1.0, 0.0, -1.0]);
+}
+
+#[test]
+fn bad_textures_name_the_image_key_and_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("broken.png"), b"not a png").unwrap();
+    write_png(dir.path(), "tiles.png");
+    let with_uvs = "QUAD\nuvs = [[0, 0], [1, 0], [1, 1], [0, 1]]";
+    let cases = [
+        (textured("texture = \"missing.png\"", with_uvs), "material.tiles.texture", "cannot read texture"),
+        (textured("texture = \"broken.png\"", with_uvs), "material.tiles.texture", "broken.png"),
+        (
+            textured("texture = \"tiles.png\"\ntexture_wrap = \"tile\"", with_uvs),
+            "material.tiles.texture_wrap",
+            "unknown wrap",
+        ),
+        (textured("texture_filter = \"nearest\"", with_uvs), "material.tiles.texture_filter", "names none"),
+        (textured("texture = \"tiles.png\"", "QUAD"), "object[0].material", "texture coordinates (uvs)"),
+        (
+            textured("texture = \"tiles.png\"", "QUAD\nuvs = [[0, 0], [1, 0]]"),
+            "object[0].uvs",
+            "2 texture coordinates for 4 positions",
+        ),
+        (
+            textured("texture = \"tiles.png\"", "QUAD\nuvs = [[0, 0], [1, 0], [1], [0, 1]]"),
+            "object[0].uvs[2]",
+            "must be [u, v]",
+        ),
+    ];
+    for (source, key, reason) in cases {
+        let e = match parse(&source, "test.toml", Some(dir.path())) {
+            Ok(doc) => doc.validate().expect_err(reason),
+            Err(e) => e,
+        };
+        assert_eq!(e.key, key, "{e}");
+        assert!(e.reason.contains(reason), "{e}: expected {reason:?}");
+    }
+}

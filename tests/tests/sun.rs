@@ -25,8 +25,10 @@ fn sun_direction() -> Vec3 {
 fn scene(photons: u32) -> PreparedScene {
     let mut render = settings(photons, BandSpec::Paper3);
     (render.width, render.height, render.ambient) = (48, 48, 0.0);
-    let floor =
-        Material { name: "floor".into(), kind: MaterialKind::Diffuse { albedo: Vec3::splat(ALBEDO), checker: None } };
+    let floor = Material {
+        name: "floor".into(),
+        kind: MaterialKind::Diffuse { albedo: Vec3::splat(ALBEDO), checker: None, texture: None },
+    };
     prepare(Scene {
         render,
         camera: Camera { position: Vec3::new(0.0, 20.0, 0.0), look_at: Vec3::ZERO, up: Vec3::Z, fov_deg: 30.0 },

@@ -84,6 +84,10 @@ struct GpuSurface {
     curve_len: u32,
     absorption: vec3<f32>,
     absorption_first: u32,
+    texture_first: u32,
+    texture_width: u32,
+    texture_height: u32,
+    uv_first: u32,
 }
 
 // Twin of prismatic_gpu::layout::GpuLight.

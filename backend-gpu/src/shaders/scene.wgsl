@@ -8,15 +8,19 @@
 @group(0) @binding(3) var<storage, read> lights: array<GpuLight>;
 @group(0) @binding(4) var<storage, read> bands: array<GpuBand>;
 // Convex faces (normal, offset), mesh nodes (lo, first; hi, count as bits),
-// triangles (v0, e1, e2, normal), projection targets.
+// triangles (v0, e1, e2, normal), textured triangles' coordinates (uv0,
+// du1; du2), projection targets.
 @group(0) @binding(5) var<storage, read> geometry: array<vec4<f32>>;
-// Per-band indices, n(λ) curves, light and projection CDFs.
+// Per-band indices, n(λ) curves, light and projection CDFs, textures (the
+// sRGB decoding table, then the texels as exact integers r + 256 g + 65536 b).
 @group(0) @binding(6) var<storage, read> tables: array<f32>;
 
+// A mesh's triangle hit (`triangle`, in its hierarchy's order) or 0.
 struct SurfaceHit {
     ok: bool,
     t: f32,
     normal: vec3<f32>,
+    triangle: u32,
 }
 
 struct Hit {
@@ -25,10 +29,11 @@ struct Hit {
     point: vec3<f32>,
     normal: vec3<f32>,
     object: u32,
+    triangle: u32,
 }
 
 fn no_hit() -> SurfaceHit {
-    return SurfaceHit(false, 0.0, vec3<f32>(0.0));
+    return SurfaceHit(false, 0.0, vec3<f32>(0.0), 0u);
 }
 
 fn plane_t(o: vec3<f32>, d: vec3<f32>, point: vec3<f32>, normal: vec3<f32>) -> vec2<f32> {
@@ -65,7 +70,7 @@ fn hit_sphere(o: vec3<f32>, d: vec3<f32>, center: vec3<f32>, radius: f32, t_min:
     } else {
         return no_hit();
     }
-    return SurfaceHit(true, t, (o + d * t - center) / radius);
+    return SurfaceHit(true, t, (o + d * t - center) / radius, 0u);
 }
 
 fn hit_convex(o: vec3<f32>, d: vec3<f32>, first: u32, count: u32, t_min: f32, t_max: f32) -> SurfaceHit {
@@ -102,10 +107,10 @@ fn hit_convex(o: vec3<f32>, d: vec3<f32>, first: u32, count: u32, t_min: f32, t_
         return no_hit();
     }
     if t_enter > t_min && t_enter < t_max {
-        return SurfaceHit(true, t_enter, n_enter);
+        return SurfaceHit(true, t_enter, n_enter, 0u);
     }
     if t_exit > t_min && t_exit < t_max {
-        return SurfaceHit(true, t_exit, n_exit);
+        return SurfaceHit(true, t_exit, n_exit, 0u);
     }
     return no_hit();
 }
@@ -283,10 +288,10 @@ fn search_mesh(o: vec3<f32>, d: vec3<f32>, obj: GpuObject, t_min: f32, t_max: f3
 fn hit_mesh(o: vec3<f32>, d: vec3<f32>, obj: GpuObject, t_min: f32, t_max: f32) -> SurfaceHit {
     let s = search_mesh(o, d, obj, t_min, t_max, false);
     if s.has_enter && (!s.has_leave || s.t_enter < s.t_leave + s.skin) {
-        return SurfaceHit(true, s.t_enter, geometry[obj.second + 4u * s.i_enter + 3u].xyz);
+        return SurfaceHit(true, s.t_enter, geometry[obj.second + 4u * s.i_enter + 3u].xyz, s.i_enter);
     }
     if s.has_leave {
-        return SurfaceHit(true, s.t_leave, geometry[obj.second + 4u * s.i_leave + 3u].xyz);
+        return SurfaceHit(true, s.t_leave, geometry[obj.second + 4u * s.i_leave + 3u].xyz, s.i_leave);
     }
     return no_hit();
 }
@@ -299,7 +304,7 @@ fn hit_object(obj: GpuObject, o: vec3<f32>, d: vec3<f32>, t_min: f32, t_max: f32
         case 1u: {
             let t = plane_t(o, d, obj.a, obj.n);
             if t.y != 0.0 && t.x > t_min && t.x < t_max {
-                return SurfaceHit(true, t.x, obj.n);
+                return SurfaceHit(true, t.x, obj.n, 0u);
             }
             return no_hit();
         }
@@ -311,7 +316,7 @@ fn hit_object(obj: GpuObject, o: vec3<f32>, d: vec3<f32>, t_min: f32, t_max: f32
             let r = o + d * t.x - obj.a;
             let d2 = dot(r, r);
             if d2 <= obj.ra && d2 >= obj.rb {
-                return SurfaceHit(true, t.x, obj.n);
+                return SurfaceHit(true, t.x, obj.n, 0u);
             }
             return no_hit();
         }
@@ -326,13 +331,13 @@ fn hit_object(obj: GpuObject, o: vec3<f32>, d: vec3<f32>, t_min: f32, t_max: f32
 
 // PreparedScene::intersect: the nearest hit closer than t_max.
 fn intersect_scene(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> Hit {
-    var best = Hit(false, 0.0, vec3<f32>(0.0), vec3<f32>(0.0), 0u);
+    var best = Hit(false, 0.0, vec3<f32>(0.0), vec3<f32>(0.0), 0u, 0u);
     var limit = t_max;
     for (var i = 0u; i < params.object_count; i++) {
         let h = hit_object(objects[i], o, d, 0.0, limit);
         if h.ok {
             limit = h.t;
-            best = Hit(true, h.t, o + d * h.t, h.normal, i);
+            best = Hit(true, h.t, o + d * h.t, h.normal, i, h.triangle);
         }
     }
     return best;

@@ -1,21 +1,23 @@
 //! The scene-file schema: which tables and keys a scene has
 //! (`[render]`, `[camera]`, `[[light]]`, `[material.NAME]`, `[[object]]`),
 //! what each means and its default, read into a core [`Scene`]. Meshes
-//! come from OBJ files, dispersion tables from CSV files, placed glTF
-//! files through the glTF importer.
+//! come from OBJ files, textures from image files, dispersion tables from
+//! CSV files, placed glTF files through the glTF importer.
 
 use super::names::{parse_bands, parse_estimator, parse_radius_mode, parse_wavelengths};
 use super::reader::{LOCAL_FRAME_RADIUS, Reader, Result, Table, join};
 use crate::gltf_scene;
 use crate::ior_table;
 use crate::obj;
+use crate::texture_file;
 use glam::DVec3;
+use glam::Vec2;
 use prismatic_core::bands::BandSpec;
 use prismatic_core::color::ToneMap;
 use prismatic_core::dispersion::{Dispersion, Glass};
 use prismatic_core::scene::{
-    Attenuation, Camera, Checker, Estimator, Light, Material, MaterialKind, Object, RadiusMode, RenderSettings, Shape,
-    WavelengthSampling,
+    Attenuation, Camera, Checker, Estimator, Filter, Light, Material, MaterialKind, Object, RadiusMode, RenderSettings,
+    Sampler, Shape, Texture, WavelengthSampling, Wrap,
 };
 use prismatic_core::{Scene, Vec3};
 use std::ops::Range;
@@ -222,7 +224,7 @@ impl Reader<'_> {
         let kind = self.req(t, "kind", |p, k, v| p.string(k, v).map(str::to_string))?;
         Ok(match kind.as_str() {
             "diffuse" => {
-                self.check_keys(t, &["kind", "albedo", "checker"])?;
+                self.check_keys(t, &["kind", "albedo", "checker", "texture", "texture_filter", "texture_wrap"])?;
                 let checker = match self.get(t, "checker") {
                     Some(v) => {
                         let ct = self.table(&join(&t.key, "checker"), v)?;
@@ -237,9 +239,13 @@ impl Reader<'_> {
                     }
                     None => None,
                 };
+                let texture = self.texture(t)?;
+                // An image shows as it is unless an albedo scales it.
+                let default_albedo = if texture.is_some() { Vec3::ONE } else { Vec3::splat(0.8) };
                 MaterialKind::Diffuse {
-                    albedo: self.opt(t, "albedo", Self::vec3)?.unwrap_or(Vec3::splat(0.8)),
+                    albedo: self.opt(t, "albedo", Self::vec3)?.unwrap_or(default_albedo),
                     checker,
+                    texture,
                 }
             }
             "dielectric" => {
@@ -271,6 +277,38 @@ impl Reader<'_> {
                 ));
             }
         })
+    }
+
+    /// A diffuse material's `texture` (an image file beside the scene) with
+    /// its `texture_filter` and `texture_wrap`.
+    fn texture(&self, t: &Table<'_, '_>) -> Result<Option<Texture>> {
+        let filter = self.opt(t, "texture_filter", |p, k, v| match p.string(k, v)? {
+            "linear" => Ok(Filter::Linear),
+            "nearest" => Ok(Filter::Nearest),
+            other => Err(p.err(k, &v.span(), format!("unknown filter \"{other}\"; expected linear or nearest"))),
+        })?;
+        let wrap = self.opt(t, "texture_wrap", |p, k, v| match p.string(k, v)? {
+            "repeat" => Ok(Wrap::Repeat),
+            "clamp_to_edge" => Ok(Wrap::ClampToEdge),
+            "mirrored_repeat" => Ok(Wrap::MirroredRepeat),
+            other => Err(p.err(
+                k,
+                &v.span(),
+                format!("unknown wrap \"{other}\"; expected repeat, clamp_to_edge or mirrored_repeat"),
+            )),
+        })?;
+        let Some(v) = self.get(t, "texture") else {
+            if let Some(k) = ["texture_filter", "texture_wrap"].into_iter().find(|k| self.get(t, k).is_some()) {
+                let v = self.required(t, k)?;
+                return Err(self.err(&join(&t.key, k), &v.span(), "applies to a texture; the material names none"));
+            }
+            return Ok(None);
+        };
+        let key = join(&t.key, "texture");
+        let path = self.beside(self.string(&key, v)?);
+        let wrap = wrap.unwrap_or_default();
+        let sampler = Sampler { filter: filter.unwrap_or_default(), wrap_u: wrap, wrap_v: wrap };
+        texture_file::load(&path, sampler).map(Some).map_err(|e| self.err(&key, &v.span(), e))
     }
 
     fn ior(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Dispersion> {
@@ -380,7 +418,7 @@ impl Reader<'_> {
                 Shape::Prism { vertices, extrude: self.req(t, "extrude", Self::vec3)? }
             }
             "mesh" => {
-                self.check_keys(t, &["shape", "material", "positions", "triangles", "path"])?;
+                self.check_keys(t, &["shape", "material", "positions", "triangles", "uvs", "path"])?;
                 self.mesh(t)?
             }
             other => {
@@ -435,7 +473,7 @@ impl Reader<'_> {
         let first = materials.len();
         materials.extend(model.materials.into_iter().map(|m| Material { name: format!("{stem}/{}", m.name), ..m }));
         for object in model.objects {
-            let Shape::Mesh { positions, triangles } = object.shape else { continue };
+            let Shape::Mesh { positions, triangles, uvs } = object.shape else { continue };
             let positions = positions
                 .into_iter()
                 .map(|p| {
@@ -444,7 +482,8 @@ impl Reader<'_> {
                         .ok_or_else(|| self.err(&key, &v.span(), format!("vertex {world} is out of range")))
                 })
                 .collect::<Result<Vec<_>>>()?;
-            objects.push(Object { shape: Shape::Mesh { positions, triangles }, material: first + object.material });
+            objects
+                .push(Object { shape: Shape::Mesh { positions, triangles, uvs }, material: first + object.material });
         }
         let left_out = model.warnings.into_iter().chain(
             (!model.lights.is_empty() || model.camera.is_some())
@@ -457,17 +496,18 @@ impl Reader<'_> {
     fn mesh(&self, t: &Table<'_, '_>) -> Result<Shape> {
         if let Some(v) = self.get(t, "path") {
             let key = join(&t.key, "path");
-            if self.get(t, "positions").is_some() || self.get(t, "triangles").is_some() {
-                return Err(self.err(&key, &v.span(), "give either path or positions + triangles, not both"));
+            if ["positions", "triangles", "uvs"].iter().any(|k| self.get(t, k).is_some()) {
+                return Err(self.err(&key, &v.span(), "give either path or positions + triangles (+ uvs), not both"));
             }
             let rel = self.string(&key, v)?;
             let path = self.beside(rel);
-            let (positions, triangles) = obj::load(&path).map_err(|e| self.err(&key, &v.span(), e))?;
-            let positions = positions
+            let mesh = obj::load(&path).map_err(|e| self.err(&key, &v.span(), e))?;
+            let positions = mesh
+                .positions
                 .into_iter()
                 .map(|p| self.local(p).ok_or_else(|| self.err(&key, &v.span(), format!("vertex {p} is out of range"))))
                 .collect::<Result<Vec<_>>>()?;
-            return Ok(Shape::Mesh { positions, triangles });
+            return Ok(Shape::Mesh { positions, triangles: mesh.triangles, uvs: mesh.uvs });
         }
         let positions = {
             let key = join(&t.key, "positions");
@@ -497,6 +537,23 @@ impl Reader<'_> {
                 Ok(out)
             })
             .collect::<Result<Vec<_>>>()?;
-        Ok(Shape::Mesh { positions, triangles })
+        let uvs = match self.get(t, "uvs") {
+            Some(v) => {
+                let key = join(&t.key, "uvs");
+                self.array(&key, v)?
+                    .iter()
+                    .enumerate()
+                    .map(|(i, uv)| {
+                        let k = format!("{key}[{i}]");
+                        match self.floats(&k, uv)?[..] {
+                            [u, v] => Ok(Vec2::new(u as f32, v as f32)),
+                            ref x => Err(self.err(&k, &uv.span(), format!("must be [u, v], got {} numbers", x.len()))),
+                        }
+                    })
+                    .collect::<Result<Vec<_>>>()?
+            }
+            None => Vec::new(),
+        };
+        Ok(Shape::Mesh { positions, triangles, uvs })
     }
 }

@@ -76,9 +76,11 @@ fn placed(shape: &Shape, t: &GlobalTransform) -> Shape {
             inner_radius: inner_radius * scale,
         },
         Shape::Prism { vertices, extrude } => Shape::Prism { vertices: vertices.map(point), extrude: vector(*extrude) },
-        Shape::Mesh { positions, triangles } => {
-            Shape::Mesh { positions: positions.iter().copied().map(point).collect(), triangles: triangles.clone() }
-        }
+        Shape::Mesh { positions, triangles, uvs } => Shape::Mesh {
+            positions: positions.iter().copied().map(point).collect(),
+            triangles: triangles.clone(),
+            uvs: uvs.clone(),
+        },
     }
 }
 
@@ -125,7 +127,7 @@ fn build_scene(settings: &CausticSettings, entities: &SceneEntities) -> Result<S
                 outside: Dispersion::Constant(1.0),
                 attenuation: None,
             },
-            (None, Some(r)) => MaterialKind::Diffuse { albedo: r.albedo, checker: r.checker.clone() },
+            (None, Some(r)) => MaterialKind::Diffuse { albedo: r.albedo, checker: r.checker.clone(), texture: None },
             _ => return Err(format!("object {i} needs exactly one of Glass and Receiver")),
         };
         scene_objects.push(Object { shape: placed(&shape.0, at), material: materials.len() });

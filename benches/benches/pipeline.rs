@@ -14,7 +14,11 @@
 //!   progressive render of `sphere` as `prismatic render` runs it (radii
 //!   shrink with k), on a render whose view rays, pilot and pass 1 are
 //!   traced, and
-//!   `progressive/prepare`: the view rays and the pilot pass.
+//!   `progressive/prepare`: the view rays and the pilot pass;
+//! - `scene/{new,update-camera,update-mesh}/<triangles>`: `sphere` with its
+//!   sphere as a closed mesh, prepared from scratch (every hierarchy
+//!   built) and updated from the last frame's preparation after the camera
+//!   moved (hierarchy copied) or the mesh's vertices moved (refitted).
 
 use criterion::{BatchSize, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use prismatic_benches::{frame, paper_config};
@@ -170,6 +174,37 @@ fn progressive_group(c: &mut Criterion) {
     g.finish();
 }
 
+/// What preparing a changed scene costs, against preparing it anew.
+fn scene_group(c: &mut Criterion) {
+    let mut g = c.benchmark_group("scene");
+    g.sample_size(10);
+    for rings in [50u32, 158] {
+        let mut doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
+        let prismatic_core::Shape::Sphere { center, radius } = doc.scene.objects[1].shape else {
+            panic!("object 1 is the sphere")
+        };
+        doc.scene.objects[1].shape = prismatic_conformance::scenes::sphere_mesh(center, radius, rings);
+        let triangles = 4 * rings * rings;
+        let before = prismatic_core::PreparedScene::new(doc.scene.clone()).expect("valid");
+        let mut camera_moved = doc.scene.clone();
+        camera_moved.camera.position.x += 0.1;
+        let mut mesh_moved = doc.scene.clone();
+        if let prismatic_core::Shape::Mesh { positions, .. } = &mut mesh_moved.objects[1].shape {
+            positions.iter_mut().for_each(|p| p.y += 0.01 * p.x);
+        }
+        g.bench_function(BenchmarkId::new("new", triangles), |b| {
+            b.iter(|| black_box(prismatic_core::PreparedScene::new(mesh_moved.clone()).unwrap()))
+        });
+        g.bench_function(BenchmarkId::new("update-camera", triangles), |b| {
+            b.iter(|| black_box(before.update(camera_moved.clone()).unwrap()))
+        });
+        g.bench_function(BenchmarkId::new("update-mesh", triangles), |b| {
+            b.iter(|| black_box(before.update(mesh_moved.clone()).unwrap()))
+        });
+    }
+    g.finish();
+}
+
 /// A built-in scene as it is, or with `photons` instead of its own count, with `radius_mode`.
 fn builtin(
     name: &str,
@@ -182,5 +217,14 @@ fn builtin(
     prismatic_core::PreparedScene::new(doc.scene).expect("built-in scene is valid")
 }
 
-criterion_group!(benches, trace_group, grid_group, view_group, frame_group, effects_group, progressive_group);
+criterion_group!(
+    benches,
+    trace_group,
+    grid_group,
+    view_group,
+    frame_group,
+    effects_group,
+    progressive_group,
+    scene_group
+);
 criterion_main!(benches);

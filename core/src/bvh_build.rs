@@ -1,10 +1,11 @@
 //! Building a mesh's [`MeshBvh`]: with `std`, obvhs's PLOC builder with
 //! reinsertion (multi-threaded, surface-area quality); without `std`, or
 //! when a tree would be deeper than [`MAX_DEPTH`](crate::bvh::MAX_DEPTH), a median split on the
-//! longest axis of the triangles' centres.
+//! longest axis of the triangles' centres. A mesh whose vertices moved
+//! keeps its tree, refitted.
 
 use crate::bvh::{BvhNode, MeshBvh};
-use crate::triangle::Triangle;
+use crate::triangle::{Triangle, numbered_mesh_triangles};
 use alloc::vec::Vec;
 use glam::Vec3;
 
@@ -25,6 +26,47 @@ pub fn build(triangles: Vec<Triangle>) -> MeshBvh {
         }
     }
     median_split(triangles)
+}
+
+/// `bvh` over its mesh with the vertices moved to `positions`: every
+/// triangle recomputed through its source, every box refitted from the
+/// leaves up. The tree keeps its shape, so a large deformation slows the
+/// traversal, never changes a hit. `None` when the triangles that have an
+/// area are not the ones the tree holds (a triangle collapsed or unfolded):
+/// build anew.
+pub fn refit(bvh: &MeshBvh, positions: &[Vec3], triangles: &[[u32; 3]]) -> Option<MeshBvh> {
+    let mut moved: Vec<Option<Triangle>> = alloc::vec![None; triangles.len()];
+    let mut kept = 0;
+    for (k, t) in numbered_mesh_triangles(positions, triangles) {
+        moved[k as usize] = Some(t);
+        kept += 1;
+    }
+    if kept != bvh.sources.len() {
+        return None;
+    }
+    let tris: Vec<Triangle> = bvh.sources.iter().map(|&k| moved[k as usize]).collect::<Option<_>>()?;
+    // Parents before children in `order`: refit in reverse, children first.
+    let mut order = Vec::with_capacity(bvh.nodes.len());
+    let mut stack = Vec::from([0u32]);
+    while let Some(i) = stack.pop() {
+        order.push(i);
+        let n = bvh.nodes[i as usize];
+        if n.count == 0 {
+            stack.extend([n.first, n.first + 1]);
+        }
+    }
+    let mut nodes = bvh.nodes.clone();
+    for &i in order.iter().rev() {
+        let n = nodes[i as usize];
+        let (lo, hi) = if n.count > 0 {
+            bounds(tris[n.first as usize..(n.first + n.count) as usize].iter())
+        } else {
+            let (a, b) = (nodes[n.first as usize], nodes[n.first as usize + 1]);
+            (a.lo.min(b.lo), a.hi.max(b.hi))
+        };
+        nodes[i as usize] = BvhNode { lo, hi, ..n };
+    }
+    Some(MeshBvh { nodes, triangles: tris, sources: bvh.sources.clone() })
 }
 
 /// Inner nodes on the longest path from the root to a leaf.
@@ -129,13 +171,29 @@ mod tests {
 
     /// A closed, bumpy sphere of `2 · rings · segments` triangles.
     fn sphere_mesh(rings: u32, segments: u32) -> Vec<Triangle> {
+        let (positions, tris) = sphere_positions(rings, segments);
+        mesh_triangles(&positions, &tris)
+    }
+
+    /// The tree over a mesh, its sources numbering the mesh's triangles.
+    fn build_numbered(positions: &[Vec3], tris: &[[u32; 3]]) -> MeshBvh {
+        let (numbers, kept): (Vec<u32>, Vec<Triangle>) = numbered_mesh_triangles(positions, tris).unzip();
+        let mut bvh = build(kept);
+        bvh.sources.iter_mut().for_each(|s| *s = numbers[*s as usize]);
+        bvh
+    }
+
+    /// The bumpy sphere's vertices and triangles.
+    fn sphere_positions(rings: u32, segments: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
         let mut positions = Vec::new();
         for r in 0..=rings {
             let theta = core::f32::consts::PI * r as f32 / rings as f32;
             for s in 0..segments {
                 let phi = core::f32::consts::TAU * s as f32 / segments as f32;
                 let radius = 1.0 + 0.05 * (5.0 * phi).sin() * (3.0 * theta).sin();
-                positions.push(radius * Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()));
+                // The poles exactly (sin π in f32 is not 0): their triangles have no area.
+                let (sin, cos) = if r == rings { (0.0, -1.0) } else { theta.sin_cos() };
+                positions.push(radius * Vec3::new(sin * phi.cos(), sin * phi.sin(), cos));
             }
         }
         let mut tris = Vec::new();
@@ -146,7 +204,7 @@ mod tests {
                 tris.extend([[a, c, b], [b, c, d]]);
             }
         }
-        mesh_triangles(&positions, &tris)
+        (positions, tris)
     }
 
     /// Every triangle offered in order: the specification the tree must match.
@@ -190,6 +248,28 @@ mod tests {
         let tris = sphere_mesh(24, 40);
         check_against_brute_force(&build(tris.clone()), "default builder");
         check_against_brute_force(&median_split(tris), "median split");
+    }
+
+    #[test]
+    fn a_refitted_tree_finds_what_testing_every_moved_triangle_finds() {
+        // The bumpy sphere's vertices, then the same mesh stretched, twisted and moved.
+        let (positions, tris) = sphere_positions(24, 40);
+        let bvh = build_numbered(&positions, &tris);
+        let moved: Vec<Vec3> = positions
+            .iter()
+            .map(|p| {
+                let (s, c) = (p.y * 0.8).sin_cos();
+                Vec3::new(p.x * c - p.z * s, p.y * 1.7, p.x * s + p.z * c) * 0.6 + Vec3::new(0.1, -0.2, 0.05)
+            })
+            .collect();
+        let refitted = refit(&bvh, &moved, &tris).expect("no triangle collapsed");
+        assert_eq!(refitted.sources, bvh.sources);
+        check_against_brute_force(&refitted, "refitted");
+        // A triangle that collapses changes which triangles the tree holds: build anew.
+        let mut collapsed = moved.clone();
+        let [a, b, _] = tris[tris.len() / 2];
+        collapsed[b as usize] = collapsed[a as usize];
+        assert_eq!(refit(&bvh, &collapsed, &tris), None);
     }
 
     #[test]

@@ -56,9 +56,28 @@ pub struct PreparedScene {
 impl PreparedScene {
     /// Validates `scene` and derives the tables.
     pub fn new(scene: Scene) -> Result<Self, SceneError> {
-        scene.validate()?;
+        Self::prepare(scene, None)
+    }
+
+    /// [`PreparedScene::new`] of `scene`, a changed version of this one (an
+    /// engine's next frame): a mesh whose triangles are this one's keeps its
+    /// hierarchy, copied when its vertices stayed and refitted when they
+    /// moved ([`crate::bvh_build::refit`]); only new meshes are built (and
+    /// checked: see [`Scene::validate_since`]). The result traces as a
+    /// fresh preparation would.
+    pub fn update(&self, scene: Scene) -> Result<Self, SceneError> {
+        Self::prepare(scene, Some(self))
+    }
+
+    fn prepare(scene: Scene, previous: Option<&PreparedScene>) -> Result<Self, SceneError> {
+        scene.validate_since(previous.map(|p| &p.scene))?;
         let bands = BandTable::new(scene.render.bands);
-        let primitives: Vec<Primitive> = scene.objects.iter().map(|o| primitive(&o.shape)).collect();
+        let primitives: Vec<Primitive> = scene
+            .objects
+            .iter()
+            .enumerate()
+            .map(|(i, o)| previous.and_then(|p| p.reuse(i, &o.shape)).unwrap_or_else(|| primitive(&o.shape)))
+            .collect();
         let surfaces: Vec<Surface> =
             scene.objects.iter().map(|o| Surface::new(&scene.materials[o.material].kind, &bands)).collect();
         let texture_uvs = scene
@@ -115,6 +134,28 @@ impl PreparedScene {
             }
         }
         Ok(PreparedScene { scene, bands, primitives, surfaces, texture_uvs, emitters, light_cdf, total_power, plan })
+    }
+
+    /// The primitive of `shape`, object `index` of a changed scene, from
+    /// this scene's: a mesh with the same triangles as this scene's object
+    /// `index` (or, failing that, as any of its meshes) keeps its hierarchy,
+    /// copied or refitted. `None`: build it.
+    fn reuse(&self, index: usize, shape: &Shape) -> Option<Primitive> {
+        let Shape::Mesh { positions, triangles, .. } = shape else { return None };
+        let same_triangles =
+            |i: &usize| matches!(&self.scene.objects[*i].shape, Shape::Mesh { triangles: t, .. } if t == triangles);
+        let i = Some(index)
+            .filter(|i| *i < self.scene.objects.len() && same_triangles(i))
+            .or_else(|| (0..self.scene.objects.len()).find(same_triangles))?;
+        let (Shape::Mesh { positions: before, .. }, Primitive::Mesh(bvh)) =
+            (&self.scene.objects[i].shape, &self.primitives[i])
+        else {
+            return None;
+        };
+        if before == positions {
+            return Some(Primitive::Mesh(bvh.clone()));
+        }
+        crate::bvh_build::refit(bvh, positions, triangles).map(Primitive::Mesh)
     }
 
     /// Simulates every effect, ignoring the plan (see [`EffectPlan::simulate_everything`]).

@@ -103,3 +103,49 @@ fn a_fine_mesh_sphere_renders_the_analytic_spheres_image_on_every_backend() {
         assert!(r >= 0.95, "{}: correlation {r:.4}", backend.name());
     }
 }
+
+#[test]
+fn an_updated_scene_keeps_its_hierarchies_and_traces_as_a_fresh_one() {
+    use prismatic_core::{Backend, NoProgress, PreparedScene};
+    let before = prismatic_conformance::scenes::glass_mesh_sphere(20);
+    let Primitive::Mesh(built) = &before.primitives[1] else { unreachable!("object 1 is the mesh") };
+    // The camera moves: the mesh's hierarchy is copied.
+    let mut scene = before.scene.clone();
+    scene.camera.position += Vec3::new(0.3, 0.1, 0.0);
+    let camera_moved = before.update(scene.clone()).unwrap();
+    assert_eq!(camera_moved.primitives[1], before.primitives[1]);
+    // The mesh moves and stretches: the same tree, refitted.
+    let Shape::Mesh { positions, .. } = &mut scene.objects[1].shape else { unreachable!() };
+    for p in positions.iter_mut() {
+        *p = Vec3::new(p.x * 1.3, p.y * 0.9 + 0.05, p.z) + Vec3::new(0.2, 0.0, -0.1);
+    }
+    let updated = before.update(scene.clone()).unwrap();
+    let Primitive::Mesh(refitted) = &updated.primitives[1] else { unreachable!() };
+    assert_eq!((refitted.nodes.len(), &refitted.sources), (built.nodes.len(), &built.sources));
+    assert_ne!(refitted.nodes[0], built.nodes[0], "the root's box grew with the mesh");
+    // Traced, the refitted scene is the freshly built one, on the reference and the CPU backend.
+    let fresh = PreparedScene::new(scene).unwrap();
+    assert_ne!(updated.primitives[1], fresh.primitives[1], "a rebuilt tree has another shape");
+    let reference = trace_photons(&fresh, &mut NoProgress);
+    assert!(reference.photons.len() > 1000, "{} photons", reference.photons.len());
+    assert_eq!(trace_photons(&updated, &mut NoProgress), reference);
+    let mut cpu = prismatic_cpu::CpuBackend::new();
+    let map = cpu.prepare(&updated).unwrap().photon_map(0, &mut NoProgress).unwrap();
+    assert_eq!(map, cpu.prepare(&fresh).unwrap().photon_map(0, &mut NoProgress).unwrap());
+}
+
+#[test]
+fn an_update_still_refuses_glass_that_is_not_closed() {
+    let before = prismatic_conformance::scenes::glass_mesh_sphere(6);
+    // The glass mesh loses a triangle.
+    let mut open = before.scene.clone();
+    let Shape::Mesh { triangles, .. } = &mut open.objects[1].shape else { unreachable!() };
+    triangles.remove(triangles.len() / 2);
+    let refusal = |r: Result<prismatic_core::PreparedScene, _>| r.err().map(|e: prismatic_core::SceneError| e.reason);
+    assert!(refusal(before.update(open.clone())).is_some_and(|r| r.contains("needs a closed mesh")));
+    // An open diffuse mesh (never checked) that becomes glass.
+    open.materials[1].kind = open.materials[0].kind.clone();
+    let diffuse = prismatic_core::PreparedScene::new(open.clone()).expect("an open diffuse mesh is fine");
+    open.materials[1].kind = before.scene.materials[1].kind.clone();
+    assert!(refusal(diffuse.update(open)).is_some_and(|r| r.contains("needs a closed mesh")));
+}

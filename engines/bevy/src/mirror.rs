@@ -155,7 +155,13 @@ pub(crate) fn mirror_scene(
         return;
     }
     *last = Some(scene.clone());
-    match PreparedScene::new(scene) {
+    // From the last prepared scene: meshes that did not change keep their
+    // hierarchies (copied, or refitted where their vertices moved).
+    let prepared = match &current {
+        Some(c) => c.scene.update(scene),
+        None => PreparedScene::new(scene),
+    };
+    match prepared {
         Ok(prepared) => {
             let generation = current.map_or(1, |c| c.generation + 1);
             commands.insert_resource(CausticScene { scene: Arc::new(prepared), generation });

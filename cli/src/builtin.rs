@@ -68,12 +68,20 @@ pub struct GeneratedScene {
 }
 
 /// The generated built-in scenes.
-pub const GENERATED_SCENES: [GeneratedScene; 1] = [GeneratedScene {
-    name: "dispersion-test",
-    description: "glTF: a grid of prisms, index 1.0 to 2.42 by row, KHR_materials_dispersion 0 to 5 by column",
-    document: crate::dispersion_test::document,
-    settings: crate::dispersion_test::settings,
-}];
+pub const GENERATED_SCENES: [GeneratedScene; 2] = [
+    GeneratedScene {
+        name: "dispersion-test",
+        description: "glTF: a grid of prisms, index 1.0 to 2.42 by row, KHR_materials_dispersion 0 to 5 by column",
+        document: crate::dispersion_test::document,
+        settings: crate::dispersion_test::settings,
+    },
+    GeneratedScene {
+        name: "sunlit-glass",
+        description: "glTF: amber and green glass and a flint prism in the sun on a tiled floor before a wall",
+        document: crate::sunlit_glass::document,
+        settings: crate::sunlit_glass::settings,
+    },
+];
 
 /// The generated built-in scene called `name`.
 pub fn find_generated(name: &str) -> Option<&'static GeneratedScene> {

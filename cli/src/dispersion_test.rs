@@ -8,7 +8,8 @@
 //! project writes it as glTF and reads it back through the glTF importer,
 //! so the scene is also a test of both.
 
-use crate::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, GltfTexture, prism};
+use crate::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, prism};
+use crate::patterns::{graph_paper, tiles};
 use prismatic_core::color::ToneMap;
 use prismatic_core::scene::RenderSettings;
 use prismatic_core::{BandSpec, Estimator};
@@ -26,34 +27,6 @@ const SUN_IRRADIANCE: f32 = 700.0 / (14.0 * 14.0);
 /// Where the prism of `row` and `column` stands (its centre on the floor).
 pub fn prism_centre(row: usize, column: usize) -> [f32; 2] {
     [(column as f32 - 2.0) * SPACING, (row as f32 - 2.0) * SPACING]
-}
-
-/// glTF's code for repeat wrapping.
-const REPEAT: u32 = 10497;
-
-/// Pale stone tiles with dark joints, 2×2 tiles of 32 texels.
-fn tiles() -> GltfTexture {
-    let pixels = (0..64 * 64)
-        .map(|i| {
-            let (x, y) = (i % 64, i / 64);
-            let joint = x % 32 < 2 || y % 32 < 2;
-            // Alternate tiles a shade apart, as real stone varies.
-            let shade = if (x / 32 + y / 32) % 2 == 0 { 0 } else { 14 };
-            if joint { [96, 90, 84] } else { [226 - shade, 218 - shade, 200 - shade] }
-        })
-        .collect();
-    GltfTexture { width: 64, height: 64, pixels, nearest: false, wrap: [REPEAT; 2] }
-}
-
-/// Blue-grey graph paper: lines every 16 texels, whose bending shows what each prism refracts.
-fn graph_paper() -> GltfTexture {
-    let pixels = (0..64 * 64)
-        .map(|i| {
-            let (x, y) = (i % 64, i / 64);
-            if x % 16 == 0 || y % 16 == 0 { [40, 52, 82] } else { [150, 162, 186] }
-        })
-        .collect();
-    GltfTexture { width: 64, height: 64, pixels, nearest: false, wrap: [REPEAT; 2] }
 }
 
 /// The scene as a glTF document.

@@ -11,11 +11,13 @@ pub mod obj;
 pub mod output;
 pub mod partial;
 pub mod passes;
+pub mod patterns;
 pub mod progress_bar;
 pub mod render_job;
 pub mod scene_file;
 pub mod settings;
 pub mod study;
+pub mod sunlit_glass;
 pub mod texture_file;
 
 use scene_file::{SceneDocument, SceneFileError};

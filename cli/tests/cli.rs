@@ -154,11 +154,9 @@ fn unknown_scenes_and_bad_flags_exit_2() {
     let dir = tempfile::tempdir().unwrap();
     let o = prismatic(&["render", "teapot"], dir.path());
     assert_eq!(o.status.code(), Some(2));
-    assert!(
-        text(&o)
-            .1
-            .contains("built-in scenes are: spectrum, caustic, sphere, prism, recombine, rainbow, dispersion-test")
-    );
+    assert!(text(&o).1.contains(
+        "built-in scenes are: spectrum, caustic, sphere, prism, recombine, rainbow, dispersion-test, sunlit-glass"
+    ));
     let o = prismatic(&["render", "sphere", "--bands", "0"], dir.path());
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o).1.contains("--bands: must be"), "{}", text(&o).1);

@@ -393,3 +393,19 @@ fn a_base_colour_texture_is_read_with_its_sampler_and_texture_coordinates() {
         assert!(!out.exists(), "{name}");
     }
 }
+
+#[test]
+fn the_sunlit_glass_scene_brings_coloured_glass_textures_and_the_sun_through_the_importer() {
+    let doc = prismatic_cli::load_scene("sunlit-glass").unwrap_or_else(|e| panic!("{e}"));
+    doc.validate().unwrap_or_else(|e| panic!("{e}"));
+    assert!(doc.warnings.is_empty(), "{:?}", doc.warnings);
+    assert!(matches!(doc.scene.lights[..], [Light::Sun { .. }]), "{:?}", doc.scene.lights);
+    let kinds: Vec<&MaterialKind> = doc.scene.objects.iter().map(|o| &doc.scene.materials[o.material].kind).collect();
+    let textured = kinds.iter().filter(|k| matches!(k, MaterialKind::Diffuse { texture: Some(_), .. })).count();
+    let coloured = kinds.iter().filter(|k| matches!(k, MaterialKind::Dielectric { attenuation: Some(_), .. })).count();
+    let dispersive = kinds
+        .iter()
+        .filter(|k| matches!(k, MaterialKind::Dielectric { dispersion, .. } if !dispersion.is_constant()))
+        .count();
+    assert_eq!((textured, coloured, dispersive), (2, 2, 2));
+}

@@ -171,20 +171,26 @@ fn broken_gltf_files_name_the_element_exit_2_and_write_nothing() {
         ("not-json.gltf", "{ this is not json".into(), "not-json.gltf: "),
     ];
     for (name, text, expected) in cases {
-        let path = dir.path().join(name);
-        std::fs::write(&path, text).unwrap();
-        let out = dir.path().join("out.png");
-        let run = Command::new(env!("CARGO_BIN_EXE_prismatic"))
-            .args(["render", path.to_str().unwrap(), "-o"])
-            .arg(&out)
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&run.stderr);
-        assert_eq!(run.status.code(), Some(2), "{name}: {stderr}");
-        assert!(stderr.contains(expected), "{name}: expected «{expected}» in {stderr}");
-        assert!(!stderr.contains("panicked"), "{name}: {stderr}");
-        assert!(!out.exists(), "{name}: wrote an image");
+        assert_render_refused(dir.path(), name, &text, expected);
     }
+}
+
+/// `prismatic render` of glTF `text`, written to `dir/name`, exits 2 with
+/// `expected` in its message, without a panic or an image.
+fn assert_render_refused(dir: &Path, name: &str, text: &str, expected: &str) {
+    let path = dir.join(name);
+    std::fs::write(&path, text).unwrap();
+    let out = dir.join("out.png");
+    let run = Command::new(env!("CARGO_BIN_EXE_prismatic"))
+        .args(["render", path.to_str().unwrap(), "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{name}: {stderr}");
+    assert!(stderr.contains(expected), "{name}: expected «{expected}» in {stderr}");
+    assert!(!stderr.contains("panicked"), "{name}: {stderr}");
+    assert!(!out.exists(), "{name}: wrote an image");
 }
 
 /// The built-in DispersionTest-style grid. Its glass follows the
@@ -379,18 +385,7 @@ fn a_base_colour_texture_is_read_with_its_sampler_and_texture_coordinates() {
         ("missing.gltf", "\"uri\": \"missing.png\"", "images[0]: cannot read the image"),
         ("untyped.gltf", "\"bufferView\": 5", "images[0]: an image in a buffer view needs a mimeType"),
     ] {
-        let path = dir.path().join(name);
-        std::fs::write(&path, json.replace(in_buffer, image)).unwrap();
-        let out = dir.path().join("out.png");
-        let run = Command::new(env!("CARGO_BIN_EXE_prismatic"))
-            .args(["render", path.to_str().unwrap(), "-o"])
-            .arg(&out)
-            .output()
-            .unwrap();
-        let stderr = String::from_utf8_lossy(&run.stderr);
-        assert_eq!(run.status.code(), Some(2), "{name}: {stderr}");
-        assert!(stderr.contains(reason), "{name}: expected «{reason}» in {stderr}");
-        assert!(!out.exists(), "{name}");
+        assert_render_refused(dir.path(), name, &json.replace(in_buffer, image), reason);
     }
 }
 

@@ -26,13 +26,7 @@ pub struct HitX8 {
 pub fn intersect_scene(scene: &PreparedScene, ray: &RayX8, t_max: f32x8) -> HitX8 {
     let mut hit = HitX8 { t: t_max, normal: Vec3x8::ZERO, object: f32x8::splat(-1.0), triangle: f32x8::ZERO };
     for (k, prim) in scene.primitives.iter().enumerate() {
-        let (mask, t, normal, triangle) = match prim {
-            Primitive::Mesh(bvh) => intersect_mesh(bvh, ray, hit.t),
-            _ => {
-                let (mask, t, normal) = intersect_primitive(prim, ray, hit.t);
-                (mask, t, normal, f32x8::ZERO)
-            }
-        };
+        let (mask, t, normal, triangle) = intersect_primitive(prim, ray, hit.t);
         if mask.any() {
             hit.t = mask.select(t, hit.t);
             hit.normal = Vec3x8::select(mask, normal, hit.normal);
@@ -59,10 +53,10 @@ pub fn occluded(scene: &PreparedScene, ray: &RayX8, dist: f32x8) -> f32x8 {
     blocked
 }
 
-/// Hits with `0 < t < t_max`: (mask, t, outward normal).
+/// Hits with `0 < t < t_max`: (mask, t, outward normal, a mesh's triangle as a float, else 0).
 #[inline]
-fn intersect_primitive(prim: &Primitive, ray: &RayX8, t_max: f32x8) -> (f32x8, f32x8, Vec3x8) {
-    match prim {
+fn intersect_primitive(prim: &Primitive, ray: &RayX8, t_max: f32x8) -> (f32x8, f32x8, Vec3x8, f32x8) {
+    let (mask, t, normal) = match prim {
         Primitive::Sphere { center, radius } => sphere(ray, Vec3x8::splat(*center), *radius, t_max),
         Primitive::Plane { point, normal } => {
             let n = Vec3x8::splat(*normal);
@@ -77,11 +71,9 @@ fn intersect_primitive(prim: &Primitive, ray: &RayX8, t_max: f32x8) -> (f32x8, f
             (valid & in_range(t, t_max) & inside, t, n)
         }
         Primitive::Convex { faces } => convex(ray, faces, t_max),
-        Primitive::Mesh(bvh) => {
-            let (mask, t, normal, _) = intersect_mesh(bvh, ray, t_max);
-            (mask, t, normal)
-        }
-    }
+        Primitive::Mesh(bvh) => return intersect_mesh(bvh, ray, t_max),
+    };
+    (mask, t, normal, f32x8::ZERO)
 }
 
 #[inline]

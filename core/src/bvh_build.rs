@@ -28,6 +28,17 @@ pub fn build(triangles: Vec<Triangle>) -> MeshBvh {
     median_split(triangles)
 }
 
+/// The hierarchy over a mesh's triangles that have an area; its `sources`
+/// index `triangles`.
+pub fn build_mesh(positions: &[Vec3], triangles: &[[u32; 3]]) -> MeshBvh {
+    let (numbers, kept): (Vec<u32>, Vec<Triangle>) = numbered_mesh_triangles(positions, triangles).unzip();
+    let mut bvh = build(kept);
+    for s in &mut bvh.sources {
+        *s = numbers[*s as usize];
+    }
+    bvh
+}
+
 /// `bvh` over its mesh with the vertices moved to `positions`: every
 /// triangle recomputed through its source, every box refitted from the
 /// leaves up. The tree keeps its shape, so a large deformation slows the
@@ -175,14 +186,6 @@ mod tests {
         mesh_triangles(&positions, &tris)
     }
 
-    /// The tree over a mesh, its sources numbering the mesh's triangles.
-    fn build_numbered(positions: &[Vec3], tris: &[[u32; 3]]) -> MeshBvh {
-        let (numbers, kept): (Vec<u32>, Vec<Triangle>) = numbered_mesh_triangles(positions, tris).unzip();
-        let mut bvh = build(kept);
-        bvh.sources.iter_mut().for_each(|s| *s = numbers[*s as usize]);
-        bvh
-    }
-
     /// The bumpy sphere's vertices and triangles.
     fn sphere_positions(rings: u32, segments: u32) -> (Vec<Vec3>, Vec<[u32; 3]>) {
         let mut positions = Vec::new();
@@ -254,7 +257,7 @@ mod tests {
     fn a_refitted_tree_finds_what_testing_every_moved_triangle_finds() {
         // The bumpy sphere's vertices, then the same mesh stretched, twisted and moved.
         let (positions, tris) = sphere_positions(24, 40);
-        let bvh = build_numbered(&positions, &tris);
+        let bvh = build_mesh(&positions, &tris);
         let moved: Vec<Vec3> = positions
             .iter()
             .map(|p| {

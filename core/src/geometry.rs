@@ -9,7 +9,7 @@ use alloc::vec::Vec;
 use glam::Vec3;
 
 pub use crate::ray::Ray;
-pub use crate::triangle::{Triangle, mesh_triangles, numbered_mesh_triangles};
+pub use crate::triangle::{Triangle, mesh_triangles};
 
 /// A plane `normal · x = offset` bounding a convex solid (inside where `<`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -109,12 +109,7 @@ impl Primitive {
     /// A mesh primitive over `positions` and `triangles` (degenerate
     /// triangles left out); the hierarchy's `sources` index `triangles`.
     pub fn mesh(positions: &[Vec3], triangles: &[[u32; 3]]) -> Self {
-        let (numbers, kept): (Vec<u32>, Vec<Triangle>) = numbered_mesh_triangles(positions, triangles).unzip();
-        let mut bvh = crate::bvh_build::build(kept);
-        for s in &mut bvh.sources {
-            *s = numbers[*s as usize];
-        }
-        Primitive::Mesh(bvh)
+        Primitive::Mesh(crate::bvh_build::build_mesh(positions, triangles))
     }
 }
 

@@ -29,6 +29,14 @@ pub fn surface_skin(origin: Vec3x8) -> f32x8 {
     f32x8::splat(SURFACE_SKIN_FACTOR) * offset
 }
 
+/// Search limits: `limit` in the lanes of `mask`, −1 in the others. A
+/// negative limit finds nothing and enters no box, so a lane with nothing
+/// to look for (an ended path, an unlit point) costs a traversal nothing.
+#[inline]
+pub fn limit_where(mask: f32x8, limit: f32x8) -> f32x8 {
+    mask.select(limit, f32x8::splat(-1.0))
+}
+
 #[inline]
 pub fn in_range(t: f32x8, t_max: f32x8) -> f32x8 {
     gt(t, f32x8::ZERO) & lt(t, t_max)

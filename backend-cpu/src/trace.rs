@@ -14,7 +14,7 @@
 use crate::emit::Emitters;
 use crate::intersect::{HitX8, intersect_scene};
 use crate::optics::{offset_origin, reflect, scatter_dielectric};
-use crate::ray::RayX8;
+use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, lt, random_f32};
 use prismatic_core::photon::{Photon, TraceStats, WHITE_BAND, oct_encode};
 use prismatic_core::prepared::PreparedScene;
@@ -223,7 +223,7 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
             break;
         }
         let ray = RayX8 { origin, dir };
-        let hit = intersect_scene(ctx.scene, &ray, f32x8::splat(f32::INFINITY));
+        let hit = intersect_scene(ctx.scene, &ray, limit_where(active, f32x8::splat(f32::INFINITY)));
         let mut s = ctx.classify(&hit, None);
         let point = ray.at(hit.t);
         let ended = end_paths(ctx, &mut sink, active, &s, point, dir, flux, emission, band, bounces, None);
@@ -298,7 +298,7 @@ fn trace_bands(
         let mut stored: [Option<Photon>; 8] = [None; 8];
         while active.any() {
             let ray = RayX8 { origin, dir };
-            let hit = intersect_scene(ctx.scene, &ray, f32x8::splat(f32::INFINITY));
+            let hit = intersect_scene(ctx.scene, &ray, limit_where(active, f32x8::splat(f32::INFINITY)));
             let s = ctx.classify(&hit, Some(chunk));
             let point = ray.at(hit.t);
             let ended =

@@ -13,7 +13,7 @@
 
 use crate::intersect::{HitX8, intersect_scene, occluded};
 use crate::optics::{fresnel, interface, offset_origin, reflect, refract};
-use crate::ray::RayX8;
+use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, ge, gt, lt};
 use glam::Vec3;
 use prismatic_core::Image;
@@ -228,7 +228,7 @@ impl Shader<'_> {
                     return lit.select(f32x8::splat(power / (PI * radius * radius)) * cos_s, f32x8::ZERO);
                 }
                 let shadow = RayX8 { origin: offset_origin(p, n, -a), dir: -a };
-                let blocked = occluded(self.scene, &shadow, lit.select(along, f32x8::ZERO));
+                let blocked = occluded(self.scene, &shadow, limit_where(lit, along));
                 (lit & !blocked).select(f32x8::splat(power / (PI * radius * radius)) * cos_s, f32x8::ZERO)
             }
             Light::Sun { direction, irradiance } => {
@@ -239,7 +239,7 @@ impl Shader<'_> {
                     return lit.select(f32x8::splat(*irradiance) * cos_s, f32x8::ZERO);
                 }
                 let shadow = RayX8 { origin: offset_origin(p, n, to_sun), dir: to_sun };
-                let blocked = occluded(self.scene, &shadow, lit.select(f32x8::splat(f32::INFINITY), f32x8::ZERO));
+                let blocked = occluded(self.scene, &shadow, limit_where(lit, f32x8::splat(f32::INFINITY)));
                 (lit & !blocked).select(f32x8::splat(*irradiance) * cos_s, f32x8::ZERO)
             }
         }
@@ -265,7 +265,7 @@ impl Shader<'_> {
         }
         let origin = offset_origin(p, n, l);
         let reach = (Vec3x8::splat(light) - origin).length_squared().sqrt();
-        let blocked = occluded(self.scene, &RayX8 { origin, dir: l }, facing.select(reach, f32x8::ZERO));
+        let blocked = occluded(self.scene, &RayX8 { origin, dir: l }, limit_where(facing, reach));
         (l, dist, cos_s, facing & !blocked)
     }
 }

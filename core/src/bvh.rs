@@ -4,6 +4,7 @@
 //! [`NearestTriangle`], whatever order the nodes are visited in, so the
 //! tree's shape changes speed, never a hit.
 
+use crate::bvh_wide::{WideNode, collapse};
 use crate::ray::Ray;
 use crate::tolerance::surface_skin;
 use crate::triangle::{NearestTriangle, Triangle, intersect_triangle};
@@ -45,6 +46,9 @@ pub struct MeshBvh {
     /// For each of `triangles`, its index in the list the tree was built
     /// from (texture coordinates and refits look the corners up by it).
     pub sources: Vec<u32>,
+    /// The same tree four-wide ([`collapse`]d from `nodes`), for
+    /// traversals that test four boxes at once (the CPU's packets).
+    pub wide: Vec<WideNode>,
 }
 
 /// A ray's reciprocal direction for slab tests: components of magnitude
@@ -65,9 +69,17 @@ pub fn box_entry(origin: Vec3, inv: Vec3, lo: Vec3, hi: Vec3, limit: f32) -> Opt
 }
 
 impl MeshBvh {
-    /// Memory of the nodes, triangles and their sources, in bytes.
+    /// The tree of `nodes` over `triangles` (in leaf order, each from
+    /// `sources` in the list it was built from), with its wide form.
+    pub fn new(nodes: Vec<BvhNode>, triangles: Vec<Triangle>, sources: Vec<u32>) -> Self {
+        let wide = collapse(&nodes);
+        MeshBvh { nodes, triangles, sources, wide }
+    }
+
+    /// Memory of the nodes (binary and wide), triangles and their sources, in bytes.
     pub fn bytes(&self) -> usize {
         self.nodes.len() * core::mem::size_of::<BvhNode>()
+            + self.wide.len() * core::mem::size_of::<WideNode>()
             + self.triangles.len() * (core::mem::size_of::<Triangle>() + core::mem::size_of::<u32>())
     }
 

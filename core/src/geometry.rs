@@ -5,6 +5,7 @@
 //! the facing side with the sign of `dot(direction, normal)`.
 
 use crate::bvh::MeshBvh;
+use alloc::sync::Arc;
 use alloc::vec::Vec;
 use glam::Vec3;
 
@@ -56,8 +57,9 @@ pub enum Primitive {
         faces: Vec<HalfSpace>,
     },
     /// Triangle mesh (degenerate triangles removed) in a bounding volume
-    /// hierarchy.
-    Mesh(MeshBvh),
+    /// hierarchy, shared: each pass's copy of the prepared scene and an
+    /// unchanged mesh of an updated scene hold the same one.
+    Mesh(Arc<MeshBvh>),
 }
 
 /// Nearest hit of a ray with a primitive: distance and outward unit normal.
@@ -109,7 +111,7 @@ impl Primitive {
     /// A mesh primitive over `positions` and `triangles` (degenerate
     /// triangles left out); the hierarchy's `sources` index `triangles`.
     pub fn mesh(positions: &[Vec3], triangles: &[[u32; 3]]) -> Self {
-        Primitive::Mesh(crate::bvh_build::build_mesh(positions, triangles))
+        Primitive::Mesh(Arc::new(crate::bvh_build::build_mesh(positions, triangles)))
     }
 }
 

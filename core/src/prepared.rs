@@ -10,6 +10,7 @@ use crate::scene::{Light, Scene, SceneError, Shape};
 use crate::surface::Surface;
 use crate::texture::TriangleUv;
 use crate::tolerance;
+use alloc::sync::Arc;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
 
@@ -153,9 +154,9 @@ impl PreparedScene {
             return None;
         };
         if before == positions {
-            return Some(Primitive::Mesh(bvh.clone()));
+            return Some(Primitive::Mesh(Arc::clone(bvh)));
         }
-        crate::bvh_build::refit(bvh, positions, triangles).map(Primitive::Mesh)
+        crate::bvh_build::refit(bvh, positions, triangles).map(|refitted| Primitive::Mesh(Arc::new(refitted)))
     }
 
     /// Simulates every effect, ignoring the plan (see [`EffectPlan::simulate_everything`]).

@@ -1,6 +1,6 @@
 //! glTF 2.0 scenes (`.gltf`, `.glb`): triangle meshes placed by their node
 //! transforms, materials from `pbrMetallicRoughness` (with the base-colour
-//! texture on `TEXCOORD_0` and its sampler) and the transmission, IOR,
+//! texture on `TEXCOORD_0`, its sampler and its `KHR_texture_transform`) and the transmission, IOR,
 //! volume and dispersion extensions, `KHR_lights_punctual` lights, and the
 //! first camera (else one that frames the scene).
 //!
@@ -12,7 +12,7 @@
 
 use crate::scene_file::document::{SceneDocument, SceneFileError};
 use crate::texture_file;
-use glam::{Mat4, Vec2, Vec3};
+use glam::{Affine2, Mat4, Vec2, Vec3};
 use gltf::khr_lights_punctual::Kind;
 use gltf::texture::{MagFilter, WrappingMode};
 use prismatic_core::Dispersion;
@@ -75,7 +75,9 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
     // Images are decoded when a material shows one, each once.
     let mut images = Images { json: gltf.document.as_json(), base, buffers: &buffers, decoded: HashMap::new() };
     let mut out = GltfScene::default();
-    let mut material_of: Vec<Option<usize>> = vec![None; gltf.document.materials().len() + 1];
+    // By glTF material (the default one last): its index in `out.materials`
+    // and the transform of its base-colour texture's coordinates.
+    let mut material_of: Vec<Option<(usize, Option<Affine2>)>> = vec![None; gltf.document.materials().len() + 1];
     let scene = gltf.document.default_scene().or_else(|| gltf.document.scenes().next());
     let Some(scene) = scene else {
         return Err(GltfError::new("scenes", "the file has no scene"));
@@ -103,18 +105,21 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
                 if primitive.morph_targets().next().is_some() {
                     out.warnings.push(format!("{prim_path}: morph targets ignored"));
                 }
-                let shape = mesh_shape(&primitive, &buffers, world, &prim_path)?;
+                let mut shape = mesh_shape(&primitive, &buffers, world, &prim_path)?;
                 let slot = primitive.material().index().map_or(material_of.len() - 1, |i| i);
-                let material = match material_of[slot] {
+                let (material, uv_transform) = match material_of[slot] {
                     Some(m) => m,
                     None => {
-                        let m = material(&primitive.material(), &mut images, &mut out.warnings)?;
+                        let (m, uv_transform) = material(&primitive.material(), &mut images, &mut out.warnings)?;
                         out.elements.push((format!("material.{}", m.name), material_path(&primitive.material())));
                         out.materials.push(m);
-                        material_of[slot] = Some(out.materials.len() - 1);
-                        out.materials.len() - 1
+                        material_of[slot] = Some((out.materials.len() - 1, uv_transform));
+                        (out.materials.len() - 1, uv_transform)
                     }
                 };
+                if let (Some(t), Shape::Mesh { uvs, .. }) = (uv_transform, &mut shape) {
+                    uvs.iter_mut().for_each(|uv| *uv = t.transform_point2(*uv));
+                }
                 // The scene's checks (closed glass, …) name the primitive.
                 let object = format!("object[{}]", out.objects.len());
                 out.elements.push((format!("{object}.triangles"), format!("{prim_path}.indices")));
@@ -231,17 +236,20 @@ struct Images<'a> {
 }
 
 impl Images<'_> {
-    /// The base-colour texture `info` names, with its sampler; `None` (and
-    /// a line in `unused`) when it reads a texture coordinate set other than 0.
+    /// The base-colour texture `info` names, with its sampler and the
+    /// `KHR_texture_transform` of its coordinates; `None` (and a line in
+    /// `unused`) when it reads a texture coordinate set other than 0.
     fn base_color(
         &mut self,
         info: &gltf::texture::Info<'_>,
         unused: &mut Vec<&'static str>,
-    ) -> Result<Option<Texture>, GltfError> {
-        if info.tex_coord() != 0 {
+    ) -> Result<Option<(Texture, Option<Affine2>)>, GltfError> {
+        let transform = info.texture_transform();
+        if transform.as_ref().and_then(|t| t.tex_coord()).unwrap_or(info.tex_coord()) != 0 {
             unused.push("baseColorTexture on a texture coordinate set other than 0");
             return Ok(None);
         }
+        let transform = transform.map(|t| uv_transform(t.offset(), t.rotation(), t.scale()));
         let texture = info.texture();
         let image = texture.source();
         let decoded = match self.decoded.get(&image.index()) {
@@ -262,10 +270,11 @@ impl Images<'_> {
             Some(MagFilter::Nearest) => Filter::Nearest,
             _ => Filter::Linear,
         };
-        Ok(Some(Texture {
+        let texture = Texture {
             sampler: Sampler { filter, wrap_u: wrap(sampler.wrap_s()), wrap_v: wrap(sampler.wrap_t()) },
             ..decoded
-        }))
+        };
+        Ok(Some((texture, transform)))
     }
 
     /// An image's pixels as 8-bit sRGB texels (grey images as grey, alpha
@@ -310,12 +319,21 @@ impl Images<'_> {
     }
 }
 
-/// The prismatic material of a glTF material; what it leaves out goes to `warnings`.
+/// `KHR_texture_transform`'s T · R · S on texture coordinates: scale, then
+/// rotate, then offset. Its rotation turns u toward −v (rows (cos, sin) and
+/// (−sin, cos)), as the Khronos sample viewer, three.js and Bevy read it:
+/// glam's angle is its negative.
+fn uv_transform(offset: [f32; 2], rotation: f32, scale: [f32; 2]) -> Affine2 {
+    Affine2::from_scale_angle_translation(scale.into(), -rotation, offset.into())
+}
+
+/// The prismatic material of a glTF material, with the transform of its
+/// base-colour texture's coordinates; what it leaves out goes to `warnings`.
 fn material(
     m: &gltf::Material<'_>,
     images: &mut Images<'_>,
     warnings: &mut Vec<String>,
-) -> Result<Material, GltfError> {
+) -> Result<(Material, Option<Affine2>), GltfError> {
     let path = material_path(m);
     let name = m.name().map_or_else(|| path.clone(), str::to_string);
     let pbr = m.pbr_metallic_roughness();
@@ -334,6 +352,7 @@ fn material(
         unused.push("emission (meshes do not emit)");
     }
     let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor());
+    let mut uv_transform = None;
     let kind = if transmission > 0.0 {
         if pbr.roughness_factor() > 0.0 {
             unused.push("roughness of the transmission (glass is smooth)");
@@ -360,12 +379,14 @@ fn material(
             Some(info) => images.base_color(&info, &mut unused)?,
             None => None,
         };
+        let (texture, transform) = texture.unzip();
+        uv_transform = transform.flatten();
         MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture }
     };
     if !unused.is_empty() {
         warnings.push(format!("{path} ({name}): left out: {}", unused.join(", ")));
     }
-    Ok(Material { name, kind })
+    Ok((Material { name, kind }, uv_transform))
 }
 
 /// Where a material is in the file (`materials[3]`).

@@ -389,6 +389,53 @@ fn a_base_colour_texture_is_read_with_its_sampler_and_texture_coordinates() {
     }
 }
 
+/// `KHR_texture_transform` on a base-colour texture moves the mesh's
+/// coordinates by the spec's T · R · S (rows (cos, sin) and (−sin, cos));
+/// a transform that names another coordinate set leaves the texture out,
+/// with a warning.
+#[test]
+fn a_texture_transform_moves_the_texture_coordinates() {
+    use prismatic_cli::gltf_write::GltfTexture;
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    doc.materials[0].base_color_texture =
+        Some(GltfTexture { width: 1, height: 1, pixels: vec![[200, 100, 50]], nearest: false, wrap: [10497; 2] });
+    let uvs = [[0.0, 0.0], [2.0, 0.0], [2.0, 2.0], [0.0, 1.0]];
+    doc.meshes[0].uvs = uvs.to_vec();
+    let ([ox, oy], r, [sx, sy]) = ([0.5f32, 0.25], 0.5f32, [2.0f32, 3.0]);
+    let with_transform = |transform: serde_json::Value| {
+        let mut json: serde_json::Value = serde_json::from_str(&doc.to_json()).unwrap();
+        json["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["extensions"] =
+            serde_json::json!({ "KHR_texture_transform": transform });
+        json["extensionsUsed"].as_array_mut().unwrap().push("KHR_texture_transform".into());
+        json.to_string()
+    };
+    let path = dir.path().join("transformed.gltf");
+    std::fs::write(&path, with_transform(serde_json::json!({ "offset": [ox, oy], "rotation": r, "scale": [sx, sy] })))
+        .unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let Shape::Mesh { uvs: got, .. } = &scene.scene.objects[0].shape else { panic!("a mesh") };
+    for (&[u, v], got) in uvs.iter().zip(got) {
+        let want = [r.cos() * sx * u + r.sin() * sy * v + ox, -r.sin() * sx * u + r.cos() * sy * v + oy];
+        assert!((got.x - want[0]).abs() < 1e-5 && (got.y - want[1]).abs() < 1e-5, "({u}, {v}) → {got}, want {want:?}");
+    }
+    // A transform that names coordinate set 1 (the floor has set 0 only).
+    let path = dir.path().join("other_set.gltf");
+    std::fs::write(&path, with_transform(serde_json::json!({ "texCoord": 1 }))).unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+    assert!(
+        matches!(scene.scene.materials[0].kind, MaterialKind::Diffuse { texture: None, .. }),
+        "{:?}",
+        scene.scene.materials[0].kind
+    );
+    assert!(
+        scene.warnings.iter().any(|w| w.contains("baseColorTexture on a texture coordinate set other than 0")),
+        "{:?}",
+        scene.warnings
+    );
+}
+
 #[test]
 fn the_sunlit_glass_scene_brings_coloured_glass_textures_and_the_sun_through_the_importer() {
     let doc = prismatic_cli::load_scene("sunlit-glass").unwrap_or_else(|e| panic!("{e}"));

@@ -9,8 +9,8 @@
 use crate::ray::{RayX8, in_range, surface_skin};
 use crate::simd::{Vec3x8, ge, gt, lt};
 use prismatic_core::Vec3;
-use prismatic_core::bvh::{BOX_MARGIN, MAX_DEPTH, MeshBvh};
-use prismatic_core::bvh_wide::WIDTH;
+use prismatic_core::bvh::{BOX_MARGIN, MAX_DEPTH, MeshBvh, WIDTH};
+
 use prismatic_core::geometry::Triangle;
 use prismatic_core::tolerance::BARYCENTRIC_EPS;
 use wide::f32x8;

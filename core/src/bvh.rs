@@ -1,10 +1,10 @@
-//! A bounding volume hierarchy over a mesh's triangles: the flat node
-//! layout every backend traverses and the scalar traversal that the packet
-//! and WGSL traversals mirror. Which triangle a ray hits is decided by
+//! A bounding volume hierarchy over a mesh's triangles: the flat binary
+//! node layout the reference and the WGSL shaders traverse, its four-wide
+//! form the CPU's packets traverse, and the scalar traversal the others
+//! mirror. Which triangle a ray hits is decided by
 //! [`NearestTriangle`], whatever order the nodes are visited in, so the
 //! tree's shape changes speed, never a hit.
 
-use crate::bvh_wide::{WideNode, collapse};
 use crate::ray::Ray;
 use crate::tolerance::surface_skin;
 use crate::triangle::{NearestTriangle, Triangle, intersect_triangle};
@@ -35,6 +35,31 @@ pub struct BvhNode {
     pub count: u32,
 }
 
+/// Slots per wide node.
+pub const WIDTH: usize = 4;
+
+/// A node of the tree's four-wide form: `slots` boxes, each either a wide
+/// child node (`count == 0`: node `first`) or a leaf of `count` triangles
+/// from `first`. A wide node holds up to four of the binary tree's nodes
+/// (a node's children, the largest inner one opened into its own two until
+/// four are held), so a traversal tests four boxes per step and goes half
+/// as deep. The boxes are the binary nodes' own: every box test a wide
+/// traversal makes is one the binary traversal could make, and which
+/// triangle a ray hits is still decided by [`NearestTriangle`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WideNode {
+    /// Box minima.
+    pub lo: [Vec3; WIDTH],
+    /// Box maxima.
+    pub hi: [Vec3; WIDTH],
+    /// Child wide node, or first triangle of a leaf.
+    pub first: [u32; WIDTH],
+    /// Triangles in a leaf slot; 0 for a child node.
+    pub count: [u32; WIDTH],
+    /// Slots in use, from the first (1 to [`WIDTH`]).
+    pub slots: u32,
+}
+
 /// A mesh's triangles in leaf order and the tree over them (node 0 is the
 /// root; empty when the mesh has no triangle).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -46,8 +71,9 @@ pub struct MeshBvh {
     /// For each of `triangles`, its index in the list the tree was built
     /// from (texture coordinates and refits look the corners up by it).
     pub sources: Vec<u32>,
-    /// The same tree four-wide ([`collapse`]d from `nodes`), for
-    /// traversals that test four boxes at once (the CPU's packets).
+    /// The same tree four-wide (each node four of `nodes`' boxes, see
+    /// [`WideNode`]), for traversals that test four boxes at once (the
+    /// CPU's packets).
     pub wide: Vec<WideNode>,
 }
 
@@ -69,13 +95,6 @@ pub fn box_entry(origin: Vec3, inv: Vec3, lo: Vec3, hi: Vec3, limit: f32) -> Opt
 }
 
 impl MeshBvh {
-    /// The tree of `nodes` over `triangles` (in leaf order, each from
-    /// `sources` in the list it was built from), with its wide form.
-    pub fn new(nodes: Vec<BvhNode>, triangles: Vec<Triangle>, sources: Vec<u32>) -> Self {
-        let wide = collapse(&nodes);
-        MeshBvh { nodes, triangles, sources, wide }
-    }
-
     /// Memory of the nodes (binary and wide), triangles and their sources, in bytes.
     pub fn bytes(&self) -> usize {
         self.nodes.len() * core::mem::size_of::<BvhNode>()

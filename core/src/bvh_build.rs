@@ -2,9 +2,10 @@
 //! reinsertion (multi-threaded, surface-area quality); without `std`, or
 //! when a tree would be deeper than [`MAX_DEPTH`](crate::bvh::MAX_DEPTH), a median split on the
 //! longest axis of the triangles' centres. A mesh whose vertices moved
-//! keeps its tree, refitted.
+//! keeps its tree, refitted. Every tree gets its four-wide form
+//! ([`collapse`]).
 
-use crate::bvh::{BvhNode, MeshBvh};
+use crate::bvh::{BvhNode, MeshBvh, WIDTH, WideNode};
 use crate::triangle::{Triangle, numbered_mesh_triangles};
 use alloc::vec::Vec;
 use glam::Vec3;
@@ -77,7 +78,68 @@ pub fn refit(bvh: &MeshBvh, positions: &[Vec3], triangles: &[[u32; 3]]) -> Optio
         };
         nodes[i as usize] = BvhNode { lo, hi, ..n };
     }
-    Some(MeshBvh::new(nodes, tris, bvh.sources.clone()))
+    Some(tree(nodes, tris, bvh.sources.clone()))
+}
+
+/// The tree of binary `nodes` over `triangles` (in leaf order, each from
+/// `sources` in the list it was built from), with its wide form.
+fn tree(nodes: Vec<BvhNode>, triangles: Vec<Triangle>, sources: Vec<u32>) -> MeshBvh {
+    let wide = collapse(&nodes);
+    MeshBvh { nodes, triangles, sources, wide }
+}
+
+/// The wide tree over binary `nodes` (root first); node 0 is the root's
+/// slots. Empty for an empty tree.
+pub fn collapse(nodes: &[BvhNode]) -> Vec<WideNode> {
+    if nodes.is_empty() {
+        return Vec::new();
+    }
+    let empty =
+        WideNode { lo: [Vec3::ZERO; WIDTH], hi: [Vec3::ZERO; WIDTH], first: [0; WIDTH], count: [0; WIDTH], slots: 0 };
+    let mut wide = Vec::with_capacity(nodes.len() / 3 + 1);
+    wide.push(empty);
+    // (binary node whose subtree a wide node holds, that wide node).
+    let mut todo = Vec::from([(0u32, 0usize)]);
+    while let Some((binary, at)) = todo.pop() {
+        let root = nodes[binary as usize];
+        let mut held = [binary; WIDTH];
+        let mut len = 1;
+        if root.count == 0 {
+            held[..2].copy_from_slice(&[root.first, root.first + 1]);
+            len = 2;
+        }
+        // Open the inner slot with the largest box until four are held.
+        while len < WIDTH {
+            let widest = (0..len)
+                .filter(|&s| nodes[held[s] as usize].count == 0)
+                .max_by(|&a, &b| area(&nodes[held[a] as usize]).total_cmp(&area(&nodes[held[b] as usize])));
+            let Some(s) = widest else { break };
+            let first = nodes[held[s] as usize].first;
+            held[s] = first;
+            held[len] = first + 1;
+            len += 1;
+        }
+        let mut node = WideNode { slots: len as u32, ..empty };
+        for (s, &b) in held[..len].iter().enumerate() {
+            let n = nodes[b as usize];
+            (node.lo[s], node.hi[s], node.count[s]) = (n.lo, n.hi, n.count);
+            node.first[s] = if n.count > 0 {
+                n.first
+            } else {
+                wide.push(empty);
+                todo.push((b, wide.len() - 1));
+                (wide.len() - 1) as u32
+            };
+        }
+        wide[at] = node;
+    }
+    wide
+}
+
+/// Half a box's surface area.
+fn area(n: &BvhNode) -> f32 {
+    let d = (n.hi - n.lo).max(Vec3::ZERO);
+    d.x * d.y + d.y * d.z + d.z * d.x
 }
 
 /// Inner nodes on the longest path from the root to a leaf.
@@ -137,7 +199,7 @@ fn median_split(triangles: Vec<Triangle>) -> MeshBvh {
         todo.extend([child as usize, child as usize + 1]);
     }
     let triangles = order.iter().map(|&i| triangles[i as usize]).collect();
-    MeshBvh::new(nodes, triangles, order)
+    tree(nodes, triangles, order)
 }
 
 #[cfg(feature = "std")]
@@ -171,7 +233,7 @@ mod sah {
             })
             .collect();
         let triangles = bvh.primitive_indices.iter().map(|&i| triangles[i as usize]).collect();
-        MeshBvh::new(nodes, triangles, bvh.primitive_indices)
+        tree(nodes, triangles, bvh.primitive_indices)
     }
 }
 
@@ -246,6 +308,46 @@ mod tests {
             assert_eq!(tree, brute_force(&bvh.triangles, &ray, t_max), "{label}: ray {k} {ray:?}");
             assert_eq!(bvh.hits_any(&ray, 0.0, t_max), tree.is_some(), "{label}: any hit, ray {k}");
         }
+    }
+
+    /// The leaves (first, count) under wide node `at`.
+    fn leaves(wide: &[WideNode], at: usize, out: &mut Vec<(u32, u32)>) {
+        let n = &wide[at];
+        for s in 0..n.slots as usize {
+            if n.count[s] > 0 {
+                out.push((n.first[s], n.count[s]));
+            } else {
+                leaves(wide, n.first[s] as usize, out);
+            }
+        }
+    }
+
+    #[test]
+    fn the_wide_form_holds_every_leaf_of_the_binary_tree_once() {
+        // 500 small triangles on a 10 × 10 × 5 lattice.
+        let positions: Vec<Vec3> = (0..500u32)
+            .flat_map(|i| {
+                let p = Vec3::new((i % 10) as f32, (i / 10 % 10) as f32, (i / 100) as f32);
+                [p, p + Vec3::X * 0.5, p + Vec3::Y * 0.5]
+            })
+            .collect();
+        let corners: Vec<[u32; 3]> = (0..500u32).map(|i| [3 * i, 3 * i + 1, 3 * i + 2]).collect();
+        let tris = mesh_triangles(&positions, &corners);
+        for n in [1, 3, 4, 5, 17, 500] {
+            let bvh = build(tris[..n].to_vec());
+            let wide = &bvh.wide;
+            let mut binary: Vec<(u32, u32)> =
+                bvh.nodes.iter().filter(|b| b.count > 0).map(|b| (b.first, b.count)).collect();
+            let mut held = Vec::new();
+            leaves(wide, 0, &mut held);
+            binary.sort_unstable();
+            held.sort_unstable();
+            assert_eq!(held, binary, "{n} triangles");
+            assert!(wide.iter().all(|w| (1..=WIDTH as u32).contains(&w.slots)));
+            // Inner nodes hold four slots unless the tree runs out of inner nodes to open.
+            assert!(wide.len() <= bvh.nodes.len() / 3 + 1, "{n} triangles: {} wide nodes", wide.len());
+        }
+        assert!(collapse(&[]).is_empty());
     }
 
     #[test]

@@ -39,7 +39,6 @@ pub mod validate;
 
 pub mod bvh;
 pub mod bvh_build;
-pub mod bvh_wide;
 pub mod camera;
 pub mod gather;
 pub mod geometry;

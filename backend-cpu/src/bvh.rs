@@ -204,30 +204,18 @@ fn triangle(ray: &RayX8, tri: &Triangle, t_max: f32x8, skin: f32x8) -> (f32x8, f
 #[cfg(test)]
 mod tests {
     use super::*;
+    use prismatic_conformance::scenes::sphere_mesh;
     use prismatic_core::bvh_build::build_mesh;
     use prismatic_core::prepared::offset_origin;
     use prismatic_core::ray::Ray;
     use prismatic_core::rng::random_f32;
+    use prismatic_core::scene::Shape;
 
-    /// A closed, bumpy sphere of 2 · rings · 2 rings triangles (about 14k).
-    fn bumpy_sphere(rings: u32) -> MeshBvh {
-        let segments = 2 * rings;
-        let mut positions = Vec::new();
-        for r in 0..=rings {
-            let theta = core::f32::consts::PI * r as f32 / rings as f32;
-            for s in 0..segments {
-                let phi = core::f32::consts::TAU * s as f32 / segments as f32;
-                let radius = 1.0 + 0.05 * (5.0 * phi).sin() * (3.0 * theta).sin();
-                positions.push(radius * Vec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos()));
-            }
-        }
-        let mut triangles = Vec::new();
-        for r in 0..rings {
-            for s in 0..segments {
-                let (a, b) = (r * segments + s, r * segments + (s + 1) % segments);
-                triangles.extend([[a, a + segments, b], [b, a + segments, b + segments]]);
-            }
-        }
+    /// The conformance suite's closed sphere mesh, 4 · rings² triangles.
+    fn sphere(rings: u32) -> MeshBvh {
+        let Shape::Mesh { positions, triangles, .. } = sphere_mesh(Vec3::ZERO, 1.0, rings) else {
+            unreachable!("sphere_mesh makes a mesh")
+        };
         build_mesh(&positions, &triangles)
     }
 
@@ -237,7 +225,7 @@ mod tests {
     /// scalar traversal's, bit for bit.
     #[test]
     fn packet_hits_are_the_scalar_traversals_bit_for_bit() {
-        let bvh = bumpy_sphere(60);
+        let bvh = sphere(60);
         let mut hits = 0;
         for k in 0..3000u32 {
             let mut dimension = 0;

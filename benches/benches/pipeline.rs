@@ -18,7 +18,7 @@
 //! - `scene/{new,update-camera,update-mesh}/<triangles>`: `sphere` with its
 //!   sphere as a closed mesh, prepared from scratch (every hierarchy
 //!   built) and updated from the last frame's preparation after the camera
-//!   moved (hierarchy copied) or the mesh's vertices moved (refitted).
+//!   moved (hierarchy shared) or the mesh's vertices moved (refitted).
 
 use criterion::{BatchSize, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use prismatic_benches::{frame, paper_config};

@@ -62,7 +62,7 @@ impl PreparedScene {
 
     /// [`PreparedScene::new`] of `scene`, a changed version of this one (an
     /// engine's next frame): a mesh whose triangles are this one's keeps its
-    /// hierarchy, copied when its vertices stayed and refitted when they
+    /// hierarchy, shared when its vertices stayed and refitted when they
     /// moved ([`crate::bvh_build::refit`]); only new meshes are built (and
     /// checked: see [`Scene::validate_since`]). The result traces as a
     /// fresh preparation would.
@@ -140,7 +140,7 @@ impl PreparedScene {
     /// The primitive of `shape`, object `index` of a changed scene, from
     /// this scene's: a mesh with the same triangles as this scene's object
     /// `index` (or, failing that, as any of its meshes) keeps its hierarchy,
-    /// copied or refitted. `None`: build it.
+    /// shared or refitted. `None`: build it.
     fn reuse(&self, index: usize, shape: &Shape) -> Option<Primitive> {
         let Shape::Mesh { positions, triangles, .. } = shape else { return None };
         let same_triangles =

@@ -156,7 +156,7 @@ pub(crate) fn mirror_scene(
     }
     *last = Some(scene.clone());
     // From the last prepared scene: meshes that did not change keep their
-    // hierarchies (copied, or refitted where their vertices moved).
+    // hierarchies (shared, or refitted where their vertices moved).
     let prepared = match &current {
         Some(c) => c.scene.update(scene),
         None => PreparedScene::new(scene),

@@ -1,10 +1,12 @@
 //! The CPU backend's kernels for the core's host driver: packet view rays,
 //! packet photon passes in fixed chunks of emissions, packet grids and
-//! gathers, each timed on the host. The buffers stay from pass to pass, so
+//! gathers, light tracing over the photons in parallel (the core's
+//! connection, one photon at a time), each timed on the host. The buffers stay from pass to pass, so
 //! a render allocates nothing after its first pass.
 
 use crate::pass::PassGrids;
 use crate::{TRACE_CHUNK, trace, view};
+use prismatic_core::connect::{CameraConnection, Splat};
 use prismatic_core::host::{HostKernels, PassGather};
 use prismatic_core::photon::{Photon, TraceStats};
 use prismatic_core::visible::{VisiblePoint, VisiblePoints};
@@ -94,15 +96,26 @@ impl HostKernels for PacketKernels {
         self.install(|| grids.rebuild(scene, &map, points, radii));
         let gridded = Instant::now();
         let (irradiance, photons) = self.install(|| grids.gather(scene, points, radii));
+        let splats = self.install(|| splat_photons(scene, &map.photons));
         self.times = StageTimes { view, photons: traced - start, grid: gridded - traced, gather: gridded.elapsed() };
         let stats = map.stats;
         (self.pass_map, self.grids) = (map, grids);
-        PassGather { irradiance, photons, stats }
+        PassGather { irradiance, photons, splats, stats }
     }
 
     fn stage_times(&self) -> Option<StageTimes> {
         Some(self.times)
     }
+}
+
+/// The core's light tracing of `photons` in parallel (the same splats in
+/// the same order as `prismatic_core::connect::splat_photons`).
+fn splat_photons(scene: &PreparedScene, photons: &[Photon]) -> Vec<Splat> {
+    if !scene.scene.render.light_tracing {
+        return Vec::new();
+    }
+    let connection = CameraConnection::new(scene);
+    photons.par_iter().with_min_len(TRACE_CHUNK as usize).filter_map(|p| connection.splat(p)).collect()
 }
 
 /// Traces fixed chunks of emissions in parallel (each unsorted into its own

@@ -25,7 +25,7 @@ use prismatic_core::prepared::PreparedScene;
 use prismatic_core::scene::Light;
 use prismatic_core::surface::Surface;
 use prismatic_core::tolerance::MIN_VIEW_WEIGHT;
-use prismatic_core::view::glass_transmittance;
+use prismatic_core::view::{gathers_at, glass_transmittance};
 use prismatic_core::visible::{VisiblePoint, VisiblePoints};
 use rayon::prelude::*;
 use std::f32::consts::PI;
@@ -177,7 +177,8 @@ impl Shader<'_> {
     }
 
     /// Radiance toward the viewer at diffuse hits (lanes in `mask`), less
-    /// the caustic, which is left to a visible point per lane.
+    /// the caustic, which is left to a visible point per lane (where
+    /// light tracing does not bring it).
     fn shade_diffuse(&mut self, rays: &[ViewRay], ray: &RayX8, hit: &HitX8, p: Vec3x8, mask: f32x8) -> [Vec3; 8] {
         let settings = &self.scene.scene.render;
         let facing = lt(ray.dir.dot(hit.normal), f32x8::ZERO);
@@ -192,7 +193,7 @@ impl Shader<'_> {
         for i in lanes(mask) {
             let (pi, ni) = (p.lane(i), n.lane(i));
             let albedo = self.scene.albedo_at(objects[i] as usize, triangles[i] as u32, pi, ni);
-            if self.scene.plan.caustics.on {
+            if gathers_at(self.scene, rays[i].depth) {
                 let weight = rays[i].tint * albedo / PI * settings.exposure;
                 let pixel = self.first_pixel + rays[i].pixel;
                 self.points.push(VisiblePoint { point: pi, normal: ni, weight, pixel });

@@ -70,12 +70,12 @@ pub struct Params {
     pub exposure: f32,
     /// Ambient light.
     pub ambient: [f32; 3],
-    /// Padding.
-    pub _pad1: u32,
+    /// 1 when caustics the camera sees directly are light traced.
+    pub light_tracing: u32,
     /// Background radiance.
     pub background: [f32; 3],
-    /// Padding.
-    pub _pad2: u32,
+    /// A light-traced photon's scale: exposure / (π · pixel area).
+    pub splat_scale: f32,
     /// Camera eye point.
     pub cam_origin: [f32; 3],
     /// Padding.
@@ -92,8 +92,12 @@ pub struct Params {
     pub cam_corner: [f32; 3],
     /// Padding.
     pub _pad6: u32,
+    /// The optical axis (unit).
+    pub cam_forward: [f32; 3],
+    /// Padding.
+    pub _pad7: u32,
 }
-const _: () = assert!(core::mem::size_of::<Params>() == 208);
+const _: () = assert!(core::mem::size_of::<Params>() == 224);
 
 /// An object's primitive. Kinds: 0 sphere (`a` centre, `ra` radius), 1 plane
 /// (`a` point, `n` normal), 2 disc (`a` centre, `n` normal, `ra` radius²,

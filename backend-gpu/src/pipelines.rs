@@ -102,6 +102,8 @@ pub struct Pipelines {
     pub level_dispatch_layout: wgpu::BindGroupLayout,
     /// The tally fold: tallies, statistics.
     pub stats_layout: wgpu::BindGroupLayout,
+    /// Group 1 of light tracing: the pixels' sums, the stored count, map windows.
+    pub splat_layout: wgpu::BindGroupLayout,
     /// Emit + trace.
     pub trace: wgpu::ComputePipeline,
     /// Compaction scatter.
@@ -134,6 +136,8 @@ pub struct Pipelines {
     pub show: wgpu::ComputePipeline,
     /// stats.wgsl `fold_tallies`: a pass's tallies added to the statistics.
     pub fold_tallies: wgpu::ComputePipeline,
+    /// splat.wgsl `splat`: light tracing, the photons added to the pixels' sums.
+    pub splat: wgpu::ComputePipeline,
     view: Mutex<HashMap<u32, wgpu::ComputePipeline>>,
     texture: Mutex<HashMap<wgpu::TextureFormat, TextureCopy>>,
 }
@@ -166,6 +170,7 @@ impl Pipelines {
             layout(device, "prismatic session", &[ReadWrite, Read, Uniform, ReadWrite, ReadWrite, ReadWrite]);
         let level_dispatch_layout = layout(device, "prismatic level dispatches", &[Read, ReadWrite]);
         let stats_layout = layout(device, "prismatic statistics", &[Read, ReadWrite]);
+        let splat_layout = layout(device, "prismatic light tracing", &with_windows(vec![ReadWrite, Read], Read));
         let session_src = shaders::session();
         let session =
             |label: &str, entry: &str| pipeline(device, label, &session_src, entry, &[&gather_layout, &session_layout]);
@@ -202,6 +207,13 @@ impl Pipelines {
                 "fold_tallies",
                 &[&stats_layout],
             ),
+            splat: pipeline(
+                device,
+                "prismatic light tracing",
+                &shaders::splat(),
+                "splat",
+                &[&scene_layout, &splat_layout],
+            ),
             scene_layout,
             trace_layout,
             compact_layout,
@@ -212,6 +224,7 @@ impl Pipelines {
             session_layout,
             level_dispatch_layout,
             stats_layout,
+            splat_layout,
             view: Mutex::new(HashMap::new()),
             texture: Mutex::new(HashMap::new()),
         }

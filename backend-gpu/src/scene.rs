@@ -127,11 +127,14 @@ impl EncodedScene {
             inv_cell: 1.0 / (2.0 * r.radius),
             exposure: r.exposure,
             ambient: [r.ambient; 3],
+            light_tracing: u32::from(r.light_tracing),
             background: v3(r.background),
+            splat_scale: r.exposure / (std::f32::consts::PI * camera.pixel_area()),
             cam_origin: v3(camera.origin),
             cam_right: v3(camera.right),
             cam_down: v3(camera.down),
             cam_corner: v3(camera.corner),
+            cam_forward: v3(camera.forward),
             ..Params::default()
         };
         e

@@ -10,7 +10,7 @@ use prismatic_core::rng::dim;
 use prismatic_core::scene::MAX_DEPTH;
 use prismatic_core::texture::TEXEL_LIMIT;
 use prismatic_core::tolerance::{
-    BARYCENTRIC_EPS, MIN_VIEW_WEIGHT, SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL, SURFACE_SKIN_FACTOR,
+    BARYCENTRIC_EPS, CONNECTION_REL, MIN_VIEW_WEIGHT, SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL, SURFACE_SKIN_FACTOR,
 };
 use std::fmt::Write as _;
 
@@ -139,6 +139,7 @@ fn prelude(stack: u32) -> String {
     f("BARYCENTRIC_EPS", BARYCENTRIC_EPS);
     f("BOX_MARGIN", prismatic_core::bvh::BOX_MARGIN);
     f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);
+    f("CONNECTION_REL", CONNECTION_REL);
     f("VISIBLE_NM_LO", VISIBLE_NM.0);
     f("MIN_RADIUS_FRACTION", prismatic_core::schedule::MIN_RADIUS_FRACTION);
     for (i, c) in SIN_COEFFS.iter().enumerate() {
@@ -186,6 +187,8 @@ fn photon_windows(name: &str, group: u32, first: u32, writable: bool) -> String 
 const COMMON: &str = include_str!("shaders/common.wgsl");
 const FIXED: &str = include_str!("shaders/fixed.wgsl");
 const SCENE: &str = include_str!("shaders/scene.wgsl");
+const ALBEDO: &str = include_str!("shaders/albedo.wgsl");
+const SUMS: &str = include_str!("shaders/sums.wgsl");
 
 /// The functions every pipeline shares (RNG, optics, the estimator's last
 /// step, fixed-point sums) behind the prelude, with no bindings and no
@@ -232,7 +235,7 @@ pub fn grid() -> String {
 /// The view rays into pixels and visible points (entry `main`) with a
 /// view-ray stack of `stack` entries.
 pub fn view(stack: u32) -> String {
-    [prelude(stack), COMMON.into(), SCENE.into(), include_str!("shaders/view.wgsl").into()].concat()
+    [prelude(stack), COMMON.into(), SCENE.into(), ALBEDO.into(), include_str!("shaders/view.wgsl").into()].concat()
 }
 
 /// A session's passes (entries `first_radius`, `begin_pass`,
@@ -245,7 +248,22 @@ pub fn session() -> String {
         library(),
         include_str!("shaders/gather.wgsl").into(),
         photon_windows("sorted", 0, 6, false),
+        SUMS.into(),
         include_str!("shaders/session.wgsl").into(),
+    ]
+    .concat()
+}
+
+/// Light tracing (entry `splat`): the scene in group 0; in group 1 the
+/// pixels' sums (binding 0), the stored count (1) and the map (2–5).
+pub fn splat() -> String {
+    [
+        library(),
+        SCENE.into(),
+        ALBEDO.into(),
+        SUMS.into(),
+        include_str!("shaders/splat.wgsl").into(),
+        photon_windows("map", 1, 2, false),
     ]
     .concat()
 }

@@ -126,6 +126,11 @@ struct JobArgs {
     /// Gather estimator: paper or density.
     #[arg(long, value_parser = parse_estimator)]
     estimator: Option<Estimator>,
+    /// Light tracing (true or false): connect the caustic photons on
+    /// surfaces the camera sees directly to the camera; gather only behind
+    /// mirrors and glass.
+    #[arg(long)]
+    light_tracing: Option<bool>,
     /// Wavelength sampling at dispersive glass: split, random_band or continuous.
     #[arg(long, value_parser = parse_wavelengths)]
     wavelengths: Option<WavelengthSampling>,
@@ -386,6 +391,7 @@ impl JobArgs {
             radius_mode: self.radius_mode,
             seed: self.seed,
             estimator: self.estimator,
+            light_tracing: self.light_tracing,
             wavelengths: self.wavelengths,
             width: self.width,
             height: self.height,

@@ -23,6 +23,8 @@ pub struct Settings {
     pub seed: Option<u32>,
     /// Gather estimator.
     pub estimator: Option<Estimator>,
+    /// Light tracing of the caustics the camera sees directly.
+    pub light_tracing: Option<bool>,
     /// Wavelength sampling at dispersive glass.
     pub wavelengths: Option<WavelengthSampling>,
     /// Image width.
@@ -69,6 +71,7 @@ impl Settings {
         r.radius_mode = self.radius_mode.unwrap_or(r.radius_mode);
         r.seed = self.seed.unwrap_or(r.seed);
         r.estimator = self.estimator.unwrap_or(r.estimator);
+        r.light_tracing = self.light_tracing.unwrap_or(r.light_tracing);
         r.wavelengths = self.wavelengths.unwrap_or(r.wavelengths);
         r.width = self.width.unwrap_or(r.width);
         r.height = self.height.unwrap_or(r.height);
@@ -85,6 +88,7 @@ impl Settings {
             ("radius_mode", self.radius_mode.is_some()),
             ("seed", self.seed.is_some()),
             ("estimator", self.estimator.is_some()),
+            ("light_tracing", self.light_tracing.is_some()),
             ("wavelengths", self.wavelengths.is_some()),
             ("width", self.width.is_some()),
             ("height", self.height.is_some()),

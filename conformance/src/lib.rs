@@ -10,7 +10,7 @@
 //! ```
 //!
 //! which makes one `#[test]` per body of [`suite`]: photon maps and images
-//! against the scalar reference, partial renders that merge exactly, passes
+//! against the scalar reference (gathered and light traced), partial renders that merge exactly, passes
 //! in any order, updates that give a fresh render, read-outs and
 //! statistics. The expression may give `None` (a GPU backend on a machine
 //! without an adapter): the tests then say so and pass, except under
@@ -35,6 +35,7 @@ macro_rules! conformance_tests {
         $crate::conformance_tests!(@tests $backend;
             photon_maps_match_the_reference,
             images_match_the_reference,
+            light_traced_images_match_the_reference,
             partial_renders_merge_into_one_run,
             passes_run_in_any_order_and_once,
             updates_give_a_fresh_renders_sums,

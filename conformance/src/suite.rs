@@ -82,6 +82,32 @@ pub fn images_match_the_reference(backend: &mut dyn Backend) {
     }
 }
 
+/// With light tracing, the images of every scene with caustics are the
+/// reference's (the same visible points: only those behind a specular
+/// bounce), and partial renders merge into one run's sums bit for bit.
+pub fn light_traced_images_match_the_reference(backend: &mut dyn Backend) {
+    for (name, scene) in scenes::with_caustics() {
+        let scene = edited(&scene, |s| s.render.light_tracing = true);
+        let case = format!("{}, {name}, light tracing, 2 passes", backend.name());
+        let mut reference = prepare(&mut ReferenceBackend, &scene);
+        let mut got = prepare(backend, &scene);
+        run(reference.as_mut(), 0..2);
+        run(got.as_mut(), 0..2);
+        compare_images(&reference.base().unwrap(), &got.base().unwrap())
+            .unwrap_or_else(|e| panic!("{case}: image without caustics: {e}"));
+        let (expected, image) = (reference.image().unwrap(), got.image().unwrap());
+        compare_images(&expected, &image).unwrap_or_else(|e| panic!("{case}: {e}"));
+        let (want, have) = (reference.stats().unwrap(), got.stats().unwrap());
+        assert_eq!(have.visible_points, want.visible_points, "{case}: visible points");
+        let (mut first, mut second) = (prepare(backend, &scene), prepare(backend, &scene));
+        run(first.as_mut(), [1]);
+        run(second.as_mut(), [0]);
+        let mut merged = sums(first.as_mut());
+        merged.merge(&sums(second.as_mut())).expect("disjoint passes");
+        assert_eq!(merged, sums(got.as_mut()), "{case}: merged partials differ from one run");
+    }
+}
+
 /// Partial renders of passes `0..2` and `2..4` merge into the sums of one
 /// render of `0..4`, bit for bit, and so into its image.
 pub fn partial_renders_merge_into_one_run(backend: &mut dyn Backend) {
@@ -134,6 +160,7 @@ pub fn updates_give_a_fresh_renders_sums(backend: &mut dyn Backend) {
         (Change::View, edited(&scene, moved)),
         (Change::View, edited(&scene, |s| s.camera.position.x += 0.3)),
         (Change::View, edited(&scene, |s| s.render.bands = BandSpec::Paper3)),
+        (Change::View, edited(&scene, |s| s.render.light_tracing = true)),
         (Change::Size, edited(&scene, |s| (s.render.width, s.render.height) = (40, 28))),
     ];
     let name = backend.name();

@@ -1,9 +1,11 @@
-//! The exact sums of a render's passes: per pixel, Σ over passes and
-//! visible points of weight × caustic irradiance, in fixed point. Integer
+//! The exact sums of a render's passes: per pixel, Σ over passes of the
+//! visible points' weight × caustic irradiance and the light-traced
+//! photons' radiance, in fixed point. Integer
 //! sums do not depend on the order of the passes, the points or the
 //! threads, so passes rendered anywhere (another process, another machine)
 //! merge into the bits of one run.
 
+use crate::connect::Splat;
 use crate::image::Image;
 use crate::visible::VisiblePoint;
 use alloc::vec;
@@ -77,18 +79,26 @@ impl Accumulation {
         count_passes(&self.passes)
     }
 
-    /// Adds pass `pass`'s gather at `points`.
+    /// Adds pass `pass`: its gather at `points` and its light-traced `splats`.
     ///
     /// # Panics
     /// If the pass is already in, or `gathered` does not match `points`.
-    pub fn add_pass(&mut self, pass: u32, points: &[VisiblePoint], gathered: &[Vec3]) {
+    pub fn add_pass(&mut self, pass: u32, points: &[VisiblePoint], gathered: &[Vec3], splats: &[Splat]) {
         assert_eq!(points.len(), gathered.len(), "one irradiance per visible point");
         insert_passes(&mut self.passes, pass, pass + 1).expect("each pass once");
         for (p, e) in points.iter().zip(gathered) {
-            let sum = &mut self.sums[p.pixel as usize];
-            for (c, s) in sum.iter_mut().enumerate() {
-                *s = s.saturating_add(to_fixed(f64::from(p.weight[c]) * f64::from(e[c])));
-            }
+            self.add(p.pixel, (p.weight.as_dvec3() * e.as_dvec3()).to_array());
+        }
+        for s in splats {
+            self.add(s.pixel, s.radiance.as_dvec3().to_array());
+        }
+    }
+
+    /// Adds radiance to a pixel's sums, each channel truncated to fixed point.
+    fn add(&mut self, pixel: u32, radiance: [f64; 3]) {
+        let sum = &mut self.sums[pixel as usize];
+        for (s, x) in sum.iter_mut().zip(radiance) {
+            *s = s.saturating_add(to_fixed(x));
         }
     }
 

@@ -4,6 +4,7 @@
 //! packets are both this driver over their own kernels.
 
 use crate::accumulation::Accumulation;
+use crate::connect::Splat;
 use crate::image::Image;
 use crate::photon::{PhotonMap, TraceStats};
 use crate::prepared::PreparedScene;
@@ -22,6 +23,8 @@ pub struct PassGather {
     pub irradiance: Vec<Vec3>,
     /// Photons accepted within the point's radius.
     pub photons: Vec<u32>,
+    /// The light-traced photons' contributions (with light tracing).
+    pub splats: Vec<Splat>,
     /// What the pass's photon trace did.
     pub stats: TraceStats,
 }
@@ -41,8 +44,10 @@ pub trait HostKernels: Send {
     /// Traces `scene`'s photons (its seed and count) into the caustic map, in canonical order.
     fn trace(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> PhotonMap;
 
-    /// One pass: traces `scene`'s photons and gathers them at `points`,
-    /// each within its own radius (`radii`, at most the scene's radius).
+    /// One pass: traces `scene`'s photons, gathers them at `points`, each
+    /// within its own radius (`radii`, at most the scene's radius), and
+    /// with light tracing connects them to the camera
+    /// ([`crate::connect::splat_photons`]).
     fn pass(&mut self, scene: &PreparedScene, points: &[VisiblePoint], radii: &[f32]) -> PassGather;
 
     /// Host time per stage of the last pass, where the kernels measure it.
@@ -151,8 +156,8 @@ impl<K: HostKernels> Render for HostRender<K> {
             return Err(BackendError::PassRepeated(pass));
         }
         let points = &self.view.points;
-        if points.is_empty() {
-            self.sums.add_pass(pass, &[], &[]);
+        if points.is_empty() && !(self.scene.scene.render.light_tracing && self.scene.plan.caustics.on) {
+            self.sums.add_pass(pass, &[], &[], &[]);
             return Ok(());
         }
         let scene = pass_scene(&self.scene, pass);
@@ -160,7 +165,7 @@ impl<K: HostKernels> Render for HostRender<K> {
         let r_pass = scene.scene.render.radius;
         let radii: Vec<f32> = self.radii.iter().map(|&r| (r * shrink).min(r_pass)).collect();
         let found = self.kernels.pass(&scene, points, &radii);
-        self.sums.add_pass(pass, points, &found.irradiance);
+        self.sums.add_pass(pass, points, &found.irradiance, &found.splats);
         self.trace.merge(&found.stats);
         Ok(())
     }

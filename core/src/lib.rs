@@ -17,7 +17,7 @@
 //! | model | `scene`, `validate`, `bands`, `cie`, `color`, `dispersion`, `image`, `mesh` | what the user described |
 //! | kernels | `math`, `rng`, `tolerance`, `ray`, `triangle`, `texture`, `bvh`, `bvh_build`, `geometry`, `camera`, `optics`, `photon`, `grid`, `gather`, `visible` | pure functions, mirrored in packets and WGSL |
 //! | plan | `surface`, `reach`, `projection`, `effects`, `prepared`, `schedule` | what a render of this scene will do |
-//! | pipeline | `emit`, `trace`, `view`, `accumulation`, `protocol`, `host`, `reference` | the reference backend and the protocol |
+//! | pipeline | `emit`, `trace`, `view`, `connect`, `accumulation`, `protocol`, `host`, `reference` | the reference backend and the protocol |
 
 #![cfg_attr(not(feature = "std"), no_std)]
 
@@ -62,6 +62,7 @@ pub mod schedule;
 pub mod surface;
 
 pub mod accumulation;
+pub mod connect;
 pub mod emit;
 pub mod host;
 pub mod protocol;

@@ -163,7 +163,8 @@ pub enum Change {
     /// points stay.
     Photons,
     /// What the view rays see: camera, objects, materials, lights (their
-    /// direct light and shadows are the view pass's), bands, depth,
+    /// direct light and shadows are the view pass's), bands, depth, light
+    /// tracing (which diffuse hits gather),
     /// wavelength sampling, exposure, ambient, background. The view rays
     /// are traced again, then as [`Change::Photons`].
     View,
@@ -184,6 +185,7 @@ impl Change {
             || old.lights != new.lights
             || a.bands != b.bands
             || a.max_depth != b.max_depth
+            || a.light_tracing != b.light_tracing
             || a.wavelengths != b.wavelengths
             || a.exposure != b.exposure
             || a.ambient != b.ambient
@@ -238,6 +240,7 @@ mod tests {
         assert_eq!(edited(&|s| s.lights[0] = Light::Point { position: Vec3::ONE, power: 10.0 }), Change::View);
         assert_eq!(edited(&|s| s.camera.position.x += 0.1), Change::View);
         assert_eq!(edited(&|s| s.render.bands = BandSpec::Paper3), Change::View);
+        assert_eq!(edited(&|s| s.render.light_tracing = true), Change::View);
         assert_eq!(edited(&|s| s.render.width += 1), Change::Size);
         assert!(Change::None < Change::Photons && Change::Photons < Change::View && Change::View < Change::Size);
     }

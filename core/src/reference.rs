@@ -1,6 +1,7 @@
 //! The scalar reference backend, single-threaded: the definition of right.
 //! Its kernels are the core's view pass ([`crate::view`]), photon tracer
-//! ([`crate::trace`]) and [`gather_pass`], driven by [`HostRender`].
+//! ([`crate::trace`]), [`gather_pass`] and light tracing
+//! ([`crate::connect`]), driven by [`HostRender`].
 
 use crate::gather::{GatherQuery, gather_counted};
 use crate::grid::PhotonGrid;
@@ -47,7 +48,8 @@ impl HostKernels for ScalarKernels {
 
     fn pass(&mut self, scene: &PreparedScene, points: &[VisiblePoint], radii: &[f32]) -> PassGather {
         let map = crate::trace::trace_photons(scene, &mut NoProgress);
-        gather_pass(scene, &map, points, radii)
+        let splats = crate::connect::splat_photons(scene, &map.photons);
+        PassGather { splats, ..gather_pass(scene, &map, points, radii) }
     }
 }
 
@@ -69,5 +71,5 @@ pub fn gather_pass(scene: &PreparedScene, map: &PhotonMap, points: &[VisiblePoin
             gather_counted(grid, &map.photons, &scene.bands, settings.estimator, &q)
         })
         .unzip();
-    PassGather { irradiance, photons, stats: map.stats }
+    PassGather { irradiance, photons, splats: Vec::new(), stats: map.stats }
 }

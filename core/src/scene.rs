@@ -153,6 +153,11 @@ pub struct RenderSettings {
     pub bands: BandSpec,
     /// The gather estimator.
     pub estimator: Estimator,
+    /// Light tracing: each caustic photon on a diffuse surface the camera
+    /// sees directly is connected to the camera and added to its pixel
+    /// (unbiased, no radius); only the diffuse surfaces seen through
+    /// mirrors and glass gather photons (see [`crate::connect`]).
+    pub light_tracing: bool,
     /// How white photons sample the spectrum at dispersive glass.
     pub wavelengths: WavelengthSampling,
     /// Seed of the counter-based RNG.
@@ -189,6 +194,7 @@ impl Default for RenderSettings {
             radius_mode: RadiusMode::Progressive,
             bands: BandSpec::Paper7,
             estimator: Estimator::Paper,
+            light_tracing: false,
             wavelengths: WavelengthSampling::Split,
             seed: 1,
             max_depth: 12,

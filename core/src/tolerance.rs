@@ -34,6 +34,15 @@ pub const BARYCENTRIC_EPS: f32 = 1e-6;
 /// (1/1000 of the pixel: below the 8-bit quantisation step of the output).
 pub const MIN_VIEW_WEIGHT: f32 = 1e-3;
 
+/// How far (relative to its distance from the eye) the camera's first hit
+/// on the way to a stored photon may lie from the photon and still be the
+/// surface it landed on. The photon's position and the camera ray's hit
+/// each carry f32 error of a few ulps, growing as 1/cos at grazing angles
+/// (1e-5 at 0.6° from the surface); 1e-4 clears that, and a different
+/// surface 1e-4 of the distance in front of a lit one is below a pixel's
+/// depth resolution in any scene we render.
+pub const CONNECTION_REL: f32 = 1e-4;
+
 /// The skin of [`SURFACE_SKIN_FACTOR`] around a ray starting at `origin`.
 #[inline]
 pub fn surface_skin(origin: glam::Vec3) -> f32 {

@@ -94,7 +94,7 @@ impl<'a> ViewContext<'a> {
         let path = ViewPath { weight: path.weight * kept.max_element(), tint: path.tint * kept, ..path };
         let ViewPath { band, depth, weight, tint } = path;
         kept * match surface {
-            Surface::Diffuse { .. } => self.shade_diffuse(ray, &hit, tint, points),
+            Surface::Diffuse { .. } => self.shade_diffuse(ray, &hit, path, points),
             _ if depth >= self.scene.plan.max_depth => Vec3::ZERO,
             Surface::Mirror => {
                 let d = reflect(ray.direction, hit.normal);
@@ -148,14 +148,15 @@ impl<'a> ViewContext<'a> {
     }
 
     /// Radiance leaving a diffuse hit toward the viewer, less its caustic,
-    /// which is left to a visible point (when the plan traces caustics).
-    fn shade_diffuse(&self, ray: &Ray, hit: &Hit, tint: Vec3, points: &mut Vec<VisiblePoint>) -> Vec3 {
+    /// which is left to a visible point (when the plan traces caustics and
+    /// light tracing does not bring it: see [`gathers_at`]).
+    fn shade_diffuse(&self, ray: &Ray, hit: &Hit, path: ViewPath, points: &mut Vec<VisiblePoint>) -> Vec3 {
         let n = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
         let albedo = self.scene.albedo_at(hit.object, hit.triangle, hit.point, n);
         let settings = &self.scene.scene.render;
         let direct: f32 = (0..self.scene.scene.lights.len()).map(|i| self.direct_irradiance(i, hit.point, n)).sum();
-        if self.scene.plan.caustics.on {
-            points.push(VisiblePoint { point: hit.point, normal: n, weight: tint * albedo / PI, pixel: 0 });
+        if gathers_at(self.scene, path.depth) {
+            points.push(VisiblePoint { point: hit.point, normal: n, weight: path.tint * albedo / PI, pixel: 0 });
         }
         albedo * Vec3::splat(direct) * (1.0 / PI) + albedo * settings.ambient
     }
@@ -222,6 +223,14 @@ impl<'a> ViewContext<'a> {
         let origin = offset_origin(p, n, l);
         (!self.scene.occluded(origin, l, (light - origin).length())).then_some((l, dist, cos_s))
     }
+}
+
+/// Whether a diffuse hit that a view path reaches after `depth` specular
+/// bounces gathers the caustic: when the plan traces caustics, unless light
+/// tracing brings them there (it does for every diffuse surface the camera
+/// sees directly, depth 0: see [`crate::connect`]).
+pub fn gathers_at(scene: &PreparedScene, depth: u32) -> bool {
+    scene.plan.caustics.on && (depth > 0 || !scene.scene.render.light_tracing)
 }
 
 /// What a view ray of `band` keeps of each RGB channel on a segment of

@@ -10,7 +10,7 @@ scene file (TOML, ``.gltf``, ``.glb``) or the TOML text of a scene. The
 settings are the ``prismatic render`` command's flags by name: ``width``,
 ``height``, ``photons``, ``bands`` (``"paper3"``, ``"paper7"`` or a
 number), ``radius``, ``radius_mode``, ``seed``, ``estimator``,
-``wavelengths``, ``backend`` (``"auto"``, ``"cpu"``, ``"gpu"``,
+``light_tracing`` (``True`` or ``False``), ``wavelengths``, ``backend`` (``"auto"``, ``"cpu"``, ``"gpu"``,
 ``"reference"``), and for renders ``passes`` and ``time``. The result is
 exactly the image ``prismatic render ... -o FILE.exr`` writes for the same
 scene and settings.
@@ -59,6 +59,7 @@ SETTINGS = (
     "radius_mode",
     "seed",
     "estimator",
+    "light_tracing",
     "wavelengths",
     "backend",
 )

@@ -142,6 +142,10 @@ fn settings(kw: Option<&Bound<'_, PyDict>>) -> Result<(Settings, BackendChoice),
             "radius_mode" => s.radius_mode = Some(named(&key, scene_file::parse_radius_mode(&text()?))?),
             "seed" => s.seed = Some(int()?),
             "estimator" => s.estimator = Some(named(&key, scene_file::parse_estimator(&text()?))?),
+            "light_tracing" => {
+                let on = v.extract::<bool>();
+                s.light_tracing = Some(on.map_err(|_| bad_setting(&key, format!("must be True or False, got {v}")))?);
+            }
             "wavelengths" => s.wavelengths = Some(named(&key, scene_file::parse_wavelengths(&text()?))?),
             "width" => s.width = Some(int()?),
             "height" => s.height = Some(int()?),

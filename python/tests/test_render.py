@@ -76,6 +76,17 @@ def test_render_is_the_clis_exr_bit_for_bit(cli, tmp_path):
     assert same_bits(image, read_exr(tmp_path / "cli.exr"))
 
 
+def test_light_tracing_is_the_clis_bit_for_bit(cli, tmp_path):
+    cli("render", "caustic", "--passes", "2", *flags(SMALL), "--light-tracing", "false", "-o", "off.exr", cwd=tmp_path)
+    cli("render", "caustic", "--passes", "2", *flags(SMALL), "-o", "on.exr", cwd=tmp_path)
+    on = prismatic.render("caustic", passes=2, progress=False, **SMALL)
+    off = prismatic.render("caustic", passes=2, light_tracing=False, progress=False, **SMALL)
+    assert same_bits(on, read_exr(tmp_path / "on.exr")) and same_bits(off, read_exr(tmp_path / "off.exr"))
+    assert not same_bits(on, off), "`caustic` light traces its directly seen caustic"
+    with pytest.raises(prismatic.SceneError, match="True or False"):
+        prismatic.render("caustic", light_tracing="yes", progress=False)
+
+
 def test_a_scene_file_and_its_text_render_the_same(cli, tmp_path):
     path = tmp_path / "scene.toml"
     path.write_text(SCENE_TEXT)

@@ -128,7 +128,7 @@ fn one_pass_at_the_scenes_radius_is_the_paper_frame() {
         let radii = vec![scene.scene.render.radius; view.points.len()];
         let found = prismatic_core::reference::gather_pass(&pass, &map, &view.points, &radii);
         let mut sums = prismatic_core::Accumulation::new(80, 80);
-        sums.add_pass(0, &view.points, &found.irradiance);
+        sums.add_pass(0, &view.points, &found.irradiance, &found.splats);
         assert_eq!(render.image().unwrap(), sums.image(&view.base), "{name}");
         assert_eq!(render.stats().unwrap().first_radii, Some((radii[0], radii[0])), "{name}");
     }

@@ -3,7 +3,8 @@
 //! point its first radius (progressive radii only), and pass `k`: its
 //! photons traced and gridded at every built level, gathered at the points
 //! level by level (each level's gather dispatched over its own points, in
-//! bucket segments on a software device), added to the pixels' exact sums,
+//! bucket segments on a software device), its photons light traced into
+//! the pixels' sums (when the scene asks), added to the pixels' exact sums,
 //! and its trace tallies added to the statistics.
 
 use super::GpuSession;
@@ -82,8 +83,31 @@ impl GpuSession {
         self.fold_tallies()?;
         self.stamp(Stage::Photons)?;
         self.grid_photons(&pass)?;
+        self.splat_photons()?;
         self.gather_chunks(Finish::Accumulate, settings)?;
         self.stamp(Stage::Gather)
+    }
+
+    /// Light tracing (when the scene asks for it): the pass's photons
+    /// connected to the camera and added to the pixels' sums of each chunk,
+    /// before the gather shows them. One invocation per slot of the map.
+    fn splat_photons(&mut self) -> Result<(), BackendError> {
+        if !self.scene.scene.render.light_tracing || self.photons.capacity() == 0 {
+            return Ok(());
+        }
+        for chunk in &self.points.chunks {
+            let p = &mut self.buffers.params;
+            (p.pixel_offset, p.pixel_count) = (chunk.offset as u32, chunk.count as u32);
+            self.buffers.write_params(&self.ctx);
+            self.ctx.checked("light tracing the pass", || {
+                let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+                let groups = [&self.buffers.bind_group, &chunk.groups().splat];
+                let slots = u64::from(self.photons.capacity());
+                dispatch(&mut encoder, &self.pipelines.splat, &groups, slots, WORKGROUP_SIZE);
+                self.ctx.queue.submit([encoder.finish()]);
+            })?;
+        }
+        Ok(())
     }
 
     /// Traces `pass`'s photons (its seed and photon count) into the map.

@@ -3,7 +3,8 @@
 //! its pixel and first radius), the pixels' exact sums and direct light,
 //! the points listed by grid level with the gathers' indirect dispatch
 //! arguments, and the bind groups of the view pass, the gathers (one per
-//! built grid level), the session's entries and the dispatch arguments.
+//! built grid level), the session's entries, the dispatch arguments and
+//! light tracing.
 //! A chunk's room for points follows what the view passes found, with an
 //! eighth to spare.
 
@@ -76,6 +77,8 @@ pub struct ChunkGroups {
     pub session: wgpu::BindGroup,
     /// The dispatch arguments' group 0.
     pub level_dispatch: wgpu::BindGroup,
+    /// Light tracing's group 1.
+    pub splat: wgpu::BindGroup,
 }
 
 impl ChunkGroups {
@@ -251,7 +254,13 @@ impl GpuSession {
                         wgpu::BindGroupEntry { binding: 1, resource: chunk.level_args.as_entire_binding() },
                     ],
                 );
-                ChunkGroups { view, gather, session, level_dispatch }
+                let mut entries = vec![
+                    wgpu::BindGroupEntry { binding: 0, resource: chunk.sums.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: self.photons.cursor().as_entire_binding() },
+                ];
+                entries.extend(self.photons.photons.entries(2));
+                let splat = group("prismatic light tracing", &p.splat_layout, &entries);
+                ChunkGroups { view, gather, session, level_dispatch, splat }
             })?;
             chunk.groups = Some(groups);
         }

@@ -35,9 +35,9 @@ struct Params {
     inv_cell: f32,
     exposure: f32,
     ambient: vec3<f32>,
-    _pad1: u32,
+    light_tracing: u32,
     background: vec3<f32>,
-    _pad2: u32,
+    splat_scale: f32,
     cam_origin: vec3<f32>,
     _pad3: u32,
     cam_right: vec3<f32>,
@@ -46,6 +46,8 @@ struct Params {
     _pad5: u32,
     cam_corner: vec3<f32>,
     _pad6: u32,
+    cam_forward: vec3<f32>,
+    _pad7: u32,
 }
 
 // Twin of prismatic_core::photon::Photon (band in the low 16 bits of

@@ -27,9 +27,6 @@ struct SessionParams {
     _pad1: u32,
 }
 
-// Per pixel, three i64 sums (R, G, B) of weight × caustic in 2^32 per
-// unit, as `[lo, hi]` words, added to with atomics (exact, in any order).
-@group(1) @binding(0) var<storage, read_write> accum: array<atomic<u32>>;
 @group(1) @binding(1) var<storage, read> base: array<vec4<f32>>;
 @group(1) @binding(2) var<uniform> session: SessionParams;
 // Bit l set when some point's first radius falls in grid level l.
@@ -165,18 +162,6 @@ fn gather_level(
     var vp = points[i];
     gather_segment(&vp);
     points[i] = vp;
-}
-
-// Adds the i64 `v` to the sum whose low word is `accum[word]`: exact
-// modulo 2^64 whatever order the points come in (a carry out of the low
-// word goes into the high one). Unlike the host's saturating sums it wraps
-// past 2^31 units of radiance, which no render reaches.
-fn add_to_sum(word: u32, v: vec2<u32>) {
-    let old = atomicAdd(&accum[word], v.x);
-    let high = v.y + select(0u, 1u, old > ~v.x);
-    if high != 0u {
-        atomicAdd(&accum[word + 1u], high);
-    }
 }
 
 // A pass's end, per point: weight × caustic added to its pixel's sums in

@@ -67,91 +67,6 @@ fn through_dielectric(e: Pending, ior: f32, band: u32, weight: f32, tint: vec3<f
     }
 }
 
-// PreparedScene::albedo_at: Surface::albedo_at (checker evaluated a hair
-// below the surface) times the texture at the hit's coordinates.
-fn albedo_at(hit: Hit, n: vec3<f32>) -> vec3<f32> {
-    let s = surfaces[hit.object];
-    var base = s.albedo;
-    if (s.flags & SURFACE_HAS_CHECKER) != 0u {
-        let q = (hit.point + s.checker_offset - n * (s.checker_size * 1e-3)) / s.checker_size;
-        let parity = floor(q.x) + floor(q.y) + floor(q.z);
-        if parity - 2.0 * floor(parity * 0.5) != 0.0 {
-            base = s.checker_albedo;
-        }
-    }
-    if (s.flags & SURFACE_HAS_TEXTURE) == 0u {
-        return base;
-    }
-    return base * sample_texture(s, texture_coordinates(objects[hit.object], s, hit.triangle, hit.point));
-}
-
-// TriangleUv::at: barycentrics by least squares.
-fn texture_coordinates(obj: GpuObject, s: GpuSurface, tri: u32, p: vec3<f32>) -> vec2<f32> {
-    let r = obj.second + 4u * tri;
-    let v0 = geometry[r].xyz;
-    let e1 = geometry[r + 1u].xyz;
-    let e2 = geometry[r + 2u].xyz;
-    let a = geometry[s.uv_first + 2u * tri];
-    let du2 = geometry[s.uv_first + 2u * tri + 1u].xy;
-    let d = p - v0;
-    let d11 = dot(e1, e1);
-    let d12 = dot(e1, e2);
-    let d22 = dot(e2, e2);
-    let d1 = dot(d, e1);
-    let d2 = dot(d, e2);
-    let inv = 1.0 / (d11 * d22 - d12 * d12);
-    let b1 = (d22 * d1 - d12 * d2) * inv;
-    let b2 = (d11 * d2 - d12 * d1) * inv;
-    return a.xy + a.zw * b1 + du2 * b2;
-}
-
-// texture::wrap_texel (wrap: 0 repeat, 1 clamp to edge, 2 mirrored repeat).
-fn wrap_texel(i: i32, size: u32, wrap: u32) -> u32 {
-    let n = i32(size);
-    if wrap == WRAP_CLAMP_TO_EDGE {
-        return u32(clamp(i, 0, n - 1));
-    }
-    if wrap == WRAP_MIRRORED_REPEAT {
-        let m = rem_euclid(i, 2 * n);
-        return u32(select(m, 2 * n - 1 - m, m >= n));
-    }
-    return u32(rem_euclid(i, n));
-}
-
-fn rem_euclid(i: i32, n: i32) -> i32 {
-    let r = i % n;
-    return select(r, r + n, r < 0);
-}
-
-// One texel in linear light (the decoding table precedes the texels).
-fn fetch_texel(s: GpuSurface, i: i32, j: i32) -> vec3<f32> {
-    let col = wrap_texel(i, s.texture_width, (s.flags >> TEXTURE_WRAP_U_SHIFT) & 3u);
-    let row = wrap_texel(j, s.texture_height, (s.flags >> TEXTURE_WRAP_V_SHIFT) & 3u);
-    let t = u32(tables[s.texture_first + 256u + row * s.texture_width + col]);
-    let lut = s.texture_first;
-    return vec3<f32>(tables[lut + (t & 255u)], tables[lut + ((t >> 8u) & 255u)], tables[lut + (t >> 16u)]);
-}
-
-// texture::sample (coordinates are finite: validated corners, non-degenerate triangles).
-fn sample_texture(s: GpuSurface, uv: vec2<f32>) -> vec3<f32> {
-    var x = clamp(uv.x * f32(s.texture_width), -TEXEL_LIMIT, TEXEL_LIMIT);
-    var y = clamp(uv.y * f32(s.texture_height), -TEXEL_LIMIT, TEXEL_LIMIT);
-    if (s.flags & SURFACE_TEXTURE_NEAREST) != 0u {
-        return fetch_texel(s, i32(floor(x)), i32(floor(y)));
-    }
-    x -= 0.5;
-    y -= 0.5;
-    let x0 = floor(x);
-    let y0 = floor(y);
-    let fx = x - x0;
-    let fy = y - y0;
-    let i = i32(x0);
-    let j = i32(y0);
-    let top = fetch_texel(s, i, j) * (1.0 - fx) + fetch_texel(s, i + 1, j) * fx;
-    let bottom = fetch_texel(s, i, j + 1) * (1.0 - fx) + fetch_texel(s, i + 1, j + 1) * fx;
-    return top * (1.0 - fy) + bottom * fy;
-}
-
 // Direction to a point light, distance and surface cosine (w < 0: not lit).
 fn visible_point(light: vec3<f32>, p: vec3<f32>, n: vec3<f32>, shadows: bool) -> vec4<f32> {
     let to = light - p;
@@ -223,16 +138,17 @@ fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>) {
     }
 }
 
-// ViewContext::shade_diffuse, less the caustic (see add_visible_point);
-// `tint` is the view ray's.
-fn shade_diffuse(dir: vec3<f32>, hit: Hit, tint: vec3<f32>) -> vec3<f32> {
+// ViewContext::shade_diffuse, less the caustic (see add_visible_point;
+// with light tracing only behind a specular bounce, view::gathers_at);
+// `tint` and `depth` are the view ray's.
+fn shade_diffuse(dir: vec3<f32>, hit: Hit, tint: vec3<f32>, depth: u32) -> vec3<f32> {
     let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
     let albedo = albedo_at(hit, n);
     var direct = 0.0;
     for (var i = 0u; i < params.light_count; i++) {
         direct += direct_irradiance(lights[i], hit.point, n);
     }
-    if params.stored > 0u {
+    if params.stored > 0u && (depth > 0u || params.light_tracing == 0u) {
         add_visible_point(hit.point, n, tint * albedo * (params.exposure / PI));
     }
     return albedo * vec3<f32>(direct) * (1.0 / PI) + albedo * params.ambient;
@@ -260,7 +176,7 @@ fn visit(e: Pending) -> vec3<f32> {
     }
     let s = surfaces[hit.object];
     if s.kind == SURFACE_DIFFUSE {
-        return e.tint * shade_diffuse(e.dir, hit, e.tint);
+        return e.tint * shade_diffuse(e.dir, hit, e.tint, e.depth);
     }
     if e.depth >= params.max_depth {
         return vec3<f32>(0.0);

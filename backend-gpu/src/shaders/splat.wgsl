@@ -1,0 +1,71 @@
+// Light tracing: twin of prismatic_core::connect. One invocation per slot
+// of the photon map (those past the stored count return at once); each
+// photon that a pixel of this chunk sees directly adds its reflected flux
+// to that pixel's exact sums (sums.wgsl), so the sums do not depend on the
+// order the photons come in.
+
+// The photons the pass stored (the compaction's cursor).
+@group(1) @binding(1) var<storage, read> stored_count: u32;
+
+// PinholeCamera::project: the pixel (x, y) whose square the ray from the
+// eye to `p` crosses and p's depth along the optical axis (z); z ≤ 0 when
+// no pixel sees it.
+fn project(p: vec3<f32>) -> vec3<f32> {
+    let v = p - params.cam_origin;
+    let depth = dot(v, params.cam_forward);
+    if !(depth > 0.0) {
+        return vec3<f32>(0.0);
+    }
+    let q = v / depth - params.cam_corner;
+    let u = dot(q, params.cam_right) / dot(params.cam_right, params.cam_right);
+    let w = dot(q, params.cam_down) / dot(params.cam_down, params.cam_down);
+    if !(u >= 0.0 && u < f32(params.width) && w >= 0.0 && w < f32(params.height)) {
+        return vec3<f32>(0.0);
+    }
+    return vec3<f32>(min(floor(u), f32(params.width - 1u)), min(floor(w), f32(params.height - 1u)), depth);
+}
+
+// CameraConnection::splat, added to the sums of its pixel when this chunk has it.
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn splat(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let i = flat_index(wid, nwg, lid);
+    if i >= stored_count {
+        return;
+    }
+    let photon = map_load(i);
+    let seen = project(photon.position);
+    if seen.z <= 0.0 {
+        return;
+    }
+    let pixel = u32(seen.y) * params.width + u32(seen.x);
+    if pixel < params.pixel_offset || pixel - params.pixel_offset >= params.pixel_count {
+        return;
+    }
+    let v = photon.position - params.cam_origin;
+    let d = length(v);
+    let dir = v / d;
+    let hit = intersect_scene(params.cam_origin, dir, d * (1.0 + CONNECTION_REL));
+    if !hit.ok || hit.t < d * (1.0 - CONNECTION_REL) || surfaces[hit.object].kind != SURFACE_DIFFUSE {
+        return;
+    }
+    let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
+    if dot(oct_decode(photon.direction_oct), n) >= 0.0 {
+        return;
+    }
+    let albedo = albedo_at(hit, n);
+    let importance = -dot(v, n) / (seen.z * seen.z * seen.z) * params.splat_scale;
+    let band = photon.band_bounces & 0xffffu;
+    var flux = vec3<f32>(photon.flux);
+    if band != WHITE_BAND {
+        flux = bands[band].weight * (photon.flux * f32(params.band_count));
+    }
+    let c = flux * albedo * importance;
+    let k = pixel - params.pixel_offset;
+    for (var ch = 0u; ch < 3u; ch++) {
+        add_to_sum(6u * k + 2u * ch, to_fixed(c[ch], 32));
+    }
+}

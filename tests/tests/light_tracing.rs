@@ -1,0 +1,120 @@
+//! Light tracing: the caustic photons the camera sees directly, connected
+//! to the camera (`prismatic_core::connect`), on every backend; its error
+//! falls as 1/√N (unbiased, no radius); and combined with the gather
+//! behind mirrors and glass, no path is counted twice.
+
+use prismatic_core::connect::splat_photons;
+use prismatic_core::{Backend, NoProgress, PreparedScene, ReferenceBackend, Render};
+use prismatic_cpu::CpuBackend;
+use prismatic_tests::backends::every_backend;
+use prismatic_tests::builtin;
+use prismatic_tests::parity::compare_images;
+
+/// Built-in scene `name` at `size`² pixels, `photons` a pass, light tracing on or off.
+fn scene(name: &str, size: u32, photons: u32, light_tracing: bool) -> PreparedScene {
+    builtin(name, |r| (r.width, r.height, r.photons, r.light_tracing) = (size, size, photons, light_tracing))
+}
+
+/// A render of `scene` on `backend` with passes `passes`.
+fn render(backend: &mut dyn Backend, scene: &PreparedScene, passes: std::ops::Range<u32>) -> Box<dyn Render> {
+    let name = backend.name();
+    let mut render = backend.prepare(scene).unwrap_or_else(|e| panic!("{name}: prepare: {e}"));
+    for k in passes {
+        render.run_pass(k, &mut NoProgress).unwrap_or_else(|e| panic!("{name}: pass {k}: {e}"));
+    }
+    render
+}
+
+/// The caustic alone: the image less its base, per pixel the sum of R, G and B.
+fn caustic(render: &mut dyn Render) -> Vec<f64> {
+    let (image, base) = (render.image().unwrap(), render.base().unwrap());
+    image.pixels.iter().zip(&base.pixels).map(|(a, b)| f64::from((*a - *b).element_sum())).collect()
+}
+
+/// relRMSE over the caustic: the RMSE over the pixels whose reference is
+/// above 5 % of its maximum, over the reference's mean there.
+fn rel_rmse(got: &[f64], reference: &[f64]) -> f64 {
+    let max = reference.iter().copied().fold(0.0, f64::max);
+    let (mut se, mut sum, mut n) = (0.0, 0.0, 0.0);
+    for (g, r) in got.iter().zip(reference) {
+        if *r > 0.05 * max {
+            (se, sum, n) = (se + (g - r).powi(2), sum + r, n + 1.0);
+        }
+    }
+    assert!(n > 0.0, "the reference has a caustic");
+    (se / n).sqrt() / (sum / n)
+}
+
+#[test]
+fn light_traced_caustics_match_the_reference_on_every_backend() {
+    // `prism`: the spectrum on a wall the camera sees directly, so light
+    // tracing alone (no visible points); `caustic`: also seen through the
+    // sphere, where the gather stays.
+    for (name, photons, points) in [("prism", 4_000, false), ("caustic", 20_000, true)] {
+        let scene = scene(name, 64, photons, true);
+        let mut expected = render(&mut ReferenceBackend, &scene, 0..2);
+        assert!(caustic(expected.as_mut()).iter().sum::<f64>() > 0.0, "{name}: a light-traced caustic");
+        assert_eq!(expected.stats().unwrap().visible_points > 0, points, "{name}: visible points");
+        let image = expected.image().unwrap();
+        for mut backend in every_backend().into_iter().skip(1) {
+            let mut got = render(backend.as_mut(), &scene, 0..2);
+            let backend = backend.name();
+            compare_images(&image, &got.image().unwrap()).unwrap_or_else(|e| panic!("{name} on {backend}: {e}"));
+        }
+    }
+}
+
+#[test]
+fn the_light_traced_error_falls_as_one_over_the_square_root_of_the_passes() {
+    // The reference: passes no other render here uses, so its own noise is
+    // independent. Each error is the root mean square over disjoint runs
+    // of 256 passes in all, so that one lucky run does not set the slope.
+    let scene = scene("prism", 96, 2_000, true);
+    let caustic_of = |passes| caustic(render(&mut CpuBackend::new(), &scene, passes).as_mut());
+    let reference = caustic_of(10_000..11_024);
+    let error = |n: u32| {
+        let runs = 256 / n;
+        let squares: f64 = (0..runs).map(|i| rel_rmse(&caustic_of(i * n..(i + 1) * n), &reference).powi(2)).sum();
+        (squares / f64::from(runs)).sqrt()
+    };
+    let passes = [4u32, 16, 64];
+    let errors: Vec<f64> = passes.iter().map(|&n| error(n)).collect();
+    let slope = (errors[2] / errors[0]).ln() / (f64::from(passes[2]) / f64::from(passes[0])).ln();
+    assert!(slope <= -0.4, "relRMSE after {passes:?} passes: {errors:?}, log-log slope {slope:.3}");
+}
+
+#[test]
+fn light_tracing_and_the_gather_together_count_every_caustic_path_once() {
+    // `caustic`: the floor's caustic seen directly (light traced) and
+    // through the sphere (gathered). The gather alone is the long
+    // reference: the same light must give the same total, where counting
+    // the directly seen paths twice would add their energy again.
+    let (passes, size) = (24, 96);
+    let total = |light_tracing: bool| -> f64 {
+        let scene = scene("caustic", size, 65_000, light_tracing);
+        caustic(render(&mut CpuBackend::new(), &scene, 0..passes).as_mut()).iter().sum()
+    };
+    let (combined, gathered) = (total(true), total(false));
+    // What light tracing brings of it: the splats of the same passes' photons.
+    let scene = scene("caustic", size, 65_000, true);
+    let mut r = CpuBackend::new().prepare(&scene).unwrap();
+    let direct: f64 = (0..passes)
+        .map(|k| {
+            let map = r.photon_map(k, &mut NoProgress).unwrap();
+            splat_photons(&scene, &map.photons).iter().map(|s| f64::from(s.radiance.element_sum())).sum::<f64>()
+        })
+        .sum::<f64>()
+        / f64::from(passes);
+    assert!(direct > 0.1 * combined, "light tracing brings {direct:.1} of {combined:.1}: a double count would show");
+    assert!(
+        (combined / gathered - 1.0).abs() < 0.01,
+        "caustic energy: combined {combined:.2}, gather alone {gathered:.2}"
+    );
+}
+
+#[test]
+fn light_traced_pixels_do_not_depend_on_the_thread_count() {
+    let scene = scene("caustic", 48, 10_000, true);
+    let sums = |threads| render(&mut CpuBackend::with_threads(threads).expect("pool"), &scene, 0..3).sums().unwrap();
+    assert_eq!(sums(1), sums(2));
+}

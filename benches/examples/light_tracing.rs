@@ -1,0 +1,67 @@
+//! Light tracing against the gather, per built-in scene on the CPU: the
+//! caustic's relRMSE (the RMSE over the pixels whose reference is above
+//! 5 % of its maximum, over the reference's mean there) after 2, 8, 32 and
+//! 128 passes, and the time to get there, with `light_tracing` off (every
+//! diffuse hit gathers) and on. The reference is a long light-traced
+//! render of other passes (REFERENCE passes, 256 unless given): light
+//! tracing converges to the pixel's box-filtered image, the gather at the
+//! pixel centres to the point-sampled one, so an error that stops falling
+//! against it is that difference, not noise.
+//!
+//! `cargo run --release -p prismatic-benches --example light_tracing -- [SCENE] [SIZE] [REFERENCE]`
+
+use prismatic_core::{Backend, NoProgress, PreparedScene, Render};
+use prismatic_cpu::CpuBackend;
+use std::time::Instant;
+
+/// The caustic alone: the image less its base, per pixel the sum of R, G and B.
+fn caustic(render: &mut dyn Render) -> Vec<f64> {
+    let (image, base) = (render.image().expect("image"), render.base().expect("base"));
+    image.pixels.iter().zip(&base.pixels).map(|(a, b)| f64::from((*a - *b).element_sum())).collect()
+}
+
+/// relRMSE over the pixels whose reference is above 5 % of its maximum.
+fn rel_rmse(got: &[f64], reference: &[f64]) -> f64 {
+    let max = reference.iter().copied().fold(0.0, f64::max);
+    let (mut se, mut sum, mut n) = (0.0, 0.0, 0.0);
+    for (g, r) in got.iter().zip(reference) {
+        if *r > 0.05 * max {
+            (se, sum, n) = (se + (g - r).powi(2), sum + r, n + 1.0);
+        }
+    }
+    (se / n).sqrt() / (sum / n)
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let name = args.first().map_or("caustic", String::as_str);
+    let size: u32 = args.get(1).map_or(200, |s| s.parse().expect("SIZE: pixels a side"));
+    let long: u32 = args.get(2).map_or(256, |s| s.parse().expect("REFERENCE: passes"));
+    let scene = |light_tracing: bool| -> PreparedScene {
+        let mut doc = prismatic_cli::load_scene(name).expect("a built-in scene");
+        let r = &mut doc.scene.render;
+        (r.width, r.height, r.light_tracing) = (size, size, light_tracing);
+        PreparedScene::new(doc.scene).expect("valid")
+    };
+    let t = Instant::now();
+    let mut reference = CpuBackend::new().prepare(&scene(true)).expect("prepare");
+    for k in 10_000..10_000 + long {
+        reference.run_pass(k, &mut NoProgress).expect("pass");
+    }
+    let reference = caustic(reference.as_mut());
+    println!("{name}, {size}×{size}: reference of {long} light-traced passes in {:.1} s", t.elapsed().as_secs_f64());
+    println!("| light tracing | passes | relRMSE | time |\n|---|---:|---:|---:|");
+    for light_tracing in [false, true] {
+        let t = Instant::now();
+        let mut render = CpuBackend::new().prepare(&scene(light_tracing)).expect("prepare");
+        let mut done = 0;
+        for n in [2u32, 8, 32, 128].into_iter().filter(|&n| n <= long / 2) {
+            for k in done..n {
+                render.run_pass(k, &mut NoProgress).expect("pass");
+            }
+            done = n;
+            let error = rel_rmse(&caustic(render.as_mut()), &reference);
+            println!("| {light_tracing} | {n} | {error:.4} | {:.2} s |", t.elapsed().as_secs_f64());
+        }
+    }
+}

@@ -10,26 +10,14 @@
 //!
 //! `cargo run --release -p prismatic-benches --example light_tracing -- [SCENE] [SIZE] [REFERENCE]`
 
+use prismatic_conformance::compare::{caustic_of, caustic_rel_rmse};
 use prismatic_core::{Backend, NoProgress, PreparedScene, Render};
 use prismatic_cpu::CpuBackend;
 use std::time::Instant;
 
-/// The caustic alone: the image less its base, per pixel the sum of R, G and B.
+/// The caustic alone of a render's image.
 fn caustic(render: &mut dyn Render) -> Vec<f64> {
-    let (image, base) = (render.image().expect("image"), render.base().expect("base"));
-    image.pixels.iter().zip(&base.pixels).map(|(a, b)| f64::from((*a - *b).element_sum())).collect()
-}
-
-/// relRMSE over the pixels whose reference is above 5 % of its maximum.
-fn rel_rmse(got: &[f64], reference: &[f64]) -> f64 {
-    let max = reference.iter().copied().fold(0.0, f64::max);
-    let (mut se, mut sum, mut n) = (0.0, 0.0, 0.0);
-    for (g, r) in got.iter().zip(reference) {
-        if *r > 0.05 * max {
-            (se, sum, n) = (se + (g - r).powi(2), sum + r, n + 1.0);
-        }
-    }
-    (se / n).sqrt() / (sum / n)
+    caustic_of(&render.image().expect("image"), &render.base().expect("base"))
 }
 
 fn main() {
@@ -60,7 +48,7 @@ fn main() {
                 render.run_pass(k, &mut NoProgress).expect("pass");
             }
             done = n;
-            let error = rel_rmse(&caustic(render.as_mut()), &reference);
+            let error = caustic_rel_rmse(&caustic(render.as_mut()), &reference);
             println!("| {light_tracing} | {n} | {error:.4} | {:.2} s |", t.elapsed().as_secs_f64());
         }
     }

@@ -1,6 +1,8 @@
 //! Comparisons under the rules of [`crate::tolerance`]: photon maps (key by
 //! key, with a stated number of outliers, and flux per band) and images
-//! (pixel by pixel, with a stated number of outlier pixels).
+//! (pixel by pixel, with a stated number of outlier pixels); and the
+//! caustic's relative error against a long render, for convergence tests
+//! and measurements.
 
 use crate::tolerance::*;
 use prismatic_core::photon::WHITE_BAND;
@@ -118,4 +120,24 @@ pub fn image_correlation(a: &Image, b: &Image) -> f64 {
         syy += (v - my) * (v - my);
     }
     if sxx == 0.0 || syy == 0.0 { 0.0 } else { sxy / (sxx * syy).sqrt() }
+}
+
+/// The caustic alone of `image` over its `base`: per pixel, the sum of R,
+/// G and B of the difference.
+pub fn caustic_of(image: &Image, base: &Image) -> Vec<f64> {
+    image.pixels.iter().zip(&base.pixels).map(|(a, b)| f64::from((*a - *b).element_sum())).collect()
+}
+
+/// relRMSE over the caustic: the RMSE over the pixels whose reference is
+/// above 5 % of the reference's maximum, over the reference's mean there
+/// (NaN when the reference has no caustic).
+pub fn caustic_rel_rmse(got: &[f64], reference: &[f64]) -> f64 {
+    let max = reference.iter().copied().fold(0.0, f64::max);
+    let (mut squares, mut sum, mut n) = (0.0, 0.0, 0.0);
+    for (g, r) in got.iter().zip(reference) {
+        if *r > 0.05 * max {
+            (squares, sum, n) = (squares + (g - r).powi(2), sum + r, n + 1.0);
+        }
+    }
+    (squares / n).sqrt() / (sum / n)
 }

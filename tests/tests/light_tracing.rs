@@ -3,6 +3,7 @@
 //! falls as 1/√N (unbiased, no radius); and combined with the gather
 //! behind mirrors and glass, no path is counted twice.
 
+use prismatic_conformance::compare::{caustic_of, caustic_rel_rmse};
 use prismatic_core::connect::splat_photons;
 use prismatic_core::{Backend, NoProgress, PreparedScene, ReferenceBackend, Render};
 use prismatic_cpu::CpuBackend;
@@ -25,24 +26,16 @@ fn render(backend: &mut dyn Backend, scene: &PreparedScene, passes: std::ops::Ra
     render
 }
 
-/// The caustic alone: the image less its base, per pixel the sum of R, G and B.
+/// The caustic alone of a render's image.
 fn caustic(render: &mut dyn Render) -> Vec<f64> {
-    let (image, base) = (render.image().unwrap(), render.base().unwrap());
-    image.pixels.iter().zip(&base.pixels).map(|(a, b)| f64::from((*a - *b).element_sum())).collect()
+    caustic_of(&render.image().unwrap(), &render.base().unwrap())
 }
 
-/// relRMSE over the caustic: the RMSE over the pixels whose reference is
-/// above 5 % of its maximum, over the reference's mean there.
+/// relRMSE over the caustic, which the reference must have.
 fn rel_rmse(got: &[f64], reference: &[f64]) -> f64 {
-    let max = reference.iter().copied().fold(0.0, f64::max);
-    let (mut se, mut sum, mut n) = (0.0, 0.0, 0.0);
-    for (g, r) in got.iter().zip(reference) {
-        if *r > 0.05 * max {
-            (se, sum, n) = (se + (g - r).powi(2), sum + r, n + 1.0);
-        }
-    }
-    assert!(n > 0.0, "the reference has a caustic");
-    (se / n).sqrt() / (sum / n)
+    let error = caustic_rel_rmse(got, reference);
+    assert!(error.is_finite(), "the reference has a caustic");
+    error
 }
 
 #[test]

@@ -1,8 +1,9 @@
 //! The CPU backend's kernels for the core's host driver: packet view rays,
 //! packet photon passes in fixed chunks of emissions, packet grids and
 //! gathers, light tracing over the photons in parallel (the core's
-//! connection, one photon at a time), each timed on the host. The buffers stay from pass to pass, so
-//! a render allocates nothing after its first pass.
+//! connection, one photon at a time), each timed on the host. The buffers
+//! stay from pass to pass, so a render allocates nothing after its first
+//! pass.
 
 use crate::pass::PassGrids;
 use crate::{TRACE_CHUNK, trace, view};

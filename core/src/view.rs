@@ -10,7 +10,8 @@
 //! consistent blend (the two estimate disjoint light paths). The view pass
 //! leaves the caustic out: each diffuse hit that needs it becomes a visible
 //! point whose weight says what a unit of caustic irradiance there adds to
-//! the pixel, and every photon pass gathers there.
+//! the pixel, and every photon pass gathers there (with light tracing,
+//! only the hits behind a mirror or glass: see [`gathers_at`]).
 //!
 //! Mirrors reflect; dielectrics trace both the Fresnel-weighted reflection
 //! and the refraction, to `max_depth`, dropping branches whose share of the

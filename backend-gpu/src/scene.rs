@@ -129,7 +129,7 @@ impl EncodedScene {
             ambient: [r.ambient; 3],
             light_tracing: u32::from(r.light_tracing),
             background: v3(r.background),
-            splat_scale: r.exposure / (std::f32::consts::PI * camera.pixel_area()),
+            splat_scale: prismatic_core::connect::importance_scale(r.exposure, &camera),
             cam_origin: v3(camera.origin),
             cam_right: v3(camera.right),
             cam_down: v3(camera.down),

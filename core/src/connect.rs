@@ -60,7 +60,7 @@ impl<'a> CameraConnection<'a> {
     pub fn new(scene: &'a PreparedScene) -> Self {
         let r = &scene.scene.render;
         let camera = PinholeCamera::new(&scene.scene.camera, r.width, r.height);
-        CameraConnection { scene, camera, scale: r.exposure / (PI * camera.pixel_area()) }
+        CameraConnection { scene, camera, scale: importance_scale(r.exposure, &camera) }
     }
 
     /// What `photon` adds to the pixel that sees it, or `None` when no
@@ -85,6 +85,12 @@ impl<'a> CameraConnection<'a> {
         let flux = self.scene.bands.rgb_of_flux(photon.band, photon.flux);
         Some(Splat { pixel: seen.y * self.camera.width + seen.x, radiance: flux * albedo * importance })
     }
+}
+
+/// The factor every splat of `camera` shares: exposure / (π · pixel area)
+/// (the BRDF's 1/π and the pixel's share of the image plane).
+pub fn importance_scale(exposure: f32, camera: &PinholeCamera) -> f32 {
+    exposure / (PI * camera.pixel_area())
 }
 
 /// The scalar reference's light tracing of a pass: what each of `photons`

@@ -1,12 +1,12 @@
 //! Packet emission: `prismatic_core::emit::emit` for eight photon indices at once.
 
-use crate::simd::{Vec3x8, ge, sin_cos_turns};
+use crate::simd::{Vec3x8, ge, photon_f32, sin_cos_turns};
 use prismatic_core::geometry::basis;
 use prismatic_core::math::{cos, radians};
 use prismatic_core::prepared::PreparedScene;
 use prismatic_core::projection::Targets;
 use prismatic_core::rng::dim;
-use prismatic_core::scene::Light;
+use prismatic_core::scene::{Light, PhotonSequence};
 use wide::{f32x8, u32x8};
 
 /// A light with its frame precomputed (the scalar `emit` computes the same values per photon).
@@ -34,6 +34,7 @@ pub struct Emitters {
     projections: Vec<Option<ProjectionX8>>,
     cdf: Vec<f32x8>,
     seed: u32,
+    sequence: PhotonSequence,
 }
 
 impl Emitters {
@@ -99,14 +100,17 @@ impl Emitters {
                 })
             })
             .collect();
-        Emitters { lights, projections, cdf, seed: scene.scene.render.seed }
+        let r = &scene.scene.render;
+        Emitters { lights, projections, cdf, seed: r.seed, sequence: r.photon_sequence }
     }
 
     /// Origins, directions and flux weights of white photons `index`.
     #[inline]
     pub fn emit(&self, index: u32x8) -> (Vec3x8, Vec3x8, f32x8) {
         let rnd = |d: u32| crate::simd::random_f32(self.seed, index, u32x8::splat(d));
-        let (u1, u2) = (rnd(dim::DIRECTION), rnd(dim::DIRECTION + 1));
+        // The light's own sample: a direction, or a point on a beam's disc.
+        let sample = |d: u32| photon_f32(self.sequence, self.seed, index, d);
+        let (u1, u2) = (sample(dim::DIRECTION), sample(dim::DIRECTION + 1));
         if self.lights.len() == 1 {
             return self.emit_from(0, index, u1, u2);
         }
@@ -134,7 +138,7 @@ impl Emitters {
         if let Some(p) = &self.projections[k] {
             return self.emit_projected(&self.lights[k], p, index, u1, u2);
         }
-        let (origin, dir) = self.emit_whole(&self.lights[k], index, u1, u2);
+        let (origin, dir) = self.emit_whole(&self.lights[k], u1, u2);
         (origin, dir, f32x8::ONE)
     }
 
@@ -177,10 +181,9 @@ impl Emitters {
                 inside = f32x8::splat(f32::from_bits(u32::MAX));
             }
             Emitter::Beam { position, axis, t, b, radius } => {
-                let (v1, v2) = (rnd(dim::POSITION), rnd(dim::POSITION + 1));
-                let (sin_phi, cos_phi) = sin_cos_turns(v2);
+                let (sin_phi, cos_phi) = sin_cos_turns(u2);
                 for (j, (c, r)) in p.discs.iter().enumerate() {
-                    let o = *c + (t * cos_phi + b * sin_phi) * (*r * v1.sqrt());
+                    let o = *c + (t * cos_phi + b * sin_phi) * (*r * u1.sqrt());
                     origin = Vec3x8::select(target.simd_eq(f32x8::splat(j as f32)), o, origin);
                 }
                 dir = axis;
@@ -198,7 +201,7 @@ impl Emitters {
     }
 
     #[inline]
-    fn emit_whole(&self, light: &Emitter, index: u32x8, u1: f32x8, u2: f32x8) -> (Vec3x8, Vec3x8) {
+    fn emit_whole(&self, light: &Emitter, u1: f32x8, u2: f32x8) -> (Vec3x8, Vec3x8) {
         match *light {
             Emitter::Spot { position, axis, t, b, cos_max } => {
                 let cos_t = f32x8::ONE - u1 * (f32x8::ONE - cos_max);
@@ -211,9 +214,8 @@ impl Emitters {
                 (position, Vec3x8 { x: r * cos_phi, y: r * sin_phi, z })
             }
             Emitter::Beam { position, axis, t, b, radius } => {
-                let rnd = |d: u32| crate::simd::random_f32(self.seed, index, u32x8::splat(d));
-                let r = radius * rnd(dim::POSITION).sqrt();
-                let (sin_phi, cos_phi) = sin_cos_turns(rnd(dim::POSITION + 1));
+                let r = radius * u1.sqrt();
+                let (sin_phi, cos_phi) = sin_cos_turns(u2);
                 (position + (t * cos_phi + b * sin_phi) * r, axis)
             }
         }

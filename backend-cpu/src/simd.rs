@@ -6,6 +6,8 @@
 //! computes the same bits as the scalar reference.
 
 use glam::Vec3;
+use prismatic_core::scene::PhotonSequence;
+use prismatic_core::sobol;
 use wide::{f32x8, i32x8, u32x8};
 
 /// Eight 3-vectors, one per lane.
@@ -149,6 +151,18 @@ pub fn pcg_hash(input: u32x8) -> u32x8 {
 pub fn random_f32(seed: u32, index: u32x8, dimension: u32x8) -> f32x8 {
     let h = pcg_hash(pcg_hash(pcg_hash(u32x8::splat(seed)) ^ index) + dimension) >> 8;
     f32x8::from_i32x8(bytemuck::cast::<u32x8, i32x8>(h)) * f32x8::splat(1.0 / 16_777_216.0)
+}
+
+/// `prismatic_core::sobol::photon_f32` for eight photon indices at once
+/// (the scrambled Sobol lanes one by one: a few per photon, beside its path).
+#[inline]
+pub fn photon_f32(sequence: PhotonSequence, seed: u32, index: u32x8, dimension: u32) -> f32x8 {
+    match sobol::sobol_dimension(dimension) {
+        Some(d) if sequence == PhotonSequence::Sobol => {
+            f32x8::new(index.to_array().map(|i| sobol::sobol_f32(seed, i, d)))
+        }
+        _ => random_f32(seed, index, u32x8::splat(dimension)),
+    }
 }
 
 /// `prismatic_core::math::sin_cos_turns` on eight values.

@@ -78,8 +78,8 @@ pub struct Params {
     pub splat_scale: f32,
     /// Camera eye point.
     pub cam_origin: [f32; 3],
-    /// Padding.
-    pub _pad3: u32,
+    /// 0 random, 1 scrambled Sobol emission and spectrum.
+    pub photon_sequence: u32,
     /// Image-plane step per pixel to the right.
     pub cam_right: [f32; 3],
     /// Padding.

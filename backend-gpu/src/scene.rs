@@ -14,7 +14,7 @@ use prismatic_core::camera::PinholeCamera;
 use prismatic_core::geometry::{Primitive, basis};
 use prismatic_core::math::{cos, radians};
 use prismatic_core::projection::Targets;
-use prismatic_core::scene::{Estimator, Filter, Light, Sampler, Texture, WavelengthSampling, Wrap};
+use prismatic_core::scene::{Estimator, Filter, Light, PhotonSequence, Sampler, Texture, WavelengthSampling, Wrap};
 use prismatic_core::surface::Surface;
 use prismatic_core::texture::srgb_to_linear;
 use prismatic_core::trace::photon_flux;
@@ -112,6 +112,10 @@ impl EncodedScene {
                 WavelengthSampling::Split => 0,
                 WavelengthSampling::RandomBand => 1,
                 WavelengthSampling::Continuous => 2,
+            },
+            photon_sequence: match r.photon_sequence {
+                PhotonSequence::Random => 0,
+                PhotonSequence::Sobol => 1,
             },
             object_count: e.objects.len() as u32,
             light_count: e.lights.len() as u32,

@@ -95,13 +95,12 @@ fn prelude(stack: u32) -> String {
     u("WHITE_BAND", u32::from(WHITE_BAND));
     u("DIM_LIGHT", dim::LIGHT);
     u("DIM_DIRECTION", dim::DIRECTION);
-    u("DIM_POSITION", dim::POSITION);
     u("DIM_TARGET", dim::TARGET);
-    u("DIM_BAND", dim::BAND);
-    u("DIM_WAVELENGTH", dim::WAVELENGTH);
+    u("DIM_SPECTRUM", dim::SPECTRUM);
     u("DIM_PATH", dim::PATH);
     u("DIM_PER_BAND", dim::PER_BAND);
     u("DIM_ABSORB", dim::ABSORB);
+    u("SEQUENCE_SOBOL", 1);
     u("WAVELENGTHS_SPLIT", 0);
     u("WAVELENGTHS_RANDOM_BAND", 1);
     u("WAVELENGTHS_CONTINUOUS", 2);

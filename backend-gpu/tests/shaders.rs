@@ -102,7 +102,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 background,
                 splat_scale,
                 cam_origin,
-                _pad3,
+                photon_sequence,
                 cam_right,
                 _pad4,
                 cam_down,

@@ -5,7 +5,8 @@
 //! reflection, indices within 1e-6 of 1, glass in a denser medium), the
 //! estimator's last step (`finish_estimate` against `gather::finish`), and
 //! the fixed-point sums (`to_fixed`, `i64_add` against Rust's `as i64` and
-//! `saturating_add`). A drift in one copy fails here before a whole-image
+//! `saturating_add`), and the scrambled Sobol points (`sobol_f32`, bit for
+//! bit). A drift in one copy fails here before a whole-image
 //! parity test sees it.
 
 use bytemuck::{Pod, Zeroable};
@@ -13,7 +14,7 @@ use prismatic_conformance::twins::{
     Agreement, FinishCase, SurfaceAnswer, SurfaceCase, check_finish, check_surface, finish_case, fixed_answer,
     fixed_input, surface_case,
 };
-use prismatic_core::{Estimator, Vec3};
+use prismatic_core::{Estimator, Vec3, sobol};
 use prismatic_gpu::{AdapterChoice, GpuContext, shaders};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -110,6 +111,20 @@ fn fixed(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 "#;
 
+const SOBOL: &str = r#"
+@group(0) @binding(0) var<storage, read> sobol_in: array<vec4<u32>>;
+@group(0) @binding(1) var<storage, read_write> sobol_out: array<f32>;
+
+@compute @workgroup_size(64)
+fn sobol(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&sobol_in) {
+        return;
+    }
+    let c = sobol_in[id.x];
+    sobol_out[id.x] = sobol_f32(c.x, c.y, c.z);
+}
+"#;
+
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct SurfaceIn {
@@ -155,7 +170,7 @@ struct FixedIn {
 /// The device and one pipeline per entry point, made once for every test.
 struct Twins {
     ctx: GpuContext,
-    pipelines: [(&'static str, wgpu::ComputePipeline); 3],
+    pipelines: [(&'static str, wgpu::ComputePipeline); 4],
 }
 
 fn twins() -> Option<&'static Twins> {
@@ -185,7 +200,12 @@ fn twins() -> Option<&'static Twins> {
                 });
                 (entry, pipeline)
             };
-            let pipelines = [pipeline("optics", OPTICS), pipeline("finish", FINISH), pipeline("fixed", FIXED)];
+            let pipelines = [
+                pipeline("optics", OPTICS),
+                pipeline("finish", FINISH),
+                pipeline("fixed", FIXED),
+                pipeline("sobol", SOBOL),
+            ];
             Some(Twins { ctx, pipelines })
         })
         .as_ref()
@@ -326,6 +346,24 @@ proptest! {
             if x.is_finite() && term.unsigned_abs() < 1 << 31 {
                 prop_assert_eq!(value(got[4], got[5]), a.wrapping_add(term), "add_term({}, {:e}, {})", a, x, shift);
             }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(config(4))]
+
+    /// Integer arithmetic and an exact conversion: the same bits.
+    #[test]
+    fn wgsl_sobol_points_are_the_cores(
+        cases in prop::collection::vec((any::<u32>(), prop_oneof![0u32..4096, any::<u32>()], 0..sobol::DIMENSIONS), 1024),
+    ) {
+        let Some(twins) = twins() else { return Ok(()) };
+        let inputs: Vec<[u32; 4]> = cases.iter().map(|&(seed, index, d)| [seed, index, d, 0]).collect();
+        let answers: Vec<f32> = twins.run("sobol", &inputs);
+        for (&(seed, index, d), got) in cases.iter().zip(answers) {
+            let expected = sobol::sobol_f32(seed, index, d);
+            prop_assert_eq!(got.to_bits(), expected.to_bits(), "sobol_f32({}, {}, {})", seed, index, d);
         }
     }
 }

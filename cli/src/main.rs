@@ -9,12 +9,14 @@ use prismatic_cli::partial::Partial;
 use prismatic_cli::passes::{parse_passes, parse_seconds};
 use prismatic_cli::progress_bar::ProgressBar;
 use prismatic_cli::render_job::{Output, RenderJob};
-use prismatic_cli::scene_file::{SceneFileError, parse_bands, parse_estimator, parse_radius_mode, parse_wavelengths};
+use prismatic_cli::scene_file::{
+    SceneFileError, parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_wavelengths,
+};
 use prismatic_cli::settings::{Settings, SettingsSource};
 use prismatic_cli::study::progress::StudyBar;
 use prismatic_cli::study::{self, StudyOptions, report};
 use prismatic_core::bands::BandSpec;
-use prismatic_core::scene::{Estimator, RadiusMode, WavelengthSampling};
+use prismatic_core::scene::{Estimator, PhotonSequence, RadiusMode, WavelengthSampling};
 use prismatic_core::{PreparedScene, TraceStats};
 use std::ops::Range;
 use std::path::PathBuf;
@@ -134,6 +136,10 @@ struct JobArgs {
     /// Wavelength sampling at dispersive glass: split, random_band or continuous.
     #[arg(long, value_parser = parse_wavelengths)]
     wavelengths: Option<WavelengthSampling>,
+    /// Where photons' emission directions and wavelengths come from: sobol
+    /// (Owen-scrambled, stratified per pass) or random.
+    #[arg(long, value_parser = parse_photon_sequence)]
+    photon_sequence: Option<PhotonSequence>,
     /// Image width.
     #[arg(long)]
     width: Option<u32>,
@@ -393,6 +399,7 @@ impl JobArgs {
             estimator: self.estimator,
             light_tracing: self.light_tracing,
             wavelengths: self.wavelengths,
+            photon_sequence: self.photon_sequence,
             width: self.width,
             height: self.height,
         }

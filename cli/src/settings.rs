@@ -6,7 +6,7 @@
 use crate::scene_file::{SceneDocument, SceneFileError};
 use prismatic_core::PreparedScene;
 use prismatic_core::bands::BandSpec;
-use prismatic_core::scene::{Estimator, RadiusMode, WavelengthSampling};
+use prismatic_core::scene::{Estimator, PhotonSequence, RadiusMode, WavelengthSampling};
 
 /// Settings that override the scene's `[render]` table (`None`: the scene's).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -27,6 +27,8 @@ pub struct Settings {
     pub light_tracing: Option<bool>,
     /// Wavelength sampling at dispersive glass.
     pub wavelengths: Option<WavelengthSampling>,
+    /// Where photons' emission and wavelength numbers come from.
+    pub photon_sequence: Option<PhotonSequence>,
     /// Image width.
     pub width: Option<u32>,
     /// Image height.
@@ -73,6 +75,7 @@ impl Settings {
         r.estimator = self.estimator.unwrap_or(r.estimator);
         r.light_tracing = self.light_tracing.unwrap_or(r.light_tracing);
         r.wavelengths = self.wavelengths.unwrap_or(r.wavelengths);
+        r.photon_sequence = self.photon_sequence.unwrap_or(r.photon_sequence);
         r.width = self.width.unwrap_or(r.width);
         r.height = self.height.unwrap_or(r.height);
         doc.validate().map_err(|e| self.blame(e, source))?;
@@ -90,6 +93,7 @@ impl Settings {
             ("estimator", self.estimator.is_some()),
             ("light_tracing", self.light_tracing.is_some()),
             ("wavelengths", self.wavelengths.is_some()),
+            ("photon_sequence", self.photon_sequence.is_some()),
             ("width", self.width.is_some()),
             ("height", self.height.is_some()),
         ];

@@ -22,6 +22,10 @@ const EXPECTED: &[(&str, &str)] = &[
     ("unknown-glass", "15: material.glass.ior: unknown glass \"unobtainium\""),
     ("unknown-key", "28: object[1].colour: unknown key"),
     ("unknown-material", "19: object[0].material: unknown material \"marble\""),
+    (
+        "unknown-photon-sequence",
+        "3: render.photon_sequence: unknown photon sequence \"halton\"; expected sobol or random",
+    ),
     ("wrong-type", "2: render.photons: must be a whole number, got string"),
     ("zero-bands", "2: render.bands: must be \"paper3\", \"paper7\" or 1 to 256, got 0"),
     ("zero-neighbours", "3: render.neighbours: must be at least 1, got 0"),

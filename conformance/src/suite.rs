@@ -7,7 +7,7 @@
 
 use crate::compare::{compare_images, compare_maps};
 use crate::scenes;
-use prismatic_core::scene::{Light, RadiusMode};
+use prismatic_core::scene::{Light, PhotonSequence, RadiusMode};
 use prismatic_core::{
     Accumulation, Backend, BackendError, BandSpec, Change, NoProgress, PhotonMap, PreparedScene, ReferenceBackend,
     Render, Scene,
@@ -43,14 +43,17 @@ fn edited(scene: &PreparedScene, edit: impl FnOnce(&mut Scene)) -> PreparedScene
 
 /// The photon map of a pass is the reference's (same keys in canonical
 /// order, positions and flux within the parity tolerances), with the same
-/// emissions, for several passes.
+/// emissions, for several passes, with Sobol and with random photons.
 pub fn photon_maps_match_the_reference(backend: &mut dyn Backend) {
-    for (name, scene) in scenes::with_caustics() {
+    let sequences = [PhotonSequence::Sobol, PhotonSequence::Random];
+    for ((name, scene), sequence) in scenes::with_caustics().into_iter().flat_map(|s| sequences.map(|q| (s.clone(), q)))
+    {
+        let scene = edited(&scene, |s| s.render.photon_sequence = sequence);
         let mut reference = prepare(&mut ReferenceBackend, &scene);
         let mut got = prepare(backend, &scene);
         for pass in [0, 3] {
             let (expected, map) = (photon_map(reference.as_mut(), pass), photon_map(got.as_mut(), pass));
-            let case = format!("{}, {name}, pass {pass}", backend.name());
+            let case = format!("{}, {name}, {} photons, pass {pass}", backend.name(), sequence.name());
             assert!(map.is_canonical(), "{case}: not in canonical order");
             assert!(!expected.photons.is_empty(), "{case}: the reference stores no photon to compare");
             assert_eq!(map.stats.emitted, expected.stats.emitted, "{case}: emitted");
@@ -155,6 +158,7 @@ pub fn updates_give_a_fresh_renders_sums(backend: &mut dyn Backend) {
     let edits: Vec<(Change, PreparedScene)> = vec![
         (Change::None, edited(&scene, |s| s.render.passes = 3)),
         (Change::Photons, edited(&scene, |s| s.render.seed += 1)),
+        (Change::Photons, edited(&scene, |s| s.render.photon_sequence = PhotonSequence::Random)),
         (Change::Photons, edited(&scene, |s| s.render.photons += 3_000)),
         (Change::Photons, edited(&scene, |s| s.render.radius_mode = RadiusMode::Fixed)),
         (Change::View, edited(&scene, moved)),

@@ -6,6 +6,7 @@ use crate::prepared::PreparedScene;
 use crate::projection::cone_direction;
 use crate::rng::{dim, random_f32};
 use crate::scene::Light;
+use crate::sobol::photon_f32;
 use glam::Vec3;
 
 /// A white photon as it leaves its light.
@@ -28,16 +29,14 @@ pub struct Emitted {
 pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
     let u = random_f32(seed, index, dim::LIGHT);
     let light = scene.light_cdf.iter().position(|&c| u < c).unwrap_or(scene.light_cdf.len() - 1);
-    let u1 = random_f32(seed, index, dim::DIRECTION);
-    let u2 = random_f32(seed, index, dim::DIRECTION + 1);
+    // The light's own two-dimensional sample: a direction, or a point on a beam's disc.
+    let sequence = scene.scene.render.photon_sequence;
+    let u1 = photon_f32(sequence, seed, index, dim::DIRECTION);
+    let u2 = photon_f32(sequence, seed, index, dim::DIRECTION + 1);
     let source = &scene.emitters[light];
     if let Some(projection) = &scene.plan.projections[light] {
         let u_target = random_f32(seed, index, dim::TARGET);
-        let (v1, v2) = match source {
-            Light::Beam { .. } => (random_f32(seed, index, dim::POSITION), random_f32(seed, index, dim::POSITION + 1)),
-            _ => (u1, u2),
-        };
-        let s = projection.sample(source, u_target, v1, v2);
+        let s = projection.sample(source, u_target, u1, u2);
         return Emitted { origin: s.origin, direction: s.direction, light, weight: s.weight };
     }
     match source {
@@ -56,8 +55,8 @@ pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
         Light::Beam { position, direction, radius, .. } => {
             let axis = direction.normalize();
             let (t, b) = basis(axis);
-            let r = radius * sqrt(random_f32(seed, index, dim::POSITION));
-            let (sin_phi, cos_phi) = sin_cos_turns(random_f32(seed, index, dim::POSITION + 1));
+            let r = radius * sqrt(u1);
+            let (sin_phi, cos_phi) = sin_cos_turns(u2);
             let origin = *position + (t * cos_phi + b * sin_phi) * r;
             Emitted { origin, direction: axis, light, weight: 1.0 }
         }

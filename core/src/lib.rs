@@ -15,7 +15,7 @@
 //! | layer | modules | what |
 //! |---|---|---|
 //! | model | `scene`, `validate`, `bands`, `cie`, `color`, `dispersion`, `image`, `mesh` | what the user described |
-//! | kernels | `math`, `rng`, `tolerance`, `ray`, `triangle`, `texture`, `bvh`, `bvh_build`, `geometry`, `camera`, `optics`, `photon`, `grid`, `gather`, `visible` | pure functions, mirrored in packets and WGSL |
+//! | kernels | `math`, `rng`, `sobol`, `tolerance`, `ray`, `triangle`, `texture`, `bvh`, `bvh_build`, `geometry`, `camera`, `optics`, `photon`, `grid`, `gather`, `visible` | pure functions, mirrored in packets and WGSL |
 //! | plan | `surface`, `reach`, `projection`, `effects`, `prepared`, `schedule` | what a render of this scene will do |
 //! | pipeline | `emit`, `trace`, `view`, `connect`, `accumulation`, `protocol`, `host`, `reference` | the reference backend and the protocol |
 
@@ -48,6 +48,7 @@ pub mod optics;
 pub mod photon;
 pub mod ray;
 pub mod rng;
+pub mod sobol;
 pub mod texture;
 pub mod tolerance;
 pub mod triangle;

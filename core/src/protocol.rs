@@ -157,8 +157,8 @@ pub enum Change {
     /// offline render).
     #[default]
     None,
-    /// The photons alone: photon count, seed, radius, radius mode,
-    /// estimator, α, neighbours, projection maps. The passes start again (a
+    /// The photons alone: photon count, seed, photon sequence, radius,
+    /// radius mode, estimator, α, neighbours, projection maps. The passes start again (a
     /// new pilot pass, sums emptied); the view rays' image and visible
     /// points stay.
     Photons,
@@ -194,6 +194,7 @@ impl Change {
             Change::View
         } else if a.photons != b.photons
             || a.seed != b.seed
+            || a.photon_sequence != b.photon_sequence
             || a.radius != b.radius
             || a.radius_mode != b.radius_mode
             || a.estimator != b.estimator
@@ -212,7 +213,7 @@ impl Change {
 mod tests {
     use super::*;
     use crate::color::ToneMap;
-    use crate::scene::{Camera, Light, RadiusMode};
+    use crate::scene::{Camera, Light, PhotonSequence, RadiusMode};
     use crate::{BandSpec, Vec3};
     use alloc::vec;
 
@@ -235,6 +236,7 @@ mod tests {
         assert_eq!(edited(&|s| s.render.passes = 3), Change::None);
         assert_eq!(edited(&|s| s.render.photons += 1), Change::Photons);
         assert_eq!(edited(&|s| s.render.seed += 1), Change::Photons);
+        assert_eq!(edited(&|s| s.render.photon_sequence = PhotonSequence::Random), Change::Photons);
         assert_eq!(edited(&|s| s.render.alpha = 0.5), Change::Photons);
         assert_eq!(edited(&|s| s.render.radius_mode = RadiusMode::Fixed), Change::Photons);
         assert_eq!(edited(&|s| s.lights[0] = Light::Point { position: Vec3::ONE, power: 10.0 }), Change::View);

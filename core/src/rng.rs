@@ -30,16 +30,15 @@ pub fn random_f32(seed: u32, index: u32, dimension: u32) -> f32 {
 pub mod dim {
     /// Which light emits the photon.
     pub const LIGHT: u32 = 0;
-    /// Two dimensions for the emission direction.
+    /// Two dimensions for the light's own sample: the emission direction,
+    /// or where on its disc a beam's photon starts.
     pub const DIRECTION: u32 = 1;
-    /// Two dimensions for the position on an area emitter (beam disc).
-    pub const POSITION: u32 = 3;
     /// Which projection-map target a photon is aimed at.
-    pub const TARGET: u32 = 5;
-    /// The band a white photon continues as when it does not split.
-    pub const BAND: u32 = 6;
-    /// The wavelength within that band (continuous sampling).
-    pub const WAVELENGTH: u32 = 7;
+    pub const TARGET: u32 = 3;
+    /// The spectrum of a white photon that does not split: the band it
+    /// continues as and, for continuous sampling, its wavelength within the
+    /// band (one number, so a stratified sequence stratifies the spectrum).
+    pub const SPECTRUM: u32 = 4;
     /// First dimension of the path's scattering decisions.
     pub const PATH: u32 = 8;
     /// Dimensions reserved per band path (one per bounce, at most this many bounces).

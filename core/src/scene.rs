@@ -99,6 +99,33 @@ impl WavelengthSampling {
     }
 }
 
+/// Where the numbers of a photon's emission and wavelength come from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PhotonSequence {
+    /// Independent counter-based random numbers ([`crate::rng`]).
+    Random,
+    /// Owen-scrambled Sobol points, one scramble per pass ([`crate::sobol`]):
+    /// a pass's directions and wavelengths are stratified jointly, so each
+    /// pass is less noisy; the photon paths' later decisions stay random.
+    #[default]
+    Sobol,
+}
+
+impl PhotonSequence {
+    /// The scene-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            PhotonSequence::Random => "random",
+            PhotonSequence::Sobol => "sobol",
+        }
+    }
+
+    /// Parses a scene-file name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [PhotonSequence::Random, PhotonSequence::Sobol].into_iter().find(|s| s.name() == name)
+    }
+}
+
 /// Hachisuka et al.'s recommended fraction of photons kept per pass: how
 /// fast progressive radii shrink by default.
 pub const DEFAULT_ALPHA: f32 = 0.7;
@@ -160,6 +187,8 @@ pub struct RenderSettings {
     pub light_tracing: bool,
     /// How white photons sample the spectrum at dispersive glass.
     pub wavelengths: WavelengthSampling,
+    /// Where photons' emission and wavelength numbers come from.
+    pub photon_sequence: PhotonSequence,
     /// Seed of the counter-based RNG.
     pub seed: u32,
     /// Most specular interactions on a photon path or view ray.
@@ -196,6 +225,7 @@ impl Default for RenderSettings {
             estimator: Estimator::Paper,
             light_tracing: false,
             wavelengths: WavelengthSampling::Split,
+            photon_sequence: PhotonSequence::Sobol,
             seed: 1,
             max_depth: 12,
             ambient: 0.03,

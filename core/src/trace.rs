@@ -24,6 +24,7 @@ use crate::prepared::{Hit, PreparedScene, offset_origin};
 use crate::progress::{Progress, Stage};
 use crate::rng::{dim, random_f32};
 use crate::scene::WavelengthSampling;
+use crate::sobol::photon_f32;
 use crate::surface::{DielectricOptics, Surface};
 use alloc::vec::Vec;
 use glam::Vec3;
@@ -188,13 +189,17 @@ pub fn absorbed(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t: f32, band:
 /// The band a white photon continues as when it does not split
 /// ([`WavelengthSampling::RandomBand`] and `Continuous`): uniform over the
 /// bands, and for `Continuous` a wavelength uniform over the band's interval.
+/// Both come from one number u ([`dim::SPECTRUM`]): the band is ⌊u·N⌋ and
+/// the wavelength sits at the fraction u·N − ⌊u·N⌋ of its interval, so
+/// stratified numbers stratify the whole spectrum.
 pub fn sample_band(scene: &PreparedScene, index: u32) -> (u16, Option<f32>) {
-    let seed = scene.scene.render.seed;
+    let r = &scene.scene.render;
     let n = scene.bands.len();
-    let band = ((random_f32(seed, index, dim::BAND) * n as f32) as usize).min(n - 1);
-    let lambda_nm = (scene.scene.render.wavelengths == WavelengthSampling::Continuous).then(|| {
+    let scaled = photon_f32(r.photon_sequence, r.seed, index, dim::SPECTRUM) * n as f32;
+    let band = (scaled as usize).min(n - 1);
+    let lambda_nm = (r.wavelengths == WavelengthSampling::Continuous).then(|| {
         let (lo, hi) = scene.bands.band(band).interval_nm;
-        lo + (hi - lo) * random_f32(seed, index, dim::WAVELENGTH)
+        lo + (hi - lo) * (scaled - band as f32)
     });
     (band as u16, lambda_nm)
 }

@@ -10,7 +10,8 @@ scene file (TOML, ``.gltf``, ``.glb``) or the TOML text of a scene. The
 settings are the ``prismatic render`` command's flags by name: ``width``,
 ``height``, ``photons``, ``bands`` (``"paper3"``, ``"paper7"`` or a
 number), ``radius``, ``radius_mode``, ``seed``, ``estimator``,
-``light_tracing`` (``True`` or ``False``), ``wavelengths``, ``backend`` (``"auto"``, ``"cpu"``, ``"gpu"``,
+``light_tracing`` (``True`` or ``False``), ``wavelengths``, ``photon_sequence``
+(``"sobol"`` or ``"random"``), ``backend`` (``"auto"``, ``"cpu"``, ``"gpu"``,
 ``"reference"``), and for renders ``passes`` and ``time``. The result is
 exactly the image ``prismatic render ... -o FILE.exr`` writes for the same
 scene and settings.
@@ -61,6 +62,7 @@ SETTINGS = (
     "estimator",
     "light_tracing",
     "wavelengths",
+    "photon_sequence",
     "backend",
 )
 

@@ -147,6 +147,9 @@ fn settings(kw: Option<&Bound<'_, PyDict>>) -> Result<(Settings, BackendChoice),
                 s.light_tracing = Some(on.map_err(|_| bad_setting(&key, format!("must be True or False, got {v}")))?);
             }
             "wavelengths" => s.wavelengths = Some(named(&key, scene_file::parse_wavelengths(&text()?))?),
+            "photon_sequence" => {
+                s.photon_sequence = Some(named(&key, scene_file::parse_photon_sequence(&text()?))?);
+            }
             "width" => s.width = Some(int()?),
             "height" => s.height = Some(int()?),
             "backend" => {

@@ -87,6 +87,16 @@ def test_light_tracing_is_the_clis_bit_for_bit(cli, tmp_path):
         prismatic.render("caustic", light_tracing="yes", progress=False)
 
 
+def test_photon_sequence_is_the_clis_bit_for_bit(cli, tmp_path):
+    cli("render", "prism", "--passes", "1", *flags(SMALL), "--photon-sequence", "random", "-o", "r.exr", cwd=tmp_path)
+    random = prismatic.render("prism", passes=1, photon_sequence="random", progress=False, **SMALL)
+    sobol = prismatic.render("prism", passes=1, progress=False, **SMALL)
+    assert same_bits(random, read_exr(tmp_path / "r.exr"))
+    assert not same_bits(random, sobol), "Sobol is the default sequence"
+    with pytest.raises(prismatic.SceneError, match="expected sobol or random"):
+        prismatic.render("prism", photon_sequence="halton", progress=False)
+
+
 def test_a_scene_file_and_its_text_render_the_same(cli, tmp_path):
     path = tmp_path / "scene.toml"
     path.write_text(SCENE_TEXT)

@@ -1,6 +1,7 @@
 // Shared by every pipeline: the structs (twins of `layout.rs`), the
-// counter-based RNG (twin of prismatic_core::rng), float helpers and optics
-// (twins of prismatic_core::{math, optics, geometry::basis}).
+// counter-based RNG and scrambled Sobol points (twins of
+// prismatic_core::{rng, sobol}), float helpers and optics (twins of
+// prismatic_core::{math, optics, geometry::basis}).
 // Constants (WORKGROUP_SIZE, WHITE_BAND, tolerances, RNG dimensions) come
 // from the prelude that `shaders.rs` writes from the Rust constants.
 
@@ -39,7 +40,7 @@ struct Params {
     background: vec3<f32>,
     splat_scale: f32,
     cam_origin: vec3<f32>,
-    _pad3: u32,
+    photon_sequence: u32,
     cam_right: vec3<f32>,
     _pad4: u32,
     cam_down: vec3<f32>,
@@ -182,6 +183,48 @@ fn random_u32(seed: u32, index: u32, dimension: u32) -> u32 {
 
 fn random_f32(seed: u32, index: u32, dimension: u32) -> f32 {
     return f32(random_u32(seed, index, dimension) >> 8u) * (1.0 / 16777216.0);
+}
+
+// sobol::sobol_u32: dimension 0 (bits reversed), 1 (x + 1) or 2 (x² + x + 1).
+fn sobol_u32(index: u32, dimension: u32) -> u32 {
+    if dimension == 0u {
+        return reverseBits(index);
+    }
+    var x = 0u;
+    var v = 1u << 31u;
+    var prev = 0u;
+    var i = index;
+    var k = 1u;
+    while i != 0u {
+        if (i & 1u) != 0u {
+            x ^= v;
+        }
+        var next = v ^ (v >> 1u);
+        if dimension != 1u {
+            next = select(v ^ prev ^ (prev >> 2u), 3u << 30u, k == 1u);
+        }
+        prev = v;
+        v = next;
+        k += 1u;
+        i >>= 1u;
+    }
+    return x;
+}
+
+// sobol::owen_scramble
+fn owen_scramble(x: u32, seed: u32) -> u32 {
+    var y = reverseBits(x) + seed;
+    y ^= y * 0x6c50b47cu;
+    y ^= y * 0xb82f1e52u;
+    y ^= y * 0xc7afe638u;
+    y ^= y * 0x8d22f6e6u;
+    return reverseBits(y);
+}
+
+// sobol::sobol_f32
+fn sobol_f32(seed: u32, index: u32, dimension: u32) -> f32 {
+    let scrambled = owen_scramble(sobol_u32(index, dimension), random_u32(seed, 0xffffffffu, dimension));
+    return f32(scrambled >> 8u) * (1.0 / 16777216.0);
 }
 
 // rng::dim::scatter

@@ -1,4 +1,4 @@
-// Photon emission: twin of prismatic_core::emit and
+// Photon emission: twin of prismatic_core::emit, sobol::photon_f32 and
 // prismatic_core::projection::Projection::sample.
 
 struct Emitted {
@@ -58,22 +58,30 @@ fn projected(l: GpuLight, u_target: f32, u1: f32, u2: f32) -> Emitted {
     return Emitted(origin, l.axis, 0u, select(0.0, l.proj_scale / f32(max(covering, 1u)), inside));
 }
 
+// sobol::photon_f32 (sobol::sobol_dimension inlined).
+fn photon_f32(seed: u32, index: u32, dimension: u32) -> f32 {
+    if params.photon_sequence == SEQUENCE_SOBOL {
+        if dimension == DIM_DIRECTION || dimension == DIM_DIRECTION + 1u {
+            return sobol_f32(seed, index, dimension - DIM_DIRECTION);
+        }
+        if dimension == DIM_SPECTRUM {
+            return sobol_f32(seed, index, 2u);
+        }
+    }
+    return random_f32(seed, index, dimension);
+}
+
 // emit::emit: white photon `index` of the pass.
 fn emit(seed: u32, index: u32) -> Emitted {
     let u = random_f32(seed, index, DIM_LIGHT);
     let light = pick(params.light_cdf, params.light_count, u);
     let l = lights[light];
-    let u1 = random_f32(seed, index, DIM_DIRECTION);
-    let u2 = random_f32(seed, index, DIM_DIRECTION + 1u);
+    // The light's own sample: a direction, or a point on a beam's disc.
+    let u1 = photon_f32(seed, index, DIM_DIRECTION);
+    let u2 = photon_f32(seed, index, DIM_DIRECTION + 1u);
     if l.proj_kind != PROJECTION_NONE {
         let u_target = random_f32(seed, index, DIM_TARGET);
-        var v1 = u1;
-        var v2 = u2;
-        if l.kind == LIGHT_BEAM {
-            v1 = random_f32(seed, index, DIM_POSITION);
-            v2 = random_f32(seed, index, DIM_POSITION + 1u);
-        }
-        var e = projected(l, u_target, v1, v2);
+        var e = projected(l, u_target, u1, u2);
         e.light = light;
         return e;
     }
@@ -87,8 +95,8 @@ fn emit(seed: u32, index: u32) -> Emitted {
         let sc = sin_cos_turns(u2);
         return Emitted(l.position, vec3<f32>(r * sc.y, r * sc.x, z), light, 1.0);
     }
-    let r = l.radius * sqrt(random_f32(seed, index, DIM_POSITION));
-    let sc = sin_cos_turns(random_f32(seed, index, DIM_POSITION + 1u));
+    let r = l.radius * sqrt(u1);
+    let sc = sin_cos_turns(u2);
     let origin = l.position + (l.tangent * sc.y + l.bitangent * sc.x) * r;
     return Emitted(origin, l.axis, light, 1.0);
 }

@@ -109,11 +109,12 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             }
             // trace::sample_band: continue as one random band with the whole flux.
             let n = params.band_count;
-            let band = min(u32(random_f32(seed, index, DIM_BAND) * f32(n)), n - 1u);
+            let scaled = photon_f32(seed, index, DIM_SPECTRUM) * f32(n);
+            let band = min(u32(scaled), n - 1u);
             (*p).band = band;
             if params.wavelengths == WAVELENGTHS_CONTINUOUS {
                 let b = bands[band];
-                (*p).lambda_nm = b.lo_nm + (b.hi_nm - b.lo_nm) * random_f32(seed, index, DIM_WAVELENGTH);
+                (*p).lambda_nm = b.lo_nm + (b.hi_nm - b.lo_nm) * (scaled - f32(band));
             }
             let u = random_f32(seed, index, scatter_dim(band, (*p).bounces));
             scatter_dielectric(p, hit.point, hit.normal, path_ior(s, band, (*p).lambda_nm), u);

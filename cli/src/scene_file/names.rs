@@ -1,8 +1,9 @@
 //! The names of settings as scene files and command-line flags write
-//! them: band tables, estimators, wavelength sampling, radius modes.
+//! them: band tables, estimators, wavelength sampling, photon sequences,
+//! radius modes.
 
 use prismatic_core::bands::BandSpec;
-use prismatic_core::scene::{Estimator, RadiusMode, WavelengthSampling};
+use prismatic_core::scene::{Estimator, PhotonSequence, RadiusMode, WavelengthSampling};
 
 /// Parses a band table name: `paper3`, `paper7` or a number of bands.
 pub fn parse_bands(s: &str) -> Result<BandSpec, String> {
@@ -29,6 +30,11 @@ pub fn parse_estimator(s: &str) -> Result<Estimator, String> {
 pub fn parse_wavelengths(s: &str) -> Result<WavelengthSampling, String> {
     WavelengthSampling::from_name(s)
         .ok_or_else(|| format!("unknown wavelength sampling \"{s}\"; expected split, random_band or continuous"))
+}
+
+/// Parses a photon-sequence name.
+pub fn parse_photon_sequence(s: &str) -> Result<PhotonSequence, String> {
+    PhotonSequence::from_name(s).ok_or_else(|| format!("unknown photon sequence \"{s}\"; expected sobol or random"))
 }
 
 /// Parses a radius-mode name.

@@ -4,7 +4,7 @@
 //! come from OBJ files, textures from image files, dispersion tables from
 //! CSV files, placed glTF files through the glTF importer.
 
-use super::names::{parse_bands, parse_estimator, parse_radius_mode, parse_wavelengths};
+use super::names::{parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_wavelengths};
 use super::reader::{LOCAL_FRAME_RADIUS, Reader, Result, Table, join};
 use crate::gltf_scene;
 use crate::ior_table;
@@ -16,8 +16,8 @@ use prismatic_core::bands::BandSpec;
 use prismatic_core::color::ToneMap;
 use prismatic_core::dispersion::{Dispersion, Glass};
 use prismatic_core::scene::{
-    Attenuation, Camera, Checker, Estimator, Filter, Light, Material, MaterialKind, Object, RadiusMode, RenderSettings,
-    Sampler, Shape, Texture, WavelengthSampling, Wrap,
+    Attenuation, Camera, Checker, Estimator, Filter, Light, Material, MaterialKind, Object, PhotonSequence, RadiusMode,
+    RenderSettings, Sampler, Shape, Texture, WavelengthSampling, Wrap,
 };
 use prismatic_core::{Scene, Vec3};
 use std::ops::Range;
@@ -94,6 +94,7 @@ impl Reader<'_> {
                 "estimator",
                 "light_tracing",
                 "wavelengths",
+                "photon_sequence",
                 "seed",
                 "max_depth",
                 "ambient",
@@ -118,6 +119,7 @@ impl Reader<'_> {
             estimator: self.opt(t, "estimator", Self::estimator)?.unwrap_or(d.estimator),
             light_tracing: self.opt(t, "light_tracing", Self::boolean)?.unwrap_or(d.light_tracing),
             wavelengths: self.opt(t, "wavelengths", Self::wavelengths)?.unwrap_or(d.wavelengths),
+            photon_sequence: self.opt(t, "photon_sequence", Self::photon_sequence)?.unwrap_or(d.photon_sequence),
             seed: self.opt(t, "seed", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.seed, |x| x as u32),
             max_depth: self.opt(t, "max_depth", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.max_depth, |x| x as u32),
             ambient: self.opt(t, "ambient", Self::float)?.unwrap_or(d.ambient),
@@ -160,6 +162,10 @@ impl Reader<'_> {
 
     fn wavelengths(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<WavelengthSampling> {
         parse_wavelengths(self.string(key, v)?).map_err(|reason| self.err(key, &v.span(), reason))
+    }
+
+    fn photon_sequence(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<PhotonSequence> {
+        parse_photon_sequence(self.string(key, v)?).map_err(|reason| self.err(key, &v.span(), reason))
     }
 
     fn radius_mode(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<RadiusMode> {

@@ -121,7 +121,7 @@ mod tests {
     use alloc::vec;
     use alloc::vec::Vec;
 
-    /// The points' `dims` coordinates, `bits` bits each, for indices 0..2^m.
+    /// The `dims` coordinates of points 0..2^m, scrambled with `scramble`'s seeds or not.
     fn points(m: u32, dims: &[u32], scramble: Option<u32>) -> Vec<Vec<u32>> {
         (0..1u32 << m)
             .map(|i| {

@@ -111,7 +111,7 @@ def caustic_rel_rmse(got: np.ndarray, reference: np.ndarray) -> float:
     return float(np.sqrt(np.mean((g[mask] - r[mask]) ** 2)) / np.mean(r[mask]))
 
 
-def times_to(points: Sequence[Tuple[float, float]], target: float) -> float:
+def time_to(points: Sequence[Tuple[float, float]], target: float) -> float:
     """The time at which the (time, error) curve first reaches `target`, log-log interpolated (inf if never)."""
     for (t0, e0), (t1, e1) in zip(points, points[1:]):
         if e1 <= target < e0:
@@ -217,9 +217,9 @@ def luxcore_curve(seconds: float, seed: int, snapshots: Sequence[float]) -> Tupl
 
 def row(label: str, points: List[Tuple[float, float]]) -> str:
     cells = []
+    reached = min(e for _, e in points)
     for target in ERRORS:
-        t = times_to(points, target)
-        reached = min(e for _, e in points)
+        t = time_to(points, target)
         cells.append(f"{t:.2f} s" if math.isfinite(t) else f"not in {points[-1][0]:.0f} s ({reached:.3f})")
     return f"| {label} | " + " | ".join(cells) + " |"
 

@@ -30,36 +30,23 @@ pub const DIMENSIONS: u32 = 3;
 ///
 /// - 0: the van der Corput sequence (v_k = 2^(32−k), the index's bits reversed);
 /// - 1: polynomial x + 1, m = (1): v_k = v_(k−1) ⊕ v_(k−1)/2;
-/// - 2: polynomial x² + x + 1, m = (1, 3): v_k = v_(k−1) ⊕ v_(k−2) ⊕ v_(k−2)/4.
+/// - 2: polynomial x² + x + 1, m = (1, 3): v_k = v_(k−1) ⊕ v_(k−2) ⊕ v_(k−2)/4,
+///   started from v_0 = 0x5555_5555, the one value for which the recurrence
+///   gives v_2 = 3/4 (m_2 = 3).
 pub fn sobol_u32(index: u32, dimension: u32) -> u32 {
-    match dimension {
-        0 => index.reverse_bits(),
-        1 => {
-            let (mut x, mut v, mut i) = (0u32, 1u32 << 31, index);
-            while i != 0 {
-                if i & 1 != 0 {
-                    x ^= v;
-                }
-                v ^= v >> 1;
-                i >>= 1;
-            }
-            x
-        }
-        _ => {
-            let (mut x, mut v, mut prev, mut i) = (0u32, 1u32 << 31, 0u32, index);
-            let mut k = 1;
-            while i != 0 {
-                if i & 1 != 0 {
-                    x ^= v;
-                }
-                let next = if k == 1 { 3u32 << 30 } else { v ^ prev ^ (prev >> 2) };
-                (prev, v) = (v, next);
-                k += 1;
-                i >>= 1;
-            }
-            x
-        }
+    if dimension == 0 {
+        return index.reverse_bits();
     }
+    let (mut x, mut v, mut prev, mut i) = (0u32, 1u32 << 31, 0x5555_5555u32, index);
+    while i != 0 {
+        if i & 1 != 0 {
+            x ^= v;
+        }
+        let next = if dimension == 1 { v ^ (v >> 1) } else { v ^ prev ^ (prev >> 2) };
+        (prev, v) = (v, next);
+        i >>= 1;
+    }
+    x
 }
 
 /// Owen's nested uniform scramble of a 32-bit fraction: Laine and Karras's

@@ -192,20 +192,15 @@ fn sobol_u32(index: u32, dimension: u32) -> u32 {
     }
     var x = 0u;
     var v = 1u << 31u;
-    var prev = 0u;
+    var prev = 0x55555555u;
     var i = index;
-    var k = 1u;
     while i != 0u {
         if (i & 1u) != 0u {
             x ^= v;
         }
-        var next = v ^ (v >> 1u);
-        if dimension != 1u {
-            next = select(v ^ prev ^ (prev >> 2u), 3u << 30u, k == 1u);
-        }
+        let next = select(v ^ prev ^ (prev >> 2u), v ^ (v >> 1u), dimension == 1u);
         prev = v;
         v = next;
-        k += 1u;
         i >>= 1u;
     }
     return x;

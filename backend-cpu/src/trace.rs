@@ -6,8 +6,8 @@
 //! white photon meets dispersive glass, its N band photons leave that point
 //! together as band packets (bands b..b+8 of one photon in the eight lanes,
 //! each lane with its own index of refraction, loaded as one vector from the
-//! glass's band table) and are traced to the end before the white packet
-//! goes on. With single-band sampling (random band, continuous) the white
+//! glass's band table; hero wavelengths, one packet of M, each at its own
+//! wavelength) and are traced to the end before the white packet goes on. With single-band sampling (random band, continuous) the white
 //! photon's lane simply continues as its band, with its own index. Every step mirrors the scalar reference operation for
 //! operation, so the photon map is the reference's bit for bit.
 
@@ -21,7 +21,7 @@ use prismatic_core::prepared::PreparedScene;
 use prismatic_core::rng::dim;
 use prismatic_core::scene::WavelengthSampling;
 use prismatic_core::surface::Surface;
-use prismatic_core::trace::{absorbed, sample_band};
+use prismatic_core::trace::{absorbed, sample_band, split_band};
 use wide::{f32x8, u32x8};
 
 /// A lane mask with every bit set.
@@ -188,7 +188,8 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
     let white = u32x8::splat(u32::from(WHITE_BAND));
     let mut band = white;
     let mut lambda = [None::<f32>; 8];
-    let split_all = settings.wavelengths == WavelengthSampling::Split;
+    // White photons that split continue as this many paths (bands or hero wavelengths).
+    let split_paths = settings.wavelengths.paths(ctx.scene.bands.len());
     loop {
         // Refill free lanes with the next white photons.
         let free = !active;
@@ -230,12 +231,12 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
         let mut go_on = active & !ended;
         go_on &= !absorb_lanes(ctx, &mut sink, go_on & s.absorbing, &hit, dir, flux, [emission, band, bounces]);
         let split = go_on & s.dispersive & bytemuck::cast::<u32x8, f32x8>(band.simd_eq(white));
-        if split_all {
+        if split_paths > 1 {
             // White photons at dispersive glass: their bands leave from here, in band packets.
             for i in lanes(split) {
-                sink.stats.paths += ctx.scene.bands.len() as u64 - 1;
+                sink.stats.paths += u64::from(split_paths) - 1;
                 let white = (emission.as_array()[i], bounces.as_array()[i], flux.as_array()[i]);
-                trace_bands(ctx, &mut sink, i, &hit, point, dir, white);
+                trace_bands(ctx, &mut sink, i, &hit, point, dir, white, split_paths);
             }
             go_on &= !split;
         } else {
@@ -258,9 +259,12 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
     sink.stats
 }
 
-/// Traces the bands of a white photon (lane `lane` of `hit`; its emission
-/// index, bounces and flux in `white`) from the dispersive surface it has
-/// just met, eight bands per packet.
+/// Traces the paths a white photon splits into (lane `lane` of `hit`; its
+/// emission index, bounces and flux in `white`) from the dispersive surface
+/// it has just met, eight per packet: its `paths` bands
+/// ([`prismatic_core::trace::split_band`]: every band, each with the
+/// glass's band table, or the hero wavelengths, each at its own wavelength).
+#[expect(clippy::too_many_arguments, reason = "one lane's state at the split")]
 fn trace_bands(
     ctx: &TraceContext<'_>,
     sink: &mut Sink,
@@ -269,19 +273,36 @@ fn trace_bands(
     point: Vec3x8,
     dir: Vec3x8,
     (emission, white_bounces, white_flux): (u32, u32, f32),
+    paths: u32,
 ) {
     let seed = ctx.scene.scene.render.seed;
-    let n = ctx.scene.bands.len();
-    let flux = f32x8::splat(white_flux / n as f32);
+    let split = ctx.scene.scene.render.wavelengths == WavelengthSampling::Split;
+    let flux = f32x8::splat(white_flux / paths as f32);
     let emission_v = u32x8::splat(emission);
     let object = hit.object.as_array()[lane] as usize;
     let (p0, d0, n0) =
         (Vec3x8::splat(point.lane(lane)), Vec3x8::splat(dir.lane(lane)), Vec3x8::splat(hit.normal.lane(lane)));
-    for chunk in 0..n.div_ceil(8) {
-        let band = u32x8::new(core::array::from_fn(|i| (chunk * 8 + i) as u32));
-        let mut active = bytemuck::cast::<u32x8, f32x8>(band.simd_lt(u32x8::splat(n as u32)));
+    for chunk in 0..paths.div_ceil(8) {
+        let children: [(u16, Option<f32>); 8] = core::array::from_fn(|i| {
+            let path = chunk * 8 + i as u32;
+            if path < paths { split_band(ctx.scene, emission, path) } else { (WHITE_BAND, None) }
+        });
+        let band = u32x8::new(children.map(|(b, _)| u32::from(b)));
+        let lambda = children.map(|(_, l)| l);
+        let mut active = bytemuck::cast::<u32x8, f32x8>(band.simd_ne(u32x8::splat(u32::from(WHITE_BAND))));
+        // Split bands load their indices from the glass's table, eight at a
+        // time; hero wavelengths take their own, lane by lane.
+        let table = split.then_some(chunk as usize);
+        let lane_ior = |hit: &HitX8, mask: f32x8, ior: f32x8| match table {
+            Some(_) => ior,
+            None => ctx.band_lanes_ior(hit, mask, band, &lambda, ior),
+        };
         let mut bounces = u32x8::splat(white_bounces);
         // First, every band scatters at the glass with its own index.
+        let ior = match table {
+            Some(c) => ctx.objects[object].band_ior[c],
+            None => lane_ior(&HitX8 { object: f32x8::splat(object as f32), ..*hit }, active, f32x8::ONE),
+        };
         let start = LaneSurfaces {
             missed: f32x8::ZERO,
             diffuse: f32x8::ZERO,
@@ -289,7 +310,7 @@ fn trace_bands(
             dielectric: f32x8::splat(ON),
             dispersive: f32x8::ZERO,
             absorbing: f32x8::ZERO,
-            ior: ctx.objects[object].band_ior[chunk],
+            ior,
         };
         let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
         let (mut origin, mut dir) = scatter(p0, d0, n0, &start, u, p0, active, d0);
@@ -299,7 +320,8 @@ fn trace_bands(
         while active.any() {
             let ray = RayX8 { origin, dir };
             let hit = intersect_scene(ctx.scene, &ray, limit_where(active, f32x8::splat(f32::INFINITY)));
-            let s = ctx.classify(&hit, Some(chunk));
+            let mut s = ctx.classify(&hit, table);
+            s.ior = lane_ior(&hit, active & s.dielectric, s.ior);
             let point = ray.at(hit.t);
             let ended =
                 end_paths(ctx, sink, active, &s, point, dir, flux, emission_v, band, bounces, Some(&mut stored));

@@ -112,6 +112,7 @@ impl EncodedScene {
                 WavelengthSampling::Split => 0,
                 WavelengthSampling::RandomBand => 1,
                 WavelengthSampling::Continuous => 2,
+                WavelengthSampling::Hero => 3,
             },
             photon_sequence: match r.photon_sequence {
                 PhotonSequence::Random => 0,

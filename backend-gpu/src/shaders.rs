@@ -7,7 +7,7 @@ use prismatic_core::bands::VISIBLE_NM;
 use prismatic_core::math::{COS_COEFFS, SIN_COEFFS};
 use prismatic_core::photon::WHITE_BAND;
 use prismatic_core::rng::dim;
-use prismatic_core::scene::MAX_DEPTH;
+use prismatic_core::scene::{HERO_WAVELENGTHS, MAX_DEPTH};
 use prismatic_core::texture::TEXEL_LIMIT;
 use prismatic_core::tolerance::{
     BARYCENTRIC_EPS, CONNECTION_REL, MIN_VIEW_WEIGHT, SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL, SURFACE_SKIN_FACTOR,
@@ -104,6 +104,8 @@ fn prelude(stack: u32) -> String {
     u("WAVELENGTHS_SPLIT", 0);
     u("WAVELENGTHS_RANDOM_BAND", 1);
     u("WAVELENGTHS_CONTINUOUS", 2);
+    u("WAVELENGTHS_HERO", 3);
+    u("HERO_WAVELENGTHS", HERO_WAVELENGTHS);
     u("ESTIMATOR_PAPER", 0);
     u("ESTIMATOR_DENSITY", 1);
     u("SURFACE_DIFFUSE", kind::SURFACE_DIFFUSE);

@@ -14,7 +14,6 @@ use crate::pipelines::{Pipelines, dispatch};
 use crate::scan::Scan;
 use crate::scene::SceneBuffers;
 use crate::shaders::{MAX_WORKGROUPS, WORKGROUP_SIZE};
-use prismatic_core::scene::WavelengthSampling;
 use prismatic_core::surface::Surface;
 use prismatic_core::{BackendError, PreparedScene, Progress, Stage, TraceStats};
 
@@ -22,10 +21,11 @@ use prismatic_core::{BackendError, PreparedScene, Progress, Stage, TraceStats};
 /// and the scratch small).
 pub const MAX_CHUNK: u32 = 1 << 20;
 
-/// Scratch slots per emission: every band when white photons split, else one.
+/// Scratch slots per emission: one per path a white photon splits into
+/// (every band, or the hero wavelengths), else one.
 pub fn slots_per_emission(scene: &PreparedScene) -> u32 {
     let splits = scene.surfaces.iter().any(|s| matches!(s, Surface::Dielectric(g) if g.splits_photons));
-    if splits && scene.scene.render.wavelengths == WavelengthSampling::Split { scene.bands.len() as u32 } else { 1 }
+    if splits { scene.scene.render.wavelengths.paths(scene.bands.len()) } else { 1 }
 }
 
 fn storage(ctx: &GpuContext, label: &str, bytes: u64) -> wgpu::Buffer {

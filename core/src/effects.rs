@@ -99,6 +99,10 @@ impl EffectPlan {
             let glass = if specular.iter().any(|&k| dispersive(k)) { "dispersive" } else { "coloured" };
             match scene.render.wavelengths {
                 WavelengthSampling::Split => Effect::on(format!("{n_bands} bands at {glass} glass")),
+                WavelengthSampling::Hero => Effect::on(format!(
+                    "{} hero wavelengths of {n_bands} bands per photon at {glass} glass",
+                    WavelengthSampling::Hero.paths(n_bands)
+                )),
                 w => Effect::on(format!("one of {n_bands} bands per photon at {glass} glass ({})", w.name())),
             }
         } else {

@@ -82,8 +82,8 @@ pub use progress::{NoProgress, Progress, Stage, StageTimes};
 pub use protocol::{Backend, BackendError, Change, Render, RenderStats};
 pub use reference::ReferenceBackend;
 pub use scene::{
-    Camera, Checker, Estimator, Light, Material, Object, RadiusMode, RenderSettings, Scene, SceneError, Shape, Texture,
-    WavelengthSampling,
+    Camera, Checker, Estimator, Light, Material, Object, PhotonSequence, RadiusMode, RenderSettings, Scene, SceneError,
+    Shape, Texture, WavelengthSampling,
 };
 
 /// Re-exported so that users of the scene model need not depend on glam themselves.

@@ -29,7 +29,7 @@
 use crate::math::sqrt;
 use crate::prepared::PreparedScene;
 use crate::rng::random_u32;
-use crate::scene::{RadiusMode, WavelengthSampling};
+use crate::scene::RadiusMode;
 
 /// The smallest first radius, as a fraction of the scene's radius: it
 /// bounds the grid levels a pass needs (see [`level_of`]).
@@ -134,12 +134,10 @@ pub fn initial_radius(r0: f32, pilot_photons: u32, scale: f32, neighbours: f32) 
 }
 
 /// Stored photons per independent photon path: a white photon split into
-/// N bands leaves N photons that travel together until the glass fans them.
+/// N bands (or M hero wavelengths) leaves N photons that travel together
+/// until the glass fans them.
 pub fn photons_per_path(scene: &PreparedScene) -> u32 {
-    match scene.scene.render.wavelengths {
-        WavelengthSampling::Split => scene.bands.len() as u32,
-        WavelengthSampling::RandomBand | WavelengthSampling::Continuous => 1,
-    }
+    scene.scene.render.wavelengths.paths(scene.bands.len())
 }
 
 /// The grid radius of `level` in a pass whose largest radius is `r_pass`.

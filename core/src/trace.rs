@@ -5,9 +5,11 @@
 //! [`PreparedScene::emitters`]); at the first dispersive or coloured
 //! dielectric a white photon splits into one photon per band (each with 1/N
 //! of the flux) and each band continues with its own index of refraction
-//! and absorption; clear non-dispersive glass and mirrors never split. With [`WavelengthSampling::RandomBand`] or
-//! `Continuous` the white photon does not split but continues as one random
-//! band with all its flux (see [`sample_band`]). A photon that reaches a diffuse surface
+//! and absorption; clear non-dispersive glass and mirrors never split. With
+//! [`WavelengthSampling::Hero`] it splits into M hero wavelengths instead
+//! (see [`split_band`]); with [`WavelengthSampling::RandomBand`] or
+//! `Continuous` it does not split but continues as one random band with all
+//! its flux (see [`sample_band`]). A photon that reaches a diffuse surface
 //! after at least one specular interaction is stored (the dispersion caustic
 //! map, L S+ D paths); one that reaches it directly is direct light, which
 //! the renderer ray traces instead. Inside coloured glass a path survives
@@ -141,7 +143,8 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                 p.ray = Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d };
             }
             Surface::Dielectric(glass) if p.band == WHITE_BAND && glass.splits_photons => {
-                if settings.wavelengths != WavelengthSampling::Split {
+                let paths = settings.wavelengths.paths(scene.bands.len());
+                if paths == 1 {
                     let (band, lambda_nm) = sample_band(scene, index);
                     p.band = band;
                     p.lambda_nm = lambda_nm;
@@ -150,17 +153,13 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                     p.bounces += 1;
                     continue;
                 }
-                let n = scene.bands.len();
-                stats.paths += n as u64 - 1;
-                for band in 0..n as u16 {
+                stats.paths += u64::from(paths) - 1;
+                for path in 0..paths {
+                    let (band, lambda_nm) = split_band(scene, index, path);
+                    let child = Path { flux: p.flux / paths as f32, band, lambda_nm, bounces: p.bounces + 1, ..p };
                     let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
-                    let child = Path {
-                        ray: scatter_dielectric(&p.ray, &hit, glass.ior(band), u),
-                        flux: p.flux / n as f32,
-                        band,
-                        lambda_nm: None,
-                        bounces: p.bounces + 1,
-                    };
+                    let child =
+                        Path { ray: scatter_dielectric(&p.ray, &hit, band_ior(scene, glass, &child), u), ..child };
                     trace_path(scene, index, child, out, stats);
                 }
                 return;
@@ -193,11 +192,31 @@ pub fn absorbed(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t: f32, band:
 /// the wavelength sits at the fraction u·N − ⌊u·N⌋ of its interval, so
 /// stratified numbers stratify the whole spectrum.
 pub fn sample_band(scene: &PreparedScene, index: u32) -> (u16, Option<f32>) {
+    spectrum_share(scene, index, 0, 1)
+}
+
+/// Band and wavelength of path `path` of the white photon `index` where it
+/// splits: band `path` at the band's own index ([`WavelengthSampling::Split`]),
+/// or the `path`-th hero wavelength ([`WavelengthSampling::Hero`]).
+pub fn split_band(scene: &PreparedScene, index: u32, path: u32) -> (u16, Option<f32>) {
+    match scene.scene.render.wavelengths {
+        WavelengthSampling::Split => (path as u16, None),
+        w => spectrum_share(scene, index, path, w.paths(scene.bands.len())),
+    }
+}
+
+/// The spectrum sample in share `share` of `shares` equal shares of the
+/// spectrum, all shifted by photon `index`'s one number u
+/// ([`dim::SPECTRUM`]): v = (share + u)/shares, the band ⌊v·N⌋ and (with
+/// continuous wavelengths) the wavelength at the fraction v·N − ⌊v·N⌋ of
+/// its interval. The shares' bands differ when shares ≤ N.
+pub fn spectrum_share(scene: &PreparedScene, index: u32, share: u32, shares: u32) -> (u16, Option<f32>) {
     let r = &scene.scene.render;
     let n = scene.bands.len();
-    let scaled = photon_f32(r.photon_sequence, r.seed, index, dim::SPECTRUM) * n as f32;
+    let u = photon_f32(r.photon_sequence, r.seed, index, dim::SPECTRUM);
+    let scaled = (share as f32 + u) / shares as f32 * n as f32;
     let band = (scaled as usize).min(n - 1);
-    let lambda_nm = (r.wavelengths == WavelengthSampling::Continuous).then(|| {
+    let lambda_nm = r.wavelengths.continuous().then(|| {
         let (lo, hi) = scene.bands.band(band).interval_nm;
         lo + (hi - lo) * (scaled - band as f32)
     });

@@ -1,18 +1,29 @@
 //! Wavelength sampling at dispersive glass: splitting into every band (the
-//! paper), one random band per photon, and continuous wavelengths. The
-//! physics of each against closed forms, their expectations against each
-//! other, and every backend against the reference.
+//! paper), one random band per photon, continuous wavelengths and hero
+//! wavelengths. The physics of each against closed forms, their
+//! expectations against each other, and every backend against the reference.
 
 use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::scene::HERO_WAVELENGTHS;
 use prismatic_core::surface::Surface;
-use prismatic_core::trace::sample_band;
+use prismatic_core::trace::{sample_band, split_band};
 use prismatic_core::{Backend, BandSpec, Glass, NoProgress, PreparedScene, ReferenceBackend, WavelengthSampling};
 use prismatic_tests::backends::{every_backend, fixed, frame, trace};
 use prismatic_tests::parity::{Output, assert_parity};
 use prismatic_tests::{PrismExperiment, builtin, prepare, settings};
 
-const SAMPLINGS: [WavelengthSampling; 3] =
-    [WavelengthSampling::Split, WavelengthSampling::RandomBand, WavelengthSampling::Continuous];
+const SAMPLINGS: [WavelengthSampling; 4] = WavelengthSampling::ALL;
+
+/// The wavelength photon `p` of pass 0 was traced at: its own, or its hero
+/// path's (the one whose band it carries).
+fn traced_wavelength(pass: &PreparedScene, p: &prismatic_core::Photon) -> f32 {
+    let paths = pass.scene.render.wavelengths.paths(pass.bands.len());
+    (0..paths)
+        .map(|i| split_band(pass, p.emission, i))
+        .find(|&(band, _)| band == p.band)
+        .and_then(|(_, lambda)| lambda)
+        .expect("a continuous photon carries one of its white photon's wavelengths")
+}
 
 #[test]
 fn single_band_photons_carry_the_whole_flux_and_keep_one_band() {
@@ -46,42 +57,80 @@ fn single_band_photons_carry_the_whole_flux_and_keep_one_band() {
 }
 
 #[test]
+fn hero_photons_split_into_one_wavelength_in_each_share_of_the_spectrum() {
+    let bands = BandSpec::Physical(16);
+    let exp = PrismExperiment { apex_deg: 60.0, incidence_deg: 50.0, beam_radius: 0.05, screen_x: 6.0 };
+    let mut render = settings(20_000, bands);
+    render.wavelengths = WavelengthSampling::Hero;
+    let scene = prepare(exp.scene(Glass::Bk7.dispersion(), render));
+    let map = prismatic_core::trace::trace_photons(&scene, &mut NoProgress);
+    let (m, n) = (HERO_WAVELENGTHS as usize, scene.bands.len());
+    let flux = prismatic_core::trace::photon_flux(&scene) / m as f32;
+    // Every emitted photon meets the prism: M paths each.
+    assert_eq!(map.stats.paths, map.stats.emitted * m as u64);
+    let mut per_share = vec![0u32; m];
+    for p in &map.photons {
+        assert_eq!(p.flux, flux, "a hero photon carries 1/M of the white flux");
+        let share = (0..m).find(|&i| split_band(&scene, p.emission, i as u32).0 == p.band).expect("its band");
+        // Share i covers bands ⌊i·N/M⌋..⌊(i+1)·N/M⌋, and its wavelength lies in its band.
+        assert!(
+            (share * n / m..(share + 1) * n / m).contains(&usize::from(p.band)),
+            "band {} in share {share}",
+            p.band
+        );
+        let lambda = split_band(&scene, p.emission, share as u32).1.expect("hero wavelengths are continuous");
+        let (lo, hi) = scene.bands.band(usize::from(p.band)).interval_nm;
+        assert!((lo..=hi).contains(&lambda));
+        per_share[share] += 1;
+    }
+    // Every share lights the screen: BK7 passes most of each share's photons.
+    assert!(per_share.iter().all(|&c| c > 15_000), "photons per share {per_share:?}");
+    // One white photon's bands are a rotation: N/M bands apart (± 1 for rounding).
+    for (emission, band) in map.photons.iter().map(|p| (p.emission, p.band)).take(200) {
+        let bands: Vec<u16> = (0..m as u32).map(|i| split_band(&scene, emission, i).0).collect();
+        assert!(bands.windows(2).all(|w| (n / m - 1..=n / m + 1).contains(&usize::from(w[1] - w[0]))), "{bands:?}");
+        assert!(bands.contains(&band));
+    }
+}
+
+#[test]
 fn continuous_photons_deviate_as_snell_law_says_at_their_own_wavelength() {
     let bands = BandSpec::Physical(7);
     let glass = Glass::Sf11.dispersion();
     let exp = PrismExperiment { apex_deg: 60.0, incidence_deg: 60.0, beam_radius: 0.05, screen_x: 6.0 };
-    let mut render = settings(20_000, bands);
-    render.wavelengths = WavelengthSampling::Continuous;
-    for mut backend in every_backend() {
-        let scene = prepare(exp.scene(glass.clone(), render.clone()));
-        let map = trace(backend.as_mut(), &scene);
-        // The map is pass 0's: its wavelengths are drawn with pass 0's seed.
-        let pass = prismatic_core::schedule::pass_scene(&scene, 0);
-        let phi = exp.beam_angle();
-        let mut spread = (f64::INFINITY, f64::NEG_INFINITY);
-        let mut checked = 0;
-        for p in map.photons.iter().filter(|p| p.bounces == 2) {
-            let (band, lambda) = sample_band(&pass, p.emission);
-            let lambda = lambda.expect("continuous sampling draws a wavelength");
-            let (lo, hi) = scene.bands.band(usize::from(band)).interval_nm;
-            assert!((lo..=hi).contains(&lambda), "λ {lambda} outside band {band} ({lo}–{hi})");
-            let n = f64::from(glass.ior_at(lambda).unwrap());
-            let d = p.direction();
-            let got = (phi - f64::from(d.y).atan2(f64::from(d.x))).to_degrees();
-            let expected = exp.deviation_deg(n).unwrap();
-            // As for band photons (physics.rs), plus the 1 nm curve's
-            // interpolation error (< 1e-7 in n, ~1e-5°).
-            assert!((got - expected).abs() < 2e-3, "λ {lambda}: deviation {got:.5}° vs {expected:.5}°");
-            spread = (spread.0.min(got), spread.1.max(got));
-            checked += 1;
+    for sampling in [WavelengthSampling::Continuous, WavelengthSampling::Hero] {
+        let mut render = settings(20_000, bands);
+        render.wavelengths = sampling;
+        for mut backend in every_backend() {
+            let scene = prepare(exp.scene(glass.clone(), render.clone()));
+            let map = trace(backend.as_mut(), &scene);
+            // The map is pass 0's: its wavelengths are drawn with pass 0's seed.
+            let pass = prismatic_core::schedule::pass_scene(&scene, 0);
+            let phi = exp.beam_angle();
+            let mut spread = (f64::INFINITY, f64::NEG_INFINITY);
+            let mut checked = 0;
+            for p in map.photons.iter().filter(|p| p.bounces == 2) {
+                let lambda = traced_wavelength(&pass, p);
+                let (lo, hi) = scene.bands.band(usize::from(p.band)).interval_nm;
+                assert!((lo..=hi).contains(&lambda), "λ {lambda} outside band {} ({lo}–{hi})", p.band);
+                let n = f64::from(glass.ior_at(lambda).unwrap());
+                let d = p.direction();
+                let got = (phi - f64::from(d.y).atan2(f64::from(d.x))).to_degrees();
+                let expected = exp.deviation_deg(n).unwrap();
+                // As for band photons (physics.rs), plus the 1 nm curve's
+                // interpolation error (< 1e-7 in n, ~1e-5°).
+                assert!((got - expected).abs() < 2e-3, "λ {lambda}: deviation {got:.5}° vs {expected:.5}°");
+                spread = (spread.0.min(got), spread.1.max(got));
+                checked += 1;
+            }
+            // SF11 (n ≈ 1.78) reflects ~16 % at each face: about 70 % pass both.
+            assert!(checked > 12_000, "{} {sampling:?}: only {checked} photons passed both faces", backend.name());
+            // The stripe is continuous: deviations cover the whole visible range's
+            // span (SF11, 380–780 nm), not 7 lines.
+            let span = exp.deviation_deg(f64::from(glass.ior_at(390.0).unwrap())).unwrap()
+                - exp.deviation_deg(f64::from(glass.ior_at(770.0).unwrap())).unwrap();
+            assert!(spread.1 - spread.0 > span, "{} {sampling:?}: deviations span {spread:?}", backend.name());
         }
-        // SF11 (n ≈ 1.78) reflects ~16 % at each face: about 70 % pass both.
-        assert!(checked > 12_000, "{}: only {checked} photons passed both faces", backend.name());
-        // The stripe is continuous: deviations cover the whole visible range's
-        // span (SF11, 380–780 nm), not 7 lines.
-        let span = exp.deviation_deg(f64::from(glass.ior_at(390.0).unwrap())).unwrap()
-            - exp.deviation_deg(f64::from(glass.ior_at(770.0).unwrap())).unwrap();
-        assert!(spread.1 - spread.0 > span, "{}: deviations span {:?}", backend.name(), spread);
     }
 }
 
@@ -137,7 +186,7 @@ fn every_sampling_lights_the_caustic_with_the_same_expected_energy() {
         with.iter().zip(&without).map(|(a, b)| (*a - *b).as_dvec3()).sum::<glam::DVec3>()
     };
     let split = energy(WavelengthSampling::Split);
-    for sampling in [WavelengthSampling::RandomBand, WavelengthSampling::Continuous] {
+    for sampling in [WavelengthSampling::RandomBand, WavelengthSampling::Continuous, WavelengthSampling::Hero] {
         let got = energy(sampling);
         // Per channel within 3 %: the split image's caustic covers ~300
         // pixels with ~100 photons each; random bands add colour noise that

@@ -103,21 +103,16 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             (*p).origin = offset_origin(hit.point, hit.normal, d);
             (*p).dir = d;
         } else if (*p).band == WHITE_BAND && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u {
-            if params.wavelengths == WAVELENGTHS_SPLIT {
+            if split_paths() > 1u {
                 *split_at = hit;
                 return FOLLOW_SPLIT;
             }
             // trace::sample_band: continue as one random band with the whole flux.
-            let n = params.band_count;
-            let scaled = photon_f32(seed, index, DIM_SPECTRUM) * f32(n);
-            let band = min(u32(scaled), n - 1u);
-            (*p).band = band;
-            if params.wavelengths == WAVELENGTHS_CONTINUOUS {
-                let b = bands[band];
-                (*p).lambda_nm = b.lo_nm + (b.hi_nm - b.lo_nm) * (scaled - f32(band));
-            }
-            let u = random_f32(seed, index, scatter_dim(band, (*p).bounces));
-            scatter_dielectric(p, hit.point, hit.normal, path_ior(s, band, (*p).lambda_nm), u);
+            let b = spectrum_share(index, 0u, 1u);
+            (*p).band = b.band;
+            (*p).lambda_nm = b.lambda_nm;
+            let u = random_f32(seed, index, scatter_dim(b.band, (*p).bounces));
+            scatter_dielectric(p, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), u);
         } else {
             let u = random_f32(seed, index, scatter_dim((*p).band, (*p).bounces));
             scatter_dielectric(p, hit.point, hit.normal, path_ior(s, (*p).band, (*p).lambda_nm), u);
@@ -142,16 +137,56 @@ fn trace_emitted(index: u32) {
     if follow(&p, index, &hit) != FOLLOW_SPLIT {
         return;
     }
-    let n = params.band_count;
+    let n = split_paths();
     tally_counts[1] += n - 1u;
     let s = surfaces[hit.object];
-    for (var band = 0u; band < n; band++) {
-        var child = Path(p.origin, p.dir, p.flux / f32(n), band, -1.0, p.bounces + 1u);
-        let u = random_f32(params.seed, index, scatter_dim(band, p.bounces));
-        scatter_dielectric(&child, hit.point, hit.normal, band_ior(s, band), u);
+    for (var path = 0u; path < n; path++) {
+        let b = split_band(index, path);
+        var child = Path(p.origin, p.dir, p.flux / f32(n), b.band, b.lambda_nm, p.bounces + 1u);
+        let u = random_f32(params.seed, index, scatter_dim(b.band, p.bounces));
+        scatter_dielectric(&child, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), u);
         var unused: Hit;
         follow(&child, index, &unused);
     }
+}
+
+// WavelengthSampling::paths: what a white photon splits into at dispersive glass.
+fn split_paths() -> u32 {
+    if params.wavelengths == WAVELENGTHS_SPLIT {
+        return params.band_count;
+    }
+    if params.wavelengths == WAVELENGTHS_HERO {
+        return min(HERO_WAVELENGTHS, params.band_count);
+    }
+    return 1u;
+}
+
+struct SpectrumSample {
+    band: u32,
+    // < 0 for none (the band's own index).
+    lambda_nm: f32,
+}
+
+// trace::split_band
+fn split_band(index: u32, path: u32) -> SpectrumSample {
+    if params.wavelengths == WAVELENGTHS_SPLIT {
+        return SpectrumSample(path, -1.0);
+    }
+    return spectrum_share(index, path, split_paths());
+}
+
+// trace::spectrum_share: share `share` of `shares`, shifted by the photon's number.
+fn spectrum_share(index: u32, share: u32, shares: u32) -> SpectrumSample {
+    let n = params.band_count;
+    let u = photon_f32(params.seed, index, DIM_SPECTRUM);
+    let scaled = (f32(share) + u) / f32(shares) * f32(n);
+    let band = min(u32(scaled), n - 1u);
+    var lambda_nm = -1.0;
+    if params.wavelengths == WAVELENGTHS_CONTINUOUS || params.wavelengths == WAVELENGTHS_HERO {
+        let b = bands[band];
+        lambda_nm = b.lo_nm + (b.hi_nm - b.lo_nm) * (scaled - f32(band));
+    }
+    return SpectrumSample(band, lambda_nm);
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE)

@@ -29,7 +29,7 @@ pub fn parse_estimator(s: &str) -> Result<Estimator, String> {
 /// Parses a wavelength-sampling name.
 pub fn parse_wavelengths(s: &str) -> Result<WavelengthSampling, String> {
     WavelengthSampling::from_name(s)
-        .ok_or_else(|| format!("unknown wavelength sampling \"{s}\"; expected split, random_band or continuous"))
+        .ok_or_else(|| format!("unknown wavelength sampling \"{s}\"; expected split, random_band, continuous or hero"))
 }
 
 /// Parses a photon-sequence name.

@@ -133,7 +133,7 @@ struct JobArgs {
     /// mirrors and glass.
     #[arg(long)]
     light_tracing: Option<bool>,
-    /// Wavelength sampling at dispersive glass: split, random_band or continuous.
+    /// Wavelength sampling at dispersive glass: split, random_band, continuous or hero.
     #[arg(long, value_parser = parse_wavelengths)]
     wavelengths: Option<WavelengthSampling>,
     /// Where photons' emission directions and wavelengths come from: sobol
@@ -165,6 +165,10 @@ struct StudyArgs {
     /// Rebuild the reference even when a cached one matches.
     #[arg(long)]
     rebuild_reference: bool,
+    /// Run only the curves whose label contains this (repeatable, e.g.
+    /// `--series LT --series "16 bands"`).
+    #[arg(long)]
+    series: Vec<String>,
 }
 
 impl StudyArgs {
@@ -174,6 +178,7 @@ impl StudyArgs {
             quick: self.quick,
             cache: self.cache.clone(),
             rebuild_reference: self.rebuild_reference || rebuild,
+            series: self.series.clone(),
         }
     }
 }

@@ -1,5 +1,6 @@
 //! `prismatic study --quick` end to end: it writes its CSV, report and plot,
-//! error falls as photons and bands grow, the scalar reference backend
+//! error falls as photons and bands grow, light tracing with hero
+//! wavelengths beats the fixed-radius gather, the scalar reference backend
 //! measures the same error as the CPU backend, and a second run reuses the
 //! cached reference.
 
@@ -74,6 +75,13 @@ fn quick_study_writes_its_report_and_error_falls_with_photons_and_bands() {
     assert!(falls(&physical), "ΔE00 {physical:?} does not fall from 3 to 7 to 16 bands");
     let paper: Vec<f64> = ["paper3", "paper7"].map(at_most_photons).into();
     assert!(falls(&paper), "ΔE00 {paper:?} does not fall from paper3 to paper7");
+    // Light tracing with hero wavelengths (this wave's estimators) ends below
+    // every curve that gathers everywhere at a fixed radius: the gather
+    // disc's blur stays, the light-traced caustic converges.
+    let hero = at_most_photons("LT 16 hero");
+    for s in series.iter().filter(|s| !s.starts_with("LT") && !s.contains("progressive")) {
+        assert!(hero < at_most_photons(s), "LT 16 hero's ΔE00 {hero} is not below {s}'s {}", at_most_photons(s));
+    }
     // The scalar reference backend renders the same image: the same error.
     let (scalar, cpu) = (delta_e(&rows, "paper7 reference backend"), delta_e(&rows, "paper7"));
     assert_eq!(scalar[0], cpu[0]);
@@ -103,6 +111,22 @@ fn quick_study_writes_its_report_and_error_falls_with_photons_and_bands() {
         "{}",
         String::from_utf8_lossy(&second.stderr)
     );
+
+    // --series runs only the curves it names; a name no curve has is an error.
+    let only = |name: &str, out: &Path| {
+        let args = ["study", "sphere", "--quick", "--series", name, "--cache"];
+        prismatic().args(args).arg(&cache).arg("-o").arg(out).output().unwrap()
+    };
+    let hero_out = dir.path().join("hero");
+    assert!(only("LT 16 hero", &hero_out).status.success());
+    let hero_rows = read_csv(&hero_out.join("sphere.csv"));
+    assert_eq!(hero_rows.len(), 3);
+    assert!(hero_rows.iter().all(|r| r["series"] == "LT 16 hero" && r["wavelengths"] == "hero"));
+    let none_out = dir.path().join("none");
+    let none = only("no such curve", &none_out);
+    assert!(!none.status.success());
+    assert!(String::from_utf8_lossy(&none.stderr).contains("--series no such curve"));
+    assert!(!none_out.exists(), "nothing written");
 }
 
 #[test]

@@ -1,7 +1,8 @@
 //! `prismatic study`: what accuracy costs in time. Sweeps the settings that
 //! trade one for the other (band table, wavelength sampling, photon count,
-//! gather radius, estimator, backend), times every stage of each render and
-//! measures its error against a converged reference.
+//! gather radius, estimator, light tracing, photon sequence, backend), times
+//! every stage of each render and measures its error against a converged
+//! reference.
 
 pub mod error;
 pub mod plot;
@@ -13,7 +14,9 @@ use crate::backends::{BackendChoice, select};
 use anyhow::{Context, Result};
 use error::{RenderError, StripeSums, mean_delta_e, rmse, stripe_error};
 use prismatic_core::scene::{RadiusMode, Shape};
-use prismatic_core::{Backend, BandSpec, Estimator, Light, NoProgress, PreparedScene, WavelengthSampling};
+use prismatic_core::{
+    Backend, BandSpec, Estimator, Light, NoProgress, PhotonSequence, PreparedScene, WavelengthSampling,
+};
 use reference::{Reference, ReferenceSpec};
 use std::path::PathBuf;
 use std::time::Instant;
@@ -47,6 +50,11 @@ pub struct Series {
     pub sampling: WavelengthSampling,
     /// Estimator.
     pub estimator: Estimator,
+    /// Light tracing for the caustics the camera sees directly (the gather
+    /// only behind mirrors and glass), or the gather everywhere.
+    pub light_tracing: bool,
+    /// Where the photons' emission and wavelength numbers come from.
+    pub sequence: PhotonSequence,
     /// Radius.
     pub radius: RadiusPlan,
     /// Backend.
@@ -76,16 +84,37 @@ pub(crate) fn series(label: &str, bands: BandSpec, sampling: WavelengthSampling,
         bands,
         sampling,
         estimator,
+        light_tracing: false,
+        sequence: PhotonSequence::Sobol,
         radius: RadiusPlan::Fixed,
         backend: BackendChoice::Cpu,
         max_photons: u32::MAX,
     }
 }
 
+/// A curve of the progressive renderer over `passes` passes.
+fn progressive(mut s: Series, passes: u32) -> Series {
+    s.radius = RadiusPlan::Progressive { passes };
+    s
+}
+
+/// A progressive curve with light tracing: `bands` physically based bands,
+/// the density estimator (this wave's estimators).
+fn light_traced(
+    label: &str,
+    bands: u16,
+    sampling: WavelengthSampling,
+    sequence: PhotonSequence,
+    passes: u32,
+) -> Series {
+    let s = series(label, BandSpec::Physical(bands), sampling, Estimator::Density);
+    progressive(Series { light_tracing: true, sequence, ..s }, passes)
+}
+
 impl StudyPlan {
     /// The full sweep for a scene of `size`.
     pub fn full(size: (u32, u32)) -> Self {
-        use WavelengthSampling::{Continuous, RandomBand, Split};
+        use WavelengthSampling::{Continuous, Hero, RandomBand, Split};
         let d = Estimator::Density;
         let mut s = vec![
             series("paper3", BandSpec::Paper3, Split, Estimator::Paper),
@@ -100,13 +129,16 @@ impl StudyPlan {
         s.push(series("64 random band", BandSpec::Physical(64), RandomBand, d));
         s.push(series("16 continuous", BandSpec::Physical(16), Continuous, d));
         for (bands, passes) in [(7, 4), (16, 8)] {
-            let mut progressive = series(&format!("{bands} bands progressive"), BandSpec::Physical(bands), Split, d);
-            progressive.radius = RadiusPlan::Progressive { passes };
-            s.push(progressive);
+            s.push(progressive(
+                series(&format!("{bands} bands progressive"), BandSpec::Physical(bands), Split, d),
+                passes,
+            ));
         }
-        let mut paper_progressive = series("paper7 progressive", BandSpec::Paper7, Split, Estimator::Paper);
-        paper_progressive.radius = RadiusPlan::Progressive { passes: 16 };
-        s.push(paper_progressive);
+        s.push(progressive(series("paper7 progressive", BandSpec::Paper7, Split, Estimator::Paper), 16));
+        s.push(light_traced("LT 32 continuous", 32, Continuous, PhotonSequence::Sobol, 8));
+        s.push(light_traced("LT 32 hero", 32, Hero, PhotonSequence::Sobol, 8));
+        s.push(light_traced("LT 32 hero random", 32, Hero, PhotonSequence::Random, 8));
+        s.push(light_traced("LT 16 bands", 16, Split, PhotonSequence::Sobol, 8));
         let mut scalar = series("paper7 reference backend", BandSpec::Paper7, Split, Estimator::Paper);
         scalar.backend = BackendChoice::Reference;
         scalar.max_photons = 1_000_000;
@@ -123,12 +155,10 @@ impl StudyPlan {
     /// The quick sweep: small images, three photon counts, fewer curves
     /// (under a minute on two cores, reference included).
     pub fn quick(size: (u32, u32)) -> Self {
-        use WavelengthSampling::{Continuous, RandomBand, Split};
+        use WavelengthSampling::{Continuous, Hero, RandomBand, Split};
         let d = Estimator::Density;
         let scale = 96.0 / size.0.max(size.1) as f32;
         let small = (((size.0 as f32 * scale) as u32).max(8), ((size.1 as f32 * scale) as u32).max(8));
-        let mut progressive = series("16 bands progressive", BandSpec::Physical(16), Split, d);
-        progressive.radius = RadiusPlan::Progressive { passes: 4 };
         let mut scalar = series("paper7 reference backend", BandSpec::Paper7, Split, Estimator::Paper);
         scalar.backend = BackendChoice::Reference;
         scalar.max_photons = 10_000;
@@ -143,7 +173,9 @@ impl StudyPlan {
                 series("16 bands", BandSpec::Physical(16), Split, d),
                 series("16 random band", BandSpec::Physical(16), RandomBand, d),
                 series("16 continuous", BandSpec::Physical(16), Continuous, d),
-                progressive,
+                progressive(series("16 bands progressive", BandSpec::Physical(16), Split, d), 4),
+                light_traced("LT 16 continuous", 16, Continuous, PhotonSequence::Sobol, 4),
+                light_traced("LT 16 hero", 16, Hero, PhotonSequence::Sobol, 4),
                 scalar,
             ],
             reference: ReferenceSpec::quick(),
@@ -234,6 +266,8 @@ pub struct StudyOptions {
     pub cache: PathBuf,
     /// Rebuild the reference even if cached.
     pub rebuild_reference: bool,
+    /// Run only the curves whose label contains one of these (all when empty).
+    pub series: Vec<String>,
 }
 
 /// Receives progress: a new total of steps, a finished step, a message.
@@ -248,7 +282,15 @@ pub trait StudyProgress {
 
 /// Runs the study.
 pub fn run(options: &StudyOptions, progress: &mut dyn StudyProgress) -> Result<StudyResult> {
-    let (scene, plan) = study_scene(options)?;
+    let (scene, mut plan) = study_scene(options)?;
+    if !options.series.is_empty() {
+        plan.series.retain(|s| options.series.iter().any(|wanted| s.label.contains(wanted.as_str())));
+        anyhow::ensure!(
+            !plan.series.is_empty(),
+            "--series {}: no curve of the study's plan has that in its label",
+            options.series.join(", ")
+        );
+    }
     let stripes = has_stripes(&scene);
 
     let points: Vec<(usize, u32)> = plan
@@ -266,8 +308,7 @@ pub fn run(options: &StudyOptions, progress: &mut dyn StudyProgress) -> Result<S
     let mut skipped = Vec::new();
     for (i, photons) in points {
         let setting = &plan.series[i];
-        let paths =
-            u64::from(photons) * if setting.sampling == WavelengthSampling::Split { setting_bands(setting) } else { 1 };
+        let paths = u64::from(photons) * u64::from(setting.sampling.paths(setting_bands(setting)));
         if paths > MAX_BAND_PATHS {
             skipped.push(format!("{} at {photons} photons ({paths} band paths > {MAX_BAND_PATHS})", setting.label));
             progress.step(&format!("{} {photons}: skipped", setting.label));
@@ -340,8 +381,8 @@ fn study_scene(options: &StudyOptions) -> Result<(PreparedScene, StudyPlan)> {
     Ok((scene, plan))
 }
 
-fn setting_bands(s: &Series) -> u64 {
-    prismatic_core::BandTable::new(s.bands).len() as u64
+fn setting_bands(s: &Series) -> usize {
+    prismatic_core::BandTable::new(s.bands).len()
 }
 
 /// Band stripes are compared where light arrives as a collimated beam
@@ -366,6 +407,8 @@ pub fn measure(
     s.render.bands = setting.bands;
     s.render.wavelengths = setting.sampling;
     s.render.estimator = setting.estimator;
+    s.render.light_tracing = setting.light_tracing;
+    s.render.photon_sequence = setting.sequence;
     let passes = match setting.radius {
         RadiusPlan::Fixed => {
             s.render.radius_mode = RadiusMode::Fixed;

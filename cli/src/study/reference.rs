@@ -1,21 +1,24 @@
 //! The reference render a study measures error against: physically based
-//! bands at high N, the `density` estimator, and the renderer's own
-//! progressive photon mapping (a backend's render, per-point radii) until
-//! doubling the passes no longer changes the image; cached on disk by the
-//! hash of everything it depends on.
+//! bands at high N with hero wavelengths (the true spectrum, not N lines), light tracing for the caustics the camera sees directly and the
+//! renderer's own progressive photon mapping behind mirrors and glass (a
+//! backend's render, per-point radii), Sobol photons, until doubling the
+//! passes no longer changes the image; cached on disk by the hash of
+//! everything it depends on.
 
 use super::error::{StripeSums, caustic_mask, mean_delta_e};
 use crate::output::{read_exr, write_exr};
 use anyhow::{Context, Result};
 use prismatic_core::scene::DEFAULT_ALPHA;
-use prismatic_core::{Backend, BandSpec, Estimator, Image, NoProgress, PreparedScene, WavelengthSampling};
+use prismatic_core::{
+    Backend, BandSpec, Estimator, Image, NoProgress, PhotonSequence, PreparedScene, WavelengthSampling,
+};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Bump when the tracer or renderer changes what a reference looks like, so
 /// that cached references are rebuilt.
-const REFERENCE_VERSION: &str = "prismatic-reference 3";
+const REFERENCE_VERSION: &str = "prismatic-reference 4";
 
 /// How a reference is made.
 #[derive(Clone, Debug, PartialEq)]
@@ -24,6 +27,11 @@ pub struct ReferenceSpec {
     pub bands: u16,
     /// How photons sample the spectrum.
     pub wavelengths: WavelengthSampling,
+    /// Light tracing for the caustics the camera sees directly: unbiased,
+    /// so the reference converges to the caustic, not to a blurred one.
+    pub light_tracing: bool,
+    /// Where the photons' emission and wavelength numbers come from.
+    pub sequence: PhotonSequence,
     /// White photons per pass.
     pub photons_per_pass: u32,
     /// Photon paths a first radius holds.
@@ -39,16 +47,18 @@ pub struct ReferenceSpec {
 
 impl ReferenceSpec {
     /// The full study's reference: 250k white photons a pass, each
-    /// first radius holding 16 photon paths (1,024 band photons).
+    /// first radius holding 16 photon paths.
     pub fn full() -> Self {
         ReferenceSpec {
             bands: 64,
-            wavelengths: WavelengthSampling::Split,
+            wavelengths: WavelengthSampling::Hero,
+            light_tracing: true,
+            sequence: PhotonSequence::Sobol,
             photons_per_pass: 250_000,
             neighbours: 16,
             alpha: DEFAULT_ALPHA,
             threshold: 0.15,
-            max_passes: 64,
+            max_passes: 256,
         }
     }
 
@@ -56,12 +66,14 @@ impl ReferenceSpec {
     pub fn quick() -> Self {
         ReferenceSpec {
             bands: 64,
-            wavelengths: WavelengthSampling::Split,
+            wavelengths: WavelengthSampling::Hero,
+            light_tracing: true,
+            sequence: PhotonSequence::Sobol,
             photons_per_pass: 100_000,
             neighbours: 16,
             alpha: DEFAULT_ALPHA,
             threshold: 0.2,
-            max_passes: 32,
+            max_passes: 128,
         }
     }
 }
@@ -95,6 +107,8 @@ pub fn reference_scene(scene: &PreparedScene, spec: &ReferenceSpec) -> Result<Pr
     s.render.bands = BandSpec::Physical(spec.bands);
     s.render.estimator = Estimator::Density;
     s.render.wavelengths = spec.wavelengths;
+    s.render.light_tracing = spec.light_tracing;
+    s.render.photon_sequence = spec.sequence;
     s.render.photons = spec.photons_per_pass;
     s.render.neighbours = spec.neighbours;
     s.render.alpha = spec.alpha;
@@ -275,6 +289,8 @@ mod tests {
         let mut other = doc.scene.clone();
         other.render.bands = BandSpec::Paper3;
         other.render.estimator = Estimator::Paper;
+        other.render.light_tracing = !other.render.light_tracing;
+        other.render.photon_sequence = PhotonSequence::Random;
         assert_eq!(base, key(&PreparedScene::new(other).unwrap(), &spec));
         // ...but the scene, the image and the reference's own settings do.
         let mut moved = doc.scene.clone();
@@ -290,5 +306,6 @@ mod tests {
         assert_ne!(base, key(&PreparedScene::new(wider).unwrap(), &spec));
         assert_ne!(base, key(&scene, &ReferenceSpec { threshold: 0.1, ..spec.clone() }));
         assert_ne!(base, key(&scene, &ReferenceSpec { neighbours: 8, ..spec.clone() }));
+        assert_ne!(base, key(&scene, &ReferenceSpec { light_tracing: false, ..spec.clone() }));
     }
 }

@@ -1,5 +1,6 @@
 //! The reference render a study measures error against: physically based
-//! bands at high N with hero wavelengths (the true spectrum, not N lines), light tracing for the caustics the camera sees directly and the
+//! bands at high N with hero wavelengths (the true spectrum, not N lines),
+//! light tracing for the caustics the camera sees directly and the
 //! renderer's own progressive photon mapping behind mirrors and glass (a
 //! backend's render, per-point radii), Sobol photons, until doubling the
 //! passes no longer changes the image; cached on disk by the hash of

@@ -21,7 +21,7 @@ use prismatic_core::prepared::PreparedScene;
 use prismatic_core::rng::dim;
 use prismatic_core::scene::WavelengthSampling;
 use prismatic_core::surface::Surface;
-use prismatic_core::trace::{absorbed, sample_band, split_band};
+use prismatic_core::trace::{absorbed, sample_band, split_bands};
 use wide::{f32x8, u32x8};
 
 /// A lane mask with every bit set.
@@ -262,7 +262,7 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
 /// Traces the paths a white photon splits into (lane `lane` of `hit`; its
 /// emission index, bounces and flux in `white`) from the dispersive surface
 /// it has just met, eight per packet: its `paths` bands
-/// ([`prismatic_core::trace::split_band`]: every band, each with the
+/// ([`prismatic_core::trace::split_bands`]: every band, each with the
 /// glass's band table, or the hero wavelengths, each at its own wavelength).
 #[expect(clippy::too_many_arguments, reason = "one lane's state at the split")]
 fn trace_bands(
@@ -282,11 +282,9 @@ fn trace_bands(
     let object = hit.object.as_array()[lane] as usize;
     let (p0, d0, n0) =
         (Vec3x8::splat(point.lane(lane)), Vec3x8::splat(dir.lane(lane)), Vec3x8::splat(hit.normal.lane(lane)));
+    let mut bands = split_bands(ctx.scene, emission);
     for chunk in 0..paths.div_ceil(8) {
-        let children: [(u16, Option<f32>); 8] = core::array::from_fn(|i| {
-            let path = chunk * 8 + i as u32;
-            if path < paths { split_band(ctx.scene, emission, path) } else { (WHITE_BAND, None) }
-        });
+        let children: [(u16, Option<f32>); 8] = core::array::from_fn(|_| bands.next().unwrap_or((WHITE_BAND, None)));
         let band = u32x8::new(children.map(|(b, _)| u32::from(b)));
         let lambda = children.map(|(_, l)| l);
         let mut active = bytemuck::cast::<u32x8, f32x8>(band.simd_ne(u32x8::splat(u32::from(WHITE_BAND))));

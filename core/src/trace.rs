@@ -7,7 +7,7 @@
 //! of the flux) and each band continues with its own index of refraction
 //! and absorption; clear non-dispersive glass and mirrors never split. With
 //! [`WavelengthSampling::Hero`] it splits into M hero wavelengths instead
-//! (see [`split_band`]); with [`WavelengthSampling::RandomBand`] or
+//! (see [`split_bands`]); with [`WavelengthSampling::RandomBand`] or
 //! `Continuous` it does not split but continues as one random band with all
 //! its flux (see [`sample_band`]). A photon that reaches a diffuse surface
 //! after at least one specular interaction is stored (the dispersion caustic
@@ -154,8 +154,7 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                     continue;
                 }
                 stats.paths += u64::from(paths) - 1;
-                for path in 0..paths {
-                    let (band, lambda_nm) = split_band(scene, index, path);
+                for (band, lambda_nm) in split_bands(scene, index) {
                     let child = Path { flux: p.flux / paths as f32, band, lambda_nm, bounces: p.bounces + 1, ..p };
                     let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
                     let child =
@@ -192,31 +191,39 @@ pub fn absorbed(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t: f32, band:
 /// the wavelength sits at the fraction u·N − ⌊u·N⌋ of its interval, so
 /// stratified numbers stratify the whole spectrum.
 pub fn sample_band(scene: &PreparedScene, index: u32) -> (u16, Option<f32>) {
-    spectrum_share(scene, index, 0, 1)
+    spectrum_share(scene, spectrum_number(scene, index), 0, 1)
 }
 
-/// Band and wavelength of path `path` of the white photon `index` where it
-/// splits: band `path` at the band's own index ([`WavelengthSampling::Split`]),
-/// or the `path`-th hero wavelength ([`WavelengthSampling::Hero`]).
-pub fn split_band(scene: &PreparedScene, index: u32, path: u32) -> (u16, Option<f32>) {
-    match scene.scene.render.wavelengths {
-        WavelengthSampling::Split => (path as u16, None),
-        w => spectrum_share(scene, index, path, w.paths(scene.bands.len())),
-    }
+/// The bands and wavelengths white photon `index` splits into, in band
+/// order: every band at the band's own index ([`WavelengthSampling::Split`]),
+/// or its hero wavelengths ([`WavelengthSampling::Hero`]), all from the
+/// photon's one spectrum number.
+pub fn split_bands(scene: &PreparedScene, index: u32) -> impl Iterator<Item = (u16, Option<f32>)> + '_ {
+    let paths = scene.scene.render.wavelengths.paths(scene.bands.len());
+    let u = (scene.scene.render.wavelengths != WavelengthSampling::Split).then(|| spectrum_number(scene, index));
+    (0..paths).map(move |path| match u {
+        Some(u) => spectrum_share(scene, u, path, paths),
+        None => (path as u16, None),
+    })
+}
+
+/// White photon `index`'s spectrum number u ([`dim::SPECTRUM`]), shared by
+/// every path it splits into.
+pub fn spectrum_number(scene: &PreparedScene, index: u32) -> f32 {
+    let r = &scene.scene.render;
+    photon_f32(r.photon_sequence, r.seed, index, dim::SPECTRUM)
 }
 
 /// The spectrum sample in share `share` of `shares` equal shares of the
-/// spectrum, all shifted by photon `index`'s one number u
-/// ([`dim::SPECTRUM`]): v = (share + u)/shares, the band ⌊v·N⌋ and (with
-/// continuous wavelengths) the wavelength at the fraction v·N − ⌊v·N⌋ of
-/// its interval. The shares' bands differ when shares ≤ N.
-pub fn spectrum_share(scene: &PreparedScene, index: u32, share: u32, shares: u32) -> (u16, Option<f32>) {
-    let r = &scene.scene.render;
+/// spectrum, all shifted by the photon's spectrum number `u`:
+/// v = (share + u)/shares, the band ⌊v·N⌋ and (with continuous
+/// wavelengths) the wavelength at the fraction v·N − ⌊v·N⌋ of its
+/// interval. The shares' bands differ when shares ≤ N.
+pub fn spectrum_share(scene: &PreparedScene, u: f32, share: u32, shares: u32) -> (u16, Option<f32>) {
     let n = scene.bands.len();
-    let u = photon_f32(r.photon_sequence, r.seed, index, dim::SPECTRUM);
     let scaled = (share as f32 + u) / shares as f32 * n as f32;
     let band = (scaled as usize).min(n - 1);
-    let lambda_nm = r.wavelengths.continuous().then(|| {
+    let lambda_nm = scene.scene.render.wavelengths.continuous().then(|| {
         let (lo, hi) = scene.bands.band(band).interval_nm;
         lo + (hi - lo) * (scaled - band as f32)
     });

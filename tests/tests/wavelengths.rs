@@ -6,7 +6,7 @@
 use prismatic_core::photon::WHITE_BAND;
 use prismatic_core::scene::HERO_WAVELENGTHS;
 use prismatic_core::surface::Surface;
-use prismatic_core::trace::{sample_band, split_band};
+use prismatic_core::trace::{sample_band, split_bands};
 use prismatic_core::{Backend, BandSpec, Glass, NoProgress, PreparedScene, ReferenceBackend, WavelengthSampling};
 use prismatic_tests::backends::{every_backend, fixed, frame, trace};
 use prismatic_tests::parity::{Output, assert_parity};
@@ -17,9 +17,7 @@ const SAMPLINGS: [WavelengthSampling; 4] = WavelengthSampling::ALL;
 /// The wavelength photon `p` of pass 0 was traced at: its own, or its hero
 /// path's (the one whose band it carries).
 fn traced_wavelength(pass: &PreparedScene, p: &prismatic_core::Photon) -> f32 {
-    let paths = pass.scene.render.wavelengths.paths(pass.bands.len());
-    (0..paths)
-        .map(|i| split_band(pass, p.emission, i))
+    split_bands(pass, p.emission)
         .find(|&(band, _)| band == p.band)
         .and_then(|(_, lambda)| lambda)
         .expect("a continuous photon carries one of its white photon's wavelengths")
@@ -71,14 +69,14 @@ fn hero_photons_split_into_one_wavelength_in_each_share_of_the_spectrum() {
     let mut per_share = vec![0u32; m];
     for p in &map.photons {
         assert_eq!(p.flux, flux, "a hero photon carries 1/M of the white flux");
-        let share = (0..m).find(|&i| split_band(&scene, p.emission, i as u32).0 == p.band).expect("its band");
+        let share = split_bands(&scene, p.emission).position(|(band, _)| band == p.band).expect("its band");
         // Share i covers bands ⌊i·N/M⌋..⌊(i+1)·N/M⌋, and its wavelength lies in its band.
         assert!(
             (share * n / m..(share + 1) * n / m).contains(&usize::from(p.band)),
             "band {} in share {share}",
             p.band
         );
-        let lambda = split_band(&scene, p.emission, share as u32).1.expect("hero wavelengths are continuous");
+        let lambda = split_bands(&scene, p.emission).nth(share).unwrap().1.expect("hero wavelengths are continuous");
         let (lo, hi) = scene.bands.band(usize::from(p.band)).interval_nm;
         assert!((lo..=hi).contains(&lambda));
         per_share[share] += 1;
@@ -87,7 +85,8 @@ fn hero_photons_split_into_one_wavelength_in_each_share_of_the_spectrum() {
     assert!(per_share.iter().all(|&c| c > 15_000), "photons per share {per_share:?}");
     // One white photon's bands are a rotation: N/M bands apart (± 1 for rounding).
     for (emission, band) in map.photons.iter().map(|p| (p.emission, p.band)).take(200) {
-        let bands: Vec<u16> = (0..m as u32).map(|i| split_band(&scene, emission, i).0).collect();
+        let bands: Vec<u16> = split_bands(&scene, emission).map(|(band, _)| band).collect();
+        assert_eq!(bands.len(), m);
         assert!(bands.windows(2).all(|w| (n / m - 1..=n / m + 1).contains(&usize::from(w[1] - w[0]))), "{bands:?}");
         assert!(bands.contains(&band));
     }

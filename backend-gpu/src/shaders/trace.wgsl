@@ -108,7 +108,7 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
                 return FOLLOW_SPLIT;
             }
             // trace::sample_band: continue as one random band with the whole flux.
-            let b = spectrum_share(index, 0u, 1u);
+            let b = spectrum_share(photon_f32(seed, index, DIM_SPECTRUM), 0u, 1u);
             (*p).band = b.band;
             (*p).lambda_nm = b.lambda_nm;
             let u = random_f32(seed, index, scatter_dim(b.band, (*p).bounces));
@@ -140,8 +140,13 @@ fn trace_emitted(index: u32) {
     let n = split_paths();
     tally_counts[1] += n - 1u;
     let s = surfaces[hit.object];
+    // trace::split_bands: one spectrum number for all the paths (hero only).
+    var u = 0.0;
+    if params.wavelengths != WAVELENGTHS_SPLIT {
+        u = photon_f32(params.seed, index, DIM_SPECTRUM);
+    }
     for (var path = 0u; path < n; path++) {
-        let b = split_band(index, path);
+        let b = split_band(u, path);
         var child = Path(p.origin, p.dir, p.flux / f32(n), b.band, b.lambda_nm, p.bounces + 1u);
         let u = random_f32(params.seed, index, scatter_dim(b.band, p.bounces));
         scatter_dielectric(&child, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), u);
@@ -167,18 +172,17 @@ struct SpectrumSample {
     lambda_nm: f32,
 }
 
-// trace::split_band
-fn split_band(index: u32, path: u32) -> SpectrumSample {
+// Path `path` of trace::split_bands, with the photon's spectrum number `u`.
+fn split_band(u: f32, path: u32) -> SpectrumSample {
     if params.wavelengths == WAVELENGTHS_SPLIT {
         return SpectrumSample(path, -1.0);
     }
-    return spectrum_share(index, path, split_paths());
+    return spectrum_share(u, path, split_paths());
 }
 
-// trace::spectrum_share: share `share` of `shares`, shifted by the photon's number.
-fn spectrum_share(index: u32, share: u32, shares: u32) -> SpectrumSample {
+// trace::spectrum_share: share `share` of `shares`, shifted by the photon's number `u`.
+fn spectrum_share(u: f32, share: u32, shares: u32) -> SpectrumSample {
     let n = params.band_count;
-    let u = photon_f32(params.seed, index, DIM_SPECTRUM);
     let scaled = (f32(share) + u) / f32(shares) * f32(n);
     let band = min(u32(scaled), n - 1u);
     var lambda_nm = -1.0;

@@ -70,9 +70,9 @@ impl HostKernels for PacketKernels {
         "cpu"
     }
 
-    fn visible_points(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> VisiblePoints {
+    fn visible_points(&mut self, scene: &PreparedScene, pass: u32, progress: &mut dyn Progress) -> VisiblePoints {
         let start = Instant::now();
-        let points = self.install(|| view::visible_points(scene));
+        let points = self.install(|| view::visible_points(scene, pass));
         self.times = StageTimes { view: start.elapsed(), ..StageTimes::default() };
         let h = u64::from(scene.scene.render.height);
         progress.advance(Stage::View, h, h);

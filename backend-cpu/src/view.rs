@@ -10,6 +10,10 @@
 //! shadow-ray packets, checker albedo) is lane-parallel; each diffuse hit
 //! that needs the caustic becomes a visible point. A ray that crossed
 //! coloured glass keeps the reference's transmittance in its tint.
+//!
+//! Sampled view paths (`ViewPaths::Sampled`) queue one ray per pixel and
+//! at most one follow-up per ray: the reference's jittered start, Fresnel
+//! choice and band, from the same [`PixelSampler`] numbers.
 
 use crate::intersect::{HitX8, intersect_scene, occluded};
 use crate::optics::{fresnel, interface, offset_origin, reflect, refract};
@@ -21,10 +25,12 @@ use prismatic_core::camera::PinholeCamera;
 use prismatic_core::math::{cos, radians};
 use prismatic_core::optics;
 use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::pixel_sample::PixelSampler;
 use prismatic_core::prepared::PreparedScene;
-use prismatic_core::scene::Light;
-use prismatic_core::surface::Surface;
+use prismatic_core::scene::{Light, ViewPaths};
+use prismatic_core::surface::{DielectricOptics, Surface};
 use prismatic_core::tolerance::MIN_VIEW_WEIGHT;
+use prismatic_core::trace::spectrum_share;
 use prismatic_core::view::{gathers_at, glass_transmittance};
 use prismatic_core::visible::{VisiblePoint, VisiblePoints};
 use rayon::prelude::*;
@@ -45,18 +51,34 @@ struct ViewRay {
     /// RGB factor of the path (Fresnel factors times band weights).
     tint: Vec3,
     band: u16,
+    /// The path's wavelength (`None`: its band's own index).
+    lambda_nm: Option<f32>,
     depth: u32,
     pixel: u32,
+    /// A sampled path's numbers.
+    sampler: Option<PixelSampler>,
 }
 
-/// Traces the view rays: the image without caustics and the visible points
+impl ViewRay {
+    /// The index the ray sees at `glass`: its band's, or at its own wavelength.
+    fn ior(&self, glass: &DielectricOptics, scene: &PreparedScene) -> f32 {
+        match self.lambda_nm {
+            Some(lambda) => glass.ior_at_wavelength(self.band, lambda, &scene.bands),
+            None => glass.ior(self.band),
+        }
+    }
+}
+
+/// Traces the view rays (pass `pass`'s sampled paths with
+/// `ViewPaths::Sampled`): the image without caustics and the visible points
 /// (tile by tile, so their order does not depend on the thread count).
-pub fn visible_points(scene: &PreparedScene) -> VisiblePoints {
+pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
     let r = &scene.scene.render;
     let camera = PinholeCamera::new(&scene.scene.camera, r.width, r.height);
     let mut image = Image::new(r.width, r.height);
     let row = r.width as usize;
     let tile_pixels = row * TILE_ROWS as usize;
+    let sampled = r.view_paths == ViewPaths::Sampled;
     let tiles: Vec<Vec<VisiblePoint>> = image
         .pixels
         .par_chunks_mut(tile_pixels)
@@ -66,15 +88,21 @@ pub fn visible_points(scene: &PreparedScene) -> VisiblePoints {
             let mut queue: Vec<ViewRay> = Vec::with_capacity(pixels.len());
             for (k, _) in pixels.iter().enumerate().rev() {
                 let (x, y) = ((k % row) as u32, y0 + (k / row) as u32);
-                let ray = camera.ray(x, y);
+                let sampler = sampled.then(|| PixelSampler::new(r.seed, y * r.width + x, pass));
+                let ray = match sampler {
+                    Some(s) => camera.ray_through(x, y, s.jitter()),
+                    None => camera.ray(x, y),
+                };
                 queue.push(ViewRay {
                     origin: ray.origin,
                     dir: ray.direction,
                     weight: 1.0,
                     tint: Vec3::ONE,
                     band: WHITE_BAND,
+                    lambda_nm: None,
                     depth: 0,
                     pixel: k as u32,
+                    sampler,
                 });
             }
             let mut shader = Shader { scene, points: Vec::new(), first_pixel: (tile * tile_pixels) as u32 };
@@ -157,15 +185,24 @@ impl Shader<'_> {
                     let origin = prismatic_core::prepared::offset_origin(p, n, d);
                     queue.push(ViewRay { origin, dir: d, depth: r.depth + 1, ..*r });
                 }
-                Surface::Dielectric(glass) if r.band == WHITE_BAND && glass.splits_view_rays => {
-                    for (b, info) in self.scene.bands.bands().iter().enumerate() {
-                        let share = r.weight * info.weight.abs().max_element();
-                        let tinted = ViewRay { tint: r.tint * info.weight, weight: share, band: b as u16, ..*r };
-                        spawn_at_glass(&tinted, p, n, glass.ior(b as u16), queue);
+                Surface::Dielectric(glass) if r.band == WHITE_BAND && glass.splits_view_rays => match r.sampler {
+                    Some(sampler) => {
+                        let (b, lambda_nm) = spectrum_share(self.scene, sampler.spectrum(), 0, 1);
+                        let w = self.scene.bands.band(b as usize).weight * self.scene.bands.len() as f32;
+                        let share = r.weight * w.abs().max_element();
+                        let tinted = ViewRay { tint: r.tint * w, weight: share, band: b, lambda_nm, ..*r };
+                        spawn_at_glass(&tinted, p, n, tinted.ior(glass, self.scene), queue);
                     }
-                }
+                    None => {
+                        for (b, info) in self.scene.bands.bands().iter().enumerate() {
+                            let share = r.weight * info.weight.abs().max_element();
+                            let tinted = ViewRay { tint: r.tint * info.weight, weight: share, band: b as u16, ..*r };
+                            spawn_at_glass(&tinted, p, n, glass.ior(b as u16), queue);
+                        }
+                    }
+                },
                 Surface::Dielectric(glass) => {
-                    glass_ior[i] = glass.ior(r.band);
+                    glass_ior[i] = r.ior(glass, self.scene);
                     at_glass |= 1 << i;
                 }
                 Surface::Diffuse { .. } => unreachable!("shaded above"),
@@ -272,11 +309,19 @@ impl Shader<'_> {
 }
 
 /// Queues the Fresnel-weighted reflection and refraction of `r` at a glass
-/// surface point `p` (outward normal `outward`), as the reference recurses.
+/// surface point `p` (outward normal `outward`), as the reference recurses
+/// (a sampled path: the one branch its number chooses).
 fn spawn_at_glass(r: &ViewRay, p: Vec3, outward: Vec3, ior: f32, queue: &mut Vec<ViewRay>) {
     let (n, n1, n2) = optics::interface(r.dir, outward, ior);
     let cos_i = -r.dir.dot(n);
     let f = optics::fresnel(cos_i, n1, n2);
+    if let Some(sampler) = r.sampler {
+        let refracted = optics::refract(r.dir, n, n1, n2).filter(|_| sampler.branch(r.depth) >= f);
+        let d = refracted.unwrap_or_else(|| optics::reflect(r.dir, n));
+        let origin = prismatic_core::prepared::offset_origin(p, n, d);
+        queue.push(ViewRay { origin, dir: d, depth: r.depth + 1, ..*r });
+        return;
+    }
     if f * r.weight > MIN_VIEW_WEIGHT {
         let d = optics::reflect(r.dir, n);
         let origin = prismatic_core::prepared::offset_origin(p, n, d);
@@ -310,6 +355,15 @@ fn spawn_packet_at_glass(
     let refracted_origin = offset_origin(point, n, refracted);
     let tir = tir.to_bitmask();
     for (i, r) in rays.iter().enumerate().filter(|(i, _)| lanes_at_glass & (1 << i) != 0) {
+        if let Some(sampler) = r.sampler {
+            // The one branch the path's number chooses (reflection under total internal reflection).
+            let (origin, dir) = match sampler.branch(r.depth) >= f[i] && tir & (1 << i) == 0 {
+                true => (refracted_origin.lane(i), refracted.lane(i)),
+                false => (reflected_origin.lane(i), reflected.lane(i)),
+            };
+            queue.push(ViewRay { origin, dir, depth: r.depth + 1, ..*r });
+            continue;
+        }
         if f[i] * r.weight > MIN_VIEW_WEIGHT {
             let (origin, dir) = (reflected_origin.lane(i), reflected.lane(i));
             queue.push(ViewRay { origin, dir, weight: r.weight * f[i], tint: r.tint * f[i], depth: r.depth + 1, ..*r });

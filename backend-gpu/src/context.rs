@@ -11,8 +11,9 @@ use std::sync::{Arc, Mutex};
 /// Storage buffers a session's gather binds, the most of any stage: the
 /// bands, cells, point count, visible points, pixels and four windows of
 /// the sorted photons (group 0), the pixels' sums and direct light, the
-/// levels used, the statistics and the level lists (group 1).
-pub const STORAGE_BUFFERS_NEEDED: u32 = 14;
+/// levels used, the statistics, the level lists and the pixels' first
+/// radii (group 1).
+pub const STORAGE_BUFFERS_NEEDED: u32 = 15;
 
 /// A device and queue with what the backend knows about them. Clones share
 /// the device and the count of bytes moved ([`GpuContext::counting_apart`]

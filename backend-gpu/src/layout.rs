@@ -82,16 +82,16 @@ pub struct Params {
     pub photon_sequence: u32,
     /// Image-plane step per pixel to the right.
     pub cam_right: [f32; 3],
-    /// Padding.
-    pub _pad4: u32,
+    /// The render's seed, for the sampled view paths' numbers (`seed` is the photon pass's).
+    pub view_seed: u32,
     /// Image-plane step per pixel downward.
     pub cam_down: [f32; 3],
-    /// Padding.
-    pub _pad5: u32,
+    /// The pass whose sampled view paths the view pass traces.
+    pub view_pass: u32,
     /// Direction through the top-left image corner.
     pub cam_corner: [f32; 3],
-    /// Padding.
-    pub _pad6: u32,
+    /// 0 view rays through pixel centres, 1 sampled view paths.
+    pub view_paths: u32,
     /// The optical axis (unit).
     pub cam_forward: [f32; 3],
     /// Padding.
@@ -314,8 +314,9 @@ pub struct SessionParams {
     pub level: u32,
     /// Bit l set when grid level l is built (bit 0 always is).
     pub built_levels: u32,
-    /// Padding (uniform buffers are 16-byte granular).
-    pub _pad0: u32,
+    /// 1 when each pass traces its own view (sampled view paths): the
+    /// pilot also marks each pixel's first radius.
+    pub sampled_view: u32,
     /// Padding.
     pub _pad1: u32,
 }

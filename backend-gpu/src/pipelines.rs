@@ -134,6 +134,8 @@ pub struct Pipelines {
     pub accumulate: wgpu::ComputePipeline,
     /// session.wgsl `show`: the pixels' base plus mean caustic.
     pub show: wgpu::ComputePipeline,
+    /// session.wgsl `add_view`: a sampled pass's own view added to the pixels' sums.
+    pub add_view: wgpu::ComputePipeline,
     /// stats.wgsl `fold_tallies`: a pass's tallies added to the statistics.
     pub fold_tallies: wgpu::ComputePipeline,
     /// splat.wgsl `splat`: light tracing, the photons added to the pixels' sums.
@@ -160,14 +162,17 @@ impl Pipelines {
             &[with_windows(with_windows(vec![Uniform, ReadWrite, ReadWrite], Read), ReadWrite), vec![ReadWrite]]
                 .concat(),
         );
-        let view_layout = layout(device, "prismatic view", &[ReadWrite, ReadWrite, ReadWrite]);
+        let view_layout = layout(device, "prismatic view", &[ReadWrite, ReadWrite, ReadWrite, Read]);
         let gather_layout = layout(
             device,
             "prismatic gather",
             &with_windows(vec![Uniform, Read, Read, Read, ReadWrite, ReadWrite], Read),
         );
-        let session_layout =
-            layout(device, "prismatic session", &[ReadWrite, Read, Uniform, ReadWrite, ReadWrite, ReadWrite]);
+        let session_layout = layout(
+            device,
+            "prismatic session",
+            &[ReadWrite, Read, Uniform, ReadWrite, ReadWrite, ReadWrite, ReadWrite],
+        );
         let level_dispatch_layout = layout(device, "prismatic level dispatches", &[Read, ReadWrite]);
         let stats_layout = layout(device, "prismatic statistics", &[Read, ReadWrite]);
         let splat_layout = layout(device, "prismatic light tracing", &with_windows(vec![ReadWrite, Read], Read));
@@ -200,6 +205,7 @@ impl Pipelines {
             gather_level: session("prismatic gather level", "gather_level"),
             accumulate: session("prismatic accumulate", "accumulate"),
             show: session("prismatic show", "show"),
+            add_view: session("prismatic add view", "add_view"),
             fold_tallies: pipeline(
                 device,
                 "prismatic fold tallies",

@@ -14,7 +14,9 @@ use prismatic_core::camera::PinholeCamera;
 use prismatic_core::geometry::{Primitive, basis};
 use prismatic_core::math::{cos, radians};
 use prismatic_core::projection::Targets;
-use prismatic_core::scene::{Estimator, Filter, Light, PhotonSequence, Sampler, Texture, WavelengthSampling, Wrap};
+use prismatic_core::scene::{
+    Estimator, Filter, Light, PhotonSequence, Sampler, Texture, ViewPaths, WavelengthSampling, Wrap,
+};
 use prismatic_core::surface::Surface;
 use prismatic_core::texture::srgb_to_linear;
 use prismatic_core::trace::photon_flux;
@@ -140,6 +142,8 @@ impl EncodedScene {
             cam_down: v3(camera.down),
             cam_corner: v3(camera.corner),
             cam_forward: v3(camera.forward),
+            view_seed: r.seed,
+            view_paths: u32::from(r.view_paths == ViewPaths::Sampled),
             ..Params::default()
         };
         e

@@ -240,10 +240,10 @@ pub fn view(stack: u32) -> String {
 }
 
 /// A session's passes (entries `first_radius`, `begin_pass`,
-/// `list_points`, `gather_level`, `accumulate`, `show`): the gather's
-/// bindings in group 0 (the sorted photons are bindings 6–9) and group 1
-/// (the pixels' sums, their direct light, session params, levels used,
-/// statistics, the points' lists by level).
+/// `list_points`, `gather_level`, `accumulate`, `add_view`, `show`): the
+/// gather's bindings in group 0 (the sorted photons are bindings 6–9) and
+/// group 1 (the pixels' sums, their direct light, session params, levels
+/// used, statistics, the points' lists by level, the pixels' first radii).
 pub fn session() -> String {
     [
         library(),

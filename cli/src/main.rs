@@ -10,13 +10,14 @@ use prismatic_cli::passes::{parse_passes, parse_seconds};
 use prismatic_cli::progress_bar::ProgressBar;
 use prismatic_cli::render_job::{Output, RenderJob};
 use prismatic_cli::scene_file::{
-    SceneFileError, parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_wavelengths,
+    SceneFileError, parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_view_paths,
+    parse_wavelengths,
 };
 use prismatic_cli::settings::{Settings, SettingsSource};
 use prismatic_cli::study::progress::StudyBar;
 use prismatic_cli::study::{self, StudyOptions, report};
 use prismatic_core::bands::BandSpec;
-use prismatic_core::scene::{Estimator, PhotonSequence, RadiusMode, WavelengthSampling};
+use prismatic_core::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling};
 use prismatic_core::{PreparedScene, TraceStats};
 use std::ops::Range;
 use std::path::PathBuf;
@@ -140,6 +141,11 @@ struct JobArgs {
     /// (Owen-scrambled, stratified per pass) or random.
     #[arg(long, value_parser = parse_photon_sequence)]
     photon_sequence: Option<PhotonSequence>,
+    /// How view rays sample the pixels: centre (once per render, through
+    /// pixel centres) or sampled (each pass anew: jittered in the pixel, one
+    /// wavelength at dispersive glass; anti-aliased).
+    #[arg(long, value_parser = parse_view_paths)]
+    view_paths: Option<ViewPaths>,
     /// Image width.
     #[arg(long)]
     width: Option<u32>,
@@ -405,6 +411,7 @@ impl JobArgs {
             light_tracing: self.light_tracing,
             wavelengths: self.wavelengths,
             photon_sequence: self.photon_sequence,
+            view_paths: self.view_paths,
             width: self.width,
             height: self.height,
         }

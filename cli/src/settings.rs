@@ -6,7 +6,7 @@
 use crate::scene_file::{SceneDocument, SceneFileError};
 use prismatic_core::PreparedScene;
 use prismatic_core::bands::BandSpec;
-use prismatic_core::scene::{Estimator, PhotonSequence, RadiusMode, WavelengthSampling};
+use prismatic_core::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling};
 
 /// Settings that override the scene's `[render]` table (`None`: the scene's).
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -29,6 +29,8 @@ pub struct Settings {
     pub wavelengths: Option<WavelengthSampling>,
     /// Where photons' emission and wavelength numbers come from.
     pub photon_sequence: Option<PhotonSequence>,
+    /// How view rays sample the pixels.
+    pub view_paths: Option<ViewPaths>,
     /// Image width.
     pub width: Option<u32>,
     /// Image height.
@@ -76,6 +78,7 @@ impl Settings {
         r.light_tracing = self.light_tracing.unwrap_or(r.light_tracing);
         r.wavelengths = self.wavelengths.unwrap_or(r.wavelengths);
         r.photon_sequence = self.photon_sequence.unwrap_or(r.photon_sequence);
+        r.view_paths = self.view_paths.unwrap_or(r.view_paths);
         r.width = self.width.unwrap_or(r.width);
         r.height = self.height.unwrap_or(r.height);
         doc.validate().map_err(|e| self.blame(e, source))?;
@@ -94,6 +97,7 @@ impl Settings {
             ("light_tracing", self.light_tracing.is_some()),
             ("wavelengths", self.wavelengths.is_some()),
             ("photon_sequence", self.photon_sequence.is_some()),
+            ("view_paths", self.view_paths.is_some()),
             ("width", self.width.is_some()),
             ("height", self.height.is_some()),
         ];

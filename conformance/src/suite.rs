@@ -7,7 +7,7 @@
 
 use crate::compare::{compare_images, compare_maps};
 use crate::scenes;
-use prismatic_core::scene::{Light, PhotonSequence, RadiusMode};
+use prismatic_core::scene::{Light, PhotonSequence, RadiusMode, ViewPaths};
 use prismatic_core::{
     Accumulation, Backend, BackendError, BandSpec, Change, NoProgress, PhotonMap, PreparedScene, ReferenceBackend,
     Render, Scene,
@@ -111,6 +111,57 @@ pub fn light_traced_images_match_the_reference(backend: &mut dyn Backend) {
     }
 }
 
+/// With sampled view paths (each pass its own jittered, spectrally sampled
+/// view), gathered and light traced, the images of every scene with
+/// caustics after three progressive passes are the reference's; the base is
+/// black (every pass's view is in its sums); partial renders merge into one
+/// run's sums bit for bit; and a change of the photons alone gives a fresh
+/// render's sums (the pilot gathers at pass 0's view again), as does a new
+/// seed (a change of the view: the view paths take their numbers from it).
+pub fn sampled_view_paths_match_the_reference(backend: &mut dyn Backend) {
+    for (name, scene) in scenes::with_caustics() {
+        for light_tracing in [false, true] {
+            let scene = edited(&scene, |s| {
+                s.render.view_paths = ViewPaths::Sampled;
+                s.render.light_tracing = light_tracing;
+            });
+            let case = format!("{}, {name}, sampled view paths, light tracing {light_tracing}", backend.name());
+            let mut reference = prepare(&mut ReferenceBackend, &scene);
+            let mut got = prepare(backend, &scene);
+            run(reference.as_mut(), 0..3);
+            run(got.as_mut(), 0..3);
+            let (expected, image) = (reference.image().unwrap(), got.image().unwrap());
+            compare_images(&expected, &image).unwrap_or_else(|e| panic!("{case}: {e}"));
+            let base = got.base().unwrap();
+            assert!(base.pixels.iter().all(|p| *p == glam::Vec3::ZERO), "{case}: a base with sampled view paths");
+            let (want, have) = (reference.stats().unwrap(), got.stats().unwrap());
+            assert_eq!(have.visible_points, want.visible_points, "{case}: visible points");
+            let (mut first, mut second) = (prepare(backend, &scene), prepare(backend, &scene));
+            run(first.as_mut(), [2]);
+            run(second.as_mut(), [1, 0]);
+            let mut merged = sums(first.as_mut());
+            merged.merge(&sums(second.as_mut())).expect("disjoint passes");
+            assert_eq!(merged, sums(got.as_mut()), "{case}: merged partials differ from one run");
+        }
+    }
+    let scene = edited(&scenes::glass_sphere(), |s| s.render.view_paths = ViewPaths::Sampled);
+    let name = backend.name();
+    let edits = [
+        (Change::Photons, edited(&scene, |s| s.render.photons += 3_000)),
+        (Change::View, edited(&scene, |s| s.render.seed += 1)),
+    ];
+    for (change, new) in edits {
+        let mut render = prepare(backend, &scene);
+        run(render.as_mut(), 0..2);
+        assert_eq!(render.update(&new).unwrap(), change, "{name}");
+        run(render.as_mut(), 0..2);
+        let mut fresh = prepare(backend, &new);
+        run(fresh.as_mut(), 0..2);
+        let (got, want) = (sums(render.as_mut()), sums(fresh.as_mut()));
+        assert!(got == want, "{name}: sampled view paths, {change:?}: not a fresh render's sums");
+    }
+}
+
 /// Partial renders of passes `0..2` and `2..4` merge into the sums of one
 /// render of `0..4`, bit for bit, and so into its image.
 pub fn partial_renders_merge_into_one_run(backend: &mut dyn Backend) {
@@ -165,6 +216,7 @@ pub fn updates_give_a_fresh_renders_sums(backend: &mut dyn Backend) {
         (Change::View, edited(&scene, |s| s.camera.position.x += 0.3)),
         (Change::View, edited(&scene, |s| s.render.bands = BandSpec::Paper3)),
         (Change::View, edited(&scene, |s| s.render.light_tracing = true)),
+        (Change::View, edited(&scene, |s| s.render.view_paths = ViewPaths::Sampled)),
         (Change::Size, edited(&scene, |s| (s.render.width, s.render.height) = (40, 28))),
     ];
     let name = backend.name();

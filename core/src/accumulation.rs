@@ -1,6 +1,7 @@
 //! The exact sums of a render's passes: per pixel, Σ over passes of the
 //! visible points' weight × caustic irradiance and the light-traced
-//! photons' radiance, in fixed point. Integer
+//! photons' radiance (and with sampled view paths the pass's own view), in
+//! fixed point. Integer
 //! sums do not depend on the order of the passes, the points or the
 //! threads, so passes rendered anywhere (another process, another machine)
 //! merge into the bits of one run.
@@ -91,6 +92,20 @@ impl Accumulation {
         }
         for s in splats {
             self.add(s.pixel, s.radiance.as_dvec3().to_array());
+        }
+    }
+
+    /// Adds a pass's own view to the sums: its image without caustics (with
+    /// sampled view paths each pass traces its own; see
+    /// [`crate::scene::ViewPaths::Sampled`]). Call it with the pass's
+    /// [`Accumulation::add_pass`].
+    ///
+    /// # Panics
+    /// If `base` is not of the accumulation's size.
+    pub fn add_view(&mut self, base: &Image) {
+        assert_eq!((base.width, base.height), (self.width, self.height), "one pixel per sum");
+        for (pixel, radiance) in base.pixels.iter().enumerate() {
+            self.add(pixel as u32, radiance.as_dvec3().to_array());
         }
     }
 

@@ -1,5 +1,5 @@
-//! The pinhole camera: primary rays through pixel centres, and the
-//! projection of a point back into the pixel that sees it.
+//! The pinhole camera: primary rays through pixel centres (or any point of
+//! a pixel), and the projection of a point back into the pixel that sees it.
 
 use crate::geometry::Ray;
 use crate::math::{radians, tan};
@@ -91,7 +91,14 @@ impl PinholeCamera {
     /// The primary ray through the centre of pixel (x, y), y down.
     #[inline]
     pub fn ray(&self, x: u32, y: u32) -> Ray {
-        let d = self.corner + self.right * (x as f32 + 0.5) + self.down * (y as f32 + 0.5);
+        self.ray_through(x, y, (0.5, 0.5))
+    }
+
+    /// The primary ray through the point of pixel (x, y) at fractions
+    /// `(fx, fy)` of its width and height from its top-left corner.
+    #[inline]
+    pub fn ray_through(&self, x: u32, y: u32, (fx, fy): (f32, f32)) -> Ray {
+        let d = self.corner + self.right * (x as f32 + fx) + self.down * (y as f32 + fy);
         Ray::new(self.origin, d)
     }
 }

@@ -10,6 +10,7 @@ use crate::photon::{PhotonMap, TraceStats};
 use crate::prepared::PreparedScene;
 use crate::progress::{Progress, StageTimes};
 use crate::protocol::{BackendError, Change, Render, RenderStats};
+use crate::scene::ViewPaths;
 use crate::schedule::{PilotScale, pass_scene, pass_shrink, pilot_scene};
 use crate::visible::{VisiblePoint, VisiblePoints};
 use alloc::vec;
@@ -36,10 +37,11 @@ pub trait HostKernels: Send {
     /// The backend's name.
     fn name(&self) -> &'static str;
 
-    /// Traces every pixel's view rays: the image without caustics and the
-    /// visible points that need them (in an order that does not depend on
-    /// the thread count).
-    fn visible_points(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> VisiblePoints;
+    /// Traces every pixel's view rays (pass `pass`'s sampled paths with
+    /// [`ViewPaths::Sampled`], the same for every pass otherwise): the
+    /// image without caustics and the visible points that need them (in an
+    /// order that does not depend on the thread count).
+    fn visible_points(&mut self, scene: &PreparedScene, pass: u32, progress: &mut dyn Progress) -> VisiblePoints;
 
     /// Traces `scene`'s photons (its seed and count) into the caustic map, in canonical order.
     fn trace(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> PhotonMap;
@@ -58,13 +60,22 @@ pub trait HostKernels: Send {
 
 /// A live render on the host: the visible points and first radii of the
 /// current scene, and the sums of the passes run since they were traced.
+///
+/// With sampled view paths ([`ViewPaths::Sampled`]) each pass traces its
+/// own view; the visible points kept are pass 0's, which the pilot gathers
+/// at, and the first radii are per pixel (stochastic progressive photon
+/// mapping's per-pixel radius: the smallest first radius of the pilot's
+/// points in the pixel, the scene's radius where it had none).
 pub struct HostRender<K> {
     kernels: K,
     scene: PreparedScene,
     /// What the next pass or read-out must redo.
     stale: Change,
     view: VisiblePoints,
+    /// Per visible point, or per pixel with sampled view paths.
     radii: Vec<f32>,
+    /// Visible points of the last view traced (a pass's own, with sampled view paths).
+    last_view_points: usize,
     sums: Accumulation,
     trace: TraceStats,
 }
@@ -79,6 +90,7 @@ impl<K: HostKernels> HostRender<K> {
             stale: Change::View,
             view: VisiblePoints { base: Image::new(r.width, r.height), points: Vec::new() },
             radii: Vec::new(),
+            last_view_points: 0,
             sums: Accumulation::new(r.width, r.height),
             trace: TraceStats::default(),
         }
@@ -90,7 +102,8 @@ impl<K: HostKernels> HostRender<K> {
         &self.view
     }
 
-    /// Each visible point's first radius (traced when stale).
+    /// Each visible point's first radius, or each pixel's with sampled
+    /// view paths (traced when stale).
     pub fn first_radii(&mut self, progress: &mut dyn Progress) -> &[f32] {
         self.bring_up_to_date(progress);
         &self.radii
@@ -100,7 +113,8 @@ impl<K: HostKernels> HostRender<K> {
     fn bring_up_to_date(&mut self, progress: &mut dyn Progress) {
         let stale = core::mem::take(&mut self.stale);
         if stale >= Change::View {
-            self.view = self.kernels.visible_points(&self.scene, progress);
+            self.view = self.kernels.visible_points(&self.scene, 0, progress);
+            self.last_view_points = self.view.points.len();
         }
         if stale >= Change::Photons {
             self.radii = self.first_radii_now();
@@ -108,18 +122,33 @@ impl<K: HostKernels> HostRender<K> {
     }
 
     /// The pilot pass: each point's first radius from the photons it finds
-    /// within the scene's radius (the scene's radius with fixed radii).
+    /// within the scene's radius (the scene's radius with fixed radii), or
+    /// each pixel's with sampled view paths.
     fn first_radii_now(&mut self) -> Vec<f32> {
         let points = &self.view.points;
         let r0 = self.scene.scene.render.radius;
-        match pilot_scene(&self.scene) {
+        let per_point = match pilot_scene(&self.scene) {
             Some(pilot) if !points.is_empty() => {
                 let scale = PilotScale::new(&self.scene, &pilot);
                 let found = self.kernels.pass(&pilot, points, &vec![r0; points.len()]);
                 found.photons.iter().map(|&n| scale.first_radius(r0, n)).collect()
             }
             _ => vec![r0; points.len()],
+        };
+        if !self.sampled() {
+            return per_point;
         }
+        let mut per_pixel = vec![r0; self.view.base.pixels.len()];
+        for (p, r) in points.iter().zip(per_point) {
+            let pixel = &mut per_pixel[p.pixel as usize];
+            *pixel = pixel.min(r);
+        }
+        per_pixel
+    }
+
+    /// Whether each pass traces its own view paths.
+    fn sampled(&self) -> bool {
+        self.scene.scene.render.view_paths == ViewPaths::Sampled
     }
 }
 
@@ -155,7 +184,16 @@ impl<K: HostKernels> Render for HostRender<K> {
         if self.sums.contains(pass) {
             return Err(BackendError::PassRepeated(pass));
         }
-        let points = &self.view.points;
+        let own_view = match self.sampled() && pass != 0 {
+            true => Some(self.kernels.visible_points(&self.scene, pass, progress)),
+            false => None,
+        };
+        let view = own_view.as_ref().unwrap_or(&self.view);
+        let points = &view.points;
+        self.last_view_points = points.len();
+        if self.sampled() {
+            self.sums.add_view(&view.base);
+        }
         if points.is_empty() && !(self.scene.scene.render.light_tracing && self.scene.plan.caustics.on) {
             self.sums.add_pass(pass, &[], &[], &[]);
             return Ok(());
@@ -163,7 +201,9 @@ impl<K: HostKernels> Render for HostRender<K> {
         let scene = pass_scene(&self.scene, pass);
         let shrink = pass_shrink(&self.scene, pass);
         let r_pass = scene.scene.render.radius;
-        let radii: Vec<f32> = self.radii.iter().map(|&r| (r * shrink).min(r_pass)).collect();
+        let first =
+            |i: usize, p: &VisiblePoint| if self.sampled() { self.radii[p.pixel as usize] } else { self.radii[i] };
+        let radii: Vec<f32> = points.iter().enumerate().map(|(i, p)| (first(i, p) * shrink).min(r_pass)).collect();
         let found = self.kernels.pass(&scene, points, &radii);
         self.sums.add_pass(pass, points, &found.irradiance, &found.splats);
         self.trace.merge(&found.stats);
@@ -175,7 +215,8 @@ impl<K: HostKernels> Render for HostRender<K> {
     }
 
     fn base(&mut self) -> Result<Image, BackendError> {
-        Ok(self.visible_points(&mut crate::progress::NoProgress).base.clone())
+        let base = self.visible_points(&mut crate::progress::NoProgress).base.clone();
+        Ok(if self.sampled() { Image::new(base.width, base.height) } else { base })
     }
 
     fn sums(&mut self) -> Result<Accumulation, BackendError> {
@@ -196,7 +237,7 @@ impl<K: HostKernels> Render for HostRender<K> {
         Ok(RenderStats {
             passes: self.sums.pass_count(),
             trace: self.trace,
-            visible_points: self.view.points.len() as u64,
+            visible_points: self.last_view_points as u64,
             first_radii,
             uploaded: 0,
             read_back: 0,

@@ -46,6 +46,7 @@ pub mod grid;
 pub mod math;
 pub mod optics;
 pub mod photon;
+pub mod pixel_sample;
 pub mod ray;
 pub mod rng;
 pub mod sobol;
@@ -83,7 +84,7 @@ pub use protocol::{Backend, BackendError, Change, Render, RenderStats};
 pub use reference::ReferenceBackend;
 pub use scene::{
     Camera, Checker, Estimator, Light, Material, Object, PhotonSequence, RadiusMode, RenderSettings, Scene, SceneError,
-    Shape, Texture, WavelengthSampling,
+    Shape, Texture, ViewPaths, WavelengthSampling,
 };
 
 /// Re-exported so that users of the scene model need not depend on glam themselves.

@@ -99,8 +99,10 @@ pub trait Render: Send {
         Ok(next)
     }
 
-    /// The image without caustics: direct light, ambient and background,
-    /// exposure applied (read back from a device).
+    /// The part of the image every pass shares: direct light, ambient and
+    /// background, exposure applied (read back from a device). With
+    /// sampled view paths every pass traces its own view, which its sums
+    /// hold, so the base is black.
     fn base(&mut self) -> Result<Image, BackendError>;
 
     /// The exact sums of the passes so far (read back from a device): what
@@ -139,7 +141,8 @@ pub struct RenderStats {
     pub passes: u32,
     /// The summed passes' photon traces (the pilot's not included).
     pub trace: TraceStats,
-    /// Visible points (diffuse hits that gather caustics).
+    /// Visible points (diffuse hits that gather caustics) of the last view
+    /// traced: the render's, or with sampled view paths the last pass's.
     pub visible_points: u64,
     /// The smallest and largest first radius; `None` without visible points.
     pub first_radii: Option<(f32, f32)>,
@@ -165,7 +168,8 @@ pub enum Change {
     /// What the view rays see: camera, objects, materials, lights (their
     /// direct light and shadows are the view pass's), bands, depth, light
     /// tracing (which diffuse hits gather),
-    /// wavelength sampling, exposure, ambient, background. The view rays
+    /// wavelength sampling, view paths (and the seed, which sampled view
+    /// paths take their numbers from), exposure, ambient, background. The view rays
     /// are traced again, then as [`Change::Photons`].
     View,
     /// The image size: pixel and visible-point buffers are allocated
@@ -187,6 +191,8 @@ impl Change {
             || a.max_depth != b.max_depth
             || a.light_tracing != b.light_tracing
             || a.wavelengths != b.wavelengths
+            || a.view_paths != b.view_paths
+            || (a.seed != b.seed && b.view_paths == crate::ViewPaths::Sampled)
             || a.exposure != b.exposure
             || a.ambient != b.ambient
             || a.background != b.background
@@ -243,6 +249,13 @@ mod tests {
         assert_eq!(edited(&|s| s.camera.position.x += 0.1), Change::View);
         assert_eq!(edited(&|s| s.render.bands = BandSpec::Paper3), Change::View);
         assert_eq!(edited(&|s| s.render.light_tracing = true), Change::View);
+        assert_eq!(edited(&|s| s.render.view_paths = crate::ViewPaths::Sampled), Change::View);
+        let sampled = |s: &mut Scene| s.render.view_paths = crate::ViewPaths::Sampled;
+        let mut before = scene.clone();
+        sampled(&mut before);
+        let mut after = before.clone();
+        after.render.seed += 1;
+        assert_eq!(Change::between(&before, &after), Change::View, "sampled view paths take the seed");
         assert_eq!(edited(&|s| s.render.width += 1), Change::Size);
         assert!(Change::None < Change::Photons && Change::Photons < Change::View && Change::View < Change::Size);
     }

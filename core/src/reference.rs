@@ -38,8 +38,8 @@ impl HostKernels for ScalarKernels {
         "reference"
     }
 
-    fn visible_points(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> VisiblePoints {
-        crate::view::visible_points(scene, progress)
+    fn visible_points(&mut self, scene: &PreparedScene, pass: u32, progress: &mut dyn Progress) -> VisiblePoints {
+        crate::view::visible_points(scene, pass, progress)
     }
 
     fn trace(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> PhotonMap {

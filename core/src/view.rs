@@ -21,6 +21,15 @@
 //! weight C_i. A ray that crossed coloured glass keeps its Beer–Lambert
 //! transmittance (per RGB channel for white rays, the band's for a band;
 //! see [`glass_transmittance`]).
+//!
+//! With sampled view paths ([`ViewPaths::Sampled`]) each pass traces one
+//! path per pixel, with the numbers of [`PixelSampler`]: through a jittered
+//! point of the pixel; at glass the reflection with probability R, else the
+//! refraction (the factor R or 1 − R cancels against its probability); at
+//! the first dispersive glass one band b with probability 1/N, weighted
+//! N·C_b, at its own wavelength when the scene's photons are (continuous
+//! and hero wavelengths). Each pass's view is then an unbiased sample of
+//! the box-filtered pixel, and the passes' mean converges to it.
 
 use crate::camera::PinholeCamera;
 use crate::geometry::Ray;
@@ -28,24 +37,29 @@ use crate::image::Image;
 use crate::math::{cos, radians};
 use crate::optics::{fresnel, interface, reflect, refract};
 use crate::photon::WHITE_BAND;
+use crate::pixel_sample::PixelSampler;
 use crate::prepared::{Hit, PreparedScene, offset_origin};
 use crate::progress::{Progress, Stage};
-use crate::scene::Light;
+use crate::scene::{Light, ViewPaths};
 use crate::surface::{DielectricOptics, Surface};
 use crate::tolerance::MIN_VIEW_WEIGHT;
+use crate::trace::spectrum_share;
 use crate::visible::{VisiblePoint, VisiblePoints};
 use alloc::vec::Vec;
 use core::f32::consts::PI;
 use glam::Vec3;
 
-/// Where a view ray is on its way from the camera: its band (or white),
-/// specular depth, share of the pixel (for pruning) and RGB factor.
+/// Where a view ray is on its way from the camera: its band (or white) and
+/// wavelength (`None`: the band's own index), specular depth, share of the
+/// pixel (for pruning), RGB factor, and a sampled path's numbers.
 #[derive(Clone, Copy, Debug)]
 struct ViewPath {
     band: u16,
+    lambda_nm: Option<f32>,
     depth: u32,
     weight: f32,
     tint: Vec3,
+    sampler: Option<PixelSampler>,
 }
 
 /// Everything a pixel's view rays need: the scene and the camera.
@@ -67,10 +81,25 @@ impl<'a> ViewContext<'a> {
     /// whose caustic it needs are appended to `points` (their weight includes
     /// the exposure and their pixel is the row-major index of (x, y)).
     pub fn pixel(&self, x: u32, y: u32, points: &mut Vec<VisiblePoint>) -> Vec3 {
+        self.trace_pixel(x, y, None, points)
+    }
+
+    /// [`ViewContext::pixel`] on pass `pass`'s sampled path ([`ViewPaths::Sampled`]).
+    pub fn sampled_pixel(&self, x: u32, y: u32, pass: u32, points: &mut Vec<VisiblePoint>) -> Vec3 {
+        let r = &self.scene.scene.render;
+        self.trace_pixel(x, y, Some(PixelSampler::new(r.seed, y * r.width + x, pass)), points)
+    }
+
+    fn trace_pixel(&self, x: u32, y: u32, sampler: Option<PixelSampler>, points: &mut Vec<VisiblePoint>) -> Vec3 {
         let exposure = self.scene.scene.render.exposure;
-        let path = ViewPath { band: WHITE_BAND, depth: 0, weight: 1.0, tint: Vec3::splat(exposure) };
+        let tint = Vec3::splat(exposure);
+        let path = ViewPath { band: WHITE_BAND, lambda_nm: None, depth: 0, weight: 1.0, tint, sampler };
         let first = points.len();
-        let radiance = self.radiance(&self.camera.ray(x, y), path, points) * exposure;
+        let ray = match sampler {
+            Some(s) => self.camera.ray_through(x, y, s.jitter()),
+            None => self.camera.ray(x, y),
+        };
+        let radiance = self.radiance(&ray, path, points) * exposure;
         let pixel = y * self.scene.scene.render.width + x;
         for p in &mut points[first..] {
             p.pixel = pixel;
@@ -93,7 +122,7 @@ impl<'a> ViewContext<'a> {
             _ => Vec3::ONE,
         };
         let path = ViewPath { weight: path.weight * kept.max_element(), tint: path.tint * kept, ..path };
-        let ViewPath { band, depth, weight, tint } = path;
+        let ViewPath { band, depth, weight, tint, .. } = path;
         kept * match surface {
             Surface::Diffuse { .. } => self.shade_diffuse(ray, &hit, path, points),
             _ if depth >= self.scene.plan.max_depth => Vec3::ZERO,
@@ -102,20 +131,37 @@ impl<'a> ViewContext<'a> {
                 let next = ViewPath { depth: depth + 1, ..path };
                 self.radiance(&Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d }, next, points)
             }
-            Surface::Dielectric(glass) if band == WHITE_BAND && glass.splits_view_rays => self
-                .scene
-                .bands
-                .bands()
-                .iter()
-                .enumerate()
-                .map(|(b, info)| {
-                    // The band's share of the pixel bounds what its branches can add.
-                    let share = weight * info.weight.abs().max_element();
-                    let band_path = ViewPath { band: b as u16, depth, weight: share, tint: tint * info.weight };
-                    info.weight * self.through_dielectric(ray, &hit, glass.ior(b as u16), band_path, points)
-                })
-                .sum(),
-            Surface::Dielectric(glass) => self.through_dielectric(ray, &hit, glass.ior(band), path, points),
+            Surface::Dielectric(glass) if band == WHITE_BAND && glass.splits_view_rays => match path.sampler {
+                Some(sampler) => {
+                    let (b, lambda_nm) = spectrum_share(self.scene, sampler.spectrum(), 0, 1);
+                    let w = self.scene.bands.band(b as usize).weight * self.scene.bands.len() as f32;
+                    let share = weight * w.abs().max_element();
+                    let band_path = ViewPath { band: b, lambda_nm, weight: share, tint: tint * w, ..path };
+                    w * self.through_dielectric(ray, &hit, self.ior(glass, &band_path), band_path, points)
+                }
+                None => self
+                    .scene
+                    .bands
+                    .bands()
+                    .iter()
+                    .enumerate()
+                    .map(|(b, info)| {
+                        // The band's share of the pixel bounds what its branches can add.
+                        let share = weight * info.weight.abs().max_element();
+                        let band_path = ViewPath { band: b as u16, weight: share, tint: tint * info.weight, ..path };
+                        info.weight * self.through_dielectric(ray, &hit, glass.ior(b as u16), band_path, points)
+                    })
+                    .sum(),
+            },
+            Surface::Dielectric(glass) => self.through_dielectric(ray, &hit, self.ior(glass, &path), path, points),
+        }
+    }
+
+    /// The index `path` sees at `glass`: its band's, or at its own wavelength.
+    fn ior(&self, glass: &DielectricOptics, path: &ViewPath) -> f32 {
+        match path.lambda_nm {
+            Some(lambda) => glass.ior_at_wavelength(path.band, lambda, &self.scene.bands),
+            None => glass.ior(path.band),
         }
     }
 
@@ -131,6 +177,13 @@ impl<'a> ViewContext<'a> {
         let (n, n1, n2) = interface(ray.direction, hit.normal, ior);
         let cos_i = -ray.direction.dot(n);
         let r = fresnel(cos_i, n1, n2);
+        if let Some(sampler) = path.sampler {
+            // One branch, chosen with its Fresnel probability (reflection under total internal reflection).
+            let next = ViewPath { depth: path.depth + 1, ..path };
+            let refracted = refract(ray.direction, n, n1, n2).filter(|_| sampler.branch(path.depth) >= r);
+            let d = refracted.unwrap_or_else(|| reflect(ray.direction, n));
+            return self.radiance(&Ray { origin: offset_origin(hit.point, n, d), direction: d }, next, points);
+        }
         let mut sum = Vec3::ZERO;
         let branch = |f: f32| ViewPath { depth: path.depth + 1, weight: path.weight * f, tint: path.tint * f, ..path };
         if r * path.weight > MIN_VIEW_WEIGHT {
@@ -245,16 +298,21 @@ pub fn glass_transmittance(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t:
     }
 }
 
-/// Traces every pixel's view rays once with the scalar reference: the
-/// image without caustics and the visible points that need them,
-/// reporting progress after every row.
-pub fn visible_points(scene: &PreparedScene, progress: &mut dyn Progress) -> VisiblePoints {
+/// Traces every pixel's view rays with the scalar reference (pass `pass`'s
+/// sampled paths with [`ViewPaths::Sampled`]; the same for every pass
+/// otherwise): the image without caustics and the visible points that need
+/// them, reporting progress after every row.
+pub fn visible_points(scene: &PreparedScene, pass: u32, progress: &mut dyn Progress) -> VisiblePoints {
     let ctx = ViewContext::new(scene);
     let (w, h) = (scene.scene.render.width, scene.scene.render.height);
+    let sampled = scene.scene.render.view_paths == ViewPaths::Sampled;
     let mut out = VisiblePoints { base: Image::new(w, h), points: Vec::new() };
     for y in 0..h {
         for x in 0..w {
-            out.base.pixels[(y * w + x) as usize] = ctx.pixel(x, y, &mut out.points);
+            out.base.pixels[(y * w + x) as usize] = match sampled {
+                true => ctx.sampled_pixel(x, y, pass, &mut out.points),
+                false => ctx.pixel(x, y, &mut out.points),
+            };
         }
         progress.advance(Stage::View, u64::from(y) + 1, u64::from(h));
     }

@@ -147,6 +147,7 @@ fn settings(kw: Option<&Bound<'_, PyDict>>) -> Result<(Settings, BackendChoice),
                 s.light_tracing = Some(on.map_err(|_| bad_setting(&key, format!("must be True or False, got {v}")))?);
             }
             "wavelengths" => s.wavelengths = Some(named(&key, scene_file::parse_wavelengths(&text()?))?),
+            "view_paths" => s.view_paths = Some(named(&key, scene_file::parse_view_paths(&text()?))?),
             "photon_sequence" => {
                 s.photon_sequence = Some(named(&key, scene_file::parse_photon_sequence(&text()?))?);
             }

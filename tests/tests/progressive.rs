@@ -124,7 +124,7 @@ fn one_pass_at_the_scenes_radius_is_the_paper_frame() {
         let mut render = progressive(&mut ReferenceBackend, &scene, 1);
         let pass = prismatic_core::schedule::pass_scene(&scene, 0);
         let map = prismatic_core::trace::trace_photons(&pass, &mut NoProgress);
-        let view = prismatic_core::view::visible_points(&scene, &mut NoProgress);
+        let view = prismatic_core::view::visible_points(&scene, 0, &mut NoProgress);
         let radii = vec![scene.scene.render.radius; view.points.len()];
         let found = prismatic_core::reference::gather_pass(&pass, &map, &view.points, &radii);
         let mut sums = prismatic_core::Accumulation::new(80, 80);

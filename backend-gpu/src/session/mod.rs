@@ -30,6 +30,7 @@ use crate::timing::StageTimer;
 use crate::trace::{PhotonPass, slots_per_emission};
 use points::PointChunks;
 use prismatic_core::accumulation::{contains_pass, insert_passes};
+use prismatic_core::scene::ViewPaths;
 use prismatic_core::schedule::pass_scene;
 use prismatic_core::{
     Accumulation, BackendError, Change, Image, PhotonMap, PreparedScene, Progress, Render, RenderStats, StageTimes,
@@ -186,8 +187,9 @@ impl GpuSession {
         if redone >= Change::Size {
             self.allocate_points()?;
         }
-        if redone >= Change::View {
-            self.trace_view()?;
+        // Sampled view paths leave the last pass's points: the pilot's are pass 0's.
+        if redone >= Change::View || (self.sampled() && redone >= Change::Photons) {
+            self.trace_view(0)?;
             self.stamp(prismatic_core::Stage::View)?;
         }
         if redone >= Change::Photons {
@@ -195,6 +197,11 @@ impl GpuSession {
             self.pilot()?;
         }
         Ok(())
+    }
+
+    /// Whether each pass traces its own view paths.
+    pub(super) fn sampled(&self) -> bool {
+        self.scene.scene.render.view_paths == ViewPaths::Sampled
     }
 
     /// Waits until fewer than [`PASSES_IN_FLIGHT`] passes are on the device.

@@ -23,15 +23,22 @@ use prismatic_core::{BackendError, NoProgress, PreparedScene, Progress, Stage};
 const TERM_BITS: i32 = 30;
 
 impl GpuSession {
-    /// Empties the pixels' sums and the statistics of the passes (a change
-    /// of the photons or more starts the passes again).
+    /// Empties the pixels' sums, their first radii and the statistics of
+    /// the passes (a change of the photons or more starts the passes
+    /// again); with sampled view paths also the base, which holds pass 0's
+    /// direct light, in its sums when pass 0 runs.
     pub(super) fn empty_sums(&mut self) -> Result<(), BackendError> {
         let none = RunStats { min_ratio: f32::INFINITY.to_bits(), ..RunStats::default() };
         self.ctx.write(&self.run_stats, 0, bytemuck::bytes_of(&none));
+        let sampled = self.sampled();
         self.ctx.checked("emptying the sums", || {
             let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
             for chunk in &self.points.chunks {
                 encoder.clear_buffer(&chunk.sums, 0, None);
+                encoder.clear_buffer(&chunk.pixel_ratios, 0, None);
+                if sampled {
+                    encoder.clear_buffer(&chunk.base, 0, None);
+                }
             }
             self.ctx.queue.submit([encoder.finish()]);
         })
@@ -50,6 +57,7 @@ impl GpuSession {
             neighbours: scale.neighbours,
             inv_passes: 1.0,
             whole_radius: 1,
+            sampled_view: u32::from(self.sampled()),
             ..SessionParams::default()
         };
         self.levels.forget(&self.ctx)?;
@@ -79,6 +87,11 @@ impl GpuSession {
             whole_radius: u32::from(fixed),
             ..SessionParams::default()
         };
+        if self.sampled() {
+            self.trace_view(k)?;
+            self.stamp(Stage::View)?;
+            self.add_view()?;
+        }
         self.trace_photons(&pass, progress)?;
         self.fold_tallies()?;
         self.stamp(Stage::Photons)?;

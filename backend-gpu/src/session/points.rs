@@ -59,6 +59,9 @@ pub struct PointChunk {
     pub sums: wgpu::Buffer,
     /// Per pixel: the direct light (the view pass's pixels).
     pub base: wgpu::Buffer,
+    /// Per pixel: its first radius with sampled view paths (the complement
+    /// of the bits of its fraction of R; 0 before the pilot marks it).
+    pub pixel_ratios: wgpu::Buffer,
     /// This pass's points by grid level: per level a count and a cursor,
     /// then the points' indices (session.wgsl's `LevelLists`).
     pub level_lists: wgpu::Buffer,
@@ -179,6 +182,7 @@ impl GpuSession {
                 total: buffer("prismatic visible-point count", 4),
                 sums: buffer("prismatic caustic sums", count * SUM_BYTES),
                 base: buffer("prismatic direct light", count * PIXEL_BYTES),
+                pixel_ratios: buffer("prismatic pixel radii", count * 4),
                 level_lists: buffer("prismatic level lists", LEVEL_HEADER_BYTES + 4 * capacity),
                 level_args: buffer_for(
                     "prismatic level dispatches",
@@ -214,6 +218,7 @@ impl GpuSession {
                         wgpu::BindGroupEntry { binding: 0, resource: pixel_slice.clone() },
                         wgpu::BindGroupEntry { binding: 1, resource: chunk.points.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 2, resource: chunk.total.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 3, resource: chunk.pixel_ratios.as_entire_binding() },
                     ],
                 );
                 let mut gather: Vec<Option<wgpu::BindGroup>> = vec![None; GRID_LEVELS];
@@ -239,6 +244,7 @@ impl GpuSession {
                         wgpu::BindGroupEntry { binding: 3, resource: self.levels.used.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 4, resource: self.run_stats.as_entire_binding() },
                         wgpu::BindGroupEntry { binding: 5, resource: chunk.level_lists.as_entire_binding() },
+                        wgpu::BindGroupEntry { binding: 6, resource: chunk.pixel_ratios.as_entire_binding() },
                     ],
                 );
                 let counts = wgpu::BindingResource::Buffer(wgpu::BufferBinding {

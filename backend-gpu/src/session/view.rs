@@ -13,11 +13,13 @@ use prismatic_core::{BackendError, Change};
 
 impl GpuSession {
     /// Traces the view rays of every chunk into its pixels (the direct
-    /// light, kept as the base) and visible points. The first time, waits
+    /// light, kept as the base) and visible points (pass `pass`'s sampled
+    /// paths with sampled view paths). The first time, waits
     /// to learn whether every chunk had room for its points and traces
     /// again with more when not; later, the counts are read back a pass or
     /// more afterwards ([`GpuSession::check_reads`]).
-    pub(super) fn trace_view(&mut self) -> Result<(), BackendError> {
+    pub(super) fn trace_view(&mut self, pass: u32) -> Result<(), BackendError> {
+        self.buffers.params.view_pass = pass;
         loop {
             let view = self.pipelines.view(&self.ctx.device, stack_size(self.buffers.params.max_depth));
             let caustics = u32::from(self.photons.capacity() > 0);
@@ -50,6 +52,25 @@ impl GpuSession {
             self.stale = Change::None;
             self.allocate_points()?;
         }
+    }
+
+    /// With sampled view paths, after a pass's view: its direct light
+    /// added to the pixels' sums and the base emptied (every pass's view is
+    /// in its sums, none is shared).
+    pub(super) fn add_view(&mut self) -> Result<(), BackendError> {
+        for chunk in &self.points.chunks {
+            let p = &mut self.buffers.params;
+            (p.pixel_offset, p.pixel_count) = (chunk.offset as u32, chunk.count as u32);
+            self.buffers.write_params(&self.ctx);
+            self.ctx.checked("adding the view to the sums", || {
+                let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
+                let groups = [chunk.groups().gather(0), &chunk.groups().session];
+                dispatch(&mut encoder, &self.pipelines.add_view, &groups, chunk.count, WORKGROUP_SIZE);
+                encoder.clear_buffer(&chunk.base, 0, None);
+                self.ctx.queue.submit([encoder.finish()]);
+            })?;
+        }
+        Ok(())
     }
 
     /// Looks (without waiting) whether values read back have come: the

@@ -403,3 +403,22 @@ fn path_ior(s: GpuSurface, band: u32, lambda_nm: f32) -> f32 {
     }
     return n + (curve_at(s, lambda_nm) - curve_at(s, bands[band].lambda_nm));
 }
+
+struct SpectrumSample {
+    band: u32,
+    // < 0 for none (the band's own index).
+    lambda_nm: f32,
+}
+
+// trace::spectrum_share: share `share` of `shares`, shifted by the number `u`.
+fn spectrum_share(u: f32, share: u32, shares: u32) -> SpectrumSample {
+    let n = params.band_count;
+    let scaled = (f32(share) + u) / f32(shares) * f32(n);
+    let band = min(u32(scaled), n - 1u);
+    var lambda_nm = -1.0;
+    if params.wavelengths == WAVELENGTHS_CONTINUOUS || params.wavelengths == WAVELENGTHS_HERO {
+        let b = bands[band];
+        lambda_nm = b.lo_nm + (b.hi_nm - b.lo_nm) * (scaled - f32(band));
+    }
+    return SpectrumSample(band, lambda_nm);
+}

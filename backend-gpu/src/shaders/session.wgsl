@@ -8,7 +8,10 @@
 // lists them level by level (`list_points`), gathers each level's list in
 // its grid (`gather_level`, dispatched indirectly over that list alone),
 // adds each point's caustic to its pixel's exact sums (`accumulate`) and
-// shows base + mean (`show`).
+// shows base + mean (`show`). With sampled view paths each pass's view
+// (its direct light, in `base`) is added to the sums too (`add_view`), and
+// the base left empty; the pilot marks each pixel's first radius, which
+// the view pass gives the pixel's point of every pass.
 
 struct SessionParams {
     // A full pass's photons per pilot photon.
@@ -23,7 +26,8 @@ struct SessionParams {
     level: u32,
     // Bit l set when level l's grid is built (bit 0 always is).
     built_levels: u32,
-    _pad0: u32,
+    // 1 with sampled view paths: the pilot marks each pixel's first radius.
+    sampled_view: u32,
     _pad1: u32,
 }
 
@@ -41,6 +45,9 @@ struct LevelLists {
     points: array<u32>,
 }
 @group(1) @binding(5) var<storage, read_write> level_lists: LevelLists;
+// Per pixel of the chunk: the complement of the bits of its smallest first
+// radius fraction (0: none yet; a larger complement is a smaller radius).
+@group(1) @binding(6) var<storage, read_write> pixel_ratios: array<atomic<u32>>;
 
 // schedule::level_of: the finest grid level whose radius (r_pass / 4^l)
 // is at least r.
@@ -82,6 +89,9 @@ fn first_radius(
     }
     if bits > atomicLoad(&run_stats.max_ratio) {
         atomicMax(&run_stats.max_ratio, bits);
+    }
+    if session.sampled_view != 0u {
+        atomicMax(&pixel_ratios[points[i].pixel], ~bits);
     }
 }
 
@@ -180,6 +190,23 @@ fn accumulate(
     let c = vp.weight * point_caustic(vp);
     for (var ch = 0u; ch < 3u; ch++) {
         add_to_sum(6u * vp.pixel + 2u * ch, to_fixed(c[ch], 32));
+    }
+}
+
+// Sampled view paths, per pixel: the pass's own view (its direct light)
+// added to the pixel's sums (Accumulation::add_view).
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn add_view(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let k = flat_index(wid, nwg, lid);
+    if k >= params.pixel_count {
+        return;
+    }
+    for (var ch = 0u; ch < 3u; ch++) {
+        add_to_sum(6u * k + 2u * ch, to_fixed(base[k][ch], 32));
     }
 }
 

@@ -166,12 +166,6 @@ fn split_paths() -> u32 {
     return 1u;
 }
 
-struct SpectrumSample {
-    band: u32,
-    // < 0 for none (the band's own index).
-    lambda_nm: f32,
-}
-
 // Path `path` of trace::split_bands, with the photon's spectrum number `u`.
 fn split_band(u: f32, path: u32) -> SpectrumSample {
     if params.wavelengths == WAVELENGTHS_SPLIT {
@@ -180,18 +174,6 @@ fn split_band(u: f32, path: u32) -> SpectrumSample {
     return spectrum_share(u, path, split_paths());
 }
 
-// trace::spectrum_share: share `share` of `shares`, shifted by the photon's number `u`.
-fn spectrum_share(u: f32, share: u32, shares: u32) -> SpectrumSample {
-    let n = params.band_count;
-    let scaled = (f32(share) + u) / f32(shares) * f32(n);
-    let band = min(u32(scaled), n - 1u);
-    var lambda_nm = -1.0;
-    if params.wavelengths == WAVELENGTHS_CONTINUOUS || params.wavelengths == WAVELENGTHS_HERO {
-        let b = bands[band];
-        lambda_nm = b.lo_nm + (b.hi_nm - b.lo_nm) * (scaled - f32(band));
-    }
-    return SpectrumSample(band, lambda_nm);
-}
 
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn main(

@@ -9,12 +9,26 @@
 // pixel it belongs to, so that no invocation runs a gather (a software
 // device caps the loop iterations of one invocation) and the gathers run
 // over the points there are, not over slots per pixel.
+//
+// Sampled view paths (params.view_paths = 1) take pass params.view_pass's
+// numbers of prismatic_core::pixel_sample: a jittered start, one Fresnel
+// branch at glass, one band (at its own wavelength with continuous
+// wavelengths) at the first dispersive glass; a pixel then has one path
+// and at most one visible point, whose first radius is its pixel's.
 
 @group(1) @binding(0) var<storage, read_write> pixels: array<vec4<f32>>;
 @group(1) @binding(1) var<storage, read_write> points: array<VisiblePoint>;
 // Points appended so far; those past `point_capacity` are counted, not
 // written (the host reads the count back and traces again with room).
 @group(1) @binding(2) var<storage, read_write> point_total: atomic<u32>;
+// Per pixel of the chunk: its first radius as a fraction of R, stored as
+// the complement of its bits (0: none, the pilot found no point there;
+// see session.wgsl's first_radius).
+@group(1) @binding(3) var<storage, read> pixel_ratios: array<u32>;
+
+// prismatic_core::pixel_sample::{PIXEL_SCRAMBLE, BRANCH}.
+const PIXEL_SCRAMBLE: u32 = 0x76696577u;
+const BRANCH: u32 = 3u;
 
 struct Pending {
     origin: vec3<f32>,
@@ -28,6 +42,8 @@ struct Pending {
     // NO_SPLIT for a ray to trace, else the next band to hand out.
     next_band: u32,
     object: u32,
+    // The path's wavelength (< 0: its band's own index).
+    lambda_nm: f32,
 }
 
 const NO_SPLIT: u32 = 0xffffffffu;
@@ -39,31 +55,47 @@ var<private> top: u32;
 // STACK_SIZE (lavapipe lowers it to a chain of selects).
 var<private> kids: array<Pending, 3>;
 var<private> kid_count: u32;
+// A sampled path's pixel scramble (PixelSampler).
+var<private> scramble: u32;
+
+fn sampled() -> bool {
+    return params.view_paths != 0u;
+}
 
 fn spawn(e: Pending) {
     kids[kid_count] = e;
     kid_count++;
 }
 
-fn spawn_ray(origin: vec3<f32>, dir: vec3<f32>, band: u32, depth: u32, weight: f32, tint: vec3<f32>) {
-    spawn(Pending(origin, weight, dir, band, tint, depth, vec3<f32>(0.0), NO_SPLIT, 0u));
+fn spawn_ray(e: Pending, origin: vec3<f32>, dir: vec3<f32>, band: u32, weight: f32, tint: vec3<f32>) {
+    spawn(Pending(origin, weight, dir, band, tint, e.depth + 1u, vec3<f32>(0.0), NO_SPLIT, 0u, e.lambda_nm));
 }
 
-// ViewContext::through_dielectric: the Fresnel-weighted reflection and refraction.
+// ViewContext::through_dielectric: the Fresnel-weighted reflection and
+// refraction (a sampled path: the one branch its number chooses).
 fn through_dielectric(e: Pending, ior: f32, band: u32, weight: f32, tint: vec3<f32>) {
     let f = facing_interface(e.dir, e.normal, ior);
     let cos_i = -dot(e.dir, f.n);
     let r = fresnel(cos_i, f.n1, f.n2);
+    if sampled() {
+        let refracted = refract_dir(e.dir, f.n, f.n1, f.n2);
+        var d = reflect_dir(e.dir, f.n);
+        if refracted.w != 0.0 && random_f32(scramble, params.view_pass, BRANCH + e.depth) >= r {
+            d = refracted.xyz;
+        }
+        spawn_ray(e, offset_origin(e.origin, f.n, d), d, band, weight, tint);
+        return;
+    }
     let t = 1.0 - r;
     if t * weight > MIN_VIEW_WEIGHT {
         let d = refract_dir(e.dir, f.n, f.n1, f.n2);
         if d.w != 0.0 {
-            spawn_ray(offset_origin(e.origin, f.n, d.xyz), d.xyz, band, e.depth + 1u, weight * t, tint * t);
+            spawn_ray(e, offset_origin(e.origin, f.n, d.xyz), d.xyz, band, weight * t, tint * t);
         }
     }
     if r * weight > MIN_VIEW_WEIGHT {
         let d = reflect_dir(e.dir, f.n);
-        spawn_ray(offset_origin(e.origin, f.n, d), d, band, e.depth + 1u, weight * r, tint * r);
+        spawn_ray(e, offset_origin(e.origin, f.n, d), d, band, weight * r, tint * r);
     }
 }
 
@@ -134,7 +166,13 @@ fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>) {
     if i < params.point_capacity {
         let none = vec2<u32>(0u);
         let sums = array<vec2<u32>, 3>(none, none, none);
-        points[i] = VisiblePoint(point, 0u, normal, params.radius, weight, 0u, sums, none, pixel_index, 1.0, 0u, 0u);
+        // A sampled path's point starts from its pixel's first radius.
+        var ratio = 1.0;
+        let marked = pixel_ratios[pixel_index];
+        if sampled() && marked != 0u {
+            ratio = bitcast<f32>(~marked);
+        }
+        points[i] = VisiblePoint(point, 0u, normal, params.radius, weight, 0u, sums, none, pixel_index, ratio, 0u, 0u);
     }
 }
 
@@ -183,27 +221,42 @@ fn visit(e: Pending) -> vec3<f32> {
     }
     if s.kind == SURFACE_MIRROR {
         let d = reflect_dir(e.dir, hit.normal);
-        spawn_ray(offset_origin(hit.point, hit.normal, d), d, e.band, e.depth + 1u, e.weight, e.tint);
+        spawn_ray(e, offset_origin(hit.point, hit.normal, d), d, e.band, e.weight, e.tint);
         return vec3<f32>(0.0);
     }
     // What coloured glass left of a ray that crossed it.
     let kept = glass_transmittance(s, e.dir, hit.normal, hit.t, e.band);
     let weight = e.weight * max(kept.x, max(kept.y, kept.z));
-    var at = Pending(hit.point, weight, e.dir, e.band, e.tint * kept, e.depth, hit.normal, NO_SPLIT, hit.object);
+    var at = Pending(hit.point, weight, e.dir, e.band, e.tint * kept, e.depth, hit.normal, NO_SPLIT, hit.object, e.lambda_nm);
     if e.band == WHITE_BAND && (s.flags & SURFACE_SPLITS_VIEW_RAYS) != 0u {
-        at.next_band = 0u;
-        spawn(at);
+        if sampled() {
+            // One band b with probability 1/N, weighted N·C_b.
+            let b = spectrum_share(sobol_f32(scramble, params.view_pass, 2u), 0u, 1u);
+            let n = f32(params.band_count);
+            at.lambda_nm = b.lambda_nm;
+            let ior = path_ior(s, b.band, b.lambda_nm);
+            through_dielectric(at, ior, b.band, at.weight * (bands[b.band].max_weight * n), at.tint * (bands[b.band].weight * n));
+        } else {
+            at.next_band = 0u;
+            spawn(at);
+        }
     } else {
-        through_dielectric(at, band_ior(s, e.band), e.band, at.weight, at.tint);
+        through_dielectric(at, path_ior(s, e.band, e.lambda_nm), e.band, at.weight, at.tint);
     }
     return vec3<f32>(0.0);
 }
 
-// ViewContext::pixel: radiance through the pixel centre, exposure
-// applied, but for the caustics of its visible points.
+// ViewContext::pixel: radiance through the pixel centre (a sampled path's
+// jittered point), exposure applied, but for the caustics of its visible points.
 fn pixel(x: u32, y: u32) -> vec3<f32> {
-    let d = params.cam_corner + params.cam_right * (f32(x) + 0.5) + params.cam_down * (f32(y) + 0.5);
-    stack[0] = Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, vec3<f32>(1.0), 0u, vec3<f32>(0.0), NO_SPLIT, 0u);
+    var jitter = vec2<f32>(0.5);
+    if sampled() {
+        scramble = random_u32(params.view_seed, y * params.width + x, PIXEL_SCRAMBLE);
+        jitter = vec2<f32>(sobol_f32(scramble, params.view_pass, 0u), sobol_f32(scramble, params.view_pass, 1u));
+    }
+    let d = params.cam_corner + params.cam_right * (f32(x) + jitter.x) + params.cam_down * (f32(y) + jitter.y);
+    let white = vec3<f32>(1.0);
+    stack[0] = Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, white, 0u, vec3<f32>(0.0), NO_SPLIT, 0u, -1.0);
     top = 1u;
     var sum = vec3<f32>(0.0);
     while top > 0u {

@@ -14,7 +14,9 @@ mod reader;
 mod schema;
 
 pub use document::{SceneDocument, SceneFileError};
-pub use names::{parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_wavelengths};
+pub use names::{
+    parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_view_paths, parse_wavelengths,
+};
 pub use reader::LOCAL_FRAME_RADIUS;
 
 use glam::DVec3;

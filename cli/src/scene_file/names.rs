@@ -3,7 +3,7 @@
 //! radius modes.
 
 use prismatic_core::bands::BandSpec;
-use prismatic_core::scene::{Estimator, PhotonSequence, RadiusMode, WavelengthSampling};
+use prismatic_core::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling};
 
 /// Parses a band table name: `paper3`, `paper7` or a number of bands.
 pub fn parse_bands(s: &str) -> Result<BandSpec, String> {
@@ -35,6 +35,11 @@ pub fn parse_wavelengths(s: &str) -> Result<WavelengthSampling, String> {
 /// Parses a photon-sequence name.
 pub fn parse_photon_sequence(s: &str) -> Result<PhotonSequence, String> {
     PhotonSequence::from_name(s).ok_or_else(|| format!("unknown photon sequence \"{s}\"; expected sobol or random"))
+}
+
+/// Parses a view-paths name.
+pub fn parse_view_paths(s: &str) -> Result<ViewPaths, String> {
+    ViewPaths::from_name(s).ok_or_else(|| format!("unknown view paths \"{s}\"; expected centre or sampled"))
 }
 
 /// Parses a radius-mode name.

@@ -4,7 +4,9 @@
 //! come from OBJ files, textures from image files, dispersion tables from
 //! CSV files, placed glTF files through the glTF importer.
 
-use super::names::{parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_wavelengths};
+use super::names::{
+    parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_view_paths, parse_wavelengths,
+};
 use super::reader::{LOCAL_FRAME_RADIUS, Reader, Result, Table, join};
 use crate::gltf_scene;
 use crate::ior_table;
@@ -17,7 +19,7 @@ use prismatic_core::color::ToneMap;
 use prismatic_core::dispersion::{Dispersion, Glass};
 use prismatic_core::scene::{
     Attenuation, Camera, Checker, Estimator, Filter, Light, Material, MaterialKind, Object, PhotonSequence, RadiusMode,
-    RenderSettings, Sampler, Shape, Texture, WavelengthSampling, Wrap,
+    RenderSettings, Sampler, Shape, Texture, ViewPaths, WavelengthSampling, Wrap,
 };
 use prismatic_core::{Scene, Vec3};
 use std::ops::Range;
@@ -95,6 +97,7 @@ impl Reader<'_> {
                 "light_tracing",
                 "wavelengths",
                 "photon_sequence",
+                "view_paths",
                 "seed",
                 "max_depth",
                 "ambient",
@@ -120,6 +123,7 @@ impl Reader<'_> {
             light_tracing: self.opt(t, "light_tracing", Self::boolean)?.unwrap_or(d.light_tracing),
             wavelengths: self.opt(t, "wavelengths", Self::wavelengths)?.unwrap_or(d.wavelengths),
             photon_sequence: self.opt(t, "photon_sequence", Self::photon_sequence)?.unwrap_or(d.photon_sequence),
+            view_paths: self.opt(t, "view_paths", Self::view_paths)?.unwrap_or(d.view_paths),
             seed: self.opt(t, "seed", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.seed, |x| x as u32),
             max_depth: self.opt(t, "max_depth", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.max_depth, |x| x as u32),
             ambient: self.opt(t, "ambient", Self::float)?.unwrap_or(d.ambient),
@@ -166,6 +170,10 @@ impl Reader<'_> {
 
     fn photon_sequence(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<PhotonSequence> {
         parse_photon_sequence(self.string(key, v)?).map_err(|reason| self.err(key, &v.span(), reason))
+    }
+
+    fn view_paths(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<ViewPaths> {
+        parse_view_paths(self.string(key, v)?).map_err(|reason| self.err(key, &v.span(), reason))
     }
 
     fn radius_mode(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<RadiusMode> {

@@ -15,7 +15,7 @@ use anyhow::{Context, Result};
 use error::{RenderError, StripeSums, mean_delta_e, rmse, stripe_error};
 use prismatic_core::scene::{RadiusMode, Shape};
 use prismatic_core::{
-    Backend, BandSpec, Estimator, Light, NoProgress, PhotonSequence, PreparedScene, WavelengthSampling,
+    Backend, BandSpec, Estimator, Light, NoProgress, PhotonSequence, PreparedScene, ViewPaths, WavelengthSampling,
 };
 use reference::{Reference, ReferenceSpec};
 use std::path::PathBuf;
@@ -55,6 +55,8 @@ pub struct Series {
     pub light_tracing: bool,
     /// Where the photons' emission and wavelength numbers come from.
     pub sequence: PhotonSequence,
+    /// How view rays sample the pixels.
+    pub view_paths: ViewPaths,
     /// Radius.
     pub radius: RadiusPlan,
     /// Backend.
@@ -86,6 +88,7 @@ pub(crate) fn series(label: &str, bands: BandSpec, sampling: WavelengthSampling,
         estimator,
         light_tracing: false,
         sequence: PhotonSequence::Sobol,
+        view_paths: ViewPaths::Centre,
         radius: RadiusPlan::Fixed,
         backend: BackendChoice::Cpu,
         max_photons: u32::MAX,
@@ -109,6 +112,12 @@ fn light_traced(
 ) -> Series {
     let s = series(label, BandSpec::Physical(bands), sampling, Estimator::Density);
     progressive(Series { light_tracing: true, sequence, ..s }, passes)
+}
+
+/// A curve with sampled view paths: each pass its own jittered,
+/// spectrally sampled view.
+fn sampled_view(s: Series) -> Series {
+    Series { view_paths: ViewPaths::Sampled, ..s }
 }
 
 impl StudyPlan {
@@ -139,6 +148,7 @@ impl StudyPlan {
         s.push(light_traced("LT 32 hero", 32, Hero, PhotonSequence::Sobol, 8));
         s.push(light_traced("LT 32 hero random", 32, Hero, PhotonSequence::Random, 8));
         s.push(light_traced("LT 16 bands", 16, Split, PhotonSequence::Sobol, 8));
+        s.push(sampled_view(light_traced("LT 32 hero sampled view", 32, Hero, PhotonSequence::Sobol, 32)));
         let mut scalar = series("paper7 reference backend", BandSpec::Paper7, Split, Estimator::Paper);
         scalar.backend = BackendChoice::Reference;
         scalar.max_photons = 1_000_000;
@@ -176,6 +186,7 @@ impl StudyPlan {
                 progressive(series("16 bands progressive", BandSpec::Physical(16), Split, d), 4),
                 light_traced("LT 16 continuous", 16, Continuous, PhotonSequence::Sobol, 4),
                 light_traced("LT 16 hero", 16, Hero, PhotonSequence::Sobol, 4),
+                sampled_view(light_traced("LT 16 hero sampled view", 16, Hero, PhotonSequence::Sobol, 8)),
                 scalar,
             ],
             reference: ReferenceSpec::quick(),
@@ -409,6 +420,7 @@ pub fn measure(
     s.render.estimator = setting.estimator;
     s.render.light_tracing = setting.light_tracing;
     s.render.photon_sequence = setting.sequence;
+    s.render.view_paths = setting.view_paths;
     let passes = match setting.radius {
         RadiusPlan::Fixed => {
             s.render.radius_mode = RadiusMode::Fixed;

@@ -63,14 +63,14 @@ fn radius(r: RadiusPlan) -> String {
 /// Every point, one per line.
 pub fn csv(result: &StudyResult) -> String {
     let mut s = String::from(
-        "scene,series,bands,wavelengths,estimator,light_tracing,photon_sequence,radius,backend,photons,stored,trace_s,\
-         total_s,delta_e00,rmse_linear,stripe_error,pareto\n",
+        "scene,series,bands,wavelengths,estimator,light_tracing,photon_sequence,view_paths,radius,backend,photons,\
+         stored,trace_s,total_s,delta_e00,rmse_linear,stripe_error,pareto\n",
     );
     for r in &result.rows {
         let st = &r.setting;
         let _ = writeln!(
             s,
-            "{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{:.4},{:.6},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{:.6},{:.4},{:.6},{},{}",
             result.scene,
             r.setting.label,
             st.bands,
@@ -78,6 +78,7 @@ pub fn csv(result: &StudyResult) -> String {
             st.estimator.name(),
             st.light_tracing,
             st.sequence.name(),
+            st.view_paths.name(),
             radius(st.radius),
             format!("{:?}", st.backend).to_lowercase(),
             r.photons,
@@ -116,7 +117,8 @@ pub fn markdown(result: &StudyResult, machine: &str, plot: &Path) -> String {
     let _ = writeln!(
         s,
         "{}×{} pixels, {machine}. Reference: {} physically based bands, {} wavelengths, {}the renderer's \
-         progressive photon mapping (`density`, α = {}, first radii holding {} photon paths), {} photons, {} passes \
+         progressive photon mapping (`density`, α = {}, first radii holding {} photon paths), {} photons, {} view \
+         paths, {} passes \
          × {} photons; the last doubling of passes changed it by ΔE00 {:.2} (threshold {}{}); {} caustic pixels \
          (those the reference caustic changes by ΔE00 > {}).\n",
         plan.size.0,
@@ -131,6 +133,7 @@ pub fn markdown(result: &StudyResult, machine: &str, plot: &Path) -> String {
         plan.reference.alpha,
         plan.reference.neighbours,
         plan.reference.sequence.name(),
+        plan.reference.view_paths.name(),
         rf.passes,
         photons(plan.reference.photons_per_pass),
         rf.last_change,

@@ -12,8 +12,9 @@
 //! coloured glass keeps the reference's transmittance in its tint.
 //!
 //! Sampled view paths (`ViewPaths::Sampled`) queue one ray per pixel and
-//! at most one follow-up per ray: the reference's jittered start, Fresnel
-//! choice and band, from the same [`PixelSampler`] numbers.
+//! at most one follow-up per ray (M at the split into hero paths): the
+//! reference's jittered start, Fresnel choices and hero bands, from the
+//! same [`PixelSampler`] numbers.
 
 use crate::intersect::{HitX8, intersect_scene, occluded};
 use crate::optics::{fresnel, interface, offset_origin, reflect, refract};
@@ -27,7 +28,7 @@ use prismatic_core::optics;
 use prismatic_core::photon::WHITE_BAND;
 use prismatic_core::pixel_sample::PixelSampler;
 use prismatic_core::prepared::PreparedScene;
-use prismatic_core::scene::{Light, ViewPaths};
+use prismatic_core::scene::{HERO_WAVELENGTHS, Light, ViewPaths};
 use prismatic_core::surface::{DielectricOptics, Surface};
 use prismatic_core::tolerance::MIN_VIEW_WEIGHT;
 use prismatic_core::trace::spectrum_share;
@@ -55,8 +56,9 @@ struct ViewRay {
     lambda_nm: Option<f32>,
     depth: u32,
     pixel: u32,
-    /// A sampled path's numbers.
+    /// A sampled path's numbers, and its hero path (0 before the split).
     sampler: Option<PixelSampler>,
+    hero: u32,
 }
 
 impl ViewRay {
@@ -103,6 +105,7 @@ pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
                     depth: 0,
                     pixel: k as u32,
                     sampler,
+                    hero: 0,
                 });
             }
             let mut shader = Shader { scene, points: Vec::new(), first_pixel: (tile * tile_pixels) as u32 };
@@ -187,11 +190,15 @@ impl Shader<'_> {
                 }
                 Surface::Dielectric(glass) if r.band == WHITE_BAND && glass.splits_view_rays => match r.sampler {
                     Some(sampler) => {
-                        let (b, lambda_nm) = spectrum_share(self.scene, sampler.spectrum(), 0, 1);
-                        let w = self.scene.bands.band(b as usize).weight * self.scene.bands.len() as f32;
-                        let share = r.weight * w.abs().max_element();
-                        let tinted = ViewRay { tint: r.tint * w, weight: share, band: b, lambda_nm, ..*r };
-                        spawn_at_glass(&tinted, p, n, tinted.ior(glass, self.scene), queue);
+                        let bands = self.scene.bands.len();
+                        let m = HERO_WAVELENGTHS.min(bands as u32);
+                        for hero in 0..m {
+                            let (b, lambda_nm) = spectrum_share(self.scene, sampler.spectrum(), hero, m);
+                            let w = self.scene.bands.band(b as usize).weight * (bands as f32 / m as f32);
+                            let share = r.weight * w.abs().max_element();
+                            let tinted = ViewRay { tint: r.tint * w, weight: share, band: b, lambda_nm, hero, ..*r };
+                            spawn_at_glass(&tinted, p, n, tinted.ior(glass, self.scene), queue);
+                        }
                     }
                     None => {
                         for (b, info) in self.scene.bands.bands().iter().enumerate() {
@@ -316,7 +323,7 @@ fn spawn_at_glass(r: &ViewRay, p: Vec3, outward: Vec3, ior: f32, queue: &mut Vec
     let cos_i = -r.dir.dot(n);
     let f = optics::fresnel(cos_i, n1, n2);
     if let Some(sampler) = r.sampler {
-        let refracted = optics::refract(r.dir, n, n1, n2).filter(|_| sampler.branch(r.depth) >= f);
+        let refracted = optics::refract(r.dir, n, n1, n2).filter(|_| sampler.branch(r.hero, r.depth) >= f);
         let d = refracted.unwrap_or_else(|| optics::reflect(r.dir, n));
         let origin = prismatic_core::prepared::offset_origin(p, n, d);
         queue.push(ViewRay { origin, dir: d, depth: r.depth + 1, ..*r });
@@ -357,7 +364,7 @@ fn spawn_packet_at_glass(
     for (i, r) in rays.iter().enumerate().filter(|(i, _)| lanes_at_glass & (1 << i) != 0) {
         if let Some(sampler) = r.sampler {
             // The one branch the path's number chooses (reflection under total internal reflection).
-            let (origin, dir) = match sampler.branch(r.depth) >= f[i] && tir & (1 << i) == 0 {
+            let (origin, dir) = match sampler.branch(r.hero, r.depth) >= f[i] && tir & (1 << i) == 0 {
                 true => (refracted_origin.lane(i), refracted.lane(i)),
                 false => (reflected_origin.lane(i), reflected.lane(i)),
             };

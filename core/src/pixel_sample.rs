@@ -1,8 +1,9 @@
 //! The numbers of a sampled view path ([`crate::scene::ViewPaths::Sampled`]):
-//! pass k's path through a pixel takes its point in the pixel and its
-//! wavelength from Owen-scrambled Sobol point k (one scramble per pixel, so
-//! each pixel's passes are stratified and neighbouring pixels are not
-//! correlated), and its Fresnel choices from counter-based random numbers.
+//! pass k's path through a pixel takes its point in the pixel and its hero
+//! wavelengths' shift from Owen-scrambled Sobol point k (one scramble per
+//! pixel, so each pixel's passes are stratified and neighbouring pixels are
+//! not correlated), and its Fresnel choices from counter-based random
+//! numbers, one per hero path and bounce.
 //! Every number is a pure function of (seed, pixel, pass), so pass k's view
 //! is the same on every backend and in any order of passes; the WGSL twin
 //! is `pixel_sampler` in `backend-gpu/src/shaders/common.wgsl`.
@@ -17,6 +18,9 @@ pub const PIXEL_SCRAMBLE: u32 = 0x7669_6577;
 /// The first dimension of a path's Fresnel choices (one per specular
 /// bounce), after the three Sobol dimensions (jitter x, y and spectrum).
 pub const BRANCH: u32 = 3;
+
+/// Fresnel choices reserved per hero path (one per bounce).
+pub const PER_PATH: u32 = 64;
 
 /// Pass `pass`'s numbers for one pixel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -38,17 +42,18 @@ impl PixelSampler {
         (sobol_f32(self.scramble, self.pass, 0), sobol_f32(self.scramble, self.pass, 1))
     }
 
-    /// The path's spectrum number: its band and wavelength at the first
-    /// dispersive glass ([`crate::trace::spectrum_share`]).
+    /// The path's spectrum number: the shift of its hero wavelengths at
+    /// the first dispersive glass ([`crate::trace::spectrum_share`]).
     #[inline]
     pub fn spectrum(&self) -> f32 {
         sobol_f32(self.scramble, self.pass, 2)
     }
 
-    /// The number that chooses the Fresnel branch at specular bounce `depth`.
+    /// The number that chooses the Fresnel branch of hero path `path` (0
+    /// before the split) at specular bounce `depth`.
     #[inline]
-    pub fn branch(&self, depth: u32) -> f32 {
-        random_f32(self.scramble, self.pass, BRANCH + depth)
+    pub fn branch(&self, path: u32, depth: u32) -> f32 {
+        random_f32(self.scramble, self.pass, BRANCH + path * PER_PATH + depth)
     }
 }
 

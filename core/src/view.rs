@@ -26,10 +26,12 @@
 //! path per pixel, with the numbers of [`PixelSampler`]: through a jittered
 //! point of the pixel; at glass the reflection with probability R, else the
 //! refraction (the factor R or 1 − R cancels against its probability); at
-//! the first dispersive glass one band b with probability 1/N, weighted
-//! N·C_b, at its own wavelength when the scene's photons are (continuous
-//! and hero wavelengths). Each pass's view is then an unbiased sample of
-//! the box-filtered pixel, and the passes' mean converges to it.
+//! the first dispersive glass M = [`HERO_WAVELENGTHS`] hero paths (at most
+//! N), path i in band b = ⌊v·N⌋ with v = (i + u)/M (u the pixel's spectrum
+//! number for the pass), weighted (N/M)·C_b, at its own wavelength when
+//! the scene's photons are (continuous and hero wavelengths). Each pass's
+//! view is then an unbiased sample of the box-filtered pixel, and the
+//! passes' mean converges to it.
 
 use crate::camera::PinholeCamera;
 use crate::geometry::Ray;
@@ -40,7 +42,7 @@ use crate::photon::WHITE_BAND;
 use crate::pixel_sample::PixelSampler;
 use crate::prepared::{Hit, PreparedScene, offset_origin};
 use crate::progress::{Progress, Stage};
-use crate::scene::{Light, ViewPaths};
+use crate::scene::{HERO_WAVELENGTHS, Light, ViewPaths};
 use crate::surface::{DielectricOptics, Surface};
 use crate::tolerance::MIN_VIEW_WEIGHT;
 use crate::trace::spectrum_share;
@@ -51,10 +53,12 @@ use glam::Vec3;
 
 /// Where a view ray is on its way from the camera: its band (or white) and
 /// wavelength (`None`: the band's own index), specular depth, share of the
-/// pixel (for pruning), RGB factor, and a sampled path's numbers.
+/// pixel (for pruning), RGB factor, and a sampled path's numbers and hero
+/// path (0 before the split).
 #[derive(Clone, Copy, Debug)]
 struct ViewPath {
     band: u16,
+    hero: u32,
     lambda_nm: Option<f32>,
     depth: u32,
     weight: f32,
@@ -93,7 +97,7 @@ impl<'a> ViewContext<'a> {
     fn trace_pixel(&self, x: u32, y: u32, sampler: Option<PixelSampler>, points: &mut Vec<VisiblePoint>) -> Vec3 {
         let exposure = self.scene.scene.render.exposure;
         let tint = Vec3::splat(exposure);
-        let path = ViewPath { band: WHITE_BAND, lambda_nm: None, depth: 0, weight: 1.0, tint, sampler };
+        let path = ViewPath { band: WHITE_BAND, hero: 0, lambda_nm: None, depth: 0, weight: 1.0, tint, sampler };
         let first = points.len();
         let ray = match sampler {
             Some(s) => self.camera.ray_through(x, y, s.jitter()),
@@ -133,11 +137,17 @@ impl<'a> ViewContext<'a> {
             }
             Surface::Dielectric(glass) if band == WHITE_BAND && glass.splits_view_rays => match path.sampler {
                 Some(sampler) => {
-                    let (b, lambda_nm) = spectrum_share(self.scene, sampler.spectrum(), 0, 1);
-                    let w = self.scene.bands.band(b as usize).weight * self.scene.bands.len() as f32;
-                    let share = weight * w.abs().max_element();
-                    let band_path = ViewPath { band: b, lambda_nm, weight: share, tint: tint * w, ..path };
-                    w * self.through_dielectric(ray, &hit, self.ior(glass, &band_path), band_path, points)
+                    let n = self.scene.bands.len();
+                    let m = HERO_WAVELENGTHS.min(n as u32);
+                    (0..m)
+                        .map(|hero| {
+                            let (b, lambda_nm) = spectrum_share(self.scene, sampler.spectrum(), hero, m);
+                            let w = self.scene.bands.band(b as usize).weight * (n as f32 / m as f32);
+                            let share = weight * w.abs().max_element();
+                            let p = ViewPath { band: b, hero, lambda_nm, weight: share, tint: tint * w, ..path };
+                            w * self.through_dielectric(ray, &hit, self.ior(glass, &p), p, points)
+                        })
+                        .sum()
                 }
                 None => self
                     .scene
@@ -180,7 +190,7 @@ impl<'a> ViewContext<'a> {
         if let Some(sampler) = path.sampler {
             // One branch, chosen with its Fresnel probability (reflection under total internal reflection).
             let next = ViewPath { depth: path.depth + 1, ..path };
-            let refracted = refract(ray.direction, n, n1, n2).filter(|_| sampler.branch(path.depth) >= r);
+            let refracted = refract(ray.direction, n, n1, n2).filter(|_| sampler.branch(path.hero, path.depth) >= r);
             let d = refracted.unwrap_or_else(|| reflect(ray.direction, n));
             return self.radiance(&Ray { origin: offset_origin(hit.point, n, d), direction: d }, next, points);
         }

@@ -12,9 +12,10 @@
 //
 // Sampled view paths (params.view_paths = 1) take pass params.view_pass's
 // numbers of prismatic_core::pixel_sample: a jittered start, one Fresnel
-// branch at glass, one band (at its own wavelength with continuous
-// wavelengths) at the first dispersive glass; a pixel then has one path
-// and at most one visible point, whose first radius is its pixel's.
+// branch at glass, M hero paths (each at its own wavelength with
+// continuous wavelengths) at the first dispersive glass, handed out by the
+// split entry like bands; a pixel then has at most M visible points, whose
+// first radius is the pixel's.
 
 @group(1) @binding(0) var<storage, read_write> pixels: array<vec4<f32>>;
 @group(1) @binding(1) var<storage, read_write> points: array<VisiblePoint>;
@@ -26,9 +27,10 @@
 // see session.wgsl's first_radius).
 @group(1) @binding(3) var<storage, read> pixel_ratios: array<u32>;
 
-// prismatic_core::pixel_sample::{PIXEL_SCRAMBLE, BRANCH}.
+// prismatic_core::pixel_sample::{PIXEL_SCRAMBLE, BRANCH, PER_PATH}.
 const PIXEL_SCRAMBLE: u32 = 0x76696577u;
 const BRANCH: u32 = 3u;
+const PER_PATH: u32 = 64u;
 
 struct Pending {
     origin: vec3<f32>,
@@ -44,6 +46,8 @@ struct Pending {
     object: u32,
     // The path's wavelength (< 0: its band's own index).
     lambda_nm: f32,
+    // A sampled path's hero path (0 before the split).
+    hero: u32,
 }
 
 const NO_SPLIT: u32 = 0xffffffffu;
@@ -68,7 +72,7 @@ fn spawn(e: Pending) {
 }
 
 fn spawn_ray(e: Pending, origin: vec3<f32>, dir: vec3<f32>, band: u32, weight: f32, tint: vec3<f32>) {
-    spawn(Pending(origin, weight, dir, band, tint, e.depth + 1u, vec3<f32>(0.0), NO_SPLIT, 0u, e.lambda_nm));
+    spawn(Pending(origin, weight, dir, band, tint, e.depth + 1u, vec3<f32>(0.0), NO_SPLIT, 0u, e.lambda_nm, e.hero));
 }
 
 // ViewContext::through_dielectric: the Fresnel-weighted reflection and
@@ -80,7 +84,7 @@ fn through_dielectric(e: Pending, ior: f32, band: u32, weight: f32, tint: vec3<f
     if sampled() {
         let refracted = refract_dir(e.dir, f.n, f.n1, f.n2);
         var d = reflect_dir(e.dir, f.n);
-        if refracted.w != 0.0 && random_f32(scramble, params.view_pass, BRANCH + e.depth) >= r {
+        if refracted.w != 0.0 && random_f32(scramble, params.view_pass, BRANCH + e.hero * PER_PATH + e.depth) >= r {
             d = refracted.xyz;
         }
         spawn_ray(e, offset_origin(e.origin, f.n, d), d, band, weight, tint);
@@ -194,6 +198,24 @@ fn shade_diffuse(dir: vec3<f32>, hit: Hit, tint: vec3<f32>, depth: u32) -> vec3<
 
 // One pending entry: what it adds to the pixel; what it spawns goes to `kids`.
 fn visit(e: Pending) -> vec3<f32> {
+    if e.next_band != NO_SPLIT && sampled() {
+        // Hero path i of a sampled split: band ⌊v·N⌋ at v = (i + u)/M, (N/M)·C_b.
+        let i = e.next_band;
+        let m = min(HERO_WAVELENGTHS, params.band_count);
+        if i + 1u < m {
+            var rest = e;
+            rest.next_band = i + 1u;
+            spawn(rest);
+        }
+        let s = spectrum_share(sobol_f32(scramble, params.view_pass, 2u), i, m);
+        let w = bands[s.band].weight * (f32(params.band_count) / f32(m));
+        var hero = e;
+        hero.hero = i;
+        hero.lambda_nm = s.lambda_nm;
+        let ior = path_ior(surfaces[e.object], s.band, s.lambda_nm);
+        through_dielectric(hero, ior, s.band, e.weight * max_abs(w), e.tint * w);
+        return vec3<f32>(0.0);
+    }
     if e.next_band != NO_SPLIT {
         // One band of a split view ray: its RGB weight, its index. The rest
         // of the split goes below this band's rays.
@@ -227,19 +249,10 @@ fn visit(e: Pending) -> vec3<f32> {
     // What coloured glass left of a ray that crossed it.
     let kept = glass_transmittance(s, e.dir, hit.normal, hit.t, e.band);
     let weight = e.weight * max(kept.x, max(kept.y, kept.z));
-    var at = Pending(hit.point, weight, e.dir, e.band, e.tint * kept, e.depth, hit.normal, NO_SPLIT, hit.object, e.lambda_nm);
+    var at = Pending(hit.point, weight, e.dir, e.band, e.tint * kept, e.depth, hit.normal, NO_SPLIT, hit.object, e.lambda_nm, e.hero);
     if e.band == WHITE_BAND && (s.flags & SURFACE_SPLITS_VIEW_RAYS) != 0u {
-        if sampled() {
-            // One band b with probability 1/N, weighted N·C_b.
-            let b = spectrum_share(sobol_f32(scramble, params.view_pass, 2u), 0u, 1u);
-            let n = f32(params.band_count);
-            at.lambda_nm = b.lambda_nm;
-            let ior = path_ior(s, b.band, b.lambda_nm);
-            through_dielectric(at, ior, b.band, at.weight * (bands[b.band].max_weight * n), at.tint * (bands[b.band].weight * n));
-        } else {
-            at.next_band = 0u;
-            spawn(at);
-        }
+        at.next_band = 0u;
+        spawn(at);
     } else {
         through_dielectric(at, path_ior(s, e.band, e.lambda_nm), e.band, at.weight, at.tint);
     }
@@ -256,7 +269,7 @@ fn pixel(x: u32, y: u32) -> vec3<f32> {
     }
     let d = params.cam_corner + params.cam_right * (f32(x) + jitter.x) + params.cam_down * (f32(y) + jitter.y);
     let white = vec3<f32>(1.0);
-    stack[0] = Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, white, 0u, vec3<f32>(0.0), NO_SPLIT, 0u, -1.0);
+    stack[0] = Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, white, 0u, vec3<f32>(0.0), NO_SPLIT, 0u, -1.0, 0u);
     top = 1u;
     var sum = vec3<f32>(0.0);
     while top > 0u {

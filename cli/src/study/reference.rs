@@ -21,7 +21,7 @@ use std::time::Instant;
 
 /// Bump when the tracer or renderer changes what a reference looks like, so
 /// that cached references are rebuilt.
-const REFERENCE_VERSION: &str = "prismatic-reference 5";
+const REFERENCE_VERSION: &str = "prismatic-reference 6";
 
 /// How a reference is made.
 #[derive(Clone, Debug, PartialEq)]

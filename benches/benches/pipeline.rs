@@ -8,6 +8,10 @@
 //!   `trace/cpu-2t` pin the thread count;
 //! - `grid/<kernel>`: the hash-grid build over a pass's photons (counting sort);
 //! - `view/<backend>`: a render prepared and its view rays traced;
+//!   `view/cpu-32-{centre,sampled}`: the same with 32 bands, hero
+//!   wavelengths and light tracing, view rays through the pixel centres
+//!   (split into 32 bands at the glass) or sampled (pass 0's paths, 4
+//!   hero wavelengths): the first pass's floor;
 //! - `frame/<backend>`: the paper's frame (view rays, one pass, image);
 //! - `effects/<scene>/{planned,unplanned}`: what the effect plan saves;
 //! - `progressive/<backend>-<threads>t/<photons>/pass-<k>`: pass k of a
@@ -23,7 +27,7 @@
 use criterion::{BatchSize, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use prismatic_benches::{frame, paper_config};
 use prismatic_core::grid::PhotonGrid;
-use prismatic_core::{Backend, NoProgress, ReferenceBackend};
+use prismatic_core::{Backend, BandSpec, NoProgress, PreparedScene, ReferenceBackend, ViewPaths, WavelengthSampling};
 use prismatic_cpu::{CpuBackend, CpuGrid};
 use std::hint::black_box;
 
@@ -75,9 +79,21 @@ fn view_group(c: &mut Criterion) {
     let mut g = c.benchmark_group("view");
     g.sample_size(10);
     let scene = paper_config("sphere", PAPER_PHOTONS);
-    let backends: [(&str, Box<dyn Backend>); 2] =
-        [("reference", Box::new(ReferenceBackend)), ("cpu", Box::new(CpuBackend::new()))];
-    for (name, mut backend) in backends {
+    let mut wide = scene.clone();
+    let r = &mut wide.scene.render;
+    (r.bands, r.wavelengths, r.light_tracing) = (BandSpec::Physical(32), WavelengthSampling::Hero, true);
+    let with = |view_paths: ViewPaths| {
+        let mut s = wide.scene.clone();
+        s.render.view_paths = view_paths;
+        PreparedScene::new(s).unwrap()
+    };
+    let cases: [(&str, Box<dyn Backend>, PreparedScene); 4] = [
+        ("reference", Box::new(ReferenceBackend), scene.clone()),
+        ("cpu", Box::new(CpuBackend::new()), scene),
+        ("cpu-32-centre", Box::new(CpuBackend::new()), with(ViewPaths::Centre)),
+        ("cpu-32-sampled", Box::new(CpuBackend::new()), with(ViewPaths::Sampled)),
+    ];
+    for (name, mut backend, scene) in cases {
         g.bench_function(name, |b| {
             b.iter(|| {
                 let mut render = backend.prepare(&scene).unwrap();

@@ -97,6 +97,16 @@ def test_photon_sequence_is_the_clis_bit_for_bit(cli, tmp_path):
         prismatic.render("prism", photon_sequence="halton", progress=False)
 
 
+def test_view_paths_are_the_clis_bit_for_bit(cli, tmp_path):
+    cli("render", "sphere", "--passes", "2", *flags(SMALL), "--view-paths", "sampled", "-o", "s.exr", cwd=tmp_path)
+    sampled = prismatic.render("sphere", passes=2, view_paths="sampled", progress=False, **SMALL)
+    centre = prismatic.render("sphere", passes=2, progress=False, **SMALL)
+    assert same_bits(sampled, read_exr(tmp_path / "s.exr"))
+    assert not same_bits(sampled, centre), "rays through the pixel centres are the default"
+    with pytest.raises(prismatic.SceneError, match="expected centre or sampled"):
+        prismatic.render("sphere", view_paths="jittered", progress=False)
+
+
 def test_a_scene_file_and_its_text_render_the_same(cli, tmp_path):
     path = tmp_path / "scene.toml"
     path.write_text(SCENE_TEXT)

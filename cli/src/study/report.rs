@@ -117,8 +117,7 @@ pub fn markdown(result: &StudyResult, machine: &str, plot: &Path) -> String {
     let _ = writeln!(
         s,
         "{}×{} pixels, {machine}. Reference: {} physically based bands, {} wavelengths, {}the renderer's \
-         progressive photon mapping (`density`, α = {}, first radii holding {} photon paths), {} photons, {} view \
-         paths, {} passes \
+         progressive photon mapping (`density`, α = {}, first radii holding {} photon paths), {} photons, {} passes \
          × {} photons; the last doubling of passes changed it by ΔE00 {:.2} (threshold {}{}); {} caustic pixels \
          (those the reference caustic changes by ΔE00 > {}).\n",
         plan.size.0,
@@ -133,7 +132,6 @@ pub fn markdown(result: &StudyResult, machine: &str, plot: &Path) -> String {
         plan.reference.alpha,
         plan.reference.neighbours,
         plan.reference.sequence.name(),
-        plan.reference.view_paths.name(),
         rf.passes,
         photons(plan.reference.photons_per_pass),
         rf.last_change,

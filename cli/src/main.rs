@@ -142,8 +142,8 @@ struct JobArgs {
     #[arg(long, value_parser = parse_photon_sequence)]
     photon_sequence: Option<PhotonSequence>,
     /// How view rays sample the pixels: centre (once per render, through
-    /// pixel centres) or sampled (each pass anew: jittered in the pixel, one
-    /// wavelength at dispersive glass; anti-aliased).
+    /// pixel centres) or sampled (each pass anew: jittered in the pixel, 4
+    /// hero wavelengths at dispersive glass; anti-aliased).
     #[arg(long, value_parser = parse_view_paths)]
     view_paths: Option<ViewPaths>,
     /// Image width.

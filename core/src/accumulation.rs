@@ -1,10 +1,9 @@
 //! The exact sums of a render's passes: per pixel, Σ over passes of the
 //! visible points' weight × caustic irradiance and the light-traced
 //! photons' radiance (and with sampled view paths the pass's own view), in
-//! fixed point. Integer
-//! sums do not depend on the order of the passes, the points or the
-//! threads, so passes rendered anywhere (another process, another machine)
-//! merge into the bits of one run.
+//! fixed point. Integer sums do not depend on the order of the passes, the
+//! points or the threads, so passes rendered anywhere (another process,
+//! another machine) merge into the bits of one run.
 
 use crate::connect::Splat;
 use crate::image::Image;

@@ -6,7 +6,8 @@
 //! numbers, one per hero path and bounce.
 //! Every number is a pure function of (seed, pixel, pass), so pass k's view
 //! is the same on every backend and in any order of passes; the WGSL twin
-//! is `pixel_sampler` in `backend-gpu/src/shaders/common.wgsl`.
+//! draws them in `backend-gpu/src/shaders/view.wgsl` (`pixel`,
+//! `through_dielectric` and the hero split entry of `visit`).
 
 use crate::rng::{random_f32, random_u32};
 use crate::sobol::sobol_f32;

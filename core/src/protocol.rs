@@ -167,10 +167,10 @@ pub enum Change {
     Photons,
     /// What the view rays see: camera, objects, materials, lights (their
     /// direct light and shadows are the view pass's), bands, depth, light
-    /// tracing (which diffuse hits gather),
-    /// wavelength sampling, view paths (and the seed, which sampled view
-    /// paths take their numbers from), exposure, ambient, background. The view rays
-    /// are traced again, then as [`Change::Photons`].
+    /// tracing (which diffuse hits gather), wavelength sampling, view paths
+    /// (and the seed, which sampled view paths take their numbers from),
+    /// exposure, ambient, background. The view rays are traced again, then
+    /// as [`Change::Photons`].
     View,
     /// The image size: pixel and visible-point buffers are allocated
     /// again, then as [`Change::View`].

@@ -171,9 +171,10 @@ pub enum ViewPaths {
     Centre,
     /// Each pass traces one path per pixel anew ([`crate::view`]): through
     /// a point jittered inside the pixel (stratified across passes), one
-    /// Fresnel branch at glass chosen with its probability, and one
-    /// wavelength at the first dispersive glass (stratified across passes,
-    /// at its own index with continuous wavelengths). The passes' mean
+    /// Fresnel branch at glass chosen with its probability, and 4 hero
+    /// wavelengths at the first dispersive glass (their shift stratified
+    /// across passes, each at its own index with continuous wavelengths).
+    /// The passes' mean
     /// converges to the box-filtered image: edges, textures and the view
     /// through glass anti-aliased, the same filter as light tracing's splats.
     Sampled,

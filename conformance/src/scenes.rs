@@ -24,7 +24,7 @@ fn settings(side: u32, photons: u32, radius: f32) -> RenderSettings {
         radius,
         bands: BandSpec::Paper7,
         estimator: Estimator::Density,
-        ..RenderSettings::default()
+        ..RenderSettings::paper()
     }
 }
 

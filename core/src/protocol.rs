@@ -248,7 +248,7 @@ mod tests {
         assert_eq!(edited(&|s| s.lights[0] = Light::Point { position: Vec3::ONE, power: 10.0 }), Change::View);
         assert_eq!(edited(&|s| s.camera.position.x += 0.1), Change::View);
         assert_eq!(edited(&|s| s.render.bands = BandSpec::Paper3), Change::View);
-        assert_eq!(edited(&|s| s.render.light_tracing = true), Change::View);
+        assert_eq!(edited(&|s| s.render.light_tracing = !s.render.light_tracing), Change::View);
         assert_eq!(edited(&|s| s.render.view_paths = crate::ViewPaths::Sampled), Change::View);
         let sampled = |s: &mut Scene| s.render.view_paths = crate::ViewPaths::Sampled;
         let mut before = scene.clone();

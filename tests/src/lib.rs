@@ -12,9 +12,10 @@ use prismatic_core::dispersion::Dispersion;
 use prismatic_core::scene::{Camera, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape};
 use prismatic_core::{PreparedScene, Scene, Vec3};
 
-/// A small render setting for tests: 32×32 pixels, `photons` photons.
+/// A small render setting for tests: the paper's method at 32×32 pixels,
+/// `photons` photons, `bands` and the density estimator.
 pub fn settings(photons: u32, bands: BandSpec) -> RenderSettings {
-    RenderSettings { width: 32, height: 32, photons, bands, estimator: Estimator::Density, ..RenderSettings::default() }
+    RenderSettings { width: 32, height: 32, photons, bands, estimator: Estimator::Density, ..RenderSettings::paper() }
 }
 
 /// A camera that looks at the origin from +z (any valid camera will do for photon tests).

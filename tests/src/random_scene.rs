@@ -44,7 +44,7 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
         bands,
         estimator: if d.pick(2) == 0 { Estimator::Paper } else { Estimator::Density },
         seed,
-        ..RenderSettings::default()
+        ..RenderSettings::paper()
     };
     let dispersion = match d.pick(5) {
         0 => Glass::ALL[d.pick(Glass::ALL.len())].dispersion(),

@@ -5,7 +5,7 @@ use prismatic_cli::builtin::BUILTIN_SCENES;
 use prismatic_cli::scene_file::{SceneFileError, parse};
 use prismatic_core::bands::BandSpec;
 use prismatic_core::dispersion::{Dispersion, Glass};
-use prismatic_core::scene::{MaterialKind, Shape};
+use prismatic_core::scene::{Estimator, MaterialKind, PhotonSequence, Shape, WavelengthSampling};
 
 const MINIMAL: &str = r#"
 [camera]
@@ -62,8 +62,11 @@ fn built_in_scenes_parse_and_validate() {
 fn the_minimal_scene_gets_defaults() {
     let doc = parse(MINIMAL, "m.toml", None).unwrap();
     doc.validate().unwrap();
-    assert_eq!(doc.scene.render.width, 400);
-    assert_eq!(doc.scene.render.bands, BandSpec::Paper7);
+    let r = &doc.scene.render;
+    assert_eq!(r.width, 400);
+    // The fastest configuration that converges to the true spectrum.
+    assert_eq!((r.bands, r.wavelengths, r.light_tracing), (BandSpec::Physical(32), WavelengthSampling::Hero, true));
+    assert_eq!((r.estimator, r.photon_sequence), (Estimator::Density, PhotonSequence::Sobol));
     assert_eq!(doc.scene.camera.fov_deg, 45.0);
 }
 
@@ -84,8 +87,9 @@ fn every_ior_form_parses() {
         ),
     ];
     for (text, expected) in forms {
+        // Seven bands, for the per-band form's seven indices.
         let source = format!(
-            "{MINIMAL}\n[material.g]\nkind = \"dielectric\"\nior = {text}\n\n[[object]]\nshape = \"sphere\"\nmaterial = \"g\"\ncenter = [0, 1, 0]\nradius = 0.5\n"
+            "[render]\nbands = \"paper7\"\n{MINIMAL}\n[material.g]\nkind = \"dielectric\"\nior = {text}\n\n[[object]]\nshape = \"sphere\"\nmaterial = \"g\"\ncenter = [0, 1, 0]\nradius = 0.5\n"
         );
         let doc = parse(&source, "ior.toml", None).unwrap_or_else(|e| panic!("{text}: {e}"));
         doc.validate().unwrap_or_else(|e| panic!("{text}: {e}"));

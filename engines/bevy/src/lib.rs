@@ -79,7 +79,7 @@ impl Default for CausticSettings {
             bands: prismatic_core::bands::BandSpec::Paper7,
             ambient: 0.06,
             exposure: 1.6,
-            ..RenderSettings::default()
+            ..RenderSettings::paper()
         })
     }
 }

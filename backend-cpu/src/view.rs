@@ -28,11 +28,10 @@ use prismatic_core::optics;
 use prismatic_core::photon::WHITE_BAND;
 use prismatic_core::pixel_sample::PixelSampler;
 use prismatic_core::prepared::PreparedScene;
-use prismatic_core::scene::{HERO_WAVELENGTHS, Light, ViewPaths};
-use prismatic_core::surface::{DielectricOptics, Surface};
+use prismatic_core::scene::{Light, ViewPaths};
+use prismatic_core::surface::Surface;
 use prismatic_core::tolerance::MIN_VIEW_WEIGHT;
-use prismatic_core::trace::spectrum_share;
-use prismatic_core::view::{gathers_at, glass_transmittance};
+use prismatic_core::view::{HeroViewPath, gathers_at, glass_transmittance, hero_view_paths};
 use prismatic_core::visible::{VisiblePoint, VisiblePoints};
 use rayon::prelude::*;
 use std::f32::consts::PI;
@@ -59,16 +58,6 @@ struct ViewRay {
     /// A sampled path's numbers, and its hero path (0 before the split).
     sampler: Option<PixelSampler>,
     hero: u32,
-}
-
-impl ViewRay {
-    /// The index the ray sees at `glass`: its band's, or at its own wavelength.
-    fn ior(&self, glass: &DielectricOptics, scene: &PreparedScene) -> f32 {
-        match self.lambda_nm {
-            Some(lambda) => glass.ior_at_wavelength(self.band, lambda, &scene.bands),
-            None => glass.ior(self.band),
-        }
-    }
 }
 
 /// Traces the view rays (pass `pass`'s sampled paths with
@@ -190,14 +179,13 @@ impl Shader<'_> {
                 }
                 Surface::Dielectric(glass) if r.band == WHITE_BAND && glass.splits_view_rays => match r.sampler {
                     Some(sampler) => {
-                        let bands = self.scene.bands.len();
-                        let m = HERO_WAVELENGTHS.min(bands as u32);
-                        for hero in 0..m {
-                            let (b, lambda_nm) = spectrum_share(self.scene, sampler.spectrum(), hero, m);
-                            let w = self.scene.bands.band(b as usize).weight * (bands as f32 / m as f32);
+                        for HeroViewPath { hero, band, lambda_nm, weight: w } in
+                            hero_view_paths(self.scene, sampler.spectrum())
+                        {
                             let share = r.weight * w.abs().max_element();
-                            let tinted = ViewRay { tint: r.tint * w, weight: share, band: b, lambda_nm, hero, ..*r };
-                            spawn_at_glass(&tinted, p, n, tinted.ior(glass, self.scene), queue);
+                            let tinted = ViewRay { tint: r.tint * w, weight: share, band, lambda_nm, hero, ..*r };
+                            let ior = glass.path_ior(band, lambda_nm, &self.scene.bands);
+                            spawn_at_glass(&tinted, p, n, ior, queue);
                         }
                     }
                     None => {
@@ -209,7 +197,7 @@ impl Shader<'_> {
                     }
                 },
                 Surface::Dielectric(glass) => {
-                    glass_ior[i] = r.ior(glass, self.scene);
+                    glass_ior[i] = glass.path_ior(r.band, r.lambda_nm, &self.scene.bands);
                     at_glass |= 1 << i;
                 }
                 Surface::Diffuse { .. } => unreachable!("shaded above"),

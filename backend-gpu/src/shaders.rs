@@ -6,6 +6,7 @@
 use prismatic_core::bands::VISIBLE_NM;
 use prismatic_core::math::{COS_COEFFS, SIN_COEFFS};
 use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::pixel_sample;
 use prismatic_core::rng::dim;
 use prismatic_core::scene::{HERO_WAVELENGTHS, MAX_DEPTH};
 use prismatic_core::texture::TEXEL_LIMIT;
@@ -106,6 +107,9 @@ fn prelude(stack: u32) -> String {
     u("WAVELENGTHS_CONTINUOUS", 2);
     u("WAVELENGTHS_HERO", 3);
     u("HERO_WAVELENGTHS", HERO_WAVELENGTHS);
+    u("PIXEL_SCRAMBLE", pixel_sample::PIXEL_SCRAMBLE);
+    u("VIEW_BRANCH", pixel_sample::BRANCH);
+    u("VIEW_PER_PATH", pixel_sample::PER_PATH);
     u("ESTIMATOR_PAPER", 0);
     u("ESTIMATOR_DENSITY", 1);
     u("SURFACE_DIFFUSE", kind::SURFACE_DIFFUSE);

@@ -79,19 +79,18 @@ fn view_group(c: &mut Criterion) {
     let mut g = c.benchmark_group("view");
     g.sample_size(10);
     let scene = paper_config("sphere", PAPER_PHOTONS);
-    let mut wide = scene.clone();
-    let r = &mut wide.scene.render;
-    (r.bands, r.wavelengths, r.light_tracing) = (BandSpec::Physical(32), WavelengthSampling::Hero, true);
     let with = |view_paths: ViewPaths| {
-        let mut s = wide.scene.clone();
-        s.render.view_paths = view_paths;
+        let mut s = scene.scene.clone();
+        let r = &mut s.render;
+        (r.bands, r.wavelengths, r.light_tracing, r.view_paths) =
+            (BandSpec::Physical(32), WavelengthSampling::Hero, true, view_paths);
         PreparedScene::new(s).unwrap()
     };
     let cases: [(&str, Box<dyn Backend>, PreparedScene); 4] = [
-        ("reference", Box::new(ReferenceBackend), scene.clone()),
-        ("cpu", Box::new(CpuBackend::new()), scene),
         ("cpu-32-centre", Box::new(CpuBackend::new()), with(ViewPaths::Centre)),
         ("cpu-32-sampled", Box::new(CpuBackend::new()), with(ViewPaths::Sampled)),
+        ("reference", Box::new(ReferenceBackend), scene.clone()),
+        ("cpu", Box::new(CpuBackend::new()), scene),
     ];
     for (name, mut backend, scene) in cases {
         g.bench_function(name, |b| {

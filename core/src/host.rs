@@ -201,8 +201,9 @@ impl<K: HostKernels> Render for HostRender<K> {
         let scene = pass_scene(&self.scene, pass);
         let shrink = pass_shrink(&self.scene, pass);
         let r_pass = scene.scene.render.radius;
-        let first =
-            |i: usize, p: &VisiblePoint| if self.sampled() { self.radii[p.pixel as usize] } else { self.radii[i] };
+        // The first radii are per pixel with sampled view paths, per point otherwise.
+        let per_pixel = self.sampled();
+        let first = |i: usize, p: &VisiblePoint| self.radii[if per_pixel { p.pixel as usize } else { i }];
         let radii: Vec<f32> = points.iter().enumerate().map(|(i, p)| (first(i, p) * shrink).min(r_pass)).collect();
         let found = self.kernels.pass(&scene, points, &radii);
         self.sums.add_pass(pass, points, &found.irradiance, &found.splats);

@@ -104,6 +104,16 @@ impl DielectricOptics {
         }
     }
 
+    /// The index a path of `band` sees: at its own wavelength when it has
+    /// one ([`DielectricOptics::ior_at_wavelength`]), else the band's.
+    #[inline]
+    pub fn path_ior(&self, band: u16, lambda_nm: Option<f32>, bands: &BandTable) -> f32 {
+        match lambda_nm {
+            Some(lambda) => self.ior_at_wavelength(band, lambda, bands),
+            None => self.ior(band),
+        }
+    }
+
     /// True when the bands do not all share one index.
     #[inline]
     pub fn is_dispersive(&self) -> bool {

@@ -149,7 +149,7 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                     p.band = band;
                     p.lambda_nm = lambda_nm;
                     let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
-                    p.ray = scatter_dielectric(&p.ray, &hit, band_ior(scene, glass, &p), u);
+                    p.ray = scatter_dielectric(&p.ray, &hit, glass.path_ior(p.band, p.lambda_nm, &scene.bands), u);
                     p.bounces += 1;
                     continue;
                 }
@@ -157,15 +157,22 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                 for (band, lambda_nm) in split_bands(scene, index) {
                     let child = Path { flux: p.flux / paths as f32, band, lambda_nm, bounces: p.bounces + 1, ..p };
                     let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
-                    let child =
-                        Path { ray: scatter_dielectric(&p.ray, &hit, band_ior(scene, glass, &child), u), ..child };
+                    let child = Path {
+                        ray: scatter_dielectric(
+                            &p.ray,
+                            &hit,
+                            glass.path_ior(child.band, child.lambda_nm, &scene.bands),
+                            u,
+                        ),
+                        ..child
+                    };
                     trace_path(scene, index, child, out, stats);
                 }
                 return;
             }
             Surface::Dielectric(glass) => {
                 let u = random_f32(settings.seed, index, dim::scatter(p.band, p.bounces));
-                p.ray = scatter_dielectric(&p.ray, &hit, band_ior(scene, glass, &p), u);
+                p.ray = scatter_dielectric(&p.ray, &hit, glass.path_ior(p.band, p.lambda_nm, &scene.bands), u);
             }
             Surface::Diffuse { .. } => unreachable!("handled above"),
         }
@@ -228,14 +235,6 @@ pub fn spectrum_share(scene: &PreparedScene, u: f32, share: u32, shares: u32) ->
         lo + (hi - lo) * (scaled - band as f32)
     });
     (band as u16, lambda_nm)
-}
-
-/// The index a path sees at `glass`: its band's, or at its own wavelength.
-fn band_ior(scene: &PreparedScene, glass: &DielectricOptics, p: &Path) -> f32 {
-    match p.lambda_nm {
-        Some(lambda) => glass.ior_at_wavelength(p.band, lambda, &scene.bands),
-        None => glass.ior(p.band),
-    }
 }
 
 /// The ray leaving a dielectric surface: reflected with probability equal to

@@ -26,10 +26,11 @@
 //! path per pixel, with the numbers of [`PixelSampler`]: through a jittered
 //! point of the pixel; at glass the reflection with probability R, else the
 //! refraction (the factor R or 1 − R cancels against its probability); at
-//! the first dispersive glass M = [`HERO_WAVELENGTHS`] hero paths (at most
-//! N), path i in band b = ⌊v·N⌋ with v = (i + u)/M (u the pixel's spectrum
-//! number for the pass), weighted (N/M)·C_b, at its own wavelength when
-//! the scene's photons are (continuous and hero wavelengths). Each pass's
+//! the first dispersive glass M = 4 hero paths ([`hero_view_paths`], at
+//! most N), path i in band b = ⌊v·N⌋ with v = (i + u)/M (u the pixel's
+//! spectrum number for the pass), weighted (N/M)·C_b, at its own
+//! wavelength when the scene's photons are (continuous and hero
+//! wavelengths). Each pass's
 //! view is then an unbiased sample of the box-filtered pixel, and the
 //! passes' mean converges to it.
 
@@ -42,10 +43,10 @@ use crate::photon::WHITE_BAND;
 use crate::pixel_sample::PixelSampler;
 use crate::prepared::{Hit, PreparedScene, offset_origin};
 use crate::progress::{Progress, Stage};
-use crate::scene::{HERO_WAVELENGTHS, Light, ViewPaths};
+use crate::scene::{Light, ViewPaths, WavelengthSampling};
 use crate::surface::{DielectricOptics, Surface};
 use crate::tolerance::MIN_VIEW_WEIGHT;
-use crate::trace::spectrum_share;
+use crate::trace::{scatter_dielectric, spectrum_share};
 use crate::visible::{VisiblePoint, VisiblePoints};
 use alloc::vec::Vec;
 use core::f32::consts::PI;
@@ -136,19 +137,13 @@ impl<'a> ViewContext<'a> {
                 self.radiance(&Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d }, next, points)
             }
             Surface::Dielectric(glass) if band == WHITE_BAND && glass.splits_view_rays => match path.sampler {
-                Some(sampler) => {
-                    let n = self.scene.bands.len();
-                    let m = HERO_WAVELENGTHS.min(n as u32);
-                    (0..m)
-                        .map(|hero| {
-                            let (b, lambda_nm) = spectrum_share(self.scene, sampler.spectrum(), hero, m);
-                            let w = self.scene.bands.band(b as usize).weight * (n as f32 / m as f32);
-                            let share = weight * w.abs().max_element();
-                            let p = ViewPath { band: b, hero, lambda_nm, weight: share, tint: tint * w, ..path };
-                            w * self.through_dielectric(ray, &hit, self.ior(glass, &p), p, points)
-                        })
-                        .sum()
-                }
+                Some(sampler) => hero_view_paths(self.scene, sampler.spectrum())
+                    .map(|HeroViewPath { hero, band, lambda_nm, weight: w }| {
+                        let share = weight * w.abs().max_element();
+                        let p = ViewPath { band, hero, lambda_nm, weight: share, tint: tint * w, ..path };
+                        w * self.through_dielectric(ray, &hit, self.ior(glass, &p), p, points)
+                    })
+                    .sum(),
                 None => self
                     .scene
                     .bands
@@ -169,10 +164,7 @@ impl<'a> ViewContext<'a> {
 
     /// The index `path` sees at `glass`: its band's, or at its own wavelength.
     fn ior(&self, glass: &DielectricOptics, path: &ViewPath) -> f32 {
-        match path.lambda_nm {
-            Some(lambda) => glass.ior_at_wavelength(path.band, lambda, &self.scene.bands),
-            None => glass.ior(path.band),
-        }
+        glass.path_ior(path.band, path.lambda_nm, &self.scene.bands)
     }
 
     /// Fresnel-weighted reflection plus refraction at a dielectric hit.
@@ -184,16 +176,15 @@ impl<'a> ViewContext<'a> {
         path: ViewPath,
         points: &mut Vec<VisiblePoint>,
     ) -> Vec3 {
+        if let Some(sampler) = path.sampler {
+            // One branch, chosen with its Fresnel probability, as photons choose theirs.
+            let next = ViewPath { depth: path.depth + 1, ..path };
+            let u = sampler.branch(path.hero, path.depth);
+            return self.radiance(&scatter_dielectric(ray, hit, ior, u), next, points);
+        }
         let (n, n1, n2) = interface(ray.direction, hit.normal, ior);
         let cos_i = -ray.direction.dot(n);
         let r = fresnel(cos_i, n1, n2);
-        if let Some(sampler) = path.sampler {
-            // One branch, chosen with its Fresnel probability (reflection under total internal reflection).
-            let next = ViewPath { depth: path.depth + 1, ..path };
-            let refracted = refract(ray.direction, n, n1, n2).filter(|_| sampler.branch(path.hero, path.depth) >= r);
-            let d = refracted.unwrap_or_else(|| reflect(ray.direction, n));
-            return self.radiance(&Ray { origin: offset_origin(hit.point, n, d), direction: d }, next, points);
-        }
         let mut sum = Vec3::ZERO;
         let branch = |f: f32| ViewPath { depth: path.depth + 1, weight: path.weight * f, tint: path.tint * f, ..path };
         if r * path.weight > MIN_VIEW_WEIGHT {
@@ -287,6 +278,38 @@ impl<'a> ViewContext<'a> {
         let origin = offset_origin(p, n, l);
         (!self.scene.occluded(origin, l, (light - origin).length())).then_some((l, dist, cos_s))
     }
+}
+
+/// One of the hero paths a sampled view path splits into at the first
+/// dispersive glass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeroViewPath {
+    /// Which of the M paths (it numbers the path's Fresnel choices).
+    pub hero: u32,
+    /// Its band.
+    pub band: u16,
+    /// Its wavelength (`None`: the band's own index).
+    pub lambda_nm: Option<f32>,
+    /// Its RGB weight, (N/M)·C_b.
+    pub weight: Vec3,
+}
+
+/// The M hero paths (as many as a hero photon's, [`WavelengthSampling::paths`])
+/// a sampled view path with spectrum number `u` splits into: path i in band
+/// ⌊v·N⌋ at v = (i + u)/M ([`spectrum_share`]), weighted (N/M)·C_b, since
+/// each band falls to path i with probability M/N.
+pub fn hero_view_paths(scene: &PreparedScene, u: f32) -> impl Iterator<Item = HeroViewPath> + '_ {
+    let n = scene.bands.len();
+    let m = WavelengthSampling::Hero.paths(n);
+    (0..m).map(move |hero| {
+        let (band, lambda_nm) = spectrum_share(scene, u, hero, m);
+        HeroViewPath {
+            hero,
+            band,
+            lambda_nm,
+            weight: scene.bands.band(usize::from(band)).weight * (n as f32 / m as f32),
+        }
+    })
 }
 
 /// Whether a diffuse hit that a view path reaches after `depth` specular

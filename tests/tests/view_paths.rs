@@ -110,7 +110,8 @@ fn an_edges_pixels_converge_to_their_coverage_on_every_backend() {
         eprintln!(
             "{name}: edge error after 4 passes max {max4:.4} mean {mean4:.4}, after 64 max {max64:.4} mean {mean64:.4}"
         );
-        assert!(max64 < 0.06 && mean64 < 0.02, "{name}: after 64 passes max {max64}, mean {mean64}");
+        // Stratified jitter: 64 passes leave 0.036 and 0.012 here (the same bits on every backend).
+        assert!(max64 < 0.045 && mean64 < 0.015, "{name}: after 64 passes max {max64}, mean {mean64}");
         assert!(mean64 < mean4 / 4.0, "{name}: the error falls with passes: {mean4} then {mean64}");
     }
     // Rays through the pixel centres leave a staircase: all or nothing.

@@ -27,11 +27,6 @@
 // see session.wgsl's first_radius).
 @group(1) @binding(3) var<storage, read> pixel_ratios: array<u32>;
 
-// prismatic_core::pixel_sample::{PIXEL_SCRAMBLE, BRANCH, PER_PATH}.
-const PIXEL_SCRAMBLE: u32 = 0x76696577u;
-const BRANCH: u32 = 3u;
-const PER_PATH: u32 = 64u;
-
 struct Pending {
     origin: vec3<f32>,
     weight: f32,
@@ -84,7 +79,7 @@ fn through_dielectric(e: Pending, ior: f32, band: u32, weight: f32, tint: vec3<f
     if sampled() {
         let refracted = refract_dir(e.dir, f.n, f.n1, f.n2);
         var d = reflect_dir(e.dir, f.n);
-        if refracted.w != 0.0 && random_f32(scramble, params.view_pass, BRANCH + e.hero * PER_PATH + e.depth) >= r {
+        if refracted.w != 0.0 && random_f32(scramble, params.view_pass, VIEW_BRANCH + e.hero * VIEW_PER_PATH + e.depth) >= r {
             d = refracted.xyz;
         }
         spawn_ray(e, offset_origin(e.origin, f.n, d), d, band, weight, tint);
@@ -172,9 +167,8 @@ fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>) {
         let sums = array<vec2<u32>, 3>(none, none, none);
         // A sampled path's point starts from its pixel's first radius.
         var ratio = 1.0;
-        let marked = pixel_ratios[pixel_index];
-        if sampled() && marked != 0u {
-            ratio = bitcast<f32>(~marked);
+        if sampled() && pixel_ratios[pixel_index] != 0u {
+            ratio = bitcast<f32>(~pixel_ratios[pixel_index]);
         }
         points[i] = VisiblePoint(point, 0u, normal, params.radius, weight, 0u, sums, none, pixel_index, ratio, 0u, 0u);
     }

@@ -31,6 +31,7 @@ use prismatic_core::prepared::PreparedScene;
 use prismatic_core::scene::{Light, ViewPaths};
 use prismatic_core::surface::Surface;
 use prismatic_core::tolerance::MIN_VIEW_WEIGHT;
+use prismatic_core::trace::scatter_dielectric;
 use prismatic_core::view::{HeroViewPath, gathers_at, glass_transmittance, hero_view_paths};
 use prismatic_core::visible::{VisiblePoint, VisiblePoints};
 use rayon::prelude::*;
@@ -305,18 +306,15 @@ impl Shader<'_> {
 
 /// Queues the Fresnel-weighted reflection and refraction of `r` at a glass
 /// surface point `p` (outward normal `outward`), as the reference recurses
-/// (a sampled path: the one branch its number chooses).
+/// (a sampled path: the one branch its number chooses, as photons choose).
 fn spawn_at_glass(r: &ViewRay, p: Vec3, outward: Vec3, ior: f32, queue: &mut Vec<ViewRay>) {
-    let (n, n1, n2) = optics::interface(r.dir, outward, ior);
-    let cos_i = -r.dir.dot(n);
-    let f = optics::fresnel(cos_i, n1, n2);
     if let Some(sampler) = r.sampler {
-        let refracted = optics::refract(r.dir, n, n1, n2).filter(|_| sampler.branch(r.hero, r.depth) >= f);
-        let d = refracted.unwrap_or_else(|| optics::reflect(r.dir, n));
-        let origin = prismatic_core::prepared::offset_origin(p, n, d);
-        queue.push(ViewRay { origin, dir: d, depth: r.depth + 1, ..*r });
+        let next = scatter_dielectric(r.dir, p, outward, ior, sampler.branch(r.hero, r.depth));
+        queue.push(ViewRay { origin: next.origin, dir: next.direction, depth: r.depth + 1, ..*r });
         return;
     }
+    let (n, n1, n2) = optics::interface(r.dir, outward, ior);
+    let f = optics::fresnel(-r.dir.dot(n), n1, n2);
     if f * r.weight > MIN_VIEW_WEIGHT {
         let d = optics::reflect(r.dir, n);
         let origin = prismatic_core::prepared::offset_origin(p, n, d);

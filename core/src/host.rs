@@ -184,10 +184,7 @@ impl<K: HostKernels> Render for HostRender<K> {
         if self.sums.contains(pass) {
             return Err(BackendError::PassRepeated(pass));
         }
-        let own_view = match self.sampled() && pass != 0 {
-            true => Some(self.kernels.visible_points(&self.scene, pass, progress)),
-            false => None,
-        };
+        let own_view = (self.sampled() && pass != 0).then(|| self.kernels.visible_points(&self.scene, pass, progress));
         let view = own_view.as_ref().unwrap_or(&self.view);
         let points = &view.points;
         self.last_view_points = points.len();

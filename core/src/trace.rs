@@ -22,7 +22,7 @@ use crate::emit::emit;
 use crate::geometry::Ray;
 use crate::optics::{fresnel, interface, reflect, refract};
 use crate::photon::{Photon, PhotonMap, TraceStats, WHITE_BAND, oct_encode};
-use crate::prepared::{Hit, PreparedScene, offset_origin};
+use crate::prepared::{PreparedScene, offset_origin};
 use crate::progress::{Progress, Stage};
 use crate::rng::{dim, random_f32};
 use crate::scene::WavelengthSampling;
@@ -149,30 +149,25 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                     p.band = band;
                     p.lambda_nm = lambda_nm;
                     let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
-                    p.ray = scatter_dielectric(&p.ray, &hit, glass.path_ior(p.band, p.lambda_nm, &scene.bands), u);
+                    let ior = glass.path_ior(band, lambda_nm, &scene.bands);
+                    p.ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, u);
                     p.bounces += 1;
                     continue;
                 }
                 stats.paths += u64::from(paths) - 1;
                 for (band, lambda_nm) in split_bands(scene, index) {
-                    let child = Path { flux: p.flux / paths as f32, band, lambda_nm, bounces: p.bounces + 1, ..p };
                     let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
-                    let child = Path {
-                        ray: scatter_dielectric(
-                            &p.ray,
-                            &hit,
-                            glass.path_ior(child.band, child.lambda_nm, &scene.bands),
-                            u,
-                        ),
-                        ..child
-                    };
+                    let ior = glass.path_ior(band, lambda_nm, &scene.bands);
+                    let ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, u);
+                    let child = Path { ray, flux: p.flux / paths as f32, band, lambda_nm, bounces: p.bounces + 1 };
                     trace_path(scene, index, child, out, stats);
                 }
                 return;
             }
             Surface::Dielectric(glass) => {
                 let u = random_f32(settings.seed, index, dim::scatter(p.band, p.bounces));
-                p.ray = scatter_dielectric(&p.ray, &hit, glass.path_ior(p.band, p.lambda_nm, &scene.bands), u);
+                let ior = glass.path_ior(p.band, p.lambda_nm, &scene.bands);
+                p.ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, u);
             }
             Surface::Diffuse { .. } => unreachable!("handled above"),
         }
@@ -237,16 +232,18 @@ pub fn spectrum_share(scene: &PreparedScene, u: f32, share: u32, shares: u32) ->
     (band as u16, lambda_nm)
 }
 
-/// The ray leaving a dielectric surface: reflected with probability equal to
-/// the Fresnel reflectance (`u < R`), refracted otherwise; total internal
-/// reflection always reflects.
-pub fn scatter_dielectric(ray: &Ray, hit: &Hit, ior: f32, u: f32) -> Ray {
-    let (n, n1, n2) = interface(ray.direction, hit.normal, ior);
-    let cos_i = -ray.direction.dot(n);
+/// The ray leaving a dielectric surface at `point` (outward normal
+/// `outward`) for one arriving along `direction`: reflected with
+/// probability equal to the Fresnel reflectance (`u < R`), refracted
+/// otherwise; total internal reflection always reflects. Photons and
+/// sampled view paths choose their branch with it.
+pub fn scatter_dielectric(direction: Vec3, point: Vec3, outward: Vec3, ior: f32, u: f32) -> Ray {
+    let (n, n1, n2) = interface(direction, outward, ior);
+    let cos_i = -direction.dot(n);
     let d = if u < fresnel(cos_i, n1, n2) {
-        reflect(ray.direction, n)
+        reflect(direction, n)
     } else {
-        refract(ray.direction, n, n1, n2).unwrap_or_else(|| reflect(ray.direction, n))
+        refract(direction, n, n1, n2).unwrap_or_else(|| reflect(direction, n))
     };
-    Ray { origin: offset_origin(hit.point, n, d), direction: d }
+    Ray { origin: offset_origin(point, n, d), direction: d }
 }

@@ -30,9 +30,8 @@
 //! most N), path i in band b = ⌊v·N⌋ with v = (i + u)/M (u the pixel's
 //! spectrum number for the pass), weighted (N/M)·C_b, at its own
 //! wavelength when the scene's photons are (continuous and hero
-//! wavelengths). Each pass's
-//! view is then an unbiased sample of the box-filtered pixel, and the
-//! passes' mean converges to it.
+//! wavelengths). Each pass's view is then an unbiased sample of the
+//! box-filtered pixel, and the passes' mean converges to it.
 
 use crate::camera::PinholeCamera;
 use crate::geometry::Ray;
@@ -180,7 +179,7 @@ impl<'a> ViewContext<'a> {
             // One branch, chosen with its Fresnel probability, as photons choose theirs.
             let next = ViewPath { depth: path.depth + 1, ..path };
             let u = sampler.branch(path.hero, path.depth);
-            return self.radiance(&scatter_dielectric(ray, hit, ior, u), next, points);
+            return self.radiance(&scatter_dielectric(ray.direction, hit.point, hit.normal, ior, u), next, points);
         }
         let (n, n1, n2) = interface(ray.direction, hit.normal, ior);
         let cos_i = -ray.direction.dot(n);

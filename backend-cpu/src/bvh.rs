@@ -9,17 +9,17 @@
 use crate::ray::{RayX8, in_range, surface_skin};
 use crate::simd::{Vec3x8, ge, gt, lt};
 use prismatic_core::Vec3;
-use prismatic_core::bvh::{BOX_MARGIN, MAX_DEPTH, MeshBvh, WIDTH};
+use prismatic_core::geometry::bvh::{BOX_MARGIN, MAX_DEPTH, MeshBvh, WIDTH};
 
-use prismatic_core::geometry::Triangle;
-use prismatic_core::tolerance::BARYCENTRIC_EPS;
+use prismatic_core::geometry::primitive::Triangle;
+use prismatic_core::util::tolerance::BARYCENTRIC_EPS;
 use wide::f32x8;
 
 /// Slots a traversal may hold: each level of the tree leaves at most
 /// WIDTH − 1 behind.
 const STACK: usize = MAX_DEPTH * (WIDTH - 1);
 
-/// `prismatic_core::bvh::inverse_direction` per lane.
+/// `prismatic_core::geometry::bvh::inverse_direction` per lane.
 #[inline]
 fn inverse_direction(d: Vec3x8) -> Vec3x8 {
     let guard = |c: f32x8| {
@@ -29,7 +29,7 @@ fn inverse_direction(d: Vec3x8) -> Vec3x8 {
     Vec3x8 { x: f32x8::ONE / guard(d.x), y: f32x8::ONE / guard(d.y), z: f32x8::ONE / guard(d.z) }
 }
 
-/// `prismatic_core::bvh::box_entry` per lane, less the limit: where each
+/// `prismatic_core::geometry::bvh::box_entry` per lane, less the limit: where each
 /// lane enters the box, NaN for lanes whose line misses it.
 #[inline]
 fn box_entry(origin: Vec3x8, inv: Vec3x8, lo: Vec3, hi: Vec3) -> f32x8 {
@@ -180,7 +180,7 @@ pub fn mesh_hits_any(bvh: &MeshBvh, ray: &RayX8, t_max: f32x8) -> f32x8 {
     blocked
 }
 
-/// `prismatic_core::triangle::intersect_triangle` per lane: (mask, t).
+/// `prismatic_core::geometry::triangle::intersect_triangle` per lane: (mask, t).
 #[inline]
 fn triangle(ray: &RayX8, tri: &Triangle, t_max: f32x8, skin: f32x8) -> (f32x8, f32x8) {
     let (e1, e2) = (Vec3x8::splat(tri.e1), Vec3x8::splat(tri.e2));
@@ -205,11 +205,11 @@ fn triangle(ray: &RayX8, tri: &Triangle, t_max: f32x8, skin: f32x8) -> (f32x8, f
 mod tests {
     use super::*;
     use prismatic_conformance::scenes::sphere_mesh;
-    use prismatic_core::bvh_build::build_mesh;
-    use prismatic_core::prepared::offset_origin;
-    use prismatic_core::ray::Ray;
-    use prismatic_core::rng::random_f32;
-    use prismatic_core::scene::Shape;
+    use prismatic_core::geometry::bvh_build::build_mesh;
+    use prismatic_core::geometry::ray::Ray;
+    use prismatic_core::model::scene::Shape;
+    use prismatic_core::optics::scatter::offset_origin;
+    use prismatic_core::util::rng::random_f32;
 
     /// The conformance suite's closed sphere mesh, 4 · rings² triangles.
     fn sphere(rings: u32) -> MeshBvh {

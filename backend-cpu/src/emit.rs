@@ -1,12 +1,12 @@
-//! Packet emission: `prismatic_core::emit::emit` for eight photon indices at once.
+//! Packet emission: `prismatic_core::photons::emit::emit` for eight photon indices at once.
 
 use crate::simd::{Vec3x8, ge, photon_f32, sin_cos_turns};
-use prismatic_core::geometry::basis;
-use prismatic_core::math::{cos, radians};
-use prismatic_core::prepared::PreparedScene;
-use prismatic_core::projection::Targets;
-use prismatic_core::rng::dim;
-use prismatic_core::scene::{Light, PhotonSequence};
+use prismatic_core::geometry::primitive::basis;
+use prismatic_core::model::scene::{Light, PhotonSequence};
+use prismatic_core::plan::prepared::PreparedScene;
+use prismatic_core::plan::projection::Targets;
+use prismatic_core::util::math::{cos, radians};
+use prismatic_core::util::rng::dim;
 use wide::{f32x8, u32x8};
 
 /// A light with its frame precomputed (the scalar `emit` computes the same values per photon).
@@ -17,7 +17,7 @@ enum Emitter {
     Beam { position: Vec3x8, axis: Vec3x8, t: Vec3x8, b: Vec3x8, radius: f32x8 },
 }
 
-/// A light's projection map with its vectors splatted (see `prismatic_core::projection`).
+/// A light's projection map with its vectors splatted (see `prismatic_core::plan::projection`).
 struct ProjectionX8 {
     /// Cone targets: axis, its basis (t, b), cosine of the half-angle.
     cones: Vec<(Vec3x8, Vec3x8, Vec3x8, f32x8)>,
@@ -222,7 +222,7 @@ impl Emitters {
     }
 }
 
-/// `prismatic_core::projection::cone_direction` with the basis (t, b) of `axis` given.
+/// `prismatic_core::plan::projection::cone_direction` with the basis (t, b) of `axis` given.
 #[inline]
 fn cone_direction(axis: Vec3x8, t: Vec3x8, b: Vec3x8, cos_t: f32x8, u: f32x8) -> Vec3x8 {
     let sin_t = (f32x8::ONE - cos_t * cos_t).max(f32x8::ZERO).sqrt();

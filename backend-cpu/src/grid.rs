@@ -5,11 +5,11 @@
 
 use crate::simd::{Vec3x8, lt};
 use glam::{IVec3, Vec3};
-use prismatic_core::bands::BandTable;
-use prismatic_core::gather::{GatherQuery, GatherSums, finish};
-use prismatic_core::grid::{bucket_mask, bucket_of, cell_of};
-use prismatic_core::photon::Photon;
-use prismatic_core::scene::Estimator;
+use prismatic_core::model::bands::BandTable;
+use prismatic_core::model::photon::Photon;
+use prismatic_core::model::scene::Estimator;
+use prismatic_core::photons::gather::{GatherQuery, GatherSums, finish};
+use prismatic_core::photons::grid::{bucket_mask, bucket_of, cell_of};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 use wide::f32x8;
@@ -271,7 +271,7 @@ fn split_at<'a, T>(v: &'a mut [T], ends: &[usize]) -> Vec<&'a mut [T]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prismatic_core::photon::oct_encode;
+    use prismatic_core::model::photon::oct_encode;
 
     /// The parallel scatter lays the records out as a serial counting sort
     /// does, whatever the thread count (the gathers' sums depend on it).

@@ -4,8 +4,8 @@
 use crate::bvh::{intersect_mesh, mesh_hits_any};
 use crate::ray::{RayX8, in_range, surface_skin};
 use crate::simd::{Vec3x8, ge, gt, lt};
-use prismatic_core::geometry::{HalfSpace, Primitive};
-use prismatic_core::prepared::PreparedScene;
+use prismatic_core::geometry::primitive::{HalfSpace, Primitive};
+use prismatic_core::plan::prepared::PreparedScene;
 use wide::f32x8;
 
 /// The nearest hits of eight rays: `object` is −1 where a ray hit nothing.

@@ -7,10 +7,10 @@
 
 use crate::pass::PassGrids;
 use crate::{TRACE_CHUNK, trace, view};
-use prismatic_core::connect::{CameraConnection, Splat};
-use prismatic_core::host::{HostKernels, PassGather};
-use prismatic_core::photon::{Photon, TraceStats};
-use prismatic_core::visible::{VisiblePoint, VisiblePoints};
+use prismatic_core::model::photon::{Photon, TraceStats};
+use prismatic_core::photons::light_tracing::{CameraConnection, Splat};
+use prismatic_core::render::host::{HostKernels, PassGather};
+use prismatic_core::render::visible::{VisiblePoint, VisiblePoints};
 use prismatic_core::{PhotonMap, PreparedScene, Progress, Stage, StageTimes};
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -110,7 +110,7 @@ impl HostKernels for PacketKernels {
 }
 
 /// The core's light tracing of `photons` in parallel (the same splats in
-/// the same order as `prismatic_core::connect::splat_photons`).
+/// the same order as `prismatic_core::photons::light_tracing::splat_photons`).
 fn splat_photons(scene: &PreparedScene, photons: &[Photon]) -> Vec<Splat> {
     if !scene.scene.render.light_tracing {
         return Vec::new();

@@ -24,7 +24,7 @@ mod view;
 pub use grid::CpuGrid;
 pub use kernels::PacketKernels;
 
-use prismatic_core::host::HostRender;
+use prismatic_core::render::host::HostRender;
 use prismatic_core::{Backend, BackendError, PreparedScene, Render};
 use std::sync::Arc;
 

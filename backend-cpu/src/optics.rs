@@ -1,10 +1,11 @@
 //! Packet optics: the core's reflection, refraction, Fresnel and
-//! interface functions (`prismatic_core::optics`) on eight lanes at once,
+//! interface functions (`prismatic_core::optics::fresnel`) on eight lanes at once,
 //! operation for operation, so that a packet scatters as the scalar
 //! reference does (the twin tests compare them lane by lane).
 
 use crate::simd::{Vec3x8, ge, lt};
-use prismatic_core::tolerance::{SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL};
+use glam::Vec3;
+use prismatic_core::util::tolerance::{SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL};
 use wide::f32x8;
 
 /// Mirror reflection, `d − n·(2·(d·n))`.
@@ -13,7 +14,7 @@ pub fn reflect(d: Vec3x8, n: Vec3x8) -> Vec3x8 {
     d - n * (f32x8::splat(2.0) * d.dot(n))
 }
 
-/// `prismatic_core::prepared::offset_origin` per lane.
+/// `prismatic_core::optics::scatter::offset_origin` per lane.
 #[inline]
 pub fn offset_origin(p: Vec3x8, n: Vec3x8, dir: Vec3x8) -> Vec3x8 {
     let eps = f32x8::splat(SURFACE_OFFSET_ABS) + f32x8::splat(SURFACE_OFFSET_REL) * p.abs_max_element();
@@ -21,7 +22,48 @@ pub fn offset_origin(p: Vec3x8, n: Vec3x8, dir: Vec3x8) -> Vec3x8 {
     Vec3x8::select(ge(dir.dot(n), f32x8::ZERO), p + ne, p - ne)
 }
 
-/// `prismatic_core::trace::scatter_dielectric` per lane: returns the facing
+/// `prismatic_core::optics::scatter::split_dielectric` per lane: both
+/// branches at glass. Origins are pushed off the surface to each branch's
+/// side; `tir` marks the lanes without a refracted ray.
+#[derive(Clone, Copy)]
+pub struct BranchesX8 {
+    /// Fresnel reflectance R.
+    pub reflectance: f32x8,
+    /// The mirror direction and the origin a reflected ray leaves from.
+    pub reflected: (Vec3x8, Vec3x8),
+    /// The refracted direction and origin (meaningless where `tir`).
+    pub refracted: (Vec3x8, Vec3x8),
+    /// Lanes under total internal reflection.
+    pub tir: f32x8,
+}
+
+impl BranchesX8 {
+    /// The branch `scatter_dielectric` takes in lane `i` for number `u`:
+    /// (origin, direction), reflected where `u < R` or under total
+    /// internal reflection.
+    pub fn choose(&self, i: usize, u: f32) -> (Vec3, Vec3) {
+        let reflect = u < self.reflectance.to_array()[i] || self.tir.to_bitmask() & (1 << i) != 0;
+        let (origin, dir) = if reflect { self.reflected } else { self.refracted };
+        (origin.lane(i), dir.lane(i))
+    }
+}
+
+/// Both branches at glass for eight rays `d` at `point` (outward normal `outward`).
+#[inline]
+pub fn split_dielectric(d: Vec3x8, point: Vec3x8, outward: Vec3x8, ior: f32x8) -> BranchesX8 {
+    let (n, n1, n2) = interface(d, outward, ior);
+    let reflectance = fresnel(-d.dot(n), n1, n2);
+    let reflected = reflect(d, n);
+    let (tir, refracted) = refract(d, n, n1, n2);
+    BranchesX8 {
+        reflectance,
+        reflected: (offset_origin(point, n, reflected), reflected),
+        refracted: (offset_origin(point, n, refracted), refracted),
+        tir,
+    }
+}
+
+/// `prismatic_core::optics::scatter::scatter_dielectric` per lane: returns the facing
 /// normal and the new direction (reflected where `u < R` or under total
 /// internal reflection, refracted otherwise).
 #[inline]
@@ -32,21 +74,21 @@ pub fn scatter_dielectric(d: Vec3x8, outward: Vec3x8, ior: f32x8, u: f32x8) -> (
     (n, Vec3x8::select(lt(u, r) | tir, reflect(d, n), refracted))
 }
 
-/// `prismatic_core::optics::interface`: facing normal and the indices on either side.
+/// `prismatic_core::optics::fresnel::interface`: facing normal and the indices on either side.
 #[inline]
 pub fn interface(d: Vec3x8, outward: Vec3x8, ior: f32x8) -> (Vec3x8, f32x8, f32x8) {
     let entering = lt(d.dot(outward), f32x8::ZERO);
     (Vec3x8::select(entering, outward, -outward), entering.select(f32x8::ONE, ior), entering.select(ior, f32x8::ONE))
 }
 
-/// `prismatic_core::optics::cos2_transmitted` per lane.
+/// `prismatic_core::optics::fresnel::cos2_transmitted` per lane.
 #[inline]
 pub fn cos2_transmitted(cos_i: f32x8, eta: f32x8) -> f32x8 {
     let eta2 = eta * eta;
     (f32x8::ONE - eta2) + eta2 * cos_i * cos_i
 }
 
-/// `prismatic_core::optics::fresnel` per lane.
+/// `prismatic_core::optics::fresnel::fresnel` per lane.
 #[inline]
 pub fn fresnel(cos_i: f32x8, n1: f32x8, n2: f32x8) -> f32x8 {
     let cos_i = cos_i.max(f32x8::ZERO).min(f32x8::ONE);
@@ -59,7 +101,7 @@ pub fn fresnel(cos_i: f32x8, n1: f32x8, n2: f32x8) -> f32x8 {
     n1.simd_eq(n2).select(f32x8::ZERO, tir.select(f32x8::ONE, r))
 }
 
-/// `prismatic_core::optics::refract` per lane: (total internal reflection mask, direction).
+/// `prismatic_core::optics::fresnel::refract` per lane: (total internal reflection mask, direction).
 #[inline]
 pub fn refract(d: Vec3x8, n: Vec3x8, n1: f32x8, n2: f32x8) -> (f32x8, Vec3x8) {
     let eta = n1 / n2;

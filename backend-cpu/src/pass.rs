@@ -6,10 +6,10 @@
 use crate::grid::CpuGrid;
 use glam::Vec3;
 use prismatic_core::PhotonMap;
-use prismatic_core::gather::GatherQuery;
-use prismatic_core::prepared::PreparedScene;
-use prismatic_core::schedule::{GRID_LEVELS, level_of, level_radius};
-use prismatic_core::visible::VisiblePoint;
+use prismatic_core::photons::gather::GatherQuery;
+use prismatic_core::plan::prepared::PreparedScene;
+use prismatic_core::plan::schedule::{GRID_LEVELS, level_of, level_radius};
+use prismatic_core::render::visible::VisiblePoint;
 use rayon::prelude::*;
 
 /// Visible points per work item: a caustic's dense points spread over

@@ -2,7 +2,7 @@
 //! intersection test shares.
 
 use crate::simd::{Vec3x8, gt, lt};
-use prismatic_core::tolerance::{SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL, SURFACE_SKIN_FACTOR};
+use prismatic_core::util::tolerance::{SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL, SURFACE_SKIN_FACTOR};
 use wide::f32x8;
 
 /// Eight rays.
@@ -22,7 +22,7 @@ impl RayX8 {
     }
 }
 
-/// `prismatic_core::tolerance::surface_skin` per lane.
+/// `prismatic_core::util::tolerance::surface_skin` per lane.
 #[inline]
 pub fn surface_skin(origin: Vec3x8) -> f32x8 {
     let offset = f32x8::splat(SURFACE_OFFSET_ABS) + f32x8::splat(SURFACE_OFFSET_REL) * origin.abs_max_element();

@@ -6,8 +6,8 @@
 //! computes the same bits as the scalar reference.
 
 use glam::Vec3;
-use prismatic_core::scene::PhotonSequence;
-use prismatic_core::sobol;
+use prismatic_core::model::scene::PhotonSequence;
+use prismatic_core::sampling::sobol;
 use wide::{f32x8, i32x8, u32x8};
 
 /// Eight 3-vectors, one per lane.
@@ -138,7 +138,7 @@ pub fn ge(a: f32x8, b: f32x8) -> f32x8 {
     a.simd_ge(b)
 }
 
-/// The PCG hash of `prismatic_core::rng::pcg_hash`, on eight words.
+/// The PCG hash of `prismatic_core::util::rng::pcg_hash`, on eight words.
 #[inline]
 pub fn pcg_hash(input: u32x8) -> u32x8 {
     let state = input * u32x8::splat(747_796_405) + u32x8::splat(2_891_336_453);
@@ -146,14 +146,14 @@ pub fn pcg_hash(input: u32x8) -> u32x8 {
     (word >> 22) ^ word
 }
 
-/// `prismatic_core::rng::random_f32` for eight photon indices at once.
+/// `prismatic_core::util::rng::random_f32` for eight photon indices at once.
 #[inline]
 pub fn random_f32(seed: u32, index: u32x8, dimension: u32x8) -> f32x8 {
     let h = pcg_hash(pcg_hash(pcg_hash(u32x8::splat(seed)) ^ index) + dimension) >> 8;
     f32x8::from_i32x8(bytemuck::cast::<u32x8, i32x8>(h)) * f32x8::splat(1.0 / 16_777_216.0)
 }
 
-/// `prismatic_core::sobol::photon_f32` for eight photon indices at once
+/// `prismatic_core::sampling::sobol::photon_f32` for eight photon indices at once
 /// (the scrambled Sobol lanes one by one: a few per photon, beside its path).
 #[inline]
 pub fn photon_f32(sequence: PhotonSequence, seed: u32, index: u32x8, dimension: u32) -> f32x8 {
@@ -165,10 +165,10 @@ pub fn photon_f32(sequence: PhotonSequence, seed: u32, index: u32x8, dimension: 
     }
 }
 
-/// `prismatic_core::math::sin_cos_turns` on eight values.
+/// `prismatic_core::util::math::sin_cos_turns` on eight values.
 #[inline]
 pub fn sin_cos_turns(u: f32x8) -> (f32x8, f32x8) {
-    use prismatic_core::math::{COS_COEFFS as C, SIN_COEFFS as S};
+    use prismatic_core::util::math::{COS_COEFFS as C, SIN_COEFFS as S};
     let k = |c: f32| f32x8::splat(c);
     let h = (u - (u + f32x8::splat(0.5)).floor()) * f32x8::splat(core::f32::consts::PI);
     let h2 = h * h;
@@ -180,7 +180,7 @@ pub fn sin_cos_turns(u: f32x8) -> (f32x8, f32x8) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prismatic_core::rng;
+    use prismatic_core::util::rng;
 
     #[test]
     fn packet_rng_matches_the_scalar_rng_bit_for_bit() {
@@ -200,7 +200,7 @@ mod tests {
             let u: [f32; 8] = core::array::from_fn(|i| (base * 8 + i) as f32 / 8000.0);
             let (s, c) = sin_cos_turns(f32x8::new(u));
             for (i, &ui) in u.iter().enumerate() {
-                let (ss, sc) = prismatic_core::math::sin_cos_turns(ui);
+                let (ss, sc) = prismatic_core::util::math::sin_cos_turns(ui);
                 assert_eq!((s.as_array()[i].to_bits(), c.as_array()[i].to_bits()), (ss.to_bits(), sc.to_bits()));
             }
         }

@@ -16,12 +16,12 @@ use crate::intersect::{HitX8, intersect_scene};
 use crate::optics::{offset_origin, reflect, scatter_dielectric};
 use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, lt, random_f32};
-use prismatic_core::photon::{Photon, TraceStats, WHITE_BAND, oct_encode};
-use prismatic_core::prepared::PreparedScene;
-use prismatic_core::rng::dim;
-use prismatic_core::scene::WavelengthSampling;
-use prismatic_core::surface::Surface;
-use prismatic_core::trace::{absorbed, sample_band, split_bands};
+use prismatic_core::model::photon::{Photon, TraceStats, WHITE_BAND, oct_encode};
+use prismatic_core::model::scene::WavelengthSampling;
+use prismatic_core::optics::surface::Surface;
+use prismatic_core::photons::trace::{absorbed, sample_band, split_bands};
+use prismatic_core::plan::prepared::PreparedScene;
+use prismatic_core::util::rng::dim;
 use wide::{f32x8, u32x8};
 
 /// A lane mask with every bit set.
@@ -84,7 +84,12 @@ impl<'a> TraceContext<'a> {
                 }
             })
             .collect();
-        TraceContext { scene, emitters: Emitters::new(scene), objects, flux: prismatic_core::trace::photon_flux(scene) }
+        TraceContext {
+            scene,
+            emitters: Emitters::new(scene),
+            objects,
+            flux: prismatic_core::photons::trace::photon_flux(scene),
+        }
     }
 }
 
@@ -262,7 +267,7 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
 /// Traces the paths a white photon splits into (lane `lane` of `hit`; its
 /// emission index, bounces and flux in `white`) from the dispersive surface
 /// it has just met, eight per packet: its `paths` bands
-/// ([`prismatic_core::trace::split_bands`]: every band, each with the
+/// ([`prismatic_core::photons::trace::split_bands`]: every band, each with the
 /// glass's band table, or the hero wavelengths, each at its own wavelength).
 #[expect(clippy::too_many_arguments, reason = "one lane's state at the split")]
 fn trace_bands(
@@ -387,7 +392,7 @@ fn end_paths(
 
 /// The lanes of `at_glass` (hits on coloured glass) whose path the glass
 /// absorbs on the segment just ended: the reference's
-/// [`absorbed`](prismatic_core::trace::absorbed), lane by lane with the
+/// [`absorbed`](prismatic_core::photons::trace::absorbed), lane by lane with the
 /// core's own `exp`, so the same paths survive. Their flux is tallied.
 fn absorb_lanes(
     ctx: &TraceContext<'_>,
@@ -408,7 +413,7 @@ fn absorb_lanes(
     for i in lanes(at_glass) {
         let Surface::Dielectric(glass) = &ctx.scene.surfaces[objects[i] as usize] else { continue };
         let band = b[i] as u16;
-        let u = || prismatic_core::rng::random_f32(seed, e[i], dim::absorb(band, k[i]));
+        let u = || prismatic_core::util::rng::random_f32(seed, e[i], dim::absorb(band, k[i]));
         if absorbed(glass, dir.lane(i), hit.normal.lane(i), t[i], band, u) {
             out[i] = ON;
             sink.stats.flux_absorbed += f64::from(f[i]);

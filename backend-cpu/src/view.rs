@@ -1,4 +1,4 @@
-//! Packet view rays: the core's view pass (`prismatic_core::view`), eight
+//! Packet view rays: the core's view pass (`prismatic_core::render::view`), eight
 //! rays per packet, threads over tiles.
 //!
 //! A tile's primary rays go eight pixels to a packet. Where the reference
@@ -17,23 +17,23 @@
 //! same [`PixelSampler`] numbers.
 
 use crate::intersect::{HitX8, intersect_scene, occluded};
-use crate::optics::{fresnel, interface, offset_origin, reflect, refract};
+use crate::optics::{offset_origin, split_dielectric};
 use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, ge, gt, lt};
 use glam::Vec3;
 use prismatic_core::Image;
-use prismatic_core::camera::PinholeCamera;
-use prismatic_core::math::{cos, radians};
-use prismatic_core::optics;
-use prismatic_core::photon::WHITE_BAND;
-use prismatic_core::pixel_sample::PixelSampler;
-use prismatic_core::prepared::PreparedScene;
-use prismatic_core::scene::{Light, ViewPaths};
-use prismatic_core::surface::Surface;
-use prismatic_core::tolerance::MIN_VIEW_WEIGHT;
-use prismatic_core::trace::scatter_dielectric;
-use prismatic_core::view::{HeroViewPath, gathers_at, glass_transmittance, hero_view_paths};
-use prismatic_core::visible::{VisiblePoint, VisiblePoints};
+use prismatic_core::geometry::camera::PinholeCamera;
+use prismatic_core::model::photon::WHITE_BAND;
+use prismatic_core::model::scene::{Light, ViewPaths};
+use prismatic_core::optics::fresnel::reflect;
+use prismatic_core::optics::scatter::{self, scatter_dielectric};
+use prismatic_core::optics::surface::Surface;
+use prismatic_core::plan::prepared::PreparedScene;
+use prismatic_core::render::view::{HeroViewPath, gathers_at, glass_transmittance, hero_view_paths};
+use prismatic_core::render::visible::{VisiblePoint, VisiblePoints};
+use prismatic_core::sampling::pixel_sample::PixelSampler;
+use prismatic_core::util::math::{cos, radians};
+use prismatic_core::util::tolerance::MIN_VIEW_WEIGHT;
 use rayon::prelude::*;
 use std::f32::consts::PI;
 use wide::f32x8;
@@ -174,8 +174,8 @@ impl Shader<'_> {
             match surface {
                 // Band rays at glass: Fresnel and refraction for the whole packet at once, below.
                 Surface::Mirror => {
-                    let d = optics::reflect(r.dir, n);
-                    let origin = prismatic_core::prepared::offset_origin(p, n, d);
+                    let d = reflect(r.dir, n);
+                    let origin = scatter::offset_origin(p, n, d);
                     queue.push(ViewRay { origin, dir: d, depth: r.depth + 1, ..*r });
                 }
                 Surface::Dielectric(glass) if r.band == WHITE_BAND && glass.splits_view_rays => match r.sampler {
@@ -313,19 +313,18 @@ fn spawn_at_glass(r: &ViewRay, p: Vec3, outward: Vec3, ior: f32, queue: &mut Vec
         queue.push(ViewRay { origin: next.origin, dir: next.direction, depth: r.depth + 1, ..*r });
         return;
     }
-    let (n, n1, n2) = optics::interface(r.dir, outward, ior);
-    let f = optics::fresnel(-r.dir.dot(n), n1, n2);
+    let split = scatter::split_dielectric(r.dir, p, outward, ior);
+    let f = split.reflectance;
     if f * r.weight > MIN_VIEW_WEIGHT {
-        let d = optics::reflect(r.dir, n);
-        let origin = prismatic_core::prepared::offset_origin(p, n, d);
-        queue.push(ViewRay { origin, dir: d, weight: r.weight * f, tint: r.tint * f, depth: r.depth + 1, ..*r });
+        let (origin, dir) = (split.reflected.origin, split.reflected.direction);
+        queue.push(ViewRay { origin, dir, weight: r.weight * f, tint: r.tint * f, depth: r.depth + 1, ..*r });
     }
     let t = 1.0 - f;
     if t * r.weight > MIN_VIEW_WEIGHT
-        && let Some(d) = optics::refract(r.dir, n, n1, n2)
+        && let Some(refracted) = split.refracted
     {
-        let origin = prismatic_core::prepared::offset_origin(p, n, d);
-        queue.push(ViewRay { origin, dir: d, weight: r.weight * t, tint: r.tint * t, depth: r.depth + 1, ..*r });
+        let (origin, dir) = (refracted.origin, refracted.direction);
+        queue.push(ViewRay { origin, dir, weight: r.weight * t, tint: r.tint * t, depth: r.depth + 1, ..*r });
     }
 }
 
@@ -340,30 +339,23 @@ fn spawn_packet_at_glass(
     queue: &mut Vec<ViewRay>,
 ) {
     let d = Vec3x8::from_lanes(&core::array::from_fn(|i| rays[i.min(rays.len() - 1)].dir));
-    let (n, n1, n2) = interface(d, outward, ior);
-    let f = fresnel(-d.dot(n), n1, n2).to_array();
-    let reflected = reflect(d, n);
-    let reflected_origin = offset_origin(point, n, reflected);
-    let (tir, refracted) = refract(d, n, n1, n2);
-    let refracted_origin = offset_origin(point, n, refracted);
-    let tir = tir.to_bitmask();
+    let split = split_dielectric(d, point, outward, ior);
+    let f = split.reflectance.to_array();
+    let tir = split.tir.to_bitmask();
     for (i, r) in rays.iter().enumerate().filter(|(i, _)| lanes_at_glass & (1 << i) != 0) {
         if let Some(sampler) = r.sampler {
-            // The one branch the path's number chooses (reflection under total internal reflection).
-            let (origin, dir) = match sampler.branch(r.hero, r.depth) >= f[i] && tir & (1 << i) == 0 {
-                true => (refracted_origin.lane(i), refracted.lane(i)),
-                false => (reflected_origin.lane(i), reflected.lane(i)),
-            };
+            // The one branch the path's number chooses, as `scatter_dielectric` chooses.
+            let (origin, dir) = split.choose(i, sampler.branch(r.hero, r.depth));
             queue.push(ViewRay { origin, dir, depth: r.depth + 1, ..*r });
             continue;
         }
         if f[i] * r.weight > MIN_VIEW_WEIGHT {
-            let (origin, dir) = (reflected_origin.lane(i), reflected.lane(i));
+            let (origin, dir) = (split.reflected.0.lane(i), split.reflected.1.lane(i));
             queue.push(ViewRay { origin, dir, weight: r.weight * f[i], tint: r.tint * f[i], depth: r.depth + 1, ..*r });
         }
         let t = 1.0 - f[i];
         if t * r.weight > MIN_VIEW_WEIGHT && tir & (1 << i) == 0 {
-            let (origin, dir) = (refracted_origin.lane(i), refracted.lane(i));
+            let (origin, dir) = (split.refracted.0.lane(i), split.refracted.1.lane(i));
             queue.push(ViewRay { origin, dir, weight: r.weight * t, tint: r.tint * t, depth: r.depth + 1, ..*r });
         }
     }

@@ -1,10 +1,16 @@
 //! The CPU's packet optics (`prismatic_cpu::optics`) are the core's
-//! (`prismatic_core::optics`) bit for bit, lane by lane, on generated rays:
+//! (`prismatic_core::optics::fresnel`) bit for bit, lane by lane, on generated rays:
 //! grazing incidence, total internal reflection, indices within 1e-6 of 1,
 //! glass in a denser medium (`prismatic_conformance::twins`).
 
-use prismatic_conformance::twins::{Agreement, SurfaceAnswer, SurfaceCase, check_surface, surface_case};
-use prismatic_cpu::optics::{fresnel, interface, reflect, refract};
+use prismatic_conformance::twins::{
+    Agreement, ScatterCase, SurfaceAnswer, SurfaceCase, check_surface, scatter_case, surface_case,
+};
+use prismatic_core::Vec3;
+use prismatic_core::optics::scatter;
+use prismatic_cpu::optics::{
+    fresnel, interface, offset_origin, reflect, refract, scatter_dielectric, split_dielectric,
+};
 use prismatic_cpu::simd::Vec3x8;
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -45,6 +51,63 @@ proptest! {
             }
         }
     }
+}
+
+/// A ray: (origin, direction).
+type Ray = (Vec3, Vec3);
+
+/// One lane's scattering: `scatter_dielectric`'s ray, the ray
+/// `BranchesX8::choose` takes for the same number, R, and the refracted ray.
+type LaneScatter = (Ray, Ray, f32, Option<Ray>);
+
+/// The packet scattering at glass on eight cases: each lane's one branch
+/// (origin, direction) for its own number, and both branches with R.
+fn packet_scatter(cases: &[ScatterCase; 8]) -> [LaneScatter; 8] {
+    let d = Vec3x8::from_lanes(&cases.map(|c| c.surface.d));
+    let outward = Vec3x8::from_lanes(&cases.map(|c| c.surface.outward));
+    let point = Vec3x8::from_lanes(&cases.map(|c| c.point));
+    let ior = f32x8::new(cases.map(|c| c.surface.ior));
+    let (n, dir) = scatter_dielectric(d, outward, ior, f32x8::new(cases.map(|c| c.u)));
+    let origin = offset_origin(point, n, dir);
+    let split = split_dielectric(d, point, outward, ior);
+    let (r, tir) = (split.reflectance.to_array(), split.tir.to_bitmask());
+    std::array::from_fn(|i| {
+        let refracted = (tir & (1 << i) == 0).then(|| (split.refracted.0.lane(i), split.refracted.1.lane(i)));
+        ((origin.lane(i), dir.lane(i)), split.choose(i, cases[i].u), r[i], refracted)
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: 1024,
+        rng_seed: std::env::var("PROPTEST_RNG_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(RngSeed::Fixed(0x5ca7)),
+        ..ProptestConfig::default()
+    })]
+
+    /// `scatter_dielectric`, `split_dielectric` (and its branch choice) and
+    /// `offset_origin` on eight lanes are the core's, bit for bit.
+    #[test]
+    fn packet_scattering_is_the_cores_bit_for_bit(cases in prop::array::uniform8(scatter_case())) {
+        for (case, (one, chosen, r, refracted)) in cases.iter().zip(packet_scatter(&cases)) {
+            let want = case.scattered();
+            prop_assert!(bits(one) == bits(want), "scatter_dielectric: {:?}, the core says {:?}, for {:?}", one, want, case);
+            prop_assert!(bits(chosen) == bits(want), "BranchesX8::choose: {:?}, the core says {:?}, for {:?}", chosen, want, case);
+            let split = case.branches();
+            prop_assert_eq!(r.to_bits(), split.reflectance.to_bits(), "reflectance for {:?}", case);
+            let want_refracted = split.refracted.map(|ray| (ray.origin, ray.direction));
+            prop_assert!(refracted.map(bits) == want_refracted.map(bits), "refracted {:?} vs {:?} for {:?}", refracted, want_refracted, case);
+            let (n, _, _) = prismatic_core::optics::fresnel::interface(case.surface.d, case.surface.outward, case.surface.ior);
+            let lane = offset_origin(Vec3x8::splat(case.point), Vec3x8::splat(n), Vec3x8::splat(want.1)).lane(0);
+            prop_assert!(bits((lane, n)) == bits((scatter::offset_origin(case.point, n, want.1), n)), "offset_origin for {:?}", case);
+        }
+    }
+}
+
+/// A ray's bits, so that -0.0 and 0.0 differ and NaN equals itself.
+fn bits((origin, dir): Ray) -> [u32; 6] {
+    let [a, b, c] = origin.to_array().map(f32::to_bits);
+    let [d, e, f] = dir.to_array().map(f32::to_bits);
+    [a, b, c, d, e, f]
 }
 
 /// A lane copy that drifts fails here: a packet whose Fresnel term is off

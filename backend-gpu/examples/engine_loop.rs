@@ -5,8 +5,8 @@
 //!
 //! `cargo run --release -p prismatic-gpu --example engine_loop`
 
-use prismatic_core::dispersion::Dispersion;
-use prismatic_core::scene::{Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape};
+use prismatic_core::model::dispersion::Dispersion;
+use prismatic_core::model::scene::{Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape};
 use prismatic_core::{NoProgress, PreparedScene, Render, Vec3};
 use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
 use std::time::Instant;

@@ -1,4 +1,4 @@
-//! The hash grid on the device: twin of `prismatic_core::grid`. Count
+//! The hash grid on the device: twin of `prismatic_core::photons::grid`. Count
 //! photons per bucket (atomics), prefix-sum the counts into bucket starts,
 //! scatter each photon into its bucket's range of a sorted copy that the
 //! gather reads in place; on request, find the widest bucket's size.
@@ -10,7 +10,7 @@ use crate::scan::Scan;
 use crate::scene::SceneBuffers;
 use crate::shaders::WORKGROUP_SIZE;
 use prismatic_core::BackendError;
-use prismatic_core::grid::bucket_mask;
+use prismatic_core::photons::grid::bucket_mask;
 
 /// A grid over a device map.
 pub struct DeviceGrid {
@@ -135,8 +135,8 @@ const STORED_OFFSET: u64 = std::mem::offset_of!(crate::layout::Params, stored) a
 mod tests {
     use super::*;
     use crate::context::AdapterChoice;
-    use prismatic_core::grid::{bucket_of, cell_of};
-    use prismatic_core::{Photon, rng::random_f32};
+    use prismatic_core::photons::grid::{bucket_of, cell_of};
+    use prismatic_core::{Photon, util::rng::random_f32};
 
     /// The device grid's bucket starts and bucket contents equal the core
     /// grid's (its twin), on a cloud dense enough for two scan levels; the
@@ -166,7 +166,7 @@ mod tests {
         let map = PhotonArray::upload(&ctx, &photons, window).unwrap();
         let grid = DeviceGrid::new(&ctx, &pipelines, &buffers, &map, photons.len() as u32).unwrap();
         grid.rebuild(&ctx, &pipelines, &mut buffers, photons.len() as u32, None).unwrap();
-        let core = prismatic_core::grid::PhotonGrid::build(&photons, radius);
+        let core = prismatic_core::photons::grid::PhotonGrid::build(&photons, radius);
         let cells = ctx.read(&grid.cells, 0, grid.cells.size()).unwrap();
         let cells: Vec<u32> = bytemuck::pod_collect_to_vec(&cells);
         assert_eq!(cells, core.cell_start);

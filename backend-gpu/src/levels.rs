@@ -1,5 +1,5 @@
 //! A session's grid levels, twin of the levels of
-//! `prismatic_core::reference::gather_pass`: the photons bucketed at the
+//! `prismatic_core::render::reference::gather_pass`: the photons bucketed at the
 //! pass radius (level 0, always built) and, when first radii fall there,
 //! at a quarter and a sixteenth of it, so that a point in a dense caustic
 //! scans cells of its own size rather than the pass radius's. The pilot's
@@ -17,7 +17,7 @@ use crate::readback::PendingRead;
 use crate::scene::SceneBuffers;
 use crate::trace::PhotonPass;
 use prismatic_core::BackendError;
-use prismatic_core::schedule::{GRID_LEVELS, level_radius};
+use prismatic_core::plan::schedule::{GRID_LEVELS, level_radius};
 
 /// The built grid levels and the mark of the levels the points need.
 pub struct GridLevels {

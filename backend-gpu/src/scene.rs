@@ -10,16 +10,16 @@ use crate::shaders::kind::*;
 use bytemuck::Pod;
 use glam::Vec3;
 use prismatic_core::PreparedScene;
-use prismatic_core::camera::PinholeCamera;
-use prismatic_core::geometry::{Primitive, basis};
-use prismatic_core::math::{cos, radians};
-use prismatic_core::projection::Targets;
-use prismatic_core::scene::{
+use prismatic_core::geometry::camera::PinholeCamera;
+use prismatic_core::geometry::primitive::{Primitive, basis};
+use prismatic_core::geometry::texture::srgb_to_linear;
+use prismatic_core::model::scene::{
     Estimator, Filter, Light, PhotonSequence, Sampler, Texture, ViewPaths, WavelengthSampling, Wrap,
 };
-use prismatic_core::surface::Surface;
-use prismatic_core::texture::srgb_to_linear;
-use prismatic_core::trace::photon_flux;
+use prismatic_core::optics::surface::Surface;
+use prismatic_core::photons::trace::photon_flux;
+use prismatic_core::plan::projection::Targets;
+use prismatic_core::util::math::{cos, radians};
 use std::collections::HashMap;
 
 /// A sampler's filter and wraps as surface flags.
@@ -136,7 +136,7 @@ impl EncodedScene {
             ambient: [r.ambient; 3],
             light_tracing: u32::from(r.light_tracing),
             background: v3(r.background),
-            splat_scale: prismatic_core::connect::importance_scale(r.exposure, &camera),
+            splat_scale: prismatic_core::photons::light_tracing::importance_scale(r.exposure, &camera),
             cam_origin: v3(camera.origin),
             cam_right: v3(camera.right),
             cam_down: v3(camera.down),
@@ -231,7 +231,7 @@ impl EncodedScene {
     fn light(
         &mut self,
         light: &Light,
-        projection: Option<&prismatic_core::projection::Projection>,
+        projection: Option<&prismatic_core::plan::projection::Projection>,
         shadows: bool,
     ) -> GpuLight {
         let mut l = GpuLight { shadows: u32::from(shadows), power: light.power(), ..GpuLight::default() };

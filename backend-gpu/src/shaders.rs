@@ -3,14 +3,14 @@
 //! (tolerances, RNG dimensions, band and workgroup sizes), so that the two
 //! languages cannot drift apart.
 
-use prismatic_core::bands::VISIBLE_NM;
-use prismatic_core::math::{COS_COEFFS, SIN_COEFFS};
-use prismatic_core::photon::WHITE_BAND;
-use prismatic_core::pixel_sample;
-use prismatic_core::rng::dim;
-use prismatic_core::scene::{HERO_WAVELENGTHS, MAX_DEPTH};
-use prismatic_core::texture::TEXEL_LIMIT;
-use prismatic_core::tolerance::{
+use prismatic_core::geometry::texture::TEXEL_LIMIT;
+use prismatic_core::model::bands::VISIBLE_NM;
+use prismatic_core::model::photon::WHITE_BAND;
+use prismatic_core::model::scene::{HERO_WAVELENGTHS, MAX_DEPTH};
+use prismatic_core::sampling::pixel_sample;
+use prismatic_core::util::math::{COS_COEFFS, SIN_COEFFS};
+use prismatic_core::util::rng::dim;
+use prismatic_core::util::tolerance::{
     BARYCENTRIC_EPS, CONNECTION_REL, MIN_VIEW_WEIGHT, SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL, SURFACE_SKIN_FACTOR,
 };
 use std::fmt::Write as _;
@@ -132,8 +132,8 @@ fn prelude(stack: u32) -> String {
     u("PROJECTION_NONE", kind::PROJECTION_NONE);
     u("PROJECTION_CONES", kind::PROJECTION_CONES);
     u("PROJECTION_DISCS", kind::PROJECTION_DISCS);
-    u("GRID_LEVELS", prismatic_core::schedule::GRID_LEVELS as u32);
-    u("MAX_BVH_DEPTH", prismatic_core::bvh::MAX_DEPTH as u32);
+    u("GRID_LEVELS", prismatic_core::plan::schedule::GRID_LEVELS as u32);
+    u("MAX_BVH_DEPTH", prismatic_core::geometry::bvh::MAX_DEPTH as u32);
     let mut f = |name: &str, v: f32| writeln!(s, "const {name}: f32 = {v:e};").unwrap();
     f("PI", std::f32::consts::PI);
     f("BIG", f32::MAX);
@@ -142,11 +142,11 @@ fn prelude(stack: u32) -> String {
     f("SURFACE_SKIN_FACTOR", SURFACE_SKIN_FACTOR);
     f("TEXEL_LIMIT", TEXEL_LIMIT);
     f("BARYCENTRIC_EPS", BARYCENTRIC_EPS);
-    f("BOX_MARGIN", prismatic_core::bvh::BOX_MARGIN);
+    f("BOX_MARGIN", prismatic_core::geometry::bvh::BOX_MARGIN);
     f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);
     f("CONNECTION_REL", CONNECTION_REL);
     f("VISIBLE_NM_LO", VISIBLE_NM.0);
-    f("MIN_RADIUS_FRACTION", prismatic_core::schedule::MIN_RADIUS_FRACTION);
+    f("MIN_RADIUS_FRACTION", prismatic_core::plan::schedule::MIN_RADIUS_FRACTION);
     for (i, c) in SIN_COEFFS.iter().enumerate() {
         f(&format!("SIN_C{i}"), *c);
     }

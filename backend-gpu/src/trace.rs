@@ -1,4 +1,4 @@
-//! The photon pass on the device: twin of `prismatic_core::trace`. Emissions
+//! The photon pass on the device: twin of `prismatic_core::photons::trace`. Emissions
 //! go in chunks (a chunk's scratch fits one binding and its dispatch the
 //! workgroup limits); per chunk: emit + trace, prefix sum of the per-emission
 //! counts, scatter into the canonical map after the chunks before it, and
@@ -14,7 +14,7 @@ use crate::pipelines::{Pipelines, dispatch};
 use crate::scan::Scan;
 use crate::scene::SceneBuffers;
 use crate::shaders::{MAX_WORKGROUPS, WORKGROUP_SIZE};
-use prismatic_core::surface::Surface;
+use prismatic_core::optics::surface::Surface;
 use prismatic_core::{BackendError, PreparedScene, Progress, Stage, TraceStats};
 
 /// Largest chunk of emissions per dispatch (keeps progress reports coming

@@ -25,7 +25,7 @@ fn sources() -> Vec<(&'static str, String)> {
         ("scan", shaders::scan()),
         ("grid", shaders::grid()),
         ("view", shaders::view(shaders::stack_size(12))),
-        ("view-deepest", shaders::view(shaders::stack_size(prismatic_core::scene::MAX_DEPTH))),
+        ("view-deepest", shaders::view(shaders::stack_size(prismatic_core::model::scene::MAX_DEPTH))),
         ("session", shaders::session()),
         ("splat", shaders::splat()),
         ("stats", shaders::stats()),

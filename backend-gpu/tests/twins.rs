@@ -11,10 +11,13 @@
 
 use bytemuck::{Pod, Zeroable};
 use prismatic_conformance::twins::{
-    Agreement, FinishCase, SurfaceAnswer, SurfaceCase, check_finish, check_surface, finish_case, fixed_answer,
-    fixed_input, surface_case,
+    Agreement, FinishCase, ScatterCase, SurfaceAnswer, SurfaceCase, branch_case, check_finish, check_surface,
+    finish_case, fixed_answer, fixed_input, scatter_case, surface_case,
 };
-use prismatic_core::{Estimator, Vec3, sobol};
+use prismatic_core::photons::grid;
+use prismatic_core::sampling::pixel_sample::PixelSampler;
+use prismatic_core::sampling::sobol;
+use prismatic_core::{Estimator, Vec3};
 use prismatic_gpu::{AdapterChoice, GpuContext, shaders};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -125,6 +128,124 @@ fn sobol(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 "#;
 
+const SCATTER: &str = r#"
+struct ScatterIn {
+    d: vec3<f32>,
+    ior: f32,
+    outward: vec3<f32>,
+    u: f32,
+    point: vec3<f32>,
+    _pad: f32,
+}
+
+struct ScatterOut {
+    origin: vec3<f32>,
+    reflectance: f32,
+    dir: vec3<f32>,
+    tir: f32,
+    reflected_origin: vec4<f32>,
+    reflected_dir: vec4<f32>,
+    refracted_origin: vec4<f32>,
+    refracted_dir: vec4<f32>,
+}
+
+@group(0) @binding(0) var<storage, read> scatter_in: array<ScatterIn>;
+@group(0) @binding(1) var<storage, read_write> scatter_out: array<ScatterOut>;
+
+@compute @workgroup_size(64)
+fn scatter(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&scatter_in) {
+        return;
+    }
+    let c = scatter_in[id.x];
+    let one = scatter_dielectric(c.d, c.point, c.outward, c.ior, c.u);
+    let both = split_dielectric(c.d, c.point, c.outward, c.ior);
+    scatter_out[id.x] = ScatterOut(
+        one.origin, both.reflectance, one.dir, select(0.0, 1.0, both.tir),
+        vec4<f32>(both.reflected.origin, 0.0), vec4<f32>(both.reflected.dir, 0.0),
+        vec4<f32>(both.refracted.origin, 0.0), vec4<f32>(both.refracted.dir, 0.0),
+    );
+}
+"#;
+
+const SAMPLING: &str = r#"
+struct SamplingIn {
+    scramble: u32,
+    pass_index: u32,
+    path: u32,
+    depth: u32,
+    p: vec3<f32>,
+    inv_cell: f32,
+}
+
+struct SamplingOut {
+    cell: vec3<i32>,
+    bucket: u32,
+    branch: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+@group(0) @binding(0) var<storage, read> sampling_in: array<SamplingIn>;
+@group(0) @binding(1) var<storage, read_write> sampling_out: array<SamplingOut>;
+
+@compute @workgroup_size(64)
+fn sampling(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&sampling_in) {
+        return;
+    }
+    let c = sampling_in[id.x];
+    let cell = cell_of(c.p, c.inv_cell);
+    let branch = pixel_branch(c.scramble, c.pass_index, c.path, c.depth);
+    sampling_out[id.x] = SamplingOut(cell, bucket_of(cell, 0xfffffu), branch, 0u, 0u, 0u);
+}
+"#;
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct ScatterIn {
+    d: [f32; 3],
+    ior: f32,
+    outward: [f32; 3],
+    u: f32,
+    point: [f32; 3],
+    _pad: f32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+struct ScatterOut {
+    origin: [f32; 3],
+    reflectance: f32,
+    dir: [f32; 3],
+    tir: f32,
+    reflected_origin: [f32; 4],
+    reflected_dir: [f32; 4],
+    refracted_origin: [f32; 4],
+    refracted_dir: [f32; 4],
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct SamplingIn {
+    scramble: u32,
+    pass_index: u32,
+    path: u32,
+    depth: u32,
+    p: [f32; 3],
+    inv_cell: f32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Pod, Zeroable)]
+struct SamplingOut {
+    cell: [i32; 3],
+    bucket: u32,
+    branch: f32,
+    _pad: [u32; 3],
+}
+
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct SurfaceIn {
@@ -170,7 +291,7 @@ struct FixedIn {
 /// The device and one pipeline per entry point, made once for every test.
 struct Twins {
     ctx: GpuContext,
-    pipelines: [(&'static str, wgpu::ComputePipeline); 4],
+    pipelines: [(&'static str, wgpu::ComputePipeline); 6],
 }
 
 fn twins() -> Option<&'static Twins> {
@@ -205,6 +326,8 @@ fn twins() -> Option<&'static Twins> {
                 pipeline("finish", FINISH),
                 pipeline("fixed", FIXED),
                 pipeline("sobol", SOBOL),
+                pipeline("scatter", SCATTER),
+                pipeline("sampling", SAMPLING),
             ];
             Some(Twins { ctx, pipelines })
         })
@@ -366,6 +489,119 @@ proptest! {
             prop_assert_eq!(got.to_bits(), expected.to_bits(), "sobol_f32({}, {}, {})", seed, index, d);
         }
     }
+}
+
+/// The WGSL scattering at glass on `cases`: the one branch, then both.
+fn wgsl_scatter(twins: &Twins, cases: &[ScatterCase]) -> Vec<ScatterOut> {
+    let inputs: Vec<ScatterIn> = cases
+        .iter()
+        .map(|c| ScatterIn {
+            d: c.surface.d.to_array(),
+            ior: c.surface.ior,
+            outward: c.surface.outward.to_array(),
+            u: c.u,
+            point: c.point.to_array(),
+            _pad: 0.0,
+        })
+        .collect();
+    twins.run("scatter", &inputs)
+}
+
+/// Whether the WGSL's scattering is the core's for `case`: the same
+/// branch, rays within [`OPTICS_ABS`] relative to the point's size (the
+/// offset off the surface scales with it), the same total internal
+/// reflection and reflectance away from the critical angle and from u = R
+/// (where one rounding decides).
+fn check_scatter(case: &ScatterCase, got: &ScatterOut) -> Result<(), String> {
+    let scale = 1.0 + case.point.abs().max_element();
+    let close = |a: Vec3, b: Vec3, s: f32| (a - b).abs().max_element() <= OPTICS_ABS * s;
+    let fail = |what: &str| Err(format!("{what}: {got:?} for {case:?}"));
+    let split = case.branches();
+    let knife_edge = case.surface.at_the_critical_angle() || (case.u - split.reflectance).abs() < 1e-5;
+    if !knife_edge {
+        let (origin, dir) = case.scattered();
+        if !close(Vec3::from(got.dir), dir, 1.0) || !close(Vec3::from(got.origin), origin, scale) {
+            return fail("scatter_dielectric");
+        }
+        if (got.reflectance - split.reflectance).abs() > OPTICS_ABS || (got.tir != 0.0) != split.refracted.is_none() {
+            return fail("split_dielectric's reflectance or total internal reflection");
+        }
+    }
+    let v = |a: [f32; 4]| Vec3::new(a[0], a[1], a[2]);
+    if !close(v(got.reflected_dir), split.reflected.direction, 1.0)
+        || !close(v(got.reflected_origin), split.reflected.origin, scale)
+    {
+        return fail("split_dielectric's reflection");
+    }
+    match split.refracted {
+        Some(t)
+            if got.tir == 0.0
+                && !(close(v(got.refracted_dir), t.direction, 1.0)
+                    && close(v(got.refracted_origin), t.origin, scale)) =>
+        {
+            fail("split_dielectric's refraction")
+        }
+        _ => Ok(()),
+    }
+}
+
+proptest! {
+    #![proptest_config(config(8))]
+
+    /// `scatter_dielectric` and `split_dielectric` (common.wgsl, which the
+    /// photon trace and the view pass both call) against the core's.
+    #[test]
+    fn wgsl_scattering_is_the_cores(cases in prop::collection::vec(scatter_case(), 1024)) {
+        let Some(twins) = twins() else { return Ok(()) };
+        for (case, got) in cases.iter().zip(wgsl_scatter(twins, &cases)) {
+            if let Err(e) = check_scatter(case, &got) {
+                return Err(TestCaseError::fail(e));
+            }
+        }
+    }
+
+    /// `pixel_branch` (PixelSampler::branch) bit for bit, and the grid's
+    /// `cell_of` and `bucket_of` (integer hashing of a float cell) exactly.
+    #[test]
+    fn wgsl_branch_numbers_and_grid_cells_are_the_cores(
+        cases in prop::collection::vec((branch_case(), [-1e3f32..1e3, -1e3f32..1e3, -1e3f32..1e3], (-3.0f32..3.0).prop_map(|e| 10f32.powf(e))), 1024),
+    ) {
+        let Some(twins) = twins() else { return Ok(()) };
+        let inputs: Vec<SamplingIn> = cases
+            .iter()
+            .map(|&((seed, pixel, pass, path, depth), p, inv_cell)| SamplingIn {
+                scramble: PixelSampler::new(seed, pixel, pass).scramble(),
+                pass_index: pass,
+                path,
+                depth,
+                p,
+                inv_cell,
+            })
+            .collect();
+        let answers: Vec<SamplingOut> = twins.run("sampling", &inputs);
+        for (&((seed, pixel, pass, path, depth), p, inv_cell), got) in cases.iter().zip(answers) {
+            let branch = PixelSampler::new(seed, pixel, pass).branch(path, depth);
+            prop_assert_eq!(got.branch.to_bits(), branch.to_bits(), "PixelSampler::branch({}, {}, {}, {}, {})", seed, pixel, pass, path, depth);
+            let cell = grid::cell_of(Vec3::from(p), inv_cell);
+            prop_assert_eq!(got.cell, cell.to_array(), "cell_of({:?}, {})", p, inv_cell);
+            prop_assert_eq!(got.bucket, grid::bucket_of(cell, 0xfffff), "bucket_of({})", cell);
+        }
+    }
+}
+
+/// The scattering twin bites: a refraction off by 1e-5 fails its check.
+#[test]
+fn a_drifted_scatter_is_caught() {
+    let Some(twins) = twins() else { return };
+    let case = ScatterCase {
+        surface: SurfaceCase { d: Vec3::new(0.6, -0.8, 0.0), outward: Vec3::Y, ior: 1.5 },
+        point: Vec3::ONE,
+        u: 0.9,
+    };
+    let mut got = wgsl_scatter(twins, &[case])[0];
+    assert!(check_scatter(&case, &got).is_ok(), "{got:?}");
+    got.dir[0] += 1e-5;
+    assert!(check_scatter(&case, &got).is_err());
 }
 
 /// The twin tests bite: a case whose refraction is off by 1e-5 fails the optics check.

@@ -11,7 +11,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use prismatic_benches::{frame, paper_config};
-use prismatic_core::scene::RadiusMode;
+use prismatic_core::model::scene::RadiusMode;
 use prismatic_core::{Backend, NoProgress, Render};
 use prismatic_gpu::{AdapterChoice, GpuBackend};
 

@@ -26,7 +26,7 @@
 
 use criterion::{BatchSize, BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use prismatic_benches::{frame, paper_config};
-use prismatic_core::grid::PhotonGrid;
+use prismatic_core::photons::grid::PhotonGrid;
 use prismatic_core::{Backend, BandSpec, NoProgress, PreparedScene, ReferenceBackend, ViewPaths, WavelengthSampling};
 use prismatic_cpu::{CpuBackend, CpuGrid};
 use std::hint::black_box;
@@ -129,10 +129,10 @@ fn effects_group(c: &mut Criterion) {
     let mut g = c.benchmark_group("effects");
     g.sample_size(10);
     for name in ["sphere", "prism", "recombine", "rainbow"] {
-        let planned = builtin(name, None, prismatic_core::scene::RadiusMode::Fixed);
+        let planned = builtin(name, None, prismatic_core::model::scene::RadiusMode::Fixed);
         let scale = planned.plan.projections.iter().flatten().map(|p| p.scale).fold(1.0f32, f32::min);
         let more = (planned.scene.render.photons as f32 / scale) as u32;
-        let mut unplanned = builtin(name, Some(more), prismatic_core::scene::RadiusMode::Fixed);
+        let mut unplanned = builtin(name, Some(more), prismatic_core::model::scene::RadiusMode::Fixed);
         unplanned.simulate_everything();
         for (id, scene) in [("planned", &planned), ("unplanned", &unplanned)] {
             let mut backend = CpuBackend::new();
@@ -152,7 +152,7 @@ fn effects_group(c: &mut Criterion) {
 fn progressive_group(c: &mut Criterion) {
     let mut g = c.benchmark_group("progressive");
     g.sample_size(10);
-    let progressive = prismatic_core::scene::RadiusMode::Progressive;
+    let progressive = prismatic_core::model::scene::RadiusMode::Progressive;
     let scene = builtin("sphere", None, progressive);
     let mut backend = CpuBackend::new();
     g.bench_function("prepare", |b| {
@@ -224,7 +224,7 @@ fn scene_group(c: &mut Criterion) {
 fn builtin(
     name: &str,
     photons: Option<u32>,
-    radius_mode: prismatic_core::scene::RadiusMode,
+    radius_mode: prismatic_core::model::scene::RadiusMode,
 ) -> prismatic_core::PreparedScene {
     let mut doc = prismatic_cli::load_scene(name).expect("built-in scene parses");
     doc.scene.render.photons = photons.unwrap_or(doc.scene.render.photons);

@@ -15,8 +15,8 @@
 //!
 //! `cargo run --release -p prismatic-benches --example gpu_frame_times -- [FRAMES] [--session-only]`
 
-use prismatic_core::bands::BandSpec;
-use prismatic_core::scene::{RadiusMode, WavelengthSampling};
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::scene::{RadiusMode, WavelengthSampling};
 use prismatic_core::{NoProgress, PreparedScene, Render, StageTimes};
 use prismatic_gpu::{AdapterChoice, GpuBackend, GpuContext, GpuOptions};
 use std::time::{Duration, Instant};

@@ -12,7 +12,7 @@
 //! `cargo run --release -p prismatic-benches --example light_tracing -- [SCENE] [SIZE] [REFERENCE]`
 
 use prismatic_conformance::compare::{caustic_of, caustic_rel_rmse};
-use prismatic_core::scene::PhotonSequence;
+use prismatic_core::model::scene::PhotonSequence;
 use prismatic_core::{Backend, NoProgress, PreparedScene, Render};
 use prismatic_cpu::CpuBackend;
 use std::time::Instant;

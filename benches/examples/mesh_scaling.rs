@@ -11,8 +11,8 @@
 
 use prismatic_conformance::compare::image_correlation;
 use prismatic_conformance::scenes::sphere_mesh;
-use prismatic_core::geometry::Primitive;
-use prismatic_core::scene::Shape;
+use prismatic_core::geometry::primitive::Primitive;
+use prismatic_core::model::scene::Shape;
 use prismatic_core::{Backend, Image, NoProgress, PreparedScene};
 use prismatic_cpu::CpuBackend;
 use prismatic_gpu::{AdapterChoice, GpuBackend};

@@ -1,8 +1,8 @@
 //! Shared set-up for the criterion benches: the paper's configuration of a
 //! built-in scene, and its frame through the render protocol.
 
-use prismatic_core::bands::BandSpec;
-use prismatic_core::scene::RadiusMode;
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::scene::RadiusMode;
 use prismatic_core::{Backend, Image, NoProgress, PreparedScene};
 
 /// The paper's configuration (Table 5): 400×400, 20,000 white photons, 7 bands,

@@ -64,7 +64,7 @@ pub struct GeneratedScene {
     /// The glTF document.
     pub document: fn() -> crate::gltf_write::GltfDocument,
     /// Its render settings (glTF has none).
-    pub settings: fn(&mut prismatic_core::scene::RenderSettings),
+    pub settings: fn(&mut prismatic_core::model::scene::RenderSettings),
 }
 
 /// The generated built-in scenes.

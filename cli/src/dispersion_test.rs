@@ -10,8 +10,8 @@
 
 use crate::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, prism};
 use crate::patterns::{graph_paper, tiles};
-use prismatic_core::color::ToneMap;
-use prismatic_core::scene::RenderSettings;
+use prismatic_core::model::color::ToneMap;
+use prismatic_core::model::scene::RenderSettings;
 use prismatic_core::{BandSpec, Estimator};
 
 /// Indices of refraction, one per row (front to back).

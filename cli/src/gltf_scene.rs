@@ -16,7 +16,7 @@ use glam::{Affine2, Mat4, Vec2, Vec3};
 use gltf::khr_lights_punctual::Kind;
 use gltf::texture::{MagFilter, WrappingMode};
 use prismatic_core::Dispersion;
-use prismatic_core::scene::{
+use prismatic_core::model::scene::{
     Attenuation, Camera, Filter, Light, Material, MaterialKind, Object, RenderSettings, Sampler, Scene, Shape, Texture,
     Wrap,
 };

@@ -16,8 +16,8 @@ use prismatic_cli::scene_file::{
 use prismatic_cli::settings::{Settings, SettingsSource};
 use prismatic_cli::study::progress::StudyBar;
 use prismatic_cli::study::{self, StudyOptions, report};
-use prismatic_core::bands::BandSpec;
-use prismatic_core::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling};
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling};
 use prismatic_core::{PreparedScene, TraceStats};
 use std::ops::Range;
 use std::path::PathBuf;

@@ -3,8 +3,8 @@
 //! before any work starts, so an unwritable path fails early.
 
 use anyhow::{Context, Result};
-use prismatic_core::color::ToneMap;
-use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::model::color::ToneMap;
+use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::{BandTable, Image, PhotonMap};
 use std::fs::File;
 use std::io::{BufWriter, Write};

@@ -11,7 +11,7 @@
 
 use crate::scene_file::SceneFileError;
 use prismatic_core::Accumulation;
-use prismatic_core::color::ToneMap;
+use prismatic_core::model::color::ToneMap;
 use prismatic_core::{Image, PreparedScene, Render, Vec3};
 use std::io::Write;
 use std::path::Path;

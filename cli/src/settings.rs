@@ -5,8 +5,8 @@
 
 use crate::scene_file::{SceneDocument, SceneFileError};
 use prismatic_core::PreparedScene;
-use prismatic_core::bands::BandSpec;
-use prismatic_core::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling};
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling};
 
 /// Settings that override the scene's `[render]` table (`None`: the scene's).
 #[derive(Clone, Debug, Default, PartialEq)]

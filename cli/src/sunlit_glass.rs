@@ -9,8 +9,8 @@
 
 use crate::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, prism};
 use crate::patterns::{graph_paper, tiles};
-use prismatic_core::color::ToneMap;
-use prismatic_core::scene::{RenderSettings, WavelengthSampling};
+use prismatic_core::model::color::ToneMap;
+use prismatic_core::model::scene::{RenderSettings, WavelengthSampling};
 use prismatic_core::{BandSpec, Estimator};
 use std::f32::consts::{PI, TAU};
 

@@ -1,7 +1,7 @@
 //! Base-colour textures from image files (PNG, JPEG) and from glTF's
 //! decoded images, as the core's packed 8-bit sRGB texels.
 
-use prismatic_core::scene::{Sampler, Texture};
+use prismatic_core::model::scene::{Sampler, Texture};
 use std::path::Path;
 use std::sync::Arc;
 

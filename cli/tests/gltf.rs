@@ -4,8 +4,9 @@
 //! element, exit 2 and write nothing.
 
 use prismatic_cli::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, prism};
-use prismatic_core::scene::{Light, MaterialKind, Shape};
-use prismatic_core::{PreparedScene, trace};
+use prismatic_core::PreparedScene;
+use prismatic_core::model::scene::{Light, MaterialKind, Shape};
+use prismatic_core::photons::trace;
 use std::path::Path;
 use std::process::Command;
 
@@ -98,7 +99,7 @@ fn a_gltf_prism_traces_the_photons_of_the_same_scene_in_toml() {
     from_gltf.render.photons = 4000;
     let a = trace::trace_photons(&PreparedScene::new(from_gltf).unwrap(), &mut prismatic_core::NoProgress);
     let b = trace::trace_photons(&PreparedScene::new(toml.scene).unwrap(), &mut prismatic_core::NoProgress);
-    assert!(a.photons.iter().any(|p| p.band != prismatic_core::photon::WHITE_BAND), "the prism splits bands");
+    assert!(a.photons.iter().any(|p| p.band != prismatic_core::model::photon::WHITE_BAND), "the prism splits bands");
     assert_eq!(a, b);
 }
 
@@ -204,7 +205,7 @@ fn assert_render_refused(dir: &Path, name: &str, text: &str, expected: &str) {
 #[test]
 fn the_dispersion_test_grid_spreads_colour_only_where_the_extension_says() {
     use prismatic_cli::dispersion_test::{DISPERSIONS, IORS};
-    use prismatic_core::scene::MaterialKind;
+    use prismatic_core::model::scene::MaterialKind;
     let doc = prismatic_cli::load_scene("dispersion-test").unwrap_or_else(|e| panic!("{e}"));
     assert!(doc.warnings.is_empty(), "{:?}", doc.warnings);
     let Light::Sun { direction: sun, .. } = doc.scene.lights[0] else { panic!("the sun") };
@@ -350,7 +351,7 @@ fn a_directional_light_becomes_the_sun() {
 #[test]
 fn a_base_colour_texture_is_read_with_its_sampler_and_texture_coordinates() {
     use prismatic_cli::gltf_write::GltfTexture;
-    use prismatic_core::scene::{Filter, Wrap};
+    use prismatic_core::model::scene::{Filter, Wrap};
     let dir = tempfile::tempdir().unwrap();
     let mut doc = prism_document();
     doc.materials[0].base_color_texture = Some(GltfTexture {

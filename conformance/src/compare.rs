@@ -5,7 +5,7 @@
 //! and measurements.
 
 use crate::tolerance::*;
-use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::{Image, PhotonMap};
 
 /// What a comparison found.

@@ -8,8 +8,8 @@
 //! no mirror or glass (no caustics at all).
 
 use glam::Vec3;
-use prismatic_core::dispersion::{Dispersion, Glass};
-use prismatic_core::scene::{
+use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, Filter, Light, Material, MaterialKind, Object, RenderSettings, Sampler, Shape,
     Texture, Wrap,
 };
@@ -237,8 +237,8 @@ mod tests {
     fn the_sphere_mesh_is_closed_and_wound_outward() {
         let Shape::Mesh { positions, triangles, .. } = sphere_mesh(Vec3::Y, 0.8, 6) else { unreachable!() };
         assert_eq!(triangles.len(), 4 * 36);
-        assert_eq!(prismatic_core::mesh::open_edge(&positions, &triangles), None);
-        for t in prismatic_core::geometry::mesh_triangles(&positions, &triangles) {
+        assert_eq!(prismatic_core::model::mesh::open_edge(&positions, &triangles), None);
+        for t in prismatic_core::geometry::primitive::mesh_triangles(&positions, &triangles) {
             let centroid = t.v0 + (t.e1 + t.e2) / 3.0;
             assert!(t.normal.dot(centroid - Vec3::Y) > 0.0, "inward triangle at {centroid}");
         }

@@ -7,7 +7,7 @@
 
 use crate::compare::{compare_images, compare_maps};
 use crate::scenes;
-use prismatic_core::scene::{Light, PhotonSequence, RadiusMode, ViewPaths};
+use prismatic_core::model::scene::{Light, PhotonSequence, RadiusMode, ViewPaths};
 use prismatic_core::{
     Accumulation, Backend, BackendError, BandSpec, Change, NoProgress, PhotonMap, PreparedScene, ReferenceBackend,
     Render, Scene,

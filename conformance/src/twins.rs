@@ -12,8 +12,9 @@
 
 use glam::{DVec3, Vec3};
 use prismatic_core::Estimator;
-use prismatic_core::gather::{GatherSums, finish};
-use prismatic_core::optics::{cos2_transmitted, fresnel, interface, reflect, refract};
+use prismatic_core::optics::fresnel::{cos2_transmitted, fresnel, interface, reflect, refract};
+use prismatic_core::optics::scatter::{DielectricBranches, scatter_dielectric, split_dielectric};
+use prismatic_core::photons::gather::{GatherSums, finish};
 use proptest::prelude::*;
 
 /// A ray arriving at a dielectric surface.
@@ -223,7 +224,58 @@ pub fn fixed_input() -> impl Strategy<Value = f32> {
 }
 
 /// The core's fixed-point value of `x` at `2^shift` units (what
-/// `prismatic_core::accumulation::to_fixed` does at shift 32).
+/// `prismatic_core::render::accumulation::to_fixed` does at shift 32).
 pub fn fixed_answer(x: f32, shift: i32) -> i64 {
     (f64::from(x) * 2f64.powi(shift)) as i64
+}
+
+/// A path leaving glass: a [`SurfaceCase`] at a surface point, with the
+/// number that chooses its Fresnel branch.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScatterCase {
+    /// The ray and the surface.
+    pub surface: SurfaceCase,
+    /// Where the ray meets the surface (near the origin and far from it:
+    /// the offset off the surface grows with the coordinates).
+    pub point: Vec3,
+    /// The branch number in [0, 1).
+    pub u: f32,
+}
+
+impl ScatterCase {
+    /// The core's one branch (`optics::scatter::scatter_dielectric`): (origin, direction).
+    pub fn scattered(&self) -> (Vec3, Vec3) {
+        let s = &self.surface;
+        let ray = scatter_dielectric(s.d, self.point, s.outward, s.ior, self.u);
+        (ray.origin, ray.direction)
+    }
+
+    /// The core's two branches (`optics::scatter::split_dielectric`).
+    pub fn branches(&self) -> DielectricBranches {
+        let s = &self.surface;
+        split_dielectric(s.d, self.point, s.outward, s.ior)
+    }
+}
+
+/// Paths leaving glass: any [`surface_case`], at points from 1e-3 to 1e4
+/// from the origin, with branch numbers anywhere in [0, 1) and right at
+/// the Fresnel reflectance (where the choice flips).
+pub fn scatter_case() -> impl Strategy<Value = ScatterCase> {
+    let coordinate = prop_oneof![3 => -10.0f32..10.0, 1 => (-3.0f32..4.0, any::<bool>()).prop_map(|(e, neg)| if neg { -10f32.powf(e) } else { 10f32.powf(e) })];
+    (
+        surface_case(),
+        [coordinate.clone(), coordinate.clone(), coordinate],
+        prop_oneof![4 => 0.0f32..1.0, 1 => Just(-1.0f32)],
+    )
+        .prop_map(|(surface, point, u)| {
+            // u = -1 stands for "exactly R": the smallest number that refracts.
+            let u = if u < 0.0 { surface.answer().fresnel } else { u };
+            ScatterCase { surface, point: Vec3::from(point), u }
+        })
+}
+
+/// A pixel's branch numbers (`PixelSampler::branch`): seed, pixel, pass,
+/// hero path and bounce, over the whole range each may take.
+pub fn branch_case() -> impl Strategy<Value = (u32, u32, u32, u32, u32)> {
+    (any::<u32>(), 0u32..8_294_400, prop_oneof![0u32..4096, any::<u32>()], 0u32..4, 0u32..64)
 }

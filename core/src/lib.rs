@@ -9,15 +9,24 @@
 //! knows nothing of threads, SIMD, GPUs or files (with `std`, a mesh's
 //! hierarchy is built by obvhs, which may use threads of its own).
 //!
-//! Its modules form four layers, each using only the ones above it (and
-//! [`progress`], a leaf every layer may use):
+//! Its modules live in eight layer folders. A folder uses only the folders
+//! below it in this table (a test, `tests/layers.rs`, reads the sources and
+//! keeps it true), so a new module's place follows from what it uses:
 //!
-//! | layer | modules | what |
-//! |---|---|---|
-//! | model | `scene`, `validate`, `bands`, `cie`, `color`, `dispersion`, `image`, `mesh` | what the user described |
-//! | kernels | `math`, `rng`, `sobol`, `tolerance`, `ray`, `triangle`, `texture`, `bvh`, `bvh_build`, `geometry`, `camera`, `optics`, `photon`, `grid`, `gather`, `visible` | pure functions, mirrored in packets and WGSL |
-//! | plan | `surface`, `reach`, `projection`, `effects`, `prepared`, `schedule` | what a render of this scene will do |
-//! | pipeline | `emit`, `trace`, `view`, `connect`, `accumulation`, `protocol`, `host`, `reference` | the reference backend and the protocol |
+//! | layer | folder | modules | what |
+//! |---|---|---|---|
+//! | 7 | [`render`] | `visible`, `view`, `accumulation`, `protocol`, `host`, `reference` | the camera's side, the exact sums, the render protocol and the scalar reference backend |
+//! | 6 | [`photons`] | `emit`, `trace`, `grid`, `gather`, `light_tracing` | the light's side: photons from emission to the gather and to the camera |
+//! | 5 | [`plan`] | `reach`, `projection`, `effects`, `prepared`, `schedule` | what a render of this scene will do |
+//! | 4 | [`optics`] | `fresnel`, `absorption`, `surface`, `scatter` | every scattering function, and the one branch choice at glass |
+//! | 3 | [`geometry`] | `ray`, `triangle`, `primitive`, `bvh`, `bvh_build`, `camera`, `texture` | rays, intersections, hierarchies, the camera, textures |
+//! | 2 | [`sampling`] | `sobol`, `pixel_sample` | the low-discrepancy numbers paths draw |
+//! | 1 | [`model`] | `scene`, `validate`, `mesh`, `bands`, `cie`, `color`, `dispersion`, `image`, `photon` | what the user described and what backends exchange |
+//! | 0 | [`util`] | `math`, `rng`, `tolerance`, `progress` | float math with and without `std`, random numbers, tolerances, progress |
+//!
+//! Layers 0–4 are pure functions that the CPU's packets and the WGSL
+//! shaders mirror (the twin tests compare them); layers 5–7 are the scalar
+//! pipeline, the definition of right that every backend is compared with.
 
 #![cfg_attr(not(feature = "std"), no_std)]
 
@@ -26,66 +35,29 @@ compile_error!("feature `std` cannot be used on a bare-metal target: build with 
 
 extern crate alloc;
 
-pub mod progress;
-
-pub mod bands;
-pub mod cie;
-pub mod color;
-pub mod dispersion;
-pub mod image;
-pub mod mesh;
-pub mod scene;
-pub mod validate;
-
-pub mod bvh;
-pub mod bvh_build;
-pub mod camera;
-pub mod gather;
 pub mod geometry;
-pub mod grid;
-pub mod math;
+pub mod model;
 pub mod optics;
-pub mod photon;
-pub mod pixel_sample;
-pub mod ray;
-pub mod rng;
-pub mod sobol;
-pub mod texture;
-pub mod tolerance;
-pub mod triangle;
-pub mod visible;
+pub mod photons;
+pub mod plan;
+pub mod render;
+pub mod sampling;
+pub mod util;
 
-pub mod absorption;
-pub mod effects;
-pub mod prepared;
-pub mod projection;
-pub mod reach;
-pub mod schedule;
-pub mod surface;
-
-pub mod accumulation;
-pub mod connect;
-pub mod emit;
-pub mod host;
-pub mod protocol;
-pub mod reference;
-pub mod trace;
-pub mod view;
-
-pub use accumulation::{Accumulation, MergeError};
-pub use bands::{Band, BandSpec, BandTable};
-pub use dispersion::{Dispersion, Glass};
-pub use effects::{Effect, EffectPlan};
-pub use image::Image;
-pub use photon::{Photon, PhotonMap, TraceStats};
-pub use prepared::PreparedScene;
-pub use progress::{NoProgress, Progress, Stage, StageTimes};
-pub use protocol::{Backend, BackendError, Change, Render, RenderStats};
-pub use reference::ReferenceBackend;
-pub use scene::{
+pub use model::bands::{Band, BandSpec, BandTable};
+pub use model::dispersion::{Dispersion, Glass};
+pub use model::image::Image;
+pub use model::photon::{Photon, PhotonMap, TraceStats};
+pub use model::scene::{
     Camera, Checker, Estimator, Light, Material, Object, PhotonSequence, RadiusMode, RenderSettings, Scene, SceneError,
     Shape, Texture, ViewPaths, WavelengthSampling,
 };
+pub use plan::effects::{Effect, EffectPlan};
+pub use plan::prepared::PreparedScene;
+pub use render::accumulation::{Accumulation, MergeError};
+pub use render::protocol::{Backend, BackendError, Change, Render, RenderStats};
+pub use render::reference::ReferenceBackend;
+pub use util::progress::{NoProgress, Progress, Stage, StageTimes};
 
 /// Re-exported so that users of the scene model need not depend on glam themselves.
 pub use glam::Vec3;

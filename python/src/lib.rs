@@ -10,7 +10,7 @@ use prismatic_cli::render_job::{JobProgress, RenderJob, finite_image};
 use prismatic_cli::scene_file::{self, SceneDocument, SceneFileError};
 use prismatic_cli::settings::{Settings, SettingsSource};
 use prismatic_cli::{load_scene, scene_file::parse_bands};
-use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::{Image, NoProgress, PreparedScene, Progress, Stage};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;

@@ -3,7 +3,7 @@
 //! read-outs most tests want, through the render protocol: a pass's photon
 //! map, and the paper's fixed-radius frame.
 
-use prismatic_core::scene::RadiusMode;
+use prismatic_core::model::scene::RadiusMode;
 use prismatic_core::{Backend, Image, NoProgress, PhotonMap, PreparedScene, ReferenceBackend};
 use prismatic_cpu::CpuBackend;
 use prismatic_gpu::{AdapterChoice, GpuBackend, GpuOptions};

@@ -7,9 +7,9 @@ pub mod random_scene;
 
 pub use prismatic_conformance::tolerance;
 
-use prismatic_core::bands::BandSpec;
-use prismatic_core::dispersion::Dispersion;
-use prismatic_core::scene::{Camera, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape};
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::dispersion::Dispersion;
+use prismatic_core::model::scene::{Camera, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape};
 use prismatic_core::{PreparedScene, Scene, Vec3};
 
 /// A small render setting for tests: the paper's method at 32×32 pixels,

@@ -4,10 +4,10 @@
 //! A pure function of the seed.
 
 use crate::{camera, glass, white};
-use prismatic_core::bands::BandSpec;
-use prismatic_core::dispersion::{Dispersion, Glass};
-use prismatic_core::rng::random_f32;
-use prismatic_core::scene::{Checker, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape};
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::scene::{Checker, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape};
+use prismatic_core::util::rng::random_f32;
 use prismatic_core::{Scene, Vec3};
 
 struct Dice {

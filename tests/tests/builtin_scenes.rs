@@ -2,15 +2,15 @@
 //! spectrum in wavelength order, white light recombined, rainbows at the
 //! Descartes angles. Small renders; the physics suite checks the numbers finely.
 
-use prismatic_core::photon::WHITE_BAND;
-use prismatic_core::scene::Light;
+use prismatic_core::model::photon::WHITE_BAND;
+use prismatic_core::model::scene::Light;
 use prismatic_core::{Backend, NoProgress, PhotonMap, PreparedScene, ReferenceBackend, Vec3};
 use prismatic_tests::backends::fixed;
 use prismatic_tests::descartes_deg;
 
 /// The scalar reference's photon tracer (the scene's own seed).
 fn trace_photons(scene: &PreparedScene) -> PhotonMap {
-    prismatic_core::trace::trace_photons(scene, &mut NoProgress)
+    prismatic_core::photons::trace::trace_photons(scene, &mut NoProgress)
 }
 
 fn builtin(name: &str, photons: u32, side: u32) -> PreparedScene {
@@ -91,7 +91,7 @@ fn rainbow_bows_peak_at_the_descartes_angles() {
     let map = trace_photons(&scene);
     for (band, k) in [(2usize, 1u32), (12, 1), (2, 2), (12, 2)] {
         let n = f64::from(match &scene.surfaces[1] {
-            prismatic_core::surface::Surface::Dielectric(g) => g.band_ior[band],
+            prismatic_core::optics::surface::Surface::Dielectric(g) => g.band_ior[band],
             _ => unreachable!("object 1 is the water drop"),
         });
         // Angle between the returning photon and the beam's reverse (+z).

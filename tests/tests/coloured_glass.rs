@@ -3,11 +3,11 @@
 //! Fresnel losses and inner reflections of both faces), and a view ray
 //! through it keeps that fraction of each RGB channel.
 
-use prismatic_core::bands::BandSpec;
-use prismatic_core::dispersion::Dispersion;
-use prismatic_core::photon::WHITE_BAND;
-use prismatic_core::scene::{Attenuation, Light, Material, MaterialKind, Object, Shape};
-use prismatic_core::surface::Surface;
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::dispersion::Dispersion;
+use prismatic_core::model::photon::WHITE_BAND;
+use prismatic_core::model::scene::{Attenuation, Light, Material, MaterialKind, Object, Shape};
+use prismatic_core::optics::surface::Surface;
 use prismatic_core::{PreparedScene, Scene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
 use prismatic_tests::{camera, prepare, settings, white};
@@ -102,7 +102,7 @@ fn view_scene(ior: Dispersion, bands: BandSpec) -> PreparedScene {
     (render.width, render.height, render.background) = (3, 3, Vec3::ONE);
     prepare(Scene {
         render,
-        camera: prismatic_core::scene::Camera {
+        camera: prismatic_core::model::scene::Camera {
             position: Vec3::new(-5.0, 0.0, 0.0),
             look_at: Vec3::ZERO,
             up: Vec3::Z,

@@ -2,10 +2,10 @@
 //! skips nothing that would show, and says why. Every test runs on every
 //! backend.
 
-use prismatic_core::bands::BandSpec;
-use prismatic_core::dispersion::{Dispersion, Glass};
-use prismatic_core::scene::{Light, Object, Shape};
-use prismatic_core::surface::Surface;
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::scene::{Light, Object, Shape};
+use prismatic_core::optics::surface::Surface;
 use prismatic_core::{Image, NoProgress, PreparedScene, ReferenceBackend, Scene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
 use prismatic_tests::random_scene::random_scene;
@@ -68,7 +68,7 @@ fn constant_index_glass_traces_white_photons_only_with_a_seventh_of_the_segments
         let (white_map, white_image) = frame(backend.as_mut(), &scene);
         let (split_map, split_image) = frame(backend.as_mut(), &split);
         let name = backend.name();
-        assert!(white_map.photons.iter().all(|p| p.band == prismatic_core::photon::WHITE_BAND), "{name}");
+        assert!(white_map.photons.iter().all(|p| p.band == prismatic_core::model::photon::WHITE_BAND), "{name}");
         assert!(split_map.photons.iter().all(|p| p.band < 7), "{name}");
         // One white path against seven band paths behind the first hit: 3 segments against 1 + 7 × 2.
         let ratio = white_map.stats.segments as f64 / split_map.stats.segments as f64;
@@ -112,7 +112,7 @@ fn the_plan_never_skips_light_that_would_show() {
     for seed in 1..=60 {
         let mut s = random_scene(seed, 1500, 24);
         if seed % 2 == 0 {
-            let u = |d: u32| prismatic_core::rng::random_f32(seed, 77, d) * 2.0 - 1.0;
+            let u = |d: u32| prismatic_core::util::rng::random_f32(seed, 77, d) * 2.0 - 1.0;
             let aim = Vec3::new(u(0) * 6.0, u(1) * 2.0 - 1.0, u(2) * 6.0);
             match &mut s.lights[0] {
                 Light::Spot { position, direction, .. } | Light::Beam { position, direction, .. } => {
@@ -188,6 +188,6 @@ fn a_beam_that_lies_wholly_on_its_prism_has_nothing_to_aim() {
         "{}",
         scene.plan.projection.reason
     );
-    let map = prismatic_core::trace::trace_photons(&scene, &mut NoProgress);
+    let map = prismatic_core::photons::trace::trace_photons(&scene, &mut NoProgress);
     assert_eq!(map.stats.specular_paths, 2_000, "every photon of the beam already meets the prism");
 }

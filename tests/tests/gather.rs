@@ -1,11 +1,11 @@
 //! The gather estimators against fields of photons with a known answer.
 
-use prismatic_core::bands::{BandSpec, BandTable};
-use prismatic_core::gather::{GatherQuery, GatherSums, finish, gather};
-use prismatic_core::grid::PhotonGrid;
-use prismatic_core::photon::{WHITE_BAND, oct_encode};
-use prismatic_core::rng::random_f32;
-use prismatic_core::scene::Estimator;
+use prismatic_core::model::bands::{BandSpec, BandTable};
+use prismatic_core::model::photon::{WHITE_BAND, oct_encode};
+use prismatic_core::model::scene::Estimator;
+use prismatic_core::photons::gather::{GatherQuery, GatherSums, finish, gather};
+use prismatic_core::photons::grid::PhotonGrid;
+use prismatic_core::util::rng::random_f32;
 use prismatic_core::{Photon, Vec3};
 
 /// `count` photons spread uniformly over the square [-1, 1]² of the plane

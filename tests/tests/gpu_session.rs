@@ -6,7 +6,7 @@
 //! bindings than the backend says it needs. The protocol's promises are the
 //! conformance suite's (backend-gpu/tests/conformance.rs).
 
-use prismatic_core::scene::Light;
+use prismatic_core::model::scene::Light;
 use prismatic_core::{Backend, Image, NoProgress, PreparedScene, ReferenceBackend, Render, Vec3};
 use prismatic_gpu::{AdapterChoice, GpuContext, GpuOptions, GpuSession};
 use prismatic_tests::builtin;

@@ -5,15 +5,15 @@
 //! degenerate triangles, empty gathers, more than 2^24 photons in one gather,
 //! photons on grid cell borders, 1 and 256 bands.
 
-use prismatic_core::bands::BandSpec;
-use prismatic_core::dispersion::{Dispersion, Glass};
-use prismatic_core::gather::{GatherQuery, gather};
-use prismatic_core::geometry::{Primitive, Ray, prism_faces};
-use prismatic_core::grid::PhotonGrid;
-use prismatic_core::photon::{Photon, PhotonMap, WHITE_BAND, oct_encode};
-use prismatic_core::prepared::offset_origin;
-use prismatic_core::scene::{Estimator, Light, MaterialKind, Object, Shape};
-use prismatic_core::surface::Surface;
+use prismatic_core::geometry::primitive::{Primitive, Ray, prism_faces};
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::photon::{Photon, PhotonMap, WHITE_BAND, oct_encode};
+use prismatic_core::model::scene::{Estimator, Light, MaterialKind, Object, Shape};
+use prismatic_core::optics::scatter::offset_origin;
+use prismatic_core::optics::surface::Surface;
+use prismatic_core::photons::gather::{GatherQuery, gather};
+use prismatic_core::photons::grid::PhotonGrid;
 use prismatic_core::{Backend, BackendError, BandTable, Image, NoProgress, PreparedScene, Scene, Vec3};
 use prismatic_cpu::CpuGrid;
 use prismatic_tests::backends::{every_backend, fixed, frame, trace};

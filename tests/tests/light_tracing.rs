@@ -1,10 +1,10 @@
 //! Light tracing: the caustic photons the camera sees directly, connected
-//! to the camera (`prismatic_core::connect`), and only the rest gathered;
+//! to the camera (`prismatic_core::photons::light_tracing`), and only the rest gathered;
 //! its error falls as 1/√N (unbiased, no radius); and combined with the
 //! gather behind mirrors and glass, no path is counted twice.
 
 use prismatic_conformance::compare::{caustic_of, caustic_rel_rmse};
-use prismatic_core::connect::splat_photons;
+use prismatic_core::photons::light_tracing::splat_photons;
 use prismatic_core::{Backend, NoProgress, PreparedScene, ReferenceBackend, Render};
 use prismatic_cpu::CpuBackend;
 use prismatic_tests::builtin;

@@ -2,11 +2,11 @@
 //! light exactly like the analytic prism.
 
 use prismatic_conformance::compare::image_correlation;
-use prismatic_core::bands::BandSpec;
-use prismatic_core::dispersion::Glass;
-use prismatic_core::geometry::Primitive;
-use prismatic_core::scene::Shape;
-use prismatic_core::trace::trace_photons;
+use prismatic_core::geometry::primitive::Primitive;
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::dispersion::Glass;
+use prismatic_core::model::scene::Shape;
+use prismatic_core::photons::trace::trace_photons;
 use prismatic_core::{Scene, Vec3};
 use prismatic_tests::{PrismExperiment, prepare, settings};
 

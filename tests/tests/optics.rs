@@ -3,7 +3,7 @@
 //! orientations, angles of incidence down to grazing (cos θ = 1e-7).
 
 use prismatic_core::Vec3;
-use prismatic_core::optics::{fresnel, reflect, refract};
+use prismatic_core::optics::fresnel::{fresnel, reflect, refract};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 

@@ -59,7 +59,7 @@ fn cpu_photon_map_and_image_do_not_depend_on_the_thread_count() {
 
 #[test]
 fn cpu_matches_the_reference_with_projection_maps_on_every_light_kind() {
-    use prismatic_core::scene::{Light, Object, Shape};
+    use prismatic_core::model::scene::{Light, Object, Shape};
     use prismatic_core::{Glass, Vec3};
     use prismatic_tests::{camera, glass, settings, white};
     // A wide beam, a wide spot and a point light over two small glass spheres:

@@ -148,7 +148,7 @@ fn gpu_makes_room_for_many_visible_points() {
     let mut doc = load_scene("sphere").unwrap();
     doc.scene.render.photons = 4_000;
     (doc.scene.render.width, doc.scene.render.height) = (48, 48);
-    doc.scene.render.bands = prismatic_core::bands::BandSpec::Physical(16);
+    doc.scene.render.bands = prismatic_core::model::bands::BandSpec::Physical(16);
     let scene = PreparedScene::new(doc.scene).unwrap();
     check("gpu-sphere-16-bands", &scene, &mut gpu);
     let mut session = gpu.session(&scene).unwrap();

@@ -1,11 +1,11 @@
 //! The photon pass: splitting only at dispersive interfaces, bit-for-bit
 //! determinism, canonical order, and flux bookkeeping.
 
-use prismatic_core::bands::BandSpec;
-use prismatic_core::dispersion::{Dispersion, Glass};
-use prismatic_core::photon::WHITE_BAND;
-use prismatic_core::scene::{Light, Material, MaterialKind, Object, Shape};
-use prismatic_core::trace::trace_photons;
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::photon::WHITE_BAND;
+use prismatic_core::model::scene::{Light, Material, MaterialKind, Object, Shape};
+use prismatic_core::photons::trace::trace_photons;
 use prismatic_core::{PhotonMap, Scene, Vec3};
 use prismatic_tests::{camera, glass, prepare, settings, white};
 
@@ -112,7 +112,7 @@ fn tracing_in_chunks_gives_the_same_map_as_in_one_go() {
     let mut chunked = PhotonMap::default();
     for start in (0..3000).step_by(700) {
         let end = (start + 700).min(3000);
-        prismatic_core::trace::trace_range(&scene, start..end, &mut chunked.photons, &mut chunked.stats);
+        prismatic_core::photons::trace::trace_range(&scene, start..end, &mut chunked.photons, &mut chunked.stats);
     }
     assert_eq!(bytemuck_bytes(&whole), bytemuck_bytes(&chunked));
 }

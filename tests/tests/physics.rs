@@ -3,11 +3,11 @@
 //! Descartes angles, recombination through an inverted prism, and energy
 //! conservation with a closed catcher.
 
-use prismatic_core::bands::BandSpec;
-use prismatic_core::dispersion::{Dispersion, Glass};
-use prismatic_core::photon::{PhotonMap, WHITE_BAND};
-use prismatic_core::scene::{Light, RenderSettings};
-use prismatic_core::surface::Surface;
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::photon::{PhotonMap, WHITE_BAND};
+use prismatic_core::model::scene::{Light, RenderSettings};
+use prismatic_core::optics::surface::Surface;
 use prismatic_core::{PreparedScene, Scene};
 use prismatic_tests::backends::{every_backend, trace};
 use prismatic_tests::{PrismExperiment, descartes_deg, prepare, settings, snell_path_2d, sphere_in_a_catcher};

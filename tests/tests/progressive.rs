@@ -3,8 +3,8 @@
 //! and one pass at the scene's radius is the paper's frame. (Exact merges,
 //! pass order and updates are the conformance suite's.)
 
-use prismatic_core::host::HostRender;
-use prismatic_core::reference::ScalarKernels;
+use prismatic_core::render::host::HostRender;
+use prismatic_core::render::reference::ScalarKernels;
 use prismatic_core::{Backend, Image, NoProgress, PreparedScene, ReferenceBackend, Render};
 use prismatic_cpu::CpuBackend;
 use prismatic_tests::backends::{every_backend, fixed};
@@ -122,11 +122,11 @@ fn one_pass_at_the_scenes_radius_is_the_paper_frame() {
     for name in ["sphere", "prism"] {
         let scene = fixed(&small(name, 20_000));
         let mut render = progressive(&mut ReferenceBackend, &scene, 1);
-        let pass = prismatic_core::schedule::pass_scene(&scene, 0);
-        let map = prismatic_core::trace::trace_photons(&pass, &mut NoProgress);
-        let view = prismatic_core::view::visible_points(&scene, 0, &mut NoProgress);
+        let pass = prismatic_core::plan::schedule::pass_scene(&scene, 0);
+        let map = prismatic_core::photons::trace::trace_photons(&pass, &mut NoProgress);
+        let view = prismatic_core::render::view::visible_points(&scene, 0, &mut NoProgress);
         let radii = vec![scene.scene.render.radius; view.points.len()];
-        let found = prismatic_core::reference::gather_pass(&pass, &map, &view.points, &radii);
+        let found = prismatic_core::render::reference::gather_pass(&pass, &map, &view.points, &radii);
         let mut sums = prismatic_core::Accumulation::new(80, 80);
         sums.add_pass(0, &view.points, &found.irradiance, &found.splats);
         assert_eq!(render.image().unwrap(), sums.image(&view.base), "{name}");

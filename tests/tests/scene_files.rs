@@ -3,9 +3,9 @@
 
 use prismatic_cli::builtin::BUILTIN_SCENES;
 use prismatic_cli::scene_file::{SceneFileError, parse};
-use prismatic_core::bands::BandSpec;
-use prismatic_core::dispersion::{Dispersion, Glass};
-use prismatic_core::scene::{Estimator, MaterialKind, PhotonSequence, Shape, WavelengthSampling};
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::scene::{Estimator, MaterialKind, PhotonSequence, Shape, WavelengthSampling};
 
 const MINIMAL: &str = r#"
 [camera]
@@ -243,7 +243,7 @@ fn measured_tables_are_read_from_csv_next_to_the_scene() {
         panic!("{:?}", g.kind)
     };
     // Linear between rows 10 nm apart: within 2e-5 of the Sellmeier curve.
-    let (bands, bk7) = (prismatic_core::bands::BandTable::new(BandSpec::Physical(64)), Glass::Bk7.dispersion());
+    let (bands, bk7) = (prismatic_core::model::bands::BandTable::new(BandSpec::Physical(64)), Glass::Bk7.dispersion());
     for b in 0..bands.len() {
         let (got, want) = (table.ior_for_band(&bands, b), bk7.ior_for_band(&bands, b));
         assert!((got - want).abs() < 2e-5, "band {b}: {got} vs {want}");
@@ -311,7 +311,7 @@ fn a_sun_parses_and_needs_a_direction_and_a_positive_irradiance() {
     let source = MINIMAL.replace("kind = \"point\"\nposition = [0, 4, 0]\npower = 10", sun);
     let doc = parse(&source, "test.toml", None).expect("parses");
     doc.validate().expect("valid");
-    assert!(matches!(doc.scene.lights[0], prismatic_core::scene::Light::Sun { irradiance: 5.0, .. }));
+    assert!(matches!(doc.scene.lights[0], prismatic_core::model::scene::Light::Sun { irradiance: 5.0, .. }));
     assert_error(
         &source.replace("irradiance = 5", "irradiance = 0"),
         "light[0].irradiance",
@@ -341,7 +341,7 @@ fn write_png(dir: &std::path::Path, name: &str) {
 
 #[test]
 fn textures_are_read_beside_the_scene_with_their_sampler_and_the_mesh_uvs() {
-    use prismatic_core::scene::{Filter, Wrap};
+    use prismatic_core::model::scene::{Filter, Wrap};
     let dir = tempfile::tempdir().unwrap();
     write_png(dir.path(), "tiles.png");
     let source = textured(

@@ -1,8 +1,8 @@
 //! Band tables and dispersion models against the paper's tables and published indices.
 
 use prismatic_core::Vec3;
-use prismatic_core::bands::{BandSpec, BandTable, MAX_BANDS};
-use prismatic_core::dispersion::{Dispersion, Glass};
+use prismatic_core::model::bands::{BandSpec, BandTable, MAX_BANDS};
+use prismatic_core::model::dispersion::{Dispersion, Glass};
 
 #[test]
 fn paper3_is_table_1() {

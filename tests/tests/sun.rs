@@ -4,9 +4,9 @@
 //! flux E × their cross-sections (none wasted on empty sky).
 
 use core::f32::consts::PI;
-use prismatic_core::bands::BandSpec;
-use prismatic_core::dispersion::Dispersion;
-use prismatic_core::scene::{Camera, Light, Material, MaterialKind, Object, Shape};
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::dispersion::Dispersion;
+use prismatic_core::model::scene::{Camera, Light, Material, MaterialKind, Object, Shape};
 use prismatic_core::{PreparedScene, Scene, Vec3};
 use prismatic_tests::backends::{every_backend, trace};
 use prismatic_tests::{glass, prepare, settings};

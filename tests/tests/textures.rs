@@ -6,10 +6,12 @@
 //! without texture coordinates is refused with the material named.
 
 use core::f32::consts::PI;
-use prismatic_core::bands::BandSpec;
-use prismatic_core::camera::PinholeCamera;
-use prismatic_core::scene::{Camera, Filter, Light, Material, MaterialKind, Object, Sampler, Shape, Texture, Wrap};
-use prismatic_core::texture::sample;
+use prismatic_core::geometry::camera::PinholeCamera;
+use prismatic_core::geometry::texture::sample;
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::scene::{
+    Camera, Filter, Light, Material, MaterialKind, Object, Sampler, Shape, Texture, Wrap,
+};
 use prismatic_core::{PreparedScene, Scene, Vec3};
 use prismatic_tests::backends::every_backend;
 use prismatic_tests::settings;
@@ -117,7 +119,7 @@ fn each_texel_shows_where_its_coordinates_put_it() {
         image[row * SIDE as usize + col]
     };
     let lit = 0.9 * IRRADIANCE / PI;
-    let grey = prismatic_core::texture::srgb_to_linear(188);
+    let grey = prismatic_core::geometry::texture::srgb_to_linear(188);
     for mut backend in every_backend() {
         let name = backend.name();
         let base = backend.prepare(&scene).unwrap().base().unwrap();

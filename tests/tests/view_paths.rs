@@ -4,8 +4,8 @@
 //! its exact pixel coverage on every backend, and a scene with glass against
 //! its supersampled image.
 
-use prismatic_core::camera::PinholeCamera;
-use prismatic_core::scene::{Light, Object, Shape, ViewPaths};
+use prismatic_core::geometry::camera::PinholeCamera;
+use prismatic_core::model::scene::{Light, Object, Shape, ViewPaths};
 use prismatic_core::{Backend, Image, NoProgress, Scene, Vec3};
 use prismatic_tests::backends::every_backend;
 use prismatic_tests::{builtin, camera, prepare, settings, white};

@@ -3,10 +3,10 @@
 //! wavelengths. The physics of each against closed forms, their
 //! expectations against each other, and every backend against the reference.
 
-use prismatic_core::photon::WHITE_BAND;
-use prismatic_core::scene::HERO_WAVELENGTHS;
-use prismatic_core::surface::Surface;
-use prismatic_core::trace::{sample_band, split_bands};
+use prismatic_core::model::photon::WHITE_BAND;
+use prismatic_core::model::scene::HERO_WAVELENGTHS;
+use prismatic_core::optics::surface::Surface;
+use prismatic_core::photons::trace::{sample_band, split_bands};
 use prismatic_core::{Backend, BandSpec, Glass, NoProgress, PreparedScene, ReferenceBackend, WavelengthSampling};
 use prismatic_tests::backends::{every_backend, fixed, frame, trace};
 use prismatic_tests::parity::{Output, assert_parity};
@@ -31,8 +31,8 @@ fn single_band_photons_carry_the_whole_flux_and_keep_one_band() {
         let mut render = settings(20_000, bands);
         render.wavelengths = sampling;
         let scene = prepare(exp.scene(Glass::Bk7.dispersion(), render));
-        let map = prismatic_core::trace::trace_photons(&scene, &mut NoProgress);
-        let flux = prismatic_core::trace::photon_flux(&scene);
+        let map = prismatic_core::photons::trace::trace_photons(&scene, &mut NoProgress);
+        let flux = prismatic_core::photons::trace::photon_flux(&scene);
         // One path per emitted photon: nothing splits.
         assert_eq!(map.stats.paths, map.stats.emitted, "{sampling:?}");
         let mut per_band = [0u32; 16];
@@ -61,9 +61,9 @@ fn hero_photons_split_into_one_wavelength_in_each_share_of_the_spectrum() {
     let mut render = settings(20_000, bands);
     render.wavelengths = WavelengthSampling::Hero;
     let scene = prepare(exp.scene(Glass::Bk7.dispersion(), render));
-    let map = prismatic_core::trace::trace_photons(&scene, &mut NoProgress);
+    let map = prismatic_core::photons::trace::trace_photons(&scene, &mut NoProgress);
     let (m, n) = (HERO_WAVELENGTHS as usize, scene.bands.len());
-    let flux = prismatic_core::trace::photon_flux(&scene) / m as f32;
+    let flux = prismatic_core::photons::trace::photon_flux(&scene) / m as f32;
     // Every emitted photon meets the prism: M paths each.
     assert_eq!(map.stats.paths, map.stats.emitted * m as u64);
     let mut per_share = vec![0u32; m];
@@ -104,7 +104,7 @@ fn continuous_photons_deviate_as_snell_law_says_at_their_own_wavelength() {
             let scene = prepare(exp.scene(glass.clone(), render.clone()));
             let map = trace(backend.as_mut(), &scene);
             // The map is pass 0's: its wavelengths are drawn with pass 0's seed.
-            let pass = prismatic_core::schedule::pass_scene(&scene, 0);
+            let pass = prismatic_core::plan::schedule::pass_scene(&scene, 0);
             let phi = exp.beam_angle();
             let mut spread = (f64::INFINITY, f64::NEG_INFINITY);
             let mut checked = 0;
@@ -141,7 +141,7 @@ fn continuous_index_follows_the_glass_curve_across_each_band() {
     for glass in [Glass::Bk7, Glass::Water, Glass::Sf11] {
         let mut doc = builtin("prism", |r| r.bands = BandSpec::Physical(16)).scene;
         for m in &mut doc.materials {
-            if let prismatic_core::scene::MaterialKind::Dielectric { dispersion, .. } = &mut m.kind {
+            if let prismatic_core::model::scene::MaterialKind::Dielectric { dispersion, .. } = &mut m.kind {
                 *dispersion = glass.dispersion();
             }
         }

@@ -29,9 +29,9 @@ use crate::scene::{EncodedScene, SceneBuffers};
 use crate::timing::StageTimer;
 use crate::trace::{PhotonPass, slots_per_emission};
 use points::PointChunks;
-use prismatic_core::accumulation::{contains_pass, insert_passes};
-use prismatic_core::scene::ViewPaths;
-use prismatic_core::schedule::pass_scene;
+use prismatic_core::model::scene::ViewPaths;
+use prismatic_core::plan::schedule::pass_scene;
+use prismatic_core::render::accumulation::{contains_pass, insert_passes};
 use prismatic_core::{
     Accumulation, BackendError, Change, Image, PhotonMap, PreparedScene, Progress, Render, RenderStats, StageTimes,
 };

@@ -1,5 +1,5 @@
 //! A session's photon passes on the device, on the core's schedule
-//! (`prismatic_core::schedule`): the pilot pass that gives each visible
+//! (`prismatic_core::plan::schedule`): the pilot pass that gives each visible
 //! point its first radius (progressive radii only), and pass `k`: its
 //! photons traced and gridded at every built level, gathered at the points
 //! level by level (each level's gather dispatched over its own points, in
@@ -13,9 +13,9 @@ use crate::layout::{RunStats, SessionParams};
 use crate::levels;
 use crate::pipelines::{dispatch, dispatch_indirect};
 use crate::shaders::WORKGROUP_SIZE;
-use prismatic_core::scene::{Estimator, RadiusMode};
-use prismatic_core::schedule::{GRID_LEVELS, PilotScale, pass_scene, pilot_scene};
-use prismatic_core::trace::photon_flux;
+use prismatic_core::model::scene::{Estimator, RadiusMode};
+use prismatic_core::photons::trace::photon_flux;
+use prismatic_core::plan::schedule::{GRID_LEVELS, PilotScale, pass_scene, pilot_scene};
 use prismatic_core::{BackendError, NoProgress, PreparedScene, Progress, Stage};
 
 /// Units a gather's largest possible term is worth at most: 2^30 of them

@@ -14,7 +14,7 @@ use crate::layout::VisiblePoint;
 use crate::pixels::{PIXEL_BYTES, pixel_chunks, pixels_per_chunk};
 use crate::readback::PendingRead;
 use prismatic_core::BackendError;
-use prismatic_core::schedule::GRID_LEVELS;
+use prismatic_core::plan::schedule::GRID_LEVELS;
 
 /// Bytes of a visible point.
 pub const POINT_BYTES: u64 = size_of::<VisiblePoint>() as u64;

@@ -5,8 +5,8 @@ use super::GpuSession;
 use super::points::SUM_BYTES;
 use crate::layout::RunStats;
 use crate::pixels::read_pixels;
-use prismatic_core::accumulation::count_passes;
-use prismatic_core::scene::RadiusMode;
+use prismatic_core::model::scene::RadiusMode;
+use prismatic_core::render::accumulation::count_passes;
 use prismatic_core::{BackendError, Image, RenderStats, TraceStats};
 
 impl GpuSession {

@@ -1,4 +1,4 @@
-//! A session's view pass (view.wgsl, the twin of `prismatic_core::view`):
+//! A session's view pass (view.wgsl, the twin of `prismatic_core::render::view`):
 //! every chunk's pixels get their direct light (kept as the base) and their
 //! visible points, appended to the chunk's array. How many points each
 //! chunk appended is read back without waiting, except once: the first

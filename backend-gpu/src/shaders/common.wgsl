@@ -370,7 +370,7 @@ fn finish_estimate(estimator: u32, band_count: u32, sums: vec3<f32>, total: u32,
     return sums * (f32(band_count) / f32(total)) * (flux / area);
 }
 
-// tolerance::surface_offset and prepared::offset_origin
+// tolerance::surface_offset and optics::scatter::offset_origin
 fn surface_offset(p: vec3<f32>) -> f32 {
     return SURFACE_OFFSET_ABS + SURFACE_OFFSET_REL * max_abs(p);
 }
@@ -381,6 +381,55 @@ fn offset_origin(p: vec3<f32>, n: vec3<f32>, dir: vec3<f32>) -> vec3<f32> {
         return p + n * eps;
     }
     return p - n * eps;
+}
+
+// ---- optics/scatter.rs: the one branch choice at glass ----
+
+// A ray leaving a surface.
+struct Scattered {
+    origin: vec3<f32>,
+    dir: vec3<f32>,
+}
+
+// optics::scatter::scatter_dielectric: reflected where u < R or under total
+// internal reflection, refracted otherwise; photons and sampled view paths.
+fn scatter_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, ior: f32, u: f32) -> Scattered {
+    let f = facing_interface(d, outward, ior);
+    let cos_i = -dot(d, f.n);
+    var out = reflect_dir(d, f.n);
+    if !(u < fresnel(cos_i, f.n1, f.n2)) {
+        let r = refract_dir(d, f.n, f.n1, f.n2);
+        if r.w != 0.0 {
+            out = r.xyz;
+        }
+    }
+    return Scattered(offset_origin(point, f.n, out), out);
+}
+
+// optics::scatter::split_dielectric: both branches with their Fresnel
+// weights (R reflected; 1 - R refracted unless `tir`), for view rays that
+// follow both.
+struct DielectricBranches {
+    reflected: Scattered,
+    reflectance: f32,
+    refracted: Scattered,
+    tir: bool,
+}
+
+fn split_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, ior: f32) -> DielectricBranches {
+    let f = facing_interface(d, outward, ior);
+    let reflectance = fresnel(-dot(d, f.n), f.n1, f.n2);
+    let r = reflect_dir(d, f.n);
+    let t = refract_dir(d, f.n, f.n1, f.n2);
+    let reflected = Scattered(offset_origin(point, f.n, r), r);
+    let refracted = Scattered(offset_origin(point, f.n, t.xyz), t.xyz);
+    return DielectricBranches(reflected, reflectance, refracted, t.w == 0.0);
+}
+
+// PixelSampler::branch: the number that chooses the Fresnel branch of hero
+// path `path` (0 before the split) at specular bounce `depth`.
+fn pixel_branch(scramble: u32, pass_index: u32, path: u32, depth: u32) -> f32 {
+    return random_f32(scramble, pass_index, VIEW_BRANCH + path * VIEW_PER_PATH + depth);
 }
 
 // grid::cell_of: the integer cell of `p` (float → int conversions saturate).

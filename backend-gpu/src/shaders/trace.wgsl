@@ -31,20 +31,11 @@ struct Path {
 const FOLLOW_END: u32 = 0u;
 const FOLLOW_SPLIT: u32 = 1u;
 
-// trace::scatter_dielectric: reflect with probability R, else refract.
-fn scatter_dielectric(p: ptr<function, Path>, point: vec3<f32>, outward: vec3<f32>, ior: f32, u: f32) {
-    let d = (*p).dir;
-    let f = facing_interface(d, outward, ior);
-    let cos_i = -dot(d, f.n);
-    var out = reflect_dir(d, f.n);
-    if !(u < fresnel(cos_i, f.n1, f.n2)) {
-        let r = refract_dir(d, f.n, f.n1, f.n2);
-        if r.w != 0.0 {
-            out = r.xyz;
-        }
-    }
-    (*p).origin = offset_origin(point, f.n, out);
-    (*p).dir = out;
+// optics::scatter::scatter_dielectric on a photon's path.
+fn scatter_path(p: ptr<function, Path>, point: vec3<f32>, outward: vec3<f32>, ior: f32, u: f32) {
+    let s = scatter_dielectric((*p).dir, point, outward, ior, u);
+    (*p).origin = s.origin;
+    (*p).dir = s.dir;
 }
 
 fn store(p: ptr<function, Path>, point: vec3<f32>, index: u32) {
@@ -112,10 +103,10 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             (*p).band = b.band;
             (*p).lambda_nm = b.lambda_nm;
             let u = random_f32(seed, index, scatter_dim(b.band, (*p).bounces));
-            scatter_dielectric(p, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), u);
+            scatter_path(p, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), u);
         } else {
             let u = random_f32(seed, index, scatter_dim((*p).band, (*p).bounces));
-            scatter_dielectric(p, hit.point, hit.normal, path_ior(s, (*p).band, (*p).lambda_nm), u);
+            scatter_path(p, hit.point, hit.normal, path_ior(s, (*p).band, (*p).lambda_nm), u);
         }
         (*p).bounces += 1u;
     }
@@ -149,7 +140,7 @@ fn trace_emitted(index: u32) {
         let b = split_band(u, path);
         var child = Path(p.origin, p.dir, p.flux / f32(n), b.band, b.lambda_nm, p.bounces + 1u);
         let u = random_f32(params.seed, index, scatter_dim(b.band, p.bounces));
-        scatter_dielectric(&child, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), u);
+        scatter_path(&child, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), u);
         var unused: Hit;
         follow(&child, index, &unused);
     }

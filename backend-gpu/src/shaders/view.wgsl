@@ -73,28 +73,19 @@ fn spawn_ray(e: Pending, origin: vec3<f32>, dir: vec3<f32>, band: u32, weight: f
 // ViewContext::through_dielectric: the Fresnel-weighted reflection and
 // refraction (a sampled path: the one branch its number chooses).
 fn through_dielectric(e: Pending, ior: f32, band: u32, weight: f32, tint: vec3<f32>) {
-    let f = facing_interface(e.dir, e.normal, ior);
-    let cos_i = -dot(e.dir, f.n);
-    let r = fresnel(cos_i, f.n1, f.n2);
     if sampled() {
-        let refracted = refract_dir(e.dir, f.n, f.n1, f.n2);
-        var d = reflect_dir(e.dir, f.n);
-        if refracted.w != 0.0 && random_f32(scramble, params.view_pass, VIEW_BRANCH + e.hero * VIEW_PER_PATH + e.depth) >= r {
-            d = refracted.xyz;
-        }
-        spawn_ray(e, offset_origin(e.origin, f.n, d), d, band, weight, tint);
+        let s = scatter_dielectric(e.dir, e.origin, e.normal, ior, pixel_branch(scramble, params.view_pass, e.hero, e.depth));
+        spawn_ray(e, s.origin, s.dir, band, weight, tint);
         return;
     }
+    let split = split_dielectric(e.dir, e.origin, e.normal, ior);
+    let r = split.reflectance;
     let t = 1.0 - r;
-    if t * weight > MIN_VIEW_WEIGHT {
-        let d = refract_dir(e.dir, f.n, f.n1, f.n2);
-        if d.w != 0.0 {
-            spawn_ray(e, offset_origin(e.origin, f.n, d.xyz), d.xyz, band, weight * t, tint * t);
-        }
+    if t * weight > MIN_VIEW_WEIGHT && !split.tir {
+        spawn_ray(e, split.refracted.origin, split.refracted.dir, band, weight * t, tint * t);
     }
     if r * weight > MIN_VIEW_WEIGHT {
-        let d = reflect_dir(e.dir, f.n);
-        spawn_ray(e, offset_origin(e.origin, f.n, d), d, band, weight * r, tint * r);
+        spawn_ray(e, split.reflected.origin, split.reflected.dir, band, weight * r, tint * r);
     }
 }
 

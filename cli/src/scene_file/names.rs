@@ -2,8 +2,8 @@
 //! them: band tables, estimators, wavelength sampling, photon sequences,
 //! radius modes.
 
-use prismatic_core::bands::BandSpec;
-use prismatic_core::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling};
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling};
 
 /// Parses a band table name: `paper3`, `paper7` or a number of bands.
 pub fn parse_bands(s: &str) -> Result<BandSpec, String> {

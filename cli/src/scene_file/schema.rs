@@ -14,10 +14,10 @@ use crate::obj;
 use crate::texture_file;
 use glam::DVec3;
 use glam::Vec2;
-use prismatic_core::bands::BandSpec;
-use prismatic_core::color::ToneMap;
-use prismatic_core::dispersion::{Dispersion, Glass};
-use prismatic_core::scene::{
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::color::ToneMap;
+use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, Estimator, Filter, Light, Material, MaterialKind, Object, PhotonSequence, RadiusMode,
     RenderSettings, Sampler, Shape, Texture, ViewPaths, WavelengthSampling, Wrap,
 };

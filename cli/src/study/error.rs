@@ -9,8 +9,8 @@
 
 use glam::{DVec3, Vec3};
 use prismatic_core::Image;
-use prismatic_core::color::ToneMap;
-use prismatic_core::photon::WHITE_BAND;
+use prismatic_core::model::color::ToneMap;
+use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::{BandTable, PhotonMap};
 
 /// A pixel the reference caustic changes by more than this (ΔE00 between the

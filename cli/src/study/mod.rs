@@ -13,7 +13,7 @@ pub mod report;
 use crate::backends::{BackendChoice, select};
 use anyhow::{Context, Result};
 use error::{RenderError, StripeSums, mean_delta_e, rmse, stripe_error};
-use prismatic_core::scene::{RadiusMode, Shape};
+use prismatic_core::model::scene::{RadiusMode, Shape};
 use prismatic_core::{
     Backend, BandSpec, Estimator, Light, NoProgress, PhotonSequence, PreparedScene, ViewPaths, WavelengthSampling,
 };
@@ -355,7 +355,7 @@ pub fn run(options: &StudyOptions, progress: &mut dyn StudyProgress) -> Result<S
 pub fn build_reference(
     options: &StudyOptions,
     progress: &mut dyn StudyProgress,
-) -> Result<(Reference, prismatic_core::color::ToneMap)> {
+) -> Result<(Reference, prismatic_core::model::color::ToneMap)> {
     let (scene, plan) = study_scene(options)?;
     let r = load_reference(options, &scene, &plan, select(BackendChoice::Cpu)?.backend.as_mut(), progress)?;
     Ok((r, scene.scene.render.tone_map))

@@ -9,7 +9,7 @@
 use super::error::{StripeSums, caustic_mask, mean_delta_e};
 use crate::output::{read_exr, write_exr};
 use anyhow::{Context, Result};
-use prismatic_core::scene::DEFAULT_ALPHA;
+use prismatic_core::model::scene::DEFAULT_ALPHA;
 use prismatic_core::{
     Backend, BandSpec, Estimator, Image, NoProgress, PhotonSequence, PreparedScene, WavelengthSampling,
 };

@@ -5,7 +5,7 @@
 //! `cargo run --release -p prismatic-bevy --example minimal`
 
 use bevy::prelude::*;
-use prismatic_bevy::prismatic_core::{Vec3 as V, dispersion::Dispersion, scene::Shape};
+use prismatic_bevy::prismatic_core::{Vec3 as V, model::dispersion::Dispersion, model::scene::Shape};
 use prismatic_bevy::{CausticCamera, CausticImage, CausticLight, CausticShape, Glass, PrismaticPlugin, Receiver};
 
 fn main() {

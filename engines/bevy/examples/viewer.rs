@@ -17,9 +17,9 @@ use bevy::prelude::*;
 use bevy::render::view::window::screenshot::{Screenshot, save_to_disk};
 use bevy::window::PrimaryWindow;
 use prismatic_bevy::prismatic_core::Vec3 as CoreVec3;
-use prismatic_bevy::prismatic_core::bands::BandSpec;
-use prismatic_bevy::prismatic_core::dispersion::Dispersion;
-use prismatic_bevy::prismatic_core::scene::{Checker, Estimator, Shape};
+use prismatic_bevy::prismatic_core::model::bands::BandSpec;
+use prismatic_bevy::prismatic_core::model::dispersion::Dispersion;
+use prismatic_bevy::prismatic_core::model::scene::{Checker, Estimator, Shape};
 use prismatic_bevy::{
     CausticCamera, CausticImage, CausticLight, CausticSettings, CausticShape, CausticStats, Glass, PrismaticPlugin,
     Receiver,

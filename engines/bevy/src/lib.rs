@@ -35,7 +35,7 @@ use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat, T
 use bevy::render::renderer::{RenderDevice, RenderQueue};
 use bevy::render::texture::GpuImage;
 use bevy::render::{Render, RenderApp, RenderSystems};
-use prismatic_core::scene::RenderSettings;
+use prismatic_core::model::scene::RenderSettings;
 use prismatic_core::{NoProgress, PreparedScene, Render as _};
 use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
 use std::sync::{Arc, Mutex};
@@ -76,7 +76,7 @@ impl Default for CausticSettings {
             height: 540,
             photons: 100_000,
             radius: 0.03,
-            bands: prismatic_core::bands::BandSpec::Paper7,
+            bands: prismatic_core::model::bands::BandSpec::Paper7,
             ambient: 0.06,
             exposure: 1.6,
             ..RenderSettings::paper()

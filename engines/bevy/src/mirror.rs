@@ -5,8 +5,8 @@
 use crate::{CausticScene, CausticSettings, CausticStats};
 use bevy::ecs::system::SystemParam;
 use bevy::prelude::*;
-use prismatic_core::dispersion::Dispersion;
-use prismatic_core::scene::{Camera, Checker, Light, Material, MaterialKind, Object, Scene, Shape};
+use prismatic_core::model::dispersion::Dispersion;
+use prismatic_core::model::scene::{Camera, Checker, Light, Material, MaterialKind, Object, Scene, Shape};
 use prismatic_core::{PreparedScene, Vec3 as CoreVec3};
 use std::sync::Arc;
 

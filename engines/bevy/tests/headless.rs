@@ -11,8 +11,8 @@ use bevy::render::renderer::RenderDevice;
 use bevy::window::ExitCondition;
 use bevy::winit::WinitPlugin;
 use prismatic_bevy::prismatic_core::Vec3 as CoreVec3;
-use prismatic_bevy::prismatic_core::dispersion::Dispersion;
-use prismatic_bevy::prismatic_core::scene::Shape;
+use prismatic_bevy::prismatic_core::model::dispersion::Dispersion;
+use prismatic_bevy::prismatic_core::model::scene::Shape;
 use prismatic_bevy::{
     CausticCamera, CausticImage, CausticLight, CausticSettings, CausticShape, CausticStats, Glass, PrismaticPlugin,
     Receiver,
@@ -53,7 +53,7 @@ fn app() -> Option<SubApps> {
             .disable::<WinitPlugin>(),
     )
     .add_plugins(PrismaticPlugin)
-    .insert_resource(CausticSettings(prismatic_bevy::prismatic_core::scene::RenderSettings {
+    .insert_resource(CausticSettings(prismatic_bevy::prismatic_core::model::scene::RenderSettings {
         width: WIDTH,
         height: HEIGHT,
         photons: 20_000,

@@ -1,0 +1,7 @@
+//! The command line's tests, one binary: the `prismatic` binary run as a user runs it.
+
+mod bad_scenes;
+mod cli;
+mod gltf;
+mod slurm;
+mod study;

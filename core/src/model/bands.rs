@@ -1,0 +1,199 @@
+//! Spectral band tables: N bands, each with a wavelength and an RGB weight.
+//!
+//! The weights of every table sum to white, (1, 1, 1), so that a white photon
+//! split into all bands is white again. Presets `paper3` and `paper7`
+//! reproduce Gwak & Ryou's Tables 1 and 3; `physical(N)` cuts 380–780 nm into
+//! N equal intervals and weights each by the CIE 1931 colour-matching
+//! functions integrated over it, converted to linear sRGB and normalised per
+//! channel. Such weights may be negative (spectral colours lie outside sRGB).
+
+use alloc::vec::Vec;
+use core::fmt;
+use glam::{DVec3, Vec3};
+
+/// The most bands a table may have (the photon stores its band in a `u16`,
+/// and shaders size per-band arrays by it).
+pub const MAX_BANDS: usize = 256;
+
+/// The visible range that physically based tables cover.
+pub const VISIBLE_NM: (f32, f32) = (380.0, 780.0);
+
+/// Which band table a render uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BandSpec {
+    /// The paper's three bands R, G, B (Table 1).
+    Paper3,
+    /// The paper's seven rainbow bands (Table 3).
+    Paper7,
+    /// N physically based bands over 380–780 nm, weights from CIE 1931.
+    Physical(u16),
+}
+
+impl fmt::Display for BandSpec {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            BandSpec::Paper3 => f.write_str("paper3"),
+            BandSpec::Paper7 => f.write_str("paper7"),
+            BandSpec::Physical(n) => write!(f, "{n}"),
+        }
+    }
+}
+
+/// One spectral band.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Band {
+    /// Name for the paper's bands ("red", …); `None` for physically based ones.
+    pub name: Option<&'static str>,
+    /// The wavelength photons of this band are traced with, in nm.
+    pub lambda_nm: f32,
+    /// The interval of the spectrum the band stands for, in nm.
+    pub interval_nm: (f32, f32),
+    /// Linear RGB weight C_i of the band; the weights of a table sum to (1, 1, 1).
+    pub weight: Vec3,
+}
+
+/// An ordered table of bands (ordered from long to short wavelength for the
+/// paper presets, short to long for physical tables; the index is the band id).
+#[derive(Clone, Debug, PartialEq)]
+pub struct BandTable {
+    spec: BandSpec,
+    bands: Vec<Band>,
+}
+
+/// The paper's Table 1: (name, nominal wavelength in nm, weight). The paper
+/// gives indices of refraction, not wavelengths; the wavelengths are the
+/// nominal colours of its bands and are what physically based glasses use.
+const PAPER3: [(&str, f32, [f32; 3]); 3] =
+    [("red", 650.0, [1.0, 0.0, 0.0]), ("green", 550.0, [0.0, 1.0, 0.0]), ("blue", 450.0, [0.0, 0.0, 1.0])];
+
+/// The paper's Table 3, with the +0.002/+0.002/+0.001 corrections it prints so
+/// that each channel sums to exactly 1.
+const PAPER7: [(&str, f32, [f32; 3]); 7] = [
+    ("red", 650.0, [0.265, 0.0, 0.0]),
+    ("orange", 600.0, [0.263, 0.244, 0.0]),
+    ("yellow", 580.0, [0.263, 0.377, 0.0]),
+    ("green", 550.0, [0.0, 0.379, 0.0]),
+    ("blue", 470.0, [0.0, 0.0, 0.498]),
+    ("indigo", 440.0, [0.077, 0.0, 0.253]),
+    ("violet", 410.0, [0.132, 0.0, 0.249]),
+];
+
+impl BandTable {
+    /// Builds the table for `spec`. `Physical(n)` needs `1 <= n <= MAX_BANDS`
+    /// (checked by scene validation; out-of-range values are clamped here).
+    pub fn new(spec: BandSpec) -> Self {
+        let bands = match spec {
+            BandSpec::Paper3 => paper(&PAPER3),
+            BandSpec::Paper7 => paper(&PAPER7),
+            BandSpec::Physical(n) => physical(usize::from(n).clamp(1, MAX_BANDS)),
+        };
+        BandTable { spec, bands }
+    }
+
+    /// The spec this table was built from.
+    pub fn spec(&self) -> BandSpec {
+        self.spec
+    }
+
+    /// The bands, indexed by band id.
+    pub fn bands(&self) -> &[Band] {
+        &self.bands
+    }
+
+    /// Number of bands N.
+    pub fn len(&self) -> usize {
+        self.bands.len()
+    }
+
+    /// Never true for a valid table; here for clippy's `len_without_is_empty`.
+    pub fn is_empty(&self) -> bool {
+        self.bands.is_empty()
+    }
+
+    /// Band `i`.
+    pub fn band(&self, i: usize) -> &Band {
+        &self.bands[i]
+    }
+
+    /// Σ C_i over the table (white, (1, 1, 1), up to rounding).
+    pub fn white(&self) -> Vec3 {
+        self.bands.iter().map(|b| b.weight).sum()
+    }
+
+    /// Linear RGB of flux `flux` carried by band `band` (or white light for
+    /// [`crate::model::photon::WHITE_BAND`]): N·C_i·Φ, since one band carries 1/N of
+    /// the white flux and its weight is 1/N of white on average.
+    #[inline]
+    pub fn rgb_of_flux(&self, band: u16, flux: f32) -> Vec3 {
+        match self.bands.get(usize::from(band)) {
+            Some(b) => b.weight * (flux * self.bands.len() as f32),
+            None => Vec3::splat(flux),
+        }
+    }
+}
+
+fn paper(rows: &[(&'static str, f32, [f32; 3])]) -> Vec<Band> {
+    rows.iter()
+        .enumerate()
+        .map(|(i, &(name, lambda, w))| {
+            // Interval: halfway to the neighbours (the ends extend symmetrically).
+            let prev = if i > 0 { rows[i - 1].1 } else { lambda + (lambda - rows[1].1) };
+            let next = if i + 1 < rows.len() { rows[i + 1].1 } else { lambda - (rows[i - 1].1 - lambda) };
+            Band {
+                name: Some(name),
+                lambda_nm: lambda,
+                interval_nm: ((lambda + next) * 0.5, (lambda + prev) * 0.5),
+                weight: Vec3::from(w),
+            }
+        })
+        .collect()
+}
+
+fn physical(n: usize) -> Vec<Band> {
+    let (lo, hi) = (VISIBLE_NM.0 as f64, VISIBLE_NM.1 as f64);
+    let width = (hi - lo) / n as f64;
+    let rgb: Vec<DVec3> = (0..n)
+        .map(|i| {
+            let a = lo + width * i as f64;
+            crate::model::color::xyz_to_linear_srgb(crate::model::cie::integrate(a, a + width))
+        })
+        .collect();
+    let total: DVec3 = rgb.iter().copied().sum();
+    (0..n)
+        .map(|i| {
+            let a = lo + width * i as f64;
+            Band {
+                name: None,
+                lambda_nm: (a + width * 0.5) as f32,
+                interval_nm: (a as f32, (a + width) as f32),
+                weight: (rgb[i] / total).as_vec3(),
+            }
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_table_sums_to_white() {
+        let mut specs = alloc::vec![BandSpec::Paper3, BandSpec::Paper7];
+        specs.extend([1u16, 2, 3, 7, 16, 64, 256].map(BandSpec::Physical));
+        for spec in specs {
+            let t = BandTable::new(spec);
+            assert!((t.white() - Vec3::ONE).abs().max_element() < 1e-5, "{spec}: {}", t.white());
+        }
+    }
+
+    #[test]
+    fn physical_bands_have_plausible_hues() {
+        let t = BandTable::new(BandSpec::Physical(3));
+        // Equal thirds of 380–780 nm: blue; green-to-orange (yellow, since the
+        // eye sees little of the long third, most of red's weight is here); red.
+        let w: Vec<Vec3> = t.bands().iter().map(|b| b.weight).collect();
+        assert!(w[0].z > w[0].x && w[0].z > w[0].y);
+        assert!(w[1].x > w[1].z && w[1].y > w[1].z);
+        assert!(w[2].x > w[2].y && w[2].x > w[2].z);
+    }
+}

@@ -1,0 +1,13 @@
+//! Layer 1, model: what the user described (the scene, its validation, meshes)
+//! and what every backend exchanges (spectral bands and the CIE tables behind
+//! them, dispersion, colour, images, the photon and its map).
+
+pub mod bands;
+pub mod cie;
+pub mod color;
+pub mod dispersion;
+pub mod image;
+pub mod mesh;
+pub mod photon;
+pub mod scene;
+pub mod validate;

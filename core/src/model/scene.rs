@@ -1,0 +1,614 @@
+//! The scene model: what a scene file or an engine describes, as plain
+//! data. [`crate::model::validate`] checks it; [`crate::plan::prepared`] derives what
+//! tracing needs from it.
+
+use crate::model::bands::BandSpec;
+use crate::model::color::ToneMap;
+use crate::model::dispersion::Dispersion;
+use alloc::string::String;
+use alloc::sync::Arc;
+use alloc::vec::Vec;
+use core::fmt;
+use glam::{Vec2, Vec3};
+
+/// Most triangles one mesh may have: the CPU backend carries a hit's
+/// triangle index in f32 lanes (the tie rule of
+/// [`NearestTriangle`](crate::geometry::triangle::NearestTriangle)), exact up to 2²⁴.
+pub const MAX_MESH_TRIANGLES: usize = 1 << 24;
+
+/// The most white photons one render may emit (each may store up to N band
+/// photons of 32 bytes: beyond this the map would not fit in memory).
+pub const MAX_PHOTONS: u32 = 100_000_000;
+
+/// The largest allowed trace depth (specular bounces per path).
+pub const MAX_DEPTH: u32 = 64;
+
+/// The largest image side.
+pub const MAX_IMAGE_SIDE: u32 = 16_384;
+
+/// The largest texture side: 4096² texels of 4 bytes are 64 MiB, half of
+/// what a GPU storage binding holds by default (128 MiB).
+pub const MAX_TEXTURE_SIDE: u32 = 4_096;
+
+/// A problem found in a scene: the key it belongs to and why it is wrong.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+#[error("{key}: {reason}")]
+pub struct SceneError {
+    /// Dotted key of the offending value, as in the scene file (`light[0].cone_deg`).
+    pub key: String,
+    /// What is wrong with it.
+    pub reason: String,
+}
+
+impl SceneError {
+    /// A new error for `key`.
+    pub fn new(key: impl Into<String>, reason: impl Into<String>) -> Self {
+        SceneError { key: key.into(), reason: reason.into() }
+    }
+}
+
+/// Which gather estimator turns caustic photons into colour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Estimator {
+    /// The paper's: hue from band counts (W/Total), strength from photon density.
+    Paper,
+    /// Per-band flux density Σ Φ / (π r²) through the band weights.
+    Density,
+}
+
+impl Estimator {
+    /// The scene-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Estimator::Paper => "paper",
+            Estimator::Density => "density",
+        }
+    }
+}
+
+/// How a white photon's spectrum is sampled at the first dispersive glass.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum WavelengthSampling {
+    /// Split into all N bands, each with 1/N of the flux (the paper's method).
+    #[default]
+    Split,
+    /// Continue as one band chosen uniformly at random, carrying the whole
+    /// flux (1/N × N): N times fewer paths, more colour noise.
+    RandomBand,
+    /// One random band as in `RandomBand`, traced at a wavelength drawn
+    /// uniformly from the band's interval: stripes become continuous while
+    /// colours keep the band's weight.
+    Continuous,
+    /// Hero wavelengths (Wilkie et al. 2014) for photons: the white photon
+    /// splits into [`HERO_WAVELENGTHS`] paths (at most N) at continuous
+    /// wavelengths, one in each equal share of the spectrum, all rotated by
+    /// one number per photon, each with 1/M of the flux. Converges to the
+    /// continuous spectrum like `Continuous`, with M stratified wavelengths
+    /// a photon instead of one: far less colour noise for M paths, not N.
+    Hero,
+}
+
+/// Wavelengths a white photon carries on with [`WavelengthSampling::Hero`]
+/// (fewer when the band table has fewer bands): four, as in Wilkie et al.
+pub const HERO_WAVELENGTHS: u32 = 4;
+
+impl WavelengthSampling {
+    /// The scene-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            WavelengthSampling::Split => "split",
+            WavelengthSampling::RandomBand => "random_band",
+            WavelengthSampling::Continuous => "continuous",
+            WavelengthSampling::Hero => "hero",
+        }
+    }
+
+    /// Parses a scene-file name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        WavelengthSampling::ALL.into_iter().find(|w| w.name() == name)
+    }
+
+    /// Every sampling, in the order the documentation lists them.
+    pub const ALL: [WavelengthSampling; 4] = [
+        WavelengthSampling::Split,
+        WavelengthSampling::RandomBand,
+        WavelengthSampling::Continuous,
+        WavelengthSampling::Hero,
+    ];
+
+    /// The paths a white photon continues as at dispersive glass, with a
+    /// table of `bands` bands: all of them, [`HERO_WAVELENGTHS`] (at most
+    /// `bands`), or one.
+    pub fn paths(self, bands: usize) -> u32 {
+        match self {
+            WavelengthSampling::Split => bands as u32,
+            WavelengthSampling::Hero => HERO_WAVELENGTHS.min(bands as u32),
+            WavelengthSampling::RandomBand | WavelengthSampling::Continuous => 1,
+        }
+    }
+
+    /// Whether a photon is traced at its own wavelength (within its band).
+    pub fn continuous(self) -> bool {
+        matches!(self, WavelengthSampling::Continuous | WavelengthSampling::Hero)
+    }
+}
+
+/// Where the numbers of a photon's emission and wavelength come from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PhotonSequence {
+    /// Independent counter-based random numbers ([`crate::util::rng`]).
+    Random,
+    /// Owen-scrambled Sobol points, one scramble per pass ([`crate::sampling::sobol`]):
+    /// a pass's directions and wavelengths are stratified jointly, so each
+    /// pass is less noisy; the photon paths' later decisions stay random.
+    #[default]
+    Sobol,
+}
+
+impl PhotonSequence {
+    /// The scene-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            PhotonSequence::Random => "random",
+            PhotonSequence::Sobol => "sobol",
+        }
+    }
+
+    /// Parses a scene-file name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [PhotonSequence::Random, PhotonSequence::Sobol].into_iter().find(|s| s.name() == name)
+    }
+}
+
+/// How a pass's view rays sample each pixel.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ViewPaths {
+    /// One ray through each pixel's centre, traced once per render: both
+    /// Fresnel branches at glass, one ray per band at the first dispersive
+    /// glass (the paper's view rays; exact for what a pixel centre sees,
+    /// staircases at edges).
+    #[default]
+    Centre,
+    /// Each pass traces one path per pixel anew ([`crate::render::view`]): through
+    /// a point jittered inside the pixel (stratified across passes), one
+    /// Fresnel branch at glass chosen with its probability, and 4 hero
+    /// wavelengths at the first dispersive glass (their shift stratified
+    /// across passes, each at its own index with continuous wavelengths).
+    /// The passes' mean
+    /// converges to the box-filtered image: edges, textures and the view
+    /// through glass anti-aliased, the same filter as light tracing's splats.
+    Sampled,
+}
+
+impl ViewPaths {
+    /// The scene-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            ViewPaths::Centre => "centre",
+            ViewPaths::Sampled => "sampled",
+        }
+    }
+
+    /// Parses a scene-file name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [ViewPaths::Centre, ViewPaths::Sampled].into_iter().find(|v| v.name() == name)
+    }
+}
+
+/// Hachisuka et al.'s recommended fraction of photons kept per pass: how
+/// fast progressive radii shrink by default.
+pub const DEFAULT_ALPHA: f32 = 0.7;
+
+/// Independent photon paths a visible point's first radius should hold
+/// by default (Jensen's caustic gathers use 50–100 nearest photons).
+pub const DEFAULT_NEIGHBOURS: u32 = 32;
+
+/// How a render's gather radii behave from pass to pass.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum RadiusMode {
+    /// Progressive photon mapping: a pilot pass gives each visible point
+    /// its own first radius (at most `radius`), and the radii shrink with
+    /// `alpha` from pass to pass, so the mean converges to the caustic.
+    #[default]
+    Progressive,
+    /// The paper's fixed radius: every pass gathers within `radius` at
+    /// every point. One pass is the paper's frame; more passes average
+    /// independent frames (less noise, the same blur).
+    Fixed,
+}
+
+impl RadiusMode {
+    /// The scene-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            RadiusMode::Progressive => "progressive",
+            RadiusMode::Fixed => "fixed",
+        }
+    }
+
+    /// Parses a scene-file name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [RadiusMode::Progressive, RadiusMode::Fixed].into_iter().find(|m| m.name() == name)
+    }
+}
+
+/// Image and photon-pass settings (`[render]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// White photons emitted (over all lights).
+    pub photons: u32,
+    /// Gather radius in world units (with progressive radii: the largest first radius).
+    pub radius: f32,
+    /// Fixed or progressive gather radii.
+    pub radius_mode: RadiusMode,
+    /// The band table.
+    pub bands: BandSpec,
+    /// The gather estimator.
+    pub estimator: Estimator,
+    /// Light tracing: each caustic photon on a diffuse surface the camera
+    /// sees directly is connected to the camera and added to its pixel
+    /// (unbiased, no radius); only the diffuse surfaces seen through
+    /// mirrors and glass gather photons (see [`crate::photons::light_tracing`]).
+    pub light_tracing: bool,
+    /// How white photons sample the spectrum at dispersive glass.
+    pub wavelengths: WavelengthSampling,
+    /// Where photons' emission and wavelength numbers come from.
+    pub photon_sequence: PhotonSequence,
+    /// How view rays sample the pixels: once through their centres, or
+    /// anew each pass.
+    pub view_paths: ViewPaths,
+    /// Seed of the counter-based RNG.
+    pub seed: u32,
+    /// Most specular interactions on a photon path or view ray.
+    pub max_depth: u32,
+    /// Uniform ambient irradiance factor (fraction of albedo added everywhere).
+    pub ambient: f32,
+    /// Multiplier applied to radiance before the sRGB encoding.
+    pub exposure: f32,
+    /// Radiance of rays that leave the scene.
+    pub background: Vec3,
+    /// How radiance becomes displayable.
+    pub tone_map: ToneMap,
+    /// Aim caustic photons only at mirrors and glass (projection maps).
+    pub projection_maps: bool,
+    /// Photon passes a render runs by default (each emits `photons`).
+    pub passes: u32,
+    /// How fast progressive radii shrink: r_k² ∝ Π (j + α)/(j + 1), 0 < α ≤ 1
+    /// (1 keeps them; smaller shrinks faster, less blur, more noise).
+    pub alpha: f32,
+    /// Independent photon paths a progressive render's first radius should
+    /// hold (more: smoother early passes, more blur until the radii shrink).
+    pub neighbours: u32,
+}
+
+/// The default settings are the fastest configuration measured that
+/// converges to the true spectrum (README, "What accuracy costs" and
+/// "Against LuxCore, at equal error"): light tracing where the camera sees
+/// the caustic, 32 physically based bands with hero wavelengths (the
+/// continuous spectrum for 4 paths a photon, not 32 lines), the density
+/// estimator, Sobol photons, progressive radii. [`RenderSettings::paper`]
+/// is the paper's method.
+impl Default for RenderSettings {
+    fn default() -> Self {
+        RenderSettings {
+            bands: BandSpec::Physical(32),
+            estimator: Estimator::Density,
+            light_tracing: true,
+            wavelengths: WavelengthSampling::Hero,
+            ..RenderSettings::paper()
+        }
+    }
+}
+
+impl RenderSettings {
+    /// The paper's method at the default image size and photon count: the
+    /// seven bands of its Table 3, every photon split into all of them at
+    /// the glass and gathered everywhere with the paper's estimator (no
+    /// light tracing), view rays through the pixel centres.
+    pub fn paper() -> Self {
+        RenderSettings {
+            width: 400,
+            height: 400,
+            photons: 100_000,
+            radius: 0.05,
+            radius_mode: RadiusMode::Progressive,
+            bands: BandSpec::Paper7,
+            estimator: Estimator::Paper,
+            light_tracing: false,
+            wavelengths: WavelengthSampling::Split,
+            photon_sequence: PhotonSequence::Sobol,
+            view_paths: ViewPaths::Centre,
+            seed: 1,
+            max_depth: 12,
+            ambient: 0.03,
+            exposure: 1.0,
+            background: Vec3::ZERO,
+            tone_map: ToneMap::Clamp,
+            projection_maps: true,
+            passes: 16,
+            alpha: DEFAULT_ALPHA,
+            neighbours: DEFAULT_NEIGHBOURS,
+        }
+    }
+}
+
+/// A pinhole camera (`[camera]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Camera {
+    /// Eye position.
+    pub position: Vec3,
+    /// Point the camera looks at.
+    pub look_at: Vec3,
+    /// Up direction (need not be orthogonal to the view direction).
+    pub up: Vec3,
+    /// Vertical field of view in degrees.
+    pub fov_deg: f32,
+}
+
+/// A light source (`[[light]]`). Power is radiant flux in watts.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Light {
+    /// The paper's spot light: uniform intensity inside a cone.
+    Spot {
+        /// Apex of the cone.
+        position: Vec3,
+        /// Axis of the cone.
+        direction: Vec3,
+        /// Half-angle of the cone in degrees.
+        cone_deg: f32,
+        /// Flux in W.
+        power: f32,
+    },
+    /// Isotropic point light.
+    Point {
+        /// Position.
+        position: Vec3,
+        /// Flux in W.
+        power: f32,
+    },
+    /// Collimated beam leaving a disc (prism experiments, rainbows).
+    Beam {
+        /// Centre of the emitting disc.
+        position: Vec3,
+        /// Direction of travel (the disc's normal).
+        direction: Vec3,
+        /// Radius of the disc.
+        radius: f32,
+        /// Flux in W.
+        power: f32,
+    },
+    /// Parallel light from one direction (the sun, glTF's directional
+    /// light): it lights everything it reaches, with `irradiance` on a
+    /// surface that faces it. Its photons leave a disc over the scene's
+    /// mirrors and glass ([`crate::plan::reach::sun_beam`]).
+    Sun {
+        /// Direction of travel (from the sun into the scene).
+        direction: Vec3,
+        /// Irradiance in W/m² on a surface facing the sun.
+        irradiance: f32,
+    },
+}
+
+impl Light {
+    /// The light's flux in W; a sun's depends on how much of the scene it
+    /// covers and is its beam's ([`crate::plan::prepared::PreparedScene::emitters`]), so 0 here.
+    pub fn power(&self) -> f32 {
+        match self {
+            Light::Spot { power, .. } | Light::Point { power, .. } | Light::Beam { power, .. } => *power,
+            Light::Sun { .. } => 0.0,
+        }
+    }
+}
+
+/// A checker texture on a diffuse material.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Checker {
+    /// Edge length of one square.
+    pub size: f32,
+    /// Albedo of the alternate squares.
+    pub albedo: Vec3,
+    /// Added to a point before the pattern is evaluated: a scene recentred
+    /// on a new origin sets it to that origin modulo two squares, so the
+    /// squares stay where they are in the world.
+    pub offset: Vec3,
+}
+
+/// A base-colour image on a diffuse material (glTF's `baseColorTexture`),
+/// read at a mesh's texture coordinates: the albedo is multiplied by it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Texture {
+    /// Where the image came from (a file, a glTF image), for messages.
+    pub name: String,
+    /// Texels per row.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+    /// Texels row by row from the top (v = 0, as in glTF), each the 8-bit
+    /// sRGB-encoded channels packed as `r | g << 8 | b << 16`. Shared, so
+    /// that cloning a scene does not copy images.
+    pub texels: Arc<[u32]>,
+    /// How texels are looked up.
+    pub sampler: Sampler,
+}
+
+/// How a texture is read between and beyond its texels (glTF's sampler).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Sampler {
+    /// Between texels.
+    pub filter: Filter,
+    /// Beyond the image along u.
+    pub wrap_u: Wrap,
+    /// Beyond the image along v.
+    pub wrap_v: Wrap,
+}
+
+/// Texture filtering (no mipmaps: a minified texture is read like a magnified one).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Filter {
+    /// The texel the point falls in.
+    Nearest,
+    /// Bilinear interpolation of the four nearest texels, in linear light.
+    #[default]
+    Linear,
+}
+
+/// What a texture coordinate outside [0, 1] reads.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Wrap {
+    /// The image tiles the plane.
+    #[default]
+    Repeat,
+    /// The edge texels extend outward.
+    ClampToEdge,
+    /// The image tiles the plane, every other copy mirrored.
+    MirroredRepeat,
+}
+
+/// How a surface scatters light.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MaterialKind {
+    /// Lambertian, optionally with a checker or an image texture. Caustic
+    /// photons are stored here.
+    Diffuse {
+        /// Albedo (reflectance) per RGB channel.
+        albedo: Vec3,
+        /// Optional checker texture.
+        checker: Option<Checker>,
+        /// Optional image multiplying the albedo (on meshes with texture coordinates).
+        texture: Option<Texture>,
+    },
+    /// Smooth dielectric with a dispersion model, clear or coloured.
+    Dielectric {
+        /// n(λ).
+        dispersion: Dispersion,
+        /// n(λ) of the medium the object sits in (`Constant(1.0)`: air). Only
+        /// the ratio of the two indices matters at an interface, so glass in
+        /// water is glass with the relative index n_glass/n_water.
+        outside: Dispersion,
+        /// Beer–Lambert absorption inside (`None`: clear glass).
+        attenuation: Option<Attenuation>,
+    },
+    /// Perfect mirror.
+    Mirror,
+}
+
+/// Beer–Lambert absorption inside a dielectric, stated as glTF's
+/// `KHR_materials_volume` states it: white light that travels `distance`
+/// inside keeps the fraction `color` of each linear RGB channel, so the
+/// absorption coefficient of channel c is −ln(color_c)/distance.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Attenuation {
+    /// Fraction of each channel left after `distance`, each in (0, 1].
+    pub color: Vec3,
+    /// The distance at which `color` is reached (world units, > 0).
+    pub distance: f32,
+}
+
+/// A named material (`[material.NAME]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// The name objects refer to.
+    pub name: String,
+    /// The scattering model.
+    pub kind: MaterialKind,
+}
+
+/// The geometry of an object.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// A sphere.
+    Sphere {
+        /// Centre.
+        center: Vec3,
+        /// Radius.
+        radius: f32,
+    },
+    /// An infinite plane (two-sided).
+    Plane {
+        /// A point on the plane.
+        point: Vec3,
+        /// Its normal.
+        normal: Vec3,
+    },
+    /// A disc, optionally with a concentric hole (a screen with a hole).
+    Disk {
+        /// Centre.
+        center: Vec3,
+        /// Normal.
+        normal: Vec3,
+        /// Outer radius.
+        radius: f32,
+        /// Radius of the hole (0 for none).
+        inner_radius: f32,
+    },
+    /// A triangular prism: one end's triangle extruded along a vector.
+    Prism {
+        /// The three corners of one end.
+        vertices: [Vec3; 3],
+        /// The vector from that end to the other.
+        extrude: Vec3,
+    },
+    /// A triangle mesh; closed meshes used as dielectrics must wind
+    /// counter-clockwise seen from outside.
+    Mesh {
+        /// Vertex positions.
+        positions: Vec<Vec3>,
+        /// Triangles as indices into `positions`.
+        triangles: Vec<[u32; 3]>,
+        /// Texture coordinates per vertex (glTF's `TEXCOORD_0`: v down the
+        /// image), or empty when the mesh has none.
+        uvs: Vec<Vec2>,
+    },
+}
+
+impl Shape {
+    /// The scene-file name of the shape.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Shape::Sphere { .. } => "sphere",
+            Shape::Plane { .. } => "plane",
+            Shape::Disk { .. } => "disk",
+            Shape::Prism { .. } => "prism",
+            Shape::Mesh { .. } => "mesh",
+        }
+    }
+
+    /// True for shapes that enclose a volume (may be dielectrics).
+    pub fn is_closed(&self) -> bool {
+        matches!(self, Shape::Sphere { .. } | Shape::Prism { .. } | Shape::Mesh { .. })
+    }
+}
+
+/// An object: a shape made of a material (`[[object]]`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Object {
+    /// Geometry.
+    pub shape: Shape,
+    /// Index into [`Scene::materials`].
+    pub material: usize,
+}
+
+/// A whole scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    /// `[render]`.
+    pub render: RenderSettings,
+    /// `[camera]`.
+    pub camera: Camera,
+    /// `[[light]]`.
+    pub lights: Vec<Light>,
+    /// `[material.NAME]`.
+    pub materials: Vec<Material>,
+    /// `[[object]]`.
+    pub objects: Vec<Object>,
+}
+
+impl fmt::Display for Estimator {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}

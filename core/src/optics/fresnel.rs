@@ -1,0 +1,85 @@
+//! Reflection, Snell refraction, dielectric Fresnel and total internal reflection.
+
+use crate::util::math::sqrt;
+use glam::Vec3;
+
+/// Mirror reflection of unit `d` about unit normal `n` (either side).
+#[inline]
+pub fn reflect(d: Vec3, n: Vec3) -> Vec3 {
+    d - n * (2.0 * d.dot(n))
+}
+
+/// Refraction of unit `d` through a surface with unit normal `n` facing the
+/// incoming ray (`dot(d, n) < 0`), from index `n1` into `n2`. `None` on total
+/// internal reflection (sin θ_t > 1).
+#[inline]
+pub fn refract(d: Vec3, n: Vec3, n1: f32, n2: f32) -> Option<Vec3> {
+    let eta = n1 / n2;
+    let cos_i = (-d.dot(n)).clamp(0.0, 1.0);
+    let cos2_t = cos2_transmitted(cos_i, eta);
+    if cos2_t < 0.0 {
+        return None;
+    }
+    let cos_t = sqrt(cos2_t);
+    Some((d * eta + n * (eta * cos_i - cos_t)).normalize())
+}
+
+/// Unpolarised Fresnel reflectance of a smooth dielectric interface for a ray
+/// arriving with cosine `cos_i` (against the facing normal) from `n1` into `n2`;
+/// 1 under total internal reflection. Transmittance is `1 − R`.
+#[inline]
+pub fn fresnel(cos_i: f32, n1: f32, n2: f32) -> f32 {
+    if n1 == n2 {
+        return 0.0; // index-matched: no interface at all (exact, also at grazing angles)
+    }
+    let cos_i = cos_i.clamp(0.0, 1.0);
+    let cos2_t = cos2_transmitted(cos_i, n1 / n2);
+    if cos2_t <= 0.0 {
+        return 1.0;
+    }
+    let cos_t = sqrt(cos2_t);
+    let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
+    let rp = (n1 * cos_t - n2 * cos_i) / (n1 * cos_t + n2 * cos_i);
+    (0.5 * (rs * rs + rp * rp)).clamp(0.0, 1.0)
+}
+
+/// cos² θ_t = 1 − η²(1 − cos² θ_i), arranged as (1 − η²) + η² cos² θ_i so that
+/// it keeps its precision at grazing incidence when η ≈ 1 (the textbook form
+/// rounds 1 − cos² θ_i to 1 there and loses the whole answer). Negative
+/// means total internal reflection.
+#[inline]
+pub fn cos2_transmitted(cos_i: f32, eta: f32) -> f32 {
+    let eta2 = eta * eta;
+    (1.0 - eta2) + eta2 * cos_i * cos_i
+}
+
+/// The indices on both sides of a dielectric surface hit by a ray travelling
+/// along `d`, whose outward normal is `outward`: returns the normal facing the
+/// ray and (n_incident, n_transmitted). The outside of every dielectric is air.
+#[inline]
+pub fn interface(d: Vec3, outward: Vec3, ior: f32) -> (Vec3, f32, f32) {
+    if d.dot(outward) < 0.0 { (outward, 1.0, ior) } else { (-outward, ior, 1.0) }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn normal_incidence_reflectance() {
+        // ((n-1)/(n+1))^2 = 0.04 for n = 1.5
+        assert!((fresnel(1.0, 1.0, 1.5) - 0.04).abs() < 1e-6);
+        assert!((fresnel(1.0, 1.5, 1.0) - 0.04).abs() < 1e-6);
+    }
+
+    #[test]
+    fn brewster_angle_has_only_s_reflection() {
+        let n = 1.5f32;
+        let theta_b = n.atan();
+        let cos_i = theta_b.cos();
+        // At Brewster's angle rp = 0, so R = rs²/2.
+        let cos_t = (1.0 - (theta_b.sin() / n).powi(2)).sqrt();
+        let rs = (cos_i - n * cos_t) / (cos_i + n * cos_t);
+        assert!((fresnel(cos_i, 1.0, n) - 0.5 * rs * rs).abs() < 1e-6);
+    }
+}

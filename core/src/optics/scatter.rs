@@ -1,0 +1,58 @@
+//! Scattering at glass, written once: the ray a path takes when it leaves a
+//! dielectric surface (one branch chosen with its Fresnel probability, or
+//! both branches with their Fresnel weights), and where a ray leaving a
+//! surface starts. Photons, the view rays and the sampled view paths all
+//! scatter here; the CPU's packets and the WGSL twin mirror these functions.
+
+use crate::geometry::ray::Ray;
+use crate::optics::fresnel::{fresnel, interface, reflect, refract};
+use crate::util::tolerance;
+use glam::Vec3;
+
+/// The origin of a ray leaving surface point `p` (normal `n`, either side)
+/// in direction `dir`: pushed off the surface to the side `dir` goes.
+#[inline]
+pub fn offset_origin(p: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
+    let eps = tolerance::surface_offset(p);
+    if dir.dot(n) >= 0.0 { p + n * eps } else { p - n * eps }
+}
+
+/// The ray leaving a dielectric surface at `point` (outward normal
+/// `outward`) for one arriving along `direction`: reflected with
+/// probability equal to the Fresnel reflectance (`u < R`), refracted
+/// otherwise; total internal reflection always reflects. Photons and
+/// sampled view paths choose their branch with it.
+pub fn scatter_dielectric(direction: Vec3, point: Vec3, outward: Vec3, ior: f32, u: f32) -> Ray {
+    let (n, n1, n2) = interface(direction, outward, ior);
+    let cos_i = -direction.dot(n);
+    let d = if u < fresnel(cos_i, n1, n2) {
+        reflect(direction, n)
+    } else {
+        refract(direction, n, n1, n2).unwrap_or_else(|| reflect(direction, n))
+    };
+    Ray { origin: offset_origin(point, n, d), direction: d }
+}
+
+/// Both branches at a dielectric surface, for a path that follows both:
+/// the reflected ray with its Fresnel reflectance R, and the refracted ray
+/// (weight 1 − R) unless the ray is totally internally reflected.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DielectricBranches {
+    /// The mirror-reflected ray.
+    pub reflected: Ray,
+    /// Fresnel reflectance R, the reflected ray's weight.
+    pub reflectance: f32,
+    /// The refracted ray; `None` under total internal reflection (then R = 1).
+    pub refracted: Option<Ray>,
+}
+
+/// [`DielectricBranches`] of a ray arriving along `direction` at `point`
+/// (outward normal `outward`) on glass of index `ior`.
+pub fn split_dielectric(direction: Vec3, point: Vec3, outward: Vec3, ior: f32) -> DielectricBranches {
+    let (n, n1, n2) = interface(direction, outward, ior);
+    let reflectance = fresnel(-direction.dot(n), n1, n2);
+    let d = reflect(direction, n);
+    let reflected = Ray { origin: offset_origin(point, n, d), direction: d };
+    let refracted = refract(direction, n, n1, n2).map(|d| Ray { origin: offset_origin(point, n, d), direction: d });
+    DielectricBranches { reflected, reflectance, refracted }
+}

@@ -1,0 +1,194 @@
+//! How each object's surface scatters light, ready for tracing: diffuse
+//! albedo (with its checker), mirror, or a dielectric's relative indices of
+//! refraction per band and as a function of wavelength, and its absorption.
+
+use crate::model::bands::{BandTable, VISIBLE_NM};
+use crate::model::dispersion::Dispersion;
+use crate::model::photon::WHITE_BAND;
+use crate::model::scene::{Checker, MaterialKind, Texture};
+use crate::optics::absorption::Absorption;
+use alloc::vec::Vec;
+use glam::{Vec2, Vec3};
+
+/// How an object's surface scatters light, ready for tracing.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Surface {
+    /// Lambertian.
+    Diffuse {
+        /// Albedo.
+        albedo: Vec3,
+        /// Optional checker.
+        checker: Option<Checker>,
+        /// Optional image multiplying the albedo.
+        texture: Option<Texture>,
+    },
+    /// Perfect mirror.
+    Mirror,
+    /// Dielectric with its indices per band.
+    Dielectric(DielectricOptics),
+}
+
+/// A dielectric's indices of refraction for the render's band table, and
+/// whether white light splits into bands there (the effect plan decides).
+#[derive(Clone, Debug, PartialEq)]
+pub struct DielectricOptics {
+    /// n for each band.
+    pub band_ior: Vec<f32>,
+    /// n for white light that does not split: the glass's one index when it
+    /// has one, else the middle band's.
+    pub white_ior: f32,
+    /// The bands do not all share one index.
+    pub dispersive: bool,
+    /// White photons split into bands here.
+    pub splits_photons: bool,
+    /// White view rays split into bands here.
+    pub splits_view_rays: bool,
+    /// The relative index as a function of wavelength, for photons traced at
+    /// their own wavelength ([`crate::WavelengthSampling::Continuous`]);
+    /// `None` when a per-band table gives the index (no wavelength axis).
+    pub spectrum: Option<IorCurve>,
+    /// Beer–Lambert absorption inside (`None`: clear glass).
+    pub absorption: Option<Absorption>,
+}
+
+/// A relative index of refraction sampled every nanometre over the visible
+/// range, read by linear interpolation (the error of a Sellmeier curve
+/// between samples is below 1e-7).
+#[derive(Clone, Debug, PartialEq)]
+pub struct IorCurve {
+    /// n at `VISIBLE_NM.0 + i` nm.
+    samples: Vec<f32>,
+}
+
+impl IorCurve {
+    /// Samples n_inside(λ)/n_outside(λ); `None` when either has no wavelength axis.
+    pub fn new(inside: &Dispersion, outside: &Dispersion) -> Option<Self> {
+        let (lo, hi) = (VISIBLE_NM.0 as u32, VISIBLE_NM.1 as u32);
+        let samples = (lo..=hi)
+            .map(|nm| Some(inside.ior_at(nm as f32)? / outside.ior_at(nm as f32)?))
+            .collect::<Option<Vec<f32>>>()?;
+        Some(IorCurve { samples })
+    }
+
+    /// The samples, n at `VISIBLE_NM.0 + i` nm (for backends that upload the curve).
+    pub fn samples(&self) -> &[f32] {
+        &self.samples
+    }
+
+    /// n at `lambda_nm` (clamped to the visible range).
+    pub fn at(&self, lambda_nm: f32) -> f32 {
+        let x = (lambda_nm - VISIBLE_NM.0).clamp(0.0, (self.samples.len() - 1) as f32);
+        let i = (x as usize).min(self.samples.len() - 2);
+        let f = x - i as f32;
+        self.samples[i] + (self.samples[i + 1] - self.samples[i]) * f
+    }
+}
+
+impl DielectricOptics {
+    /// The index for `band` ([`WHITE_BAND`]: the white index).
+    #[inline]
+    pub fn ior(&self, band: u16) -> f32 {
+        if band == WHITE_BAND { self.white_ior } else { self.band_ior[usize::from(band)] }
+    }
+
+    /// The index for `band` traced at its own wavelength `lambda_nm`: the
+    /// band's index moved along the glass's dispersion curve, so that the
+    /// band's centre keeps exactly the band's index (and a per-band table,
+    /// which has no curve, keeps it everywhere).
+    #[inline]
+    pub fn ior_at_wavelength(&self, band: u16, lambda_nm: f32, bands: &BandTable) -> f32 {
+        let n = self.ior(band);
+        match &self.spectrum {
+            Some(curve) => n + (curve.at(lambda_nm) - curve.at(bands.band(usize::from(band)).lambda_nm)),
+            None => n,
+        }
+    }
+
+    /// The index a path of `band` sees: at its own wavelength when it has
+    /// one ([`DielectricOptics::ior_at_wavelength`]), else the band's.
+    #[inline]
+    pub fn path_ior(&self, band: u16, lambda_nm: Option<f32>, bands: &BandTable) -> f32 {
+        match lambda_nm {
+            Some(lambda) => self.ior_at_wavelength(band, lambda, bands),
+            None => self.ior(band),
+        }
+    }
+
+    /// True when the bands do not all share one index.
+    #[inline]
+    pub fn is_dispersive(&self) -> bool {
+        self.dispersive
+    }
+
+    /// True when the bands leave the glass differently, by their index or
+    /// by their absorption: white photons split into bands here.
+    #[inline]
+    pub fn is_chromatic(&self) -> bool {
+        self.dispersive || self.absorption.is_some()
+    }
+}
+
+impl Surface {
+    /// The surface of `material` for the render's band table. Whether white
+    /// light splits into bands at a dielectric is left unset: the effect
+    /// plan decides it ([`crate::plan::prepared::PreparedScene::new`]).
+    pub fn new(material: &MaterialKind, bands: &BandTable) -> Self {
+        match material {
+            MaterialKind::Diffuse { albedo, checker, texture } => {
+                Surface::Diffuse { albedo: *albedo, checker: checker.clone(), texture: texture.clone() }
+            }
+            MaterialKind::Mirror => Surface::Mirror,
+            MaterialKind::Dielectric { dispersion, outside, attenuation } => {
+                // Snell's law and Fresnel depend only on the ratio of the
+                // indices, so the optics carry the relative index n/n_outside.
+                let per_band =
+                    |d: &Dispersion| -> Vec<f32> { (0..bands.len()).map(|b| d.ior_for_band(bands, b)).collect() };
+                let (inside_ior, outside_ior) = (per_band(dispersion), per_band(outside));
+                let band_ior: Vec<f32> = inside_ior.iter().zip(&outside_ior).map(|(n, m)| n / m).collect();
+                let constant = dispersion.is_constant() && outside.is_constant();
+                let dispersive = !constant && band_ior.iter().any(|&n| n != band_ior[0]);
+                let white_ior = white_index(dispersion, &inside_ior) / white_index(outside, &outside_ior);
+                Surface::Dielectric(DielectricOptics {
+                    band_ior,
+                    white_ior,
+                    dispersive,
+                    splits_photons: false,
+                    splits_view_rays: false,
+                    spectrum: IorCurve::new(dispersion, outside),
+                    absorption: attenuation.as_ref().and_then(|a| Absorption::new(a, bands)),
+                })
+            }
+        }
+    }
+
+    /// Albedo at world point `p` with unit normal `n` and texture
+    /// coordinates `uv` (read only with a texture; the checker is evaluated
+    /// a hair below the surface so that planes through a cell border do not flicker).
+    #[inline]
+    pub fn albedo_at(&self, p: Vec3, n: Vec3, uv: Vec2) -> Vec3 {
+        let Surface::Diffuse { albedo, checker, texture } = self else { return Vec3::ZERO };
+        let base = match checker {
+            None => *albedo,
+            Some(ch) => {
+                let q = (p + ch.offset - n * (ch.size * 1e-3)) / ch.size;
+                let parity = (crate::util::math::floor(q.x)
+                    + crate::util::math::floor(q.y)
+                    + crate::util::math::floor(q.z)) as i64;
+                if parity.rem_euclid(2) == 0 { *albedo } else { ch.albedo }
+            }
+        };
+        match texture {
+            None => base,
+            Some(t) => base * crate::geometry::texture::sample(t, uv),
+        }
+    }
+}
+
+/// n for white light: the model's one index when it has one, else the
+/// middle band's of `band_ior`.
+fn white_index(dispersion: &Dispersion, band_ior: &[f32]) -> f32 {
+    match dispersion {
+        Dispersion::Constant(n) => *n,
+        _ => band_ior[band_ior.len() / 2],
+    }
+}

@@ -1,0 +1,65 @@
+//! Photon emission: where white photon `index` starts, where it goes, and which light sent it.
+
+use crate::geometry::primitive::basis;
+use crate::model::scene::Light;
+use crate::plan::prepared::PreparedScene;
+use crate::plan::projection::cone_direction;
+use crate::sampling::sobol::photon_f32;
+use crate::util::math::{cos, radians, sin_cos_turns, sqrt};
+use crate::util::rng::{dim, random_f32};
+use glam::Vec3;
+
+/// A white photon as it leaves its light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Emitted {
+    /// Start point.
+    pub origin: Vec3,
+    /// Unit direction.
+    pub direction: Vec3,
+    /// Index of the light.
+    pub light: usize,
+    /// Flux multiplier: 1 without a projection map; with one, the photon's
+    /// share of its light's emission (0: aimed outside the light, not traced).
+    pub weight: f32,
+}
+
+/// Emits white photon `index` of the pass. Lights are chosen with
+/// probability proportional to their power, so every photon carries the same
+/// flux, Σ power / photons, times its projection-map weight.
+pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
+    let u = random_f32(seed, index, dim::LIGHT);
+    let light = scene.light_cdf.iter().position(|&c| u < c).unwrap_or(scene.light_cdf.len() - 1);
+    // The light's own two-dimensional sample: a direction, or a point on a beam's disc.
+    let sequence = scene.scene.render.photon_sequence;
+    let u1 = photon_f32(sequence, seed, index, dim::DIRECTION);
+    let u2 = photon_f32(sequence, seed, index, dim::DIRECTION + 1);
+    let source = &scene.emitters[light];
+    if let Some(projection) = &scene.plan.projections[light] {
+        let u_target = random_f32(seed, index, dim::TARGET);
+        let s = projection.sample(source, u_target, u1, u2);
+        return Emitted { origin: s.origin, direction: s.direction, light, weight: s.weight };
+    }
+    match source {
+        Light::Spot { position, direction, cone_deg, .. } => {
+            let axis = direction.normalize();
+            let cos_max = cos(radians(*cone_deg));
+            let cos_t = 1.0 - u1 * (1.0 - cos_max);
+            Emitted { origin: *position, direction: cone_direction(axis, cos_t, u2), light, weight: 1.0 }
+        }
+        Light::Point { position, .. } => {
+            let z = 1.0 - 2.0 * u1;
+            let r = sqrt((1.0 - z * z).max(0.0));
+            let (sin_phi, cos_phi) = sin_cos_turns(u2);
+            Emitted { origin: *position, direction: Vec3::new(r * cos_phi, r * sin_phi, z), light, weight: 1.0 }
+        }
+        Light::Beam { position, direction, radius, .. } => {
+            let axis = direction.normalize();
+            let (t, b) = basis(axis);
+            let r = radius * sqrt(u1);
+            let (sin_phi, cos_phi) = sin_cos_turns(u2);
+            let origin = *position + (t * cos_phi + b * sin_phi) * r;
+            Emitted { origin, direction: axis, light, weight: 1.0 }
+        }
+        Light::Sun { .. } => unreachable!("a sun emits as its beam (PreparedScene::emitters)"),
+    }
+}

@@ -1,0 +1,113 @@
+//! Gather estimators: caustic irradiance at a surface point from the photons within a radius.
+//!
+//! Both return irradiance in linear RGB (W/m² scaled by the band weights);
+//! the renderer turns it into radiance with the diffuse BRDF (albedo/π) and
+//! adds it to the ray-traced direct light.
+//!
+//! - `paper` (Gwak & Ryou): with T_i the number of band-i photons in the
+//!   disc and Total = Σ T_i, the hue is W/Total with W = Σ C_i T_i. A white
+//!   (unsplit) photon counts once in every band. Because the weights of N
+//!   bands sum to white, W/Total of balanced white light is (1,1,1)/N; we
+//!   scale the hue by N so that white is (1,1,1), and take the strength from
+//!   the photon flux density Σ Φ / (π r²). Counts are integers.
+//! - `density`: Σ N·C_i·Φ / (π r²) over the photons (each band photon
+//!   carries 1/N of the white flux, see [`BandTable::rgb_of_flux`]).
+//!
+//! A gather is two steps, each with a twin in every backend: the photons
+//! found add to a point's [`GatherSums`] ([`GatherSums::add`]), and
+//! [`finish`] turns the sums into irradiance (WGSL `finish_estimate`).
+//!
+//! Only photons arriving at the front of the surface (`dot(dir, n) < 0` for
+//! the normal facing the viewer) count, so light does not bleed through thin walls.
+
+use crate::model::bands::BandTable;
+use crate::model::photon::{Photon, WHITE_BAND};
+use crate::model::scene::Estimator;
+use crate::photons::grid::PhotonGrid;
+use core::f64::consts::PI;
+use glam::{DVec3, Vec3};
+
+/// A gather query: where, which side, how far.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GatherQuery {
+    /// Surface point.
+    pub point: Vec3,
+    /// Unit normal facing the viewer.
+    pub normal: Vec3,
+    /// Gather radius.
+    pub radius: f32,
+}
+
+/// What a gather adds up at a point, in f64 and integers (neither stalls
+/// at 2^24 photons).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct GatherSums {
+    /// `density`: Σ N·C_i·Φ; `paper`: W = Σ C_i T_i (a white photon adds (1, 1, 1)).
+    pub sums: DVec3,
+    /// `paper`: Total = Σ T_i, a white photon counting N.
+    pub total: u64,
+    /// Σ Φ of the photons found.
+    pub flux: f64,
+    /// Photons found (a white photon counts once).
+    pub found: u32,
+}
+
+impl GatherSums {
+    /// Adds a photon of `band` carrying `flux` that the gather accepted.
+    #[inline]
+    pub fn add(&mut self, estimator: Estimator, bands: &BandTable, band: u16, flux: f32) {
+        self.found += 1;
+        self.flux += f64::from(flux);
+        match estimator {
+            Estimator::Density => self.sums += bands.rgb_of_flux(band, flux).as_dvec3(),
+            Estimator::Paper if band == WHITE_BAND => {
+                self.sums += DVec3::ONE;
+                self.total += bands.len() as u64;
+            }
+            Estimator::Paper => {
+                self.sums += bands.band(usize::from(band)).weight.as_dvec3();
+                self.total += 1;
+            }
+        }
+    }
+}
+
+/// The estimator's last step: caustic irradiance from the sums of a
+/// gather within `radius`, with `bands` bands. Black when nothing was found.
+pub fn finish(estimator: Estimator, bands: usize, g: &GatherSums, radius: f32) -> Vec3 {
+    let area = PI * f64::from(radius) * f64::from(radius);
+    match estimator {
+        Estimator::Density => (g.sums / area).as_vec3(),
+        Estimator::Paper if g.total == 0 => Vec3::ZERO,
+        Estimator::Paper => (g.sums * (bands as f64 / g.total as f64)).as_vec3() * (g.flux / area) as f32,
+    }
+}
+
+/// Caustic irradiance (linear RGB) at `q` from the photons of `grid`.
+pub fn gather(grid: &PhotonGrid, photons: &[Photon], bands: &BandTable, estimator: Estimator, q: &GatherQuery) -> Vec3 {
+    gather_counted(grid, photons, bands, estimator, q).0
+}
+
+/// [`gather`], and how many photons it accepted.
+pub fn gather_counted(
+    grid: &PhotonGrid,
+    photons: &[Photon],
+    bands: &BandTable,
+    estimator: Estimator,
+    q: &GatherQuery,
+) -> (Vec3, u32) {
+    let r2 = q.radius * q.radius;
+    let mut sums = GatherSums::default();
+    grid.for_each_candidate(q.point, q.radius, |i| {
+        let p = &photons[i as usize];
+        if accepts(p, q, r2) {
+            sums.add(estimator, bands, p.band, p.flux);
+        }
+    });
+    (finish(estimator, bands.len(), &sums, q.radius), sums.found)
+}
+
+#[inline]
+fn accepts(p: &Photon, q: &GatherQuery, r2: f32) -> bool {
+    (p.pos() - q.point).length_squared() <= r2 && p.direction().dot(q.normal) < 0.0
+}

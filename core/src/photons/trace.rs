@@ -1,0 +1,234 @@
+//! The scalar reference photon tracer: the specification every backend's
+//! photon pass is compared with.
+//!
+//! White photons leave the lights (a sun's from its beam, see
+//! [`PreparedScene::emitters`]); at the first dispersive or coloured
+//! dielectric a white photon splits into one photon per band (each with 1/N
+//! of the flux) and each band continues with its own index of refraction
+//! and absorption; clear non-dispersive glass and mirrors never split. With
+//! [`WavelengthSampling::Hero`] it splits into M hero wavelengths instead
+//! (see [`split_bands`]); with [`WavelengthSampling::RandomBand`] or
+//! `Continuous` it does not split but continues as one random band with all
+//! its flux (see [`sample_band`]). A photon that reaches a diffuse surface
+//! after at least one specular interaction is stored (the dispersion caustic
+//! map, L S+ D paths); one that reaches it directly is direct light, which
+//! the renderer ray traces instead. Inside coloured glass a path survives
+//! each segment with its band's Beer–Lambert transmittance (see
+//! [`absorbed`]). Fresnel chooses reflection or refraction
+//! with a counter-based random number, so the result is a pure function of
+//! the scene and the seed.
+
+use crate::geometry::primitive::Ray;
+use crate::model::photon::{Photon, PhotonMap, TraceStats, WHITE_BAND, oct_encode};
+use crate::model::scene::WavelengthSampling;
+use crate::optics::fresnel::reflect;
+use crate::optics::scatter::{offset_origin, scatter_dielectric};
+use crate::optics::surface::{DielectricOptics, Surface};
+use crate::photons::emit::emit;
+use crate::plan::prepared::PreparedScene;
+use crate::sampling::sobol::photon_f32;
+use crate::util::progress::{Progress, Stage};
+use crate::util::rng::{dim, random_f32};
+use alloc::vec::Vec;
+use glam::Vec3;
+
+/// Traces every white photon of the scene's render settings, reporting
+/// progress about a hundred times.
+pub fn trace_photons(scene: &PreparedScene, progress: &mut dyn Progress) -> PhotonMap {
+    // The effect plan may skip the photon pass altogether.
+    let total = if scene.plan.caustics.on { scene.scene.render.photons } else { 0 };
+    let chunk = (total / 100).max(1024);
+    let mut map = PhotonMap::default();
+    let mut start = 0;
+    while start < total {
+        let end = start.saturating_add(chunk).min(total);
+        trace_range(scene, start..end, &mut map.photons, &mut map.stats);
+        progress.advance(Stage::Photons, u64::from(end), u64::from(total));
+        start = end;
+    }
+    map
+}
+
+/// Flux of one emitted white photon.
+pub fn photon_flux(scene: &PreparedScene) -> f32 {
+    match scene.scene.render.photons {
+        0 => 0.0,
+        n => scene.total_power / n as f32,
+    }
+}
+
+/// Traces white photons `range` (emission indices), appending stored photons
+/// in canonical order. Backends use it for chunks and scalar tails.
+pub fn trace_range(scene: &PreparedScene, range: core::ops::Range<u32>, out: &mut Vec<Photon>, stats: &mut TraceStats) {
+    let flux = photon_flux(scene);
+    for index in range {
+        trace_emitted(scene, index, flux, out, stats);
+    }
+}
+
+/// One photon path in flight.
+#[derive(Clone, Copy, Debug)]
+struct Path {
+    ray: Ray,
+    flux: f32,
+    band: u16,
+    /// The wavelength a continuous-spectrum photon is traced at.
+    lambda_nm: Option<f32>,
+    bounces: u32,
+}
+
+/// Traces white photon `index` and all the band photons it splits into.
+pub fn trace_emitted(scene: &PreparedScene, index: u32, flux: f32, out: &mut Vec<Photon>, stats: &mut TraceStats) {
+    let e = emit(scene, scene.scene.render.seed, index);
+    stats.emitted += 1;
+    let flux = flux * e.weight;
+    if e.weight == 0.0 {
+        return; // a projection-map sample outside its light: nothing to trace
+    }
+    stats.paths += 1;
+    stats.flux_emitted += f64::from(flux);
+    let path = Path {
+        ray: Ray { origin: e.origin, direction: e.direction },
+        flux,
+        band: WHITE_BAND,
+        lambda_nm: None,
+        bounces: 0,
+    };
+    trace_path(scene, index, path, out, stats);
+}
+
+fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Photon>, stats: &mut TraceStats) {
+    let settings = &scene.scene.render;
+    loop {
+        stats.segments += 1;
+        let Some(hit) = scene.intersect(&p.ray, f32::INFINITY) else {
+            stats.flux_escaped += f64::from(p.flux);
+            return;
+        };
+        let surface = &scene.surfaces[hit.object];
+        if let Surface::Diffuse { .. } = surface {
+            if p.bounces == 0 {
+                stats.flux_direct += f64::from(p.flux);
+            } else {
+                stats.stored += 1;
+                stats.flux_stored += f64::from(p.flux);
+                out.push(Photon {
+                    position: hit.point.to_array(),
+                    flux: p.flux,
+                    direction_oct: oct_encode(p.ray.direction).to_array(),
+                    emission: index,
+                    band: p.band,
+                    bounces: p.bounces as u16,
+                });
+            }
+            return;
+        }
+        if p.bounces >= scene.plan.max_depth {
+            stats.flux_depth_limited += f64::from(p.flux);
+            return;
+        }
+        if let Surface::Dielectric(glass) = surface
+            && absorbed(glass, p.ray.direction, hit.normal, hit.t, p.band, || {
+                random_f32(settings.seed, index, dim::absorb(p.band, p.bounces))
+            })
+        {
+            stats.flux_absorbed += f64::from(p.flux);
+            return;
+        }
+        if p.bounces == 0 {
+            stats.specular_paths += 1;
+        }
+        match surface {
+            Surface::Mirror => {
+                let d = reflect(p.ray.direction, hit.normal);
+                p.ray = Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d };
+            }
+            Surface::Dielectric(glass) if p.band == WHITE_BAND && glass.splits_photons => {
+                let paths = settings.wavelengths.paths(scene.bands.len());
+                if paths == 1 {
+                    let (band, lambda_nm) = sample_band(scene, index);
+                    p.band = band;
+                    p.lambda_nm = lambda_nm;
+                    let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
+                    let ior = glass.path_ior(band, lambda_nm, &scene.bands);
+                    p.ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, u);
+                    p.bounces += 1;
+                    continue;
+                }
+                stats.paths += u64::from(paths) - 1;
+                for (band, lambda_nm) in split_bands(scene, index) {
+                    let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
+                    let ior = glass.path_ior(band, lambda_nm, &scene.bands);
+                    let ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, u);
+                    let child = Path { ray, flux: p.flux / paths as f32, band, lambda_nm, bounces: p.bounces + 1 };
+                    trace_path(scene, index, child, out, stats);
+                }
+                return;
+            }
+            Surface::Dielectric(glass) => {
+                let u = random_f32(settings.seed, index, dim::scatter(p.band, p.bounces));
+                let ior = glass.path_ior(p.band, p.lambda_nm, &scene.bands);
+                p.ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, u);
+            }
+            Surface::Diffuse { .. } => unreachable!("handled above"),
+        }
+        p.bounces += 1;
+    }
+}
+
+/// Whether coloured `glass` absorbs the photon path of `band` on a segment
+/// of length `t` along `dir` that ends on it (outward `normal` there). Only
+/// a segment that ran inside (it meets the glass from within) can be
+/// absorbed, with probability 1 − e^(−σt) against the uniform number `u`
+/// ([`dim::absorb`]): Russian roulette, so survivors keep their flux and
+/// both estimators (counts and flux) stay unbiased.
+pub fn absorbed(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t: f32, band: u16, u: impl FnOnce() -> f32) -> bool {
+    let Some(absorption) = &glass.absorption else { return false };
+    dir.dot(normal) > 0.0 && u() >= absorption.transmittance(band, t)
+}
+
+/// The band a white photon continues as when it does not split
+/// ([`WavelengthSampling::RandomBand`] and `Continuous`): uniform over the
+/// bands, and for `Continuous` a wavelength uniform over the band's interval.
+/// Both come from one number u ([`dim::SPECTRUM`]): the band is ⌊u·N⌋ and
+/// the wavelength sits at the fraction u·N − ⌊u·N⌋ of its interval, so
+/// stratified numbers stratify the whole spectrum.
+pub fn sample_band(scene: &PreparedScene, index: u32) -> (u16, Option<f32>) {
+    spectrum_share(scene, spectrum_number(scene, index), 0, 1)
+}
+
+/// The bands and wavelengths white photon `index` splits into, in band
+/// order: every band at the band's own index ([`WavelengthSampling::Split`]),
+/// or its hero wavelengths ([`WavelengthSampling::Hero`]), all from the
+/// photon's one spectrum number.
+pub fn split_bands(scene: &PreparedScene, index: u32) -> impl Iterator<Item = (u16, Option<f32>)> + '_ {
+    let paths = scene.scene.render.wavelengths.paths(scene.bands.len());
+    let u = (scene.scene.render.wavelengths != WavelengthSampling::Split).then(|| spectrum_number(scene, index));
+    (0..paths).map(move |path| match u {
+        Some(u) => spectrum_share(scene, u, path, paths),
+        None => (path as u16, None),
+    })
+}
+
+/// White photon `index`'s spectrum number u ([`dim::SPECTRUM`]), shared by
+/// every path it splits into.
+pub fn spectrum_number(scene: &PreparedScene, index: u32) -> f32 {
+    let r = &scene.scene.render;
+    photon_f32(r.photon_sequence, r.seed, index, dim::SPECTRUM)
+}
+
+/// The spectrum sample in share `share` of `shares` equal shares of the
+/// spectrum, all shifted by the photon's spectrum number `u`:
+/// v = (share + u)/shares, the band ⌊v·N⌋ and (with continuous
+/// wavelengths) the wavelength at the fraction v·N − ⌊v·N⌋ of its
+/// interval. The shares' bands differ when shares ≤ N.
+pub fn spectrum_share(scene: &PreparedScene, u: f32, share: u32, shares: u32) -> (u16, Option<f32>) {
+    let n = scene.bands.len();
+    let scaled = (share as f32 + u) / shares as f32 * n as f32;
+    let band = (scaled as usize).min(n - 1);
+    let lambda_nm = scene.scene.render.wavelengths.continuous().then(|| {
+        let (lo, hi) = scene.bands.band(band).interval_nm;
+        lo + (hi - lo) * (scaled - band as f32)
+    });
+    (band as u16, lambda_nm)
+}

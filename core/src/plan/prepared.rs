@@ -1,0 +1,212 @@
+//! A validated scene with everything derived that tracing and rendering need:
+//! the band table, each object's primitive and surface (per-band indices of
+//! refraction), the light-selection distribution and the effect plan.
+
+use crate::geometry::primitive::{Primitive, Ray, prism_faces};
+use crate::geometry::texture::TriangleUv;
+use crate::model::bands::BandTable;
+use crate::model::scene::{Light, Scene, SceneError, Shape};
+use crate::optics::surface::Surface;
+use crate::plan::effects::EffectPlan;
+use crate::plan::reach;
+use alloc::sync::Arc;
+use alloc::vec::Vec;
+use glam::{Vec2, Vec3};
+
+/// A hit with the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// Ray parameter.
+    pub t: f32,
+    /// World point.
+    pub point: Vec3,
+    /// Outward geometric unit normal.
+    pub normal: Vec3,
+    /// Index of the object hit.
+    pub object: usize,
+    /// The mesh triangle hit (see [`crate::geometry::primitive::SurfaceHit::triangle`]).
+    pub triangle: u32,
+}
+
+/// A validated scene plus the tables derived from it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreparedScene {
+    /// The scene as given.
+    pub scene: Scene,
+    /// The render's band table.
+    pub bands: BandTable,
+    /// One primitive per object.
+    pub primitives: Vec<Primitive>,
+    /// One surface per object.
+    pub surfaces: Vec<Surface>,
+    /// Per object, the texture coordinates of its mesh's triangles in the
+    /// hierarchy's order; empty unless its surface has a texture.
+    pub texture_uvs: Vec<Vec<TriangleUv>>,
+    /// What each light emits photons as: the light itself, or for a sun
+    /// the beam over the scene's mirrors and glass ([`crate::plan::reach::sun_beam`]).
+    pub emitters: Vec<Light>,
+    /// Cumulative light-selection probabilities (by power).
+    pub light_cdf: Vec<f32>,
+    /// Σ light power.
+    pub total_power: f32,
+    /// What the render simulates; backends follow it.
+    pub plan: EffectPlan,
+}
+
+impl PreparedScene {
+    /// Validates `scene` and derives the tables.
+    pub fn new(scene: Scene) -> Result<Self, SceneError> {
+        Self::prepare(scene, None)
+    }
+
+    /// [`PreparedScene::new`] of `scene`, a changed version of this one (an
+    /// engine's next frame): a mesh whose triangles are this one's keeps its
+    /// hierarchy, shared when its vertices stayed and refitted when they
+    /// moved ([`crate::geometry::bvh_build::refit`]); only new meshes are built (and
+    /// checked: see [`Scene::validate_since`]). The result traces as a
+    /// fresh preparation would.
+    pub fn update(&self, scene: Scene) -> Result<Self, SceneError> {
+        Self::prepare(scene, Some(self))
+    }
+
+    fn prepare(scene: Scene, previous: Option<&PreparedScene>) -> Result<Self, SceneError> {
+        scene.validate_since(previous.map(|p| &p.scene))?;
+        let bands = BandTable::new(scene.render.bands);
+        let primitives: Vec<Primitive> = scene
+            .objects
+            .iter()
+            .enumerate()
+            .map(|(i, o)| previous.and_then(|p| p.reuse(i, &o.shape)).unwrap_or_else(|| primitive(&o.shape)))
+            .collect();
+        let surfaces: Vec<Surface> =
+            scene.objects.iter().map(|o| Surface::new(&scene.materials[o.material].kind, &bands)).collect();
+        let texture_uvs = scene
+            .objects
+            .iter()
+            .zip(&primitives)
+            .zip(&surfaces)
+            .map(|((o, p), s)| match (&o.shape, p, s) {
+                (
+                    Shape::Mesh { triangles, uvs, .. },
+                    Primitive::Mesh(bvh),
+                    Surface::Diffuse { texture: Some(_), .. },
+                ) => bvh
+                    .sources
+                    .iter()
+                    .map(|&k| TriangleUv::new(triangles[k as usize].map(|i| uvs[i as usize])))
+                    .collect(),
+                _ => Vec::new(),
+            })
+            .collect();
+        let bounds: Vec<(Vec3, f32)> = scene.objects.iter().map(|o| reach::bounds(&o.shape)).collect();
+        let specular: Vec<(Vec3, f32)> = bounds
+            .iter()
+            .zip(&surfaces)
+            .filter(|(_, s)| !matches!(s, Surface::Diffuse { .. }))
+            .map(|(b, _)| *b)
+            .collect();
+        let emitters: Vec<Light> = scene
+            .lights
+            .iter()
+            .map(|l| match l {
+                Light::Sun { direction, irradiance } => reach::sun_beam(*direction, *irradiance, &specular, &bounds),
+                other => other.clone(),
+            })
+            .collect();
+        let total_power: f32 = emitters.iter().map(|l| l.power()).sum();
+        let mut acc = 0.0;
+        let mut light_cdf: Vec<f32> = emitters
+            .iter()
+            .map(|l| {
+                acc += l.power();
+                acc / total_power
+            })
+            .collect();
+        if let Some(last) = light_cdf.last_mut() {
+            *last = 1.0;
+        }
+        let mut surfaces = surfaces;
+        let plan = EffectPlan::new(&scene, &emitters, &surfaces);
+        for s in &mut surfaces {
+            if let Surface::Dielectric(g) = s {
+                g.splits_photons = g.is_chromatic() && plan.band_splitting.on;
+                g.splits_view_rays = g.dispersive && plan.view_dispersion.on;
+            }
+        }
+        Ok(PreparedScene { scene, bands, primitives, surfaces, texture_uvs, emitters, light_cdf, total_power, plan })
+    }
+
+    /// The primitive of `shape`, object `index` of a changed scene, from
+    /// this scene's: a mesh with the same triangles as this scene's object
+    /// `index` (or, failing that, as any of its meshes) keeps its hierarchy,
+    /// shared or refitted. `None`: build it.
+    fn reuse(&self, index: usize, shape: &Shape) -> Option<Primitive> {
+        let Shape::Mesh { positions, triangles, .. } = shape else { return None };
+        let same_triangles =
+            |i: &usize| matches!(&self.scene.objects[*i].shape, Shape::Mesh { triangles: t, .. } if t == triangles);
+        let i = Some(index)
+            .filter(|i| *i < self.scene.objects.len() && same_triangles(i))
+            .or_else(|| (0..self.scene.objects.len()).find(same_triangles))?;
+        let (Shape::Mesh { positions: before, .. }, Primitive::Mesh(bvh)) =
+            (&self.scene.objects[i].shape, &self.primitives[i])
+        else {
+            return None;
+        };
+        if before == positions {
+            return Some(Primitive::Mesh(Arc::clone(bvh)));
+        }
+        crate::geometry::bvh_build::refit(bvh, positions, triangles).map(|refitted| Primitive::Mesh(Arc::new(refitted)))
+    }
+
+    /// Simulates every effect, ignoring the plan (see [`EffectPlan::simulate_everything`]).
+    pub fn simulate_everything(&mut self) {
+        self.plan.simulate_everything(self.scene.render.max_depth, &mut self.surfaces);
+    }
+
+    /// The nearest hit along `ray` closer than `t_max`. Rays start off their
+    /// surface (see [`offset_origin`]), so any positive distance counts.
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        let mut limit = t_max;
+        for (object, prim) in self.primitives.iter().enumerate() {
+            if let Some(h) = prim.intersect(ray, 0.0, limit) {
+                limit = h.t;
+                best = Some(Hit { t: h.t, point: ray.at(h.t), normal: h.normal, object, triangle: h.triangle });
+            }
+        }
+        best
+    }
+
+    /// The albedo of diffuse `object` at `point` (unit normal `normal`) on
+    /// its mesh triangle `triangle`: the surface's albedo (with its
+    /// checker), times its texture at the point's texture coordinates.
+    #[inline]
+    pub fn albedo_at(&self, object: usize, triangle: u32, point: Vec3, normal: Vec3) -> Vec3 {
+        let uv = match (&self.primitives[object], self.texture_uvs[object].get(triangle as usize)) {
+            (Primitive::Mesh(bvh), Some(uv)) => uv.at(&bvh.triangles[triangle as usize], point),
+            _ => Vec2::ZERO,
+        };
+        self.surfaces[object].albedo_at(point, normal, uv)
+    }
+
+    /// True when something blocks the segment from `origin` along unit `dir` before `dist`.
+    pub fn occluded(&self, origin: Vec3, dir: Vec3, dist: f32) -> bool {
+        let ray = Ray { origin, direction: dir };
+        self.primitives.iter().any(|p| p.hits(&ray, 0.0, dist))
+    }
+}
+
+fn primitive(shape: &Shape) -> Primitive {
+    match shape {
+        Shape::Sphere { center, radius } => Primitive::Sphere { center: *center, radius: *radius },
+        Shape::Plane { point, normal } => Primitive::Plane { point: *point, normal: normal.normalize() },
+        Shape::Disk { center, normal, radius, inner_radius } => Primitive::Disk {
+            center: *center,
+            normal: normal.normalize(),
+            radius2: radius * radius,
+            inner_radius2: inner_radius * inner_radius,
+        },
+        Shape::Prism { vertices, extrude } => Primitive::Convex { faces: prism_faces(*vertices, *extrude) },
+        Shape::Mesh { positions, triangles, .. } => Primitive::mesh(positions, triangles),
+    }
+}

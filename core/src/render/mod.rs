@@ -1,0 +1,10 @@
+//! Layer 7, render: the camera's side and the protocol. View rays and their
+//! visible points, the exact sums, the render protocol, its host driver and the
+//! scalar reference backend.
+
+pub mod accumulation;
+pub mod host;
+pub mod protocol;
+pub mod reference;
+pub mod view;
+pub mod visible;

@@ -1,0 +1,349 @@
+//! The scalar reference view pass: the specification of every backend's
+//! view rays.
+//!
+//! One primary ray per pixel centre. At a diffuse hit the pixel gets
+//! `albedo/π · (E_direct + E_caustic) + albedo · ambient`, where E_direct is
+//! the ray-traced irradiance from each light (with shadow rays; glass casts
+//! a full shadow because the light it passes on arrives as caustic photons)
+//! and E_caustic is the gathered photon irradiance: the caustic is added to
+//! the ray-traced colour, not mixed with it, which is the physically
+//! consistent blend (the two estimate disjoint light paths). The view pass
+//! leaves the caustic out: each diffuse hit that needs it becomes a visible
+//! point whose weight says what a unit of caustic irradiance there adds to
+//! the pixel, and every photon pass gathers there (with light tracing,
+//! only the hits behind a mirror or glass: see [`gathers_at`]).
+//!
+//! Mirrors reflect; dielectrics trace both the Fresnel-weighted reflection
+//! and the refraction, to `max_depth`, dropping branches whose share of the
+//! pixel (Fresnel factors times, after a split, the band's largest RGB
+//! weight) falls below [`MIN_VIEW_WEIGHT`]. At the first dispersive glass a
+//! view ray splits into one ray per band, each weighted by the band's RGB
+//! weight C_i. A ray that crossed coloured glass keeps its Beer–Lambert
+//! transmittance (per RGB channel for white rays, the band's for a band;
+//! see [`glass_transmittance`]).
+//!
+//! With sampled view paths ([`ViewPaths::Sampled`]) each pass traces one
+//! path per pixel, with the numbers of [`PixelSampler`]: through a jittered
+//! point of the pixel; at glass the reflection with probability R, else the
+//! refraction (the factor R or 1 − R cancels against its probability); at
+//! the first dispersive glass M = 4 hero paths ([`hero_view_paths`], at
+//! most N), path i in band b = ⌊v·N⌋ with v = (i + u)/M (u the pixel's
+//! spectrum number for the pass), weighted (N/M)·C_b, at its own
+//! wavelength when the scene's photons are (continuous and hero
+//! wavelengths). Each pass's view is then an unbiased sample of the
+//! box-filtered pixel, and the passes' mean converges to it.
+
+use crate::geometry::camera::PinholeCamera;
+use crate::geometry::primitive::Ray;
+use crate::model::image::Image;
+use crate::model::photon::WHITE_BAND;
+use crate::model::scene::{Light, ViewPaths, WavelengthSampling};
+use crate::optics::fresnel::reflect;
+use crate::optics::scatter::{offset_origin, scatter_dielectric, split_dielectric};
+use crate::optics::surface::{DielectricOptics, Surface};
+use crate::photons::trace::spectrum_share;
+use crate::plan::prepared::{Hit, PreparedScene};
+use crate::render::visible::{VisiblePoint, VisiblePoints};
+use crate::sampling::pixel_sample::PixelSampler;
+use crate::util::math::{cos, radians};
+use crate::util::progress::{Progress, Stage};
+use crate::util::tolerance::MIN_VIEW_WEIGHT;
+use alloc::vec::Vec;
+use core::f32::consts::PI;
+use glam::Vec3;
+
+/// Where a view ray is on its way from the camera: its band (or white) and
+/// wavelength (`None`: the band's own index), specular depth, share of the
+/// pixel (for pruning), RGB factor, and a sampled path's numbers and hero
+/// path (0 before the split).
+#[derive(Clone, Copy, Debug)]
+struct ViewPath {
+    band: u16,
+    hero: u32,
+    lambda_nm: Option<f32>,
+    depth: u32,
+    weight: f32,
+    tint: Vec3,
+    sampler: Option<PixelSampler>,
+}
+
+/// Everything a pixel's view rays need: the scene and the camera.
+pub struct ViewContext<'a> {
+    /// The scene.
+    pub scene: &'a PreparedScene,
+    /// The camera.
+    pub camera: PinholeCamera,
+}
+
+impl<'a> ViewContext<'a> {
+    /// Sets up the view rays of `scene`.
+    pub fn new(scene: &'a PreparedScene) -> Self {
+        let r = &scene.scene.render;
+        ViewContext { scene, camera: PinholeCamera::new(&scene.scene.camera, r.width, r.height) }
+    }
+
+    /// Pixel (x, y) without its caustic, exposure applied; the diffuse hits
+    /// whose caustic it needs are appended to `points` (their weight includes
+    /// the exposure and their pixel is the row-major index of (x, y)).
+    pub fn pixel(&self, x: u32, y: u32, points: &mut Vec<VisiblePoint>) -> Vec3 {
+        self.trace_pixel(x, y, None, points)
+    }
+
+    /// [`ViewContext::pixel`] on pass `pass`'s sampled path ([`ViewPaths::Sampled`]).
+    pub fn sampled_pixel(&self, x: u32, y: u32, pass: u32, points: &mut Vec<VisiblePoint>) -> Vec3 {
+        let r = &self.scene.scene.render;
+        self.trace_pixel(x, y, Some(PixelSampler::new(r.seed, y * r.width + x, pass)), points)
+    }
+
+    fn trace_pixel(&self, x: u32, y: u32, sampler: Option<PixelSampler>, points: &mut Vec<VisiblePoint>) -> Vec3 {
+        let exposure = self.scene.scene.render.exposure;
+        let tint = Vec3::splat(exposure);
+        let path = ViewPath { band: WHITE_BAND, hero: 0, lambda_nm: None, depth: 0, weight: 1.0, tint, sampler };
+        let first = points.len();
+        let ray = match sampler {
+            Some(s) => self.camera.ray_through(x, y, s.jitter()),
+            None => self.camera.ray(x, y),
+        };
+        let radiance = self.radiance(&ray, path, points) * exposure;
+        let pixel = y * self.scene.scene.render.width + x;
+        for p in &mut points[first..] {
+            p.pixel = pixel;
+        }
+        radiance
+    }
+
+    /// Radiance arriving along `ray` on `path`, less the caustic: each
+    /// diffuse hit that needs it is recorded in `points` instead (weighted
+    /// by the path's tint).
+    fn radiance(&self, ray: &Ray, path: ViewPath, points: &mut Vec<VisiblePoint>) -> Vec3 {
+        let settings = &self.scene.scene.render;
+        let Some(hit) = self.scene.intersect(ray, f32::INFINITY) else {
+            return settings.background;
+        };
+        let surface = &self.scene.surfaces[hit.object];
+        // What coloured glass left of the ray, when it crossed glass to get here.
+        let kept = match surface {
+            Surface::Dielectric(glass) => glass_transmittance(glass, ray.direction, hit.normal, hit.t, path.band),
+            _ => Vec3::ONE,
+        };
+        let path = ViewPath { weight: path.weight * kept.max_element(), tint: path.tint * kept, ..path };
+        let ViewPath { band, depth, weight, tint, .. } = path;
+        kept * match surface {
+            Surface::Diffuse { .. } => self.shade_diffuse(ray, &hit, path, points),
+            _ if depth >= self.scene.plan.max_depth => Vec3::ZERO,
+            Surface::Mirror => {
+                let d = reflect(ray.direction, hit.normal);
+                let next = ViewPath { depth: depth + 1, ..path };
+                self.radiance(&Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d }, next, points)
+            }
+            Surface::Dielectric(glass) if band == WHITE_BAND && glass.splits_view_rays => match path.sampler {
+                Some(sampler) => hero_view_paths(self.scene, sampler.spectrum())
+                    .map(|HeroViewPath { hero, band, lambda_nm, weight: w }| {
+                        let share = weight * w.abs().max_element();
+                        let p = ViewPath { band, hero, lambda_nm, weight: share, tint: tint * w, ..path };
+                        w * self.through_dielectric(ray, &hit, self.ior(glass, &p), p, points)
+                    })
+                    .sum(),
+                None => self
+                    .scene
+                    .bands
+                    .bands()
+                    .iter()
+                    .enumerate()
+                    .map(|(b, info)| {
+                        // The band's share of the pixel bounds what its branches can add.
+                        let share = weight * info.weight.abs().max_element();
+                        let band_path = ViewPath { band: b as u16, weight: share, tint: tint * info.weight, ..path };
+                        info.weight * self.through_dielectric(ray, &hit, glass.ior(b as u16), band_path, points)
+                    })
+                    .sum(),
+            },
+            Surface::Dielectric(glass) => self.through_dielectric(ray, &hit, self.ior(glass, &path), path, points),
+        }
+    }
+
+    /// The index `path` sees at `glass`: its band's, or at its own wavelength.
+    fn ior(&self, glass: &DielectricOptics, path: &ViewPath) -> f32 {
+        glass.path_ior(path.band, path.lambda_nm, &self.scene.bands)
+    }
+
+    /// Fresnel-weighted reflection plus refraction at a dielectric hit.
+    fn through_dielectric(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        ior: f32,
+        path: ViewPath,
+        points: &mut Vec<VisiblePoint>,
+    ) -> Vec3 {
+        if let Some(sampler) = path.sampler {
+            // One branch, chosen with its Fresnel probability, as photons choose theirs.
+            let next = ViewPath { depth: path.depth + 1, ..path };
+            let u = sampler.branch(path.hero, path.depth);
+            return self.radiance(&scatter_dielectric(ray.direction, hit.point, hit.normal, ior, u), next, points);
+        }
+        let split = split_dielectric(ray.direction, hit.point, hit.normal, ior);
+        let r = split.reflectance;
+        let mut sum = Vec3::ZERO;
+        let branch = |f: f32| ViewPath { depth: path.depth + 1, weight: path.weight * f, tint: path.tint * f, ..path };
+        if r * path.weight > MIN_VIEW_WEIGHT {
+            sum += self.radiance(&split.reflected, branch(r), points) * r;
+        }
+        let t = 1.0 - r;
+        if t * path.weight > MIN_VIEW_WEIGHT
+            && let Some(refracted) = split.refracted
+        {
+            sum += self.radiance(&refracted, branch(t), points) * t;
+        }
+        sum
+    }
+
+    /// Radiance leaving a diffuse hit toward the viewer, less its caustic,
+    /// which is left to a visible point (when the plan traces caustics and
+    /// light tracing does not bring it: see [`gathers_at`]).
+    fn shade_diffuse(&self, ray: &Ray, hit: &Hit, path: ViewPath, points: &mut Vec<VisiblePoint>) -> Vec3 {
+        let n = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
+        let albedo = self.scene.albedo_at(hit.object, hit.triangle, hit.point, n);
+        let settings = &self.scene.scene.render;
+        let direct: f32 = (0..self.scene.scene.lights.len()).map(|i| self.direct_irradiance(i, hit.point, n)).sum();
+        if gathers_at(self.scene, path.depth) {
+            points.push(VisiblePoint { point: hit.point, normal: n, weight: path.tint * albedo / PI, pixel: 0 });
+        }
+        albedo * Vec3::splat(direct) * (1.0 / PI) + albedo * settings.ambient
+    }
+
+    /// Irradiance from light `index` at `p` (unit normal `n`), zero when in
+    /// shadow (shadow rays only where the effect plan asks for them).
+    pub fn direct_irradiance(&self, index: usize, p: Vec3, n: Vec3) -> f32 {
+        let shadows = self.scene.plan.shadows[index].on;
+        match &self.scene.scene.lights[index] {
+            Light::Spot { position, direction, cone_deg, power } => {
+                let cos_max = cos(radians(*cone_deg));
+                let Some((l, dist, cos_s)) = self.visible_point(*position, p, n, shadows) else {
+                    return 0.0;
+                };
+                if (-l).dot(direction.normalize()) < cos_max {
+                    return 0.0;
+                }
+                let intensity = power / (2.0 * PI * (1.0 - cos_max));
+                intensity * cos_s / (dist * dist)
+            }
+            Light::Point { position, power } => {
+                let Some((_, dist, cos_s)) = self.visible_point(*position, p, n, shadows) else {
+                    return 0.0;
+                };
+                power / (4.0 * PI) * cos_s / (dist * dist)
+            }
+            Light::Beam { position, direction, radius, power } => {
+                let axis = direction.normalize();
+                let along = (p - *position).dot(axis);
+                let cos_s = -axis.dot(n);
+                if along <= 0.0 || cos_s <= 0.0 || (p - *position - axis * along).length() > *radius {
+                    return 0.0;
+                }
+                if shadows && self.scene.occluded(offset_origin(p, n, -axis), -axis, along) {
+                    return 0.0;
+                }
+                power / (PI * radius * radius) * cos_s
+            }
+            Light::Sun { direction, irradiance } => {
+                let to_sun = -direction.normalize();
+                let cos_s = to_sun.dot(n);
+                if cos_s <= 0.0 || (shadows && self.scene.occluded(offset_origin(p, n, to_sun), to_sun, f32::INFINITY))
+                {
+                    return 0.0;
+                }
+                irradiance * cos_s
+            }
+        }
+    }
+
+    /// Direction to a point light, its distance and the surface cosine, or
+    /// `None` when the light is behind the surface or blocked.
+    fn visible_point(&self, light: Vec3, p: Vec3, n: Vec3, shadows: bool) -> Option<(Vec3, f32, f32)> {
+        let to = light - p;
+        let dist = to.length();
+        let l = to / dist;
+        let cos_s = l.dot(n);
+        if cos_s <= 0.0 {
+            return None;
+        }
+        if !shadows {
+            return Some((l, dist, cos_s));
+        }
+        let origin = offset_origin(p, n, l);
+        (!self.scene.occluded(origin, l, (light - origin).length())).then_some((l, dist, cos_s))
+    }
+}
+
+/// One of the hero paths a sampled view path splits into at the first
+/// dispersive glass.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct HeroViewPath {
+    /// Which of the M paths (it numbers the path's Fresnel choices).
+    pub hero: u32,
+    /// Its band.
+    pub band: u16,
+    /// Its wavelength (`None`: the band's own index).
+    pub lambda_nm: Option<f32>,
+    /// Its RGB weight, (N/M)·C_b.
+    pub weight: Vec3,
+}
+
+/// The M hero paths (as many as a hero photon's, [`WavelengthSampling::paths`])
+/// a sampled view path with spectrum number `u` splits into: path i in band
+/// ⌊v·N⌋ at v = (i + u)/M ([`spectrum_share`]), weighted (N/M)·C_b, since
+/// each band falls to path i with probability M/N.
+pub fn hero_view_paths(scene: &PreparedScene, u: f32) -> impl Iterator<Item = HeroViewPath> + '_ {
+    let n = scene.bands.len();
+    let m = WavelengthSampling::Hero.paths(n);
+    (0..m).map(move |hero| {
+        let (band, lambda_nm) = spectrum_share(scene, u, hero, m);
+        HeroViewPath {
+            hero,
+            band,
+            lambda_nm,
+            weight: scene.bands.band(usize::from(band)).weight * (n as f32 / m as f32),
+        }
+    })
+}
+
+/// Whether a diffuse hit that a view path reaches after `depth` specular
+/// bounces gathers the caustic: when the plan traces caustics, unless light
+/// tracing brings them there (it does for every diffuse surface the camera
+/// sees directly, depth 0: see [`crate::photons::light_tracing`]).
+pub fn gathers_at(scene: &PreparedScene, depth: u32) -> bool {
+    scene.plan.caustics.on && (depth > 0 || !scene.scene.render.light_tracing)
+}
+
+/// What a view ray of `band` keeps of each RGB channel on a segment of
+/// length `t` along `dir` that ends on `glass` (outward `normal` there):
+/// the Beer–Lambert transmittance when the segment ran inside coloured
+/// glass, else all of it.
+pub fn glass_transmittance(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t: f32, band: u16) -> Vec3 {
+    match &glass.absorption {
+        Some(absorption) if dir.dot(normal) > 0.0 => absorption.view_transmittance(band, t),
+        _ => Vec3::ONE,
+    }
+}
+
+/// Traces every pixel's view rays with the scalar reference (pass `pass`'s
+/// sampled paths with [`ViewPaths::Sampled`]; the same for every pass
+/// otherwise): the image without caustics and the visible points that need
+/// them, reporting progress after every row.
+pub fn visible_points(scene: &PreparedScene, pass: u32, progress: &mut dyn Progress) -> VisiblePoints {
+    let ctx = ViewContext::new(scene);
+    let (w, h) = (scene.scene.render.width, scene.scene.render.height);
+    let sampled = scene.scene.render.view_paths == ViewPaths::Sampled;
+    let mut out = VisiblePoints { base: Image::new(w, h), points: Vec::new() };
+    for y in 0..h {
+        for x in 0..w {
+            out.base.pixels[(y * w + x) as usize] = match sampled {
+                true => ctx.sampled_pixel(x, y, pass, &mut out.points),
+                false => ctx.pixel(x, y, &mut out.points),
+            };
+        }
+        progress.advance(Stage::View, u64::from(y) + 1, u64::from(h));
+    }
+    out
+}

@@ -1,0 +1,5 @@
+//! Layer 2, sampling: the low-discrepancy numbers photons and view paths draw
+//! (Owen-scrambled Sobol points, the per-pixel sampler).
+
+pub mod pixel_sample;
+pub mod sobol;

@@ -134,7 +134,6 @@ const STORED_OFFSET: u64 = std::mem::offset_of!(crate::layout::Params, stored) a
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::context::AdapterChoice;
     use prismatic_core::photons::grid::{bucket_of, cell_of};
     use prismatic_core::{Photon, util::rng::random_f32};
 
@@ -143,10 +142,7 @@ mod tests {
     /// widest bucket is the core grid's.
     #[test]
     fn device_grid_matches_the_core_grid() {
-        let Ok(ctx) = GpuContext::new(AdapterChoice::Any) else {
-            assert!(std::env::var_os("CI").is_none(), "CI=true and no GPU adapter");
-            return;
-        };
+        let Some(ctx) = crate::test_context("the device grid") else { return };
         let pipelines = Pipelines::new(&ctx.device);
         let photons: Vec<Photon> = (0..300_000u32)
             .map(|i| Photon {

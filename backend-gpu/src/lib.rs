@@ -30,7 +30,8 @@ mod timing;
 mod trace;
 
 pub use context::{
-    AdapterChoice, GpuContext, STORAGE_BUFFERS_NEEDED, describe, is_hardware, required_limits, timestamp_features,
+    AdapterChoice, GpuContext, STORAGE_BUFFERS_NEEDED, describe, is_hardware, required_limits, test_context,
+    timestamp_features,
 };
 pub use pixels::{PIXEL_BYTES, SOFTWARE_GATHER_SPAN};
 pub use session::{GpuSession, PASSES_IN_FLIGHT};

@@ -1,16 +1,10 @@
 //! The conformance suite on the GPU backend (lavapipe where there is no GPU;
 //! without any adapter the suite fails under `CI=true` and is skipped elsewhere).
 
-use prismatic_gpu::{AdapterChoice, GpuBackend, GpuOptions};
+use prismatic_gpu::{GpuBackend, GpuOptions, test_context};
 
 fn gpu() -> Option<GpuBackend> {
-    match prismatic_gpu::GpuContext::new(AdapterChoice::Any) {
-        Ok(ctx) => Some(GpuBackend::with_context(ctx, GpuOptions::default())),
-        Err(e) => {
-            eprintln!("no GPU adapter: {e}");
-            None
-        }
-    }
+    test_context("the GPU conformance suite").map(|ctx| GpuBackend::with_context(ctx, GpuOptions::default()))
 }
 
 prismatic_conformance::conformance_tests!(gpu());

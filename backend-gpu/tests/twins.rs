@@ -18,7 +18,7 @@ use prismatic_core::photons::grid;
 use prismatic_core::sampling::pixel_sample::PixelSampler;
 use prismatic_core::sampling::sobol;
 use prismatic_core::{Estimator, Vec3};
-use prismatic_gpu::{AdapterChoice, GpuContext, shaders};
+use prismatic_gpu::{GpuContext, shaders};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 use std::sync::OnceLock;
@@ -298,14 +298,7 @@ fn twins() -> Option<&'static Twins> {
     static TWINS: OnceLock<Option<Twins>> = OnceLock::new();
     TWINS
         .get_or_init(|| {
-            let ctx = match GpuContext::new(AdapterChoice::Any) {
-                Ok(ctx) => ctx,
-                Err(e) if std::env::var_os("CI").is_some() => panic!("CI=true and no GPU adapter: {e}"),
-                Err(e) => {
-                    eprintln!("SKIPPING the WGSL twins on this machine: {e}");
-                    return None;
-                }
-            };
+            let ctx = prismatic_gpu::test_context("the WGSL twins")?;
             let pipeline = |entry: &'static str, source: &str| {
                 let module = ctx.device.create_shader_module(wgpu::ShaderModuleDescriptor {
                     label: Some(entry),

@@ -6,21 +6,14 @@
 use prismatic_core::model::scene::RadiusMode;
 use prismatic_core::{Backend, Image, NoProgress, PhotonMap, PreparedScene, ReferenceBackend};
 use prismatic_cpu::CpuBackend;
-use prismatic_gpu::{AdapterChoice, GpuBackend, GpuOptions};
+use prismatic_gpu::{GpuBackend, GpuOptions};
 
 /// The GPU backend on the best adapter there is (lavapipe on machines
 /// without a GPU). Without any adapter: under `CI=true` the test fails
 /// (CI installs lavapipe, so a missing adapter is a broken machine);
 /// elsewhere it says it is skipping and returns `None`.
 pub fn gpu_backend(options: GpuOptions) -> Option<GpuBackend> {
-    match prismatic_gpu::GpuContext::new(AdapterChoice::Any) {
-        Ok(ctx) => Some(GpuBackend::with_context(ctx, options)),
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI=true and no GPU adapter: {e}"),
-        Err(e) => {
-            eprintln!("SKIPPING the gpu backend on this machine: {e}");
-            None
-        }
-    }
+    prismatic_gpu::test_context("the gpu backend").map(|ctx| GpuBackend::with_context(ctx, options))
 }
 
 /// The reference, the CPU backend and the GPU backend (outside CI, only

@@ -55,3 +55,14 @@ fn write_failure(case: &str, scene: &PreparedScene, outputs: &[&Output]) -> Path
     }
     dir
 }
+
+/// Photons a pass for a built-in scene in the parity tests: enough for a
+/// caustic in every band at 96×96 (the sphere's and the rainbow's are
+/// spread over more of the image), few enough for the scalar reference.
+pub fn parity_photons(name: &str) -> u32 {
+    match name {
+        "rainbow" => 60_000,
+        "sphere" | "caustic" | "spectrum" => 30_000,
+        _ => 4_000,
+    }
+}

@@ -8,7 +8,7 @@
 
 use prismatic_core::model::scene::Light;
 use prismatic_core::{Backend, Image, NoProgress, PreparedScene, ReferenceBackend, Render, Vec3};
-use prismatic_gpu::{AdapterChoice, GpuContext, GpuOptions, GpuSession};
+use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
 use prismatic_tests::builtin;
 use prismatic_tests::parity::compare_images;
 use std::time::Duration;
@@ -21,14 +21,8 @@ fn small(name: &str, photons: u32) -> PreparedScene {
 
 /// A session on the best adapter (lavapipe in CI, where a missing adapter fails).
 fn session(scene: &PreparedScene, options: GpuOptions) -> Option<GpuSession> {
-    match GpuContext::new(AdapterChoice::Any) {
-        Ok(ctx) => Some(GpuSession::new(ctx, scene, options).unwrap_or_else(|e| panic!("session: {e}"))),
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI=true and no GPU adapter: {e}"),
-        Err(e) => {
-            eprintln!("SKIPPING the GPU session on this machine: {e}");
-            None
-        }
-    }
+    let ctx = prismatic_gpu::test_context("the GPU session")?;
+    Some(GpuSession::new(ctx, scene, options).unwrap_or_else(|e| panic!("session: {e}")))
 }
 
 fn passes(render: &mut dyn Render, n: u32) {

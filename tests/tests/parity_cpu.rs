@@ -6,7 +6,7 @@ use prismatic_cli::load_scene;
 use prismatic_core::{Backend, PreparedScene, ReferenceBackend};
 use prismatic_cpu::CpuBackend;
 use prismatic_tests::backends::{frame, trace};
-use prismatic_tests::parity::{Output, assert_parity};
+use prismatic_tests::parity::{Output, assert_parity, parity_photons};
 use prismatic_tests::random_scene::random_scene;
 
 /// The paper's frame on `backend`: pass 0's photon map and its image at the scene's radius.
@@ -27,11 +27,12 @@ fn check(case: &str, scene: &PreparedScene, backend: &mut dyn Backend) {
     assert_parity(case, scene, &expected, &got);
 }
 
+/// Every built-in scene (`prismatic_cli::builtin::names`).
 #[test]
 fn cpu_matches_the_reference_on_every_built_in_scene() {
-    for (name, photons) in [("sphere", 30_000), ("prism", 4_000), ("recombine", 4_000), ("rainbow", 60_000)] {
+    for name in prismatic_cli::builtin::names() {
         let mut doc = load_scene(name).unwrap();
-        doc.scene.render.photons = photons;
+        doc.scene.render.photons = parity_photons(name);
         doc.scene.render.width = 96;
         doc.scene.render.height = 96;
         let scene = PreparedScene::new(doc.scene).unwrap();

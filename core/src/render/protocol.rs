@@ -19,7 +19,7 @@
 
 use crate::model::image::Image;
 use crate::model::photon::{PhotonMap, TraceStats};
-use crate::model::scene::Scene;
+use crate::model::scene::{RenderSettings, Scene, ViewPaths};
 use crate::plan::prepared::PreparedScene;
 use crate::render::accumulation::Accumulation;
 use crate::util::progress::{Progress, StageTimes};
@@ -179,34 +179,64 @@ pub enum Change {
 
 impl Change {
     /// What going from scene `old` to scene `new` invalidates.
+    ///
+    /// Both scenes are destructured field by field, so a field added to
+    /// [`Scene`] or [`RenderSettings`] does not compile here until it is
+    /// classified.
     pub fn between(old: &Scene, new: &Scene) -> Change {
-        let (a, b) = (&old.render, &new.render);
-        if (a.width, a.height) != (b.width, b.height) {
+        let Scene { render: a, camera, lights, materials, objects } = old;
+        let RenderSettings {
+            width,
+            height,
+            photons,
+            radius,
+            radius_mode,
+            bands,
+            estimator,
+            light_tracing,
+            wavelengths,
+            photon_sequence,
+            view_paths,
+            seed,
+            max_depth,
+            ambient,
+            exposure,
+            background,
+            // Applied when the image is read out: no pass redoes anything.
+            tone_map: _,
+            projection_maps,
+            // How many passes an offline render runs, not what one computes.
+            passes: _,
+            alpha,
+            neighbours,
+        } = a;
+        let b = &new.render;
+        if (*width, *height) != (b.width, b.height) {
             Change::Size
-        } else if old.camera != new.camera
-            || old.objects != new.objects
-            || old.materials != new.materials
-            || old.lights != new.lights
-            || a.bands != b.bands
-            || a.max_depth != b.max_depth
-            || a.light_tracing != b.light_tracing
-            || a.wavelengths != b.wavelengths
-            || a.view_paths != b.view_paths
-            || (a.seed != b.seed && b.view_paths == crate::ViewPaths::Sampled)
-            || a.exposure != b.exposure
-            || a.ambient != b.ambient
-            || a.background != b.background
+        } else if *camera != new.camera
+            || *objects != new.objects
+            || *materials != new.materials
+            || *lights != new.lights
+            || *bands != b.bands
+            || *max_depth != b.max_depth
+            || *light_tracing != b.light_tracing
+            || *wavelengths != b.wavelengths
+            || *view_paths != b.view_paths
+            || (*seed != b.seed && b.view_paths == ViewPaths::Sampled)
+            || *exposure != b.exposure
+            || *ambient != b.ambient
+            || *background != b.background
         {
             Change::View
-        } else if a.photons != b.photons
-            || a.seed != b.seed
-            || a.photon_sequence != b.photon_sequence
-            || a.radius != b.radius
-            || a.radius_mode != b.radius_mode
-            || a.estimator != b.estimator
-            || a.alpha != b.alpha
-            || a.neighbours != b.neighbours
-            || a.projection_maps != b.projection_maps
+        } else if *photons != b.photons
+            || *seed != b.seed
+            || *photon_sequence != b.photon_sequence
+            || *radius != b.radius
+            || *radius_mode != b.radius_mode
+            || *estimator != b.estimator
+            || *alpha != b.alpha
+            || *neighbours != b.neighbours
+            || *projection_maps != b.projection_maps
         {
             Change::Photons
         } else {

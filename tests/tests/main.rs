@@ -2,6 +2,7 @@
 
 mod builtin_scenes;
 mod coloured_glass;
+mod docs_links;
 mod effects;
 mod fuzz_scene_file;
 mod gather;

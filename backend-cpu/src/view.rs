@@ -242,13 +242,13 @@ impl Shader<'_> {
             Light::Spot { position, direction, cone_deg, power } => {
                 let cos_max = cos(radians(*cone_deg));
                 let axis = Vec3x8::splat(direction.normalize());
-                let (l, dist, cos_s, visible) = self.visible_point(*position, p, n, mask, shadows);
+                let (l, dist, cos_s, visible) = self.toward_light(*position, p, n, mask, shadows);
                 let inside = ge((-l).dot(axis), f32x8::splat(cos_max));
                 let intensity = f32x8::splat(power / (2.0 * PI * (1.0 - cos_max)));
                 (visible & inside).select(intensity * cos_s / (dist * dist), f32x8::ZERO)
             }
             Light::Point { position, power } => {
-                let (_, dist, cos_s, visible) = self.visible_point(*position, p, n, mask, shadows);
+                let (_, dist, cos_s, visible) = self.toward_light(*position, p, n, mask, shadows);
                 visible.select(f32x8::splat(power / (4.0 * PI)) * cos_s / (dist * dist), f32x8::ZERO)
             }
             Light::Beam { position, direction, radius, power } => {
@@ -281,7 +281,7 @@ impl Shader<'_> {
 
     /// Direction to a point light, distance, surface cosine and the lanes
     /// that see it (facing it and not in shadow).
-    fn visible_point(
+    fn toward_light(
         &self,
         light: Vec3,
         p: Vec3x8,

@@ -6,6 +6,7 @@
 
 use crate::context::GpuContext;
 use crate::layout::{GpuBand, GpuLight, GpuObject, GpuSurface, Params};
+use crate::shaders::code;
 use crate::shaders::kind::*;
 use bytemuck::Pod;
 use glam::Vec3;
@@ -13,9 +14,7 @@ use prismatic_core::PreparedScene;
 use prismatic_core::geometry::camera::PinholeCamera;
 use prismatic_core::geometry::primitive::{Primitive, basis};
 use prismatic_core::geometry::texture::srgb_to_linear;
-use prismatic_core::model::scene::{
-    Estimator, Filter, Light, PhotonSequence, Sampler, Texture, ViewPaths, WavelengthSampling, Wrap,
-};
+use prismatic_core::model::scene::{Filter, Light, Sampler, Texture, Wrap};
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::photons::trace::photon_flux;
 use prismatic_core::plan::projection::Targets;
@@ -110,23 +109,12 @@ impl EncodedScene {
             seed: r.seed,
             band_count: scene.bands.len() as u32,
             max_depth: scene.plan.max_depth,
-            wavelengths: match r.wavelengths {
-                WavelengthSampling::Split => 0,
-                WavelengthSampling::RandomBand => 1,
-                WavelengthSampling::Continuous => 2,
-                WavelengthSampling::Hero => 3,
-            },
-            photon_sequence: match r.photon_sequence {
-                PhotonSequence::Random => 0,
-                PhotonSequence::Sobol => 1,
-            },
+            wavelengths: code::wavelengths(r.wavelengths),
+            photon_sequence: code::photon_sequence(r.photon_sequence),
             object_count: e.objects.len() as u32,
             light_count: e.lights.len() as u32,
             light_cdf,
-            estimator: match r.estimator {
-                Estimator::Paper => 0,
-                Estimator::Density => 1,
-            },
+            estimator: code::estimator(r.estimator),
             width: r.width,
             height: r.height,
             flux: photon_flux(scene),
@@ -143,7 +131,7 @@ impl EncodedScene {
             cam_corner: v3(camera.corner),
             cam_forward: v3(camera.forward),
             view_seed: r.seed,
-            view_paths: u32::from(r.view_paths == ViewPaths::Sampled),
+            view_paths: code::view_paths(r.view_paths),
             ..Params::default()
         };
         e
@@ -153,14 +141,14 @@ impl EncodedScene {
         let first = self.geometry.len() as u32;
         let o = GpuObject { first, ..GpuObject::default() };
         match prim {
-            Primitive::Sphere { center, radius } => GpuObject { kind: 0, a: v3(*center), ra: *radius, ..o },
-            Primitive::Plane { point, normal } => GpuObject { kind: 1, a: v3(*point), n: v3(*normal), ..o },
+            Primitive::Sphere { center, radius } => GpuObject { kind: OBJECT_SPHERE, a: v3(*center), ra: *radius, ..o },
+            Primitive::Plane { point, normal } => GpuObject { kind: OBJECT_PLANE, a: v3(*point), n: v3(*normal), ..o },
             Primitive::Disk { center, normal, radius2, inner_radius2 } => {
-                GpuObject { kind: 2, a: v3(*center), n: v3(*normal), ra: *radius2, rb: *inner_radius2, ..o }
+                GpuObject { kind: OBJECT_DISK, a: v3(*center), n: v3(*normal), ra: *radius2, rb: *inner_radius2, ..o }
             }
             Primitive::Convex { faces } => {
                 self.geometry.extend(faces.iter().map(|f| v4(f.normal, f.offset)));
-                GpuObject { kind: 3, count: faces.len() as u32, ..o }
+                GpuObject { kind: OBJECT_CONVEX, count: faces.len() as u32, ..o }
             }
             Primitive::Mesh(bvh) => {
                 for n in &bvh.nodes {
@@ -170,7 +158,7 @@ impl EncodedScene {
                 for t in &bvh.triangles {
                     self.geometry.extend([v4(t.v0, 0.0), v4(t.e1, 0.0), v4(t.e2, 0.0), v4(t.normal, 0.0)]);
                 }
-                GpuObject { kind: 4, count: bvh.triangles.len() as u32, second, ..o }
+                GpuObject { kind: OBJECT_MESH, count: bvh.triangles.len() as u32, second, ..o }
             }
         }
     }

@@ -6,7 +6,9 @@
 use prismatic_core::geometry::texture::TEXEL_LIMIT;
 use prismatic_core::model::bands::VISIBLE_NM;
 use prismatic_core::model::photon::WHITE_BAND;
-use prismatic_core::model::scene::{HERO_WAVELENGTHS, MAX_DEPTH};
+use prismatic_core::model::scene::{
+    Estimator, HERO_WAVELENGTHS, MAX_DEPTH, PhotonSequence, ViewPaths, WavelengthSampling,
+};
 use prismatic_core::sampling::pixel_sample;
 use prismatic_core::util::math::{COS_COEFFS, SIN_COEFFS};
 use prismatic_core::util::rng::dim;
@@ -61,6 +63,16 @@ pub mod kind {
     pub const WRAP_CLAMP_TO_EDGE: u32 = 1;
     /// `Wrap::MirroredRepeat`.
     pub const WRAP_MIRRORED_REPEAT: u32 = 2;
+    /// Sphere.
+    pub const OBJECT_SPHERE: u32 = 0;
+    /// Infinite plane.
+    pub const OBJECT_PLANE: u32 = 1;
+    /// Disk (or annulus).
+    pub const OBJECT_DISK: u32 = 2;
+    /// Convex polyhedron of half-spaces (a prism).
+    pub const OBJECT_CONVEX: u32 = 3;
+    /// Triangle mesh in its hierarchy.
+    pub const OBJECT_MESH: u32 = 4;
     /// Spot light.
     pub const LIGHT_SPOT: u32 = 0;
     /// Point light.
@@ -73,6 +85,47 @@ pub mod kind {
     pub const PROJECTION_CONES: u32 = 1;
     /// Projection onto discs of the beam's plane.
     pub const PROJECTION_DISCS: u32 = 2;
+}
+
+/// The codes of the render settings' enums in `Params` (`scene.rs` writes
+/// them, the prelude names them for the shaders): one `match` each, so a
+/// new variant does not compile until it has a code.
+pub mod code {
+    use prismatic_core::model::scene::{Estimator, PhotonSequence, ViewPaths, WavelengthSampling};
+
+    /// `Params::wavelengths`.
+    pub fn wavelengths(w: WavelengthSampling) -> u32 {
+        match w {
+            WavelengthSampling::Split => 0,
+            WavelengthSampling::RandomBand => 1,
+            WavelengthSampling::Continuous => 2,
+            WavelengthSampling::Hero => 3,
+        }
+    }
+
+    /// `Params::photon_sequence`.
+    pub fn photon_sequence(s: PhotonSequence) -> u32 {
+        match s {
+            PhotonSequence::Random => 0,
+            PhotonSequence::Sobol => 1,
+        }
+    }
+
+    /// `Params::estimator`.
+    pub fn estimator(e: Estimator) -> u32 {
+        match e {
+            Estimator::Paper => 0,
+            Estimator::Density => 1,
+        }
+    }
+
+    /// `Params::view_paths`.
+    pub fn view_paths(v: ViewPaths) -> u32 {
+        match v {
+            ViewPaths::Centre => 0,
+            ViewPaths::Sampled => 1,
+        }
+    }
 }
 
 /// The view-ray stack of the render pass: one pending sibling per depth
@@ -101,17 +154,23 @@ fn prelude(stack: u32) -> String {
     u("DIM_PATH", dim::PATH);
     u("DIM_PER_BAND", dim::PER_BAND);
     u("DIM_ABSORB", dim::ABSORB);
-    u("SEQUENCE_SOBOL", 1);
-    u("WAVELENGTHS_SPLIT", 0);
-    u("WAVELENGTHS_RANDOM_BAND", 1);
-    u("WAVELENGTHS_CONTINUOUS", 2);
-    u("WAVELENGTHS_HERO", 3);
+    u("SEQUENCE_SOBOL", code::photon_sequence(PhotonSequence::Sobol));
+    u("WAVELENGTHS_SPLIT", code::wavelengths(WavelengthSampling::Split));
+    u("WAVELENGTHS_RANDOM_BAND", code::wavelengths(WavelengthSampling::RandomBand));
+    u("WAVELENGTHS_CONTINUOUS", code::wavelengths(WavelengthSampling::Continuous));
+    u("WAVELENGTHS_HERO", code::wavelengths(WavelengthSampling::Hero));
+    u("VIEW_PATHS_SAMPLED", code::view_paths(ViewPaths::Sampled));
     u("HERO_WAVELENGTHS", HERO_WAVELENGTHS);
     u("PIXEL_SCRAMBLE", pixel_sample::PIXEL_SCRAMBLE);
     u("VIEW_BRANCH", pixel_sample::BRANCH);
     u("VIEW_PER_PATH", pixel_sample::PER_PATH);
-    u("ESTIMATOR_PAPER", 0);
-    u("ESTIMATOR_DENSITY", 1);
+    u("ESTIMATOR_PAPER", code::estimator(Estimator::Paper));
+    u("ESTIMATOR_DENSITY", code::estimator(Estimator::Density));
+    u("OBJECT_SPHERE", kind::OBJECT_SPHERE);
+    u("OBJECT_PLANE", kind::OBJECT_PLANE);
+    u("OBJECT_DISK", kind::OBJECT_DISK);
+    u("OBJECT_CONVEX", kind::OBJECT_CONVEX);
+    u("OBJECT_MESH", kind::OBJECT_MESH);
     u("SURFACE_DIFFUSE", kind::SURFACE_DIFFUSE);
     u("SURFACE_MIRROR", kind::SURFACE_MIRROR);
     u("SURFACE_DIELECTRIC", kind::SURFACE_DIELECTRIC);

@@ -1,6 +1,7 @@
 //! The library behind the `prismatic` command: scene files, built-in scenes,
 //! backend selection and output files. Tests and benches use it too.
 
+pub mod args;
 pub mod backends;
 pub mod builtin;
 pub mod dispersion_test;
@@ -10,7 +11,6 @@ pub mod ior_table;
 pub mod obj;
 pub mod output;
 pub mod partial;
-pub mod passes;
 pub mod patterns;
 pub mod progress_bar;
 pub mod render_job;

@@ -2,25 +2,21 @@
 
 use anyhow::Result;
 use clap::{Args, Parser, Subcommand};
+use prismatic_cli::args::{parse_passes, parse_seconds};
 use prismatic_cli::backends::{self, BackendChoice};
 use prismatic_cli::builtin::{BUILTIN_SCENES, GENERATED_SCENES, find, find_generated, names};
 use prismatic_cli::output::{PendingFile, write_image, write_photon_csv, write_png};
 use prismatic_cli::partial::Partial;
-use prismatic_cli::passes::{parse_passes, parse_seconds};
 use prismatic_cli::progress_bar::ProgressBar;
 use prismatic_cli::render_job::{Output, RenderJob};
-use prismatic_cli::scene_file::{
-    SceneFileError, parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_view_paths,
-    parse_wavelengths,
-};
+use prismatic_cli::scene_file::SceneFileError;
 use prismatic_cli::settings::{Settings, SettingsSource};
 use prismatic_cli::study::progress::StudyBar;
-use prismatic_cli::study::{self, StudyOptions, report};
+use prismatic_cli::study::{self, StudyOptions, machine, report};
 use prismatic_core::model::bands::BandSpec;
-use prismatic_core::model::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling};
 use prismatic_core::{PreparedScene, TraceStats};
 use std::ops::Range;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
@@ -110,48 +106,8 @@ struct JobArgs {
     /// Which backend does the work.
     #[arg(long, value_enum, default_value_t = BackendChoice::Auto)]
     backend: BackendChoice,
-    /// Band table: paper3, paper7 or a number of physically based bands.
-    #[arg(long, value_parser = parse_bands)]
-    bands: Option<BandSpec>,
-    /// White photons to emit.
-    #[arg(long)]
-    photons: Option<u32>,
-    /// Gather radius (with progressive radii: the largest first radius).
-    #[arg(long)]
-    radius: Option<f32>,
-    /// Gather radii: progressive (per point, shrinking pass by pass) or
-    /// fixed (the scene's radius everywhere, the paper's frame).
-    #[arg(long, value_parser = parse_radius_mode)]
-    radius_mode: Option<RadiusMode>,
-    /// RNG seed.
-    #[arg(long)]
-    seed: Option<u32>,
-    /// Gather estimator: paper or density.
-    #[arg(long, value_parser = parse_estimator)]
-    estimator: Option<Estimator>,
-    /// Light tracing (true or false): connect the caustic photons on
-    /// surfaces the camera sees directly to the camera; gather only behind
-    /// mirrors and glass.
-    #[arg(long)]
-    light_tracing: Option<bool>,
-    /// Wavelength sampling at dispersive glass: split, random_band, continuous or hero.
-    #[arg(long, value_parser = parse_wavelengths)]
-    wavelengths: Option<WavelengthSampling>,
-    /// Where photons' emission directions and wavelengths come from: sobol
-    /// (Owen-scrambled, stratified per pass) or random.
-    #[arg(long, value_parser = parse_photon_sequence)]
-    photon_sequence: Option<PhotonSequence>,
-    /// How view rays sample the pixels: centre (once per render, through
-    /// pixel centres) or sampled (each pass anew: jittered in the pixel, 4
-    /// hero wavelengths at dispersive glass; anti-aliased).
-    #[arg(long, value_parser = parse_view_paths)]
-    view_paths: Option<ViewPaths>,
-    /// Image width.
-    #[arg(long)]
-    width: Option<u32>,
-    /// Image height.
-    #[arg(long)]
-    height: Option<u32>,
+    #[command(flatten)]
+    settings: Settings,
     /// Print every decision of the effect plan with its reason.
     #[arg(long)]
     explain: bool,
@@ -225,157 +181,188 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> Result<()> {
     match cli.command {
-        Command::Study { study, output } => {
-            let mut bar = StudyBar::new();
-            let result = study::run(&study.options(false), &mut bar);
-            bar.finish();
-            let result = result?;
-            let written = report::write_all(&result, &output, &machine())?;
-            println!(
-                "{}: {} points; wrote {}, {} and {}",
-                result.scene,
-                result.rows.len(),
-                written.csv.display(),
-                written.markdown.display(),
-                written.plot.display()
-            );
-            Ok(())
-        }
-        Command::Reference { study, output } => {
-            let out = PendingFile::create(&output)?;
-            let mut bar = StudyBar::new();
-            let built = study::build_reference(&study.options(true), &mut bar);
-            bar.finish();
-            let (reference, tone_map) = built?;
-            out.commit(|w| write_png(w, &reference.image, tone_map))?;
-            println!(
-                "{}: reference of {} passes (last change ΔE00 {:.3}, {}) in {:.1} s, cached in {}; wrote {}",
-                study.scene,
-                reference.passes,
-                reference.last_change,
-                if reference.converged { "converged" } else { "not converged" },
-                reference.seconds,
-                reference.dir.display(),
-                output.display()
-            );
-            Ok(())
-        }
-        Command::Scenes => {
-            for s in &BUILTIN_SCENES {
-                println!("{:<16} {}", s.name, s.description);
-            }
-            for s in &GENERATED_SCENES {
-                println!("{:<16} {}", s.name, s.description);
-            }
-            Ok(())
-        }
-        Command::Scene { name } => {
-            if let Some(g) = find_generated(&name) {
-                println!("{}", (g.document)().to_json());
-                return Ok(());
-            }
-            let s = find(&name).ok_or_else(|| SceneFileError {
-                file: name.clone(),
-                line: None,
-                key: String::new(),
-                reason: format!("no such built-in scene; try one of: {}", names().join(", ")),
-            })?;
-            print!("{}", s.source);
-            Ok(())
-        }
-        Command::Render { job: args, passes, time, partial, save_every, output } => {
+        Command::Render { job, passes, time, partial, save_every, output } => {
             let output = match partial {
                 Some(file) => Output::Partial(file),
                 None => Output::Image(output),
             };
-            let out = PendingFile::create(output.path())?;
-            let (name, scene, _) = prepare(&args)?;
-            let passes = passes.unwrap_or(if time.is_some() { 0..u32::MAX } else { 0..scene.scene.render.passes });
-            let seconds = |s: Option<f64>| s.map(Duration::from_secs_f64);
-            let job = RenderJob { passes, time: seconds(time), save_every: seconds(save_every) };
-            let mut selected = backends::select(args.backend)?;
-            if let Some(note) = &selected.note {
-                eprintln!("{note}");
-            }
-            let mut render = selected.backend.prepare(&scene)?;
-            let mut bar = ProgressBar::new();
-            let report = job.run_into(render.as_mut(), &output, out, &mut bar);
-            bar.finish();
-            let report = report?;
-            let s = &report.stats;
-            let radii = match s.first_radii {
-                Some((lo, hi)) => format!("{lo:.4}–{hi:.4}"),
-                None => "none".into(),
-            };
-            let traffic = match (s.uploaded, s.read_back) {
-                (0, 0) => String::new(),
-                (up, down) => format!("; {} uploaded, {} read back", bytes(up), bytes(down)),
-            };
-            println!(
-                "{name}: {} backend, {} passes ({}), {}; {} visible points, first radii {radii}; view rays and \
-                 pilot in {}, passes in {} ({:.1} ms a pass){traffic}; wrote {} ({}x{})",
-                render.backend(),
-                s.passes,
-                pass_list(&report.passes),
-                photon_summary(&scene, &s.trace),
-                s.visible_points,
-                secs(report.prepared),
-                secs(report.passing),
-                report.passing.as_secs_f64() * 1e3 / f64::from(s.passes.max(1)),
-                output.path().display(),
-                scene.scene.render.width,
-                scene.scene.render.height
-            );
+            render(&job, passes, time, save_every, &output)
+        }
+        Command::Merge { files, output } => merge(&files, &output),
+        Command::Photons { job, pass, output } => photons(&job, pass, &output),
+        Command::Study { study, output } => run_study(&study, &output),
+        Command::Reference { study, output } => reference(&study, &output),
+        Command::Scenes => {
+            list_scenes();
             Ok(())
         }
-        Command::Merge { files, output } => {
-            let out = PendingFile::create(&output)?;
-            let mut merged: Option<Partial> = None;
-            for file in &files {
-                let partial = Partial::read(file)?;
-                match &mut merged {
-                    None => merged = Some(partial),
-                    Some(m) => m.merge(&partial, &file.display().to_string())?,
-                }
-            }
-            let merged = merged.expect("clap requires a file");
-            let image = merged.image();
-            if !image.is_finite() {
-                anyhow::bail!("the merged partials give non-finite pixels; nothing was written");
-            }
-            out.commit(|w| write_image(w, &output, &image, merged.tone_map))?;
-            println!(
-                "merged {} partials ({} passes: {}); wrote {} ({}x{})",
-                files.len(),
-                merged.sums.pass_count(),
-                pass_list(&merged.sums.passes),
-                output.display(),
-                image.width,
-                image.height
-            );
-            Ok(())
-        }
-        Command::Photons { job, pass, output } => {
-            let out = PendingFile::create(&output)?;
-            let (name, scene, origin) = prepare(&job)?;
-            let mut selected = backends::select(job.backend)?;
-            let mut render = selected.backend.prepare(&scene)?;
-            let mut bar = ProgressBar::new();
-            let t0 = Instant::now();
-            let map = render.photon_map(pass, &mut bar)?;
-            let t_trace = t0.elapsed();
-            bar.finish();
-            out.commit(|w| write_photon_csv(w, &map, &scene.bands, origin))?;
-            println!(
-                "{name}: {} backend, pass {pass}, {}; trace {}; wrote {}",
-                render.backend(),
-                photon_summary(&scene, &map.stats),
-                secs(t_trace),
-                output.display()
-            );
-            Ok(())
+        Command::Scene { name } => print_scene(&name),
+    }
+}
+
+/// `prismatic render`: the job's passes into an image or a partial.
+fn render(
+    args: &JobArgs,
+    passes: Option<Range<u32>>,
+    time: Option<f64>,
+    save_every: Option<f64>,
+    output: &Output,
+) -> Result<()> {
+    let out = PendingFile::create(output.path())?;
+    let (name, scene, _) = prepare(args)?;
+    let passes = passes.unwrap_or(if time.is_some() { 0..u32::MAX } else { 0..scene.scene.render.passes });
+    let seconds = |s: Option<f64>| s.map(Duration::from_secs_f64);
+    let job = RenderJob { passes, time: seconds(time), save_every: seconds(save_every) };
+    let mut selected = backends::select(args.backend)?;
+    if let Some(note) = &selected.note {
+        eprintln!("{note}");
+    }
+    let mut render = selected.backend.prepare(&scene)?;
+    let mut bar = ProgressBar::new();
+    let report = job.run_into(render.as_mut(), output, out, &mut bar);
+    bar.finish();
+    let report = report?;
+    let s = &report.stats;
+    let radii = match s.first_radii {
+        Some((lo, hi)) => format!("{lo:.4}–{hi:.4}"),
+        None => "none".into(),
+    };
+    let traffic = match (s.uploaded, s.read_back) {
+        (0, 0) => String::new(),
+        (up, down) => format!("; {} uploaded, {} read back", bytes(up), bytes(down)),
+    };
+    println!(
+        "{name}: {} backend, {} passes ({}), {}; {} visible points, first radii {radii}; view rays and \
+         pilot in {}, passes in {} ({:.1} ms a pass){traffic}; wrote {} ({}x{})",
+        render.backend(),
+        s.passes,
+        pass_list(&report.passes),
+        photon_summary(&scene, &s.trace),
+        s.visible_points,
+        secs(report.prepared),
+        secs(report.passing),
+        report.passing.as_secs_f64() * 1e3 / f64::from(s.passes.max(1)),
+        output.path().display(),
+        scene.scene.render.width,
+        scene.scene.render.height
+    );
+    Ok(())
+}
+
+/// `prismatic merge`: partial renders into the image one run of all their passes gives.
+fn merge(files: &[PathBuf], output: &Path) -> Result<()> {
+    let out = PendingFile::create(output)?;
+    let mut merged: Option<Partial> = None;
+    for file in files {
+        let partial = Partial::read(file)?;
+        match &mut merged {
+            None => merged = Some(partial),
+            Some(m) => m.merge(&partial, &file.display().to_string())?,
         }
     }
+    let merged = merged.expect("clap requires a file");
+    let image = merged.image();
+    if !image.is_finite() {
+        anyhow::bail!("the merged partials give non-finite pixels; nothing was written");
+    }
+    out.commit(|w| write_image(w, output, &image, merged.tone_map))?;
+    println!(
+        "merged {} partials ({} passes: {}); wrote {} ({}x{})",
+        files.len(),
+        merged.sums.pass_count(),
+        pass_list(&merged.sums.passes),
+        output.display(),
+        image.width,
+        image.height
+    );
+    Ok(())
+}
+
+/// `prismatic photons`: one pass's caustic photon map as CSV.
+fn photons(job: &JobArgs, pass: u32, output: &Path) -> Result<()> {
+    let out = PendingFile::create(output)?;
+    let (name, scene, origin) = prepare(job)?;
+    let mut selected = backends::select(job.backend)?;
+    let mut render = selected.backend.prepare(&scene)?;
+    let mut bar = ProgressBar::new();
+    let t0 = Instant::now();
+    let map = render.photon_map(pass, &mut bar)?;
+    let t_trace = t0.elapsed();
+    bar.finish();
+    out.commit(|w| write_photon_csv(w, &map, &scene.bands, origin))?;
+    println!(
+        "{name}: {} backend, pass {pass}, {}; trace {}; wrote {}",
+        render.backend(),
+        photon_summary(&scene, &map.stats),
+        secs(t_trace),
+        output.display()
+    );
+    Ok(())
+}
+
+/// `prismatic study`: the accuracy study's CSV, report and plot.
+fn run_study(study: &StudyArgs, output: &Path) -> Result<()> {
+    let mut bar = StudyBar::new();
+    let result = study::run(&study.options(false), &mut bar);
+    bar.finish();
+    let result = result?;
+    let written = report::write_all(&result, output, &machine::describe())?;
+    println!(
+        "{}: {} points; wrote {}, {} and {}",
+        result.scene,
+        result.rows.len(),
+        written.csv.display(),
+        written.markdown.display(),
+        written.plot.display()
+    );
+    Ok(())
+}
+
+/// `prismatic reference`: (re)builds a scene's converged study image.
+fn reference(study: &StudyArgs, output: &Path) -> Result<()> {
+    let out = PendingFile::create(output)?;
+    let mut bar = StudyBar::new();
+    let built = study::build_reference(&study.options(true), &mut bar);
+    bar.finish();
+    let (reference, tone_map) = built?;
+    out.commit(|w| write_png(w, &reference.image, tone_map))?;
+    println!(
+        "{}: reference of {} passes (last change ΔE00 {:.3}, {}) in {:.1} s, cached in {}; wrote {}",
+        study.scene,
+        reference.passes,
+        reference.last_change,
+        if reference.converged { "converged" } else { "not converged" },
+        reference.seconds,
+        reference.dir.display(),
+        output.display()
+    );
+    Ok(())
+}
+
+/// `prismatic scenes`: the built-in scenes, a line each.
+fn list_scenes() {
+    for s in &BUILTIN_SCENES {
+        println!("{:<16} {}", s.name, s.description);
+    }
+    for s in &GENERATED_SCENES {
+        println!("{:<16} {}", s.name, s.description);
+    }
+}
+
+/// `prismatic scene NAME`: a built-in scene's source (TOML, or the glTF JSON it is written as).
+fn print_scene(name: &str) -> Result<()> {
+    if let Some(g) = find_generated(name) {
+        println!("{}", (g.document)().to_json());
+        return Ok(());
+    }
+    let s = find(name).ok_or_else(|| SceneFileError {
+        file: name.to_string(),
+        line: None,
+        key: String::new(),
+        reason: format!("no such built-in scene; try one of: {}", names().join(", ")),
+    })?;
+    print!("{}", s.source);
+    Ok(())
 }
 
 /// "0..8, 12..16".
@@ -391,60 +378,12 @@ fn prepare(job: &JobArgs) -> Result<(String, PreparedScene, glam::DVec3)> {
         eprintln!("warning: {}: {w}", job.scene);
     }
     let origin = doc.origin;
-    let scene = job.settings().prepare(doc, SettingsSource::CommandLine)?;
+    let scene = job.settings.prepare(doc, SettingsSource::CommandLine)?;
     println!("{}", scene.plan.summary());
     if job.explain {
         print!("{}", scene.plan.explain());
     }
     Ok((job.scene.clone(), scene, origin))
-}
-
-impl JobArgs {
-    fn settings(&self) -> Settings {
-        Settings {
-            bands: self.bands,
-            photons: self.photons,
-            radius: self.radius,
-            radius_mode: self.radius_mode,
-            seed: self.seed,
-            estimator: self.estimator,
-            light_tracing: self.light_tracing,
-            wavelengths: self.wavelengths,
-            photon_sequence: self.photon_sequence,
-            view_paths: self.view_paths,
-            width: self.width,
-            height: self.height,
-        }
-    }
-}
-
-/// The machine a study ran on, for its report: CPU model, cores and the date.
-fn machine() -> String {
-    let cpu = std::fs::read_to_string("/proc/cpuinfo")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("model name"))
-                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
-        })
-        .unwrap_or_else(|| "unknown CPU".into());
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let days = std::time::SystemTime::now().duration_since(std::time::UNIX_EPOCH).map_or(0, |d| d.as_secs() / 86_400);
-    format!("{cpu}, {cores} cores, {}", civil_date(days as i64))
-}
-
-/// YYYY-MM-DD of a day count since 1970-01-01 (Hinnant's civil-from-days).
-fn civil_date(days: i64) -> String {
-    let z = days + 719_468;
-    let era = z.div_euclid(146_097);
-    let doe = z - era * 146_097;
-    let yoe = (doe - doe / 1460 + doe / 36_524 - doe / 146_096) / 365;
-    let doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
-    let mp = (5 * doy + 2) / 153;
-    let d = doy - (153 * mp + 2) / 5 + 1;
-    let m = if mp < 10 { mp + 3 } else { mp - 9 };
-    let y = yoe + era * 400 + i64::from(m <= 2);
-    format!("{y:04}-{m:02}-{d:02}")
 }
 
 fn photon_summary(scene: &PreparedScene, s: &TraceStats) -> String {

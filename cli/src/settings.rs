@@ -1,40 +1,185 @@
 //! A render's settings over a scene's own (`--photons`, `--bands`, … on
-//! the command line; keyword arguments in Python), applied and validated
-//! in one place so that every front end renders the same scene from the
-//! same words, and a bad value is blamed on the setting that gave it.
+//! the command line; keyword arguments in Python), each written once in
+//! the [`settings!`] list below: that one entry is the CLI flag (its help,
+//! its parser), the scene file's key under `[render]`, the Python keyword,
+//! how the setting is applied and how a bad value is blamed on it.
 
-use crate::scene_file::{SceneDocument, SceneFileError};
+use crate::scene_file::{
+    SceneDocument, SceneFileError, parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode,
+    parse_view_paths, parse_wavelengths,
+};
 use prismatic_core::PreparedScene;
 use prismatic_core::model::bands::BandSpec;
-use prismatic_core::model::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling};
+use prismatic_core::model::scene::{
+    Estimator, PhotonSequence, RadiusMode, RenderSettings, ViewPaths, WavelengthSampling,
+};
+use std::fmt;
 
-/// Settings that override the scene's `[render]` table (`None`: the scene's).
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct Settings {
-    /// Band table.
-    pub bands: Option<BandSpec>,
-    /// White photons a pass.
-    pub photons: Option<u32>,
+/// A setting's value as a front end other than the command line hands it
+/// over (Python's keywords): typed where the caller's language types it.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SettingValue {
+    /// A boolean.
+    Bool(bool),
+    /// A whole number.
+    Int(i64),
+    /// A number with a fraction.
+    Float(f64),
+    /// Anything else, as text (names such as `"paper7"` or `"fixed"`).
+    Text(String),
+}
+
+impl fmt::Display for SettingValue {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SettingValue::Bool(true) => f.write_str("True"),
+            SettingValue::Bool(false) => f.write_str("False"),
+            SettingValue::Int(n) => write!(f, "{n}"),
+            SettingValue::Float(x) => write!(f, "{x}"),
+            SettingValue::Text(s) => f.write_str(s),
+        }
+    }
+}
+
+/// A type a setting can hold, read from a [`SettingValue`].
+trait FromSetting: Sized {
+    fn from_setting(value: &SettingValue) -> Result<Self, String>;
+}
+
+impl FromSetting for u32 {
+    fn from_setting(value: &SettingValue) -> Result<Self, String> {
+        match value {
+            SettingValue::Int(n) => u32::try_from(*n).ok(),
+            _ => None,
+        }
+        .ok_or_else(|| format!("must be a whole number ≥ 0, got {value}"))
+    }
+}
+
+impl FromSetting for f32 {
+    fn from_setting(value: &SettingValue) -> Result<Self, String> {
+        match value {
+            SettingValue::Int(n) => Ok(*n as f32),
+            SettingValue::Float(x) => Ok(*x as f32),
+            _ => Err(format!("must be a number, got {value}")),
+        }
+    }
+}
+
+impl FromSetting for bool {
+    fn from_setting(value: &SettingValue) -> Result<Self, String> {
+        match value {
+            SettingValue::Bool(b) => Ok(*b),
+            _ => Err(format!("must be True or False, got {value}")),
+        }
+    }
+}
+
+/// Named values (`"paper7"`, `16`, `"fixed"`): read from their text with
+/// the scene file's parser.
+macro_rules! from_name {
+    ($($ty:ty = $parse:path),* $(,)?) => {$(
+        impl FromSetting for $ty {
+            fn from_setting(value: &SettingValue) -> Result<Self, String> {
+                $parse(&value.to_string())
+            }
+        }
+    )*};
+}
+
+from_name!(
+    BandSpec = parse_bands,
+    RadiusMode = parse_radius_mode,
+    Estimator = parse_estimator,
+    WavelengthSampling = parse_wavelengths,
+    PhotonSequence = parse_photon_sequence,
+    ViewPaths = parse_view_paths,
+);
+
+/// The one list of settings. Each entry's doc comment is the CLI's help
+/// text, its `#[arg]` the flag's parser, and its name the field of
+/// [`RenderSettings`] it overrides, the scene file's key under `[render]`
+/// and the Python keyword.
+macro_rules! settings {
+    ($( $(#[doc = $doc:literal])* #[arg($($arg:tt)*)] $name:ident: $ty:ty, )*) => {
+        /// Settings that override the scene's `[render]` table (`None`: the scene's).
+        #[derive(Clone, Debug, Default, PartialEq, clap::Args)]
+        pub struct Settings {
+            $( $(#[doc = $doc])* #[arg($($arg)*)] pub $name: Option<$ty>, )*
+        }
+
+        impl Settings {
+            /// Every setting's name: the Python keyword and the key under `[render]`.
+            pub const NAMES: &'static [&'static str] = &[$(stringify!($name)),*];
+
+            /// Sets setting `name` from a front end's `value`; the reason
+            /// when there is no such setting or the value is not one.
+            pub fn set(&mut self, name: &str, value: &SettingValue) -> Result<(), String> {
+                match name {
+                    $( stringify!($name) => self.$name = Some(FromSetting::from_setting(value)?), )*
+                    _ => return Err("no such setting".into()),
+                }
+                Ok(())
+            }
+
+            /// Overrides `render`'s values with the settings given.
+            fn apply(&self, render: &mut RenderSettings) {
+                $( if let Some(v) = self.$name { render.$name = v; } )*
+            }
+
+            /// The names of the settings given.
+            fn given(&self) -> Vec<&'static str> {
+                let mut given = Vec::new();
+                $( if self.$name.is_some() { given.push(stringify!($name)); } )*
+                given
+            }
+        }
+    };
+}
+
+settings! {
+    /// Band table: paper3, paper7 or a number of physically based bands.
+    #[arg(long, value_parser = parse_bands)]
+    bands: BandSpec,
+    /// White photons to emit.
+    #[arg(long)]
+    photons: u32,
     /// Gather radius (with progressive radii: the largest first radius).
-    pub radius: Option<f32>,
-    /// Gather radii: progressive or fixed.
-    pub radius_mode: Option<RadiusMode>,
+    #[arg(long)]
+    radius: f32,
+    /// Gather radii: progressive (per point, shrinking pass by pass) or
+    /// fixed (the scene's radius everywhere, the paper's frame).
+    #[arg(long, value_parser = parse_radius_mode)]
+    radius_mode: RadiusMode,
     /// RNG seed.
-    pub seed: Option<u32>,
-    /// Gather estimator.
-    pub estimator: Option<Estimator>,
-    /// Light tracing of the caustics the camera sees directly.
-    pub light_tracing: Option<bool>,
-    /// Wavelength sampling at dispersive glass.
-    pub wavelengths: Option<WavelengthSampling>,
-    /// Where photons' emission and wavelength numbers come from.
-    pub photon_sequence: Option<PhotonSequence>,
-    /// How view rays sample the pixels.
-    pub view_paths: Option<ViewPaths>,
+    #[arg(long)]
+    seed: u32,
+    /// Gather estimator: paper or density.
+    #[arg(long, value_parser = parse_estimator)]
+    estimator: Estimator,
+    /// Light tracing (true or false): connect the caustic photons on
+    /// surfaces the camera sees directly to the camera; gather only behind
+    /// mirrors and glass.
+    #[arg(long)]
+    light_tracing: bool,
+    /// Wavelength sampling at dispersive glass: split, random_band, continuous or hero.
+    #[arg(long, value_parser = parse_wavelengths)]
+    wavelengths: WavelengthSampling,
+    /// Where photons' emission directions and wavelengths come from: sobol
+    /// (Owen-scrambled, stratified per pass) or random.
+    #[arg(long, value_parser = parse_photon_sequence)]
+    photon_sequence: PhotonSequence,
+    /// How view rays sample the pixels: centre (once per render, through
+    /// pixel centres) or sampled (each pass anew: jittered in the pixel, 4
+    /// hero wavelengths at dispersive glass; anti-aliased).
+    #[arg(long, value_parser = parse_view_paths)]
+    view_paths: ViewPaths,
     /// Image width.
-    pub width: Option<u32>,
+    #[arg(long)]
+    width: u32,
     /// Image height.
-    pub height: Option<u32>,
+    #[arg(long)]
+    height: u32,
 }
 
 /// Where settings come from, for error messages: the "file" an error names
@@ -61,6 +206,11 @@ impl SettingsSource {
             SettingsSource::Keywords => setting.to_string(),
         }
     }
+
+    /// An error in setting `setting` as this source spells it.
+    pub fn error(self, setting: &str, reason: impl Into<String>) -> SceneFileError {
+        SceneFileError { file: self.file().into(), line: None, key: self.spell(setting), reason: reason.into() }
+    }
 }
 
 impl Settings {
@@ -68,43 +218,15 @@ impl Settings {
     /// An invalid value that a setting gave is reported against that
     /// setting (`source`), any other against the scene file.
     pub fn prepare(&self, mut doc: SceneDocument, source: SettingsSource) -> Result<PreparedScene, SceneFileError> {
-        let r = &mut doc.scene.render;
-        r.bands = self.bands.unwrap_or(r.bands);
-        r.photons = self.photons.unwrap_or(r.photons);
-        r.radius = self.radius.unwrap_or(r.radius);
-        r.radius_mode = self.radius_mode.unwrap_or(r.radius_mode);
-        r.seed = self.seed.unwrap_or(r.seed);
-        r.estimator = self.estimator.unwrap_or(r.estimator);
-        r.light_tracing = self.light_tracing.unwrap_or(r.light_tracing);
-        r.wavelengths = self.wavelengths.unwrap_or(r.wavelengths);
-        r.photon_sequence = self.photon_sequence.unwrap_or(r.photon_sequence);
-        r.view_paths = self.view_paths.unwrap_or(r.view_paths);
-        r.width = self.width.unwrap_or(r.width);
-        r.height = self.height.unwrap_or(r.height);
+        self.apply(&mut doc.scene.render);
         doc.validate().map_err(|e| self.blame(e, source))?;
         PreparedScene::new(doc.scene.clone()).map_err(|e| self.blame(doc.error(e), source))
     }
 
     /// A value that came from a setting is reported against the setting, not the scene file.
     fn blame(&self, e: SceneFileError, source: SettingsSource) -> SceneFileError {
-        let given = [
-            ("bands", self.bands.is_some()),
-            ("photons", self.photons.is_some()),
-            ("radius", self.radius.is_some()),
-            ("radius_mode", self.radius_mode.is_some()),
-            ("seed", self.seed.is_some()),
-            ("estimator", self.estimator.is_some()),
-            ("light_tracing", self.light_tracing.is_some()),
-            ("wavelengths", self.wavelengths.is_some()),
-            ("photon_sequence", self.photon_sequence.is_some()),
-            ("view_paths", self.view_paths.is_some()),
-            ("width", self.width.is_some()),
-            ("height", self.height.is_some()),
-        ];
-        match given.iter().find(|(setting, set)| *set && e.key.strip_prefix("render.") == Some(setting)) {
-            Some((setting, _)) => {
-                SceneFileError { file: source.file().into(), line: None, key: source.spell(setting), reason: e.reason }
-            }
+        match self.given().into_iter().find(|setting| e.key.strip_prefix("render.") == Some(setting)) {
+            Some(setting) => source.error(setting, e.reason),
             None => e,
         }
     }
@@ -131,5 +253,46 @@ mod tests {
         let scene = Settings { photons: Some(1234), ..Settings::default() }.prepare(doc, SettingsSource::Keywords);
         let r = scene.unwrap().scene.render;
         assert_eq!((r.photons, r.width, r.bands, r.seed), (1234, own.width, own.bands, own.seed));
+    }
+
+    #[test]
+    fn every_setting_is_a_flag_and_a_keyword() {
+        use clap::CommandFactory;
+        #[derive(clap::Parser)]
+        struct Flags {
+            #[command(flatten)]
+            settings: Settings,
+        }
+        let command = Flags::command();
+        let flags: Vec<String> = command.get_arguments().filter_map(|a| a.get_long()).map(String::from).collect();
+        let spelled: Vec<String> = Settings::NAMES.iter().map(|n| n.replace('_', "-")).collect();
+        assert_eq!(flags, spelled);
+        for name in Settings::NAMES {
+            let mut settings = Settings::default();
+            let value = match *name {
+                "bands" => SettingValue::Text("paper7".into()),
+                "radius" => SettingValue::Float(0.05),
+                "radius_mode" => SettingValue::Text("fixed".into()),
+                "estimator" => SettingValue::Text("density".into()),
+                "light_tracing" => SettingValue::Bool(false),
+                "wavelengths" => SettingValue::Text("split".into()),
+                "photon_sequence" => SettingValue::Text("random".into()),
+                "view_paths" => SettingValue::Text("sampled".into()),
+                _ => SettingValue::Int(64),
+            };
+            settings.set(name, &value).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_eq!(settings.given(), [*name]);
+        }
+    }
+
+    #[test]
+    fn a_value_of_the_wrong_kind_says_what_the_setting_takes() {
+        let mut s = Settings::default();
+        assert_eq!(s.set("photon_count", &SettingValue::Int(1)).unwrap_err(), "no such setting");
+        assert!(s.set("photons", &SettingValue::Int(-1)).unwrap_err().contains("whole number"));
+        assert!(s.set("light_tracing", &SettingValue::Int(1)).unwrap_err().contains("True or False"));
+        assert!(s.set("radius", &SettingValue::Text("far".into())).unwrap_err().contains("must be a number"));
+        assert!(s.set("bands", &SettingValue::Int(16)).is_ok());
+        assert_eq!(s.bands, Some(BandSpec::Physical(16)));
     }
 }

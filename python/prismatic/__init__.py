@@ -50,22 +50,9 @@ __all__ = [
 Scene = Union[str, "os.PathLike[str]"]
 Progress = Union[None, bool, Callable[[int, Optional[int]], Any]]
 
-# The settings every call takes: the CLI's flags by name.
-SETTINGS = (
-    "width",
-    "height",
-    "photons",
-    "bands",
-    "radius",
-    "radius_mode",
-    "seed",
-    "estimator",
-    "light_tracing",
-    "wavelengths",
-    "photon_sequence",
-    "view_paths",
-    "backend",
-)
+# The settings every call takes: the CLI's flags by name (one list, in the
+# renderer: prismatic_cli::settings), and the backend.
+SETTINGS = tuple(_prismatic.SETTINGS) + ("backend",)
 
 
 def scenes() -> List[str]:

@@ -6,6 +6,8 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+# The render settings' names (the CLI's flags, spelled with underscores).
+SETTINGS: List[str]
 
 # (built-in name or path, False, None), or (TOML text, True, the file it was read from or None).
 Source = Tuple[str, bool, Optional[str]]

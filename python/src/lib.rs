@@ -5,16 +5,16 @@
 
 use numpy::{PyArray1, PyArrayMethods};
 use prismatic_cli::backends::{self, BackendChoice};
+use prismatic_cli::load_scene;
 use prismatic_cli::partial::Partial;
 use prismatic_cli::render_job::{JobProgress, RenderJob, finite_image};
 use prismatic_cli::scene_file::{self, SceneDocument, SceneFileError};
-use prismatic_cli::settings::{Settings, SettingsSource};
-use prismatic_cli::{load_scene, scene_file::parse_bands};
+use prismatic_cli::settings::{SettingValue, Settings, SettingsSource};
 use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::{Image, NoProgress, PreparedScene, Progress, Stage};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyBytes, PyDict};
+use pyo3::types::{PyBool, PyBytes, PyDict, PyFloat, PyInt};
 use std::path::Path;
 use std::time::Duration;
 
@@ -120,6 +120,24 @@ fn named<T>(key: &str, parsed: Result<T, String>) -> Result<T, Failure> {
     parsed.map_err(|reason| bad_setting(key, reason).into())
 }
 
+/// A keyword's value as the settings read it: Python's bool, int and
+/// float by type (bool first: it is an int in Python), anything else by
+/// its text.
+fn setting_value(v: &Bound<'_, PyAny>) -> Result<SettingValue, Failure> {
+    if v.is_instance_of::<PyBool>() {
+        return Ok(SettingValue::Bool(v.extract().map_err(Failure::Python)?));
+    }
+    if v.is_instance_of::<PyInt>() {
+        // An int beyond i64 is no setting's value: its text says why.
+        if let Ok(n) = v.extract::<i64>() {
+            return Ok(SettingValue::Int(n));
+        }
+    } else if v.is_instance_of::<PyFloat>() {
+        return Ok(SettingValue::Float(v.extract().map_err(Failure::Python)?));
+    }
+    Ok(SettingValue::Text(v.str().map_err(Failure::Python)?.to_string()))
+}
+
 /// The render settings and backend from the keyword dictionary the Python
 /// layer passes (names as the CLI's flags, values already checked for type).
 fn settings(kw: Option<&Bound<'_, PyDict>>) -> Result<(Settings, BackendChoice), Failure> {
@@ -128,39 +146,14 @@ fn settings(kw: Option<&Bound<'_, PyDict>>) -> Result<(Settings, BackendChoice),
     let Some(kw) = kw else { return Ok((s, backend)) };
     for (k, v) in kw.iter() {
         let key: String = k.extract().map_err(Failure::Python)?;
-        let text = || -> Result<String, Failure> { v.str().map(|s| s.to_string()).map_err(Failure::Python) };
-        let int = || -> Result<u32, Failure> {
-            v.extract::<u32>().map_err(|_| bad_setting(&key, format!("must be a whole number ≥ 0, got {v}")).into())
-        };
-        let float = || -> Result<f32, Failure> {
-            v.extract::<f32>().map_err(|_| bad_setting(&key, format!("must be a number, got {v}")).into())
-        };
-        match key.as_str() {
-            "bands" => s.bands = Some(named(&key, parse_bands(&text()?))?),
-            "photons" => s.photons = Some(int()?),
-            "radius" => s.radius = Some(float()?),
-            "radius_mode" => s.radius_mode = Some(named(&key, scene_file::parse_radius_mode(&text()?))?),
-            "seed" => s.seed = Some(int()?),
-            "estimator" => s.estimator = Some(named(&key, scene_file::parse_estimator(&text()?))?),
-            "light_tracing" => {
-                let on = v.extract::<bool>();
-                s.light_tracing = Some(on.map_err(|_| bad_setting(&key, format!("must be True or False, got {v}")))?);
-            }
-            "wavelengths" => s.wavelengths = Some(named(&key, scene_file::parse_wavelengths(&text()?))?),
-            "view_paths" => s.view_paths = Some(named(&key, scene_file::parse_view_paths(&text()?))?),
-            "photon_sequence" => {
-                s.photon_sequence = Some(named(&key, scene_file::parse_photon_sequence(&text()?))?);
-            }
-            "width" => s.width = Some(int()?),
-            "height" => s.height = Some(int()?),
-            "backend" => {
-                let name = text()?;
-                let choice = <BackendChoice as clap::ValueEnum>::from_str(&name, true);
-                let expected = |_| format!("unknown backend \"{name}\"; expected reference, cpu, gpu or auto");
-                backend = named(&key, choice.map_err(expected))?;
-            }
-            _ => return Err(bad_setting(&key, "no such setting").into()),
+        if key == "backend" {
+            let name = v.str().map(|s| s.to_string()).map_err(Failure::Python)?;
+            let choice = <BackendChoice as clap::ValueEnum>::from_str(&name, true);
+            let expected = |_| format!("unknown backend \"{name}\"; expected reference, cpu, gpu or auto");
+            backend = named(&key, choice.map_err(expected))?;
+            continue;
         }
+        s.set(&key, &setting_value(&v)?).map_err(|reason| bad_setting(&key, reason))?;
     }
     Ok((s, backend))
 }
@@ -425,6 +418,7 @@ fn _prismatic(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("RenderError", m.py().get_type::<RenderError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("SETTINGS", Settings::NAMES.to_vec())?;
     m.add_class::<Merge>()?;
     for f in [
         wrap_pyfunction!(render, m)?,

@@ -298,17 +298,17 @@ fn hit_mesh(o: vec3<f32>, d: vec3<f32>, obj: GpuObject, t_min: f32, t_max: f32) 
 
 fn hit_object(obj: GpuObject, o: vec3<f32>, d: vec3<f32>, t_min: f32, t_max: f32) -> SurfaceHit {
     switch obj.kind {
-        case 0u: {
+        case OBJECT_SPHERE: {
             return hit_sphere(o, d, obj.a, obj.ra, t_min, t_max);
         }
-        case 1u: {
+        case OBJECT_PLANE: {
             let t = plane_t(o, d, obj.a, obj.n);
             if t.y != 0.0 && t.x > t_min && t.x < t_max {
                 return SurfaceHit(true, t.x, obj.n, 0u);
             }
             return no_hit();
         }
-        case 2u: {
+        case OBJECT_DISK: {
             let t = plane_t(o, d, obj.a, obj.n);
             if t.y == 0.0 || !(t.x > t_min && t.x < t_max) {
                 return no_hit();
@@ -320,7 +320,7 @@ fn hit_object(obj: GpuObject, o: vec3<f32>, d: vec3<f32>, t_min: f32, t_max: f32
             }
             return no_hit();
         }
-        case 3u: {
+        case OBJECT_CONVEX: {
             return hit_convex(o, d, obj.first, obj.count, t_min, t_max);
         }
         default: {
@@ -347,7 +347,7 @@ fn intersect_scene(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> Hit {
 fn occluded(o: vec3<f32>, d: vec3<f32>, dist: f32) -> bool {
     for (var i = 0u; i < params.object_count; i++) {
         let obj = objects[i];
-        if obj.kind == 4u {
+        if obj.kind == OBJECT_MESH {
             if search_mesh(o, d, obj, 0.0, dist, true).any {
                 return true;
             }

@@ -58,7 +58,7 @@ var<private> kid_count: u32;
 var<private> scramble: u32;
 
 fn sampled() -> bool {
-    return params.view_paths != 0u;
+    return params.view_paths == VIEW_PATHS_SAMPLED;
 }
 
 fn spawn(e: Pending) {
@@ -90,7 +90,7 @@ fn through_dielectric(e: Pending, ior: f32, band: u32, weight: f32, tint: vec3<f
 }
 
 // Direction to a point light, distance and surface cosine (w < 0: not lit).
-fn visible_point(light: vec3<f32>, p: vec3<f32>, n: vec3<f32>, shadows: bool) -> vec4<f32> {
+fn toward_light(light: vec3<f32>, p: vec3<f32>, n: vec3<f32>, shadows: bool) -> vec4<f32> {
     let to = light - p;
     let dist = length(to);
     let l = to / dist;
@@ -130,7 +130,7 @@ fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
         }
         return l.power / (PI * l.radius * l.radius) * cos_s;
     }
-    let v = visible_point(l.position, p, n, shadows);
+    let v = toward_light(l.position, p, n, shadows);
     if v.w < 0.0 {
         return 0.0;
     }

@@ -4,20 +4,21 @@
 //! every stage of each render and measures its error against a converged
 //! reference.
 
-pub mod error;
+pub mod converged;
+pub mod machine;
+pub mod metrics;
 pub mod plot;
 pub mod progress;
-pub mod reference;
 pub mod report;
 
 use crate::backends::{BackendChoice, select};
 use anyhow::{Context, Result};
-use error::{RenderError, StripeSums, mean_delta_e, rmse, stripe_error};
+use converged::{Reference, ReferenceSpec};
+use metrics::{RenderError, StripeSums, mean_delta_e, rmse, stripe_error};
 use prismatic_core::model::scene::{RadiusMode, Shape};
 use prismatic_core::{
     Backend, BandSpec, Estimator, Light, NoProgress, PhotonSequence, PreparedScene, ViewPaths, WavelengthSampling,
 };
-use reference::{Reference, ReferenceSpec};
 use std::path::PathBuf;
 use std::time::Instant;
 
@@ -369,7 +370,7 @@ fn load_reference(
     backend: &mut dyn Backend,
     progress: &mut dyn StudyProgress,
 ) -> Result<Reference> {
-    reference::load_or_build(
+    converged::load_or_build(
         &options.scene,
         scene,
         &plan.reference,

@@ -37,7 +37,7 @@ pub struct Written {
 /// atomically).
 pub fn write_all(result: &StudyResult, dir: &Path, machine: &str) -> Result<Written> {
     std::fs::create_dir_all(dir)?;
-    let stem = super::reference::sanitize(&result.scene);
+    let stem = super::converged::sanitize(&result.scene);
     let w = Written {
         csv: dir.join(format!("{stem}.csv")),
         markdown: dir.join(format!("{stem}.md")),
@@ -138,7 +138,7 @@ pub fn markdown(result: &StudyResult, machine: &str, plot: &Path) -> String {
         plan.reference.threshold,
         if rf.converged { "" } else { ", not reached: more passes would help" },
         rf.caustic_pixels,
-        super::error::CAUSTIC_MASK_DELTA_E
+        super::metrics::CAUSTIC_MASK_DELTA_E
     );
     let _ = writeln!(
         s,
@@ -213,7 +213,7 @@ pub fn markdown(result: &StudyResult, machine: &str, plot: &Path) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::study::error::RenderError;
+    use crate::study::metrics::RenderError;
 
     fn row(t: f64, e: f64) -> StudyRow {
         let setting = crate::study::series(

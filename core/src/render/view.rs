@@ -219,7 +219,7 @@ impl<'a> ViewContext<'a> {
         match &self.scene.scene.lights[index] {
             Light::Spot { position, direction, cone_deg, power } => {
                 let cos_max = cos(radians(*cone_deg));
-                let Some((l, dist, cos_s)) = self.visible_point(*position, p, n, shadows) else {
+                let Some((l, dist, cos_s)) = self.toward_light(*position, p, n, shadows) else {
                     return 0.0;
                 };
                 if (-l).dot(direction.normalize()) < cos_max {
@@ -229,7 +229,7 @@ impl<'a> ViewContext<'a> {
                 intensity * cos_s / (dist * dist)
             }
             Light::Point { position, power } => {
-                let Some((_, dist, cos_s)) = self.visible_point(*position, p, n, shadows) else {
+                let Some((_, dist, cos_s)) = self.toward_light(*position, p, n, shadows) else {
                     return 0.0;
                 };
                 power / (4.0 * PI) * cos_s / (dist * dist)
@@ -260,7 +260,7 @@ impl<'a> ViewContext<'a> {
 
     /// Direction to a point light, its distance and the surface cosine, or
     /// `None` when the light is behind the surface or blocked.
-    fn visible_point(&self, light: Vec3, p: Vec3, n: Vec3, shadows: bool) -> Option<(Vec3, f32, f32)> {
+    fn toward_light(&self, light: Vec3, p: Vec3, n: Vec3, shadows: bool) -> Option<(Vec3, f32, f32)> {
         let to = light - p;
         let dist = to.length();
         let l = to / dist;

@@ -1,4 +1,5 @@
-//! The reference render a study measures error against: physically based
+//! The converged image a study measures error against (the study's
+//! "reference", not the scalar reference backend): physically based
 //! bands at high N with hero wavelengths (the true spectrum, not N lines),
 //! light tracing for the caustics the camera sees directly and the
 //! renderer's own progressive photon mapping behind mirrors and glass (a
@@ -6,7 +7,7 @@
 //! passes no longer changes the image; cached on disk by the hash of
 //! everything it depends on.
 
-use super::error::{StripeSums, caustic_mask, mean_delta_e};
+use super::metrics::{StripeSums, caustic_mask, mean_delta_e};
 use crate::output::{read_exr, write_exr};
 use anyhow::{Context, Result};
 use prismatic_core::model::scene::DEFAULT_ALPHA;

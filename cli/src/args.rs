@@ -1,4 +1,4 @@
-//! The passes of a progressive render on the command line: which ones
+//! Parsers of the command line's pass arguments: which passes
 //! (`--passes N` or `A..B`), and a time budget (`--time`, `--save-every`).
 
 use std::ops::Range;

@@ -10,7 +10,7 @@
 //! [`HostRender`] over [`PacketKernels`].
 
 mod bvh;
-mod emit;
+pub mod emit;
 mod grid;
 mod intersect;
 mod kernels;

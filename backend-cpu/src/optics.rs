@@ -29,9 +29,9 @@ pub fn offset_origin(p: Vec3x8, n: Vec3x8, dir: Vec3x8) -> Vec3x8 {
 pub struct BranchesX8 {
     /// Fresnel reflectance R.
     pub reflectance: f32x8,
-    /// The mirror direction and the origin a reflected ray leaves from.
+    /// The reflected ray: (origin, direction).
     pub reflected: (Vec3x8, Vec3x8),
-    /// The refracted direction and origin (meaningless where `tir`).
+    /// The refracted ray: (origin, direction), meaningless where `tir`.
     pub refracted: (Vec3x8, Vec3x8),
     /// Lanes under total internal reflection.
     pub tir: f32x8,

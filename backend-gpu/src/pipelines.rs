@@ -45,6 +45,13 @@ fn layout(device: &wgpu::Device, label: &str, slots: &[Slot]) -> wgpu::BindGroup
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries })
 }
 
+/// Bind group 0 of every stage that reads the scene: the parameters and
+/// the six scene buffers (`scene.wgsl`).
+pub fn scene_layout(device: &wgpu::Device) -> wgpu::BindGroupLayout {
+    use Slot::*;
+    layout(device, "prismatic scene", &[Uniform, Read, Read, Read, Read, Read, Read])
+}
+
 fn with_windows(mut slots: Vec<Slot>, slot: Slot) -> Vec<Slot> {
     slots.extend((0..WINDOWS).map(|_| slot));
     slots
@@ -148,7 +155,7 @@ impl Pipelines {
     /// Compiles every stage's pipeline.
     pub fn new(device: &wgpu::Device) -> Self {
         use Slot::*;
-        let scene_layout = layout(device, "prismatic scene", &[Uniform, Read, Read, Read, Read, Read, Read]);
+        let scene_layout = scene_layout(device);
         let trace_layout = layout(device, "prismatic trace", &[ReadWrite, ReadWrite, ReadWrite]);
         let compact_layout = layout(
             device,

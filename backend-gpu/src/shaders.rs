@@ -263,14 +263,13 @@ pub fn library() -> String {
 
 /// Emit + trace (entry `main`).
 pub fn trace() -> String {
-    [
-        prelude(0),
-        COMMON.into(),
-        SCENE.into(),
-        include_str!("shaders/emit.wgsl").into(),
-        include_str!("shaders/trace.wgsl").into(),
-    ]
-    .concat()
+    [emission(), include_str!("shaders/trace.wgsl").into()].concat()
+}
+
+/// The scene's bindings (group 0) and photon emission (`emit`): the first
+/// part of [`trace`], and on its own the library of the emission twin test.
+pub fn emission() -> String {
+    [prelude(0), COMMON.into(), SCENE.into(), include_str!("shaders/emit.wgsl").into()].concat()
 }
 
 /// Compaction into canonical order (entries `scatter`, `advance`); the map is bindings 6–9.

@@ -263,3 +263,142 @@ fn read_stats(ctx: &GpuContext, tallies: &wgpu::Buffer) -> Result<TraceStats, Ba
     }
     Ok(s)
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::{EncodedScene, SceneBuffers};
+    use bytemuck::{Pod, Zeroable};
+    use glam::Vec3;
+    use prismatic_core::PreparedScene;
+    use prismatic_core::model::scene::{Light, PhotonSequence};
+    use prismatic_core::photons::emit::emit;
+    use wgpu::util::DeviceExt;
+
+    /// `emit.wgsl`'s `emit` for photons 0..N, one per invocation.
+    const ENTRY: &str = r#"
+struct EmitOut {
+    origin: vec3<f32>,
+    light: u32,
+    direction: vec3<f32>,
+    weight: f32,
+}
+
+@group(1) @binding(0) var<storage, read_write> emitted: array<EmitOut>;
+
+@compute @workgroup_size(64)
+fn emit_twin(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&emitted) {
+        return;
+    }
+    let e = emit(params.seed, id.x);
+    emitted[id.x] = EmitOut(e.origin, e.light, e.direction, e.weight);
+}
+"#;
+
+    #[repr(C)]
+    #[derive(Clone, Copy, Debug, Pod, Zeroable)]
+    struct EmitOut {
+        origin: [f32; 3],
+        light: u32,
+        direction: [f32; 3],
+        weight: f32,
+    }
+
+    /// The glass sphere lit by every kind of light at once.
+    fn lit_by_every_light_kind(projection_maps: bool, sequence: PhotonSequence) -> PreparedScene {
+        let mut scene = prismatic_conformance::scenes::glass_sphere().scene;
+        scene.lights.extend([
+            Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 25.0 },
+            Light::Beam { position: Vec3::new(-3.0, 1.0, 0.0), direction: Vec3::X, radius: 0.3, power: 10.0 },
+            Light::Sun { direction: Vec3::new(0.3, -1.0, 0.2), irradiance: 2.0 },
+        ]);
+        scene.render.projection_maps = projection_maps;
+        scene.render.photon_sequence = sequence;
+        PreparedScene::new(scene).unwrap()
+    }
+
+    /// The WGSL's emission of photons 0..n of `scene`.
+    fn wgsl_emit(ctx: &crate::GpuContext, scene: &PreparedScene, n: u32) -> Vec<EmitOut> {
+        let device = &ctx.device;
+        let scene_layout = crate::pipelines::scene_layout(device);
+        let buffers = SceneBuffers::upload(ctx, &scene_layout, &EncodedScene::new(scene));
+        let out_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("emit twin"),
+            entries: &[wgpu::BindGroupLayoutEntry {
+                binding: 0,
+                visibility: wgpu::ShaderStages::COMPUTE,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Storage { read_only: false },
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            }],
+        });
+        let module = device.create_shader_module(wgpu::ShaderModuleDescriptor {
+            label: Some("emit twin"),
+            source: wgpu::ShaderSource::Wgsl([crate::shaders::emission(), ENTRY.into()].concat().into()),
+        });
+        let layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some("emit twin"),
+            bind_group_layouts: &[Some(&scene_layout), Some(&out_layout)],
+            immediate_size: 0,
+        });
+        let pipeline = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+            label: Some("emit twin"),
+            layout: Some(&layout),
+            module: &module,
+            entry_point: Some("emit_twin"),
+            compilation_options: Default::default(),
+            cache: None,
+        });
+        let size = u64::from(n) * size_of::<EmitOut>() as u64;
+        let output = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+            label: Some("emit twin answers"),
+            contents: &vec![0u8; size as usize],
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+        });
+        let group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("emit twin"),
+            layout: &out_layout,
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: output.as_entire_binding() }],
+        });
+        let mut encoder = device.create_command_encoder(&Default::default());
+        {
+            let mut pass = encoder.begin_compute_pass(&Default::default());
+            pass.set_pipeline(&pipeline);
+            pass.set_bind_group(0, Some(&buffers.bind_group), &[]);
+            pass.set_bind_group(1, Some(&group), &[]);
+            pass.dispatch_workgroups(n.div_ceil(64), 1, 1);
+        }
+        ctx.queue.submit([encoder.finish()]);
+        bytemuck::pod_collect_to_vec(&ctx.read(&output, 0, size).unwrap())
+    }
+
+    /// `emit.wgsl` is the core's `emit`: for 4,096 photons from every light
+    /// kind, with and without projection maps, Sobol and random numbers,
+    /// the same light and weight, and origins and directions within a few
+    /// ulps (the shader compiler may fuse multiply-adds).
+    #[test]
+    fn wgsl_emission_is_the_cores() {
+        let Some(ctx) = crate::test_context("the WGSL emission twin") else { return };
+        let n = 4096;
+        for (projection_maps, sequence) in
+            [(false, PhotonSequence::Sobol), (true, PhotonSequence::Sobol), (true, PhotonSequence::Random)]
+        {
+            let scene = lit_by_every_light_kind(projection_maps, sequence);
+            let seed = EncodedScene::new(&scene).params.seed;
+            for (i, got) in wgsl_emit(&ctx, &scene, n).iter().enumerate() {
+                let want = emit(&scene, seed, i as u32);
+                let scale = 1.0 + want.origin.abs().max_element();
+                let close = (Vec3::from(got.origin) - want.origin).abs().max_element() <= 4e-6 * scale
+                    && (Vec3::from(got.direction) - want.direction).abs().max_element() <= 4e-6
+                    && (got.weight - want.weight).abs() <= 4e-6 * want.weight.abs().max(1.0);
+                assert!(
+                    got.light as usize == want.light && close,
+                    "photon {i} (projection maps {projection_maps}, {sequence:?}): {got:?}, the core says {want:?}"
+                );
+            }
+        }
+    }
+}

@@ -1,6 +1,6 @@
 //! A render's settings over a scene's own (`--photons`, `--bands`, … on
 //! the command line; keyword arguments in Python), each written once in
-//! the [`settings!`] list below: that one entry is the CLI flag (its help,
+//! the `settings!` list below: that one entry is the CLI flag (its help,
 //! its parser), the scene file's key under `[render]`, the Python keyword,
 //! how the setting is applied and how a bad value is blamed on it.
 

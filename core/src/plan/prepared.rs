@@ -164,7 +164,7 @@ impl PreparedScene {
     }
 
     /// The nearest hit along `ray` closer than `t_max`. Rays start off their
-    /// surface (see [`offset_origin`]), so any positive distance counts.
+    /// surface (see [`offset_origin`](crate::optics::scatter::offset_origin)), so any positive distance counts.
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let mut best: Option<Hit> = None;
         let mut limit = t_max;

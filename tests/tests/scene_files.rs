@@ -203,12 +203,12 @@ fn unknown_glass_names_list_the_known_ones() {
 }
 
 #[test]
-fn the_readme_example_is_a_valid_scene() {
-    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
-    let section = &readme[readme.find("## Scene files").expect("README has a scene-file section")..];
-    let start = section.find("```toml\n").expect("with a TOML example") + "```toml\n".len();
+fn the_guides_example_is_a_valid_scene() {
+    let guide = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/src/guide/scene-files.md");
+    let section = std::fs::read_to_string(guide).unwrap();
+    let start = section.find("```toml\n").expect("the scene-file guide has a TOML example") + "```toml\n".len();
     let example = &section[start..start + section[start..].find("```").unwrap()];
-    let doc = parse(example, "README.md", None).unwrap_or_else(|e| panic!("{e}"));
+    let doc = parse(example, "scene-files.md", None).unwrap_or_else(|e| panic!("{e}"));
     doc.validate().unwrap_or_else(|e| panic!("{e}"));
 }
 

@@ -3,17 +3,18 @@
 //! grazing incidence, total internal reflection, indices within 1e-6 of 1,
 //! glass in a denser medium (`prismatic_conformance::twins`).
 
+use prismatic_conformance::scenes::lit_by_every_light_kind;
 use prismatic_conformance::twins::{
-    Agreement, ScatterCase, SurfaceAnswer, SurfaceCase, check_surface, scatter_case, surface_case,
+    Agreement, ScatterCase, SurfaceAnswer, SurfaceCase, check_surface, config, scatter_case, surface_case,
 };
 use prismatic_core::Vec3;
+use prismatic_core::model::scene::PhotonSequence;
 use prismatic_core::optics::scatter;
 use prismatic_cpu::optics::{
     fresnel, interface, offset_origin, reflect, refract, scatter_dielectric, split_dielectric,
 };
 use prismatic_cpu::simd::Vec3x8;
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
 use wide::f32x8;
 
 /// The packet optics on eight cases at once, one per lane.
@@ -36,12 +37,7 @@ fn packet(cases: &[SurfaceCase; 8]) -> [SurfaceAnswer; 8] {
 }
 
 proptest! {
-    // A fixed seed keeps CI reproducible; PROPTEST_RNG_SEED=<number> explores other cases.
-    #![proptest_config(ProptestConfig {
-        cases: 2048,
-        rng_seed: std::env::var("PROPTEST_RNG_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(RngSeed::Fixed(0x0971c5)),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(config(2048, 0x0971c5))]
 
     #[test]
     fn packet_optics_are_the_cores_bit_for_bit(cases in prop::array::uniform8(surface_case())) {
@@ -78,11 +74,7 @@ fn packet_scatter(cases: &[ScatterCase; 8]) -> [LaneScatter; 8] {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig {
-        cases: 1024,
-        rng_seed: std::env::var("PROPTEST_RNG_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(RngSeed::Fixed(0x5ca7)),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(config(1024, 0x5ca7))]
 
     /// `scatter_dielectric`, `split_dielectric` (and its branch choice) and
     /// `offset_origin` on eight lanes are the core's, bit for bit.
@@ -110,27 +102,8 @@ fn bits((origin, dir): Ray) -> [u32; 6] {
     [a, b, c, d, e, f]
 }
 
-/// The glass sphere lit by every kind of light at once (their powers
-/// differ, so the light is chosen by its share), with and without
-/// projection maps: emission's every branch.
-fn lit_by_every_light_kind(projection_maps: bool) -> prismatic_core::PreparedScene {
-    use prismatic_core::model::scene::Light;
-    let mut scene = prismatic_conformance::scenes::glass_sphere().scene;
-    scene.lights.extend([
-        Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 25.0 },
-        Light::Beam { position: Vec3::new(-3.0, 1.0, 0.0), direction: Vec3::X, radius: 0.3, power: 10.0 },
-        Light::Sun { direction: Vec3::new(0.3, -1.0, 0.2), irradiance: 2.0 },
-    ]);
-    scene.render.projection_maps = projection_maps;
-    prismatic_core::PreparedScene::new(scene).unwrap()
-}
-
 proptest! {
-    #![proptest_config(ProptestConfig {
-        cases: 64,
-        rng_seed: std::env::var("PROPTEST_RNG_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(RngSeed::Fixed(0xe317)),
-        ..ProptestConfig::default()
-    })]
+    #![proptest_config(config(64, 0xe317))]
 
     /// Packet emission (`prismatic_cpu::emit::Emitters`) is the core's
     /// `emit` bit for bit: origin, direction and weight of each lane's
@@ -142,9 +115,8 @@ proptest! {
         projection_maps in any::<bool>(),
         sobol in any::<bool>(),
     ) {
-        use prismatic_core::model::scene::PhotonSequence;
-        let mut scene = lit_by_every_light_kind(projection_maps);
-        scene.scene.render.photon_sequence = if sobol { PhotonSequence::Sobol } else { PhotonSequence::Random };
+        let sequence = if sobol { PhotonSequence::Sobol } else { PhotonSequence::Random };
+        let scene = lit_by_every_light_kind(projection_maps, sequence);
         let emitters = prismatic_cpu::emit::Emitters::new(&scene);
         let index: [u32; 8] = std::array::from_fn(|i| first.wrapping_add(i as u32));
         let (origin, dir, weight) = emitters.emit(wide::u32x8::new(index));

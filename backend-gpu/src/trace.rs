@@ -269,8 +269,9 @@ mod tests {
     use crate::scene::{EncodedScene, SceneBuffers};
     use bytemuck::{Pod, Zeroable};
     use glam::Vec3;
+    use prismatic_conformance::scenes::lit_by_every_light_kind;
     use prismatic_core::PreparedScene;
-    use prismatic_core::model::scene::{Light, PhotonSequence};
+    use prismatic_core::model::scene::PhotonSequence;
     use prismatic_core::photons::emit::emit;
     use wgpu::util::DeviceExt;
 
@@ -302,19 +303,6 @@ fn emit_twin(@builtin(global_invocation_id) id: vec3<u32>) {
         light: u32,
         direction: [f32; 3],
         weight: f32,
-    }
-
-    /// The glass sphere lit by every kind of light at once.
-    fn lit_by_every_light_kind(projection_maps: bool, sequence: PhotonSequence) -> PreparedScene {
-        let mut scene = prismatic_conformance::scenes::glass_sphere().scene;
-        scene.lights.extend([
-            Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 25.0 },
-            Light::Beam { position: Vec3::new(-3.0, 1.0, 0.0), direction: Vec3::X, radius: 0.3, power: 10.0 },
-            Light::Sun { direction: Vec3::new(0.3, -1.0, 0.2), irradiance: 2.0 },
-        ]);
-        scene.render.projection_maps = projection_maps;
-        scene.render.photon_sequence = sequence;
-        PreparedScene::new(scene).unwrap()
     }
 
     /// The WGSL's emission of photons 0..n of `scene`.
@@ -391,9 +379,9 @@ fn emit_twin(@builtin(global_invocation_id) id: vec3<u32>) {
             for (i, got) in wgsl_emit(&ctx, &scene, n).iter().enumerate() {
                 let want = emit(&scene, seed, i as u32);
                 let scale = 1.0 + want.origin.abs().max_element();
-                let close = (Vec3::from(got.origin) - want.origin).abs().max_element() <= 4e-6 * scale
-                    && (Vec3::from(got.direction) - want.direction).abs().max_element() <= 4e-6
-                    && (got.weight - want.weight).abs() <= 4e-6 * want.weight.abs().max(1.0);
+                let close = (Vec3::from(got.origin) - want.origin).abs().max_element() <= 2e-6 * scale
+                    && (Vec3::from(got.direction) - want.direction).abs().max_element() <= 2e-6
+                    && (got.weight - want.weight).abs() <= 2e-6 * want.weight.abs().max(1.0);
                 assert!(
                     got.light as usize == want.light && close,
                     "photon {i} (projection maps {projection_maps}, {sequence:?}): {got:?}, the core says {want:?}"

@@ -11,7 +11,7 @@
 
 use bytemuck::{Pod, Zeroable};
 use prismatic_conformance::twins::{
-    Agreement, FinishCase, ScatterCase, SurfaceAnswer, SurfaceCase, branch_case, check_finish, check_surface,
+    Agreement, FinishCase, ScatterCase, SurfaceAnswer, SurfaceCase, branch_case, check_finish, check_surface, config,
     finish_case, fixed_answer, fixed_input, scatter_case, surface_case,
 };
 use prismatic_core::photons::grid;
@@ -20,7 +20,6 @@ use prismatic_core::sampling::sobol;
 use prismatic_core::{Estimator, Vec3};
 use prismatic_gpu::{GpuContext, shaders};
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
 use std::sync::OnceLock;
 use wgpu::util::DeviceExt;
 
@@ -392,20 +391,8 @@ const OPTICS_ABS: f32 = 2e-6;
 /// core finishes in f64.
 const FINISH_REL: f32 = 1e-6;
 
-fn config(cases: u32) -> ProptestConfig {
-    ProptestConfig {
-        cases,
-        // A fixed seed keeps CI reproducible; PROPTEST_RNG_SEED=<number> explores other cases.
-        rng_seed: std::env::var("PROPTEST_RNG_SEED")
-            .ok()
-            .and_then(|s| s.parse().ok())
-            .unwrap_or(RngSeed::Fixed(0x76a5)),
-        ..ProptestConfig::default()
-    }
-}
-
 proptest! {
-    #![proptest_config(config(8))]
+    #![proptest_config(config(8, 0x76a5))]
 
     #[test]
     fn wgsl_optics_are_the_cores(cases in prop::collection::vec(surface_case(), 1024)) {
@@ -467,7 +454,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(config(4))]
+    #![proptest_config(config(4, 0x76a5))]
 
     /// Integer arithmetic and an exact conversion: the same bits.
     #[test]
@@ -539,7 +526,7 @@ fn check_scatter(case: &ScatterCase, got: &ScatterOut) -> Result<(), String> {
 }
 
 proptest! {
-    #![proptest_config(config(8))]
+    #![proptest_config(config(8, 0x76a5))]
 
     /// `scatter_dielectric` and `split_dielectric` (common.wgsl, which the
     /// photon trace and the view pass both call) against the core's.

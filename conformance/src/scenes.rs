@@ -10,8 +10,8 @@
 use glam::Vec3;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::scene::{
-    Attenuation, Camera, Checker, Filter, Light, Material, MaterialKind, Object, RenderSettings, Sampler, Shape,
-    Texture, Wrap,
+    Attenuation, Camera, Checker, Filter, Light, Material, MaterialKind, Object, PhotonSequence, RenderSettings,
+    Sampler, Shape, Texture, Wrap,
 };
 use prismatic_core::{BandSpec, Estimator, PreparedScene, Scene};
 
@@ -215,6 +215,21 @@ pub fn sphere_mesh(center: Vec3, radius: f32, rings: u32) -> Shape {
         }
     }
     Shape::Mesh { positions, triangles, uvs: Vec::new() }
+}
+
+/// [`glass_sphere`] lit by every kind of light at once (powers that differ,
+/// so a light is chosen by its share), with or without projection maps and
+/// with either photon sequence: every branch of emission, for its twin tests.
+pub fn lit_by_every_light_kind(projection_maps: bool, sequence: PhotonSequence) -> PreparedScene {
+    let mut scene = glass_sphere().scene;
+    scene.lights.extend([
+        Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 25.0 },
+        Light::Beam { position: Vec3::new(-3.0, 1.0, 0.0), direction: Vec3::X, radius: 0.3, power: 10.0 },
+        Light::Sun { direction: Vec3::new(0.3, -1.0, 0.2), irradiance: 2.0 },
+    ]);
+    scene.render.projection_maps = projection_maps;
+    scene.render.photon_sequence = sequence;
+    prepared(scene)
 }
 
 /// The scenes with caustics, by name.

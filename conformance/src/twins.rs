@@ -16,6 +16,14 @@ use prismatic_core::optics::fresnel::{cos2_transmitted, fresnel, interface, refl
 use prismatic_core::optics::scatter::{DielectricBranches, scatter_dielectric, split_dielectric};
 use prismatic_core::photons::gather::{GatherSums, finish};
 use proptest::prelude::*;
+use proptest::test_runner::RngSeed;
+
+/// The twin tests' proptest settings: `cases` cases from the fixed `seed`,
+/// so CI is reproducible; `PROPTEST_RNG_SEED=<number>` explores others.
+pub fn config(cases: u32, seed: u64) -> ProptestConfig {
+    let seed = std::env::var("PROPTEST_RNG_SEED").ok().and_then(|s| s.parse().ok()).unwrap_or(RngSeed::Fixed(seed));
+    ProptestConfig { cases, rng_seed: seed, ..ProptestConfig::default() }
+}
 
 /// A ray arriving at a dielectric surface.
 #[derive(Clone, Copy, Debug, PartialEq)]

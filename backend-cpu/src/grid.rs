@@ -24,6 +24,7 @@ pub struct CpuGrid {
     pos: [Vec<f32>; 3],
     dir: [Vec<f32>; 3],
     flux: Vec<f32>,
+    lambda: Vec<f32>,
     band: Vec<u16>,
     /// Scratch: each photon's bucket (kept for the next rebuild).
     bucket: Vec<u32>,
@@ -41,6 +42,7 @@ struct RecordSlices<'a> {
     pos: [&'a mut [f32]; 3],
     dir: [&'a mut [f32]; 3],
     flux: &'a mut [f32],
+    lambda: &'a mut [f32],
     band: &'a mut [u16],
 }
 
@@ -67,6 +69,7 @@ impl CpuGrid {
             pos: Default::default(),
             dir: Default::default(),
             flux: Vec::new(),
+            lambda: Vec::new(),
             band: Vec::new(),
             bucket: Vec::new(),
             near: Vec::new(),
@@ -158,7 +161,7 @@ impl CpuGrid {
         // Scatter: task t writes the records of its buckets, one slice of
         // each array (the padding's 8 records go with the last task).
         let padded = self.cell_start[buckets] as usize + 8;
-        for v in self.pos.iter_mut().chain(&mut self.dir).chain([&mut self.flux]) {
+        for v in self.pos.iter_mut().chain(&mut self.dir).chain([&mut self.flux, &mut self.lambda]) {
             v.truncate(padded);
             v.resize(padded, 0.0);
         }
@@ -173,10 +176,12 @@ impl CpuGrid {
             .zip(split_at(pz, &ends))
             .zip(split_at(dx, &ends).into_iter().zip(split_at(dy, &ends)).zip(split_at(dz, &ends)))
             .zip(split_at(&mut self.flux, &ends).into_iter().zip(split_at(&mut self.band, &ends)))
-            .map(|((((x, y), z), ((u, v), w)), (flux, band))| RecordSlices {
+            .zip(split_at(&mut self.lambda, &ends))
+            .map(|(((((x, y), z), ((u, v), w)), (flux, band)), lambda)| RecordSlices {
                 pos: [x, y, z],
                 dir: [u, v, w],
                 flux,
+                lambda,
                 band,
             })
             .collect();
@@ -195,6 +200,7 @@ impl CpuGrid {
                     out.dir[k][i] = d[k];
                 }
                 out.flux[i] = p.flux;
+                out.lambda[i] = p.lambda_nm;
                 out.band[i] = p.band;
             }
         });
@@ -243,7 +249,8 @@ impl CpuGrid {
                         let real = lt(lane_index, f32x8::splat((end - i) as f32));
                         let accepted = (inside & front & real).to_bitmask();
                         for lane in (0..8).filter(|l| accepted & (1 << l) != 0) {
-                            sums.add(estimator, bands, self.band[i + lane], self.flux[i + lane]);
+                            let k = i + lane;
+                            sums.add(estimator, bands, self.band[k], self.lambda[k], self.flux[k]);
                         }
                         i += 8;
                     }
@@ -271,7 +278,7 @@ fn split_at<'a, T>(v: &'a mut [T], ends: &[usize]) -> Vec<&'a mut [T]> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use prismatic_core::model::photon::oct_encode;
+    use prismatic_core::model::photon::oct_pack;
 
     /// The parallel scatter lays the records out as a serial counting sort
     /// does, whatever the thread count (the gathers' sums depend on it).
@@ -288,7 +295,8 @@ mod tests {
             .map(|i| Photon {
                 position: [next() * 2.0 - 1.0, 0.0, next() * 2.0 - 1.0],
                 flux: next(),
-                direction_oct: oct_encode(Vec3::new(next() - 0.5, -1.0, next() - 0.5).normalize()).to_array(),
+                direction_oct: oct_pack(Vec3::new(next() - 0.5, -1.0, next() - 0.5).normalize()),
+                lambda_nm: 380.0 + 400.0 * next(),
                 emission: i,
                 band: (i % 7) as u16,
                 bounces: 1,
@@ -308,6 +316,7 @@ mod tests {
                 assert_eq!(a.dir[k][..n], b.dir[k][..n], "{what}");
             }
             assert_eq!((&a.flux[..n], &a.band[..n]), (&b.flux[..n], &b.band[..n]), "{what}");
+            assert_eq!(a.lambda[..n], b.lambda[..n], "{what}");
         };
         let one = build(1);
         for threads in [2, 3, 8] {

@@ -16,10 +16,10 @@ use crate::intersect::{HitX8, intersect_scene};
 use crate::optics::{offset_origin, reflect, scatter_dielectric};
 use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, lt, random_f32};
-use prismatic_core::model::photon::{Photon, TraceStats, WHITE_BAND, oct_encode};
+use prismatic_core::model::photon::{Photon, TraceStats, WHITE_BAND, oct_pack};
 use prismatic_core::model::scene::WavelengthSampling;
 use prismatic_core::optics::surface::Surface;
-use prismatic_core::photons::trace::{absorbed, sample_band, split_bands};
+use prismatic_core::photons::trace::{absorbed, sample_band, split_bands, stored_wavelength};
 use prismatic_core::plan::prepared::PreparedScene;
 use prismatic_core::util::rng::dim;
 use wide::{f32x8, u32x8};
@@ -232,7 +232,7 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
         let hit = intersect_scene(ctx.scene, &ray, limit_where(active, f32x8::splat(f32::INFINITY)));
         let mut s = ctx.classify(&hit, None);
         let point = ray.at(hit.t);
-        let ended = end_paths(ctx, &mut sink, active, &s, point, dir, flux, emission, band, bounces, None);
+        let ended = end_paths(ctx, &mut sink, active, &s, point, dir, flux, emission, (band, &lambda), bounces, None);
         let mut go_on = active & !ended;
         go_on &= !absorb_lanes(ctx, &mut sink, go_on & s.absorbing, &hit, dir, flux, [emission, band, bounces]);
         let split = go_on & s.dispersive & bytemuck::cast::<u32x8, f32x8>(band.simd_eq(white));
@@ -326,8 +326,19 @@ fn trace_bands(
             let mut s = ctx.classify(&hit, table);
             s.ior = lane_ior(&hit, active & s.dielectric, s.ior);
             let point = ray.at(hit.t);
-            let ended =
-                end_paths(ctx, sink, active, &s, point, dir, flux, emission_v, band, bounces, Some(&mut stored));
+            let ended = end_paths(
+                ctx,
+                sink,
+                active,
+                &s,
+                point,
+                dir,
+                flux,
+                emission_v,
+                (band, &lambda),
+                bounces,
+                Some(&mut stored),
+            );
             active &= !ended;
             active &= !absorb_lanes(ctx, sink, active & s.absorbing, &hit, dir, flux, [emission_v, band, bounces]);
             let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
@@ -352,7 +363,7 @@ fn end_paths(
     dir: Vec3x8,
     flux: f32x8,
     emission: u32x8,
-    band: u32x8,
+    (band, lambda): (u32x8, &[Option<f32>; 8]),
     bounces: u32x8,
     mut lane_slots: Option<&mut [Option<Photon>; 8]>,
 ) -> f32x8 {
@@ -376,7 +387,8 @@ fn end_paths(
             let photon = Photon {
                 position: point.lane(i).to_array(),
                 flux: f[i],
-                direction_oct: oct_encode(dir.lane(i)).to_array(),
+                direction_oct: oct_pack(dir.lane(i)),
+                lambda_nm: stored_wavelength(&ctx.scene.bands, b[i] as u16, lambda[i]),
                 emission: e[i],
                 band: b[i] as u16,
                 bounces: k[i] as u16,

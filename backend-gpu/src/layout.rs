@@ -94,8 +94,9 @@ pub struct Params {
     pub view_paths: u32,
     /// The optical axis (unit).
     pub cam_forward: [f32; 3],
-    /// Padding.
-    pub _pad7: u32,
+    /// 1 when paths take their colour from their wavelength (the band
+    /// buffer's rows after the bands), 0 when from their band's weight.
+    pub colour_by_wavelength: u32,
 }
 const _: () = assert!(core::mem::size_of::<Params>() == 224);
 
@@ -209,7 +210,9 @@ pub struct GpuLight {
 }
 const _: () = assert!(core::mem::size_of::<GpuLight>() == 96);
 
-/// A spectral band.
+/// A spectral band; after a table's N bands, the band buffer holds the
+/// rows of the colour of each wavelength
+/// ([`prismatic_core::model::wavelength_rgb`], in `weight`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuBand {

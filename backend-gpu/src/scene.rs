@@ -15,6 +15,7 @@ use prismatic_core::geometry::camera::PinholeCamera;
 use prismatic_core::geometry::primitive::{Primitive, basis};
 use prismatic_core::geometry::texture::srgb_to_linear;
 use prismatic_core::model::scene::{Filter, Light, Sampler, Texture, Wrap};
+use prismatic_core::model::wavelength_rgb;
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::photons::trace::photon_flux;
 use prismatic_core::plan::projection::Targets;
@@ -103,11 +104,22 @@ impl EncodedScene {
                 _pad: 0.0,
             });
         }
+        let colours = scene.bands.wavelength_colours().cloned().unwrap_or_default();
+        for (i, row) in colours.rows().iter().enumerate() {
+            let lambda_nm = wavelength_rgb::FIRST_NM + wavelength_rgb::STEP_NM * i as f32;
+            e.bands.push(GpuBand {
+                weight: v3(*row),
+                lambda_nm,
+                max_weight: row.abs().max_element(),
+                ..GpuBand::default()
+            });
+        }
         let r = &scene.scene.render;
         let camera = PinholeCamera::new(&scene.scene.camera, r.width, r.height);
         e.params = Params {
             seed: r.seed,
             band_count: scene.bands.len() as u32,
+            colour_by_wavelength: u32::from(scene.bands.wavelength_colours().is_some()),
             max_depth: scene.plan.max_depth,
             wavelengths: code::wavelengths(r.wavelengths),
             photon_sequence: code::photon_sequence(r.photon_sequence),

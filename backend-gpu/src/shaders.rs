@@ -9,6 +9,7 @@ use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::model::scene::{
     Estimator, HERO_WAVELENGTHS, MAX_DEPTH, PhotonSequence, ViewPaths, WavelengthSampling,
 };
+use prismatic_core::model::wavelength_rgb;
 use prismatic_core::sampling::pixel_sample;
 use prismatic_core::util::math::{COS_COEFFS, SIN_COEFFS};
 use prismatic_core::util::rng::dim;
@@ -191,6 +192,7 @@ fn prelude(stack: u32) -> String {
     u("PROJECTION_NONE", kind::PROJECTION_NONE);
     u("PROJECTION_CONES", kind::PROJECTION_CONES);
     u("PROJECTION_DISCS", kind::PROJECTION_DISCS);
+    u("WAVELENGTH_RGB_ROWS", wavelength_rgb::ROWS as u32);
     u("GRID_LEVELS", prismatic_core::plan::schedule::GRID_LEVELS as u32);
     u("MAX_BVH_DEPTH", prismatic_core::geometry::bvh::MAX_DEPTH as u32);
     let mut f = |name: &str, v: f32| writeln!(s, "const {name}: f32 = {v:e};").unwrap();
@@ -205,6 +207,8 @@ fn prelude(stack: u32) -> String {
     f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);
     f("CONNECTION_REL", CONNECTION_REL);
     f("VISIBLE_NM_LO", VISIBLE_NM.0);
+    f("WAVELENGTH_RGB_FIRST_NM", wavelength_rgb::FIRST_NM);
+    f("WAVELENGTH_RGB_STEP_NM", wavelength_rgb::STEP_NM);
     f("MIN_RADIUS_FRACTION", prismatic_core::plan::schedule::MIN_RADIUS_FRACTION);
     for (i, c) in SIN_COEFFS.iter().enumerate() {
         f(&format!("SIN_C{i}"), *c);
@@ -253,6 +257,7 @@ const FIXED: &str = include_str!("shaders/fixed.wgsl");
 const SCENE: &str = include_str!("shaders/scene.wgsl");
 const ALBEDO: &str = include_str!("shaders/albedo.wgsl");
 const SUMS: &str = include_str!("shaders/sums.wgsl");
+const COLOUR: &str = include_str!("shaders/colour.wgsl");
 
 /// The functions every pipeline shares (RNG, optics, the estimator's last
 /// step, fixed-point sums) behind the prelude, with no bindings and no
@@ -298,7 +303,15 @@ pub fn grid() -> String {
 /// The view rays into pixels and visible points (entry `main`) with a
 /// view-ray stack of `stack` entries.
 pub fn view(stack: u32) -> String {
-    [prelude(stack), COMMON.into(), SCENE.into(), ALBEDO.into(), include_str!("shaders/view.wgsl").into()].concat()
+    [
+        prelude(stack),
+        COMMON.into(),
+        SCENE.into(),
+        COLOUR.into(),
+        ALBEDO.into(),
+        include_str!("shaders/view.wgsl").into(),
+    ]
+    .concat()
 }
 
 /// A session's passes (entries `first_radius`, `begin_pass`,
@@ -310,6 +323,7 @@ pub fn session() -> String {
     [
         library(),
         include_str!("shaders/gather.wgsl").into(),
+        COLOUR.into(),
         photon_windows("sorted", 0, 6, false),
         SUMS.into(),
         include_str!("shaders/session.wgsl").into(),
@@ -323,6 +337,7 @@ pub fn splat() -> String {
     [
         library(),
         SCENE.into(),
+        COLOUR.into(),
         ALBEDO.into(),
         SUMS.into(),
         include_str!("shaders/splat.wgsl").into(),

@@ -59,11 +59,11 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
     let trace = module("trace", &shaders::trace());
     let scan = module("scan", &shaders::scan());
     let session = module("session", &shaders::session());
-    let photon = rust_layout!(prismatic_core::Photon { position, flux, direction_oct, emission, band });
+    let photon = rust_layout!(prismatic_core::Photon { position, flux, direction_oct, lambda_nm, emission, band });
     let (size, mut fields) = wgsl_layout(&trace, "Photon");
     // WGSL packs the two u16s (band, bounces) into one u32 at the band's offset.
-    assert_eq!(fields.pop(), Some(("band_bounces".into(), photon.1[4].1)));
-    assert_eq!((size, fields), (photon.0, photon.1[..4].to_vec()), "Photon");
+    assert_eq!(fields.pop(), Some(("band_bounces".into(), photon.1[5].1)));
+    assert_eq!((size, fields), (photon.0, photon.1[..5].to_vec()), "Photon");
     let cases = [
         (
             "Params",
@@ -110,7 +110,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 cam_corner,
                 view_paths,
                 cam_forward,
-                _pad7,
+                colour_by_wavelength,
             }),
         ),
         ("GpuObject", &trace, rust_layout!(GpuObject { kind, first, count, second, a, ra, n, rb })),

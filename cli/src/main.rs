@@ -289,7 +289,7 @@ fn photons(job: &JobArgs, pass: u32, output: &Path) -> Result<()> {
     let map = render.photon_map(pass, &mut bar)?;
     let t_trace = t0.elapsed();
     bar.finish();
-    out.commit(|w| write_photon_csv(w, &map, &scene.bands, origin))?;
+    out.commit(|w| write_photon_csv(w, &map, origin))?;
     println!(
         "{name}: {} backend, pass {pass}, {}; trace {}; wrote {}",
         render.backend(),

@@ -4,8 +4,7 @@
 
 use anyhow::{Context, Result};
 use prismatic_core::model::color::ToneMap;
-use prismatic_core::model::photon::WHITE_BAND;
-use prismatic_core::{BandTable, Image, PhotonMap};
+use prismatic_core::{Image, PhotonMap};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -92,17 +91,17 @@ fn is_exr(path: &Path) -> bool {
 pub const PHOTON_CSV_HEADER: &str = "emission,band,lambda_nm,x,y,z,dir_x,dir_y,dir_z,power";
 
 /// Writes the photon map as CSV in canonical order, positions in world
-/// coordinates (the scene's local frame plus `origin`, in f64). White
-/// (unsplit) photons have band -1 and an empty wavelength.
-pub fn write_photon_csv(w: &mut impl Write, map: &PhotonMap, bands: &BandTable, origin: glam::DVec3) -> Result<()> {
+/// coordinates (the scene's local frame plus `origin`, in f64), each with
+/// the wavelength it was traced at. White (unsplit) photons have band -1
+/// and an empty wavelength.
+pub fn write_photon_csv(w: &mut impl Write, map: &PhotonMap, origin: glam::DVec3) -> Result<()> {
     writeln!(w, "{PHOTON_CSV_HEADER}")?;
     for p in &map.photons {
         let d = p.direction();
         let [x, y, z] = (p.pos().as_dvec3() + origin).to_array();
-        if p.band == WHITE_BAND {
-            write!(w, "{},-1,,", p.emission)?;
-        } else {
-            write!(w, "{},{},{},", p.emission, p.band, bands.band(usize::from(p.band)).lambda_nm)?;
+        match p.wavelength() {
+            Some(lambda_nm) => write!(w, "{},{},{lambda_nm},", p.emission, p.band)?,
+            None => write!(w, "{},-1,,", p.emission)?,
         }
         writeln!(w, "{x},{y},{z},{},{},{},{}", d.x, d.y, d.z, p.flux)?;
     }

@@ -177,7 +177,8 @@ def merge(partials: Iterable[bytes]) -> np.ndarray:
 def photons(scene: Scene, *, pass_: int = 0, **settings: Any) -> Dict[str, np.ndarray]:
     """The caustic photons of pass ``pass_`` as columns, the CSV that
     ``prismatic photons`` writes: ``emission`` (uint32), ``band`` (int32, -1
-    for white photons), ``lambda_nm`` (float32, NaN for white photons),
+    for white photons), ``lambda_nm`` (float32, the wavelength the photon
+    was traced at; NaN for white photons),
     ``x``, ``y``, ``z`` (float64, world coordinates), ``dir_x``, ``dir_y``,
     ``dir_z`` and ``power`` (float32), in canonical order."""
     return dict(_prismatic.photons(_scene(scene), pass_, _settings(settings)))

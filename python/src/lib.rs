@@ -10,7 +10,6 @@ use prismatic_cli::partial::Partial;
 use prismatic_cli::render_job::{JobProgress, RenderJob, finite_image};
 use prismatic_cli::scene_file::{self, SceneDocument, SceneFileError};
 use prismatic_cli::settings::{SettingValue, Settings, SettingsSource};
-use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::{Image, NoProgress, PreparedScene, Progress, Stage};
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -356,12 +355,15 @@ fn photons<'py>(
         ([(); 3].map(|_| Vec::with_capacity(n)), [(); 3].map(|_| Vec::with_capacity(n)), Vec::with_capacity(n));
     for p in &map.photons {
         emission.push(p.emission);
-        if p.band == WHITE_BAND {
-            band.push(-1i32);
-            lambda.push(f32::NAN);
-        } else {
-            band.push(i32::from(p.band));
-            lambda.push(scene.bands.band(usize::from(p.band)).lambda_nm);
+        match p.wavelength() {
+            Some(lambda_nm) => {
+                band.push(i32::from(p.band));
+                lambda.push(lambda_nm);
+            }
+            None => {
+                band.push(-1i32);
+                lambda.push(f32::NAN);
+            }
         }
         let world = (p.pos().as_dvec3() + doc.origin).to_array();
         let d = p.direction().to_array();

@@ -46,7 +46,7 @@ fn write_failure(case: &str, scene: &PreparedScene, outputs: &[&Output]) -> Path
     for o in outputs {
         if let Ok(file) = std::fs::File::create(dir.join(format!("{}.csv", o.backend))) {
             let mut w = std::io::BufWriter::new(file);
-            let _ = prismatic_cli::output::write_photon_csv(&mut w, &o.map, &scene.bands, glam::DVec3::ZERO);
+            let _ = prismatic_cli::output::write_photon_csv(&mut w, &o.map, glam::DVec3::ZERO);
         }
         if let Ok(file) = std::fs::File::create(dir.join(format!("{}.png", o.backend))) {
             let mut w = std::io::BufWriter::new(file);

@@ -1,7 +1,7 @@
 //! The gather estimators against fields of photons with a known answer.
 
 use prismatic_core::model::bands::{BandSpec, BandTable};
-use prismatic_core::model::photon::{WHITE_BAND, oct_encode};
+use prismatic_core::model::photon::{WHITE_BAND, oct_pack};
 use prismatic_core::model::scene::Estimator;
 use prismatic_core::photons::gather::{GatherQuery, GatherSums, finish, gather};
 use prismatic_core::photons::grid::PhotonGrid;
@@ -9,13 +9,16 @@ use prismatic_core::util::rng::random_f32;
 use prismatic_core::{Photon, Vec3};
 
 /// `count` photons spread uniformly over the square [-1, 1]² of the plane
-/// y = 0, arriving from above, band `band(i)`, flux `flux` each.
+/// y = 0, arriving from above, band `band(i)` of the paper's seven (at its
+/// wavelength), flux `flux` each.
 fn field(count: u32, flux: f32, band: impl Fn(u32) -> u16) -> Vec<Photon> {
+    let paper7 = BandTable::new(BandSpec::Paper7);
     (0..count)
         .map(|i| Photon {
             position: [2.0 * random_f32(5, i, 0) - 1.0, 0.0, 2.0 * random_f32(5, i, 1) - 1.0],
             flux,
-            direction_oct: oct_encode(-Vec3::Y).to_array(),
+            direction_oct: oct_pack(-Vec3::Y),
+            lambda_nm: paper7.bands().get(usize::from(band(i))).map_or(0.0, |b| b.lambda_nm),
             emission: i,
             band: band(i),
             bounces: 1,
@@ -60,7 +63,8 @@ fn the_paper_hue_is_w_over_total_scaled_so_white_is_white() {
     let gathered = |photons: &[u16]| {
         let mut g = GatherSums::default();
         for &band in photons {
-            g.add(Estimator::Paper, &bands, band, 1.0 / photons.len() as f32);
+            let lambda_nm = bands.bands().get(usize::from(band)).map_or(0.0, |b| b.lambda_nm);
+            g.add(Estimator::Paper, &bands, band, lambda_nm, 1.0 / photons.len() as f32);
         }
         g
     };
@@ -85,7 +89,7 @@ fn the_paper_hue_is_w_over_total_scaled_so_white_is_white() {
 fn photons_behind_the_surface_do_not_count() {
     let mut photons = field(10_000, 1e-3, |_| WHITE_BAND);
     for p in &mut photons {
-        p.direction_oct = oct_encode(Vec3::Y).to_array(); // arriving from below
+        p.direction_oct = oct_pack(Vec3::Y); // arriving from below
     }
     let grid = PhotonGrid::build(&photons, 0.2);
     let bands = BandTable::new(BandSpec::Paper3);

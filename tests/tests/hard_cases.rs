@@ -8,7 +8,7 @@
 use prismatic_core::geometry::primitive::{Primitive, Ray, prism_faces};
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
-use prismatic_core::model::photon::{Photon, PhotonMap, WHITE_BAND, oct_encode};
+use prismatic_core::model::photon::{Photon, PhotonMap, WHITE_BAND, oct_pack};
 use prismatic_core::model::scene::{Estimator, Light, MaterialKind, Object, Shape};
 use prismatic_core::optics::scatter::offset_origin;
 use prismatic_core::optics::surface::Surface;
@@ -24,7 +24,11 @@ use prismatic_tests::{PrismExperiment, builtin, camera, glass, prepare, settings
 /// Panics unless every photon of `map` is finite and every pixel of `image` too.
 fn assert_finite(case: &str, map: &PhotonMap, image: Option<&Image>) {
     for p in &map.photons {
-        let ok = p.position.iter().chain(&p.direction_oct).all(|x| x.is_finite()) && p.flux.is_finite() && p.flux > 0.0;
+        let ok = p.position.iter().all(|x| x.is_finite())
+            && p.direction().is_finite()
+            && p.flux.is_finite()
+            && p.flux > 0.0
+            && p.wavelength().is_none_or(|l| (360.0..=830.0).contains(&l));
         assert!(ok, "{case}: photon {p:?}");
     }
     let s = map.stats;
@@ -542,12 +546,14 @@ fn photons_on_cell_borders_are_found() {
             for k in -4i32..=4 {
                 for (dx, dz) in [(0.0, 0.0), (radius, 0.0), (0.0, radius), (radius * 0.5, cell)] {
                     let position = [i as f32 * cell + dx, 0.0, k as f32 * cell + dz];
+                    let band = (i + k).rem_euclid(7) as u16;
                     photons.push(Photon {
                         position,
                         flux: 1.0,
-                        direction_oct: oct_encode(Vec3::NEG_Y).to_array(),
+                        direction_oct: oct_pack(Vec3::NEG_Y),
+                        lambda_nm: bands.band(usize::from(band)).lambda_nm,
                         emission: 0,
-                        band: (i + k).rem_euclid(7) as u16,
+                        band,
                         bounces: 1,
                     });
                 }
@@ -563,7 +569,7 @@ fn photons_on_cell_borders_are_found() {
                     let brute: Vec3 = photons
                         .iter()
                         .filter(|p| (p.pos() - point).length_squared() <= radius * radius)
-                        .map(|p| bands.rgb_of_flux(p.band, p.flux))
+                        .map(|p| bands.rgb_of_flux(p.band, p.lambda_nm, p.flux))
                         .sum::<Vec3>()
                         / (std::f32::consts::PI * radius * radius);
                     let from_core = gather(&core_grid, &photons, &bands, Estimator::Density, &q);

@@ -17,6 +17,7 @@ mod photon_map;
 mod physics;
 mod progressive;
 mod scene_files;
+mod spectral_truth;
 mod spectrum;
 mod sun;
 mod textures;

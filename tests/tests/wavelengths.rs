@@ -110,6 +110,9 @@ fn continuous_photons_deviate_as_snell_law_says_at_their_own_wavelength() {
             let mut checked = 0;
             for p in map.photons.iter().filter(|p| p.bounces == 2) {
                 let lambda = traced_wavelength(&pass, p);
+                // The map states it (a GPU's f32 may round it differently).
+                let stated = p.wavelength().expect("a band photon");
+                assert!((stated - lambda).abs() < 1e-4, "{}: states {stated} nm, traced at {lambda}", backend.name());
                 let (lo, hi) = scene.bands.band(usize::from(p.band)).interval_nm;
                 assert!((lo..=hi).contains(&lambda), "λ {lambda} outside band {} ({lo}–{hi})", p.band);
                 let n = f64::from(glass.ior_at(lambda).unwrap());
@@ -117,8 +120,9 @@ fn continuous_photons_deviate_as_snell_law_says_at_their_own_wavelength() {
                 let got = (phi - f64::from(d.y).atan2(f64::from(d.x))).to_degrees();
                 let expected = exp.deviation_deg(n).unwrap();
                 // As for band photons (physics.rs), plus the 1 nm curve's
-                // interpolation error (< 1e-7 in n, ~1e-5°).
-                assert!((got - expected).abs() < 2e-3, "λ {lambda}: deviation {got:.5}° vs {expected:.5}°");
+                // interpolation error (< 1e-7 in n, ~1e-5°) and the stored
+                // direction's 16-bit encoding (< 0.004°).
+                assert!((got - expected).abs() < 6e-3, "λ {lambda}: deviation {got:.5}° vs {expected:.5}°");
                 spread = (spread.0.min(got), spread.1.max(got));
                 checked += 1;
             }

@@ -243,10 +243,13 @@ impl GpuSession {
 /// sums, flux sum): the largest term a photon can add is worth at most
 /// 2^[`TERM_BITS`] units. A photon carries at most the white flux Φ (a
 /// projection map's weights are below 1); the density estimator adds
-/// Φ·max(1, N·max|C_i|) at most, the paper's max(1, max|C_i|).
+/// Φ·max(1, N·max|C_i|) at most, the paper's max(1, max|C_i|) (C_i, or
+/// the colour of a wavelength over N: [`BandTable::max_colour`]).
+///
+/// [`BandTable::max_colour`]: prismatic_core::BandTable::max_colour
 pub fn gather_shifts(pass: &PreparedScene) -> (i32, i32) {
     let flux = photon_flux(pass);
-    let weight = pass.bands.bands().iter().map(|b| b.weight.abs().max_element()).fold(1.0f32, f32::max);
+    let weight = pass.bands.max_colour().max(1.0);
     let term = match pass.scene.render.estimator {
         Estimator::Density => flux * (weight * pass.bands.len() as f32).max(1.0),
         Estimator::Paper => weight,

@@ -48,7 +48,7 @@ struct Params {
     cam_corner: vec3<f32>,
     view_paths: u32,
     cam_forward: vec3<f32>,
-    _pad7: u32,
+    colour_by_wavelength: u32,
 }
 
 // Twin of prismatic_core::photon::Photon (band in the low 16 bits of
@@ -56,7 +56,8 @@ struct Params {
 struct Photon {
     position: vec3<f32>,
     flux: f32,
-    direction_oct: vec2<f32>,
+    direction_oct: u32,
+    lambda_nm: f32,
     emission: u32,
     band_bounces: u32,
 }
@@ -279,6 +280,16 @@ fn cone_direction(axis: vec3<f32>, cos_t: f32, u: f32) -> vec3<f32> {
     let sc = sin_cos_turns(u);
     let tb = basis(axis);
     return nrm(tb.t * (sin_t * sc.y) + tb.b * (sin_t * sc.x) + axis * cos_t);
+}
+
+// photon::oct_pack
+fn oct_pack(v: vec3<f32>) -> u32 {
+    return pack2x16snorm(oct_encode(v));
+}
+
+// photon::oct_unpack
+fn oct_unpack(packed: u32) -> vec3<f32> {
+    return oct_decode(unpack2x16snorm(packed));
 }
 
 // photon::oct_encode

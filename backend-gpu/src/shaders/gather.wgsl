@@ -64,16 +64,14 @@ fn gather_segment(vp: ptr<function, VisiblePoint>) {
         for (var i = first; i < end; i++) {
             let p = sorted_load(i);
             let d = p.position - point;
-            if dot(d, d) <= r2 && dot(oct_decode(p.direction_oct), normal) < 0.0 {
+            if dot(d, d) <= r2 && dot(oct_unpack(p.direction_oct), normal) < 0.0 {
                 let band = p.band_bounces & 0xffffu;
                 (*vp).found += 1u;
-                var add = select(vec3<f32>(1.0), vec3<f32>(p.flux), density);
-                if band < n_bands {
-                    add = select(bands[band].weight, bands[band].weight * (p.flux * f32(n_bands)), density);
-                    (*vp).total += 1u;
-                } else {
-                    (*vp).total += n_bands;
+                var add = hue(band, p.lambda_nm);
+                if density {
+                    add = rgb_of_flux(band, p.lambda_nm, p.flux);
                 }
+                (*vp).total += select(n_bands, 1u, band < n_bands);
                 // Unrolled: a varying index into the sums costs a software device dearly.
                 (*vp).sums[0] = add_term((*vp).sums[0], add.x, params.sum_shift);
                 (*vp).sums[1] = add_term((*vp).sums[1], add.y, params.sum_shift);

@@ -53,16 +53,12 @@ fn splat(
         return;
     }
     let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
-    if dot(oct_decode(photon.direction_oct), n) >= 0.0 {
+    if dot(oct_unpack(photon.direction_oct), n) >= 0.0 {
         return;
     }
     let albedo = albedo_at(hit, n);
     let importance = -dot(v, n) / (seen.z * seen.z * seen.z) * params.splat_scale;
-    let band = photon.band_bounces & 0xffffu;
-    var flux = vec3<f32>(photon.flux);
-    if band != WHITE_BAND {
-        flux = bands[band].weight * (photon.flux * f32(params.band_count));
-    }
+    let flux = rgb_of_flux(photon.band_bounces & 0xffffu, photon.lambda_nm, photon.flux);
     let c = flux * albedo * importance;
     let k = pixel - params.pixel_offset;
     for (var ch = 0u; ch < 3u; ch++) {

@@ -38,6 +38,14 @@ fn scatter_path(p: ptr<function, Path>, point: vec3<f32>, outward: vec3<f32>, io
     (*p).dir = s.dir;
 }
 
+// trace::stored_wavelength: the path's own, its band's, or 0 for white light.
+fn stored_wavelength(band: u32, lambda_nm: f32) -> f32 {
+    if band >= params.band_count {
+        return 0.0;
+    }
+    return select(bands[band].lambda_nm, lambda_nm, lambda_nm >= 0.0);
+}
+
 fn store(p: ptr<function, Path>, point: vec3<f32>, index: u32) {
     tally_counts[4] += 1u;
     tally_flux[1] += (*p).flux;
@@ -45,7 +53,8 @@ fn store(p: ptr<function, Path>, point: vec3<f32>, index: u32) {
         scratch[slot_base + slot_used] = Photon(
             point,
             (*p).flux,
-            oct_encode((*p).dir),
+            oct_pack((*p).dir),
+            stored_wavelength((*p).band, (*p).lambda_nm),
             index,
             ((*p).band & 0xffffu) | (min((*p).bounces, 0xffffu) << 16u),
         );

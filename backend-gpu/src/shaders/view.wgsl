@@ -184,7 +184,8 @@ fn shade_diffuse(dir: vec3<f32>, hit: Hit, tint: vec3<f32>, depth: u32) -> vec3<
 // One pending entry: what it adds to the pixel; what it spawns goes to `kids`.
 fn visit(e: Pending) -> vec3<f32> {
     if e.next_band != NO_SPLIT && sampled() {
-        // Hero path i of a sampled split: band ⌊v·N⌋ at v = (i + u)/M, (N/M)·C_b.
+        // Hero path i of a sampled split: band ⌊v·N⌋ at v = (i + u)/M,
+        // (N/M)·C_b or the colour of its wavelength over M.
         let i = e.next_band;
         let m = min(HERO_WAVELENGTHS, params.band_count);
         if i + 1u < m {
@@ -193,7 +194,10 @@ fn visit(e: Pending) -> vec3<f32> {
             spawn(rest);
         }
         let s = spectrum_share(sobol_f32(scramble, params.view_pass, 2u), i, m);
-        let w = bands[s.band].weight * (f32(params.band_count) / f32(m));
+        var w = bands[s.band].weight * (f32(params.band_count) / f32(m));
+        if s.lambda_nm >= 0.0 && params.colour_by_wavelength != 0u {
+            w = wavelength_rgb(s.lambda_nm) / f32(m);
+        }
         var hero = e;
         hero.hero = i;
         hero.lambda_nm = s.lambda_nm;

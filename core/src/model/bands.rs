@@ -1,4 +1,5 @@
-//! Spectral band tables: N bands, each with a wavelength and an RGB weight.
+//! Spectral band tables: N bands, each with a wavelength and an RGB weight,
+//! and the colour of the paths traced in them.
 //!
 //! The weights of every table sum to white, (1, 1, 1), so that a white photon
 //! split into all bands is white again. Presets `paper3` and `paper7`
@@ -6,17 +7,24 @@
 //! N equal intervals and weights each by the CIE 1931 colour-matching
 //! functions integrated over it, converted to linear sRGB and normalised per
 //! channel. Such weights may be negative (spectral colours lie outside sRGB).
+//!
+//! A path traced at its own wavelength within a physically based band
+//! (continuous and hero sampling, see [`BandTable::colour_by_wavelength`])
+//! is coloured by that wavelength ([`WavelengthRgb`]), not by its band's
+//! weight: the band count then stratifies the spectrum without quantising
+//! its colour. Paths at a band's own wavelength (split and random-band
+//! sampling), and every path of the paper's presets, keep the band's weight.
 
 use alloc::vec::Vec;
 use core::fmt;
 use glam::{DVec3, Vec3};
 
+pub use crate::model::cie::VISIBLE_NM;
+use crate::model::wavelength_rgb::WavelengthRgb;
+
 /// The most bands a table may have (the photon stores its band in a `u16`,
 /// and shaders size per-band arrays by it).
 pub const MAX_BANDS: usize = 256;
-
-/// The visible range that physically based tables cover.
-pub const VISIBLE_NM: (f32, f32) = (380.0, 780.0);
 
 /// Which band table a render uses.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,6 +66,8 @@ pub struct Band {
 pub struct BandTable {
     spec: BandSpec,
     bands: Vec<Band>,
+    /// The colour of paths at their own wavelength, when they take it from there.
+    by_wavelength: Option<WavelengthRgb>,
 }
 
 /// The paper's Table 1: (name, nominal wavelength in nm, weight). The paper
@@ -87,7 +97,21 @@ impl BandTable {
             BandSpec::Paper7 => paper(&PAPER7),
             BandSpec::Physical(n) => physical(usize::from(n).clamp(1, MAX_BANDS)),
         };
-        BandTable { spec, bands }
+        BandTable { spec, bands, by_wavelength: None }
+    }
+
+    /// This table, colouring paths by their own wavelength when `continuous`
+    /// (paths traced at a wavelength of their own) and the bands are
+    /// physically based; the paper's presets keep their weights.
+    pub fn colour_by_wavelength(mut self, continuous: bool) -> Self {
+        let physical = matches!(self.spec, BandSpec::Physical(_));
+        self.by_wavelength = (continuous && physical).then(WavelengthRgb::new);
+        self
+    }
+
+    /// The colour of each wavelength, when paths take their colour from it.
+    pub fn wavelength_colours(&self) -> Option<&WavelengthRgb> {
+        self.by_wavelength.as_ref()
     }
 
     /// The spec this table was built from.
@@ -120,14 +144,41 @@ impl BandTable {
         self.bands.iter().map(|b| b.weight).sum()
     }
 
-    /// Linear RGB of flux `flux` carried by band `band` (or white light for
-    /// [`crate::model::photon::WHITE_BAND`]): N·C_i·Φ, since one band carries 1/N of
-    /// the white flux and its weight is 1/N of white on average.
+    /// Linear RGB of flux `flux` carried by a path of band `band` at
+    /// wavelength `lambda_nm` (or white light for
+    /// [`crate::model::photon::WHITE_BAND`]): Φ times the colour of
+    /// `lambda_nm` when paths are coloured by wavelength, else N·C_i·Φ
+    /// (one band carries 1/N of the white flux and its weight is 1/N of
+    /// white on average).
     #[inline]
-    pub fn rgb_of_flux(&self, band: u16, flux: f32) -> Vec3 {
-        match self.bands.get(usize::from(band)) {
-            Some(b) => b.weight * (flux * self.bands.len() as f32),
-            None => Vec3::splat(flux),
+    pub fn rgb_of_flux(&self, band: u16, lambda_nm: f32, flux: f32) -> Vec3 {
+        match (self.bands.get(usize::from(band)), &self.by_wavelength) {
+            (None, _) => Vec3::splat(flux),
+            (Some(_), Some(colours)) => colours.at(lambda_nm) * flux,
+            (Some(b), None) => b.weight * (flux * self.bands.len() as f32),
+        }
+    }
+
+    /// The hue one path of band `band` at `lambda_nm` adds to the paper's
+    /// estimator (C_i, or the colour of the wavelength over N); white
+    /// light's is (1, 1, 1), counted in every band.
+    #[inline]
+    pub fn hue(&self, band: u16, lambda_nm: f32) -> Vec3 {
+        match (self.bands.get(usize::from(band)), &self.by_wavelength) {
+            (None, _) => Vec3::ONE,
+            (Some(_), Some(colours)) => colours.at(lambda_nm) / self.bands.len() as f32,
+            (Some(b), None) => b.weight,
+        }
+    }
+
+    /// The largest magnitude of any channel a path's colour (per unit of
+    /// flux, before the factor N of a band's weight) can have: what
+    /// fixed-point sums size their terms by.
+    pub fn max_colour(&self) -> f32 {
+        let n = self.bands.len() as f32;
+        match &self.by_wavelength {
+            Some(colours) => colours.max_channel() / n,
+            None => self.bands.iter().map(|b| b.weight.abs().max_element()).fold(0.0, f32::max),
         }
     }
 }

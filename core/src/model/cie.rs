@@ -6,11 +6,17 @@
 use glam::DVec3;
 
 const CSV: &str = include_str!("../../data/cie1931_2deg_5nm.csv");
-const FIRST_NM: f64 = 360.0;
-const STEP_NM: f64 = 5.0;
+/// The visible range that physically based band tables and the colour of
+/// a wavelength cover, in nm.
+pub const VISIBLE_NM: (f32, f32) = (380.0, 780.0);
+
+/// Wavelength of the table's first row, in nm.
+pub const FIRST_NM: f64 = 360.0;
+/// Spacing of the rows, in nm.
+pub const STEP_NM: f64 = 5.0;
 
 /// Number of rows in the compiled-in table.
-const ROWS: usize = 95;
+pub const ROWS: usize = 95;
 
 /// Parses the compiled-in CSV once per call; cheap (95 rows) and allocation-free.
 fn table() -> [DVec3; ROWS] {
@@ -34,6 +40,11 @@ fn table() -> [DVec3; ROWS] {
     }
     debug_assert_eq!(count, ROWS);
     rows
+}
+
+/// The table's rows: (x̄, ȳ, z̄) at `FIRST_NM + i·STEP_NM`.
+pub fn rows() -> [DVec3; ROWS] {
+    table()
 }
 
 /// The colour-matching functions (x̄, ȳ, z̄) at `lambda_nm`, linearly

@@ -1,6 +1,7 @@
 //! Layer 1, model: what the user described (the scene, its validation, meshes)
 //! and what every backend exchanges (spectral bands and the CIE tables behind
-//! them, dispersion, colour, images, the photon and its map).
+//! them, dispersion, colour, the colour of each wavelength, images, the photon
+//! and its map).
 
 pub mod bands;
 pub mod cie;
@@ -11,3 +12,4 @@ pub mod mesh;
 pub mod photon;
 pub mod scene;
 pub mod validate;
+pub mod wavelength_rgb;

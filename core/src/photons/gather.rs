@@ -13,6 +13,9 @@
 //! - `density`: Σ N·C_i·Φ / (π r²) over the photons (each band photon
 //!   carries 1/N of the white flux, see [`BandTable::rgb_of_flux`]).
 //!
+//! A photon traced at its own wavelength takes its colour from it instead
+//! of from C_i when the table says so ([`BandTable::colour_by_wavelength`]).
+//!
 //! A gather is two steps, each with a twin in every backend: the photons
 //! found add to a point's [`GatherSums`] ([`GatherSums::add`]), and
 //! [`finish`] turns the sums into irradiance (WGSL `finish_estimate`).
@@ -42,7 +45,8 @@ pub struct GatherQuery {
 /// at 2^24 photons).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct GatherSums {
-    /// `density`: Σ N·C_i·Φ; `paper`: W = Σ C_i T_i (a white photon adds (1, 1, 1)).
+    /// `density`: Σ N·C_i·Φ; `paper`: W = Σ C_i T_i (a white photon adds
+    /// (1, 1, 1)); by wavelength, the colour of λ for N·C_i.
     pub sums: DVec3,
     /// `paper`: Total = Σ T_i, a white photon counting N.
     pub total: u64,
@@ -53,19 +57,20 @@ pub struct GatherSums {
 }
 
 impl GatherSums {
-    /// Adds a photon of `band` carrying `flux` that the gather accepted.
+    /// Adds a photon of `band` at `lambda_nm` carrying `flux` that the
+    /// gather accepted.
     #[inline]
-    pub fn add(&mut self, estimator: Estimator, bands: &BandTable, band: u16, flux: f32) {
+    pub fn add(&mut self, estimator: Estimator, bands: &BandTable, band: u16, lambda_nm: f32, flux: f32) {
         self.found += 1;
         self.flux += f64::from(flux);
         match estimator {
-            Estimator::Density => self.sums += bands.rgb_of_flux(band, flux).as_dvec3(),
+            Estimator::Density => self.sums += bands.rgb_of_flux(band, lambda_nm, flux).as_dvec3(),
             Estimator::Paper if band == WHITE_BAND => {
                 self.sums += DVec3::ONE;
                 self.total += bands.len() as u64;
             }
             Estimator::Paper => {
-                self.sums += bands.band(usize::from(band)).weight.as_dvec3();
+                self.sums += bands.hue(band, lambda_nm).as_dvec3();
                 self.total += 1;
             }
         }
@@ -101,7 +106,7 @@ pub fn gather_counted(
     grid.for_each_candidate(q.point, q.radius, |i| {
         let p = &photons[i as usize];
         if accepts(p, q, r2) {
-            sums.add(estimator, bands, p.band, p.flux);
+            sums.add(estimator, bands, p.band, p.lambda_nm, p.flux);
         }
     });
     (finish(estimator, bands.len(), &sums, q.radius), sums.found)

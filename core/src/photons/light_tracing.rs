@@ -16,8 +16,8 @@
 //! between them, θ_c the angle of v to the optical axis and s = d·cos θ_c
 //! the point's depth along it (dω = dA cos θ_x / d² on the surface, and
 //! dω = cos³ θ_c dA_image on the image plane). A band photon's flux counts
-//! through its band's RGB weight ([`crate::model::bands::BandTable::rgb_of_flux`]),
-//! as in the density estimator. The camera's ray toward the photon must
+//! through its band's RGB weight, or the colour of its wavelength
+//! ([`crate::model::bands::BandTable::rgb_of_flux`]), as in the density estimator. The camera's ray toward the photon must
 //! reach it ([`CONNECTION_REL`]): the visibility test, and the hit gives
 //! the surface's albedo and normal.
 //!
@@ -82,7 +82,7 @@ impl<'a> CameraConnection<'a> {
         }
         let albedo = self.scene.albedo_at(hit.object, hit.triangle, hit.point, n);
         let importance = -v.dot(n) / (seen.depth * seen.depth * seen.depth) * self.scale;
-        let flux = self.scene.bands.rgb_of_flux(photon.band, photon.flux);
+        let flux = self.scene.bands.rgb_of_flux(photon.band, photon.lambda_nm, photon.flux);
         Some(Splat { pixel: seen.y * self.camera.width + seen.x, radiance: flux * albedo * importance })
     }
 }

@@ -19,7 +19,8 @@
 //! the scene and the seed.
 
 use crate::geometry::primitive::Ray;
-use crate::model::photon::{Photon, PhotonMap, TraceStats, WHITE_BAND, oct_encode};
+use crate::model::bands::BandTable;
+use crate::model::photon::{Photon, PhotonMap, TraceStats, WHITE_BAND, oct_pack};
 use crate::model::scene::WavelengthSampling;
 use crate::optics::fresnel::reflect;
 use crate::optics::scatter::{offset_origin, scatter_dielectric};
@@ -115,7 +116,8 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                 out.push(Photon {
                     position: hit.point.to_array(),
                     flux: p.flux,
-                    direction_oct: oct_encode(p.ray.direction).to_array(),
+                    direction_oct: oct_pack(p.ray.direction),
+                    lambda_nm: stored_wavelength(&scene.bands, p.band, p.lambda_nm),
                     emission: index,
                     band: p.band,
                     bounces: p.bounces as u16,
@@ -173,6 +175,16 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
             Surface::Diffuse { .. } => unreachable!("handled above"),
         }
         p.bounces += 1;
+    }
+}
+
+/// The wavelength a photon of `band` traced at `lambda_nm` (`None`: the
+/// band's own) stores: the one it was traced at, 0 for white light.
+#[inline]
+pub fn stored_wavelength(bands: &BandTable, band: u16, lambda_nm: Option<f32>) -> f32 {
+    match bands.bands().get(usize::from(band)) {
+        Some(b) => lambda_nm.unwrap_or(b.lambda_nm),
+        None => 0.0,
     }
 }
 

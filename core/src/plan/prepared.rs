@@ -71,7 +71,7 @@ impl PreparedScene {
 
     fn prepare(scene: Scene, previous: Option<&PreparedScene>) -> Result<Self, SceneError> {
         scene.validate_since(previous.map(|p| &p.scene))?;
-        let bands = BandTable::new(scene.render.bands);
+        let bands = BandTable::new(scene.render.bands).colour_by_wavelength(scene.render.wavelengths.continuous());
         let primitives: Vec<Primitive> = scene
             .objects
             .iter()

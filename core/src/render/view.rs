@@ -286,25 +286,26 @@ pub struct HeroViewPath {
     pub band: u16,
     /// Its wavelength (`None`: the band's own index).
     pub lambda_nm: Option<f32>,
-    /// Its RGB weight, (N/M)·C_b.
+    /// Its RGB weight: (N/M)·C_b, or the colour of its wavelength over M
+    /// when paths take their colour from it.
     pub weight: Vec3,
 }
 
 /// The M hero paths (as many as a hero photon's, [`WavelengthSampling::paths`])
 /// a sampled view path with spectrum number `u` splits into: path i in band
 /// ⌊v·N⌋ at v = (i + u)/M ([`spectrum_share`]), weighted (N/M)·C_b, since
-/// each band falls to path i with probability M/N.
+/// each band falls to path i with probability M/N (or, coloured by its
+/// wavelength, by that colour over M: v is uniform over the spectrum).
 pub fn hero_view_paths(scene: &PreparedScene, u: f32) -> impl Iterator<Item = HeroViewPath> + '_ {
     let n = scene.bands.len();
     let m = WavelengthSampling::Hero.paths(n);
     (0..m).map(move |hero| {
         let (band, lambda_nm) = spectrum_share(scene, u, hero, m);
-        HeroViewPath {
-            hero,
-            band,
-            lambda_nm,
-            weight: scene.bands.band(usize::from(band)).weight * (n as f32 / m as f32),
-        }
+        let weight = match (lambda_nm, scene.bands.wavelength_colours()) {
+            (Some(lambda), Some(colours)) => colours.at(lambda) / m as f32,
+            _ => scene.bands.band(usize::from(band)).weight * (n as f32 / m as f32),
+        };
+        HeroViewPath { hero, band, lambda_nm, weight }
     })
 }
 

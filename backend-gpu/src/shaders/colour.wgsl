@@ -1,0 +1,39 @@
+// The colour of a path: twin of prismatic_core::model::bands::BandTable's
+// `rgb_of_flux` and `hue`, and of model::wavelength_rgb. The band buffer
+// holds the N bands, then the rows of the colour of each wavelength
+// (`weight` only), which paths read when `params.colour_by_wavelength`.
+
+// WavelengthRgb::at
+fn wavelength_rgb(lambda_nm: f32) -> vec3<f32> {
+    let x = (lambda_nm - WAVELENGTH_RGB_FIRST_NM) / WAVELENGTH_RGB_STEP_NM;
+    if !(x >= 0.0 && x <= f32(WAVELENGTH_RGB_ROWS - 1u)) {
+        return vec3<f32>(0.0);
+    }
+    let i = min(u32(x), WAVELENGTH_RGB_ROWS - 2u);
+    let f = x - f32(i);
+    let a = bands[params.band_count + i].weight;
+    let b = bands[params.band_count + i + 1u].weight;
+    return a + (b - a) * f;
+}
+
+// BandTable::rgb_of_flux: flux carried by a path of `band` at `lambda_nm`.
+fn rgb_of_flux(band: u32, lambda_nm: f32, flux: f32) -> vec3<f32> {
+    if band >= params.band_count {
+        return vec3<f32>(flux);
+    }
+    if params.colour_by_wavelength != 0u {
+        return wavelength_rgb(lambda_nm) * flux;
+    }
+    return bands[band].weight * (flux * f32(params.band_count));
+}
+
+// BandTable::hue: what one path adds to the paper estimator's W.
+fn hue(band: u32, lambda_nm: f32) -> vec3<f32> {
+    if band >= params.band_count {
+        return vec3<f32>(1.0);
+    }
+    if params.colour_by_wavelength != 0u {
+        return wavelength_rgb(lambda_nm) / f32(params.band_count);
+    }
+    return bands[band].weight;
+}

@@ -186,6 +186,35 @@ fn progressive_group(c: &mut Criterion) {
             }
         }
     }
+    // The default settings (light tracing, 32 bands with hero wavelengths,
+    // each path coloured by its wavelength) on the sphere: a later pass.
+    let mut doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
+    let r = &doc.scene.render;
+    doc.scene.render = prismatic_core::RenderSettings {
+        width: r.width,
+        height: r.height,
+        photons: 200_000,
+        radius: r.radius,
+        exposure: r.exposure,
+        ambient: r.ambient,
+        ..Default::default()
+    };
+    let scene = PreparedScene::new(doc.scene).expect("valid");
+    let backend = CpuBackend::with_threads(2).expect("pool");
+    g.bench_function(BenchmarkId::new("cpu-2t/defaults-200000", "pass-2"), |b| {
+        b.iter_batched(
+            || {
+                let mut render = backend.clone().prepare(&scene).unwrap();
+                render.run_pass(0, &mut NoProgress).unwrap();
+                render
+            },
+            |mut r| {
+                r.run_pass(1, &mut NoProgress).unwrap();
+                black_box(r)
+            },
+            BatchSize::PerIteration,
+        )
+    });
     g.finish();
 }
 

@@ -74,6 +74,40 @@ fn gpu_matches_the_reference_and_the_cpu_on_every_built_in_scene() {
 /// map is still compared.
 const IMAGE_NOT_YET_AT_PARITY: &str = "dispersion-test";
 
+/// Paths coloured by their wavelength (the colour table the GPU reads
+/// after the bands): the default settings (light tracing's splats, the
+/// density estimator behind the glass), the paper's estimator, and sampled
+/// view paths' hero wavelengths through the glass.
+#[test]
+fn gpu_colours_paths_by_their_wavelength_as_the_reference_does() {
+    use prismatic_core::{Estimator, RenderSettings, ViewPaths};
+    let Some(mut gpu) = gpu() else { return };
+    for name in ["sphere", "prism"] {
+        let mut doc = load_scene(name).unwrap();
+        let own = doc.scene.render.clone();
+        let defaults = RenderSettings {
+            width: 96,
+            height: 96,
+            photons: parity_photons(name),
+            radius: own.radius,
+            exposure: own.exposure,
+            ambient: own.ambient,
+            ..RenderSettings::default()
+        };
+        let variants = [
+            ("defaults", defaults.clone()),
+            ("paper-estimator", RenderSettings { estimator: Estimator::Paper, ..defaults.clone() }),
+            ("sampled-view", RenderSettings { view_paths: ViewPaths::Sampled, ..defaults }),
+        ];
+        for (variant, render) in variants {
+            doc.scene.render = render;
+            let scene = PreparedScene::new(doc.scene.clone()).unwrap();
+            assert!(scene.bands.wavelength_colours().is_some(), "{name}: paths are coloured by wavelength");
+            check(&format!("gpu-{name}-{variant}"), &scene, &mut gpu);
+        }
+    }
+}
+
 #[test]
 fn gpu_matches_the_reference_and_the_cpu_on_random_scenes() {
     let Some(mut gpu) = gpu() else { return };

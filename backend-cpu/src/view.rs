@@ -239,7 +239,7 @@ impl Shader<'_> {
     /// `ViewContext::direct_irradiance` for eight points (shadow rays if `shadows`).
     fn direct_irradiance(&self, light: &Light, shadows: bool, p: Vec3x8, n: Vec3x8, mask: f32x8) -> f32x8 {
         match light {
-            Light::Spot { position, direction, cone_deg, power } => {
+            Light::Spot { position, direction, cone_deg, power, .. } => {
                 let cos_max = cos(radians(*cone_deg));
                 let axis = Vec3x8::splat(direction.normalize());
                 let (l, dist, cos_s, visible) = self.toward_light(*position, p, n, mask, shadows);
@@ -247,11 +247,11 @@ impl Shader<'_> {
                 let intensity = f32x8::splat(power / (2.0 * PI * (1.0 - cos_max)));
                 (visible & inside).select(intensity * cos_s / (dist * dist), f32x8::ZERO)
             }
-            Light::Point { position, power } => {
+            Light::Point { position, power, .. } => {
                 let (_, dist, cos_s, visible) = self.toward_light(*position, p, n, mask, shadows);
                 visible.select(f32x8::splat(power / (4.0 * PI)) * cos_s / (dist * dist), f32x8::ZERO)
             }
-            Light::Beam { position, direction, radius, power } => {
+            Light::Beam { position, direction, radius, power, .. } => {
                 let axis = direction.normalize();
                 let (a, c) = (Vec3x8::splat(axis), Vec3x8::splat(*position));
                 let along = (p - c).dot(a);
@@ -265,7 +265,7 @@ impl Shader<'_> {
                 let blocked = occluded(self.scene, &shadow, limit_where(lit, along));
                 (lit & !blocked).select(f32x8::splat(power / (PI * radius * radius)) * cos_s, f32x8::ZERO)
             }
-            Light::Sun { direction, irradiance } => {
+            Light::Sun { direction, irradiance, .. } => {
                 let to_sun = Vec3x8::splat(-direction.normalize());
                 let cos_s = to_sun.dot(n);
                 let lit = mask & gt(cos_s, f32x8::ZERO);

@@ -27,6 +27,7 @@ fn scene(light_x: f32) -> PreparedScene {
             direction: Vec3::new(-light_x, -5.0, 0.5),
             cone_deg: 40.0,
             power: 38.0,
+            spectrum: Default::default(),
         }],
         materials: vec![
             material("floor", MaterialKind::Diffuse { albedo: Vec3::splat(0.85), checker: None, texture: None }),

@@ -137,9 +137,11 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
             let light_path = format!("{node_path}.extensions.KHR_lights_punctual");
             out.elements.push((format!("light[{}]", out.lights.len()), light_path));
             match light.kind() {
-                Kind::Point => {
-                    out.lights.push(Light::Point { position, power: 4.0 * std::f32::consts::PI * intensity })
-                }
+                Kind::Point => out.lights.push(Light::Point {
+                    position,
+                    power: 4.0 * std::f32::consts::PI * intensity,
+                    spectrum: Default::default(),
+                }),
                 Kind::Spot { outer_cone_angle, .. } => {
                     let solid_angle = 2.0 * std::f32::consts::PI * (1.0 - outer_cone_angle.cos());
                     out.lights.push(Light::Spot {
@@ -147,9 +149,12 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
                         direction,
                         cone_deg: outer_cone_angle.to_degrees(),
                         power: solid_angle * intensity,
+                        spectrum: Default::default(),
                     });
                 }
-                Kind::Directional => out.lights.push(Light::Sun { direction, irradiance: intensity }),
+                Kind::Directional => {
+                    out.lights.push(Light::Sun { direction, irradiance: intensity, spectrum: Default::default() })
+                }
             }
         }
         if let (Some(camera), None) = (node.camera(), &out.camera) {
@@ -454,6 +459,7 @@ fn scene(parts: Result<GltfScene, GltfError>, file: &str) -> Result<SceneDocumen
             direction: Vec3::NEG_Y,
             cone_deg: 30.0,
             power: 100.0,
+            spectrum: Default::default(),
         });
     }
     let render = RenderSettings { radius: size / 100.0, ..RenderSettings::default() };

@@ -63,7 +63,7 @@ fn a_gltf_prism_traces_the_photons_of_the_same_scene_in_toml() {
     gltf.validate().unwrap_or_else(|e| panic!("{e}"));
 
     // The spot light: its node's −Z, the cone's half-angle, I · 2π(1 − cos θ).
-    let [Light::Spot { position, direction, cone_deg, power }] = gltf.scene.lights[..] else {
+    let [Light::Spot { position, direction, cone_deg, power, .. }] = gltf.scene.lights[..] else {
         panic!("{:?}", gltf.scene.lights)
     };
     assert!((direction - glam::Vec3::NEG_Y).length() < 1e-6, "{direction}");
@@ -262,7 +262,7 @@ fn a_gltf_placed_in_a_scene_file_brings_its_meshes_and_materials() {
     let dir = tempfile::tempdir().unwrap();
     let path = write(dir.path(), "prism.gltf", &prism_document());
     let alone = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
-    let [Light::Spot { position, direction, cone_deg, power }] = alone.scene.lights[..] else { panic!() };
+    let [Light::Spot { position, direction, cone_deg, power, .. }] = alone.scene.lights[..] else { panic!() };
     let scene = |placement: &str| {
         format!(
             "[camera]\nposition = [0, 2, 5]\nlook_at = [0, 0.5, 0]\n\n\
@@ -336,7 +336,7 @@ fn a_directional_light_becomes_the_sun() {
     let scene = prismatic_cli::load_scene(write(dir.path(), "sun.gltf", &doc).to_str().unwrap()).unwrap();
     scene.validate().unwrap();
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
-    let [Light::Sun { direction, irradiance }] = scene.scene.lights.as_slice() else {
+    let [Light::Sun { direction, irradiance, .. }] = scene.scene.lights.as_slice() else {
         panic!("one sun expected, got {:?}", scene.scene.lights)
     };
     assert!((*direction - glam::Vec3::new(1.0, -2.0, 0.5).normalize()).length() < 1e-5, "{direction}");

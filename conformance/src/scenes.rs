@@ -60,6 +60,7 @@ pub fn glass_sphere() -> PreparedScene {
             direction: Vec3::new(1.5, -6.0, 0.5),
             cone_deg: 30.0,
             power: 40.0,
+            spectrum: Default::default(),
         }],
         materials: vec![
             material(
@@ -123,6 +124,7 @@ pub fn prism() -> PreparedScene {
             direction: Vec3::new(0.866, 0.5, 0.0),
             radius: 0.15,
             power: 5.0,
+            spectrum: Default::default(),
         }],
         materials: vec![glass("flint", Glass::Sf11.dispersion()), diffuse("wall", 0.8)],
         objects: vec![
@@ -148,7 +150,13 @@ pub fn mirror() -> PreparedScene {
             up: Vec3::Y,
             fov_deg: 50.0,
         },
-        lights: vec![Light::Beam { position: Vec3::new(-3.0, 2.0, 0.0), direction: Vec3::X, radius: 0.4, power: 2.0 }],
+        lights: vec![Light::Beam {
+            position: Vec3::new(-3.0, 2.0, 0.0),
+            direction: Vec3::X,
+            radius: 0.4,
+            power: 2.0,
+            spectrum: Default::default(),
+        }],
         materials: vec![diffuse("floor", 0.7), material("mirror", MaterialKind::Mirror)],
         objects: vec![
             Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
@@ -171,7 +179,7 @@ pub fn no_caustics() -> PreparedScene {
     prepared(Scene {
         render: settings(24, 2_000, 0.1),
         camera: Camera { position: Vec3::new(0.0, 2.0, 5.0), look_at: Vec3::ZERO, up: Vec3::Y, fov_deg: 45.0 },
-        lights: vec![Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 30.0 }],
+        lights: vec![Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 30.0, spectrum: Default::default() }],
         materials: vec![diffuse("floor", 0.7), diffuse("ball", 0.5)],
         objects: vec![
             Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
@@ -223,9 +231,15 @@ pub fn sphere_mesh(center: Vec3, radius: f32, rings: u32) -> Shape {
 pub fn lit_by_every_light_kind(projection_maps: bool, sequence: PhotonSequence) -> PreparedScene {
     let mut scene = glass_sphere().scene;
     scene.lights.extend([
-        Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 25.0 },
-        Light::Beam { position: Vec3::new(-3.0, 1.0, 0.0), direction: Vec3::X, radius: 0.3, power: 10.0 },
-        Light::Sun { direction: Vec3::new(0.3, -1.0, 0.2), irradiance: 2.0 },
+        Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 25.0, spectrum: Default::default() },
+        Light::Beam {
+            position: Vec3::new(-3.0, 1.0, 0.0),
+            direction: Vec3::X,
+            radius: 0.3,
+            power: 10.0,
+            spectrum: Default::default(),
+        },
+        Light::Sun { direction: Vec3::new(0.3, -1.0, 0.2), irradiance: 2.0, spectrum: Default::default() },
     ]);
     scene.render.projection_maps = projection_maps;
     scene.render.photon_sequence = sequence;

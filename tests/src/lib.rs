@@ -93,6 +93,7 @@ impl PrismExperiment {
                 direction: dir,
                 radius: self.beam_radius,
                 power: 1.0,
+                spectrum: Default::default(),
             }],
             materials: vec![glass("glass", dispersion), white("screen")],
             objects: vec![
@@ -188,6 +189,7 @@ pub fn sphere_in_a_catcher(dispersion: Dispersion, render: RenderSettings, beam_
             direction: Vec3::NEG_Z,
             radius: beam_radius,
             power: 1.0,
+            spectrum: Default::default(),
         }],
         materials: vec![glass("sphere", dispersion), white("catcher")],
         objects: vec![

@@ -102,11 +102,16 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
             direction: first_center - from,
             cone_deg: d.f(8.0, 30.0),
             power: d.f(5.0, 50.0),
+            spectrum: Default::default(),
         },
-        1 => Light::Point { position: from, power: d.f(5.0, 50.0) },
-        _ => {
-            Light::Beam { position: from, direction: first_center - from, radius: d.f(0.1, 0.6), power: d.f(1.0, 10.0) }
-        }
+        1 => Light::Point { position: from, power: d.f(5.0, 50.0), spectrum: Default::default() },
+        _ => Light::Beam {
+            position: from,
+            direction: first_center - from,
+            radius: d.f(0.1, 0.6),
+            power: d.f(1.0, 10.0),
+            spectrum: Default::default(),
+        },
     };
     let mut cam = camera();
     cam.position = Vec3::new(0.5, 3.5, 7.0);

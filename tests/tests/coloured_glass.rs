@@ -55,7 +55,13 @@ fn photon_scene(photons: u32) -> PreparedScene {
     prepare(Scene {
         render: settings(photons, BandSpec::Paper7),
         camera: camera(),
-        lights: vec![Light::Beam { position: Vec3::new(-1.0, 0.0, 0.0), direction: Vec3::X, radius: 0.2, power: 1.0 }],
+        lights: vec![Light::Beam {
+            position: Vec3::new(-1.0, 0.0, 0.0),
+            direction: Vec3::X,
+            radius: 0.2,
+            power: 1.0,
+            spectrum: Default::default(),
+        }],
         materials: vec![amber, white("wall")],
         objects: vec![
             object,
@@ -108,7 +114,7 @@ fn view_scene(ior: Dispersion, bands: BandSpec) -> PreparedScene {
             up: Vec3::Z,
             fov_deg: 10.0,
         },
-        lights: vec![Light::Point { position: Vec3::new(-5.0, 0.0, 5.0), power: 1.0 }],
+        lights: vec![Light::Point { position: Vec3::new(-5.0, 0.0, 5.0), power: 1.0, spectrum: Default::default() }],
         materials: vec![amber],
         objects: vec![object],
     })

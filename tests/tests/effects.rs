@@ -22,7 +22,13 @@ fn sphere_scene(dispersion: Dispersion, cone_deg: f32, aim: Vec3) -> Scene {
     Scene {
         render,
         camera: cam,
-        lights: vec![Light::Spot { position: Vec3::new(0.0, 6.0, 0.0), direction: aim, cone_deg, power: 20.0 }],
+        lights: vec![Light::Spot {
+            position: Vec3::new(0.0, 6.0, 0.0),
+            direction: aim,
+            cone_deg,
+            power: 20.0,
+            spectrum: Default::default(),
+        }],
         materials: vec![glass("glass", dispersion), white("floor")],
         objects: vec![
             Object { shape: Shape::Sphere { center: Vec3::new(0.0, 1.5, 0.0), radius: 1.0 }, material: 0 },

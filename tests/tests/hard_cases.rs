@@ -472,7 +472,13 @@ fn beam_into_one_pixel(estimator: Estimator, photons: u32, power: f32, radius: f
     prepare(Scene {
         render,
         camera: cam,
-        lights: vec![Light::Beam { position: Vec3::new(-3.0, 2.0, 0.0), direction: Vec3::X, radius: 0.1, power }],
+        lights: vec![Light::Beam {
+            position: Vec3::new(-3.0, 2.0, 0.0),
+            direction: Vec3::X,
+            radius: 0.1,
+            power,
+            spectrum: Default::default(),
+        }],
         materials: vec![white("floor"), mirror],
         objects: vec![
             Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
@@ -626,7 +632,13 @@ fn beams_through_mesh_vertices_and_edges_match_the_reference() {
     for target in [positions[2], (positions[2] + positions[5]) * 0.5, (positions[0] + positions[5]) * 0.5] {
         let mut scene = scene.clone();
         let Light::Beam { direction, .. } = scene.lights[0] else { unreachable!("a beam") };
-        scene.lights[0] = Light::Beam { position: target - direction * 4.0, direction, radius: 1e-4, power: 1.0 };
+        scene.lights[0] = Light::Beam {
+            position: target - direction * 4.0,
+            direction,
+            radius: 1e-4,
+            power: 1.0,
+            spectrum: Default::default(),
+        };
         let scene = prepare(scene);
         let reference = trace(&mut prismatic_core::ReferenceBackend, &scene);
         for mut backend in every_backend() {

@@ -69,14 +69,21 @@ fn cpu_matches_the_reference_with_projection_maps_on_every_light_kind() {
         render: settings(6_000, prismatic_core::BandSpec::Paper7),
         camera: camera(),
         lights: vec![
-            Light::Beam { position: Vec3::new(0.0, 6.0, 0.0), direction: -Vec3::Y, radius: 3.0, power: 5.0 },
+            Light::Beam {
+                position: Vec3::new(0.0, 6.0, 0.0),
+                direction: -Vec3::Y,
+                radius: 3.0,
+                power: 5.0,
+                spectrum: Default::default(),
+            },
             Light::Spot {
                 position: Vec3::new(-3.0, 5.0, 1.0),
                 direction: Vec3::new(3.0, -4.0, -1.0),
                 cone_deg: 50.0,
                 power: 5.0,
+                spectrum: Default::default(),
             },
-            Light::Point { position: Vec3::new(2.0, 4.0, 2.0), power: 5.0 },
+            Light::Point { position: Vec3::new(2.0, 4.0, 2.0), power: 5.0, spectrum: Default::default() },
         ],
         materials: vec![glass("glass", Glass::Bk7.dispersion()), white("floor")],
         objects: vec![

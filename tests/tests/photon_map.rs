@@ -21,6 +21,7 @@ fn sphere_scene(dispersion: Dispersion, bands: BandSpec, photons: u32, seed: u32
             direction: -Vec3::Y,
             cone_deg: 12.0,
             power: 10.0,
+            spectrum: Default::default(),
         }],
         materials: vec![glass("glass", dispersion), white("floor")],
         objects: vec![
@@ -76,6 +77,7 @@ fn mirrors_reflect_white_light_without_splitting() {
         direction: Vec3::new(3.0, -1.5, 0.0),
         cone_deg: 15.0,
         power: 1.0,
+        spectrum: Default::default(),
     };
     let map = trace(scene);
     assert!(!map.photons.is_empty(), "the mirror sphere should cast a caustic");

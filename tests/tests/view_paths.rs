@@ -25,7 +25,11 @@ fn edge_scene(view_paths: ViewPaths) -> Scene {
     Scene {
         render,
         camera: camera(),
-        lights: vec![Light::Sun { direction: -Vec3::Z, irradiance: std::f32::consts::PI }],
+        lights: vec![Light::Sun {
+            direction: -Vec3::Z,
+            irradiance: std::f32::consts::PI,
+            spectrum: Default::default(),
+        }],
         materials: vec![white("floor")],
         objects: vec![Object {
             shape: Shape::Mesh { positions, triangles: vec![[0, 1, 2]], uvs: vec![] },

@@ -21,6 +21,7 @@ use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, Estimator, Filter, Light, Material, MaterialKind, Object, PhotonSequence, RadiusMode,
     RenderSettings, Sampler, Shape, Texture, ViewPaths, WavelengthSampling, Wrap,
 };
+use prismatic_core::model::spectrum::Spectrum;
 use prismatic_core::{Scene, Vec3};
 use std::ops::Range;
 use toml::Spanned;
@@ -194,35 +195,39 @@ impl Reader<'_> {
         let kind = self.req(t, "kind", |p, k, v| p.string(k, v).map(str::to_string))?;
         Ok(match kind.as_str() {
             "spot" => {
-                self.check_keys(t, &["kind", "position", "direction", "cone_deg", "power"])?;
+                self.check_keys(t, &["kind", "position", "direction", "cone_deg", "power", "spectrum"])?;
                 Light::Spot {
                     position: self.req(t, "position", Self::point)?,
                     direction: self.req(t, "direction", Self::vec3)?,
                     cone_deg: self.req(t, "cone_deg", Self::float)?,
                     power: self.req(t, "power", Self::float)?,
+                    spectrum: self.opt(t, "spectrum", Self::spectrum)?.unwrap_or_default(),
                 }
             }
             "point" => {
-                self.check_keys(t, &["kind", "position", "power"])?;
+                self.check_keys(t, &["kind", "position", "power", "spectrum"])?;
                 Light::Point {
                     position: self.req(t, "position", Self::point)?,
                     power: self.req(t, "power", Self::float)?,
+                    spectrum: self.opt(t, "spectrum", Self::spectrum)?.unwrap_or_default(),
                 }
             }
             "beam" => {
-                self.check_keys(t, &["kind", "position", "direction", "radius", "power"])?;
+                self.check_keys(t, &["kind", "position", "direction", "radius", "power", "spectrum"])?;
                 Light::Beam {
                     position: self.req(t, "position", Self::point)?,
                     direction: self.req(t, "direction", Self::vec3)?,
                     radius: self.req(t, "radius", Self::float)?,
                     power: self.req(t, "power", Self::float)?,
+                    spectrum: self.opt(t, "spectrum", Self::spectrum)?.unwrap_or_default(),
                 }
             }
             "sun" => {
-                self.check_keys(t, &["kind", "direction", "irradiance"])?;
+                self.check_keys(t, &["kind", "direction", "irradiance", "spectrum"])?;
                 Light::Sun {
                     direction: self.req(t, "direction", Self::vec3)?,
                     irradiance: self.req(t, "irradiance", Self::float)?,
+                    spectrum: self.opt(t, "spectrum", Self::spectrum)?.unwrap_or_default(),
                 }
             }
             other => {
@@ -325,6 +330,34 @@ impl Reader<'_> {
         let wrap = wrap.unwrap_or_default();
         let sampler = Sampler { filter: filter.unwrap_or_default(), wrap_u: wrap, wrap_v: wrap };
         texture_file::load(&path, sampler).map(Some).map_err(|e| self.err(&key, &v.span(), e))
+    }
+
+    /// A light's `spectrum`: a name (`"D65"`, `"mercury"`, …), `{ blackbody = K }`
+    /// or `{ nm = [..], power = [..] }`.
+    fn spectrum(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Spectrum> {
+        let forms =
+            format!("a name ({}), {{ blackbody = KELVIN }} or {{ nm = [..], power = [..] }}", Spectrum::names());
+        match v.get_ref() {
+            DeValue::String(name) => Spectrum::from_name(name)
+                .ok_or_else(|| self.err(key, &v.span(), format!("unknown spectrum \"{name}\"; expected {forms}"))),
+            DeValue::Table(_) => {
+                let t = self.table(key, v)?;
+                let blackbody = t.entries.iter().any(|(k, _)| k.get_ref() == "blackbody");
+                let allowed: &[&str] = if blackbody { &["blackbody"] } else { &["nm", "power"] };
+                if let Some((k, _)) = t.entries.iter().find(|(k, _)| !allowed.contains(&k.get_ref().as_ref())) {
+                    let reason = format!("unknown key; expected {}", allowed.join(" and "));
+                    return Err(self.err(&join(key, k.get_ref()), &k.span(), reason));
+                }
+                if blackbody {
+                    return Ok(Spectrum::Blackbody { kelvin: self.req(&t, "blackbody", Self::float)? });
+                }
+                let floats = |p: &Self, k: &str, v: &Spanned<DeValue<'_>>| -> Result<Vec<f32>> {
+                    Ok(p.floats(k, v)?.into_iter().map(|x| x as f32).collect())
+                };
+                Ok(Spectrum::Tabulated { nm: self.req(&t, "nm", floats)?, power: self.req(&t, "power", floats)? })
+            }
+            other => Err(self.err(key, &v.span(), format!("must be {forms}, got {}", other.type_str()))),
+        }
     }
 
     fn ior(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Dispersion> {

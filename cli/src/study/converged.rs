@@ -297,9 +297,13 @@ mod tests {
         // ...but the scene, the image and the reference's own settings do.
         let mut moved = doc.scene.clone();
         moved.lights[0] = match moved.lights[0].clone() {
-            prismatic_core::Light::Spot { position, direction, cone_deg, power } => {
-                prismatic_core::Light::Spot { position, direction, cone_deg, power: power * 1.01 }
-            }
+            prismatic_core::Light::Spot { position, direction, cone_deg, power, .. } => prismatic_core::Light::Spot {
+                position,
+                direction,
+                cone_deg,
+                power: power * 1.01,
+                spectrum: Default::default(),
+            },
             other => other,
         };
         assert_ne!(base, key(&PreparedScene::new(moved).unwrap(), &spec));

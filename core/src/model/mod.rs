@@ -11,5 +11,6 @@ pub mod image;
 pub mod mesh;
 pub mod photon;
 pub mod scene;
+pub mod spectrum;
 pub mod validate;
 pub mod wavelength_rgb;

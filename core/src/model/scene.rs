@@ -5,6 +5,7 @@
 use crate::model::bands::BandSpec;
 use crate::model::color::ToneMap;
 use crate::model::dispersion::Dispersion;
+pub use crate::model::spectrum::Spectrum;
 use alloc::string::String;
 use alloc::sync::Arc;
 use alloc::vec::Vec;
@@ -362,6 +363,8 @@ pub enum Light {
         cone_deg: f32,
         /// Flux in W.
         power: f32,
+        /// What it emits across the spectrum.
+        spectrum: Spectrum,
     },
     /// Isotropic point light.
     Point {
@@ -369,6 +372,8 @@ pub enum Light {
         position: Vec3,
         /// Flux in W.
         power: f32,
+        /// What it emits across the spectrum.
+        spectrum: Spectrum,
     },
     /// Collimated beam leaving a disc (prism experiments, rainbows).
     Beam {
@@ -380,6 +385,8 @@ pub enum Light {
         radius: f32,
         /// Flux in W.
         power: f32,
+        /// What it emits across the spectrum.
+        spectrum: Spectrum,
     },
     /// Parallel light from one direction (the sun, glTF's directional
     /// light): it lights everything it reaches, with `irradiance` on a
@@ -390,6 +397,8 @@ pub enum Light {
         direction: Vec3,
         /// Irradiance in W/m² on a surface facing the sun.
         irradiance: f32,
+        /// What it emits across the spectrum.
+        spectrum: Spectrum,
     },
 }
 
@@ -400,6 +409,16 @@ impl Light {
         match self {
             Light::Spot { power, .. } | Light::Point { power, .. } | Light::Beam { power, .. } => *power,
             Light::Sun { .. } => 0.0,
+        }
+    }
+
+    /// What it emits across the spectrum.
+    pub fn spectrum(&self) -> &Spectrum {
+        match self {
+            Light::Spot { spectrum, .. }
+            | Light::Point { spectrum, .. }
+            | Light::Beam { spectrum, .. }
+            | Light::Sun { spectrum, .. } => spectrum,
         }
     }
 }

@@ -3,12 +3,13 @@
 //! `object[2].radius`) and the reason, using the scene-file format's key
 //! names so that a file loader can pass them straight through.
 
-use crate::model::bands::{BandSpec, MAX_BANDS};
+use crate::model::bands::{BandSpec, MAX_BANDS, VISIBLE_NM};
 use crate::model::dispersion::{Dispersion, MAX_SELLMEIER_TERMS};
 use crate::model::scene::{
     Attenuation, Light, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_MESH_TRIANGLES, MAX_PHOTONS, MAX_TEXTURE_SIDE, Material,
     MaterialKind, Scene, SceneError, Shape, Texture,
 };
+use crate::model::spectrum::Spectrum;
 use alloc::format;
 use alloc::string::{String, ToString};
 use glam::Vec3;
@@ -81,7 +82,9 @@ impl Scene {
             return Err(SceneError::new("light", "the scene has no light"));
         }
         for (i, light) in self.lights.iter().enumerate() {
-            validate_light(&Check { prefix: &format!("light[{i}]") }, light)?;
+            let c = Check { prefix: &format!("light[{i}]") };
+            validate_light(&c, light)?;
+            validate_spectrum(&c, light.spectrum(), &self.render)?;
         }
         for m in &self.materials {
             validate_material(&Check { prefix: &format!("material.{}", m.name) }, m, self.render.bands)?;
@@ -200,7 +203,7 @@ impl Scene {
 
 fn validate_light(c: &Check<'_>, light: &Light) -> Result<(), SceneError> {
     match light {
-        Light::Spot { position, direction, cone_deg, power } => {
+        Light::Spot { position, direction, cone_deg, power, .. } => {
             c.vector("position", *position)?;
             c.direction("direction", *direction)?;
             c.finite("cone_deg", *cone_deg)?;
@@ -209,21 +212,70 @@ fn validate_light(c: &Check<'_>, light: &Light) -> Result<(), SceneError> {
             }
             c.positive("power", *power)
         }
-        Light::Point { position, power } => {
+        Light::Point { position, power, .. } => {
             c.vector("position", *position)?;
             c.positive("power", *power)
         }
-        Light::Beam { position, direction, radius, power } => {
+        Light::Beam { position, direction, radius, power, .. } => {
             c.vector("position", *position)?;
             c.direction("direction", *direction)?;
             c.positive("radius", *radius)?;
             c.positive("power", *power)
         }
-        Light::Sun { direction, irradiance } => {
+        Light::Sun { direction, irradiance, .. } => {
             c.direction("direction", *direction)?;
             c.positive("irradiance", *irradiance)
         }
     }
+}
+
+/// A light's spectrum: a blackbody's temperature, a table's wavelengths
+/// and powers, some power in the visible range; with wavelengths of their
+/// own (continuous, hero), a coloured spectrum needs physically based
+/// bands (the paper's presets colour by their bands, made for its white).
+fn validate_spectrum(
+    c: &Check<'_>,
+    spectrum: &Spectrum,
+    render: &crate::model::scene::RenderSettings,
+) -> Result<(), SceneError> {
+    match spectrum {
+        Spectrum::Blackbody { kelvin } => {
+            if !(*kelvin >= 500.0 && *kelvin <= 100_000.0) {
+                return Err(c.err("spectrum.blackbody", format!("must be between 500 and 100000 K, got {kelvin}")));
+            }
+        }
+        Spectrum::Tabulated { nm, power } => {
+            if nm.len() != power.len() || nm.len() < 2 {
+                let reason =
+                    format!("needs as many powers as wavelengths, two or more (got {} and {})", nm.len(), power.len());
+                return Err(c.err("spectrum", reason));
+            }
+            if !nm.iter().all(|x| x.is_finite()) || !nm.windows(2).all(|w| w[0] < w[1]) {
+                return Err(c.err("spectrum.nm", "must be finite and strictly increasing"));
+            }
+            if !power.iter().all(|p| p.is_finite() && *p >= 0.0) {
+                return Err(c.err("spectrum.power", "must be finite and not negative"));
+            }
+            let (lo, hi) = VISIBLE_NM;
+            let visible =
+                (0..=400).any(|k| spectrum.power_at(f64::from(lo) + f64::from(hi - lo) * f64::from(k) / 400.0) > 0.0);
+            if !visible {
+                return Err(c.err("spectrum", format!("has no power between {lo} and {hi} nm")));
+            }
+        }
+        _ => {}
+    }
+    let paper = matches!(render.bands, BandSpec::Paper3 | BandSpec::Paper7);
+    if !spectrum.is_equal_energy() && paper && render.wavelengths.continuous() {
+        let reason = format!(
+            "a {spectrum} light with {} wavelengths needs physically based bands (`bands = N`); the paper's {} \
+             presets colour by their bands, made for white light",
+            render.wavelengths.name(),
+            render.bands
+        );
+        return Err(c.err("spectrum", reason));
+    }
+    Ok(())
 }
 
 fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(), SceneError> {

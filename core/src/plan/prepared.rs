@@ -109,7 +109,9 @@ impl PreparedScene {
             .lights
             .iter()
             .map(|l| match l {
-                Light::Sun { direction, irradiance } => reach::sun_beam(*direction, *irradiance, &specular, &bounds),
+                Light::Sun { direction, irradiance, .. } => {
+                    reach::sun_beam(*direction, *irradiance, &specular, &bounds)
+                }
                 other => other.clone(),
             })
             .collect();

@@ -71,7 +71,13 @@ pub fn sun_beam(direction: Vec3, irradiance: f32, targets: &[(Vec3, f32)], scene
     // Back from the centre, past every bounded object on the sun's side.
     let back = finite.iter().map(|(c, r)| (center - *c).dot(axis) + r).fold(radius, f32::max);
     let position = center - axis * (back * 1.01 + 1e-3);
-    Light::Beam { position, direction: axis, radius, power: irradiance * core::f32::consts::PI * radius * radius }
+    Light::Beam {
+        position,
+        direction: axis,
+        radius,
+        power: irradiance * core::f32::consts::PI * radius * radius,
+        spectrum: Default::default(),
+    }
 }
 
 /// Can the camera see into the sphere (centre `c`, radius `r`)? Tests the

@@ -258,7 +258,11 @@ mod tests {
         let scene = Scene {
             render: crate::RenderSettings::default(),
             camera: Camera { position: Vec3::new(0.0, 1.0, 5.0), look_at: Vec3::ZERO, up: Vec3::Y, fov_deg: 40.0 },
-            lights: vec![Light::Point { position: Vec3::new(0.0, 4.0, 0.0), power: 10.0 }],
+            lights: vec![Light::Point {
+                position: Vec3::new(0.0, 4.0, 0.0),
+                power: 10.0,
+                spectrum: Default::default(),
+            }],
             materials: vec![],
             objects: vec![],
         };
@@ -275,7 +279,10 @@ mod tests {
         assert_eq!(edited(&|s| s.render.photon_sequence = PhotonSequence::Random), Change::Photons);
         assert_eq!(edited(&|s| s.render.alpha = 0.5), Change::Photons);
         assert_eq!(edited(&|s| s.render.radius_mode = RadiusMode::Fixed), Change::Photons);
-        assert_eq!(edited(&|s| s.lights[0] = Light::Point { position: Vec3::ONE, power: 10.0 }), Change::View);
+        assert_eq!(
+            edited(&|s| s.lights[0] = Light::Point { position: Vec3::ONE, power: 10.0, spectrum: Default::default() }),
+            Change::View
+        );
         assert_eq!(edited(&|s| s.camera.position.x += 0.1), Change::View);
         assert_eq!(edited(&|s| s.render.bands = BandSpec::Paper3), Change::View);
         assert_eq!(edited(&|s| s.render.light_tracing = !s.render.light_tracing), Change::View);

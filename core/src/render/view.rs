@@ -217,7 +217,7 @@ impl<'a> ViewContext<'a> {
     pub fn direct_irradiance(&self, index: usize, p: Vec3, n: Vec3) -> f32 {
         let shadows = self.scene.plan.shadows[index].on;
         match &self.scene.scene.lights[index] {
-            Light::Spot { position, direction, cone_deg, power } => {
+            Light::Spot { position, direction, cone_deg, power, .. } => {
                 let cos_max = cos(radians(*cone_deg));
                 let Some((l, dist, cos_s)) = self.toward_light(*position, p, n, shadows) else {
                     return 0.0;
@@ -228,13 +228,13 @@ impl<'a> ViewContext<'a> {
                 let intensity = power / (2.0 * PI * (1.0 - cos_max));
                 intensity * cos_s / (dist * dist)
             }
-            Light::Point { position, power } => {
+            Light::Point { position, power, .. } => {
                 let Some((_, dist, cos_s)) = self.toward_light(*position, p, n, shadows) else {
                     return 0.0;
                 };
                 power / (4.0 * PI) * cos_s / (dist * dist)
             }
-            Light::Beam { position, direction, radius, power } => {
+            Light::Beam { position, direction, radius, power, .. } => {
                 let axis = direction.normalize();
                 let along = (p - *position).dot(axis);
                 let cos_s = -axis.dot(n);
@@ -246,7 +246,7 @@ impl<'a> ViewContext<'a> {
                 }
                 power / (PI * radius * radius) * cos_s
             }
-            Light::Sun { direction, irradiance } => {
+            Light::Sun { direction, irradiance, .. } => {
                 let to_sun = -direction.normalize();
                 let cos_s = to_sun.dot(n);
                 if cos_s <= 0.0 || (shadows && self.scene.occluded(offset_origin(p, n, to_sun), to_sun, f32::INFINITY))

@@ -1,5 +1,7 @@
 //! Layer 2, sampling: the low-discrepancy numbers photons and view paths draw
-//! (Owen-scrambled Sobol points, the per-pixel sampler).
+//! (Owen-scrambled Sobol points, the per-pixel sampler) and the wavelength
+//! distributions of lights' spectra.
 
+pub mod light_spectrum;
 pub mod pixel_sample;
 pub mod sobol;

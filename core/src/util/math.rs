@@ -66,6 +66,11 @@ mod imp {
     pub fn sqrt_f64(x: f64) -> f64 {
         x.sqrt()
     }
+    /// `exp_f64` of the platform (std) or of libm (no_std).
+    #[inline]
+    pub fn exp_f64(x: f64) -> f64 {
+        x.exp()
+    }
 }
 
 #[cfg(not(feature = "std"))]
@@ -129,6 +134,11 @@ mod imp {
     #[inline]
     pub fn sqrt_f64(x: f64) -> f64 {
         libm::sqrt(x)
+    }
+    /// `exp_f64` of the platform (std) or of libm (no_std).
+    #[inline]
+    pub fn exp_f64(x: f64) -> f64 {
+        libm::exp(x)
     }
 }
 

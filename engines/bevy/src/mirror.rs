@@ -114,8 +114,11 @@ fn build_scene(settings: &CausticSettings, entities: &SceneEntities) -> Result<S
                 direction: core(at.forward().as_vec3()),
                 cone_deg,
                 power,
+                spectrum: Default::default(),
             },
-            CausticLight::Point { power } => Light::Point { position: core(at.translation()), power },
+            CausticLight::Point { power } => {
+                Light::Point { position: core(at.translation()), power, spectrum: Default::default() }
+            }
         })
         .collect();
     let mut materials = Vec::new();

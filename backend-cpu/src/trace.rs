@@ -19,7 +19,8 @@ use crate::simd::{Vec3x8, lt, random_f32};
 use prismatic_core::model::photon::{Photon, TraceStats, WHITE_BAND, oct_pack};
 use prismatic_core::model::scene::WavelengthSampling;
 use prismatic_core::optics::surface::Surface;
-use prismatic_core::photons::trace::{absorbed, sample_band, split_bands, stored_wavelength};
+use prismatic_core::photons::emit::light_of;
+use prismatic_core::photons::trace::{absorbed, sample_band, split_bands, stored_wavelength, trace_emitted};
 use prismatic_core::plan::prepared::PreparedScene;
 use prismatic_core::util::rng::dim;
 use wide::{f32x8, u32x8};
@@ -49,6 +50,9 @@ pub struct TraceContext<'a> {
     emitters: Emitters,
     objects: Vec<ObjectOptics>,
     flux: f32,
+    /// Some light has a spectrum other than equal energy: its photons are
+    /// traced by the core's scalar tracer (see [`trace_chunk`]).
+    coloured_lights: bool,
 }
 
 impl<'a> TraceContext<'a> {
@@ -89,6 +93,7 @@ impl<'a> TraceContext<'a> {
             emitters: Emitters::new(scene),
             objects,
             flux: prismatic_core::photons::trace::photon_flux(scene),
+            coloured_lights: scene.light_spectra.iter().any(|s| !s.is_uniform()),
         }
     }
 }
@@ -159,6 +164,14 @@ impl TraceContext<'_> {
     }
 }
 
+impl TraceContext<'_> {
+    /// Whether white photon `index` leaves a coloured light.
+    fn is_coloured(&self, index: u32) -> bool {
+        let light = light_of(self.scene, self.scene.scene.render.seed, index);
+        !self.scene.light_spectra[light].is_uniform()
+    }
+}
+
 /// Output of a chunk.
 struct Sink {
     out: Vec<Photon>,
@@ -203,6 +216,12 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
             let mut indices = [0u32; 8];
             let mut fresh = [0.0f32; 8];
             for (i, (index, on)) in indices.iter_mut().zip(&mut fresh).enumerate() {
+                // A coloured light's photons start as several paths at their
+                // light: the core's scalar tracer takes them, in its order.
+                while ctx.coloured_lights && next < range.end && ctx.is_coloured(next) {
+                    trace_emitted(ctx.scene, next, ctx.flux, &mut sink.out, &mut sink.stats);
+                    next += 1;
+                }
                 if free_bits & (1 << i) != 0 && next < range.end {
                     *index = next;
                     *on = ON;

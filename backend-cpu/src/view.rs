@@ -216,12 +216,17 @@ impl Shader<'_> {
         let settings = &self.scene.scene.render;
         let facing = lt(ray.dir.dot(hit.normal), f32x8::ZERO);
         let n = Vec3x8::select(facing, hit.normal, -hit.normal);
-        let mut direct = f32x8::ZERO;
-        for (light, plan) in self.scene.scene.lights.iter().zip(&self.scene.plan.shadows) {
-            direct += self.direct_irradiance(light, plan.on, p, n, mask);
+        // Each light's irradiance in its colour, channel by channel.
+        let mut direct = [f32x8::ZERO; 3];
+        let lights = self.scene.scene.lights.iter().zip(&self.scene.plan.shadows).zip(&self.scene.light_spectra);
+        for ((light, plan), spectrum) in lights {
+            let e = self.direct_irradiance(light, plan.on, p, n, mask);
+            for (channel, c) in direct.iter_mut().zip(spectrum.rgb.to_array()) {
+                *channel += f32x8::splat(c) * e;
+            }
         }
         let (objects, triangles) = (hit.object.to_array(), hit.triangle.to_array());
-        let direct = direct.to_array();
+        let direct = direct.map(|c| c.to_array());
         let mut out = [Vec3::ZERO; 8];
         for i in lanes(mask) {
             let (pi, ni) = (p.lane(i), n.lane(i));
@@ -231,7 +236,8 @@ impl Shader<'_> {
                 let pixel = self.first_pixel + rays[i].pixel;
                 self.points.push(VisiblePoint { point: pi, normal: ni, weight, pixel });
             }
-            out[i] = albedo * Vec3::splat(direct[i]) * (1.0 / PI) + albedo * settings.ambient;
+            out[i] =
+                albedo * Vec3::new(direct[0][i], direct[1][i], direct[2][i]) * (1.0 / PI) + albedo * settings.ambient;
         }
         out
     }

@@ -205,10 +205,16 @@ pub struct GpuLight {
     pub proj_cdf: u32,
     /// 1 for a sun.
     pub sun: u32,
-    /// Padding.
-    pub _pad: u32,
+    /// Entries of its wavelength table in the tables buffer (0: the
+    /// equal-energy spectrum, drawn uniformly).
+    pub spectrum_len: u32,
+    /// Linear RGB of unit flux (its direct light's colour).
+    pub rgb: [f32; 3],
+    /// First entry of its wavelength table: `spectrum_len` cumulative
+    /// probabilities, as many starts and widths (nm), then its N bands' shares.
+    pub spectrum_first: u32,
 }
-const _: () = assert!(core::mem::size_of::<GpuLight>() == 96);
+const _: () = assert!(core::mem::size_of::<GpuLight>() == 112);
 
 /// A spectral band; after a table's N bands, the band buffer holds the
 /// rows of the colour of each wavelength

@@ -89,6 +89,16 @@ impl EncodedScene {
         for (i, (light, emitter)) in scene.scene.lights.iter().zip(&scene.emitters).enumerate() {
             let shadows = scene.plan.shadows.get(i).is_some_and(|s| s.on);
             let mut l = e.light(emitter, scene.plan.projections.get(i).and_then(Option::as_ref), shadows);
+            let spectrum = &scene.light_spectra[i];
+            l.rgb = v3(spectrum.rgb);
+            if !spectrum.is_uniform() {
+                let (cdf, start, width) = spectrum.entries();
+                l.spectrum_len = cdf.len() as u32;
+                l.spectrum_first = e.tables.len() as u32;
+                for column in [cdf, start, width, &scene.band_shares[i][..]] {
+                    e.tables.extend_from_slice(column);
+                }
+            }
             if let Light::Sun { .. } = light {
                 l.sun = 1;
             }

@@ -66,3 +66,61 @@ pub fn parity_photons(name: &str) -> u32 {
         _ => 4_000,
     }
 }
+
+/// Built-in scenes at 96×96 lit by coloured lights, for the parity tests:
+/// `sphere` with the default settings under a 2700 K spot and a white
+/// point light (coloured and white photons in one pass), `prism` with a
+/// mercury lamp split into bands and with a fluorescent tube's hero
+/// wavelengths, `caustic` (the paper's seven bands) under a sodium lamp,
+/// `prism` with a neon lamp's random bands.
+pub fn coloured_light_scenes() -> Vec<(String, prismatic_core::PreparedScene)> {
+    use prismatic_core::model::spectrum::{Illuminant, Lamp, Spectrum};
+    use prismatic_core::{Light, RenderSettings, Vec3, WavelengthSampling};
+    let with = |name: &str, spectrum: Spectrum, edit: &dyn Fn(&mut prismatic_core::Scene)| {
+        let mut doc = prismatic_cli::load_scene(name).expect("built-in scene");
+        let scene = &mut doc.scene;
+        (scene.render.width, scene.render.height, scene.render.photons) = (96, 96, parity_photons(name));
+        match &mut scene.lights[0] {
+            Light::Spot { spectrum: s, .. } | Light::Beam { spectrum: s, .. } | Light::Point { spectrum: s, .. } => {
+                *s = spectrum
+            }
+            Light::Sun { spectrum: s, .. } => *s = spectrum,
+        }
+        edit(scene);
+        prismatic_core::PreparedScene::new(doc.scene).unwrap_or_else(|e| panic!("{name}: {e}"))
+    };
+    let defaults = |scene: &mut prismatic_core::Scene| {
+        let own = scene.render.clone();
+        scene.render = RenderSettings {
+            width: own.width,
+            height: own.height,
+            photons: own.photons,
+            radius: own.radius,
+            exposure: own.exposure,
+            ambient: own.ambient,
+            ..RenderSettings::default()
+        };
+    };
+    let sampling = |w: WavelengthSampling| move |scene: &mut prismatic_core::Scene| scene.render.wavelengths = w;
+    vec![
+        (
+            "sphere-2700K-and-white".into(),
+            with("sphere", Spectrum::Blackbody { kelvin: 2700.0 }, &|scene| {
+                defaults(scene);
+                let power = 0.5 * scene.lights[0].power();
+                scene.lights.push(Light::Point {
+                    position: Vec3::new(1.0, 3.0, 2.0),
+                    power,
+                    spectrum: Spectrum::default(),
+                });
+            }),
+        ),
+        ("prism-mercury-split".into(), with("prism", Spectrum::Lamp(Lamp::Mercury), &|_| {})),
+        ("prism-F11-hero".into(), with("prism", Spectrum::Illuminant(Illuminant::F11), &|scene| defaults(scene))),
+        ("caustic-sodium".into(), with("caustic", Spectrum::Lamp(Lamp::Sodium), &|_| {})),
+        (
+            "prism-neon-random-band".into(),
+            with("prism", Spectrum::Lamp(Lamp::Neon), &sampling(WavelengthSampling::RandomBand)),
+        ),
+    ]
+}

@@ -8,6 +8,7 @@ mod fuzz_scene_file;
 mod gather;
 mod gpu_session;
 mod hard_cases;
+mod light_spectra;
 mod light_tracing;
 mod meshes;
 mod optics;

@@ -40,6 +40,15 @@ fn cpu_matches_the_reference_on_every_built_in_scene() {
     }
 }
 
+/// Coloured lights: their photons start as paths at the light (the CPU
+/// backend hands them to the core's tracer), their direct light in colour.
+#[test]
+fn cpu_matches_the_reference_under_coloured_lights() {
+    for (case, scene) in prismatic_tests::parity::coloured_light_scenes() {
+        check(&format!("cpu-{case}"), &scene, &mut CpuBackend::new());
+    }
+}
+
 #[test]
 fn cpu_matches_the_reference_on_random_scenes() {
     for seed in 1..=16 {

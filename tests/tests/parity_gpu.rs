@@ -108,6 +108,16 @@ fn gpu_colours_paths_by_their_wavelength_as_the_reference_does() {
     }
 }
 
+/// Coloured lights: photons that start as paths at the light, drawn from
+/// its wavelength table, and direct light in the light's colour.
+#[test]
+fn gpu_matches_the_reference_and_the_cpu_under_coloured_lights() {
+    let Some(mut gpu) = gpu() else { return };
+    for (case, scene) in prismatic_tests::parity::coloured_light_scenes() {
+        check(&format!("gpu-{case}"), &scene, &mut gpu);
+    }
+}
+
 #[test]
 fn gpu_matches_the_reference_and_the_cpu_on_random_scenes() {
     let Some(mut gpu) = gpu() else { return };

@@ -111,7 +111,9 @@ struct GpuLight {
     proj_first: u32,
     proj_cdf: u32,
     sun: u32,
-    _pad: u32,
+    spectrum_len: u32,
+    rgb: vec3<f32>,
+    spectrum_first: u32,
 }
 
 // Twin of prismatic_gpu::layout::GpuBand.

@@ -422,3 +422,41 @@ fn spectrum_share(u: f32, share: u32, shares: u32) -> SpectrumSample {
     }
     return SpectrumSample(band, lambda_nm);
 }
+
+// trace::spectrum_share_of a coloured light's spectrum: the band ⌊v·N⌋,
+// the wavelength the light's table puts at v.
+fn light_spectrum_share(l: GpuLight, u: f32, share: u32, shares: u32) -> SpectrumSample {
+    var s = spectrum_share(u, share, shares);
+    if s.lambda_nm >= 0.0 {
+        s.lambda_nm = light_wavelength(l, (f32(share) + u) / f32(shares));
+    }
+    return s;
+}
+
+// LightSpectrum::wavelength: the entry whose cumulative probability first
+// exceeds v, and the point inside it.
+fn light_wavelength(l: GpuLight, v: f32) -> f32 {
+    let first = l.spectrum_first;
+    let len = l.spectrum_len;
+    var lo = 0u;
+    var hi = len;
+    while lo < hi {
+        let mid = (lo + hi) / 2u;
+        if tables[first + mid] <= v {
+            lo = mid + 1u;
+        } else {
+            hi = mid;
+        }
+    }
+    let k = min(lo, len - 1u);
+    var before = 0.0;
+    if k > 0u {
+        before = tables[first + k - 1u];
+    }
+    let p = tables[first + k] - before;
+    var f = 0.0;
+    if p > 0.0 {
+        f = clamp((v - before) / p, 0.0, 1.0);
+    }
+    return tables[first + len + k] + tables[first + 2u * len + k] * f;
+}

@@ -132,6 +132,10 @@ fn trace_emitted(index: u32) {
     let flux = params.flux * e.weight;
     tally_counts[1] += 1u;
     tally_flux[0] += flux;
+    if lights[e.light].spectrum_len > 0u {
+        trace_coloured(e, flux, index);
+        return;
+    }
     var p = Path(e.origin, e.direction, flux, WHITE_BAND, -1.0, 0u);
     var hit: Hit;
     if follow(&p, index, &hit) != FOLLOW_SPLIT {
@@ -151,6 +155,59 @@ fn trace_emitted(index: u32) {
         let u = random_f32(params.seed, index, scatter_dim(b.band, p.bounces));
         scatter_path(&child, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), u);
         var unused: Hit;
+        follow(&child, index, &unused);
+    }
+}
+
+// trace::emission_paths: a coloured light's photon starts as its bands
+// (split, with their shares of the light's power), one band drawn by power
+// (random_band), or wavelengths drawn from the light's spectrum.
+fn trace_coloured(e: Emitted, flux: f32, index: u32) {
+    let l = lights[e.light];
+    let shares = l.spectrum_first + 3u * l.spectrum_len;
+    let u = photon_f32(params.seed, index, DIM_SPECTRUM);
+    var unused: Hit;
+    if params.wavelengths == WAVELENGTHS_SPLIT {
+        var count = 0u;
+        for (var b = 0u; b < params.band_count; b++) {
+            count += select(0u, 1u, tables[shares + b] > 0.0);
+        }
+        tally_counts[1] += count - 1u;
+        for (var b = 0u; b < params.band_count; b++) {
+            let s = tables[shares + b];
+            if s > 0.0 {
+                var child = Path(e.origin, e.direction, flux * s, b, -1.0, 0u);
+                follow(&child, index, &unused);
+            }
+        }
+        return;
+    }
+    if params.wavelengths == WAVELENGTHS_RANDOM_BAND {
+        var band = params.band_count;
+        var last = 0u;
+        var acc = 0.0;
+        for (var b = 0u; b < params.band_count; b++) {
+            let s = tables[shares + b];
+            acc += s;
+            if s > 0.0 {
+                last = b;
+            }
+            if band == params.band_count && u < acc {
+                band = b;
+            }
+        }
+        if band == params.band_count {
+            band = last;
+        }
+        var child = Path(e.origin, e.direction, flux, band, -1.0, 0u);
+        follow(&child, index, &unused);
+        return;
+    }
+    let m = split_paths();
+    tally_counts[1] += m - 1u;
+    for (var i = 0u; i < m; i++) {
+        let s = light_spectrum_share(l, u, i, m);
+        var child = Path(e.origin, e.direction, flux * (1.0 / f32(m)), s.band, s.lambda_nm, 0u);
         follow(&child, index, &unused);
     }
 }

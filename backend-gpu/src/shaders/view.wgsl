@@ -171,14 +171,16 @@ fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>) {
 fn shade_diffuse(dir: vec3<f32>, hit: Hit, tint: vec3<f32>, depth: u32) -> vec3<f32> {
     let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
     let albedo = albedo_at(hit, n);
-    var direct = 0.0;
+    // Each light's irradiance in its colour.
+    var direct = vec3<f32>(0.0);
     for (var i = 0u; i < params.light_count; i++) {
-        direct += direct_irradiance(lights[i], hit.point, n);
+        let l = lights[i];
+        direct += l.rgb * direct_irradiance(l, hit.point, n);
     }
     if params.stored > 0u && (depth > 0u || params.light_tracing == 0u) {
         add_visible_point(hit.point, n, tint * albedo * (params.exposure / PI));
     }
-    return albedo * vec3<f32>(direct) * (1.0 / PI) + albedo * params.ambient;
+    return albedo * direct * (1.0 / PI) + albedo * params.ambient;
 }
 
 // One pending entry: what it adds to the pixel; what it spawns goes to `kids`.

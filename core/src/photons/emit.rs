@@ -23,12 +23,18 @@ pub struct Emitted {
     pub weight: f32,
 }
 
+/// The light that sends white photon `index` (chosen by power, [`dim::LIGHT`]).
+#[inline]
+pub fn light_of(scene: &PreparedScene, seed: u32, index: u32) -> usize {
+    let u = random_f32(seed, index, dim::LIGHT);
+    scene.light_cdf.iter().position(|&c| u < c).unwrap_or(scene.light_cdf.len() - 1)
+}
+
 /// Emits white photon `index` of the pass. Lights are chosen with
 /// probability proportional to their power, so every photon carries the same
 /// flux, Σ power / photons, times its projection-map weight.
 pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
-    let u = random_f32(seed, index, dim::LIGHT);
-    let light = scene.light_cdf.iter().position(|&c| u < c).unwrap_or(scene.light_cdf.len() - 1);
+    let light = light_of(scene, seed, index);
     // The light's own two-dimensional sample: a direction, or a point on a beam's disc.
     let sequence = scene.scene.render.photon_sequence;
     let u1 = photon_f32(sequence, seed, index, dim::DIRECTION);

@@ -27,6 +27,7 @@ use crate::optics::scatter::{offset_origin, scatter_dielectric};
 use crate::optics::surface::{DielectricOptics, Surface};
 use crate::photons::emit::emit;
 use crate::plan::prepared::PreparedScene;
+use crate::sampling::light_spectrum::LightSpectrum;
 use crate::sampling::sobol::photon_f32;
 use crate::util::progress::{Progress, Stage};
 use crate::util::rng::{dim, random_f32};
@@ -88,6 +89,16 @@ pub fn trace_emitted(scene: &PreparedScene, index: u32, flux: f32, out: &mut Vec
     }
     stats.paths += 1;
     stats.flux_emitted += f64::from(flux);
+    if !scene.light_spectra[e.light].is_uniform() {
+        // A coloured light's photon takes its wavelengths as it leaves.
+        let paths = emission_paths(scene, e.light, index);
+        stats.paths += paths.len() as u64 - 1;
+        for (band, lambda_nm, share) in paths {
+            let ray = Ray { origin: e.origin, direction: e.direction };
+            trace_path(scene, index, Path { ray, flux: flux * share, band, lambda_nm, bounces: 0 }, out, stats);
+        }
+        return;
+    }
     let path = Path {
         ray: Ray { origin: e.origin, direction: e.direction },
         flux,
@@ -235,12 +246,64 @@ pub fn spectrum_number(scene: &PreparedScene, index: u32) -> f32 {
 /// wavelengths) the wavelength at the fraction v·N − ⌊v·N⌋ of its
 /// interval. The shares' bands differ when shares ≤ N.
 pub fn spectrum_share(scene: &PreparedScene, u: f32, share: u32, shares: u32) -> (u16, Option<f32>) {
+    spectrum_share_of(scene, None, u, share, shares)
+}
+
+/// [`spectrum_share`] of a light's spectrum (`None`: equal energy): the
+/// band is still ⌊v·N⌋ (the stratum, which keeps a photon's paths'
+/// bands distinct), the wavelength the spectrum's at cumulative
+/// probability v ([`LightSpectrum::wavelength`]).
+pub fn spectrum_share_of(
+    scene: &PreparedScene,
+    spectrum: Option<&LightSpectrum>,
+    u: f32,
+    share: u32,
+    shares: u32,
+) -> (u16, Option<f32>) {
     let n = scene.bands.len();
     let scaled = (share as f32 + u) / shares as f32 * n as f32;
     let band = (scaled as usize).min(n - 1);
-    let lambda_nm = scene.scene.render.wavelengths.continuous().then(|| {
-        let (lo, hi) = scene.bands.band(band).interval_nm;
-        lo + (hi - lo) * (scaled - band as f32)
+    let lambda_nm = scene.scene.render.wavelengths.continuous().then(|| match spectrum {
+        Some(s) if !s.is_uniform() => s.wavelength((share as f32 + u) / shares as f32),
+        _ => {
+            let (lo, hi) = scene.bands.band(band).interval_nm;
+            lo + (hi - lo) * (scaled - band as f32)
+        }
     });
     (band as u16, lambda_nm)
+}
+
+/// The paths a photon of a coloured light (one whose spectrum is not
+/// equal energy) starts as, at its light, each with its band, wavelength
+/// and share of the photon's flux: every band with its share of the
+/// light's power (`split`, bands without power left out), one band drawn
+/// by power (`random_band`), one wavelength drawn from the spectrum
+/// (`continuous`), or M hero wavelengths each with 1/M (`hero`).
+pub fn emission_paths(scene: &PreparedScene, light: usize, index: u32) -> Vec<(u16, Option<f32>, f32)> {
+    let spectrum = &scene.light_spectra[light];
+    let shares = &scene.band_shares[light];
+    let u = spectrum_number(scene, index);
+    match scene.scene.render.wavelengths {
+        WavelengthSampling::Split => {
+            shares.iter().enumerate().filter(|(_, s)| **s > 0.0).map(|(band, s)| (band as u16, None, *s)).collect()
+        }
+        WavelengthSampling::RandomBand => {
+            let mut acc = 0.0;
+            let band = shares.iter().position(|s| {
+                acc += s;
+                u < acc
+            });
+            let band = band.unwrap_or_else(|| shares.iter().rposition(|s| *s > 0.0).unwrap_or(0));
+            alloc::vec![(band as u16, None, 1.0)]
+        }
+        sampling => {
+            let m = sampling.paths(scene.bands.len());
+            (0..m)
+                .map(|i| {
+                    let (band, lambda) = spectrum_share_of(scene, Some(spectrum), u, i, m);
+                    (band, lambda, 1.0 / m as f32)
+                })
+                .collect()
+        }
+    }
 }

@@ -9,6 +9,7 @@ use crate::model::scene::{Light, Scene, SceneError, Shape};
 use crate::optics::surface::Surface;
 use crate::plan::effects::EffectPlan;
 use crate::plan::reach;
+use crate::sampling::light_spectrum::LightSpectrum;
 use alloc::sync::Arc;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
@@ -45,6 +46,10 @@ pub struct PreparedScene {
     /// What each light emits photons as: the light itself, or for a sun
     /// the beam over the scene's mirrors and glass ([`crate::plan::reach::sun_beam`]).
     pub emitters: Vec<Light>,
+    /// What each emitter's photons' wavelengths are drawn from.
+    pub light_spectra: Vec<LightSpectrum>,
+    /// Each emitter's share of its power in each band.
+    pub band_shares: Vec<Vec<f32>>,
     /// Cumulative light-selection probabilities (by power).
     pub light_cdf: Vec<f32>,
     /// Σ light power.
@@ -109,12 +114,16 @@ impl PreparedScene {
             .lights
             .iter()
             .map(|l| match l {
-                Light::Sun { direction, irradiance, .. } => {
-                    reach::sun_beam(*direction, *irradiance, &specular, &bounds)
+                Light::Sun { direction, irradiance, spectrum } => {
+                    reach::sun_beam(*direction, *irradiance, spectrum, &specular, &bounds)
                 }
                 other => other.clone(),
             })
             .collect();
+        let colours = bands.wavelength_colours().cloned().unwrap_or_default();
+        let light_spectra: Vec<LightSpectrum> =
+            emitters.iter().map(|l| LightSpectrum::new(l.spectrum(), &colours)).collect();
+        let band_shares = light_spectra.iter().map(|s| s.band_shares(&bands)).collect();
         let total_power: f32 = emitters.iter().map(|l| l.power()).sum();
         let mut acc = 0.0;
         let mut light_cdf: Vec<f32> = emitters
@@ -135,7 +144,19 @@ impl PreparedScene {
                 g.splits_view_rays = g.dispersive && plan.view_dispersion.on;
             }
         }
-        Ok(PreparedScene { scene, bands, primitives, surfaces, texture_uvs, emitters, light_cdf, total_power, plan })
+        Ok(PreparedScene {
+            scene,
+            bands,
+            primitives,
+            surfaces,
+            texture_uvs,
+            emitters,
+            light_spectra,
+            band_shares,
+            light_cdf,
+            total_power,
+            plan,
+        })
     }
 
     /// The primitive of `shape`, object `index` of a changed scene, from

@@ -58,7 +58,13 @@ pub fn light_reaches(light: &Light, c: Vec3, r: f32) -> bool {
 /// every target could only light a diffuse surface directly, which the view
 /// pass ray traces, so nothing outside the disc is lost. With no targets
 /// the disc covers every bounded object (or the unit sphere).
-pub fn sun_beam(direction: Vec3, irradiance: f32, targets: &[(Vec3, f32)], scene_bounds: &[(Vec3, f32)]) -> Light {
+pub fn sun_beam(
+    direction: Vec3,
+    irradiance: f32,
+    spectrum: &crate::model::spectrum::Spectrum,
+    targets: &[(Vec3, f32)],
+    scene_bounds: &[(Vec3, f32)],
+) -> Light {
     let axis = direction.normalize();
     let finite: alloc::vec::Vec<(Vec3, f32)> = scene_bounds.iter().copied().filter(|b| b.1.is_finite()).collect();
     let cover = if !targets.is_empty() { targets } else { &finite[..] };
@@ -76,7 +82,7 @@ pub fn sun_beam(direction: Vec3, irradiance: f32, targets: &[(Vec3, f32)], scene
         direction: axis,
         radius,
         power: irradiance * core::f32::consts::PI * radius * radius,
-        spectrum: Default::default(),
+        spectrum: spectrum.clone(),
     }
 }
 

@@ -205,11 +205,14 @@ impl<'a> ViewContext<'a> {
         let n = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
         let albedo = self.scene.albedo_at(hit.object, hit.triangle, hit.point, n);
         let settings = &self.scene.scene.render;
-        let direct: f32 = (0..self.scene.scene.lights.len()).map(|i| self.direct_irradiance(i, hit.point, n)).sum();
+        // Each light's irradiance in its colour ((1, 1, 1) for equal energy).
+        let direct: Vec3 = (0..self.scene.scene.lights.len())
+            .map(|i| self.scene.light_spectra[i].rgb * self.direct_irradiance(i, hit.point, n))
+            .sum();
         if gathers_at(self.scene, path.depth) {
             points.push(VisiblePoint { point: hit.point, normal: n, weight: path.tint * albedo / PI, pixel: 0 });
         }
-        albedo * Vec3::splat(direct) * (1.0 / PI) + albedo * settings.ambient
+        albedo * direct * (1.0 / PI) + albedo * settings.ambient
     }
 
     /// Irradiance from light `index` at `p` (unit normal `n`), zero when in

@@ -60,7 +60,7 @@ impl LightSpectrum {
                 .collect(),
         };
         let total: f64 = entries.iter().map(|e| e.2).sum();
-        if !(total > 0.0) {
+        if total.is_nan() || total <= 0.0 {
             return Self::uniform();
         }
         let mut acc = 0.0;

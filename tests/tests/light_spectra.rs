@@ -1,0 +1,125 @@
+//! Lights with spectra: photons' wavelengths drawn from what the light
+//! emits (a lamp's photons on its lines, none between), their colours from
+//! their wavelengths, and the light's colour in its direct light.
+
+use prismatic_core::model::spectrum::{Lamp, Spectrum};
+use prismatic_core::{BandSpec, Glass, Light, PreparedScene, RenderSettings, WavelengthSampling};
+use prismatic_tests::backends::{every_backend, trace};
+use prismatic_tests::{PrismExperiment, prepare, settings};
+
+/// `exp`'s prism scene lit by `spectrum`, with `sampling`.
+fn prism_lit_by(exp: &PrismExperiment, spectrum: Spectrum, sampling: WavelengthSampling) -> PreparedScene {
+    let render = RenderSettings { wavelengths: sampling, ..settings(20_000, BandSpec::Physical(16)) };
+    let mut scene = exp.scene(Glass::Bk7.dispersion(), render);
+    let Light::Beam { spectrum: s, .. } = &mut scene.lights[0] else { unreachable!("the experiment's beam") };
+    *s = spectrum;
+    prepare(scene)
+}
+
+/// A mercury lamp through a 60° BK7 prism: every photon on one of the
+/// lamp's lines (none between), its 435.8 nm and 546.1 nm lines at
+/// Snell's deviation within 0.05°, in proportion to the lines' powers.
+#[test]
+fn a_mercury_lamp_through_a_prism_puts_its_lines_at_snells_deviation() {
+    let exp = PrismExperiment { apex_deg: 60.0, incidence_deg: 55.0, beam_radius: 0.02, screen_x: 6.0 };
+    let lines: Vec<f32> = Lamp::Mercury.lines().iter().map(|l| l.0).collect();
+    let glass = Glass::Bk7.dispersion();
+    for sampling in [WavelengthSampling::Continuous, WavelengthSampling::Hero] {
+        let scene = prism_lit_by(&exp, Spectrum::Lamp(Lamp::Mercury), sampling);
+        for mut backend in every_backend() {
+            let name = backend.name();
+            let map = trace(backend.as_mut(), &scene);
+            let mut per_line = vec![0u32; lines.len()];
+            for p in map.photons.iter().filter(|p| p.bounces == 2) {
+                let lambda = p.wavelength().expect("a lamp's photons have wavelengths");
+                let k = lines.iter().position(|&l| l == lambda);
+                let k = k.unwrap_or_else(|| panic!("{name} {sampling:?}: a photon at {lambda} nm, between lines"));
+                per_line[k] += 1;
+                let d = p.direction();
+                let got = (exp.beam_angle() - f64::from(d.y).atan2(f64::from(d.x))).to_degrees();
+                let expected = exp.deviation_deg(f64::from(glass.ior_at(lambda).unwrap())).unwrap();
+                assert!(
+                    (got - expected).abs() < 0.05,
+                    "{name} {sampling:?}: {lambda} nm at {got:.4}°, Snell {expected:.4}°"
+                );
+            }
+            // 435.8 nm (power 4000 of 7570) and 546.1 nm (1100) are there.
+            let total: u32 = per_line.iter().sum();
+            assert!(total > 10_000, "{name} {sampling:?}: {total} photons through");
+            let share = |k: usize| f64::from(per_line[k]) / f64::from(total);
+            assert!((share(2) - 4000.0 / 7570.0).abs() < 0.02, "{name} {sampling:?}: {per_line:?}");
+            assert!((share(3) - 1100.0 / 7570.0).abs() < 0.02, "{name} {sampling:?}: {per_line:?}");
+        }
+    }
+}
+
+/// A white wall under a spot light with spectrum `spectrum`: the wall's
+/// colour in the image's centre, on `backend`.
+fn wall_colour(backend: &mut dyn prismatic_core::Backend, spectrum: Spectrum) -> prismatic_core::Vec3 {
+    use prismatic_core::{NoProgress, Object, Scene, Shape, Vec3};
+    let render = RenderSettings { width: 16, height: 16, ambient: 0.0, ..RenderSettings::default() };
+    let mut camera = prismatic_tests::camera();
+    (camera.position, camera.look_at) = (Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO);
+    let scene = Scene {
+        render,
+        camera,
+        lights: vec![Light::Spot {
+            position: Vec3::new(0.0, 0.0, 3.0),
+            direction: Vec3::NEG_Z,
+            cone_deg: 30.0,
+            power: 50.0,
+            spectrum,
+        }],
+        materials: vec![prismatic_tests::white("wall")],
+        objects: vec![Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Z }, material: 0 }],
+    };
+    let mut render = backend.prepare(&prepare(scene)).expect("prepare");
+    render.run_pass(0, &mut NoProgress).expect("pass");
+    let image = render.image().expect("image");
+    image.pixels[8 * 16 + 8]
+}
+
+/// The CIE 1931 chromaticity the renderer's linear RGB stands for: the
+/// colour of the equal-energy spectrum is (1, 1, 1), so each channel is
+/// first scaled back by the equal-energy light's sRGB.
+fn chromaticity_of(rgb: prismatic_core::Vec3) -> (f64, f64) {
+    use prismatic_core::model::{cie, color};
+    let (lo, hi) = prismatic_core::model::bands::VISIBLE_NM;
+    let white = color::xyz_to_linear_srgb(cie::integrate(f64::from(lo), f64::from(hi)));
+    let xyz = color::XYZ_TO_LINEAR_SRGB.inverse() * (rgb.as_dvec3() * white);
+    (xyz.x / xyz.element_sum(), xyz.y / xyz.element_sum())
+}
+
+/// The spectrum's own chromaticity over the visible range it emits in.
+fn chromaticity_of_spectrum(spectrum: &Spectrum) -> (f64, f64) {
+    let mut xyz = glam::DVec3::ZERO;
+    for k in 0..4000 {
+        let nm = 380.0 + (f64::from(k) + 0.5) * 0.1;
+        xyz += prismatic_core::model::cie::cmf(nm) * spectrum.power_at(nm);
+    }
+    (xyz.x / xyz.element_sum(), xyz.y / xyz.element_sum())
+}
+
+/// A blackbody's direct light on a white wall has the blackbody's CIE
+/// chromaticity (within 0.002 in x and y: ΔE00 below 1 at these colours),
+/// an equal-energy light's is neutral, on every backend.
+#[test]
+fn a_lights_colour_on_a_white_wall_is_its_spectrums() {
+    for mut backend in every_backend() {
+        let name = backend.name();
+        for spectrum in [
+            Spectrum::Blackbody { kelvin: 2700.0 },
+            Spectrum::Blackbody { kelvin: 6500.0 },
+            Spectrum::Illuminant(prismatic_core::model::spectrum::Illuminant::F11),
+        ] {
+            let (x, y) = chromaticity_of(wall_colour(backend.as_mut(), spectrum.clone()));
+            let (ex, ey) = chromaticity_of_spectrum(&spectrum);
+            assert!(
+                (x - ex).abs() < 2e-3 && (y - ey).abs() < 2e-3,
+                "{name} {spectrum}: ({x:.4}, {y:.4}) vs ({ex:.4}, {ey:.4})"
+            );
+        }
+        let white = wall_colour(backend.as_mut(), Spectrum::EqualEnergy);
+        assert!(white.x > 0.0 && white.x == white.y && white.y == white.z, "{name}: {white}");
+    }
+}

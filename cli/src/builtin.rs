@@ -13,7 +13,7 @@ pub struct BuiltinScene {
 }
 
 /// Every built-in scene file.
-pub const BUILTIN_SCENES: [BuiltinScene; 6] = [
+pub const BUILTIN_SCENES: [BuiltinScene; 7] = [
     BuiltinScene {
         name: "spectrum",
         description: "a prism's spectrum on a wall behind the paper's glass sphere and its caustic (the default)",
@@ -33,6 +33,11 @@ pub const BUILTIN_SCENES: [BuiltinScene; 6] = [
         name: "prism",
         description: "white light through a 60-degree prism, fanned into a spectrum on a wall",
         source: include_str!("../../scenes/prism.toml"),
+    },
+    BuiltinScene {
+        name: "lamps",
+        description: "white light, a 2700 K bulb and a mercury lamp through one prism: a spectrum, a reddened one, lines",
+        source: include_str!("../../scenes/lamps.toml"),
     },
     BuiltinScene {
         name: "recombine",

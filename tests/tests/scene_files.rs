@@ -413,3 +413,44 @@ fn bad_textures_name_the_image_key_and_reason() {
         assert!(e.reason.contains(reason), "{e}: expected {reason:?}");
     }
 }
+
+/// `MINIMAL`'s light with `spectrum = VALUE` (and the render settings `render`).
+fn lit_by(value: &str, render: &str) -> String {
+    let light = format!("kind = \"point\"\nposition = [0, 4, 0]\npower = 10\nspectrum = {value}");
+    format!("[render]\n{render}\n{}", MINIMAL.replace("kind = \"point\"\nposition = [0, 4, 0]\npower = 10", &light))
+}
+
+#[test]
+fn light_spectra_parse_in_every_form_and_bad_ones_are_rejected() {
+    use prismatic_core::model::spectrum::{Illuminant, Lamp, Spectrum};
+    for (value, expected) in [
+        ("\"D65\"", Spectrum::Illuminant(Illuminant::D65)),
+        ("\"a\"", Spectrum::Illuminant(Illuminant::A)),
+        ("\"F11\"", Spectrum::Illuminant(Illuminant::F11)),
+        ("\"E\"", Spectrum::EqualEnergy),
+        ("\"mercury\"", Spectrum::Lamp(Lamp::Mercury)),
+        ("\"Hydrogen\"", Spectrum::Lamp(Lamp::Hydrogen)),
+        ("{ blackbody = 2700 }", Spectrum::Blackbody { kelvin: 2700.0 }),
+        ("{ nm = [400, 700], power = [1, 2] }", Spectrum::Tabulated { nm: vec![400.0, 700.0], power: vec![1.0, 2.0] }),
+    ] {
+        let doc = parse(&lit_by(value, "bands = 16"), "test.toml", None).unwrap_or_else(|e| panic!("{value}: {e}"));
+        doc.validate().unwrap_or_else(|e| panic!("{value}: {e}"));
+        assert_eq!(doc.scene.lights[0].spectrum(), &expected, "{value}");
+    }
+    let bad = |value: &str, key: &str, reason: &str| {
+        assert_error(&lit_by(value, "bands = 16"), key, Some("spectrum"), reason);
+    };
+    bad("\"D50\"", "light[0].spectrum", "unknown spectrum \"D50\"; expected a name (E, D65, A, F11, mercury");
+    bad("{ blackbody = 100 }", "light[0].spectrum.blackbody", "between 500 and 100000 K");
+    bad("{ blackbody = 3000, nm = [400] }", "light[0].spectrum.nm", "unknown key; expected blackbody");
+    bad("{ nm = [400, 500], power = [1] }", "light[0].spectrum", "as many powers as wavelengths");
+    bad("{ nm = [500, 400], power = [1, 1] }", "light[0].spectrum.nm", "strictly increasing");
+    bad("{ nm = [400, 500], power = [1, -1] }", "light[0].spectrum.power", "not negative");
+    bad("{ nm = [800, 900], power = [1, 1] }", "light[0].spectrum", "no power between 380 and 780 nm");
+    bad("3", "light[0].spectrum", "must be a name");
+    // The paper's presets colour by their bands, made for white light.
+    let paper = lit_by("\"mercury\"", "bands = \"paper7\"\nwavelengths = \"hero\"");
+    assert_error(&paper, "light[0].spectrum", Some("spectrum"), "needs physically based bands");
+    let split = lit_by("\"mercury\"", "bands = \"paper7\"\nwavelengths = \"split\"");
+    parse(&split, "test.toml", None).unwrap().validate().expect("the paper's split bands take a lamp's band shares");
+}

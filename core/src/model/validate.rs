@@ -268,8 +268,8 @@ fn validate_spectrum(
     let paper = matches!(render.bands, BandSpec::Paper3 | BandSpec::Paper7);
     if !spectrum.is_equal_energy() && paper && render.wavelengths.continuous() {
         let reason = format!(
-            "a {spectrum} light with {} wavelengths needs physically based bands (`bands = N`); the paper's {} \
-             presets colour by their bands, made for white light",
+            "with {} wavelengths a light of spectrum {spectrum} needs physically based bands (`bands = N`): \
+             the paper's {} bands colour by their own weights, made for white light",
             render.wavelengths.name(),
             render.bands
         );

@@ -20,6 +20,7 @@ use prismatic_core::model::scene::{
     Attenuation, Camera, Filter, Light, Material, MaterialKind, Object, RenderSettings, Sampler, Scene, Shape, Texture,
     Wrap,
 };
+use prismatic_core::model::spectrum::Spectrum;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -132,16 +133,17 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
             // A glTF light shines down its node's −Z.
             let direction = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
             // Intensity is read as W/sr, a directional light's as W/m²
-            // (prismatic is radiometric; no lm → W).
-            let intensity = light.intensity();
+            // (prismatic is radiometric; no lm → W). Its linear RGB colour
+            // becomes a smooth spectrum, and the intensity takes the factor
+            // that makes the light emit that colour.
+            let (spectrum, factor) = Spectrum::from_rgb(light.color());
+            let intensity = light.intensity() * factor;
             let light_path = format!("{node_path}.extensions.KHR_lights_punctual");
             out.elements.push((format!("light[{}]", out.lights.len()), light_path));
             match light.kind() {
-                Kind::Point => out.lights.push(Light::Point {
-                    position,
-                    power: 4.0 * std::f32::consts::PI * intensity,
-                    spectrum: Default::default(),
-                }),
+                Kind::Point => {
+                    out.lights.push(Light::Point { position, power: 4.0 * std::f32::consts::PI * intensity, spectrum })
+                }
                 Kind::Spot { outer_cone_angle, .. } => {
                     let solid_angle = 2.0 * std::f32::consts::PI * (1.0 - outer_cone_angle.cos());
                     out.lights.push(Light::Spot {
@@ -149,12 +151,10 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
                         direction,
                         cone_deg: outer_cone_angle.to_degrees(),
                         power: solid_angle * intensity,
-                        spectrum: Default::default(),
+                        spectrum,
                     });
                 }
-                Kind::Directional => {
-                    out.lights.push(Light::Sun { direction, irradiance: intensity, spectrum: Default::default() })
-                }
+                Kind::Directional => out.lights.push(Light::Sun { direction, irradiance: intensity, spectrum }),
             }
         }
         if let (Some(camera), None) = (node.camera(), &out.camera) {

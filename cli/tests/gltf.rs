@@ -452,3 +452,27 @@ fn the_sunlit_glass_scene_brings_coloured_glass_textures_and_the_sun_through_the
         .count();
     assert_eq!((textured, coloured, dispersive), (2, 2, 2));
 }
+
+/// A coloured glTF light (`KHR_lights_punctual`'s linear `color`) emits
+/// its colour: a smooth spectrum whose colour per watt has the colour's
+/// proportions, and an irradiance that makes it emit colour × intensity.
+#[test]
+fn a_lights_colour_becomes_its_spectrum() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    doc.lights = vec![GltfLight::Directional { direction: [1.0, -2.0, 0.5], intensity: 4.0 }];
+    let json = doc.to_json();
+    let coloured =
+        json.replacen("\"type\": \"directional\"", "\"type\": \"directional\", \"color\": [1.0, 0.5, 0.2]", 1);
+    assert_ne!(json, coloured, "the light's JSON has its type");
+    let path = dir.path().join("amber.gltf");
+    std::fs::write(&path, coloured).unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    scene.validate().unwrap();
+    let [Light::Sun { irradiance, spectrum, .. }] = scene.scene.lights.as_slice() else { panic!() };
+    assert!(matches!(spectrum, prismatic_core::model::spectrum::Spectrum::Smooth { .. }), "{spectrum}");
+    let prepared = PreparedScene::new(scene.scene.clone()).unwrap();
+    let emitted = prepared.light_spectra[0].rgb * *irradiance;
+    let want = glam::Vec3::new(1.0, 0.5, 0.2) * 4.0;
+    assert!((emitted - want).abs().max_element() < 0.01 * 4.0, "{emitted} vs {want}");
+}

@@ -432,6 +432,8 @@ fn light_spectra_parse_in_every_form_and_bad_ones_are_rejected() {
         ("\"Hydrogen\"", Spectrum::Lamp(Lamp::Hydrogen)),
         ("{ blackbody = 2700 }", Spectrum::Blackbody { kelvin: 2700.0 }),
         ("{ nm = [400, 700], power = [1, 2] }", Spectrum::Tabulated { nm: vec![400.0, 700.0], power: vec![1.0, 2.0] }),
+        ("{ rgb = [1, 0.5, 0.2] }", Spectrum::from_rgb([1.0, 0.5, 0.2]).0),
+        ("{ rgb = [0.5, 0.5, 0.5] }", Spectrum::EqualEnergy),
     ] {
         let doc = parse(&lit_by(value, "bands = 16"), "test.toml", None).unwrap_or_else(|e| panic!("{value}: {e}"));
         doc.validate().unwrap_or_else(|e| panic!("{value}: {e}"));
@@ -448,6 +450,8 @@ fn light_spectra_parse_in_every_form_and_bad_ones_are_rejected() {
     bad("{ nm = [400, 500], power = [1, -1] }", "light[0].spectrum.power", "not negative");
     bad("{ nm = [800, 900], power = [1, 1] }", "light[0].spectrum", "no power between 380 and 780 nm");
     bad("3", "light[0].spectrum", "must be a name");
+    bad("{ rgb = [1, -0.5, 0] }", "light[0].spectrum.rgb", "no negative channel");
+    bad("{ rgb = [1, 0, 0], blackbody = 3000 }", "light[0].spectrum.rgb", "unknown key; expected blackbody");
     // The paper's presets colour by their bands, made for white light.
     let paper = lit_by("\"mercury\"", "bands = \"paper7\"\nwavelengths = \"hero\"");
     assert_error(&paper, "light[0].spectrum", Some("spectrum"), "needs physically based bands");

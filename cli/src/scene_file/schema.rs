@@ -332,24 +332,40 @@ impl Reader<'_> {
         texture_file::load(&path, sampler).map(Some).map_err(|e| self.err(&key, &v.span(), e))
     }
 
-    /// A light's `spectrum`: a name (`"D65"`, `"mercury"`, …), `{ blackbody = K }`
-    /// or `{ nm = [..], power = [..] }`.
+    /// A light's `spectrum`: a name (`"D65"`, `"mercury"`, …), `{ blackbody = K }`,
+    /// `{ rgb = [r, g, b] }` (a colour's smooth spectrum) or `{ nm = [..], power = [..] }`.
     fn spectrum(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Spectrum> {
-        let forms =
-            format!("a name ({}), {{ blackbody = KELVIN }} or {{ nm = [..], power = [..] }}", Spectrum::names());
+        let forms = format!(
+            "a name ({}), {{ blackbody = KELVIN }}, {{ rgb = [R, G, B] }} or {{ nm = [..], power = [..] }}",
+            Spectrum::names()
+        );
         match v.get_ref() {
             DeValue::String(name) => Spectrum::from_name(name)
                 .ok_or_else(|| self.err(key, &v.span(), format!("unknown spectrum \"{name}\"; expected {forms}"))),
             DeValue::Table(_) => {
                 let t = self.table(key, v)?;
-                let blackbody = t.entries.iter().any(|(k, _)| k.get_ref() == "blackbody");
-                let allowed: &[&str] = if blackbody { &["blackbody"] } else { &["nm", "power"] };
+                let has = |name: &str| t.entries.iter().any(|(k, _)| k.get_ref() == name);
+                let (blackbody, rgb) = (has("blackbody"), has("rgb"));
+                let allowed: &[&str] = match (blackbody, rgb) {
+                    (true, _) => &["blackbody"],
+                    (_, true) => &["rgb"],
+                    _ => &["nm", "power"],
+                };
                 if let Some((k, _)) = t.entries.iter().find(|(k, _)| !allowed.contains(&k.get_ref().as_ref())) {
                     let reason = format!("unknown key; expected {}", allowed.join(" and "));
                     return Err(self.err(&join(key, k.get_ref()), &k.span(), reason));
                 }
                 if blackbody {
                     return Ok(Spectrum::Blackbody { kelvin: self.req(&t, "blackbody", Self::float)? });
+                }
+                if rgb {
+                    let colour = self.req(&t, "rgb", Self::vec3)?;
+                    if !(colour.min_element() >= 0.0 && colour.max_element() > 0.0) {
+                        let v = self.required(&t, "rgb")?;
+                        let reason = "must be a colour with no negative channel and one above 0";
+                        return Err(self.err(&join(key, "rgb"), &v.span(), reason));
+                    }
+                    return Ok(Spectrum::from_rgb(colour.to_array()).0);
                 }
                 let floats = |p: &Self, k: &str, v: &Spanned<DeValue<'_>>| -> Result<Vec<f32>> {
                     Ok(p.floats(k, v)?.into_iter().map(|x| x as f32).collect())

@@ -10,6 +10,7 @@ pub mod dispersion;
 pub mod image;
 pub mod mesh;
 pub mod photon;
+pub mod rgb_spectrum;
 pub mod scene;
 pub mod spectrum;
 pub mod validate;

@@ -16,6 +16,7 @@
 //! rounded relative intensities (a real lamp's depend on its pressure and
 //! current).
 
+use crate::model::rgb_spectrum::smooth_power;
 use crate::util::math::exp_f64;
 use alloc::string::String;
 use alloc::vec::Vec;
@@ -41,6 +42,12 @@ pub enum Spectrum {
     },
     /// A gas-discharge lamp: light only at its lines.
     Lamp(Lamp),
+    /// The smooth spectrum of an RGB colour
+    /// ([`crate::model::rgb_spectrum`]; see [`Spectrum::from_rgb`]).
+    Smooth {
+        /// The sigmoid's coefficients.
+        coefficients: [f32; 3],
+    },
     /// The equal-energy spectrum E (white in the paper's sense).
     #[default]
     EqualEnergy,
@@ -159,6 +166,29 @@ impl Spectrum {
         names
     }
 
+    /// The smooth spectrum of linear RGB `rgb` (not negative), and the
+    /// factor its light's power takes so that the light emits `rgb` times
+    /// what a white light of that power emits: equal channels give the
+    /// equal-energy spectrum (factor: the channel); others the spectrum of
+    /// `rgb` over its largest channel m, whose light emits that colour at
+    /// a mean relative power of s̄ (factor m·s̄).
+    pub fn from_rgb(rgb: [f32; 3]) -> (Spectrum, f32) {
+        let colours = crate::model::wavelength_rgb::WavelengthRgb::new();
+        let rgb = glam::Vec3::from(rgb).max(glam::Vec3::ZERO);
+        let m = rgb.max_element();
+        if m <= 0.0 {
+            return (Spectrum::EqualEnergy, 0.0);
+        }
+        match crate::model::rgb_spectrum::fit((rgb / m).as_dvec3(), &colours) {
+            None => (Spectrum::EqualEnergy, m),
+            Some(coefficients) => {
+                let spectrum = Spectrum::Smooth { coefficients };
+                let mean = crate::model::rgb_spectrum::mean_of(|nm| spectrum.power_at(nm));
+                (spectrum, m * mean as f32)
+            }
+        }
+    }
+
     /// True for the equal-energy spectrum, whose photons stay white until
     /// dispersive glass splits them.
     pub fn is_equal_energy(&self) -> bool {
@@ -182,6 +212,7 @@ impl Spectrum {
             Spectrum::Illuminant(Illuminant::F11) => lerp_table(&F11, 380.0, 5.0, nm),
             Spectrum::Blackbody { kelvin } => planck_ratio(nm, 560.0, C2_NM_K / f64::from(*kelvin)),
             Spectrum::Tabulated { nm: at, power } => tabulated(at, power, nm),
+            Spectrum::Smooth { coefficients } => smooth_power(*coefficients, nm),
             Spectrum::Lamp(_) => 0.0,
         }
     }
@@ -195,6 +226,7 @@ impl fmt::Display for Spectrum {
             Spectrum::Blackbody { kelvin } => write!(f, "blackbody {kelvin} K"),
             Spectrum::Tabulated { nm, .. } => write!(f, "tabulated ({} points)", nm.len()),
             Spectrum::Lamp(l) => write!(f, "{} lamp", l.name()),
+            Spectrum::Smooth { coefficients: c } => write!(f, "smooth spectrum ({}, {}, {})", c[0], c[1], c[2]),
         }
     }
 }
@@ -292,6 +324,22 @@ mod tests {
             let (gx, gy) = chromaticity(&Spectrum::Blackbody { kelvin });
             assert!((gx - x).abs() < 6e-4 && (gy - y).abs() < 6e-4, "{kelvin} K: ({gx:.4}, {gy:.4}) vs ({x}, {y})");
         }
+    }
+
+    #[test]
+    fn an_rgb_light_emits_its_colour() {
+        // The light's colour per unit flux is the RGB's chromaticity, and
+        // its power factor makes the emission rgb × a white light's.
+        let colours = crate::model::wavelength_rgb::WavelengthRgb::new();
+        for rgb in [[1.0, 0.5, 0.2], [0.2, 0.4, 2.0], [0.3, 0.3, 0.3]] {
+            let (s, factor) = Spectrum::from_rgb(rgb);
+            let colour = crate::model::rgb_spectrum::colour_of(|nm| s.power_at(nm), &colours);
+            let power = crate::model::rgb_spectrum::mean_of(|nm| s.power_at(nm));
+            let emitted = colour / power * f64::from(factor);
+            let want = glam::DVec3::from(rgb.map(f64::from));
+            assert!((emitted - want).abs().max_element() < 2e-3 * want.max_element(), "{rgb:?}: {emitted}");
+        }
+        assert_eq!(Spectrum::from_rgb([0.3, 0.3, 0.3]), (Spectrum::EqualEnergy, 0.3));
     }
 
     #[test]

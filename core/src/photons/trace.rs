@@ -14,9 +14,11 @@
 //! map, L S+ D paths); one that reaches it directly is direct light, which
 //! the renderer ray traces instead. Inside coloured glass a path survives
 //! each segment with its band's Beer–Lambert transmittance (see
-//! [`absorbed`]). Fresnel chooses reflection or refraction
-//! with a counter-based random number, so the result is a pure function of
-//! the scene and the seed.
+//! [`absorbed`]). A coloured light's photons (a spectrum other than
+//! equal energy) are never white: they start as their bands or
+//! wavelengths at the light (see [`emission_paths`]). Fresnel chooses
+//! reflection or refraction with a counter-based random number, so the
+//! result is a pure function of the scene and the seed.
 
 use crate::geometry::primitive::Ray;
 use crate::model::bands::BandTable;

@@ -139,8 +139,14 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
             let (spectrum, factor) = Spectrum::from_rgb(light.color());
             let intensity = light.intensity() * factor;
             let light_path = format!("{node_path}.extensions.KHR_lights_punctual");
-            out.elements.push((format!("light[{}]", out.lights.len()), light_path));
+            if factor == 0.0 {
+                // A black light is valid glTF and emits nothing.
+                out.warnings.push(format!("{light_path}: its colour is black: it emits nothing and is left out"));
+            } else {
+                out.elements.push((format!("light[{}]", out.lights.len()), light_path));
+            }
             match light.kind() {
+                _ if factor == 0.0 => {}
                 Kind::Point => {
                     out.lights.push(Light::Point { position, power: 4.0 * std::f32::consts::PI * intensity, spectrum })
                 }

@@ -476,3 +476,21 @@ fn a_lights_colour_becomes_its_spectrum() {
     let want = glam::Vec3::new(1.0, 0.5, 0.2) * 4.0;
     assert!((emitted - want).abs().max_element() < 0.01 * 4.0, "{emitted} vs {want}");
 }
+
+/// A black light is valid glTF and emits nothing: it is left out with a
+/// warning (here the only light, so the importer's stand-in spot lights
+/// the scene), not refused.
+#[test]
+fn a_black_light_is_left_out_with_a_warning() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    doc.lights = vec![GltfLight::Directional { direction: [1.0, -2.0, 0.5], intensity: 4.0 }];
+    let json = doc.to_json();
+    let black = json.replacen("\"type\": \"directional\"", "\"type\": \"directional\", \"color\": [0.0, 0.0, 0.0]", 1);
+    let path = dir.path().join("black.gltf");
+    std::fs::write(&path, black).unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    scene.validate().unwrap();
+    assert!(scene.warnings.iter().any(|w| w.contains("colour is black")), "{:?}", scene.warnings);
+    assert!(!scene.scene.lights.iter().any(|l| matches!(l, Light::Sun { .. })), "{:?}", scene.scene.lights);
+}

@@ -95,7 +95,7 @@ impl EncodedScene {
                 let (cdf, start, width) = spectrum.entries();
                 l.spectrum_len = cdf.len() as u32;
                 l.spectrum_first = e.tables.len() as u32;
-                for column in [cdf, start, width, &scene.band_shares[i][..]] {
+                for column in [cdf, start, width, &spectrum.band_shares[..]] {
                     e.tables.extend_from_slice(column);
                 }
             }

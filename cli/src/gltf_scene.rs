@@ -139,28 +139,30 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
             let (spectrum, factor) = Spectrum::from_rgb(light.color());
             let intensity = light.intensity() * factor;
             let light_path = format!("{node_path}.extensions.KHR_lights_punctual");
-            if factor == 0.0 {
+            let emitted = match light.kind() {
                 // A black light is valid glTF and emits nothing.
-                out.warnings.push(format!("{light_path}: its colour is black: it emits nothing and is left out"));
-            } else {
-                out.elements.push((format!("light[{}]", out.lights.len()), light_path));
-            }
-            match light.kind() {
-                _ if factor == 0.0 => {}
-                Kind::Point => {
-                    out.lights.push(Light::Point { position, power: 4.0 * std::f32::consts::PI * intensity, spectrum })
-                }
+                _ if factor == 0.0 => None,
+                Kind::Point => Some(Light::Point { position, power: 4.0 * std::f32::consts::PI * intensity, spectrum }),
                 Kind::Spot { outer_cone_angle, .. } => {
                     let solid_angle = 2.0 * std::f32::consts::PI * (1.0 - outer_cone_angle.cos());
-                    out.lights.push(Light::Spot {
+                    Some(Light::Spot {
                         position,
                         direction,
                         cone_deg: outer_cone_angle.to_degrees(),
                         power: solid_angle * intensity,
                         spectrum,
-                    });
+                    })
                 }
-                Kind::Directional => out.lights.push(Light::Sun { direction, irradiance: intensity, spectrum }),
+                Kind::Directional => Some(Light::Sun { direction, irradiance: intensity, spectrum }),
+            };
+            match emitted {
+                Some(l) => {
+                    out.elements.push((format!("light[{}]", out.lights.len()), light_path));
+                    out.lights.push(l);
+                }
+                None => {
+                    out.warnings.push(format!("{light_path}: its colour is black: it emits nothing and is left out"))
+                }
             }
         }
         if let (Some(camera), None) = (node.camera(), &out.camera) {

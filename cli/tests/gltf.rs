@@ -453,22 +453,29 @@ fn the_sunlit_glass_scene_brings_coloured_glass_textures_and_the_sun_through_the
     assert_eq!((textured, coloured, dispersive), (2, 2, 2));
 }
 
+/// The prism document lit by one directional light of intensity 4 and
+/// linear colour `color`, read back.
+fn sun_of_colour(dir: &Path, color: [f32; 3]) -> prismatic_cli::scene_file::SceneDocument {
+    let mut doc = prism_document();
+    doc.lights = vec![GltfLight::Directional { direction: [1.0, -2.0, 0.5], intensity: 4.0 }];
+    let json = doc.to_json();
+    let with_colour = format!("\"type\": \"directional\", \"color\": {}", array(color));
+    let coloured = json.replacen("\"type\": \"directional\"", &with_colour, 1);
+    assert_ne!(json, coloured, "the light's JSON has its type");
+    let path = dir.join("sun.gltf");
+    std::fs::write(&path, coloured).unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    scene.validate().unwrap();
+    scene
+}
+
 /// A coloured glTF light (`KHR_lights_punctual`'s linear `color`) emits
 /// its colour: a smooth spectrum whose colour per watt has the colour's
 /// proportions, and an irradiance that makes it emit colour × intensity.
 #[test]
 fn a_lights_colour_becomes_its_spectrum() {
     let dir = tempfile::tempdir().unwrap();
-    let mut doc = prism_document();
-    doc.lights = vec![GltfLight::Directional { direction: [1.0, -2.0, 0.5], intensity: 4.0 }];
-    let json = doc.to_json();
-    let coloured =
-        json.replacen("\"type\": \"directional\"", "\"type\": \"directional\", \"color\": [1.0, 0.5, 0.2]", 1);
-    assert_ne!(json, coloured, "the light's JSON has its type");
-    let path = dir.path().join("amber.gltf");
-    std::fs::write(&path, coloured).unwrap();
-    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
-    scene.validate().unwrap();
+    let scene = sun_of_colour(dir.path(), [1.0, 0.5, 0.2]);
     let [Light::Sun { irradiance, spectrum, .. }] = scene.scene.lights.as_slice() else { panic!() };
     assert!(matches!(spectrum, prismatic_core::model::spectrum::Spectrum::Smooth { .. }), "{spectrum}");
     let prepared = PreparedScene::new(scene.scene.clone()).unwrap();
@@ -483,14 +490,7 @@ fn a_lights_colour_becomes_its_spectrum() {
 #[test]
 fn a_black_light_is_left_out_with_a_warning() {
     let dir = tempfile::tempdir().unwrap();
-    let mut doc = prism_document();
-    doc.lights = vec![GltfLight::Directional { direction: [1.0, -2.0, 0.5], intensity: 4.0 }];
-    let json = doc.to_json();
-    let black = json.replacen("\"type\": \"directional\"", "\"type\": \"directional\", \"color\": [0.0, 0.0, 0.0]", 1);
-    let path = dir.path().join("black.gltf");
-    std::fs::write(&path, black).unwrap();
-    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
-    scene.validate().unwrap();
+    let scene = sun_of_colour(dir.path(), [0.0; 3]);
     assert!(scene.warnings.iter().any(|w| w.contains("colour is black")), "{:?}", scene.warnings);
     assert!(!scene.scene.lights.iter().any(|l| matches!(l, Light::Sun { .. })), "{:?}", scene.scene.lights);
 }

@@ -80,12 +80,7 @@ pub fn coloured_light_scenes() -> Vec<(String, prismatic_core::PreparedScene)> {
         let mut doc = prismatic_cli::load_scene(name).expect("built-in scene");
         let scene = &mut doc.scene;
         (scene.render.width, scene.render.height, scene.render.photons) = (96, 96, parity_photons(name));
-        match &mut scene.lights[0] {
-            Light::Spot { spectrum: s, .. } | Light::Beam { spectrum: s, .. } | Light::Point { spectrum: s, .. } => {
-                *s = spectrum
-            }
-            Light::Sun { spectrum: s, .. } => *s = spectrum,
-        }
+        *scene.lights[0].spectrum_mut() = spectrum;
         edit(scene);
         prismatic_core::PreparedScene::new(doc.scene).unwrap_or_else(|e| panic!("{name}: {e}"))
     };

@@ -11,8 +11,7 @@ use prismatic_tests::{PrismExperiment, prepare, settings};
 fn prism_lit_by(exp: &PrismExperiment, spectrum: Spectrum, sampling: WavelengthSampling) -> PreparedScene {
     let render = RenderSettings { wavelengths: sampling, ..settings(20_000, BandSpec::Physical(16)) };
     let mut scene = exp.scene(Glass::Bk7.dispersion(), render);
-    let Light::Beam { spectrum: s, .. } = &mut scene.lights[0] else { unreachable!("the experiment's beam") };
-    *s = spectrum;
+    *scene.lights[0].spectrum_mut() = spectrum;
     prepare(scene)
 }
 

@@ -67,9 +67,11 @@ fn gather_segment(vp: ptr<function, VisiblePoint>) {
             if dot(d, d) <= r2 && dot(oct_unpack(p.direction_oct), normal) < 0.0 {
                 let band = p.band_bounces & 0xffffu;
                 (*vp).found += 1u;
-                var add = hue(band, p.lambda_nm);
+                var add: vec3<f32>;
                 if density {
                     add = rgb_of_flux(band, p.lambda_nm, p.flux);
+                } else {
+                    add = hue(band, p.lambda_nm);
                 }
                 (*vp).total += select(n_bands, 1u, band < n_bands);
                 // Unrolled: a varying index into the sums costs a software device dearly.

@@ -237,6 +237,23 @@ mod tests {
         }
     }
 
+    /// A physically based band's weight N·C_i is the colour of a
+    /// wavelength averaged over the band: colouring paths by their
+    /// wavelength and by their band agree on average.
+    #[test]
+    fn a_physical_band_weight_is_the_colours_mean_over_the_band() {
+        let rgb = crate::model::wavelength_rgb::WavelengthRgb::new();
+        for n in [1u16, 3, 8, 32] {
+            let table = BandTable::new(BandSpec::Physical(n));
+            for band in table.bands() {
+                let (lo, hi) = band.interval_nm;
+                let want = band.weight * f32::from(n);
+                let got = rgb.mean(lo, hi);
+                assert!((got - want).abs().max_element() < 2e-3, "{n} bands, {lo}–{hi} nm: {got} vs {want}");
+            }
+        }
+    }
+
     #[test]
     fn physical_bands_have_plausible_hues() {
         let t = BandTable::new(BandSpec::Physical(3));

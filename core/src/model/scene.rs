@@ -421,6 +421,16 @@ impl Light {
             | Light::Sun { spectrum, .. } => spectrum,
         }
     }
+
+    /// What it emits across the spectrum, to change.
+    pub fn spectrum_mut(&mut self) -> &mut Spectrum {
+        match self {
+            Light::Spot { spectrum, .. }
+            | Light::Point { spectrum, .. }
+            | Light::Beam { spectrum, .. }
+            | Light::Sun { spectrum, .. } => spectrum,
+        }
+    }
 }
 
 /// A checker texture on a diffuse material.

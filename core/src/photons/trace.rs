@@ -283,7 +283,7 @@ pub fn spectrum_share_of(
 /// (`continuous`), or M hero wavelengths each with 1/M (`hero`).
 pub fn emission_paths(scene: &PreparedScene, light: usize, index: u32) -> Vec<(u16, Option<f32>, f32)> {
     let spectrum = &scene.light_spectra[light];
-    let shares = &scene.band_shares[light];
+    let shares = &spectrum.band_shares;
     let u = spectrum_number(scene, index);
     match scene.scene.render.wavelengths {
         WavelengthSampling::Split => {

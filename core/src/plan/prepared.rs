@@ -46,10 +46,9 @@ pub struct PreparedScene {
     /// What each light emits photons as: the light itself, or for a sun
     /// the beam over the scene's mirrors and glass ([`crate::plan::reach::sun_beam`]).
     pub emitters: Vec<Light>,
-    /// What each emitter's photons' wavelengths are drawn from.
+    /// What each emitter's photons' wavelengths are drawn from, and its
+    /// colour and shares of the bands.
     pub light_spectra: Vec<LightSpectrum>,
-    /// Each emitter's share of its power in each band.
-    pub band_shares: Vec<Vec<f32>>,
     /// Cumulative light-selection probabilities (by power).
     pub light_cdf: Vec<f32>,
     /// Σ light power.
@@ -120,10 +119,7 @@ impl PreparedScene {
                 other => other.clone(),
             })
             .collect();
-        let colours = bands.wavelength_colours().cloned().unwrap_or_default();
-        let light_spectra: Vec<LightSpectrum> =
-            emitters.iter().map(|l| LightSpectrum::new(l.spectrum(), &colours)).collect();
-        let band_shares = light_spectra.iter().map(|s| s.band_shares(&bands)).collect();
+        let light_spectra = emitters.iter().map(|l| LightSpectrum::new(l.spectrum(), &bands)).collect();
         let total_power: f32 = emitters.iter().map(|l| l.power()).sum();
         let mut acc = 0.0;
         let mut light_cdf: Vec<f32> = emitters
@@ -152,7 +148,6 @@ impl PreparedScene {
             texture_uvs,
             emitters,
             light_spectra,
-            band_shares,
             light_cdf,
             total_power,
             plan,

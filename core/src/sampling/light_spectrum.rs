@@ -29,21 +29,37 @@ pub struct LightSpectrum {
     /// Linear RGB of unit flux: the mean colour of the light's wavelengths
     /// ((1, 1, 1) for the equal-energy spectrum).
     pub rgb: Vec3,
+    /// Each band's share of the light's power (1/N each for equal energy).
+    pub band_shares: Vec<f32>,
 }
 
 impl LightSpectrum {
-    /// The uniform distribution of the equal-energy spectrum.
-    pub fn uniform() -> Self {
-        LightSpectrum { cdf: Vec::new(), start_nm: Vec::new(), width_nm: Vec::new(), rgb: Vec3::ONE }
+    /// The distribution of `spectrum` over the visible range, its colour
+    /// and its shares of `bands`. A spectrum with no power there
+    /// (validation refuses it) is uniform.
+    pub fn new(spectrum: &Spectrum, bands: &BandTable) -> Self {
+        let mut s = Self::table(spectrum);
+        s.band_shares = s.shares_of(bands);
+        s
     }
 
-    /// The distribution of `spectrum` over the visible range, its colour
-    /// from `colours`. A spectrum with no power there (validation refuses
-    /// it) is uniform.
-    pub fn new(spectrum: &Spectrum, colours: &WavelengthRgb) -> Self {
+    /// The uniform distribution of the equal-energy spectrum (no shares yet).
+    fn uniform() -> Self {
+        LightSpectrum {
+            cdf: Vec::new(),
+            start_nm: Vec::new(),
+            width_nm: Vec::new(),
+            rgb: Vec3::ONE,
+            band_shares: Vec::new(),
+        }
+    }
+
+    /// The table and colour of `spectrum` (no shares yet).
+    fn table(spectrum: &Spectrum) -> Self {
         if spectrum.is_equal_energy() {
             return Self::uniform();
         }
+        let colours = WavelengthRgb::new();
         let (lo, hi) = VISIBLE_NM;
         let entries: Vec<(f32, f32, f64)> = match spectrum.lines() {
             Some(lines) => lines
@@ -79,6 +95,7 @@ impl LightSpectrum {
             start_nm: entries.iter().map(|e| e.0).collect(),
             width_nm: entries.iter().map(|e| e.1).collect(),
             rgb: rgb.as_vec3(),
+            band_shares: Vec::new(),
         }
     }
 
@@ -127,7 +144,7 @@ impl LightSpectrum {
     }
 
     /// Each band's share of the light's power (uniform: 1/N each).
-    pub fn band_shares(&self, bands: &BandTable) -> Vec<f32> {
+    fn shares_of(&self, bands: &BandTable) -> Vec<f32> {
         let n = bands.len();
         if self.is_uniform() {
             return alloc::vec![1.0 / n as f32; n];
@@ -147,11 +164,12 @@ impl LightSpectrum {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::bands::BandSpec;
     use crate::model::spectrum::Lamp;
 
     #[test]
     fn a_lamps_wavelengths_are_its_lines() {
-        let s = LightSpectrum::new(&Spectrum::Lamp(Lamp::Mercury), &WavelengthRgb::new());
+        let s = LightSpectrum::new(&Spectrum::Lamp(Lamp::Mercury), &BandTable::new(BandSpec::Physical(16)));
         let lines: Vec<f32> = Lamp::Mercury.lines().iter().map(|l| l.0).collect();
         let mut count = [0u32; 6];
         for i in 0..10_000 {
@@ -168,10 +186,11 @@ mod tests {
 
     #[test]
     fn the_uniform_draw_and_its_shares() {
-        let s = LightSpectrum::uniform();
+        let s = LightSpectrum::new(&Spectrum::EqualEnergy, &BandTable::new(BandSpec::Physical(8)));
         assert_eq!(s.wavelength(0.5), 580.0);
         assert!((s.share(380.0, 480.0) - 0.25).abs() < 1e-6);
         assert_eq!(s.rgb, Vec3::ONE);
+        assert_eq!(s.band_shares, [0.125; 8]);
     }
 
     #[test]
@@ -179,7 +198,10 @@ mod tests {
         // A blackbody at 2000 K has far more power at 700 nm than at 420 nm:
         // the density of draws near each is in the ratio of the powers.
         let spectrum = Spectrum::Blackbody { kelvin: 2000.0 };
-        let s = LightSpectrum::new(&spectrum, &WavelengthRgb::new());
+        let s = LightSpectrum::new(&spectrum, &BandTable::new(BandSpec::Physical(16)));
+        // The bands' shares are the spectrum's, and add up to 1.
+        assert!((s.band_shares[0] - s.share(380.0, 405.0)).abs() < 1e-5);
+        assert!((s.band_shares.iter().sum::<f32>() - 1.0).abs() < 1e-5);
         let n = 200_000;
         let near = |at: f32| (0..n).filter(|i| (s.wavelength((*i as f32 + 0.5) / n as f32) - at).abs() < 2.0).count();
         let ratio = near(700.0) as f64 / near(420.0) as f64;

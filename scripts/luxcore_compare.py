@@ -186,7 +186,7 @@ radius = 1.0
 # prismatic's configurations: (label, settings); 200,000 photons a pass
 # unless they say. Each is measured against the reference below rendered
 # with the configuration's own view paths (sampled view paths converge to
-# the box-filtered pixel, centre rays to the pixel's centre).
+# the box-filtered pixel, hero and centre rays to the pixel's centre).
 CONFIGS: List[Tuple[str, Dict[str, object]]] = [
     ("light tracing, Sobol, 32 bands hero",
      {"light_tracing": True, "photon_sequence": "sobol", "wavelengths": "hero"}),
@@ -327,7 +327,7 @@ def compare(setup: Setup, reference_s: float, budgets: List[float]) -> List[str]
     references: Dict[str, np.ndarray] = {}
     rows = [row("LuxCore LIGHTCPU, Sobol", lux_points)]
     for label, settings in CONFIGS:
-        view = str(settings.get("view_paths", "centre"))
+        view = str(settings.get("view_paths", "hero"))  # prismatic's default
         if view not in references:
             references[view] = prismatic_render(setup, reference_s, 1000,
                                                  {**PRISMATIC_REFERENCE, "view_paths": view})[0]

@@ -11,10 +11,10 @@
 //! that needs the caustic becomes a visible point. A ray that crossed
 //! coloured glass keeps the reference's transmittance in its tint.
 //!
-//! Sampled view paths (`ViewPaths::Sampled`) queue one ray per pixel and
-//! at most one follow-up per ray (M at the split into hero paths): the
-//! reference's jittered start, Fresnel choices and hero bands, from the
-//! same [`PixelSampler`] numbers.
+//! Per-pass view paths (`ViewPaths::Hero` and `ViewPaths::Sampled`) queue
+//! one ray per pixel and at most one follow-up per ray (M at the split into
+//! hero paths): the reference's start (the centre, or jittered), Fresnel
+//! choices and hero bands, from the same [`PixelSampler`] numbers.
 
 use crate::intersect::{HitX8, intersect_scene, occluded};
 use crate::optics::{offset_origin, split_dielectric};
@@ -24,7 +24,7 @@ use glam::Vec3;
 use prismatic_core::Image;
 use prismatic_core::geometry::camera::PinholeCamera;
 use prismatic_core::model::photon::WHITE_BAND;
-use prismatic_core::model::scene::{Light, ViewPaths};
+use prismatic_core::model::scene::Light;
 use prismatic_core::optics::fresnel::reflect;
 use prismatic_core::optics::scatter::{self, scatter_dielectric};
 use prismatic_core::optics::surface::Surface;
@@ -59,10 +59,13 @@ struct ViewRay {
     /// A sampled path's numbers, and its hero path (0 before the split).
     sampler: Option<PixelSampler>,
     hero: u32,
+    /// Whether the path takes one Fresnel branch at glass (with its
+    /// probability), not both.
+    one_branch: bool,
 }
 
-/// Traces the view rays (pass `pass`'s sampled paths with
-/// `ViewPaths::Sampled`): the image without caustics and the visible points
+/// Traces the view rays (pass `pass`'s own paths when
+/// [`prismatic_core::model::scene::ViewPaths::per_pass`]): the image without caustics and the visible points
 /// (tile by tile, so their order does not depend on the thread count).
 pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
     let r = &scene.scene.render;
@@ -70,7 +73,7 @@ pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
     let mut image = Image::new(r.width, r.height);
     let row = r.width as usize;
     let tile_pixels = row * TILE_ROWS as usize;
-    let sampled = r.view_paths == ViewPaths::Sampled;
+    let (sampled, jittered) = (r.view_paths.per_pass(), r.view_paths.jittered());
     let tiles: Vec<Vec<VisiblePoint>> = image
         .pixels
         .par_chunks_mut(tile_pixels)
@@ -82,8 +85,8 @@ pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
                 let (x, y) = ((k % row) as u32, y0 + (k / row) as u32);
                 let sampler = sampled.then(|| PixelSampler::new(r.seed, y * r.width + x, pass));
                 let ray = match sampler {
-                    Some(s) => camera.ray_through(x, y, s.jitter()),
-                    None => camera.ray(x, y),
+                    Some(s) if jittered => camera.ray_through(x, y, s.jitter()),
+                    _ => camera.ray(x, y),
                 };
                 queue.push(ViewRay {
                     origin: ray.origin,
@@ -96,6 +99,7 @@ pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
                     pixel: k as u32,
                     sampler,
                     hero: 0,
+                    one_branch: jittered,
                 });
             }
             let mut shader = Shader { scene, points: Vec::new(), first_pixel: (tile * tile_pixels) as u32 };
@@ -314,7 +318,7 @@ impl Shader<'_> {
 /// surface point `p` (outward normal `outward`), as the reference recurses
 /// (a sampled path: the one branch its number chooses, as photons choose).
 fn spawn_at_glass(r: &ViewRay, p: Vec3, outward: Vec3, ior: f32, queue: &mut Vec<ViewRay>) {
-    if let Some(sampler) = r.sampler {
+    if let Some(sampler) = r.sampler.filter(|_| r.one_branch) {
         let next = scatter_dielectric(r.dir, p, outward, ior, sampler.branch(r.hero, r.depth));
         queue.push(ViewRay { origin: next.origin, dir: next.direction, depth: r.depth + 1, ..*r });
         return;
@@ -349,7 +353,7 @@ fn spawn_packet_at_glass(
     let f = split.reflectance.to_array();
     let tir = split.tir.to_bitmask();
     for (i, r) in rays.iter().enumerate().filter(|(i, _)| lanes_at_glass & (1 << i) != 0) {
-        if let Some(sampler) = r.sampler {
+        if let Some(sampler) = r.sampler.filter(|_| r.one_branch) {
             // The one branch the path's number chooses, as `scatter_dielectric` chooses.
             let (origin, dir) = split.choose(i, sampler.branch(r.hero, r.depth));
             queue.push(ViewRay { origin, dir, depth: r.depth + 1, ..*r });

@@ -125,6 +125,7 @@ pub mod code {
         match v {
             ViewPaths::Centre => 0,
             ViewPaths::Sampled => 1,
+            ViewPaths::Hero => 2,
         }
     }
 }
@@ -160,6 +161,7 @@ fn prelude(stack: u32) -> String {
     u("WAVELENGTHS_RANDOM_BAND", code::wavelengths(WavelengthSampling::RandomBand));
     u("WAVELENGTHS_CONTINUOUS", code::wavelengths(WavelengthSampling::Continuous));
     u("WAVELENGTHS_HERO", code::wavelengths(WavelengthSampling::Hero));
+    u("VIEW_PATHS_CENTRE", code::view_paths(ViewPaths::Centre));
     u("VIEW_PATHS_SAMPLED", code::view_paths(ViewPaths::Sampled));
     u("HERO_WAVELENGTHS", HERO_WAVELENGTHS);
     u("PIXEL_SCRAMBLE", pixel_sample::PIXEL_SCRAMBLE);

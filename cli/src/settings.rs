@@ -170,8 +170,10 @@ settings! {
     #[arg(long, value_parser = parse_photon_sequence)]
     photon_sequence: PhotonSequence,
     /// How view rays sample the pixels: centre (once per render, through
-    /// pixel centres) or sampled (each pass anew: jittered in the pixel, 4
-    /// hero wavelengths at dispersive glass; anti-aliased).
+    /// pixel centres, split into every band at dispersive glass), hero
+    /// (each pass anew through pixel centres, 4 hero wavelengths at
+    /// dispersive glass) or sampled (as hero, jittered in the pixel;
+    /// anti-aliased).
     #[arg(long, value_parser = parse_view_paths)]
     view_paths: ViewPaths,
     /// Image width.

@@ -118,12 +118,14 @@ fn quick_study_writes_its_report_and_error_falls_with_photons_and_bands() {
         prismatic().args(args).arg(&cache).arg("-o").arg(out).output().unwrap()
     };
     let hero_out = dir.path().join("hero");
-    assert!(only("LT 16 hero sampled", &hero_out).status.success());
+    assert!(only("LT 16 hero (hero", &hero_out).status.success());
     let hero_rows = read_csv(&hero_out.join("sphere.csv"));
     assert_eq!(hero_rows.len(), 3);
-    assert!(hero_rows.iter().all(|r| r["series"] == "LT 16 hero sampled view"
-        && r["wavelengths"] == "hero"
-        && r["view_paths"] == "sampled"));
+    assert!(
+        hero_rows.iter().all(|r| r["series"] == "LT 16 hero (hero view)"
+            && r["wavelengths"] == "hero"
+            && r["view_paths"] == "hero")
+    );
     let none_out = dir.path().join("none");
     let none = only("no such curve", &none_out);
     assert!(!none.status.success());

@@ -111,21 +111,24 @@ pub fn light_traced_images_match_the_reference(backend: &mut dyn Backend) {
     }
 }
 
-/// With sampled view paths (each pass its own jittered, spectrally sampled
-/// view), gathered and light traced, the images of every scene with
-/// caustics after three progressive passes are the reference's; the base is
-/// black (every pass's view is in its sums); partial renders merge into one
-/// run's sums bit for bit; and a change of the photons alone gives a fresh
-/// render's sums (the pilot gathers at pass 0's view again), as does a new
-/// seed (a change of the view: the view paths take their numbers from it).
+/// With per-pass view paths (each pass its own spectrally sampled view:
+/// sampled paths gathered and light traced, hero paths light traced), the
+/// images of every scene with caustics after three progressive passes are
+/// the reference's; the base is black (every pass's view is in its sums);
+/// partial renders merge into one run's sums bit for bit; and a change of
+/// the photons alone gives a fresh render's sums (the pilot gathers at pass
+/// 0's view again), as does a new seed (a change of the view: the view
+/// paths take their numbers from it).
 pub fn sampled_view_paths_match_the_reference(backend: &mut dyn Backend) {
+    let kinds = [(ViewPaths::Sampled, false), (ViewPaths::Sampled, true), (ViewPaths::Hero, true)];
     for (name, scene) in scenes::with_caustics() {
-        for light_tracing in [false, true] {
+        for (view_paths, light_tracing) in kinds {
             let scene = edited(&scene, |s| {
-                s.render.view_paths = ViewPaths::Sampled;
+                s.render.view_paths = view_paths;
                 s.render.light_tracing = light_tracing;
             });
-            let case = format!("{}, {name}, sampled view paths, light tracing {light_tracing}", backend.name());
+            let view = view_paths.name();
+            let case = format!("{}, {name}, {view} view paths, light tracing {light_tracing}", backend.name());
             let mut reference = prepare(&mut ReferenceBackend, &scene);
             let mut got = prepare(backend, &scene);
             run(reference.as_mut(), 0..3);
@@ -133,7 +136,7 @@ pub fn sampled_view_paths_match_the_reference(backend: &mut dyn Backend) {
             let (expected, image) = (reference.image().unwrap(), got.image().unwrap());
             compare_images(&expected, &image).unwrap_or_else(|e| panic!("{case}: {e}"));
             let base = got.base().unwrap();
-            assert!(base.pixels.iter().all(|p| *p == glam::Vec3::ZERO), "{case}: a base with sampled view paths");
+            assert!(base.pixels.iter().all(|p| *p == glam::Vec3::ZERO), "{case}: a base with per-pass view paths");
             let (want, have) = (reference.stats().unwrap(), got.stats().unwrap());
             assert_eq!(have.visible_points, want.visible_points, "{case}: visible points");
             let (mut first, mut second) = (prepare(backend, &scene), prepare(backend, &scene));

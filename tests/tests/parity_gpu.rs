@@ -75,9 +75,9 @@ fn gpu_matches_the_reference_and_the_cpu_on_every_built_in_scene() {
 const IMAGE_NOT_YET_AT_PARITY: &str = "dispersion-test";
 
 /// Paths coloured by their wavelength (the colour table the GPU reads
-/// after the bands): the default settings (light tracing's splats, the
-/// density estimator behind the glass), the paper's estimator, and sampled
-/// view paths' hero wavelengths through the glass.
+/// after the bands): the default settings (light tracing's splats, hero
+/// view paths and the density estimator behind the glass), the paper's
+/// estimator, and sampled view paths.
 #[test]
 fn gpu_colours_paths_by_their_wavelength_as_the_reference_does() {
     use prismatic_core::{Estimator, RenderSettings, ViewPaths};

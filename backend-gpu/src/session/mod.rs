@@ -29,7 +29,6 @@ use crate::scene::{EncodedScene, SceneBuffers};
 use crate::timing::StageTimer;
 use crate::trace::{PhotonPass, slots_per_emission};
 use points::PointChunks;
-use prismatic_core::model::scene::ViewPaths;
 use prismatic_core::plan::schedule::pass_scene;
 use prismatic_core::render::accumulation::{contains_pass, insert_passes};
 use prismatic_core::{
@@ -187,7 +186,7 @@ impl GpuSession {
         if redone >= Change::Size {
             self.allocate_points()?;
         }
-        // Sampled view paths leave the last pass's points: the pilot's are pass 0's.
+        // Per-pass view paths leave the last pass's points: the pilot's are pass 0's.
         if redone >= Change::View || (self.sampled() && redone >= Change::Photons) {
             self.trace_view(0)?;
             self.stamp(prismatic_core::Stage::View)?;
@@ -201,7 +200,7 @@ impl GpuSession {
 
     /// Whether each pass traces its own view paths.
     pub(super) fn sampled(&self) -> bool {
-        self.scene.scene.render.view_paths == ViewPaths::Sampled
+        self.scene.scene.render.view_paths.per_pass()
     }
 
     /// Waits until fewer than [`PASSES_IN_FLIGHT`] passes are on the device.

@@ -10,12 +10,13 @@
 // device caps the loop iterations of one invocation) and the gathers run
 // over the points there are, not over slots per pixel.
 //
-// Sampled view paths (params.view_paths = 1) take pass params.view_pass's
-// numbers of prismatic_core::pixel_sample: a jittered start, one Fresnel
-// branch at glass, M hero paths (each at its own wavelength with
-// continuous wavelengths) at the first dispersive glass, handed out by the
-// split entry like bands; a pixel then has at most M visible points, whose
-// first radius is the pixel's.
+// Per-pass view paths (ViewPaths::Hero and ::Sampled, params.view_paths
+// other than VIEW_PATHS_CENTRE) take pass params.view_pass's numbers of
+// prismatic_core::pixel_sample: M hero paths (each at its own wavelength
+// with continuous wavelengths) at the first dispersive glass, handed out
+// by the split entry like bands, and with sampled paths a jittered start
+// and one Fresnel branch at glass (a pixel then has at most M visible
+// points); their first radius is the pixel's.
 
 @group(1) @binding(0) var<storage, read_write> pixels: array<vec4<f32>>;
 @group(1) @binding(1) var<storage, read_write> points: array<VisiblePoint>;
@@ -57,7 +58,13 @@ var<private> kid_count: u32;
 // A sampled path's pixel scramble (PixelSampler).
 var<private> scramble: u32;
 
+// Whether each pass traces its own paths (ViewPaths::per_pass).
 fn sampled() -> bool {
+    return params.view_paths != VIEW_PATHS_CENTRE;
+}
+
+// Whether a path starts jittered and takes one Fresnel branch (ViewPaths::jittered).
+fn jittered() -> bool {
     return params.view_paths == VIEW_PATHS_SAMPLED;
 }
 
@@ -71,9 +78,9 @@ fn spawn_ray(e: Pending, origin: vec3<f32>, dir: vec3<f32>, band: u32, weight: f
 }
 
 // ViewContext::through_dielectric: the Fresnel-weighted reflection and
-// refraction (a sampled path: the one branch its number chooses).
+// refraction (a jittered path: the one branch its number chooses).
 fn through_dielectric(e: Pending, ior: f32, band: u32, weight: f32, tint: vec3<f32>) {
-    if sampled() {
+    if jittered() {
         let s = scatter_dielectric(e.dir, e.origin, e.normal, ior, pixel_branch(scramble, params.view_pass, e.hero, e.depth));
         spawn_ray(e, s.origin, s.dir, band, weight, tint);
         return;
@@ -256,6 +263,8 @@ fn pixel(x: u32, y: u32) -> vec3<f32> {
     var jitter = vec2<f32>(0.5);
     if sampled() {
         scramble = random_u32(params.view_seed, y * params.width + x, PIXEL_SCRAMBLE);
+    }
+    if jittered() {
         jitter = vec2<f32>(sobol_f32(scramble, params.view_pass, 0u), sobol_f32(scramble, params.view_pass, 1u));
     }
     let d = params.cam_corner + params.cam_right * (f32(x) + jitter.x) + params.cam_down * (f32(y) + jitter.y);

@@ -39,7 +39,7 @@ pub fn parse_photon_sequence(s: &str) -> Result<PhotonSequence, String> {
 
 /// Parses a view-paths name.
 pub fn parse_view_paths(s: &str) -> Result<ViewPaths, String> {
-    ViewPaths::from_name(s).ok_or_else(|| format!("unknown view paths \"{s}\"; expected centre or sampled"))
+    ViewPaths::from_name(s).ok_or_else(|| format!("unknown view paths \"{s}\"; expected centre, hero or sampled"))
 }
 
 /// Parses a radius-mode name.

@@ -115,10 +115,10 @@ fn light_traced(
     progressive(Series { light_tracing: true, sequence, ..s }, passes)
 }
 
-/// A curve with sampled view paths: each pass its own jittered,
+/// A curve with per-pass view paths (`view_paths`): each pass its own
 /// spectrally sampled view.
-fn sampled_view(s: Series) -> Series {
-    Series { view_paths: ViewPaths::Sampled, ..s }
+fn with_view(s: Series, view_paths: ViewPaths) -> Series {
+    Series { view_paths, ..s }
 }
 
 impl StudyPlan {
@@ -147,9 +147,13 @@ impl StudyPlan {
         s.push(progressive(series("paper7 progressive", BandSpec::Paper7, Split, Estimator::Paper), 16));
         s.push(light_traced("LT 32 continuous", 32, Continuous, PhotonSequence::Sobol, 8));
         s.push(light_traced("LT 32 hero", 32, Hero, PhotonSequence::Sobol, 8));
+        s.push(with_view(light_traced("LT 32 hero (hero view)", 32, Hero, PhotonSequence::Sobol, 8), ViewPaths::Hero));
         s.push(light_traced("LT 32 hero random", 32, Hero, PhotonSequence::Random, 8));
         s.push(light_traced("LT 16 bands", 16, Split, PhotonSequence::Sobol, 8));
-        s.push(sampled_view(light_traced("LT 32 hero sampled view", 32, Hero, PhotonSequence::Sobol, 32)));
+        s.push(with_view(
+            light_traced("LT 32 hero (sampled view)", 32, Hero, PhotonSequence::Sobol, 32),
+            ViewPaths::Sampled,
+        ));
         let mut scalar = series("paper7 reference backend", BandSpec::Paper7, Split, Estimator::Paper);
         scalar.backend = BackendChoice::Reference;
         scalar.max_photons = 1_000_000;
@@ -187,7 +191,7 @@ impl StudyPlan {
                 progressive(series("16 bands progressive", BandSpec::Physical(16), Split, d), 4),
                 light_traced("LT 16 continuous", 16, Continuous, PhotonSequence::Sobol, 4),
                 light_traced("LT 16 hero", 16, Hero, PhotonSequence::Sobol, 4),
-                sampled_view(light_traced("LT 16 hero sampled view", 16, Hero, PhotonSequence::Sobol, 8)),
+                with_view(light_traced("LT 16 hero (hero view)", 16, Hero, PhotonSequence::Sobol, 8), ViewPaths::Hero),
                 scalar,
             ],
             reference: ReferenceSpec::quick(),

@@ -168,31 +168,53 @@ pub enum ViewPaths {
     /// Fresnel branches at glass, one ray per band at the first dispersive
     /// glass (the paper's view rays; exact for what a pixel centre sees,
     /// staircases at edges).
-    #[default]
     Centre,
-    /// Each pass traces one path per pixel anew ([`crate::render::view`]): through
-    /// a point jittered inside the pixel (stratified across passes), one
-    /// Fresnel branch at glass chosen with its probability, and 4 hero
-    /// wavelengths at the first dispersive glass (their shift stratified
-    /// across passes, each at its own index with continuous wavelengths).
-    /// The passes' mean
-    /// converges to the box-filtered image: edges, textures and the view
-    /// through glass anti-aliased, the same filter as light tracing's splats.
+    /// Each pass traces its own view rays ([`crate::render::view`]) as
+    /// [`ViewPaths::Centre`] does (through the pixel centres, both Fresnel
+    /// branches at glass), but at the first dispersive glass a ray takes
+    /// 4 hero wavelengths, not every band (their shift stratified across
+    /// passes, each at its own index with continuous wavelengths). The
+    /// passes' mean converges to what the pixel centre sees of the
+    /// continuous spectrum, whatever the band count, and the first image
+    /// does not wait for every band's rays.
+    #[default]
+    Hero,
+    /// As [`ViewPaths::Hero`], through a point jittered inside the pixel
+    /// (stratified across passes), one Fresnel branch at glass chosen with
+    /// its probability. The passes' mean converges to the
+    /// box-filtered image: edges, textures and the view through glass
+    /// anti-aliased, the same filter as light tracing's splats.
     Sampled,
 }
 
 impl ViewPaths {
+    /// Every kind, in the order the scene reference lists them.
+    pub const ALL: [ViewPaths; 3] = [ViewPaths::Centre, ViewPaths::Hero, ViewPaths::Sampled];
+
     /// The scene-file name.
     pub fn name(self) -> &'static str {
         match self {
             ViewPaths::Centre => "centre",
+            ViewPaths::Hero => "hero",
             ViewPaths::Sampled => "sampled",
         }
     }
 
     /// Parses a scene-file name.
     pub fn from_name(name: &str) -> Option<Self> {
-        [ViewPaths::Centre, ViewPaths::Sampled].into_iter().find(|v| v.name() == name)
+        Self::ALL.into_iter().find(|v| v.name() == name)
+    }
+
+    /// Whether each pass traces its own view paths (with
+    /// [`crate::sampling::pixel_sample::PixelSampler`]'s numbers).
+    pub fn per_pass(self) -> bool {
+        self != ViewPaths::Centre
+    }
+
+    /// Whether a pass's path starts at a point jittered inside its pixel
+    /// and takes one Fresnel branch at glass (rather than the centre and both).
+    pub fn jittered(self) -> bool {
+        self == ViewPaths::Sampled
     }
 }
 
@@ -291,7 +313,8 @@ pub struct RenderSettings {
 /// "Against LuxCore, at equal error"): light tracing where the camera sees
 /// the caustic, 32 physically based bands with hero wavelengths (the
 /// continuous spectrum for 4 paths a photon, not 32 lines), the density
-/// estimator, Sobol photons, progressive radii. [`RenderSettings::paper`]
+/// estimator, Sobol photons, progressive radii, hero view paths (each
+/// pass's own, through the pixel centres). [`RenderSettings::paper`]
 /// is the paper's method.
 impl Default for RenderSettings {
     fn default() -> Self {
@@ -300,6 +323,7 @@ impl Default for RenderSettings {
             estimator: Estimator::Density,
             light_tracing: true,
             wavelengths: WavelengthSampling::Hero,
+            view_paths: ViewPaths::Hero,
             ..RenderSettings::paper()
         }
     }

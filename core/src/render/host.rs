@@ -5,7 +5,6 @@
 
 use crate::model::image::Image;
 use crate::model::photon::{PhotonMap, TraceStats};
-use crate::model::scene::ViewPaths;
 use crate::photons::light_tracing::Splat;
 use crate::plan::prepared::PreparedScene;
 use crate::plan::schedule::{PilotScale, pass_scene, pass_shrink, pilot_scene};
@@ -37,8 +36,8 @@ pub trait HostKernels: Send {
     /// The backend's name.
     fn name(&self) -> &'static str;
 
-    /// Traces every pixel's view rays (pass `pass`'s sampled paths with
-    /// [`ViewPaths::Sampled`], the same for every pass otherwise): the
+    /// Traces every pixel's view rays (pass `pass`'s paths when
+    /// [`crate::model::scene::ViewPaths::per_pass`], the same for every pass otherwise): the
     /// image without caustics and the visible points that need them (in an
     /// order that does not depend on the thread count).
     fn visible_points(&mut self, scene: &PreparedScene, pass: u32, progress: &mut dyn Progress) -> VisiblePoints;
@@ -61,7 +60,7 @@ pub trait HostKernels: Send {
 /// A live render on the host: the visible points and first radii of the
 /// current scene, and the sums of the passes run since they were traced.
 ///
-/// With sampled view paths ([`ViewPaths::Sampled`]) each pass traces its
+/// With per-pass view paths ([`crate::model::scene::ViewPaths::per_pass`]) each pass traces its
 /// own view; the visible points kept are pass 0's, which the pilot gathers
 /// at, and the first radii are per pixel (stochastic progressive photon
 /// mapping's per-pixel radius: the smallest first radius of the pilot's
@@ -148,7 +147,7 @@ impl<K: HostKernels> HostRender<K> {
 
     /// Whether each pass traces its own view paths.
     fn sampled(&self) -> bool {
-        self.scene.scene.render.view_paths == ViewPaths::Sampled
+        self.scene.scene.render.view_paths.per_pass()
     }
 }
 

@@ -19,7 +19,7 @@
 
 use crate::model::image::Image;
 use crate::model::photon::{PhotonMap, TraceStats};
-use crate::model::scene::{RenderSettings, Scene, ViewPaths};
+use crate::model::scene::{RenderSettings, Scene};
 use crate::plan::prepared::PreparedScene;
 use crate::render::accumulation::Accumulation;
 use crate::util::progress::{Progress, StageTimes};
@@ -222,7 +222,7 @@ impl Change {
             || *light_tracing != b.light_tracing
             || *wavelengths != b.wavelengths
             || *view_paths != b.view_paths
-            || (*seed != b.seed && b.view_paths == ViewPaths::Sampled)
+            || (*seed != b.seed && b.view_paths.per_pass())
             || *exposure != b.exposure
             || *ambient != b.ambient
             || *background != b.background
@@ -275,7 +275,7 @@ mod tests {
         assert_eq!(edited(&|s| s.render.tone_map = ToneMap::Reinhard), Change::None);
         assert_eq!(edited(&|s| s.render.passes = 3), Change::None);
         assert_eq!(edited(&|s| s.render.photons += 1), Change::Photons);
-        assert_eq!(edited(&|s| s.render.seed += 1), Change::Photons);
+        assert_eq!(edited(&|s| s.render.seed += 1), Change::View, "the default hero view paths take the seed");
         assert_eq!(edited(&|s| s.render.photon_sequence = PhotonSequence::Random), Change::Photons);
         assert_eq!(edited(&|s| s.render.alpha = 0.5), Change::Photons);
         assert_eq!(edited(&|s| s.render.radius_mode = RadiusMode::Fixed), Change::Photons);
@@ -287,12 +287,15 @@ mod tests {
         assert_eq!(edited(&|s| s.render.bands = BandSpec::Paper3), Change::View);
         assert_eq!(edited(&|s| s.render.light_tracing = !s.render.light_tracing), Change::View);
         assert_eq!(edited(&|s| s.render.view_paths = crate::ViewPaths::Sampled), Change::View);
-        let sampled = |s: &mut Scene| s.render.view_paths = crate::ViewPaths::Sampled;
-        let mut before = scene.clone();
-        sampled(&mut before);
-        let mut after = before.clone();
-        after.render.seed += 1;
-        assert_eq!(Change::between(&before, &after), Change::View, "sampled view paths take the seed");
+        for (view_paths, change) in
+            [(crate::ViewPaths::Centre, Change::Photons), (crate::ViewPaths::Sampled, Change::View)]
+        {
+            let mut before = scene.clone();
+            before.render.view_paths = view_paths;
+            let mut after = before.clone();
+            after.render.seed += 1;
+            assert_eq!(Change::between(&before, &after), change, "a new seed with {view_paths:?} view paths");
+        }
         assert_eq!(edited(&|s| s.render.width += 1), Change::Size);
         assert!(Change::None < Change::Photons && Change::Photons < Change::View && Change::View < Change::Size);
     }

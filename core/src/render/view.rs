@@ -22,22 +22,23 @@
 //! transmittance (per RGB channel for white rays, the band's for a band;
 //! see [`glass_transmittance`]).
 //!
-//! With sampled view paths ([`ViewPaths::Sampled`]) each pass traces one
-//! path per pixel, with the numbers of [`PixelSampler`]: through a jittered
-//! point of the pixel; at glass the reflection with probability R, else the
+//! With per-pass view paths ([`ViewPaths::Hero`](crate::model::scene::ViewPaths::Hero) and [`ViewPaths::Sampled`](crate::model::scene::ViewPaths::Sampled))
+//! each pass traces one path per pixel, with the numbers of [`PixelSampler`]:
+//! through the pixel's centre (hero) or a jittered point of it (sampled); at glass the reflection with probability R, else the
 //! refraction (the factor R or 1 − R cancels against its probability); at
 //! the first dispersive glass M = 4 hero paths ([`hero_view_paths`], at
 //! most N), path i in band b = ⌊v·N⌋ with v = (i + u)/M (u the pixel's
 //! spectrum number for the pass), weighted (N/M)·C_b, at its own
 //! wavelength when the scene's photons are (continuous and hero
-//! wavelengths). Each pass's view is then an unbiased sample of the
-//! box-filtered pixel, and the passes' mean converges to it.
+//! wavelengths). Each pass's view is then an unbiased sample of what the
+//! pixel's centre sees (hero) or of the box-filtered pixel (sampled), and
+//! the passes' mean converges to it.
 
 use crate::geometry::camera::PinholeCamera;
 use crate::geometry::primitive::Ray;
 use crate::model::image::Image;
 use crate::model::photon::WHITE_BAND;
-use crate::model::scene::{Light, ViewPaths, WavelengthSampling};
+use crate::model::scene::{Light, WavelengthSampling};
 use crate::optics::fresnel::reflect;
 use crate::optics::scatter::{offset_origin, scatter_dielectric, split_dielectric};
 use crate::optics::surface::{DielectricOptics, Surface};
@@ -89,7 +90,7 @@ impl<'a> ViewContext<'a> {
         self.trace_pixel(x, y, None, points)
     }
 
-    /// [`ViewContext::pixel`] on pass `pass`'s sampled path ([`ViewPaths::Sampled`]).
+    /// [`ViewContext::pixel`] on pass `pass`'s own path ([`crate::model::scene::ViewPaths::per_pass`]).
     pub fn sampled_pixel(&self, x: u32, y: u32, pass: u32, points: &mut Vec<VisiblePoint>) -> Vec3 {
         let r = &self.scene.scene.render;
         self.trace_pixel(x, y, Some(PixelSampler::new(r.seed, y * r.width + x, pass)), points)
@@ -101,8 +102,8 @@ impl<'a> ViewContext<'a> {
         let path = ViewPath { band: WHITE_BAND, hero: 0, lambda_nm: None, depth: 0, weight: 1.0, tint, sampler };
         let first = points.len();
         let ray = match sampler {
-            Some(s) => self.camera.ray_through(x, y, s.jitter()),
-            None => self.camera.ray(x, y),
+            Some(s) if self.scene.scene.render.view_paths.jittered() => self.camera.ray_through(x, y, s.jitter()),
+            _ => self.camera.ray(x, y),
         };
         let radiance = self.radiance(&ray, path, points) * exposure;
         let pixel = y * self.scene.scene.render.width + x;
@@ -176,7 +177,7 @@ impl<'a> ViewContext<'a> {
         path: ViewPath,
         points: &mut Vec<VisiblePoint>,
     ) -> Vec3 {
-        if let Some(sampler) = path.sampler {
+        if let Some(sampler) = path.sampler.filter(|_| self.scene.scene.render.view_paths.jittered()) {
             // One branch, chosen with its Fresnel probability, as photons choose theirs.
             let next = ViewPath { depth: path.depth + 1, ..path };
             let u = sampler.branch(path.hero, path.depth);
@@ -332,13 +333,13 @@ pub fn glass_transmittance(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t:
 }
 
 /// Traces every pixel's view rays with the scalar reference (pass `pass`'s
-/// sampled paths with [`ViewPaths::Sampled`]; the same for every pass
+/// own paths when [`crate::model::scene::ViewPaths::per_pass`]; the same for every pass
 /// otherwise): the image without caustics and the visible points that need
 /// them, reporting progress after every row.
 pub fn visible_points(scene: &PreparedScene, pass: u32, progress: &mut dyn Progress) -> VisiblePoints {
     let ctx = ViewContext::new(scene);
     let (w, h) = (scene.scene.render.width, scene.scene.render.height);
-    let sampled = scene.scene.render.view_paths == ViewPaths::Sampled;
+    let sampled = scene.scene.render.view_paths.per_pass();
     let mut out = VisiblePoints { base: Image::new(w, h), points: Vec::new() };
     for y in 0..h {
         for x in 0..w {

@@ -216,8 +216,8 @@ impl CpuGrid {
         self.len() == 0
     }
 
-    /// Caustic irradiance at `q` and how many photons it accepted (the
-    /// core's `gather_counted`, same estimators).
+    /// Caustic irradiance at `q`, reflected by `q.albedo`, and how many
+    /// photons it accepted (the core's `gather_counted`, same estimators).
     pub fn gather_counted(&self, bands: &BandTable, estimator: Estimator, q: &GatherQuery) -> (Vec3, u32) {
         let r2 = q.radius * q.radius;
         let inv = 1.0 / self.cell_size;
@@ -250,7 +250,7 @@ impl CpuGrid {
                         let accepted = (inside & front & real).to_bitmask();
                         for lane in (0..8).filter(|l| accepted & (1 << l) != 0) {
                             let k = i + lane;
-                            sums.add(estimator, bands, self.band[k], self.lambda[k], self.flux[k]);
+                            sums.add(estimator, bands, self.band[k], self.lambda[k], self.flux[k], q.albedo);
                         }
                         i += 8;
                     }
@@ -336,7 +336,7 @@ mod tests {
         assert!(near.len() < photons.len() / 4, "{} of {}", near.len(), photons.len());
         for estimator in [Estimator::Density, Estimator::Paper] {
             for &(point, radius) in &queries {
-                let q = GatherQuery { point, normal: Vec3::Y, radius };
+                let q = GatherQuery { point, normal: Vec3::Y, radius, albedo: Vec3::ONE };
                 let whole = one.gather_counted(&bands, estimator, &q);
                 assert!(whole.1 > 0, "a query with no photons tests nothing");
                 assert_eq!(near.gather_counted(&bands, estimator, &q), whole);

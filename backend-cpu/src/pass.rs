@@ -65,7 +65,7 @@ impl PassGrids {
                         .zip(levels)
                         .map(|((p, &r), &level)| {
                             let grid = grids[usize::from(level)].as_ref().expect("level built");
-                            let q = GatherQuery { point: p.point, normal: p.normal, radius: r };
+                            let q = GatherQuery { point: p.point, normal: p.normal, radius: r, albedo: p.albedo };
                             grid.gather_counted(&scene.bands, settings.estimator, &q)
                         })
                         .collect()

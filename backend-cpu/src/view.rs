@@ -220,28 +220,23 @@ impl Shader<'_> {
         let settings = &self.scene.scene.render;
         let facing = lt(ray.dir.dot(hit.normal), f32x8::ZERO);
         let n = Vec3x8::select(facing, hit.normal, -hit.normal);
-        // Each light's irradiance in its colour, channel by channel.
-        let mut direct = [f32x8::ZERO; 3];
-        let lights = self.scene.scene.lights.iter().zip(&self.scene.plan.shadows).zip(&self.scene.light_spectra);
-        for ((light, plan), spectrum) in lights {
-            let e = self.direct_irradiance(light, plan.on, p, n, mask);
-            for (channel, c) in direct.iter_mut().zip(spectrum.rgb.to_array()) {
-                *channel += f32x8::splat(c) * e;
-            }
-        }
+        // Each light's irradiance; its colour, as the surface reflects its spectrum, per lane below.
+        let lights = self.scene.scene.lights.iter().zip(&self.scene.plan.shadows);
+        let direct: Vec<[f32; 8]> =
+            lights.map(|(light, plan)| self.direct_irradiance(light, plan.on, p, n, mask).to_array()).collect();
         let (objects, triangles) = (hit.object.to_array(), hit.triangle.to_array());
-        let direct = direct.map(|c| c.to_array());
         let mut out = [Vec3::ZERO; 8];
         for i in lanes(mask) {
             let (pi, ni) = (p.lane(i), n.lane(i));
             let albedo = self.scene.albedo_at(objects[i] as usize, triangles[i] as u32, pi, ni);
             if gathers_at(self.scene, rays[i].depth) {
-                let weight = rays[i].tint * albedo / PI * settings.exposure;
+                let weight = rays[i].tint / PI * settings.exposure;
                 let pixel = self.first_pixel + rays[i].pixel;
-                self.points.push(VisiblePoint { point: pi, normal: ni, weight, pixel });
+                self.points.push(VisiblePoint { point: pi, normal: ni, weight, albedo, pixel });
             }
-            out[i] =
-                albedo * Vec3::new(direct[0][i], direct[1][i], direct[2][i]) * (1.0 / PI) + albedo * settings.ambient;
+            let reflected: Vec3 =
+                self.scene.light_spectra.iter().zip(&direct).map(|(s, e)| s.reflected * albedo * e[i]).sum();
+            out[i] = reflected * (1.0 / PI) + albedo * settings.ambient;
         }
         out
     }

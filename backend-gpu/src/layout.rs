@@ -208,13 +208,23 @@ pub struct GpuLight {
     /// Entries of its wavelength table in the tables buffer (0: the
     /// equal-energy spectrum, drawn uniformly).
     pub spectrum_len: u32,
-    /// Linear RGB of unit flux (its direct light's colour).
-    pub rgb: [f32; 3],
+    /// Column 0 of `LightSpectrum::reflected`: the colour a diffuse
+    /// surface reflects of its light per unit of irradiance and of the
+    /// albedo's red primary (columns 1 and 2 below).
+    pub reflected_r: [f32; 3],
     /// First entry of its wavelength table: `spectrum_len` cumulative
     /// probabilities, as many starts and widths (nm), then its N bands' shares.
     pub spectrum_first: u32,
+    /// Column 1 of `LightSpectrum::reflected` (the green primary).
+    pub reflected_g: [f32; 3],
+    /// Padding.
+    pub _pad0: u32,
+    /// Column 2 of `LightSpectrum::reflected` (the blue primary).
+    pub reflected_b: [f32; 3],
+    /// Padding.
+    pub _pad1: u32,
 }
-const _: () = assert!(core::mem::size_of::<GpuLight>() == 112);
+const _: () = assert!(core::mem::size_of::<GpuLight>() == 144);
 
 /// A spectral band; after a table's N bands, the band buffer holds the
 /// rows of the colour of each wavelength
@@ -269,7 +279,7 @@ pub struct VisiblePoint {
     pub normal: [f32; 3],
     /// The gather radius at this point in this pass.
     pub radius: f32,
-    /// tint × albedo / π × exposure: pixel radiance per unit caustic irradiance.
+    /// tint / π × exposure: pixel radiance per unit of reflected caustic irradiance.
     pub weight: [f32; 3],
     /// Photons accepted so far (a white photon counts once).
     pub found: u32,
@@ -286,8 +296,12 @@ pub struct VisiblePoint {
     /// Photons in the fullest bucket its disc touches this pass (set by a
     /// pass's first gather segment: later segments skip the point past it).
     pub widest: u32,
+    /// The surface's RGB albedo, whose reflectance reflects each photon gathered.
+    pub albedo: [f32; 3],
+    /// Padding.
+    pub _pad: u32,
 }
-const _: () = assert!(core::mem::size_of::<VisiblePoint>() == 96);
+const _: () = assert!(core::mem::size_of::<VisiblePoint>() == 112);
 
 /// A render's statistics on the device: the passes' trace tallies summed
 /// (counts as `[lo, hi]` u64 words, flux in f32; the order of [`Tally`]),

@@ -90,7 +90,7 @@ impl EncodedScene {
             let shadows = scene.plan.shadows.get(i).is_some_and(|s| s.on);
             let mut l = e.light(emitter, scene.plan.projections.get(i).and_then(Option::as_ref), shadows);
             let spectrum = &scene.light_spectra[i];
-            l.rgb = v3(spectrum.rgb);
+            [l.reflected_r, l.reflected_g, l.reflected_b] = spectrum.reflected.to_cols_array_2d();
             if !spectrum.is_uniform() {
                 let (cdf, start, width) = spectrum.entries();
                 l.spectrum_len = cdf.len() as u32;
@@ -123,6 +123,11 @@ impl EncodedScene {
                 max_weight: row.abs().max_element(),
                 ..GpuBand::default()
             });
+        }
+        let primaries = scene.bands.reflectance_primaries().cloned().unwrap_or_default();
+        for (i, row) in primaries.rows().iter().enumerate() {
+            let lambda_nm = wavelength_rgb::FIRST_NM + wavelength_rgb::STEP_NM * i as f32;
+            e.bands.push(GpuBand { weight: v3(*row), lambda_nm, max_weight: row.max_element(), ..GpuBand::default() });
         }
         let r = &scene.scene.render;
         let camera = PinholeCamera::new(&scene.scene.camera, r.width, r.height);

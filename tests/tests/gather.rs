@@ -27,7 +27,7 @@ fn field(count: u32, flux: f32, band: impl Fn(u32) -> u16) -> Vec<Photon> {
 }
 
 fn query(radius: f32) -> GatherQuery {
-    GatherQuery { point: Vec3::new(0.1, 0.0, -0.2), normal: Vec3::Y, radius }
+    GatherQuery { point: Vec3::new(0.1, 0.0, -0.2), normal: Vec3::Y, radius, albedo: Vec3::ONE }
 }
 
 #[test]
@@ -64,7 +64,7 @@ fn the_paper_hue_is_w_over_total_scaled_so_white_is_white() {
         let mut g = GatherSums::default();
         for &band in photons {
             let lambda_nm = bands.bands().get(usize::from(band)).map_or(0.0, |b| b.lambda_nm);
-            g.add(Estimator::Paper, &bands, band, lambda_nm, 1.0 / photons.len() as f32);
+            g.add(Estimator::Paper, &bands, band, lambda_nm, 1.0 / photons.len() as f32, Vec3::ONE);
         }
         g
     };

@@ -571,7 +571,7 @@ fn photons_on_cell_borders_are_found() {
             for k in -8..=8 {
                 for (dx, dz) in [(0.0, 0.0), (radius, 0.0), (radius, radius)] {
                     let point = Vec3::new(i as f32 * radius + dx, 0.0, k as f32 * radius + dz);
-                    let q = GatherQuery { point, normal: Vec3::Y, radius };
+                    let q = GatherQuery { point, normal: Vec3::Y, radius, albedo: Vec3::ONE };
                     let brute: Vec3 = photons
                         .iter()
                         .filter(|p| (p.pos() - point).length_squared() <= radius * radius)

@@ -122,3 +122,78 @@ fn a_lights_colour_on_a_white_wall_is_its_spectrums() {
         assert!(white.x > 0.0 && white.x == white.y && white.y == white.z, "{name}: {white}");
     }
 }
+
+/// A sodium lamp's light through a glass sphere onto a green floor, seen
+/// from below the sphere (the floor only), as `render` renders it: the
+/// image after two passes on `backend`.
+fn sodium_on_green(backend: &mut dyn prismatic_core::Backend, render: RenderSettings) -> prismatic_core::Image {
+    use prismatic_core::model::scene::MaterialKind;
+    use prismatic_core::{Material, NoProgress, Object, Scene, Shape, Vec3};
+    let camera =
+        prismatic_core::Camera { position: Vec3::new(0.0, 0.6, 0.0), look_at: Vec3::ZERO, up: Vec3::Z, fov_deg: 90.0 };
+    let green = Material {
+        name: "green".into(),
+        kind: MaterialKind::Diffuse { albedo: Vec3::new(0.1, 0.7, 0.2), checker: None, texture: None },
+    };
+    let scene = Scene {
+        render,
+        camera,
+        lights: vec![Light::Spot {
+            position: Vec3::new(0.0, 4.0, 0.0),
+            direction: Vec3::NEG_Y,
+            cone_deg: 20.0,
+            power: 40.0,
+            spectrum: Spectrum::Lamp(Lamp::Sodium),
+        }],
+        materials: vec![green, prismatic_tests::glass("glass", Glass::Bk7.dispersion())],
+        objects: vec![
+            Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
+            Object { shape: Shape::Sphere { center: Vec3::new(0.0, 1.6, 0.0), radius: 0.5 }, material: 1 },
+        ],
+    };
+    let mut render = backend.prepare(&prepare(scene)).expect("prepare");
+    for pass in 0..2 {
+        render.run_pass(pass, &mut NoProgress).expect("pass");
+    }
+    render.image().expect("image")
+}
+
+/// Under a line lamp every surface takes the lamp's hue, whatever its
+/// albedo: a sodium lamp's direct light and its caustic under a glass
+/// sphere, light traced and gathered, on a green floor have the lamp's CIE
+/// chromaticity (within 0.002 in x and y) on every backend, where the RGB
+/// product of the lamp's colour and the albedo would be green. The
+/// albedo's reflectance spectrum meets the lamp's lines.
+#[test]
+fn a_line_lamp_gives_a_coloured_surface_its_own_hue() {
+    let mut xyz = glam::DVec3::ZERO;
+    for &(nm, power) in Lamp::Sodium.lines() {
+        xyz += prismatic_core::model::cie::cmf(f64::from(nm)) * f64::from(power);
+    }
+    let (ex, ey) = (xyz.x / xyz.element_sum(), xyz.y / xyz.element_sum());
+    for mut backend in every_backend() {
+        let name = backend.name();
+        for light_tracing in [true, false] {
+            let render = RenderSettings {
+                width: 24,
+                height: 24,
+                photons: 20_000,
+                radius: 0.05,
+                ambient: 0.0,
+                light_tracing,
+                ..RenderSettings::default()
+            };
+            let image = sodium_on_green(backend.as_mut(), render);
+            let brightest = image.pixels.iter().map(|p| p.element_sum()).fold(0.0, f32::max);
+            let lit: Vec<_> = image.pixels.iter().filter(|p| p.element_sum() > 0.05 * brightest).collect();
+            assert!(lit.len() > 100, "{name}: {} lit pixels", lit.len());
+            for p in lit {
+                let (x, y) = chromaticity_of(*p);
+                assert!(
+                    (x - ex).abs() < 2e-3 && (y - ey).abs() < 2e-3,
+                    "{name}, light tracing {light_tracing}: {p} is ({x:.4}, {y:.4}), sodium ({ex:.4}, {ey:.4})"
+                );
+            }
+        }
+    }
+}

@@ -14,6 +14,7 @@ use crate::levels;
 use crate::pipelines::{dispatch, dispatch_indirect};
 use crate::shaders::WORKGROUP_SIZE;
 use prismatic_core::model::scene::{Estimator, RadiusMode};
+use prismatic_core::optics::surface::Surface;
 use prismatic_core::photons::trace::photon_flux;
 use prismatic_core::plan::schedule::{GRID_LEVELS, PilotScale, pass_scene, pilot_scene};
 use prismatic_core::{BackendError, NoProgress, PreparedScene, Progress, Stage};
@@ -244,17 +245,31 @@ impl GpuSession {
 /// 2^[`TERM_BITS`] units. A photon carries at most the white flux Φ (a
 /// projection map's weights are below 1); the density estimator adds
 /// Φ·max(1, N·max|C_i|) at most, the paper's max(1, max|C_i|) (C_i, or
-/// the colour of a wavelength over N: [`BandTable::max_colour`]).
+/// the colour of a wavelength over N: [`BandTable::max_colour`]), each
+/// times what the surface reflects of it, at most its largest albedo
+/// channel when above 1.
 ///
 /// [`BandTable::max_colour`]: prismatic_core::BandTable::max_colour
 pub fn gather_shifts(pass: &PreparedScene) -> (i32, i32) {
     let flux = photon_flux(pass);
-    let weight = pass.bands.max_colour().max(1.0);
+    let weight = pass.bands.max_colour().max(1.0) * max_albedo(pass).max(1.0);
     let term = match pass.scene.render.estimator {
         Estimator::Density => flux * (weight * pass.bands.len() as f32).max(1.0),
         Estimator::Paper => weight,
     };
     (TERM_BITS - exponent(term), TERM_BITS - exponent(flux))
+}
+
+/// The largest albedo channel of the scene's diffuse surfaces (a texture
+/// scales its surface's albedo by at most 1).
+fn max_albedo(scene: &PreparedScene) -> f32 {
+    let channels = scene.surfaces.iter().filter_map(|s| match s {
+        Surface::Diffuse { albedo, checker, .. } => {
+            Some(albedo.max_element().max(checker.as_ref().map_or(0.0, |c| c.albedo.max_element())))
+        }
+        _ => None,
+    });
+    channels.fold(0.0, f32::max)
 }
 
 /// The e with 2^(e−1) ≤ x < 2^e for a positive normal `x` (0 for zero or

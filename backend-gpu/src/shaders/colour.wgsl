@@ -1,7 +1,9 @@
 // The colour of a path: twin of prismatic_core::model::bands::BandTable's
-// `rgb_of_flux` and `hue`, and of model::wavelength_rgb. The band buffer
-// holds the N bands, then the rows of the colour of each wavelength
-// (`weight` only), which paths read when `params.colour_by_wavelength`.
+// `rgb_of_flux`, `hue` and `reflectance`, and of model::wavelength_rgb and
+// model::reflectance. The band buffer holds the N bands, then the rows of
+// the colour of each wavelength, then as many rows of the three reflectance
+// primaries (`weight` only), which paths read when
+// `params.colour_by_wavelength`.
 
 // WavelengthRgb::at
 fn wavelength_rgb(lambda_nm: f32) -> vec3<f32> {
@@ -25,6 +27,27 @@ fn rgb_of_flux(band: u32, lambda_nm: f32, flux: f32) -> vec3<f32> {
         return wavelength_rgb(lambda_nm) * flux;
     }
     return bands[band].weight * (flux * f32(params.band_count));
+}
+
+// ReflectancePrimaries::at: the three primaries' reflectances at `lambda_nm`.
+fn primaries_at(lambda_nm: f32) -> vec3<f32> {
+    let last = f32(WAVELENGTH_RGB_ROWS - 1u);
+    let x = clamp((lambda_nm - WAVELENGTH_RGB_FIRST_NM) / WAVELENGTH_RGB_STEP_NM, 0.0, last);
+    let i = min(u32(x), WAVELENGTH_RGB_ROWS - 2u);
+    let f = x - f32(i);
+    let a = bands[params.band_count + WAVELENGTH_RGB_ROWS + i].weight;
+    let b = bands[params.band_count + WAVELENGTH_RGB_ROWS + i + 1u].weight;
+    return a + (b - a) * f;
+}
+
+// BandTable::reflectance: what a surface of `albedo` reflects of a path
+// of `band` at `lambda_nm`, per channel of the path's colour.
+fn reflectance(albedo: vec3<f32>, band: u32, lambda_nm: f32) -> vec3<f32> {
+    let grey = albedo.x == albedo.y && albedo.y == albedo.z;
+    if params.colour_by_wavelength == 0u || band >= params.band_count || grey {
+        return albedo;
+    }
+    return vec3<f32>(dot(albedo, primaries_at(lambda_nm)));
 }
 
 // BandTable::hue: what one path adds to the paper estimator's W.

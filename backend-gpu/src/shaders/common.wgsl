@@ -112,8 +112,12 @@ struct GpuLight {
     proj_cdf: u32,
     sun: u32,
     spectrum_len: u32,
-    rgb: vec3<f32>,
+    reflected_r: vec3<f32>,
     spectrum_first: u32,
+    reflected_g: vec3<f32>,
+    _pad0: u32,
+    reflected_b: vec3<f32>,
+    _pad1: u32,
 }
 
 // Twin of prismatic_gpu::layout::GpuBand.
@@ -141,6 +145,8 @@ struct VisiblePoint {
     ratio: f32,
     level: u32,
     widest: u32,
+    albedo: vec3<f32>,
+    _pad: u32,
 }
 
 // Twin of prismatic_gpu::layout::RunStats.

@@ -73,6 +73,7 @@ fn gather_segment(vp: ptr<function, VisiblePoint>) {
                 } else {
                     add = hue(band, p.lambda_nm);
                 }
+                add *= reflectance((*vp).albedo, band, p.lambda_nm);
                 (*vp).total += select(n_bands, 1u, band < n_bands);
                 // Unrolled: a varying index into the sums costs a software device dearly.
                 (*vp).sums[0] = add_term((*vp).sums[0], add.x, params.sum_shift);

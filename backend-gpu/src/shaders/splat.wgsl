@@ -58,8 +58,9 @@ fn splat(
     }
     let albedo = albedo_at(hit, n);
     let importance = -dot(v, n) / (seen.z * seen.z * seen.z) * params.splat_scale;
-    let flux = rgb_of_flux(photon.band_bounces & 0xffffu, photon.lambda_nm, photon.flux);
-    let c = flux * albedo * importance;
+    let band = photon.band_bounces & 0xffffu;
+    let flux = rgb_of_flux(band, photon.lambda_nm, photon.flux);
+    let c = flux * reflectance(albedo, band, photon.lambda_nm) * importance;
     let k = pixel - params.pixel_offset;
     for (var ch = 0u; ch < 3u; ch++) {
         add_to_sum(6u * k + 2u * ch, to_fixed(c[ch], 32));

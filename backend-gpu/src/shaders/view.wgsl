@@ -156,9 +156,9 @@ fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
 var<private> pixel_index: u32;
 
 // A diffuse hit's caustic, left to the gather pass: the point, its normal
-// on the viewer's side, what unit caustic irradiance there adds to the
-// pixel, and the pixel (within the chunk).
-fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>) {
+// on the viewer's side, what unit reflected caustic irradiance there adds
+// to the pixel, the surface's albedo, and the pixel (within the chunk).
+fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>, albedo: vec3<f32>) {
     let i = atomicAdd(&point_total, 1u);
     if i < params.point_capacity {
         let none = vec2<u32>(0u);
@@ -168,7 +168,7 @@ fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>) {
         if sampled() && pixel_ratios[pixel_index] != 0u {
             ratio = bitcast<f32>(~pixel_ratios[pixel_index]);
         }
-        points[i] = VisiblePoint(point, 0u, normal, params.radius, weight, 0u, sums, none, pixel_index, ratio, 0u, 0u);
+        points[i] = VisiblePoint(point, 0u, normal, params.radius, weight, 0u, sums, none, pixel_index, ratio, 0u, 0u, albedo, 0u);
     }
 }
 
@@ -178,16 +178,17 @@ fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>) {
 fn shade_diffuse(dir: vec3<f32>, hit: Hit, tint: vec3<f32>, depth: u32) -> vec3<f32> {
     let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
     let albedo = albedo_at(hit, n);
-    // Each light's irradiance in its colour.
-    var direct = vec3<f32>(0.0);
+    // Each light's irradiance, in the colour the surface reflects of its spectrum.
+    var reflected = vec3<f32>(0.0);
     for (var i = 0u; i < params.light_count; i++) {
         let l = lights[i];
-        direct += l.rgb * direct_irradiance(l, hit.point, n);
+        let m = mat3x3<f32>(l.reflected_r, l.reflected_g, l.reflected_b);
+        reflected += m * albedo * direct_irradiance(l, hit.point, n);
     }
     if params.stored > 0u && (depth > 0u || params.light_tracing == 0u) {
-        add_visible_point(hit.point, n, tint * albedo * (params.exposure / PI));
+        add_visible_point(hit.point, n, tint * (params.exposure / PI), albedo);
     }
-    return albedo * direct * (1.0 / PI) + albedo * params.ambient;
+    return reflected * (1.0 / PI) + albedo * params.ambient;
 }
 
 // One pending entry: what it adds to the pixel; what it spawns goes to `kids`.

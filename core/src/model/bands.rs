@@ -14,12 +14,20 @@
 //! weight: the band count then stratifies the spectrum without quantising
 //! its colour. Paths at a band's own wavelength (split and random-band
 //! sampling), and every path of the paper's presets, keep the band's weight.
+//!
+//! A path coloured by its wavelength is reflected by a diffuse surface's
+//! reflectance at that wavelength ([`BandTable::reflectance`], the albedo's
+//! spectrum of [`ReflectancePrimaries`]), so that a coloured light on a
+//! coloured surface reflects the product of their spectra; the others are
+//! reflected channel by channel, by the RGB albedo.
 
 use alloc::vec::Vec;
 use core::fmt;
 use glam::{DVec3, Vec3};
 
 pub use crate::model::cie::VISIBLE_NM;
+use crate::model::photon::WHITE_BAND;
+use crate::model::reflectance::ReflectancePrimaries;
 use crate::model::wavelength_rgb::WavelengthRgb;
 
 /// The most bands a table may have (the photon stores its band in a `u16`,
@@ -68,6 +76,8 @@ pub struct BandTable {
     bands: Vec<Band>,
     /// The colour of paths at their own wavelength, when they take it from there.
     by_wavelength: Option<WavelengthRgb>,
+    /// The albedos' reflectance spectra, with `by_wavelength`.
+    primaries: Option<ReflectancePrimaries>,
 }
 
 /// The paper's Table 1: (name, nominal wavelength in nm, weight). The paper
@@ -97,7 +107,7 @@ impl BandTable {
             BandSpec::Paper7 => paper(&PAPER7),
             BandSpec::Physical(n) => physical(usize::from(n).clamp(1, MAX_BANDS)),
         };
-        BandTable { spec, bands, by_wavelength: None }
+        BandTable { spec, bands, by_wavelength: None, primaries: None }
     }
 
     /// This table, colouring paths by their own wavelength when `continuous`
@@ -106,7 +116,30 @@ impl BandTable {
     pub fn colour_by_wavelength(mut self, continuous: bool) -> Self {
         let physical = matches!(self.spec, BandSpec::Physical(_));
         self.by_wavelength = (continuous && physical).then(WavelengthRgb::new);
+        self.primaries = (continuous && physical).then(ReflectancePrimaries::new);
         self
+    }
+
+    /// The albedos' reflectance spectra, when paths take their colour from
+    /// their wavelength.
+    pub fn reflectance_primaries(&self) -> Option<&ReflectancePrimaries> {
+        self.primaries.as_ref()
+    }
+
+    /// What a diffuse surface of RGB albedo `albedo` reflects of a path of
+    /// band `band` at `lambda_nm`, per RGB channel of the path's colour: its
+    /// reflectance ρ(λ) in every channel when paths are coloured by their
+    /// wavelength, else the albedo channel by channel (white light, the
+    /// paper's presets, split and random-band sampling). An albedo with
+    /// equal channels reflects exactly them (a grey's spectrum is flat).
+    #[inline]
+    pub fn reflectance(&self, albedo: Vec3, band: u16, lambda_nm: f32) -> Vec3 {
+        match &self.primaries {
+            Some(p) if band != WHITE_BAND && (albedo.x != albedo.y || albedo.y != albedo.z) => {
+                Vec3::splat(p.reflectance(albedo, lambda_nm))
+            }
+            _ => albedo,
+        }
     }
 
     /// The colour of each wavelength, when paths take their colour from it.
@@ -263,5 +296,24 @@ mod tests {
         assert!(w[0].z > w[0].x && w[0].z > w[0].y);
         assert!(w[1].x > w[1].z && w[1].y > w[1].z);
         assert!(w[2].x > w[2].y && w[2].x > w[2].z);
+    }
+
+    #[test]
+    fn a_grey_reflects_exactly_itself_and_a_colour_its_spectrum() {
+        let table = BandTable::new(BandSpec::Physical(16)).colour_by_wavelength(true);
+        for g in [0.0, 0.3, 1.0] {
+            for nm in [380.0, 455.5, 589.0, 780.0] {
+                assert_eq!(table.reflectance(Vec3::splat(g), 3, nm), Vec3::splat(g), "grey {g} at {nm} nm");
+            }
+        }
+        // A red surface reflects red light and little violet, in every channel of the path's colour.
+        let red = Vec3::new(0.9, 0.1, 0.1);
+        let at_700 = table.reflectance(red, 15, 700.0);
+        assert!(at_700.x > 0.85 && at_700.x == at_700.y && at_700.y == at_700.z, "{at_700}");
+        assert!(table.reflectance(red, 0, 420.0).x < 0.2);
+        // White light and band-coloured paths are reflected channel by channel.
+        assert_eq!(table.reflectance(red, WHITE_BAND, 0.0), red);
+        assert_eq!(BandTable::new(BandSpec::Paper7).colour_by_wavelength(true).reflectance(red, 0, 650.0), red);
+        assert_eq!(BandTable::new(BandSpec::Physical(16)).reflectance(red, 15, 755.0), red);
     }
 }

@@ -1,7 +1,7 @@
 //! Layer 1, model: what the user described (the scene, its validation, meshes)
 //! and what every backend exchanges (spectral bands and the CIE tables behind
-//! them, dispersion, colour, the colour of each wavelength, images, the photon
-//! and its map).
+//! them, dispersion, colour, the colour of each wavelength and the reflectance
+//! of each albedo, images, the photon and its map).
 
 pub mod bands;
 pub mod cie;
@@ -10,6 +10,7 @@ pub mod dispersion;
 pub mod image;
 pub mod mesh;
 pub mod photon;
+pub mod reflectance;
 pub mod rgb_spectrum;
 pub mod scene;
 pub mod spectrum;

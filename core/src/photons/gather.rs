@@ -1,8 +1,10 @@
 //! Gather estimators: caustic irradiance at a surface point from the photons within a radius.
 //!
-//! Both return irradiance in linear RGB (W/m² scaled by the band weights);
-//! the renderer turns it into radiance with the diffuse BRDF (albedo/π) and
-//! adds it to the ray-traced direct light.
+//! Both return reflected irradiance in linear RGB (W/m² scaled by the band
+//! weights, each photon times what the surface reflects of it,
+//! [`BandTable::reflectance`]: its reflectance spectrum at the photon's
+//! wavelength, or its RGB albedo); the renderer turns it into radiance with
+//! the diffuse BRDF's 1/π and adds it to the ray-traced direct light.
 //!
 //! - `paper` (Gwak & Ryou): with T_i the number of band-i photons in the
 //!   disc and Total = Σ T_i, the hue is W/Total with W = Σ C_i T_i. A white
@@ -39,6 +41,8 @@ pub struct GatherQuery {
     pub normal: Vec3,
     /// Gather radius.
     pub radius: f32,
+    /// The surface's RGB albedo (`Vec3::ONE` for the irradiance itself).
+    pub albedo: Vec3,
 }
 
 /// What a gather adds up at a point, in f64 and integers (neither stalls
@@ -58,19 +62,20 @@ pub struct GatherSums {
 
 impl GatherSums {
     /// Adds a photon of `band` at `lambda_nm` carrying `flux` that the
-    /// gather accepted.
+    /// gather accepted, reflected by a surface of RGB albedo `albedo`.
     #[inline]
-    pub fn add(&mut self, estimator: Estimator, bands: &BandTable, band: u16, lambda_nm: f32, flux: f32) {
+    pub fn add(&mut self, estimator: Estimator, bands: &BandTable, band: u16, lambda_nm: f32, flux: f32, albedo: Vec3) {
         self.found += 1;
         self.flux += f64::from(flux);
+        let reflected = bands.reflectance(albedo, band, lambda_nm);
         match estimator {
-            Estimator::Density => self.sums += bands.rgb_of_flux(band, lambda_nm, flux).as_dvec3(),
+            Estimator::Density => self.sums += (bands.rgb_of_flux(band, lambda_nm, flux) * reflected).as_dvec3(),
             Estimator::Paper if band == WHITE_BAND => {
-                self.sums += DVec3::ONE;
+                self.sums += reflected.as_dvec3();
                 self.total += bands.len() as u64;
             }
             Estimator::Paper => {
-                self.sums += bands.hue(band, lambda_nm).as_dvec3();
+                self.sums += (bands.hue(band, lambda_nm) * reflected).as_dvec3();
                 self.total += 1;
             }
         }
@@ -88,7 +93,7 @@ pub fn finish(estimator: Estimator, bands: usize, g: &GatherSums, radius: f32) -
     }
 }
 
-/// Caustic irradiance (linear RGB) at `q` from the photons of `grid`.
+/// Caustic irradiance (linear RGB) at `q` from the photons of `grid`, reflected by `q.albedo`.
 pub fn gather(grid: &PhotonGrid, photons: &[Photon], bands: &BandTable, estimator: Estimator, q: &GatherQuery) -> Vec3 {
     gather_counted(grid, photons, bands, estimator, q).0
 }
@@ -106,7 +111,7 @@ pub fn gather_counted(
     grid.for_each_candidate(q.point, q.radius, |i| {
         let p = &photons[i as usize];
         if accepts(p, q, r2) {
-            sums.add(estimator, bands, p.band, p.lambda_nm, p.flux);
+            sums.add(estimator, bands, p.band, p.lambda_nm, p.flux, q.albedo);
         }
     });
     (finish(estimator, bands.len(), &sums, q.radius), sums.found)

@@ -82,8 +82,10 @@ impl<'a> CameraConnection<'a> {
         }
         let albedo = self.scene.albedo_at(hit.object, hit.triangle, hit.point, n);
         let importance = -v.dot(n) / (seen.depth * seen.depth * seen.depth) * self.scale;
-        let flux = self.scene.bands.rgb_of_flux(photon.band, photon.lambda_nm, photon.flux);
-        Some(Splat { pixel: seen.y * self.camera.width + seen.x, radiance: flux * albedo * importance })
+        let bands = &self.scene.bands;
+        let flux = bands.rgb_of_flux(photon.band, photon.lambda_nm, photon.flux);
+        let reflected = flux * bands.reflectance(albedo, photon.band, photon.lambda_nm);
+        Some(Splat { pixel: seen.y * self.camera.width + seen.x, radiance: reflected * importance })
     }
 }
 

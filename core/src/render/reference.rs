@@ -67,7 +67,7 @@ pub fn gather_pass(scene: &PreparedScene, map: &PhotonMap, points: &[VisiblePoin
         .zip(radii)
         .map(|(p, &r)| {
             let grid = grids[level_of(r, r_pass)].as_ref().expect("level built");
-            let q = GatherQuery { point: p.point, normal: p.normal, radius: r };
+            let q = GatherQuery { point: p.point, normal: p.normal, radius: r, albedo: p.albedo };
             gather_counted(grid, &map.photons, &scene.bands, settings.estimator, &q)
         })
         .unzip();

@@ -2,7 +2,9 @@
 //! view rays.
 //!
 //! One primary ray per pixel centre. At a diffuse hit the pixel gets
-//! `albedo/π · (E_direct + E_caustic) + albedo · ambient`, where E_direct is
+//! `(ρE_direct + ρE_caustic)/π + albedo · ambient`, where ρE is irradiance
+//! reflected by the surface's reflectance spectrum (the albedo's, see
+//! [`crate::model::reflectance`]), E_direct is
 //! the ray-traced irradiance from each light (with shadow rays; glass casts
 //! a full shadow because the light it passes on arrives as caustic photons)
 //! and E_caustic is the gathered photon irradiance: the caustic is added to
@@ -206,14 +208,14 @@ impl<'a> ViewContext<'a> {
         let n = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
         let albedo = self.scene.albedo_at(hit.object, hit.triangle, hit.point, n);
         let settings = &self.scene.scene.render;
-        // Each light's irradiance in its colour ((1, 1, 1) for equal energy).
-        let direct: Vec3 = (0..self.scene.scene.lights.len())
-            .map(|i| self.scene.light_spectra[i].rgb * self.direct_irradiance(i, hit.point, n))
+        // Each light's irradiance, in the colour the surface reflects of its spectrum.
+        let reflected: Vec3 = (0..self.scene.scene.lights.len())
+            .map(|i| self.scene.light_spectra[i].reflected * albedo * self.direct_irradiance(i, hit.point, n))
             .sum();
         if gathers_at(self.scene, path.depth) {
-            points.push(VisiblePoint { point: hit.point, normal: n, weight: path.tint * albedo / PI, pixel: 0 });
+            points.push(VisiblePoint { point: hit.point, normal: n, weight: path.tint / PI, albedo, pixel: 0 });
         }
-        albedo * direct * (1.0 / PI) + albedo * settings.ambient
+        reflected * (1.0 / PI) + albedo * settings.ambient
     }
 
     /// Irradiance from light `index` at `p` (unit normal `n`), zero when in

@@ -13,9 +13,13 @@ pub struct VisiblePoint {
     pub point: Vec3,
     /// Unit normal facing the viewer.
     pub normal: Vec3,
-    /// What a unit of caustic irradiance here adds to the pixel: the path's
-    /// RGB factor (Fresnel factors, band weight) × albedo/π × exposure.
+    /// What a unit of reflected caustic irradiance here (irradiance times
+    /// the surface's reflectance) adds to the pixel: the path's RGB factor
+    /// (Fresnel factors, band weight) × exposure / π.
     pub weight: Vec3,
+    /// The surface's RGB albedo here, whose reflectance spectrum reflects
+    /// each gathered photon ([`crate::model::bands::BandTable::reflectance`]).
+    pub albedo: Vec3,
     /// The pixel, row-major (y · width + x).
     pub pixel: u32,
 }

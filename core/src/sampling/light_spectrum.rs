@@ -11,10 +11,11 @@
 
 use crate::model::bands::BandTable;
 use crate::model::cie::VISIBLE_NM;
+use crate::model::reflectance::ReflectancePrimaries;
 use crate::model::spectrum::Spectrum;
 use crate::model::wavelength_rgb::WavelengthRgb;
 use alloc::vec::Vec;
-use glam::Vec3;
+use glam::{DMat3, DVec3, Mat3, Vec3};
 
 /// The wavelength distribution of one light.
 #[derive(Clone, Debug, PartialEq)]
@@ -29,6 +30,12 @@ pub struct LightSpectrum {
     /// Linear RGB of unit flux: the mean colour of the light's wavelengths
     /// ((1, 1, 1) for the equal-energy spectrum).
     pub rgb: Vec3,
+    /// The colour a diffuse surface reflects of this light per unit of
+    /// irradiance, as a matrix over its RGB albedo: column c is the light's
+    /// colour reflected by the albedo's primary spectrum c
+    /// ([`crate::model::reflectance`]); the identity for the equal-energy
+    /// spectrum, and `rgb` for a white albedo.
+    pub reflected: Mat3,
     /// Each band's share of the light's power (1/N each for equal energy).
     pub band_shares: Vec<f32>,
 }
@@ -50,6 +57,7 @@ impl LightSpectrum {
             start_nm: Vec::new(),
             width_nm: Vec::new(),
             rgb: Vec3::ONE,
+            reflected: Mat3::IDENTITY,
             band_shares: Vec::new(),
         }
     }
@@ -59,7 +67,7 @@ impl LightSpectrum {
         if spectrum.is_equal_energy() {
             return Self::uniform();
         }
-        let colours = WavelengthRgb::new();
+        let (colours, primaries) = (WavelengthRgb::new(), ReflectancePrimaries::new());
         let (lo, hi) = VISIBLE_NM;
         let entries: Vec<(f32, f32, f64)> = match spectrum.lines() {
             Some(lines) => lines
@@ -80,12 +88,16 @@ impl LightSpectrum {
             return Self::uniform();
         }
         let mut acc = 0.0;
-        let mut rgb = glam::DVec3::ZERO;
+        let (mut rgb, mut reflected) = (DVec3::ZERO, DMat3::ZERO);
         let mut cdf = Vec::with_capacity(entries.len());
         for &(start, width, power) in &entries {
             acc += power / total;
             cdf.push(acc as f32);
-            rgb += colours.at(start + 0.5 * width).as_dvec3() * (power / total);
+            let nm = start + 0.5 * width;
+            let colour = colours.at(nm).as_dvec3() * (power / total);
+            let p = primaries.at(nm).as_dvec3();
+            rgb += colour;
+            reflected += DMat3::from_cols(colour * p.x, colour * p.y, colour * p.z);
         }
         if let Some(last) = cdf.last_mut() {
             *last = 1.0;
@@ -95,6 +107,7 @@ impl LightSpectrum {
             start_nm: entries.iter().map(|e| e.0).collect(),
             width_nm: entries.iter().map(|e| e.1).collect(),
             rgb: rgb.as_vec3(),
+            reflected: reflected.as_mat3(),
             band_shares: Vec::new(),
         }
     }

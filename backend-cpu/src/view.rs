@@ -112,7 +112,7 @@ pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
                 shader.trace_packet(&batch[..take], &mut queue, &mut sum);
             }
             for (p, s) in pixels.iter_mut().zip(sum) {
-                *p = s * r.exposure;
+                *p = s * scene.camera_response();
             }
             shader.points
         })
@@ -230,7 +230,7 @@ impl Shader<'_> {
             let (pi, ni) = (p.lane(i), n.lane(i));
             let albedo = self.scene.albedo_at(objects[i] as usize, triangles[i] as u32, pi, ni);
             if gathers_at(self.scene, rays[i].depth) {
-                let weight = rays[i].tint / PI * settings.exposure;
+                let weight = rays[i].tint / PI * self.scene.camera_response();
                 let pixel = self.first_pixel + rays[i].pixel;
                 self.points.push(VisiblePoint { point: pi, normal: ni, weight, albedo, pixel });
             }

@@ -97,8 +97,12 @@ pub struct Params {
     /// 1 when paths take their colour from their wavelength (the band
     /// buffer's rows after the bands), 0 when from their band's weight.
     pub colour_by_wavelength: u32,
+    /// `PreparedScene::white_balance`: what each channel is scaled by.
+    pub white_balance: [f32; 3],
+    /// Padding.
+    pub _pad_white: u32,
 }
-const _: () = assert!(core::mem::size_of::<Params>() == 224);
+const _: () = assert!(core::mem::size_of::<Params>() == 240);
 
 /// An object's primitive. Kinds: 0 sphere (`a` centre, `ra` radius), 1 plane
 /// (`a` point, `n` normal), 2 disc (`a` centre, `n` normal, `ra` radius²,

@@ -148,6 +148,7 @@ impl EncodedScene {
             radius: r.radius,
             inv_cell: 1.0 / (2.0 * r.radius),
             exposure: r.exposure,
+            white_balance: v3(scene.white_balance),
             ambient: [r.ambient; 3],
             light_tracing: u32::from(r.light_tracing),
             background: v3(r.background),

@@ -111,6 +111,8 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 view_paths,
                 cam_forward,
                 colour_by_wavelength,
+                white_balance,
+                _pad_white,
             }),
         ),
         ("GpuObject", &trace, rust_layout!(GpuObject { kind, first, count, second, a, ra, n, rb })),

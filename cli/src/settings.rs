@@ -6,12 +6,12 @@
 
 use crate::scene_file::{
     SceneDocument, SceneFileError, parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode,
-    parse_view_paths, parse_wavelengths,
+    parse_view_paths, parse_wavelengths, parse_white_point,
 };
 use prismatic_core::PreparedScene;
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::scene::{
-    Estimator, PhotonSequence, RadiusMode, RenderSettings, ViewPaths, WavelengthSampling,
+    Estimator, PhotonSequence, RadiusMode, RenderSettings, ViewPaths, WavelengthSampling, WhitePoint,
 };
 use std::fmt;
 
@@ -94,6 +94,7 @@ from_name!(
     WavelengthSampling = parse_wavelengths,
     PhotonSequence = parse_photon_sequence,
     ViewPaths = parse_view_paths,
+    WhitePoint = parse_white_point,
 );
 
 /// The one list of settings. Each entry's doc comment is the CLI's help
@@ -176,6 +177,10 @@ settings! {
     /// anti-aliased).
     #[arg(long, value_parser = parse_view_paths)]
     view_paths: ViewPaths,
+    /// The spectrum that renders neutral: E (equal energy, the paper's
+    /// white; the default) or D65 (sRGB's white).
+    #[arg(long, value_parser = parse_white_point)]
+    white_point: WhitePoint,
     /// Image width.
     #[arg(long)]
     width: u32,
@@ -280,6 +285,7 @@ mod tests {
                 "wavelengths" => SettingValue::Text("split".into()),
                 "photon_sequence" => SettingValue::Text("random".into()),
                 "view_paths" => SettingValue::Text("sampled".into()),
+                "white_point" => SettingValue::Text("D65".into()),
                 _ => SettingValue::Int(64),
             };
             settings.set(name, &value).unwrap_or_else(|e| panic!("{name}: {e}"));

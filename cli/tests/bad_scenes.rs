@@ -27,6 +27,7 @@ const EXPECTED: &[(&str, &str)] = &[
         "3: render.photon_sequence: unknown photon sequence \"halton\"; expected sobol or random",
     ),
     ("unknown-view-paths", "3: render.view_paths: unknown view paths \"jittered\"; expected centre, hero or sampled"),
+    ("unknown-white-point", "3: render.white_point: unknown white point \"D50\"; expected E or D65"),
     ("wrong-type", "2: render.photons: must be a whole number, got string"),
     ("zero-bands", "2: render.bands: must be \"paper3\", \"paper7\" or 1 to 256, got 0"),
     ("zero-neighbours", "3: render.neighbours: must be at least 1, got 0"),

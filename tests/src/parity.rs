@@ -69,7 +69,9 @@ pub fn parity_photons(name: &str) -> u32 {
 
 /// Built-in scenes at 96×96 lit by coloured lights, for the parity tests:
 /// `sphere` with the default settings under a 2700 K spot and a white
-/// point light (coloured and white photons in one pass), `prism` with a
+/// point light (coloured and white photons in one pass) with the D65
+/// white point (every channel of the view, splats and gathers scaled by
+/// the white balance), `prism` with a
 /// mercury lamp split into bands and with a fluorescent tube's hero
 /// wavelengths, `caustic` (the paper's seven bands) under a sodium lamp,
 /// `prism` with a neon lamp's random bands.
@@ -99,9 +101,10 @@ pub fn coloured_light_scenes() -> Vec<(String, prismatic_core::PreparedScene)> {
     let sampling = |w: WavelengthSampling| move |scene: &mut prismatic_core::Scene| scene.render.wavelengths = w;
     vec![
         (
-            "sphere-2700K-and-white".into(),
+            "sphere-2700K-and-white-D65".into(),
             with("sphere", Spectrum::Blackbody { kelvin: 2700.0 }, &|scene| {
                 defaults(scene);
+                scene.render.white_point = prismatic_core::model::scene::WhitePoint::D65;
                 let power = 0.5 * scene.lights[0].power();
                 scene.lights.push(Light::Point {
                     position: Vec3::new(1.0, 3.0, 2.0),

@@ -2,6 +2,7 @@
 //! emits (a lamp's photons on its lines, none between), their colours from
 //! their wavelengths, and the light's colour in its direct light.
 
+use prismatic_core::model::scene::WhitePoint;
 use prismatic_core::model::spectrum::{Lamp, Spectrum};
 use prismatic_core::{BandSpec, Glass, Light, PreparedScene, RenderSettings, WavelengthSampling};
 use prismatic_tests::backends::{every_backend, trace};
@@ -52,11 +53,15 @@ fn a_mercury_lamp_through_a_prism_puts_its_lines_at_snells_deviation() {
     }
 }
 
-/// A white wall under a spot light with spectrum `spectrum`: the wall's
-/// colour in the image's centre, on `backend`.
-fn wall_colour(backend: &mut dyn prismatic_core::Backend, spectrum: Spectrum) -> prismatic_core::Vec3 {
+/// A white wall under a spot light with spectrum `spectrum`, with white
+/// point `white_point`: the wall's colour in the image's centre, on `backend`.
+fn wall_colour(
+    backend: &mut dyn prismatic_core::Backend,
+    spectrum: Spectrum,
+    white_point: WhitePoint,
+) -> prismatic_core::Vec3 {
     use prismatic_core::{NoProgress, Object, Scene, Shape, Vec3};
-    let render = RenderSettings { width: 16, height: 16, ambient: 0.0, ..RenderSettings::default() };
+    let render = RenderSettings { width: 16, height: 16, ambient: 0.0, white_point, ..RenderSettings::default() };
     let mut camera = prismatic_tests::camera();
     (camera.position, camera.look_at) = (Vec3::new(0.0, 0.0, 4.0), Vec3::ZERO);
     let scene = Scene {
@@ -111,15 +116,35 @@ fn a_lights_colour_on_a_white_wall_is_its_spectrums() {
             Spectrum::Blackbody { kelvin: 6500.0 },
             Spectrum::Illuminant(prismatic_core::model::spectrum::Illuminant::F11),
         ] {
-            let (x, y) = chromaticity_of(wall_colour(backend.as_mut(), spectrum.clone()));
+            let (x, y) = chromaticity_of(wall_colour(backend.as_mut(), spectrum.clone(), WhitePoint::E));
             let (ex, ey) = chromaticity_of_spectrum(&spectrum);
             assert!(
                 (x - ex).abs() < 2e-3 && (y - ey).abs() < 2e-3,
                 "{name} {spectrum}: ({x:.4}, {y:.4}) vs ({ex:.4}, {ey:.4})"
             );
         }
-        let white = wall_colour(backend.as_mut(), Spectrum::EqualEnergy);
+        let white = wall_colour(backend.as_mut(), Spectrum::EqualEnergy, WhitePoint::E);
         assert!(white.x > 0.0 && white.x == white.y && white.y == white.z, "{name}: {white}");
+    }
+}
+
+/// The white point is a setting: a D65 light renders neutral with
+/// `white_point = "D65"` (within 1e-3 of its mean per channel) and blue
+/// with the default E; an E light warm with D65 and neutral with E.
+#[test]
+fn a_light_whose_spectrum_is_the_white_point_renders_neutral() {
+    let d65 = Spectrum::Illuminant(prismatic_core::model::spectrum::Illuminant::D65);
+    let spread = |c: prismatic_core::Vec3| {
+        (c - prismatic_core::Vec3::splat(c.element_sum() / 3.0)).abs().max_element() / c.element_sum() * 3.0
+    };
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let neutral = wall_colour(backend.as_mut(), d65.clone(), WhitePoint::D65);
+        assert!(spread(neutral) < 1e-3, "{name}: D65 under a D65 white point is {neutral}");
+        let blue = wall_colour(backend.as_mut(), d65.clone(), WhitePoint::E);
+        assert!(blue.z > 1.05 * blue.x, "{name}: D65 under an E white point is {blue}");
+        let warm = wall_colour(backend.as_mut(), Spectrum::EqualEnergy, WhitePoint::D65);
+        assert!(warm.x > 1.05 * warm.z, "{name}: E under a D65 white point is {warm}");
     }
 }
 

@@ -49,6 +49,8 @@ struct Params {
     view_paths: u32,
     cam_forward: vec3<f32>,
     colour_by_wavelength: u32,
+    white_balance: vec3<f32>,
+    _pad_white: u32,
 }
 
 // Twin of prismatic_core::photon::Photon (band in the low 16 bits of

@@ -60,7 +60,7 @@ fn splat(
     let importance = -dot(v, n) / (seen.z * seen.z * seen.z) * params.splat_scale;
     let band = photon.band_bounces & 0xffffu;
     let flux = rgb_of_flux(band, photon.lambda_nm, photon.flux);
-    let c = flux * reflectance(albedo, band, photon.lambda_nm) * importance;
+    let c = flux * reflectance(albedo, band, photon.lambda_nm) * importance * params.white_balance;
     let k = pixel - params.pixel_offset;
     for (var ch = 0u; ch < 3u; ch++) {
         add_to_sum(6u * k + 2u * ch, to_fixed(c[ch], 32));

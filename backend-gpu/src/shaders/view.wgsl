@@ -186,7 +186,7 @@ fn shade_diffuse(dir: vec3<f32>, hit: Hit, tint: vec3<f32>, depth: u32) -> vec3<
         reflected += m * albedo * direct_irradiance(l, hit.point, n);
     }
     if params.stored > 0u && (depth > 0u || params.light_tracing == 0u) {
-        add_visible_point(hit.point, n, tint * (params.exposure / PI), albedo);
+        add_visible_point(hit.point, n, tint * params.white_balance * (params.exposure / PI), albedo);
     }
     return reflected * (1.0 / PI) + albedo * params.ambient;
 }
@@ -284,7 +284,7 @@ fn pixel(x: u32, y: u32) -> vec3<f32> {
             top++;
         }
     }
-    return sum * params.exposure;
+    return sum * params.white_balance * params.exposure;
 }
 
 @compute @workgroup_size(WORKGROUP_SIZE)

@@ -16,6 +16,7 @@ mod schema;
 pub use document::{SceneDocument, SceneFileError};
 pub use names::{
     parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_view_paths, parse_wavelengths,
+    parse_white_point,
 };
 pub use reader::LOCAL_FRAME_RADIUS;
 

@@ -1,9 +1,9 @@
 //! The names of settings as scene files and command-line flags write
 //! them: band tables, estimators, wavelength sampling, photon sequences,
-//! radius modes.
+//! radius modes, white points.
 
 use prismatic_core::model::bands::BandSpec;
-use prismatic_core::model::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling};
+use prismatic_core::model::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling, WhitePoint};
 
 /// Parses a band table name: `paper3`, `paper7` or a number of bands.
 pub fn parse_bands(s: &str) -> Result<BandSpec, String> {
@@ -35,6 +35,11 @@ pub fn parse_wavelengths(s: &str) -> Result<WavelengthSampling, String> {
 /// Parses a photon-sequence name.
 pub fn parse_photon_sequence(s: &str) -> Result<PhotonSequence, String> {
     PhotonSequence::from_name(s).ok_or_else(|| format!("unknown photon sequence \"{s}\"; expected sobol or random"))
+}
+
+/// Parses a white point's name.
+pub fn parse_white_point(s: &str) -> Result<WhitePoint, String> {
+    WhitePoint::from_name(s).ok_or_else(|| format!("unknown white point \"{s}\"; expected E or D65"))
 }
 
 /// Parses a view-paths name.

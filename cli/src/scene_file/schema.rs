@@ -6,6 +6,7 @@
 
 use super::names::{
     parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_view_paths, parse_wavelengths,
+    parse_white_point,
 };
 use super::reader::{LOCAL_FRAME_RADIUS, Reader, Result, Table, join};
 use crate::gltf_scene;
@@ -19,7 +20,7 @@ use prismatic_core::model::color::ToneMap;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, Estimator, Filter, Light, Material, MaterialKind, Object, PhotonSequence, RadiusMode,
-    RenderSettings, Sampler, Shape, Texture, ViewPaths, WavelengthSampling, Wrap,
+    RenderSettings, Sampler, Shape, Texture, ViewPaths, WavelengthSampling, WhitePoint, Wrap,
 };
 use prismatic_core::model::spectrum::Spectrum;
 use prismatic_core::{Scene, Vec3};
@@ -103,6 +104,7 @@ impl Reader<'_> {
                 "max_depth",
                 "ambient",
                 "exposure",
+                "white_point",
                 "background",
                 "tone_map",
                 "projection_maps",
@@ -129,6 +131,7 @@ impl Reader<'_> {
             max_depth: self.opt(t, "max_depth", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.max_depth, |x| x as u32),
             ambient: self.opt(t, "ambient", Self::float)?.unwrap_or(d.ambient),
             exposure: self.opt(t, "exposure", Self::float)?.unwrap_or(d.exposure),
+            white_point: self.opt(t, "white_point", Self::white_point)?.unwrap_or(d.white_point),
             background: self.opt(t, "background", Self::vec3)?.unwrap_or(d.background),
             tone_map: self.opt(t, "tone_map", Self::tone_map)?.unwrap_or(d.tone_map),
             projection_maps: self.opt(t, "projection_maps", Self::boolean)?.unwrap_or(d.projection_maps),
@@ -175,6 +178,10 @@ impl Reader<'_> {
 
     fn view_paths(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<ViewPaths> {
         parse_view_paths(self.string(key, v)?).map_err(|reason| self.err(key, &v.span(), reason))
+    }
+
+    fn white_point(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<WhitePoint> {
+        parse_white_point(self.string(key, v)?).map_err(|reason| self.err(key, &v.span(), reason))
     }
 
     fn radius_mode(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<RadiusMode> {

@@ -5,6 +5,7 @@
 use crate::model::bands::BandSpec;
 use crate::model::color::ToneMap;
 use crate::model::dispersion::Dispersion;
+use crate::model::spectrum::Illuminant;
 pub use crate::model::spectrum::Spectrum;
 use alloc::string::String;
 use alloc::sync::Arc;
@@ -218,6 +219,42 @@ impl ViewPaths {
     }
 }
 
+/// The spectrum a render shows as neutral: the image's channels are
+/// scaled so that light of this spectrum on a grey surface is grey.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum WhitePoint {
+    /// The equal-energy spectrum: the paper's white, and what every light
+    /// without a spectrum emits, so white light stays (1, 1, 1) exactly.
+    #[default]
+    E,
+    /// CIE D65, the white point sRGB defines (a display's white): daylight
+    /// renders neutral, equal-energy light slightly warm.
+    D65,
+}
+
+impl WhitePoint {
+    /// The scene-file name.
+    pub fn name(self) -> &'static str {
+        match self {
+            WhitePoint::E => "E",
+            WhitePoint::D65 => "D65",
+        }
+    }
+
+    /// Parses a scene-file name.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [WhitePoint::E, WhitePoint::D65].into_iter().find(|w| w.name() == name)
+    }
+
+    /// The spectrum that renders neutral.
+    pub fn spectrum(self) -> Spectrum {
+        match self {
+            WhitePoint::E => Spectrum::EqualEnergy,
+            WhitePoint::D65 => Spectrum::Illuminant(Illuminant::D65),
+        }
+    }
+}
+
 /// Hachisuka et al.'s recommended fraction of photons kept per pass: how
 /// fast progressive radii shrink by default.
 pub const DEFAULT_ALPHA: f32 = 0.7;
@@ -296,6 +333,8 @@ pub struct RenderSettings {
     pub background: Vec3,
     /// How radiance becomes displayable.
     pub tone_map: ToneMap,
+    /// The spectrum that renders neutral (white balance).
+    pub white_point: WhitePoint,
     /// Aim caustic photons only at mirrors and glass (projection maps).
     pub projection_maps: bool,
     /// Photon passes a render runs by default (each emits `photons`).
@@ -353,6 +392,7 @@ impl RenderSettings {
             exposure: 1.0,
             background: Vec3::ZERO,
             tone_map: ToneMap::Clamp,
+            white_point: WhitePoint::E,
             projection_maps: true,
             passes: 16,
             alpha: DEFAULT_ALPHA,

@@ -85,7 +85,8 @@ impl<'a> CameraConnection<'a> {
         let bands = &self.scene.bands;
         let flux = bands.rgb_of_flux(photon.band, photon.lambda_nm, photon.flux);
         let reflected = flux * bands.reflectance(albedo, photon.band, photon.lambda_nm);
-        Some(Splat { pixel: seen.y * self.camera.width + seen.x, radiance: reflected * importance })
+        let radiance = reflected * importance * self.scene.white_balance;
+        Some(Splat { pixel: seen.y * self.camera.width + seen.x, radiance })
     }
 }
 

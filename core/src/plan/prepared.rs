@@ -53,6 +53,9 @@ pub struct PreparedScene {
     pub light_cdf: Vec<f32>,
     /// Σ light power.
     pub total_power: f32,
+    /// What each channel of the image is scaled by so that the white
+    /// point's light is neutral: 1 / its colour ((1, 1, 1) for E).
+    pub white_balance: Vec3,
     /// What the render simulates; backends follow it.
     pub plan: EffectPlan,
 }
@@ -120,6 +123,7 @@ impl PreparedScene {
             })
             .collect();
         let light_spectra = emitters.iter().map(|l| LightSpectrum::new(l.spectrum(), &bands)).collect();
+        let white_balance = Vec3::ONE / LightSpectrum::new(&scene.render.white_point.spectrum(), &bands).rgb;
         let total_power: f32 = emitters.iter().map(|l| l.power()).sum();
         let mut acc = 0.0;
         let mut light_cdf: Vec<f32> = emitters
@@ -150,8 +154,15 @@ impl PreparedScene {
             light_spectra,
             light_cdf,
             total_power,
+            white_balance,
             plan,
         })
+    }
+
+    /// What the camera multiplies radiance by, per channel: the exposure
+    /// times the white balance.
+    pub fn camera_response(&self) -> Vec3 {
+        self.white_balance * self.scene.render.exposure
     }
 
     /// The primitive of `shape`, object `index` of a changed scene, from

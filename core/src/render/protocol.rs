@@ -201,6 +201,7 @@ impl Change {
             max_depth,
             ambient,
             exposure,
+            white_point,
             background,
             // Applied when the image is read out: no pass redoes anything.
             tone_map: _,
@@ -224,6 +225,7 @@ impl Change {
             || *view_paths != b.view_paths
             || (*seed != b.seed && b.view_paths.per_pass())
             || *exposure != b.exposure
+            || *white_point != b.white_point
             || *ambient != b.ambient
             || *background != b.background
         {

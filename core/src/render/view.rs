@@ -99,15 +99,15 @@ impl<'a> ViewContext<'a> {
     }
 
     fn trace_pixel(&self, x: u32, y: u32, sampler: Option<PixelSampler>, points: &mut Vec<VisiblePoint>) -> Vec3 {
-        let exposure = self.scene.scene.render.exposure;
-        let tint = Vec3::splat(exposure);
+        let response = self.scene.camera_response();
+        let tint = response;
         let path = ViewPath { band: WHITE_BAND, hero: 0, lambda_nm: None, depth: 0, weight: 1.0, tint, sampler };
         let first = points.len();
         let ray = match sampler {
             Some(s) if self.scene.scene.render.view_paths.jittered() => self.camera.ray_through(x, y, s.jitter()),
             _ => self.camera.ray(x, y),
         };
-        let radiance = self.radiance(&ray, path, points) * exposure;
+        let radiance = self.radiance(&ray, path, points) * response;
         let pixel = y * self.scene.scene.render.width + x;
         for p in &mut points[first..] {
             p.pixel = pixel;

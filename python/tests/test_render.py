@@ -103,8 +103,18 @@ def test_view_paths_are_the_clis_bit_for_bit(cli, tmp_path):
     centre = prismatic.render("sphere", passes=2, progress=False, **SMALL)
     assert same_bits(sampled, read_exr(tmp_path / "s.exr"))
     assert not same_bits(sampled, centre), "rays through the pixel centres are the default"
-    with pytest.raises(prismatic.SceneError, match="expected centre or sampled"):
+    with pytest.raises(prismatic.SceneError, match="expected centre, hero or sampled"):
         prismatic.render("sphere", view_paths="jittered", progress=False)
+
+
+def test_the_white_point_is_the_clis_bit_for_bit(cli, tmp_path):
+    cli("render", "lamps", "--passes", "1", *flags(SMALL), "--white-point", "D65", "-o", "d65.exr", cwd=tmp_path)
+    d65 = prismatic.render("lamps", passes=1, white_point="D65", progress=False, **SMALL)
+    e = prismatic.render("lamps", passes=1, progress=False, **SMALL)
+    assert same_bits(d65, read_exr(tmp_path / "d65.exr"))
+    assert not same_bits(d65, e), "E is the default white point"
+    with pytest.raises(prismatic.SceneError, match="expected E or D65"):
+        prismatic.render("lamps", white_point="D50", progress=False)
 
 
 def test_a_scene_file_and_its_text_render_the_same(cli, tmp_path):

@@ -65,8 +65,9 @@ struct ViewRay {
 }
 
 /// Traces the view rays (pass `pass`'s own paths when
-/// [`prismatic_core::model::scene::ViewPaths::per_pass`]): the image without caustics and the visible points
-/// (tile by tile, so their order does not depend on the thread count).
+/// [`prismatic_core::model::scene::ViewPaths::per_pass`]): the image
+/// without caustics and the visible points (tile by tile, so their order
+/// does not depend on the thread count).
 pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
     let r = &scene.scene.render;
     let camera = PinholeCamera::new(&scene.scene.camera, r.width, r.height);

@@ -283,7 +283,8 @@ pub struct VisiblePoint {
     pub normal: [f32; 3],
     /// The gather radius at this point in this pass.
     pub radius: f32,
-    /// tint / π × exposure: pixel radiance per unit of reflected caustic irradiance.
+    /// tint × white balance × exposure / π: pixel radiance per unit of
+    /// reflected caustic irradiance.
     pub weight: [f32; 3],
     /// Photons accepted so far (a white photon counts once).
     pub found: u32,

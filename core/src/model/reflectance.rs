@@ -20,8 +20,8 @@
 //! per colour space), a visible point keeps its RGB albedo, and the light a
 //! surface reflects from a light of any spectrum is a 3 × 3 matrix per
 //! light times the albedo
-//! ([`crate::sampling::light_spectrum::LightSpectrum::reflected`]). The price: saturated
-//! colours get broader, less natural spectra than J&H's.
+//! ([`crate::sampling::light_spectrum::LightSpectrum::reflected`]). The
+//! price: saturated colours get broader, less natural spectra than J&H's.
 
 use crate::model::wavelength_rgb::{FIRST_NM, ROWS, STEP_NM};
 use glam::Vec3;

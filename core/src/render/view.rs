@@ -24,15 +24,17 @@
 //! transmittance (per RGB channel for white rays, the band's for a band;
 //! see [`glass_transmittance`]).
 //!
-//! With per-pass view paths ([`ViewPaths::Hero`](crate::model::scene::ViewPaths::Hero) and [`ViewPaths::Sampled`](crate::model::scene::ViewPaths::Sampled))
-//! each pass traces one path per pixel, with the numbers of [`PixelSampler`]:
-//! through the pixel's centre (hero) or a jittered point of it (sampled); at glass the reflection with probability R, else the
-//! refraction (the factor R or 1 − R cancels against its probability); at
+//! With per-pass view paths ([`crate::model::scene::ViewPaths::per_pass`])
+//! each pass traces its own view, with the numbers of [`PixelSampler`]: at
 //! the first dispersive glass M = 4 hero paths ([`hero_view_paths`], at
 //! most N), path i in band b = ⌊v·N⌋ with v = (i + u)/M (u the pixel's
 //! spectrum number for the pass), weighted (N/M)·C_b, at its own
 //! wavelength when the scene's photons are (continuous and hero
-//! wavelengths). Each pass's view is then an unbiased sample of what the
+//! wavelengths). Hero paths start at the pixel's centre and take both
+//! Fresnel branches at glass, as centre rays do; sampled paths start at a
+//! jittered point of the pixel and take the reflection with probability
+//! R, else the refraction (the factor R or 1 − R cancels against its
+//! probability). Each pass's view is then an unbiased sample of what the
 //! pixel's centre sees (hero) or of the box-filtered pixel (sampled), and
 //! the passes' mean converges to it.
 
@@ -100,8 +102,8 @@ impl<'a> ViewContext<'a> {
 
     fn trace_pixel(&self, x: u32, y: u32, sampler: Option<PixelSampler>, points: &mut Vec<VisiblePoint>) -> Vec3 {
         let response = self.scene.camera_response();
-        let tint = response;
-        let path = ViewPath { band: WHITE_BAND, hero: 0, lambda_nm: None, depth: 0, weight: 1.0, tint, sampler };
+        let path =
+            ViewPath { band: WHITE_BAND, hero: 0, lambda_nm: None, depth: 0, weight: 1.0, tint: response, sampler };
         let first = points.len();
         let ray = match sampler {
             Some(s) if self.scene.scene.render.view_paths.jittered() => self.camera.ray_through(x, y, s.jitter()),

@@ -104,11 +104,24 @@ fn chromaticity_of_spectrum(spectrum: &Spectrum) -> (f64, f64) {
     (xyz.x / xyz.element_sum(), xyz.y / xyz.element_sum())
 }
 
+/// The renderer's linear RGB of light with CIE 1931 chromaticity (x, y)
+/// and the channel sum `sum`: the inverse of [`chromaticity_of`].
+fn rgb_of_chromaticity((x, y): (f64, f64), sum: f32) -> prismatic_core::Vec3 {
+    use prismatic_core::model::{cie, color};
+    let (lo, hi) = prismatic_core::model::bands::VISIBLE_NM;
+    let white = color::xyz_to_linear_srgb(cie::integrate(f64::from(lo), f64::from(hi)));
+    let rgb = (color::XYZ_TO_LINEAR_SRGB * glam::DVec3::new(x, y, 1.0 - x - y)) / white;
+    (rgb * (f64::from(sum) / rgb.element_sum())).as_vec3()
+}
+
 /// A blackbody's direct light on a white wall has the blackbody's CIE
-/// chromaticity (within 0.002 in x and y: ΔE00 below 1 at these colours),
-/// an equal-energy light's is neutral, on every backend.
+/// chromaticity (within 0.002 in x and y, and ΔE00 < 1 against the colour
+/// of that chromaticity at the wall's brightness, both shown at a
+/// brightest channel of 0.8), an equal-energy light's is neutral, on
+/// every backend.
 #[test]
 fn a_lights_colour_on_a_white_wall_is_its_spectrums() {
+    use prismatic_cli::study::metrics::{ciede2000, lab};
     for mut backend in every_backend() {
         let name = backend.name();
         for spectrum in [
@@ -116,12 +129,18 @@ fn a_lights_colour_on_a_white_wall_is_its_spectrums() {
             Spectrum::Blackbody { kelvin: 6500.0 },
             Spectrum::Illuminant(prismatic_core::model::spectrum::Illuminant::F11),
         ] {
-            let (x, y) = chromaticity_of(wall_colour(backend.as_mut(), spectrum.clone(), WhitePoint::E));
+            let wall = wall_colour(backend.as_mut(), spectrum.clone(), WhitePoint::E);
+            let (x, y) = chromaticity_of(wall);
             let (ex, ey) = chromaticity_of_spectrum(&spectrum);
             assert!(
                 (x - ex).abs() < 2e-3 && (y - ey).abs() < 2e-3,
                 "{name} {spectrum}: ({x:.4}, {y:.4}) vs ({ex:.4}, {ey:.4})"
             );
+            let expected = rgb_of_chromaticity((ex, ey), wall.element_sum());
+            let shown = 0.8 / wall.max_element().max(expected.max_element());
+            let tone_map = prismatic_core::model::color::ToneMap::Clamp;
+            let delta_e = ciede2000(lab(wall * shown, tone_map), lab(expected * shown, tone_map));
+            assert!(delta_e < 1.0, "{name} {spectrum}: ΔE00 {delta_e:.3} ({wall} vs {expected})");
         }
         let white = wall_colour(backend.as_mut(), Spectrum::EqualEnergy, WhitePoint::E);
         assert!(white.x > 0.0 && white.x == white.y && white.y == white.z, "{name}: {white}");

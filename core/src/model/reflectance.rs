@@ -56,10 +56,11 @@ impl ReflectancePrimaries {
             })
             .collect();
         let (first, last) = (parsed[0], parsed[parsed.len() - 1]);
-        let rows = core::array::from_fn(|i| {
-            let nm = FIRST_NM + STEP_NM * i as f32;
-            let at = ((nm - first.0) / STEP_NM).round();
-            if at < 0.0 { first.1 } else { parsed.get(at as usize).map_or(last.1, |r| r.1) }
+        // The CSV's first row is this grid's row `offset` (both on 5 nm steps).
+        let offset = ((first.0 - FIRST_NM) / STEP_NM + 0.5) as usize;
+        let rows = core::array::from_fn(|i| match i.checked_sub(offset) {
+            None => first.1,
+            Some(k) => parsed.get(k).map_or(last.1, |r| r.1),
         });
         ReflectancePrimaries { rows }
     }

@@ -2,6 +2,7 @@
 
 use prismatic_core::{Backend, BackendError, ReferenceBackend};
 use prismatic_cpu::CpuBackend;
+#[cfg(feature = "gpu")]
 use prismatic_gpu::{AdapterChoice, GpuBackend};
 
 /// What the user asked for.
@@ -30,6 +31,15 @@ pub fn select(choice: BackendChoice) -> Result<Selected, BackendError> {
     match choice {
         BackendChoice::Reference => Ok(Selected { backend: Box::new(ReferenceBackend), note: None }),
         BackendChoice::Cpu => Ok(Selected { backend: Box::new(CpuBackend::new()), note: None }),
+        BackendChoice::Gpu | BackendChoice::Auto => select_gpu(choice),
+    }
+}
+
+/// The GPU backend for `--backend gpu`, or for `auto` on a hardware GPU
+/// (else the CPU backend).
+#[cfg(feature = "gpu")]
+fn select_gpu(choice: BackendChoice) -> Result<Selected, BackendError> {
+    match choice {
         BackendChoice::Gpu => {
             let gpu = GpuBackend::new(AdapterChoice::Any)?;
             let note = gpu.adapter().map(|a| format!("gpu backend on {}", prismatic_gpu::describe(a)));
@@ -45,6 +55,25 @@ pub fn select(choice: BackendChoice) -> Result<Selected, BackendError> {
                 note: Some(format!("auto picked the cpu backend ({} threads; {why})", rayon_threads())),
             }),
         },
+        _ => unreachable!("only gpu and auto choose a GPU"),
+    }
+}
+
+/// Built without the `gpu` feature: `--backend gpu` is an error, `auto` the CPU backend.
+#[cfg(not(feature = "gpu"))]
+fn select_gpu(choice: BackendChoice) -> Result<Selected, BackendError> {
+    match choice {
+        BackendChoice::Gpu => Err(BackendError::NoDevice {
+            what: "GPU backend",
+            detail: "this prismatic was built without the `gpu` feature".into(),
+        }),
+        _ => Ok(Selected {
+            backend: Box::new(CpuBackend::new()),
+            note: Some(format!(
+                "auto picked the cpu backend ({} threads; built without the gpu feature)",
+                rayon_threads()
+            )),
+        }),
     }
 }
 

@@ -59,9 +59,6 @@ struct ViewRay {
     /// A sampled path's numbers, and its hero path (0 before the split).
     sampler: Option<PixelSampler>,
     hero: u32,
-    /// Whether the path takes one Fresnel branch at glass (with its
-    /// probability), not both.
-    one_branch: bool,
 }
 
 /// Traces the view rays (pass `pass`'s own paths when
@@ -100,7 +97,6 @@ pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
                     pixel: k as u32,
                     sampler,
                     hero: 0,
-                    one_branch: jittered,
                 });
             }
             let mut shader = Shader { scene, points: Vec::new(), first_pixel: (tile * tile_pixels) as u32 };
@@ -141,6 +137,8 @@ impl Shader<'_> {
         };
         let hit = intersect_scene(self.scene, &ray, f32x8::splat(f32::INFINITY));
         let point = ray.at(hit.t);
+        // Sampled paths take one Fresnel branch at glass, the others both.
+        let one_branch = settings.view_paths.jittered();
         let object = hit.object.to_array();
         // Diffuse lanes are shaded together; the rest one by one (misses, mirrors, glass).
         let mut diffuse = [0.0f32; 8];
@@ -191,14 +189,14 @@ impl Shader<'_> {
                             let share = r.weight * w.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * w, weight: share, band, lambda_nm, hero, ..*r };
                             let ior = glass.path_ior(band, lambda_nm, &self.scene.bands);
-                            spawn_at_glass(&tinted, p, n, ior, queue);
+                            spawn_at_glass(&tinted, p, n, ior, one_branch, queue);
                         }
                     }
                     None => {
                         for (b, info) in self.scene.bands.bands().iter().enumerate() {
                             let share = r.weight * info.weight.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * info.weight, weight: share, band: b as u16, ..*r };
-                            spawn_at_glass(&tinted, p, n, glass.ior(b as u16), queue);
+                            spawn_at_glass(&tinted, p, n, glass.ior(b as u16), one_branch, queue);
                         }
                     }
                 },
@@ -210,7 +208,8 @@ impl Shader<'_> {
             }
         }
         if at_glass != 0 {
-            spawn_packet_at_glass(&arrived[..rays.len()], at_glass, point, hit.normal, f32x8::new(glass_ior), queue);
+            let ior = f32x8::new(glass_ior);
+            spawn_packet_at_glass(&arrived[..rays.len()], at_glass, point, hit.normal, ior, one_branch, queue);
         }
     }
 
@@ -221,25 +220,27 @@ impl Shader<'_> {
         let settings = &self.scene.scene.render;
         let facing = lt(ray.dir.dot(hit.normal), f32x8::ZERO);
         let n = Vec3x8::select(facing, hit.normal, -hit.normal);
-        // Each light's irradiance; its colour, as the surface reflects its spectrum, per lane below.
-        let lights = self.scene.scene.lights.iter().zip(&self.scene.plan.shadows);
-        let direct: Vec<[f32; 8]> =
-            lights.map(|(light, plan)| self.direct_irradiance(light, plan.on, p, n, mask).to_array()).collect();
         let (objects, triangles) = (hit.object.to_array(), hit.triangle.to_array());
-        let mut out = [Vec3::ZERO; 8];
+        let mut albedo = [Vec3::ZERO; 8];
         for i in lanes(mask) {
             let (pi, ni) = (p.lane(i), n.lane(i));
-            let albedo = self.scene.albedo_at(objects[i] as usize, triangles[i] as u32, pi, ni);
+            albedo[i] = self.scene.albedo_at(objects[i] as usize, triangles[i] as u32, pi, ni);
             if gathers_at(self.scene, rays[i].depth) {
                 let weight = rays[i].tint / PI * self.scene.camera_response();
                 let pixel = self.first_pixel + rays[i].pixel;
-                self.points.push(VisiblePoint { point: pi, normal: ni, weight, albedo, pixel });
+                self.points.push(VisiblePoint { point: pi, normal: ni, weight, albedo: albedo[i], pixel });
             }
-            let reflected: Vec3 =
-                self.scene.light_spectra.iter().zip(&direct).map(|(s, e)| s.reflected * albedo * e[i]).sum();
-            out[i] = reflected * (1.0 / PI) + albedo * settings.ambient;
         }
-        out
+        // Each light's irradiance, in the colour the surface reflects of its spectrum.
+        let mut reflected = [Vec3::ZERO; 8];
+        let lights = self.scene.scene.lights.iter().zip(&self.scene.plan.shadows).zip(&self.scene.light_spectra);
+        for ((light, plan), spectrum) in lights {
+            let e = self.direct_irradiance(light, plan.on, p, n, mask).to_array();
+            for i in lanes(mask) {
+                reflected[i] += spectrum.reflected * albedo[i] * e[i];
+            }
+        }
+        core::array::from_fn(|i| reflected[i] * (1.0 / PI) + albedo[i] * settings.ambient)
     }
 
     /// `ViewContext::direct_irradiance` for eight points (shadow rays if `shadows`).
@@ -312,9 +313,10 @@ impl Shader<'_> {
 
 /// Queues the Fresnel-weighted reflection and refraction of `r` at a glass
 /// surface point `p` (outward normal `outward`), as the reference recurses
-/// (a sampled path: the one branch its number chooses, as photons choose).
-fn spawn_at_glass(r: &ViewRay, p: Vec3, outward: Vec3, ior: f32, queue: &mut Vec<ViewRay>) {
-    if let Some(sampler) = r.sampler.filter(|_| r.one_branch) {
+/// (with `one_branch`, a sampled path: the one branch its number chooses,
+/// as photons choose).
+fn spawn_at_glass(r: &ViewRay, p: Vec3, outward: Vec3, ior: f32, one_branch: bool, queue: &mut Vec<ViewRay>) {
+    if let Some(sampler) = r.sampler.filter(|_| one_branch) {
         let next = scatter_dielectric(r.dir, p, outward, ior, sampler.branch(r.hero, r.depth));
         queue.push(ViewRay { origin: next.origin, dir: next.direction, depth: r.depth + 1, ..*r });
         return;
@@ -342,6 +344,7 @@ fn spawn_packet_at_glass(
     point: Vec3x8,
     outward: Vec3x8,
     ior: f32x8,
+    one_branch: bool,
     queue: &mut Vec<ViewRay>,
 ) {
     let d = Vec3x8::from_lanes(&core::array::from_fn(|i| rays[i.min(rays.len() - 1)].dir));
@@ -349,7 +352,7 @@ fn spawn_packet_at_glass(
     let f = split.reflectance.to_array();
     let tir = split.tir.to_bitmask();
     for (i, r) in rays.iter().enumerate().filter(|(i, _)| lanes_at_glass & (1 << i) != 0) {
-        if let Some(sampler) = r.sampler.filter(|_| r.one_branch) {
+        if let Some(sampler) = r.sampler.filter(|_| one_branch) {
             // The one branch the path's number chooses, as `scatter_dielectric` chooses.
             let (origin, dir) = split.choose(i, sampler.branch(r.hero, r.depth));
             queue.push(ViewRay { origin, dir, depth: r.depth + 1, ..*r });

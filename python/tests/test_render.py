@@ -87,34 +87,23 @@ def test_light_tracing_is_the_clis_bit_for_bit(cli, tmp_path):
         prismatic.render("caustic", light_tracing="yes", progress=False)
 
 
-def test_photon_sequence_is_the_clis_bit_for_bit(cli, tmp_path):
-    cli("render", "prism", "--passes", "1", *flags(SMALL), "--photon-sequence", "random", "-o", "r.exr", cwd=tmp_path)
-    random = prismatic.render("prism", passes=1, photon_sequence="random", progress=False, **SMALL)
-    sobol = prismatic.render("prism", passes=1, progress=False, **SMALL)
-    assert same_bits(random, read_exr(tmp_path / "r.exr"))
-    assert not same_bits(random, sobol), "Sobol is the default sequence"
-    with pytest.raises(prismatic.SceneError, match="expected sobol or random"):
-        prismatic.render("prism", photon_sequence="halton", progress=False)
-
-
-def test_view_paths_are_the_clis_bit_for_bit(cli, tmp_path):
-    cli("render", "sphere", "--passes", "2", *flags(SMALL), "--view-paths", "sampled", "-o", "s.exr", cwd=tmp_path)
-    sampled = prismatic.render("sphere", passes=2, view_paths="sampled", progress=False, **SMALL)
-    centre = prismatic.render("sphere", passes=2, progress=False, **SMALL)
-    assert same_bits(sampled, read_exr(tmp_path / "s.exr"))
-    assert not same_bits(sampled, centre), "rays through the pixel centres are the default"
-    with pytest.raises(prismatic.SceneError, match="expected centre, hero or sampled"):
-        prismatic.render("sphere", view_paths="jittered", progress=False)
-
-
-def test_the_white_point_is_the_clis_bit_for_bit(cli, tmp_path):
-    cli("render", "lamps", "--passes", "1", *flags(SMALL), "--white-point", "D65", "-o", "d65.exr", cwd=tmp_path)
-    d65 = prismatic.render("lamps", passes=1, white_point="D65", progress=False, **SMALL)
-    e = prismatic.render("lamps", passes=1, progress=False, **SMALL)
-    assert same_bits(d65, read_exr(tmp_path / "d65.exr"))
-    assert not same_bits(d65, e), "E is the default white point"
-    with pytest.raises(prismatic.SceneError, match="expected E or D65"):
-        prismatic.render("lamps", white_point="D50", progress=False)
+@pytest.mark.parametrize(
+    "scene, passes, key, value, bad, expected",
+    [
+        ("prism", 1, "photon_sequence", "random", "halton", "expected sobol or random"),
+        ("sphere", 2, "view_paths", "sampled", "jittered", "expected centre, hero or sampled"),
+        ("lamps", 1, "white_point", "D65", "D50", "expected E or D65"),
+    ],
+)
+def test_a_named_setting_is_the_clis_bit_for_bit(cli, tmp_path, scene, passes, key, value, bad, expected):
+    flag = "--" + key.replace("_", "-")
+    cli("render", scene, "--passes", str(passes), *flags(SMALL), flag, value, "-o", "set.exr", cwd=tmp_path)
+    given = prismatic.render(scene, passes=passes, progress=False, **{key: value}, **SMALL)
+    default = prismatic.render(scene, passes=passes, progress=False, **SMALL)
+    assert same_bits(given, read_exr(tmp_path / "set.exr"))
+    assert not same_bits(given, default), f"{key} = {value} is not the default"
+    with pytest.raises(prismatic.SceneError, match=expected):
+        prismatic.render(scene, progress=False, **{key: bad})
 
 
 def test_a_scene_file_and_its_text_render_the_same(cli, tmp_path):

@@ -59,7 +59,7 @@ var<private> kid_count: u32;
 var<private> scramble: u32;
 
 // Whether each pass traces its own paths (ViewPaths::per_pass).
-fn sampled() -> bool {
+fn per_pass() -> bool {
     return params.view_paths != VIEW_PATHS_CENTRE;
 }
 
@@ -163,9 +163,9 @@ fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>, alb
     if i < params.point_capacity {
         let none = vec2<u32>(0u);
         let sums = array<vec2<u32>, 3>(none, none, none);
-        // A sampled path's point starts from its pixel's first radius.
+        // A per-pass path's point starts from its pixel's first radius.
         var ratio = 1.0;
-        if sampled() && pixel_ratios[pixel_index] != 0u {
+        if per_pass() && pixel_ratios[pixel_index] != 0u {
             ratio = bitcast<f32>(~pixel_ratios[pixel_index]);
         }
         points[i] = VisiblePoint(point, 0u, normal, params.radius, weight, 0u, sums, none, pixel_index, ratio, 0u, 0u, albedo, 0u);
@@ -193,8 +193,8 @@ fn shade_diffuse(dir: vec3<f32>, hit: Hit, tint: vec3<f32>, depth: u32) -> vec3<
 
 // One pending entry: what it adds to the pixel; what it spawns goes to `kids`.
 fn visit(e: Pending) -> vec3<f32> {
-    if e.next_band != NO_SPLIT && sampled() {
-        // Hero path i of a sampled split: band ⌊v·N⌋ at v = (i + u)/M,
+    if e.next_band != NO_SPLIT && per_pass() {
+        // Hero path i of a per-pass split: band ⌊v·N⌋ at v = (i + u)/M,
         // (N/M)·C_b or the colour of its wavelength over M.
         let i = e.next_band;
         let m = min(HERO_WAVELENGTHS, params.band_count);
@@ -262,7 +262,7 @@ fn visit(e: Pending) -> vec3<f32> {
 // jittered point), exposure applied, but for the caustics of its visible points.
 fn pixel(x: u32, y: u32) -> vec3<f32> {
     var jitter = vec2<f32>(0.5);
-    if sampled() {
+    if per_pass() {
         scramble = random_u32(params.view_seed, y * params.width + x, PIXEL_SCRAMBLE);
     }
     if jittered() {

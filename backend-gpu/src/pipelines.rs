@@ -111,6 +111,8 @@ pub struct Pipelines {
     pub stats_layout: wgpu::BindGroupLayout,
     /// Group 1 of light tracing: the pixels' sums, the stored count, map windows.
     pub splat_layout: wgpu::BindGroupLayout,
+    /// Group 1 of the caustic layer: light tracing's, then the engine's frame.
+    pub layer_layout: wgpu::BindGroupLayout,
     /// Emit + trace.
     pub trace: wgpu::ComputePipeline,
     /// Compaction scatter.
@@ -147,6 +149,8 @@ pub struct Pipelines {
     pub fold_tallies: wgpu::ComputePipeline,
     /// splat.wgsl `splat`: light tracing, the photons added to the pixels' sums.
     pub splat: wgpu::ComputePipeline,
+    /// layer.wgsl `layer_splat`: the photons added to the sums of an engine's frame.
+    pub layer_splat: wgpu::ComputePipeline,
     view: Mutex<HashMap<u32, wgpu::ComputePipeline>>,
     texture: Mutex<HashMap<wgpu::TextureFormat, TextureCopy>>,
 }
@@ -183,6 +187,11 @@ impl Pipelines {
         let level_dispatch_layout = layout(device, "prismatic level dispatches", &[Read, ReadWrite]);
         let stats_layout = layout(device, "prismatic statistics", &[Read, ReadWrite]);
         let splat_layout = layout(device, "prismatic light tracing", &with_windows(vec![ReadWrite, Read], Read));
+        let layer_layout = layout(
+            device,
+            "prismatic caustic layer",
+            &[with_windows(vec![ReadWrite, Read], Read), vec![Read]].concat(),
+        );
         let session_src = shaders::session();
         let session =
             |label: &str, entry: &str| pipeline(device, label, &session_src, entry, &[&gather_layout, &session_layout]);
@@ -227,6 +236,13 @@ impl Pipelines {
                 "splat",
                 &[&scene_layout, &splat_layout],
             ),
+            layer_splat: pipeline(
+                device,
+                "prismatic caustic layer",
+                &shaders::layer(),
+                "layer_splat",
+                &[&scene_layout, &layer_layout],
+            ),
             scene_layout,
             trace_layout,
             compact_layout,
@@ -238,6 +254,7 @@ impl Pipelines {
             level_dispatch_layout,
             stats_layout,
             splat_layout,
+            layer_layout,
             view: Mutex::new(HashMap::new()),
             texture: Mutex::new(HashMap::new()),
         }

@@ -46,7 +46,7 @@ pub fn pixel_buffer(ctx: &GpuContext, width: u32, height: u32) -> Result<wgpu::B
         ctx.device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("prismatic pixels"),
             size: (u64::from(width) * u64::from(height) * PIXEL_BYTES).max(PIXEL_BYTES),
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         })
     })

@@ -14,7 +14,8 @@ use prismatic_core::sampling::pixel_sample;
 use prismatic_core::util::math::{COS_COEFFS, SIN_COEFFS};
 use prismatic_core::util::rng::dim;
 use prismatic_core::util::tolerance::{
-    BARYCENTRIC_EPS, CONNECTION_REL, MIN_VIEW_WEIGHT, SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL, SURFACE_SKIN_FACTOR,
+    BARYCENTRIC_EPS, CONNECTION_REL, LAYER_PLANE_REL, MIN_VIEW_WEIGHT, SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL,
+    SURFACE_SKIN_FACTOR,
 };
 use std::fmt::Write as _;
 
@@ -208,6 +209,7 @@ fn prelude(stack: u32) -> String {
     f("BOX_MARGIN", prismatic_core::geometry::bvh::BOX_MARGIN);
     f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);
     f("CONNECTION_REL", CONNECTION_REL);
+    f("LAYER_PLANE_REL", LAYER_PLANE_REL);
     f("VISIBLE_NM_LO", VISIBLE_NM.0);
     f("WAVELENGTH_RGB_FIRST_NM", wavelength_rgb::FIRST_NM);
     f("WAVELENGTH_RGB_STEP_NM", wavelength_rgb::STEP_NM);
@@ -260,6 +262,7 @@ const SCENE: &str = include_str!("shaders/scene.wgsl");
 const ALBEDO: &str = include_str!("shaders/albedo.wgsl");
 const SUMS: &str = include_str!("shaders/sums.wgsl");
 const COLOUR: &str = include_str!("shaders/colour.wgsl");
+const PROJECT: &str = include_str!("shaders/project.wgsl");
 
 /// The functions every pipeline shares (RNG, optics, the estimator's last
 /// step, fixed-point sums) behind the prelude, with no bindings and no
@@ -342,7 +345,24 @@ pub fn splat() -> String {
         COLOUR.into(),
         ALBEDO.into(),
         SUMS.into(),
+        PROJECT.into(),
         include_str!("shaders/splat.wgsl").into(),
+        photon_windows("map", 1, 2, false),
+    ]
+    .concat()
+}
+
+/// The caustic layer (entry `layer_splat`): the scene's params and bands in
+/// group 0; in group 1 the pixels' sums (binding 0), the stored count (1),
+/// the map (2–5) and the engine's frame (6).
+pub fn layer() -> String {
+    [
+        library(),
+        SCENE.into(),
+        COLOUR.into(),
+        SUMS.into(),
+        PROJECT.into(),
+        include_str!("shaders/layer.wgsl").into(),
         photon_windows("map", 1, 2, false),
     ]
     .concat()

@@ -9,15 +9,19 @@
 //! waited frames, where the adapter has timestamp queries), the grid levels
 //! the render built (bit l: cells of the pass radius / 4^l) and the bytes a
 //! frame moves each way. The paper's configuration gathers within a fixed
-//! radius (its frame is one pass); the others are progressive.
+//! radius (its frame is one pass); the others are progressive. The last
+//! six are the default render's light transport (light tracing, hero
+//! wavelengths and view paths), as prismatic's image and as a caustic layer
+//! in the frame the camera sees (what an engine's frame costs).
 //!
 //! Then the photon map of one pass read back (what `prismatic photons` pays).
 //!
-//! `cargo run --release -p prismatic-benches --example gpu_frame_times -- [FRAMES] [--session-only]`
+//! `cargo run --release -p prismatic-benches --example gpu_frame_times -- [FRAMES] [--session-only] [--only TEXT]`
+//! (`--only`: the configurations whose label contains TEXT)
 
 use prismatic_core::model::bands::BandSpec;
-use prismatic_core::model::scene::{RadiusMode, WavelengthSampling};
-use prismatic_core::{NoProgress, PreparedScene, Render, StageTimes};
+use prismatic_core::model::scene::{RadiusMode, RenderSettings, WavelengthSampling};
+use prismatic_core::{LayerFrame, NoProgress, PreparedScene, Render, StageTimes};
 use prismatic_gpu::{AdapterChoice, GpuBackend, GpuContext, GpuOptions};
 use std::time::{Duration, Instant};
 
@@ -31,6 +35,21 @@ struct Config {
     wavelengths: WavelengthSampling,
     projection_maps: bool,
     radius_mode: RadiusMode,
+    /// The paper's light transport, or the default render's.
+    transport: Transport,
+}
+
+/// How a configuration's photons reach the image.
+#[derive(Clone, Copy, PartialEq)]
+enum Transport {
+    /// As the configuration's settings say (the paper's gather).
+    Gathered,
+    /// The default render's: light tracing, hero wavelengths and view
+    /// paths, the density gather behind glass.
+    LightTraced,
+    /// As light traced, drawn as a caustic layer in the frame the camera
+    /// sees (an engine's depth and normals): no view rays, no gather.
+    Layer,
 }
 
 fn scene(c: &Config, width: u32, height: u32) -> PreparedScene {
@@ -41,6 +60,10 @@ fn scene(c: &Config, width: u32, height: u32) -> PreparedScene {
     r.wavelengths = c.wavelengths;
     r.projection_maps = c.projection_maps;
     r.radius_mode = c.radius_mode;
+    if c.transport != Transport::Gathered {
+        let d = RenderSettings::default();
+        (r.estimator, r.light_tracing, r.view_paths) = (d.estimator, d.light_tracing, d.view_paths);
+    }
     PreparedScene::new(doc.scene).expect("valid")
 }
 
@@ -65,7 +88,14 @@ fn main() {
         wavelengths,
         projection_maps,
         radius_mode,
+        transport: Transport::Gathered,
     };
+    let hero = |label, photons, transport| Config {
+        transport,
+        ..config(label, (1920, 1080), photons, BandSpec::Physical(32), WavelengthSampling::Hero, true, progressive)
+    };
+    let light_traced = |label, photons| hero(label, photons, Transport::LightTraced);
+    let layer = |label, photons| hero(label, photons, Transport::Layer);
     let hd = (1920, 1080);
     let configs = [
         config(
@@ -97,8 +127,22 @@ fn main() {
             true,
             progressive,
         ),
+        light_traced("sphere 1080p, 100k x hero, light traced", 100_000),
+        light_traced("sphere 1080p, 1M x hero, light traced", 1_000_000),
+        light_traced("sphere 1080p, 4M x hero, light traced", 4_000_000),
+        layer("sphere 1080p, 100k x hero, caustic layer", 100_000),
+        layer("sphere 1080p, 1M x hero, caustic layer", 1_000_000),
+        layer("sphere 1080p, 4M x hero, caustic layer", 4_000_000),
     ];
+    let args: Vec<String> = std::env::args().collect();
+    let only = args.iter().position(|a| a == "--only").and_then(|i| args.get(i + 1));
+    let chosen: Vec<Config> =
+        configs.into_iter().filter(|c| only.is_none_or(|o| c.label.contains(o.as_str()))).collect();
+    let configs = chosen;
     session_frames(&gpu, &configs, frames);
+    if configs.is_empty() {
+        return;
+    }
     if session_only {
         return;
     }
@@ -140,20 +184,25 @@ fn session_frames(gpu: &GpuBackend, configs: &[Config], frames: usize) {
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for c in configs {
         let run = |width: u32, height: u32| -> Result<Timed, String> {
-            let mut session = gpu.session(&scene(c, width, height)).map_err(|e| e.to_string())?;
+            let scene = scene(c, width, height);
+            let mut session = gpu.session(&scene).map_err(|e| e.to_string())?;
+            if c.transport == Transport::Layer {
+                session.set_layer(Some(&LayerFrame::seen_by_camera(&scene))).map_err(|e| e.to_string())?;
+            }
             let wait = |s: &prismatic_gpu::GpuSession| s.context().wait().map_err(|e| e.to_string());
             let t = Instant::now();
             session.next_pass(&mut NoProgress).map_err(|e| e.to_string())?;
             wait(&session)?;
             let first = t.elapsed();
             let (mut waited, mut stages) = (Vec::with_capacity(frames), Vec::with_capacity(frames));
-            for _ in 0..frames {
+            for frame in 0..frames {
                 let t = Instant::now();
                 session.next_pass(&mut NoProgress).map_err(|e| e.to_string())?;
                 wait(&session)?;
                 waited.push(t.elapsed());
-                // The frame before this one's, come back while this one was waited for.
-                stages.extend(session.stage_times().filter(|t| t.view.is_zero()));
+                // The frame before this one's, come back while this one was
+                // waited for; the first frame's (view rays and pilot) is left out.
+                stages.extend(session.stage_times().filter(|_| frame > 0));
             }
             waited.sort();
             let median = |stage: fn(&StageTimes) -> Duration| {
@@ -165,7 +214,7 @@ fn session_frames(gpu: &GpuBackend, configs: &[Config], frames: usize) {
                 "no timestamps".to_string()
             } else {
                 let t = StageTimes {
-                    view: Duration::ZERO,
+                    view: median(|t| t.view),
                     photons: median(|t| t.photons),
                     grid: median(|t| t.grid),
                     gather: median(|t| t.gather),

@@ -11,7 +11,7 @@
 //!
 //! which makes one `#[test]` per body of [`suite`]: photon maps and images
 //! against the scalar reference (gathered, light traced, with sampled view
-//! paths), partial renders that merge exactly, passes
+//! paths, a caustic layer in an engine's frame), partial renders that merge exactly, passes
 //! in any order, updates that give a fresh render, read-outs and
 //! statistics. The expression may give `None` (a GPU backend on a machine
 //! without an adapter): the tests then say so and pass, except under
@@ -38,6 +38,7 @@ macro_rules! conformance_tests {
             images_match_the_reference,
             light_traced_images_match_the_reference,
             sampled_view_paths_match_the_reference,
+            caustic_layers_match_the_reference,
             partial_renders_merge_into_one_run,
             passes_run_in_any_order_and_once,
             updates_give_a_fresh_renders_sums,

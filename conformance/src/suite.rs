@@ -9,8 +9,8 @@ use crate::compare::{compare_images, compare_maps};
 use crate::scenes;
 use prismatic_core::model::scene::{Light, PhotonSequence, RadiusMode, ViewPaths};
 use prismatic_core::{
-    Accumulation, Backend, BackendError, BandSpec, Change, NoProgress, PhotonMap, PreparedScene, ReferenceBackend,
-    Render, Scene,
+    Accumulation, Backend, BackendError, BandSpec, Change, LayerFrame, NoProgress, PhotonMap, PreparedScene,
+    ReferenceBackend, Render, Scene,
 };
 
 /// A render of `scene` on `backend`, panicking with the backend's name.
@@ -163,6 +163,57 @@ pub fn sampled_view_paths_match_the_reference(backend: &mut dyn Backend) {
         let (got, want) = (sums(render.as_mut()), sums(fresh.as_mut()));
         assert!(got == want, "{name}: sampled view paths, {change:?}: not a fresh render's sums");
     }
+}
+
+/// A caustic layer in an engine's frame (the frame the scene's camera sees,
+/// and once more with an engine's occluder in front of the left half): the
+/// reference's image after two passes, a black base and no visible points;
+/// partial renders merge into one run's sums bit for bit; leaving the
+/// layer gives a fresh render's sums; a frame of another size is refused.
+pub fn caustic_layers_match_the_reference(backend: &mut dyn Backend) {
+    let name = backend.name();
+    for (scene_name, scene) in scenes::with_caustics() {
+        let seen = LayerFrame::seen_by_camera(&scene);
+        let mut occluded = seen.clone();
+        for (i, depth) in occluded.depth.iter_mut().enumerate() {
+            if i as u32 % seen.width < seen.width / 2 {
+                *depth = depth.min(1.0);
+            }
+        }
+        for (frame_name, frame) in [("its camera's frame", &seen), ("an occluded frame", &occluded)] {
+            let case = format!("{name}, {scene_name}, {frame_name}");
+            let layer = |backend: &mut dyn Backend, passes: std::ops::Range<u32>| {
+                let mut render = prepare(backend, &scene);
+                render.set_layer(Some(frame)).unwrap_or_else(|e| panic!("{case}: set_layer: {e}"));
+                run(render.as_mut(), passes);
+                render
+            };
+            let (mut reference, mut got) = (layer(&mut ReferenceBackend, 0..2), layer(backend, 0..2));
+            let expected = reference.image().unwrap();
+            assert!(expected.pixels.iter().any(|p| p.max_element() > 0.0), "{case}: the reference's layer is black");
+            compare_images(&expected, &got.image().unwrap()).unwrap_or_else(|e| panic!("{case}: {e}"));
+            assert!(got.base().unwrap().pixels.iter().all(|p| *p == glam::Vec3::ZERO), "{case}: base");
+            assert_eq!(got.stats().unwrap().visible_points, 0, "{case}: visible points");
+            let (mut first, mut second) = (layer(backend, 0..1), layer(backend, 1..2));
+            let mut merged = sums(first.as_mut());
+            merged.merge(&sums(second.as_mut())).expect("disjoint passes");
+            assert_eq!(merged, sums(got.as_mut()), "{case}: merged partials differ from one run");
+        }
+        let mut left = prepare(backend, &scene);
+        left.set_layer(Some(&seen)).unwrap();
+        run(left.as_mut(), 0..1);
+        left.set_layer(None).unwrap();
+        run(left.as_mut(), 0..2);
+        let mut fresh = prepare(backend, &scene);
+        run(fresh.as_mut(), 0..2);
+        assert_eq!(sums(left.as_mut()), sums(fresh.as_mut()), "{name}, {scene_name}: the image after a layer");
+        assert_eq!(left.base().unwrap(), fresh.base().unwrap(), "{name}, {scene_name}: the base after a layer");
+    }
+    let scene = scenes::glass_sphere();
+    let mut small = LayerFrame::seen_by_camera(&scene);
+    (small.width, small.depth, small.normal) = (small.width - 1, vec![1.0; 1], vec![glam::Vec3::Y; 1]);
+    let refused = prepare(backend, &scene).set_layer(Some(&small));
+    assert!(matches!(refused, Err(BackendError::FrameSize { .. })), "{name}: {refused:?}");
 }
 
 /// Partial renders of passes `0..2` and `2..4` merge into the sums of one

@@ -8,10 +8,12 @@
 //! texture on the device ([`GpuSession::copy_to_texture`]).
 //!
 //! The module's files split the work: `points` (the visible points' device
-//! buffers, in chunks of pixels), `view` (the view pass), `passes` (the
+//! buffers, in chunks of pixels), `view` (the view pass), `layer` (an
+//! engine's frame in place of the view: the caustic layer), `passes` (the
 //! pilot, the photon passes and their gathers), `readout` (what is read
 //! back).
 
+mod layer;
 mod passes;
 mod points;
 mod readout;
@@ -32,7 +34,8 @@ use points::PointChunks;
 use prismatic_core::plan::schedule::pass_scene;
 use prismatic_core::render::accumulation::{contains_pass, insert_passes};
 use prismatic_core::{
-    Accumulation, BackendError, Change, Image, PhotonMap, PreparedScene, Progress, Render, RenderStats, StageTimes,
+    Accumulation, BackendError, Change, Image, LayerFrame, PhotonMap, PreparedScene, Progress, Render, RenderStats,
+    StageTimes,
 };
 use std::collections::VecDeque;
 use std::sync::Arc;
@@ -75,6 +78,9 @@ pub struct GpuSession {
     timer: Option<StageTimer>,
     /// The last submission of each pass the device may still be running.
     in_flight: VecDeque<wgpu::SubmissionIndex>,
+    /// The engine's frame the caustic is drawn into as a layer (layer.wgsl's
+    /// `frame`), if any.
+    layer: Option<wgpu::Buffer>,
 }
 
 impl GpuSession {
@@ -144,6 +150,7 @@ impl GpuSession {
             pending_totals: None,
             timer,
             in_flight: VecDeque::new(),
+            layer: None,
         })
     }
 
@@ -187,7 +194,9 @@ impl GpuSession {
             self.allocate_points()?;
         }
         // Per-pass view paths leave the last pass's points: the pilot's are pass 0's.
-        if redone >= Change::View || (self.sampled() && redone >= Change::Photons) {
+        if self.layer.is_some() && redone >= Change::View {
+            self.clear_view()?;
+        } else if redone >= Change::View || (self.sampled() && redone >= Change::Photons) {
             self.trace_view(0)?;
             self.stamp(prismatic_core::Stage::View)?;
         }
@@ -198,9 +207,9 @@ impl GpuSession {
         Ok(())
     }
 
-    /// Whether each pass traces its own view paths.
+    /// Whether each pass traces its own view paths (a layer traces none).
     pub(super) fn sampled(&self) -> bool {
-        self.scene.scene.render.view_paths.per_pass()
+        self.layer.is_none() && self.scene.scene.render.view_paths.per_pass()
     }
 
     /// Waits until fewer than [`PASSES_IN_FLIGHT`] passes are on the device.
@@ -259,6 +268,7 @@ impl Render for GpuSession {
         if change == Change::Size {
             let r = &scene.scene.render;
             self.pixels = pixel_buffer(&self.ctx, r.width, r.height)?;
+            self.layer = None;
         } else if rebind {
             // The chunks' bind groups hold the band table, grid and photons that moved.
             self.bind_points()?;
@@ -269,6 +279,21 @@ impl Render for GpuSession {
         self.scene = scene.clone();
         self.stale = self.stale.max(change);
         Ok(change)
+    }
+
+    /// Uploads the frame (an engine that has its depth and normals on the
+    /// device still hands them over through the host for now).
+    fn set_layer(&mut self, frame: Option<&LayerFrame>) -> Result<(), BackendError> {
+        if let Some(frame) = frame.filter(|f| !f.fits(&self.scene)) {
+            return Err(BackendError::frame_size(frame, &self.scene));
+        }
+        let was_layer = self.layer.is_some();
+        self.layer = frame.map(|f| self.upload_frame(f)).transpose()?;
+        self.passes.clear();
+        // Entering or leaving a layer changes the room visible points need.
+        let change = if was_layer == self.layer.is_some() { Change::View } else { Change::Size };
+        self.stale = self.stale.max(change);
+        Ok(())
     }
 
     fn ready(&mut self, _progress: &mut dyn Progress) -> Result<(), BackendError> {

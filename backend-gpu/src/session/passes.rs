@@ -51,7 +51,7 @@ impl GpuSession {
     /// back without waiting on a hardware GPU: its first pass may gather in
     /// coarser levels).
     pub(super) fn pilot(&mut self) -> Result<(), BackendError> {
-        let Some(pilot) = pilot_scene(&self.scene) else { return Ok(()) };
+        let Some(pilot) = pilot_scene(&self.scene).filter(|_| self.layer.is_none()) else { return Ok(()) };
         let scale = PilotScale::new(&self.scene, &pilot);
         let settings = SessionParams {
             pilot_scale: scale.scale,
@@ -96,8 +96,13 @@ impl GpuSession {
         self.trace_photons(&pass, progress)?;
         self.fold_tallies()?;
         self.stamp(Stage::Photons)?;
-        self.grid_photons(&pass)?;
-        self.splat_photons()?;
+        if self.layer.is_some() {
+            // No visible points: the gather's steps only add the pass to the sums and show them.
+            self.splat_into_layer()?;
+        } else {
+            self.grid_photons(&pass)?;
+            self.splat_photons()?;
+        }
         self.gather_chunks(Finish::Accumulate, settings)?;
         self.stamp(Stage::Gather)
     }
@@ -224,7 +229,7 @@ impl GpuSession {
     /// and finished).
     fn gather_steps(&self, whole_radius: bool) -> Result<Vec<Option<GatherStep>>, BackendError> {
         let mut steps = Vec::new();
-        if self.photons.capacity() > 0 {
+        if self.photons.capacity() > 0 && self.layer.is_none() {
             for (level, grid) in self.levels.iter().take(if whole_radius { 1 } else { GRID_LEVELS }) {
                 let segments = match self.span {
                     u32::MAX => 1,

@@ -156,7 +156,8 @@ impl GpuSession {
     pub(super) fn allocate_points(&mut self) -> Result<(), BackendError> {
         let r = &self.scene.scene.render;
         let total = u64::from(r.width) * u64::from(r.height);
-        let per_pixel = self.points.per_pixel;
+        // A layer has no visible points.
+        let per_pixel = if self.layer.is_some() { 0.0 } else { self.points.per_pixel };
         let bytes_per_pixel = (POINT_BYTES as f64 * per_pixel).max(SUM_BYTES as f64);
         let chunk = pixels_per_chunk(&self.ctx.limits(), bytes_per_pixel).min(total.max(1).next_multiple_of(16));
         let ctx = &self.ctx;

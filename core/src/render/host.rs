@@ -9,6 +9,7 @@ use crate::photons::light_tracing::Splat;
 use crate::plan::prepared::PreparedScene;
 use crate::plan::schedule::{PilotScale, pass_scene, pass_shrink, pilot_scene};
 use crate::render::accumulation::Accumulation;
+use crate::render::layer::{LayerFrame, layer_splats};
 use crate::render::protocol::{BackendError, Change, Render, RenderStats};
 use crate::render::visible::{VisiblePoint, VisiblePoints};
 use crate::util::progress::{Progress, StageTimes};
@@ -77,6 +78,8 @@ pub struct HostRender<K> {
     last_view_points: usize,
     sums: Accumulation,
     trace: TraceStats,
+    /// The engine's frame the caustic is drawn into as a layer, if any.
+    layer: Option<LayerFrame>,
 }
 
 impl<K: HostKernels> HostRender<K> {
@@ -92,6 +95,7 @@ impl<K: HostKernels> HostRender<K> {
             last_view_points: 0,
             sums: Accumulation::new(r.width, r.height),
             trace: TraceStats::default(),
+            layer: None,
         }
     }
 
@@ -112,7 +116,14 @@ impl<K: HostKernels> HostRender<K> {
     fn bring_up_to_date(&mut self, progress: &mut dyn Progress) {
         let stale = core::mem::take(&mut self.stale);
         if stale >= Change::View {
-            self.view = self.kernels.visible_points(&self.scene, 0, progress);
+            self.view = match self.layer {
+                // A layer has no view rays: the engine's frame is its view.
+                Some(_) => {
+                    let r = &self.scene.scene.render;
+                    VisiblePoints { base: Image::new(r.width, r.height), points: Vec::new() }
+                }
+                None => self.kernels.visible_points(&self.scene, 0, progress),
+            };
             self.last_view_points = self.view.points.len();
         }
         if stale >= Change::Photons {
@@ -145,9 +156,25 @@ impl<K: HostKernels> HostRender<K> {
         per_pixel
     }
 
-    /// Whether each pass traces its own view paths.
+    /// Whether each pass traces its own view paths (a layer traces none).
     fn sampled(&self) -> bool {
-        self.scene.scene.render.view_paths.per_pass()
+        self.layer.is_none() && self.scene.scene.render.view_paths.per_pass()
+    }
+
+    /// A layer's pass: its photons traced and splatted into the engine's frame.
+    fn layer_pass(&mut self, pass: u32, progress: &mut dyn Progress) {
+        let Some(frame) = &self.layer else { return };
+        let scene = pass_scene(&self.scene, pass);
+        let map = self.kernels.trace(&scene, progress);
+        self.sums.add_pass(pass, &[], &[], &layer_splats(&scene, frame, &map.photons));
+        self.trace.merge(&map.stats);
+    }
+
+    /// Empties the sums and statistics: the passes start again.
+    fn restart_passes(&mut self) {
+        let r = &self.scene.scene.render;
+        self.sums = Accumulation::new(r.width, r.height);
+        self.trace = TraceStats::default();
     }
 }
 
@@ -165,12 +192,23 @@ impl<K: HostKernels> Render for HostRender<K> {
         self.scene = scene.clone();
         if change >= Change::Photons {
             // The passes start again (the points and radii follow when needed).
-            let r = &scene.scene.render;
-            self.sums = Accumulation::new(r.width, r.height);
-            self.trace = TraceStats::default();
+            self.restart_passes();
+        }
+        if change >= Change::Size {
+            self.layer = None;
         }
         self.stale = self.stale.max(change);
         Ok(change)
+    }
+
+    fn set_layer(&mut self, frame: Option<&LayerFrame>) -> Result<(), BackendError> {
+        if let Some(frame) = frame.filter(|f| !f.fits(&self.scene)) {
+            return Err(BackendError::frame_size(frame, &self.scene));
+        }
+        self.layer = frame.cloned();
+        self.restart_passes();
+        self.stale = self.stale.max(Change::View);
+        Ok(())
     }
 
     fn ready(&mut self, progress: &mut dyn Progress) -> Result<(), BackendError> {
@@ -182,6 +220,10 @@ impl<K: HostKernels> Render for HostRender<K> {
         self.bring_up_to_date(progress);
         if self.sums.contains(pass) {
             return Err(BackendError::PassRepeated(pass));
+        }
+        if self.layer.is_some() {
+            self.layer_pass(pass, progress);
+            return Ok(());
         }
         let own_view = (self.sampled() && pass != 0).then(|| self.kernels.visible_points(&self.scene, pass, progress));
         let view = own_view.as_ref().unwrap_or(&self.view);

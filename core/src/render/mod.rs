@@ -4,6 +4,7 @@
 
 pub mod accumulation;
 pub mod host;
+pub mod layer;
 pub mod protocol;
 pub mod reference;
 pub mod view;

@@ -7,6 +7,8 @@
 //!     ├─ pilot pass (progressive radii): each visible point's first radius
 //!     ├─ run_pass(k), any k, any order: photons seeded by k, gathered at the points
 //!     ├─ update(scene): redo only what the change invalidates (see [`Change`])
+//!     ├─ set_layer(frame): draw the caustic into an engine's frame instead
+//!     │  (no view rays: photons splatted where its depth buffer sees them)
 //!     └─ read out: exact sums (partials, merge), the image, a pass's photon map,
 //!        statistics and stage times
 //! ```
@@ -22,6 +24,7 @@ use crate::model::photon::{PhotonMap, TraceStats};
 use crate::model::scene::{RenderSettings, Scene};
 use crate::plan::prepared::PreparedScene;
 use crate::render::accumulation::Accumulation;
+use crate::render::layer::LayerFrame;
 use crate::util::progress::{Progress, StageTimes};
 use alloc::boxed::Box;
 use alloc::string::String;
@@ -46,6 +49,31 @@ pub enum BackendError {
     /// A pass was asked for twice: each pass is summed once.
     #[error("pass {0} is already in the image")]
     PassRepeated(u32),
+    /// A caustic layer's frame does not fit the scene's image.
+    #[error("the layer's frame is {frame} pixels, the scene's image {image}")]
+    FrameSize {
+        /// The frame's size and buffers.
+        frame: String,
+        /// The scene's image size.
+        image: String,
+    },
+}
+
+impl BackendError {
+    /// A layer's `frame` that does not fit `scene`'s image ([`LayerFrame::fits`]).
+    pub fn frame_size(frame: &LayerFrame, scene: &PreparedScene) -> Self {
+        let r = &scene.scene.render;
+        BackendError::FrameSize {
+            frame: alloc::format!(
+                "{}x{} ({} depths, {} normals)",
+                frame.width,
+                frame.height,
+                frame.depth.len(),
+                frame.normal.len()
+            ),
+            image: alloc::format!("{}x{}", r.width, r.height),
+        }
+    }
 }
 
 /// Makes live renders: the scalar reference, the CPU's packets, the GPU.
@@ -75,6 +103,17 @@ pub trait Render: Send {
     /// invalidates; the next pass or read-out redoes it (a change of the
     /// photons or more empties the sums).
     fn update(&mut self, scene: &PreparedScene) -> Result<Change, BackendError>;
+
+    /// From now on, draws the caustic as a layer in an engine's `frame`
+    /// (its depth and normals seen by the scene's camera; see
+    /// [`crate::render::layer`]): each pass's photons add their irradiance
+    /// where the frame sees the surface they landed on; no view rays, a
+    /// black base, and the image is the mean caustic irradiance (exposure
+    /// applied) for the engine to light its own surfaces with. `None` draws
+    /// prismatic's image again. Either starts the passes again (as
+    /// [`Change::View`]); an error when the frame does not fit the scene's
+    /// image (an update that resizes the image leaves the layer).
+    fn set_layer(&mut self, frame: Option<&LayerFrame>) -> Result<(), BackendError>;
 
     /// Traces now what the next pass needs and an update invalidated: the
     /// view rays and the pilot pass (passes and read-outs do it themselves;

@@ -43,6 +43,18 @@ pub const MIN_VIEW_WEIGHT: f32 = 1e-3;
 /// depth resolution in any scene we render.
 pub const CONNECTION_REL: f32 = 1e-4;
 
+/// How far (relative to the pixel's depth) a photon may lie from the plane
+/// of the surface an engine's pixel sees and still count in the caustic
+/// layer ([`crate::render::layer`]). Wider than [`CONNECTION_REL`]: the
+/// engine's depth buffer and normals carry their own rounding (a 32-bit
+/// depth buffer's reversed-Z keeps about 1e-6 of the depth; a normal
+/// prepass stores 10 or 16 bits a channel, a plane tilted by 1e-3 rad),
+/// and on a curved receiver the plane at the pixel's centre leaves the
+/// surface by (footprint)²/2R within the pixel. An engine's occluder closer
+/// than 2e-3 of the depth in front of a lit surface (2 mm at 1 m) does
+/// not hide the caustic.
+pub const LAYER_PLANE_REL: f32 = 2e-3;
+
 /// The skin of [`SURFACE_SKIN_FACTOR`] around a ray starting at `origin`.
 #[inline]
 pub fn surface_skin(origin: glam::Vec3) -> f32 {

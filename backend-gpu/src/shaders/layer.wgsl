@@ -1,0 +1,55 @@
+// The caustic layer: twin of prismatic_core::render::layer. One invocation
+// per slot of the photon map (those past the stored count return at once);
+// each photon that lies where the engine's frame sees a surface (on the
+// plane of the pixel's surface, arrived on the side the camera sees) adds
+// its irradiance to that pixel's exact sums (sums.wgsl), so the sums do not
+// depend on the order the photons come in.
+
+// The photons the pass stored (the compaction's cursor).
+@group(1) @binding(1) var<storage, read> stored_count: u32;
+// The engine's frame, per pixel of the whole image: its surface's
+// world-space normal (xyz) and view-space depth (w; not finite, or 0, where
+// it sees none).
+@group(1) @binding(6) var<storage, read> frame: array<vec4<f32>>;
+
+// LayerConnection::splat, added to the sums of its pixel when this chunk has it.
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn layer_splat(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    let i = flat_index(wid, nwg, lid);
+    if i >= stored_count {
+        return;
+    }
+    let photon = map_load(i);
+    let seen = project(photon.position);
+    if seen.z <= 0.0 {
+        return;
+    }
+    let pixel = u32(seen.y) * params.width + u32(seen.x);
+    if pixel < params.pixel_offset || pixel - params.pixel_offset >= params.pixel_count {
+        return;
+    }
+    let surface = frame[pixel];
+    let depth = surface.w;
+    if !(depth > 0.0 && depth <= BIG) {
+        return;
+    }
+    let through = params.cam_corner + params.cam_right * (seen.x + 0.5) + params.cam_down * (seen.y + 0.5);
+    let centre = params.cam_origin + through * depth;
+    let n = select(-surface.xyz, surface.xyz, dot(centre - params.cam_origin, surface.xyz) < 0.0);
+    if abs(dot(photon.position - centre, n)) > LAYER_PLANE_REL * depth
+        || dot(oct_unpack(photon.direction_oct), n) >= 0.0 {
+        return;
+    }
+    let v = photon.position - params.cam_origin;
+    let importance = -dot(v, n) / (seen.z * seen.z * seen.z) * params.splat_scale * PI;
+    let band = photon.band_bounces & 0xffffu;
+    let c = rgb_of_flux(band, photon.lambda_nm, photon.flux) * importance * params.white_balance;
+    let k = pixel - params.pixel_offset;
+    for (var ch = 0u; ch < 3u; ch++) {
+        add_to_sum(6u * k + 2u * ch, to_fixed(c[ch], 32));
+    }
+}

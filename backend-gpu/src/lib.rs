@@ -34,7 +34,7 @@ pub use context::{
     timestamp_features,
 };
 pub use pixels::{PIXEL_BYTES, SOFTWARE_GATHER_SPAN};
-pub use session::{GpuSession, PASSES_IN_FLIGHT};
+pub use session::{DepthEncoding, FrameTextures, GpuSession, NormalEncoding, PASSES_IN_FLIGHT};
 
 use pipelines::Pipelines;
 use prismatic_core::{Backend, BackendError, PreparedScene, Render};

@@ -13,6 +13,10 @@ enum Slot {
     Read,
     ReadWrite,
     Texture(wgpu::TextureFormat),
+    /// A sampled depth texture (one sample).
+    Depth,
+    /// A sampled float texture (one sample, not filtered).
+    Sampled,
 }
 
 fn layout(device: &wgpu::Device, label: &str, slots: &[Slot]) -> wgpu::BindGroupLayout {
@@ -37,6 +41,14 @@ fn layout(device: &wgpu::Device, label: &str, slots: &[Slot]) -> wgpu::BindGroup
                     access: wgpu::StorageTextureAccess::WriteOnly,
                     format,
                     view_dimension: wgpu::TextureViewDimension::D2,
+                },
+                Slot::Depth | Slot::Sampled => wgpu::BindingType::Texture {
+                    sample_type: match slot {
+                        Slot::Depth => wgpu::TextureSampleType::Depth,
+                        _ => wgpu::TextureSampleType::Float { filterable: false },
+                    },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled: false,
                 },
             },
             count: None,
@@ -113,6 +125,8 @@ pub struct Pipelines {
     pub splat_layout: wgpu::BindGroupLayout,
     /// Group 1 of the caustic layer: light tracing's, then the engine's frame.
     pub layer_layout: wgpu::BindGroupLayout,
+    /// An engine's frame from its textures: parameters, depth, normals, the frame.
+    pub frame_layout: wgpu::BindGroupLayout,
     /// Emit + trace.
     pub trace: wgpu::ComputePipeline,
     /// Compaction scatter.
@@ -151,6 +165,8 @@ pub struct Pipelines {
     pub splat: wgpu::ComputePipeline,
     /// layer.wgsl `layer_splat`: the photons added to the sums of an engine's frame.
     pub layer_splat: wgpu::ComputePipeline,
+    /// frame.wgsl `frame_from_textures`: an engine's depth and normal textures into the layer's frame.
+    pub frame_from_textures: wgpu::ComputePipeline,
     view: Mutex<HashMap<u32, wgpu::ComputePipeline>>,
     texture: Mutex<HashMap<wgpu::TextureFormat, TextureCopy>>,
 }
@@ -192,6 +208,7 @@ impl Pipelines {
             "prismatic caustic layer",
             &[with_windows(vec![ReadWrite, Read], Read), vec![Read]].concat(),
         );
+        let frame_layout = layout(device, "prismatic engine frame", &[Uniform, Depth, Sampled, ReadWrite]);
         let session_src = shaders::session();
         let session =
             |label: &str, entry: &str| pipeline(device, label, &session_src, entry, &[&gather_layout, &session_layout]);
@@ -243,6 +260,13 @@ impl Pipelines {
                 "layer_splat",
                 &[&scene_layout, &layer_layout],
             ),
+            frame_from_textures: pipeline(
+                device,
+                "prismatic engine frame",
+                &shaders::frame(),
+                "frame_from_textures",
+                &[&frame_layout],
+            ),
             scene_layout,
             trace_layout,
             compact_layout,
@@ -255,6 +279,7 @@ impl Pipelines {
             stats_layout,
             splat_layout,
             layer_layout,
+            frame_layout,
             view: Mutex::new(HashMap::new()),
             texture: Mutex::new(HashMap::new()),
         }

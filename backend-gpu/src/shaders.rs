@@ -368,6 +368,13 @@ pub fn layer() -> String {
     .concat()
 }
 
+/// An engine's frame from its depth and normal textures (entry
+/// `frame_from_textures`): its own parameters, the two textures and the
+/// layer's frame in group 0.
+pub fn frame() -> String {
+    [prelude(0), COMMON.into(), include_str!("shaders/frame.wgsl").into()].concat()
+}
+
 /// The gathers' indirect dispatch arguments, per grid level (entry `level_dispatches`).
 pub fn level_dispatch() -> String {
     [prelude(0), include_str!("shaders/level_dispatch.wgsl").into()].concat()

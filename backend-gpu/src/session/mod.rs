@@ -15,6 +15,8 @@
 
 mod layer;
 mod passes;
+
+pub use layer::{DepthEncoding, FrameTextures, NormalEncoding};
 mod points;
 mod readout;
 mod view;

@@ -8,9 +8,9 @@
 // The photons the pass stored (the compaction's cursor).
 @group(1) @binding(1) var<storage, read> stored_count: u32;
 // The engine's frame, per pixel of the whole image: its surface's
-// world-space normal (xyz) and view-space depth (w; not finite, or 0, where
-// it sees none).
-@group(1) @binding(6) var<storage, read> frame: array<vec4<f32>>;
+// world-space normal (oct_pack) and view-space depth (f32 bits; not
+// finite, or 0, where it sees none).
+@group(1) @binding(6) var<storage, read> frame: array<vec2<u32>>;
 
 // LayerConnection::splat, added to the sums of its pixel when this chunk has it.
 @compute @workgroup_size(WORKGROUP_SIZE)
@@ -33,13 +33,14 @@ fn layer_splat(
         return;
     }
     let surface = frame[pixel];
-    let depth = surface.w;
+    let depth = bitcast<f32>(surface.y);
     if !(depth > 0.0 && depth <= BIG) {
         return;
     }
+    let normal = oct_unpack(surface.x);
     let through = params.cam_corner + params.cam_right * (seen.x + 0.5) + params.cam_down * (seen.y + 0.5);
     let centre = params.cam_origin + through * depth;
-    let n = select(-surface.xyz, surface.xyz, dot(centre - params.cam_origin, surface.xyz) < 0.0);
+    let n = select(-normal, normal, dot(centre - params.cam_origin, normal) < 0.0);
     if abs(dot(photon.position - centre, n)) > LAYER_PLANE_REL * depth
         || dot(oct_unpack(photon.direction_oct), n) >= 0.0 {
         return;

@@ -1,0 +1,137 @@
+//! The caustic layer from an engine's depth and normal textures (its
+//! prepass, drawn by the engine_loop example's raster as Bevy draws one)
+//! is the layer of the same frame handed over from the host; the engine's
+//! occluder, which prismatic's scene does not hold, hides the caustic.
+
+#[path = "../examples/engine_loop/raster.rs"]
+mod raster;
+
+use prismatic_core::geometry::camera::PinholeCamera;
+use prismatic_core::model::dispersion::Dispersion;
+use prismatic_core::model::scene::{
+    Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape, ViewPaths,
+};
+use prismatic_core::{Image, LayerFrame, NoProgress, PreparedScene, Render, Vec3};
+use prismatic_gpu::{DepthEncoding, FrameTextures, GpuOptions, GpuSession, NormalEncoding, test_context};
+
+const SIZE: (u32, u32) = (160, 120);
+
+/// A glass sphere on a floor under a spot light, light traced; without
+/// the sphere, the frame an engine draws of it (the glass is transparent
+/// to its prepass).
+fn scene(with_sphere: bool) -> PreparedScene {
+    let material = |name: &str, kind| Material { name: name.into(), kind };
+    let mut objects = vec![Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 }];
+    if with_sphere {
+        objects.push(Object { shape: Shape::Sphere { center: Vec3::Y, radius: 1.0 }, material: 1 });
+    }
+    PreparedScene::new(Scene {
+        render: RenderSettings {
+            width: SIZE.0,
+            height: SIZE.1,
+            photons: 20_000,
+            view_paths: ViewPaths::Centre,
+            ..RenderSettings::default()
+        },
+        camera: camera(),
+        lights: vec![Light::Spot {
+            position: Vec3::new(-2.5, 6.0, -0.5),
+            direction: Vec3::new(2.5, -5.0, 0.5),
+            cone_deg: 40.0,
+            power: 38.0,
+            spectrum: Default::default(),
+        }],
+        materials: vec![
+            material("floor", MaterialKind::Diffuse { albedo: Vec3::splat(0.85), checker: None, texture: None }),
+            material(
+                "glass",
+                MaterialKind::Dielectric {
+                    dispersion: Dispersion::Paper,
+                    outside: Dispersion::Constant(1.0),
+                    attenuation: None,
+                },
+            ),
+        ],
+        objects,
+    })
+    .expect("a valid scene")
+}
+
+fn camera() -> Camera {
+    Camera { position: Vec3::new(4.2, 2.6, 3.4), look_at: Vec3::new(0.4, 0.3, 0.0), up: Vec3::Y, fov_deg: 42.0 }
+}
+
+/// The engine's frame from the host: the floor, and the occluder over the left half at depth 1.
+fn host_frame() -> LayerFrame {
+    let mut frame = LayerFrame::seen_by_camera(&scene(false));
+    let forward = (camera().look_at - camera().position).normalize();
+    for (i, (depth, normal)) in frame.depth.iter_mut().zip(&mut frame.normal).enumerate() {
+        if (i as u32 % SIZE.0) < SIZE.0 / 2 {
+            (*depth, *normal) = (1.0, -forward);
+        }
+    }
+    frame
+}
+
+/// A quad 1 unit in front of `camera` over the left half of its view
+/// (an engine's object that prismatic's scene does not hold).
+fn occluder_over_the_left_half(camera: &Camera, width: u32, height: u32) -> [[Vec3; 3]; 2] {
+    let pinhole = PinholeCamera::new(camera, width, height);
+    let at = |u: f32, v: f32| {
+        pinhole.origin + pinhole.corner + pinhole.right * (u * width as f32) + pinhole.down * (v * height as f32)
+    };
+    let (l, m) = (-0.1, 0.5);
+    raster::quad(at(l, -0.1), at(l, 1.1), at(m, 1.1), at(m, -0.1))
+}
+
+/// Two passes of the layer, its frame set by `set`.
+fn layer(session: &mut GpuSession, set: impl FnOnce(&mut GpuSession)) -> Image {
+    set(session);
+    for k in 0..2 {
+        session.run_pass(k, &mut NoProgress).expect("pass");
+    }
+    session.image().expect("image")
+}
+
+#[test]
+fn a_layer_from_the_engines_textures_is_the_layer_of_its_frame() {
+    let Some(ctx) = test_context("the layer from an engine's textures") else { return };
+    let (device, queue) = (ctx.device.clone(), ctx.queue.clone());
+    let floor = raster::quad(
+        Vec3::new(-30.0, 0.0, -30.0),
+        Vec3::new(-30.0, 0.0, 30.0),
+        Vec3::new(30.0, 0.0, 30.0),
+        Vec3::new(30.0, 0.0, -30.0),
+    );
+    let occluder = occluder_over_the_left_half(&camera(), SIZE.0, SIZE.1);
+    let triangles = [floor, occluder].concat();
+    let prepass = raster::prepass(&device, &queue, &camera(), SIZE, &triangles);
+    let mut session = GpuSession::new(ctx, &scene(true), GpuOptions::default()).expect("session");
+    let from_textures = layer(&mut session, |s| {
+        let (depth, normal) = (raster::view(&prepass.depth), raster::view(&prepass.normal));
+        let textures = FrameTextures {
+            depth: &depth,
+            depth_encoding: DepthEncoding::ReverseInfinite { near: raster::NEAR },
+            normal: &normal,
+            normal_encoding: NormalEncoding::Unorm,
+        };
+        s.set_layer_textures(&textures).expect("the textures fit");
+    });
+    let from_host = layer(&mut session, |s| s.set_layer(Some(&host_frame())).expect("the frame fits"));
+    let left = |i: usize| (i as u32 % SIZE.0) < SIZE.0 / 2;
+    let total = |img: &Image, half: bool| -> f64 {
+        img.pixels.iter().enumerate().filter(|(i, _)| left(*i) == half).map(|(_, p)| f64::from(p.element_sum())).sum()
+    };
+    assert_eq!(total(&from_textures, true), 0.0, "the engine's occluder hides the caustic");
+    let (want, got) = (total(&from_host, false), total(&from_textures, false));
+    assert!(want > 0.0, "the caustic reaches the right half");
+    // The prepass stores normals in 10 bits a channel, off by up to 1.7e-3
+    // rad: a photon's irradiance (∝ cos θ) by 1.7e-3 · tan θ, 1 % where the
+    // camera grazes the far floor.
+    assert!((got / want - 1.0).abs() < 3e-3, "the right half's caustic: {got} from textures, {want} from the host");
+    let brightest = from_host.pixels.iter().map(|p| p.max_element()).fold(0.0f32, f32::max);
+    for (i, (a, b)) in from_host.pixels.iter().zip(&from_textures.pixels).enumerate() {
+        let allowed = 1.5e-2 * a.max_element() + 1e-2 * brightest;
+        assert!((*a - *b).abs().max_element() <= allowed, "pixel {i}: {a} from the host, {b} from textures");
+    }
+}

@@ -28,6 +28,9 @@ pub struct GpuContext {
     pub adapter: Option<wgpu::AdapterInfo>,
     lost: Arc<Mutex<Option<String>>>,
     traffic: Arc<Traffic>,
+    /// While a caller records ([`GpuContext::record`]): the command buffers
+    /// made instead of submitted, in order.
+    recorded: Arc<Mutex<Option<Vec<wgpu::CommandBuffer>>>>,
 }
 
 /// Bytes written to the device and read back from it.
@@ -160,13 +163,53 @@ impl GpuContext {
                  {STORAGE_BUFFERS_NEEDED}; create it with prismatic_gpu::required_limits(&adapter.limits())"
             )));
         }
-        Ok(GpuContext { device, queue, adapter: None, lost: Arc::new(Mutex::new(None)), traffic: Arc::default() })
+        Ok(GpuContext {
+            device,
+            queue,
+            adapter: None,
+            lost: Arc::new(Mutex::new(None)),
+            traffic: Arc::default(),
+            recorded: Arc::default(),
+        })
     }
 
     /// The same device and queue with a count of bytes moved of its own,
-    /// starting at zero (a render counts its own traffic).
+    /// starting at zero (a render counts its own traffic), and recordings
+    /// of its own.
     pub fn counting_apart(&self) -> Self {
-        GpuContext { traffic: Arc::default(), ..self.clone() }
+        GpuContext { traffic: Arc::default(), recorded: Arc::default(), ..self.clone() }
+    }
+
+    /// Runs `work` with every submission through this context (and its
+    /// clones) recorded instead of submitted, and returns the command
+    /// buffers for the caller to submit in its own order: an engine whose
+    /// frame submits its command buffers together at its end puts them
+    /// between its own (after its depth prepass, before its main pass).
+    /// Writes keep their place among them (each a copy from a buffer of its
+    /// own). Reads and waits inside `work` see the device as it was before.
+    pub fn record<T>(&self, work: impl FnOnce() -> T) -> (T, Vec<wgpu::CommandBuffer>) {
+        *self.recorded.lock().unwrap_or_else(|p| p.into_inner()) = Some(Vec::new());
+        let out = work();
+        let buffers = self.recorded.lock().unwrap_or_else(|p| p.into_inner()).take().unwrap_or_default();
+        (out, buffers)
+    }
+
+    /// Whether submissions are being recorded ([`GpuContext::record`]).
+    pub fn recording(&self) -> bool {
+        self.recorded.lock().map(|r| r.is_some()).unwrap_or(false)
+    }
+
+    /// Submits `encoder`'s commands, or keeps them while recording.
+    pub(crate) fn submit(&self, encoder: wgpu::CommandEncoder) {
+        let buffer = encoder.finish();
+        let mut recorded = self.recorded.lock().unwrap_or_else(|p| p.into_inner());
+        match recorded.as_mut() {
+            Some(buffers) => buffers.push(buffer),
+            None => {
+                drop(recorded);
+                self.queue.submit([buffer]);
+            }
+        }
     }
 
     /// Bytes written to the device and read back from it through this
@@ -175,8 +218,16 @@ impl GpuContext {
         (self.traffic.uploaded.load(Ordering::Relaxed), self.traffic.read_back.load(Ordering::Relaxed))
     }
 
-    /// Writes `data` into `buffer` at `offset` (visible to the next submit), counted.
+    /// Writes `data` into `buffer` at `offset` (visible to the next
+    /// submit; while recording, to the commands recorded after it), counted.
     pub(crate) fn write(&self, buffer: &wgpu::Buffer, offset: u64, data: &[u8]) {
+        if self.recording() {
+            let source = self.buffer_with("prismatic recorded write", data, wgpu::BufferUsages::COPY_SRC);
+            let mut encoder = self.device.create_command_encoder(&Default::default());
+            encoder.copy_buffer_to_buffer(&source, 0, buffer, offset, data.len() as u64);
+            self.submit(encoder);
+            return;
+        }
         self.traffic.uploaded.fetch_add(data.len() as u64, Ordering::Relaxed);
         self.queue.write_buffer(buffer, offset, data);
     }

@@ -37,7 +37,7 @@ impl DeviceGrid {
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
             let buckets = self.cells.size() / 4 - 1;
             dispatch(&mut encoder, &pipelines.grid_widest, &[group], buckets, WORKGROUP_SIZE);
-            ctx.queue.submit([encoder.finish()]);
+            ctx.submit(encoder);
         })?;
         let bytes = ctx.read(&self.widest, 0, 4)?;
         Ok(u32::from_le_bytes(bytes[..4].try_into().expect("4 bytes")))
@@ -123,7 +123,7 @@ impl DeviceGrid {
             scan.record(pipelines, &mut encoder);
             encoder.copy_buffer_to_buffer(&self.cells, 0, &self.cursor, 0, buckets * 4);
             dispatch(&mut encoder, &pipelines.grid_scatter, &[group], u64::from(stored), WORKGROUP_SIZE);
-            ctx.queue.submit([encoder.finish()]);
+            ctx.submit(encoder);
         })
     }
 }

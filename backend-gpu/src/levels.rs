@@ -99,7 +99,7 @@ impl GridLevels {
         ctx.checked("clearing the grid levels", || {
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
             encoder.clear_buffer(&self.used, 0, None);
-            ctx.queue.submit([encoder.finish()]);
+            ctx.submit(encoder);
         })
     }
 

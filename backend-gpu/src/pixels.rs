@@ -99,7 +99,7 @@ pub fn copy_to_texture(
             });
             let mut encoder = ctx.device.create_command_encoder(&Default::default());
             dispatch(&mut encoder, &pipeline, &[&group], count, WORKGROUP_SIZE);
-            ctx.queue.submit([encoder.finish()]);
+            ctx.submit(encoder);
         })?;
     }
     Ok(())

@@ -194,7 +194,7 @@ impl PhotonPass {
                 let slots_total = u64::from(len) * u64::from(slots);
                 dispatch(&mut encoder, &pipelines.compact, &[&self.compact_group], slots_total, WORKGROUP_SIZE);
                 dispatch(&mut encoder, &pipelines.advance, &[&self.compact_group], 1, 1);
-                ctx.queue.submit([encoder.finish()]);
+                ctx.submit(encoder);
             })?;
             start += len;
             progress.advance(Stage::Photons, u64::from(start), u64::from(total));
@@ -359,7 +359,7 @@ fn emit_twin(@builtin(global_invocation_id) id: vec3<u32>) {
             pass.set_bind_group(1, Some(&group), &[]);
             pass.dispatch_workgroups(n.div_ceil(64), 1, 1);
         }
-        ctx.queue.submit([encoder.finish()]);
+        ctx.submit(encoder);
         bytemuck::pod_collect_to_vec(&ctx.read(&output, 0, size).unwrap())
     }
 

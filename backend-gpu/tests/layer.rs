@@ -93,30 +93,32 @@ fn layer(session: &mut GpuSession, set: impl FnOnce(&mut GpuSession)) -> Image {
     session.image().expect("image")
 }
 
+/// The engine's triangles: a floor, and the occluder over the left half.
+fn engine_triangles() -> Vec<[Vec3; 3]> {
+    let v = Vec3::new;
+    let floor = raster::quad(v(-30.0, 0.0, -30.0), v(-30.0, 0.0, 30.0), v(30.0, 0.0, 30.0), v(30.0, 0.0, -30.0));
+    [floor, occluder_over_the_left_half(&camera(), SIZE.0, SIZE.1)].concat()
+}
+
+/// The prepass's textures as the layer reads them.
+fn textures<'a>(depth: &'a wgpu::TextureView, normal: &'a wgpu::TextureView) -> FrameTextures<'a> {
+    FrameTextures {
+        depth,
+        depth_encoding: DepthEncoding::ReverseInfinite { near: raster::NEAR },
+        normal,
+        normal_encoding: NormalEncoding::Unorm,
+    }
+}
+
 #[test]
 fn a_layer_from_the_engines_textures_is_the_layer_of_its_frame() {
     let Some(ctx) = test_context("the layer from an engine's textures") else { return };
-    let (device, queue) = (ctx.device.clone(), ctx.queue.clone());
-    let floor = raster::quad(
-        Vec3::new(-30.0, 0.0, -30.0),
-        Vec3::new(-30.0, 0.0, 30.0),
-        Vec3::new(30.0, 0.0, 30.0),
-        Vec3::new(30.0, 0.0, -30.0),
-    );
-    let occluder = occluder_over_the_left_half(&camera(), SIZE.0, SIZE.1);
-    let triangles = [floor, occluder].concat();
-    let prepass = raster::prepass(&device, &queue, &camera(), SIZE, &triangles);
+    let (prepass, commands) = raster::prepass(&ctx.device, &camera(), SIZE, &engine_triangles());
+    ctx.queue.submit([commands]);
+    let (depth, normal) = (raster::view(&prepass.depth), raster::view(&prepass.normal));
     let mut session = GpuSession::new(ctx, &scene(true), GpuOptions::default()).expect("session");
-    let from_textures = layer(&mut session, |s| {
-        let (depth, normal) = (raster::view(&prepass.depth), raster::view(&prepass.normal));
-        let textures = FrameTextures {
-            depth: &depth,
-            depth_encoding: DepthEncoding::ReverseInfinite { near: raster::NEAR },
-            normal: &normal,
-            normal_encoding: NormalEncoding::Unorm,
-        };
-        s.set_layer_textures(&textures).expect("the textures fit");
-    });
+    let from_textures =
+        layer(&mut session, |s| s.set_layer_textures(&textures(&depth, &normal)).expect("the textures fit"));
     let from_host = layer(&mut session, |s| s.set_layer(Some(&host_frame())).expect("the frame fits"));
     let left = |i: usize| (i as u32 % SIZE.0) < SIZE.0 / 2;
     let total = |img: &Image, half: bool| -> f64 {
@@ -134,4 +136,27 @@ fn a_layer_from_the_engines_textures_is_the_layer_of_its_frame() {
         let allowed = 1.5e-2 * a.max_element() + 1e-2 * brightest;
         assert!((*a - *b).abs().max_element() <= allowed, "pixel {i}: {a} from the host, {b} from textures");
     }
+}
+
+#[test]
+fn a_recorded_frame_submitted_with_the_engines_is_the_submitted_frame() {
+    // The engine's frame as Bevy submits one: its prepass, the layer's
+    // frame and passes, then the rest, in one submission at the end.
+    let Some(ctx) = test_context("a recorded layer") else { return };
+    let (prepass, prepass_commands) = raster::prepass(&ctx.device, &camera(), SIZE, &engine_triangles());
+    let (depth, normal) = (raster::view(&prepass.depth), raster::view(&prepass.normal));
+    let queue = ctx.queue.clone();
+    let mut recorded = GpuSession::new(ctx.clone(), &scene(true), GpuOptions::default()).expect("session");
+    let (done, layer_commands) = recorded.record(|s| {
+        s.set_layer_textures(&textures(&depth, &normal))?;
+        (0..2).try_for_each(|k| s.run_pass(k, &mut NoProgress))
+    });
+    done.expect("recorded");
+    assert!(!layer_commands.is_empty(), "the layer recorded its work");
+    queue.submit(std::iter::once(prepass_commands).chain(layer_commands));
+    let mut submitted = GpuSession::new(ctx, &scene(true), GpuOptions::default()).expect("session");
+    let direct = layer(&mut submitted, |s| s.set_layer_textures(&textures(&depth, &normal)).expect("fits"));
+    let image = recorded.image().expect("image");
+    assert!(image.pixels.iter().any(|p| p.max_element() > 0.0), "the recorded layer has the caustic");
+    assert_eq!(image, direct, "the recorded frame differs from the submitted one");
 }

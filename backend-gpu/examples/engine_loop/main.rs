@@ -87,7 +87,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ..Default::default()
     }))?;
     // The engine's prepass of its frame, and the texture its lighting samples.
-    let prepass = raster::prepass(&device, &queue, &camera(), SIZE, &engine_triangles());
+    let (prepass, prepass_commands) = raster::prepass(&device, &camera(), SIZE, &engine_triangles());
+    queue.submit([prepass_commands]);
     let texture = device.create_texture(&wgpu::TextureDescriptor {
         label: Some("caustic irradiance"),
         size: wgpu::Extent3d { width: SIZE.0, height: SIZE.1, depth_or_array_layers: 1 },

@@ -31,15 +31,15 @@ struct Out { @builtin(position) clip: vec4<f32>, @location(0) normal: vec3<f32> 
 }
 ";
 
-/// Draws `triangles` (world space, one flat normal each) as `camera` sees
-/// them at `width` × `height` pixels: the engine's depth and normal prepass.
+/// Records the drawing of `triangles` (world space, one flat normal each)
+/// as `camera` sees them at `width` × `height` pixels: the engine's depth
+/// and normal prepass, its commands for the engine to submit.
 pub fn prepass(
     device: &wgpu::Device,
-    queue: &wgpu::Queue,
     camera: &Camera,
     (width, height): (u32, u32),
     triangles: &[[Vec3; 3]],
-) -> Prepass {
+) -> (Prepass, wgpu::CommandBuffer) {
     let target = |label, format| {
         device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
@@ -143,8 +143,7 @@ pub fn prepass(
         pass.set_vertex_buffer(0, vertex_buffer.slice(..));
         pass.draw(0..vertices.len() as u32, 0..1);
     }
-    queue.submit([encoder.finish()]);
-    prepass
+    (prepass, encoder.finish())
 }
 
 /// A texture's whole view.

@@ -131,7 +131,7 @@ impl GpuSession {
             });
             let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
             dispatch(&mut encoder, &self.pipelines.frame_from_textures, &[&group], pixels, WORKGROUP_SIZE);
-            self.ctx.queue.submit([encoder.finish()]);
+            self.ctx.submit(encoder);
         })?;
         self.layer = Some(frame);
         self.passes.clear();
@@ -163,7 +163,7 @@ impl GpuSession {
                 encoder.clear_buffer(&chunk.base, 0, None);
             }
             encoder.clear_buffer(&self.pixels, 0, None);
-            self.ctx.queue.submit([encoder.finish()]);
+            self.ctx.submit(encoder);
         })
     }
 
@@ -199,7 +199,7 @@ impl GpuSession {
                     slots,
                     WORKGROUP_SIZE,
                 );
-                self.ctx.queue.submit([encoder.finish()]);
+                self.ctx.submit(encoder);
             })?;
         }
         Ok(())

@@ -161,6 +161,17 @@ impl GpuSession {
         &self.ctx
     }
 
+    /// Runs `work` on the session with its submissions recorded instead
+    /// ([`GpuContext::record`]): the command buffers come back for an
+    /// engine to submit among its own, e.g. a caustic layer's frame and
+    /// pass after the engine's depth prepass and before its main pass, in
+    /// one frame. A recorded pass neither waits for earlier ones nor writes
+    /// stage times.
+    pub fn record<T>(&mut self, work: impl FnOnce(&mut Self) -> T) -> (T, Vec<wgpu::CommandBuffer>) {
+        let ctx = self.ctx.clone();
+        ctx.record(|| work(self))
+    }
+
     /// The image's pixels as the device shows it: width × height row-major
     /// `vec4<f32>` (linear RGB, exposure applied, alpha 1), the base plus
     /// the mean caustic of the passes so far.
@@ -307,11 +318,17 @@ impl Render for GpuSession {
     /// are on the device already. On a software device the gather goes in
     /// segments whose number comes from the grid, which it reads back.
     fn run_pass(&mut self, pass: u32, progress: &mut dyn Progress) -> Result<(), BackendError> {
-        self.throttle()?;
+        // A recorded pass is the engine's to submit and pace.
+        let recording = self.ctx.recording();
+        if !recording {
+            self.throttle()?;
+        }
         // Stamps of an earlier pass that have come back free the timer for this one.
         self.check_reads()?;
-        if let Some(timer) = &mut self.timer {
-            timer.begin(&self.ctx)?;
+        match &mut self.timer {
+            Some(timer) if recording => timer.skip(),
+            Some(timer) => timer.begin(&self.ctx)?,
+            None => {}
         }
         self.bring_up_to_date()?;
         if contains_pass(&self.passes, pass) {
@@ -320,10 +337,12 @@ impl Render for GpuSession {
         let summed = self.passes.iter().map(|(a, b)| b - a).sum::<u32>() + 1;
         self.pass(pass, summed, progress)?;
         insert_passes(&mut self.passes, pass, pass + 1).map_err(|_| BackendError::PassRepeated(pass))?;
-        if let Some(timer) = &mut self.timer {
-            timer.finish(&self.ctx)?;
+        if !recording {
+            if let Some(timer) = &mut self.timer {
+                timer.finish(&self.ctx)?;
+            }
+            self.in_flight.push_back(self.ctx.queue.submit([]));
         }
-        self.in_flight.push_back(self.ctx.queue.submit([]));
         Ok(())
     }
 

@@ -41,7 +41,7 @@ impl GpuSession {
                     encoder.clear_buffer(&chunk.base, 0, None);
                 }
             }
-            self.ctx.queue.submit([encoder.finish()]);
+            self.ctx.submit(encoder);
         })
     }
 
@@ -123,7 +123,7 @@ impl GpuSession {
                 let groups = [&self.buffers.bind_group, &chunk.groups().splat];
                 let slots = u64::from(self.photons.capacity());
                 dispatch(&mut encoder, &self.pipelines.splat, &groups, slots, WORKGROUP_SIZE);
-                self.ctx.queue.submit([encoder.finish()]);
+                self.ctx.submit(encoder);
             })?;
         }
         Ok(())
@@ -152,7 +152,7 @@ impl GpuSession {
         self.ctx.checked("adding up the statistics", || {
             let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
             dispatch(&mut encoder, &self.pipelines.fold_tallies, &[&self.fold_group], 1, 1);
-            self.ctx.queue.submit([encoder.finish()]);
+            self.ctx.submit(encoder);
         })
     }
 
@@ -215,7 +215,7 @@ impl GpuSession {
                             }
                         }
                     }
-                    self.ctx.queue.submit([encoder.finish()]);
+                    self.ctx.submit(encoder);
                 })?;
             }
         }

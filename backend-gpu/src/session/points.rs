@@ -117,7 +117,7 @@ impl PointChunks {
             for (i, chunk) in self.chunks.iter().enumerate() {
                 encoder.copy_buffer_to_buffer(&chunk.total, 0, &self.totals, 4 * i as u64, 4);
             }
-            ctx.queue.submit([encoder.finish()]);
+            ctx.submit(encoder);
         })?;
         let staging = crate::readback::staging_buffer(&ctx.device, self.totals.size());
         PendingRead::start_in(ctx, &self.totals, staging, 4 * self.chunks.len() as u64, "the visible-point counts")

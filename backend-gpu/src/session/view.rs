@@ -35,7 +35,7 @@ impl GpuSession {
                     dispatch(&mut encoder, &view, &groups, chunk.count, WORKGROUP_SIZE);
                     let bytes = chunk.count * PIXEL_BYTES;
                     encoder.copy_buffer_to_buffer(&self.pixels, chunk.offset * PIXEL_BYTES, &chunk.base, 0, bytes);
-                    self.ctx.queue.submit([encoder.finish()]);
+                    self.ctx.submit(encoder);
                 })?;
             }
             self.pending_totals = Some(self.points.read_totals(&self.ctx)?);
@@ -67,7 +67,7 @@ impl GpuSession {
                 let groups = [chunk.groups().gather(0), &chunk.groups().session];
                 dispatch(&mut encoder, &self.pipelines.add_view, &groups, chunk.count, WORKGROUP_SIZE);
                 encoder.clear_buffer(&chunk.base, 0, None);
-                self.ctx.queue.submit([encoder.finish()]);
+                self.ctx.submit(encoder);
             })?;
         }
         Ok(())

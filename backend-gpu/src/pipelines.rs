@@ -13,10 +13,14 @@ enum Slot {
     Read,
     ReadWrite,
     Texture(wgpu::TextureFormat),
-    /// A sampled depth texture (one sample).
-    Depth,
-    /// A sampled float texture (one sample, not filtered).
-    Sampled,
+    /// A depth texture read by texel (multisampled or not).
+    Depth {
+        multisampled: bool,
+    },
+    /// A float texture read by texel (not filtered; multisampled or not).
+    Sampled {
+        multisampled: bool,
+    },
 }
 
 fn layout(device: &wgpu::Device, label: &str, slots: &[Slot]) -> wgpu::BindGroupLayout {
@@ -42,13 +46,15 @@ fn layout(device: &wgpu::Device, label: &str, slots: &[Slot]) -> wgpu::BindGroup
                     format,
                     view_dimension: wgpu::TextureViewDimension::D2,
                 },
-                Slot::Depth | Slot::Sampled => wgpu::BindingType::Texture {
-                    sample_type: match slot {
-                        Slot::Depth => wgpu::TextureSampleType::Depth,
-                        _ => wgpu::TextureSampleType::Float { filterable: false },
-                    },
+                Slot::Depth { multisampled } => wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Depth,
                     view_dimension: wgpu::TextureViewDimension::D2,
-                    multisampled: false,
+                    multisampled,
+                },
+                Slot::Sampled { multisampled } => wgpu::BindingType::Texture {
+                    sample_type: wgpu::TextureSampleType::Float { filterable: false },
+                    view_dimension: wgpu::TextureViewDimension::D2,
+                    multisampled,
                 },
             },
             count: None,
@@ -125,8 +131,11 @@ pub struct Pipelines {
     pub splat_layout: wgpu::BindGroupLayout,
     /// Group 1 of the caustic layer: light tracing's, then the engine's frame.
     pub layer_layout: wgpu::BindGroupLayout,
-    /// An engine's frame from its textures: parameters, depth, normals, the frame.
-    pub frame_layout: wgpu::BindGroupLayout,
+    /// An engine's frame from its textures: parameters, depth, normals, the
+    /// frame; single-sampled textures, then multisampled ones.
+    pub frame_layouts: [wgpu::BindGroupLayout; 2],
+    /// A layer's history: parameters, image, history, previous and current frames.
+    pub history_layout: wgpu::BindGroupLayout,
     /// Emit + trace.
     pub trace: wgpu::ComputePipeline,
     /// Compaction scatter.
@@ -165,8 +174,11 @@ pub struct Pipelines {
     pub splat: wgpu::ComputePipeline,
     /// layer.wgsl `layer_splat`: the photons added to the sums of an engine's frame.
     pub layer_splat: wgpu::ComputePipeline,
-    /// frame.wgsl `frame_from_textures`: an engine's depth and normal textures into the layer's frame.
-    pub frame_from_textures: wgpu::ComputePipeline,
+    /// frame.wgsl `frame_from_textures`: an engine's depth and normal
+    /// textures into the layer's frame; single-sampled, then multisampled.
+    pub frame_from_textures: [wgpu::ComputePipeline; 2],
+    /// history.wgsl `blend_history`: a layer's frame folded into each pixel's running mean.
+    pub blend_history: wgpu::ComputePipeline,
     view: Mutex<HashMap<u32, wgpu::ComputePipeline>>,
     texture: Mutex<HashMap<wgpu::TextureFormat, TextureCopy>>,
 }
@@ -208,7 +220,11 @@ impl Pipelines {
             "prismatic caustic layer",
             &[with_windows(vec![ReadWrite, Read], Read), vec![Read]].concat(),
         );
-        let frame_layout = layout(device, "prismatic engine frame", &[Uniform, Depth, Sampled, ReadWrite]);
+        let frame_layouts = [false, true].map(|multisampled| {
+            let textures = [Depth { multisampled }, Sampled { multisampled }];
+            layout(device, "prismatic engine frame", &[&[Uniform][..], &textures, &[ReadWrite]].concat())
+        });
+        let history_layout = layout(device, "prismatic layer history", &[Uniform, ReadWrite, ReadWrite, Read, Read]);
         let session_src = shaders::session();
         let session =
             |label: &str, entry: &str| pipeline(device, label, &session_src, entry, &[&gather_layout, &session_layout]);
@@ -260,12 +276,17 @@ impl Pipelines {
                 "layer_splat",
                 &[&scene_layout, &layer_layout],
             ),
-            frame_from_textures: pipeline(
+            frame_from_textures: [false, true].map(|multisampled| {
+                let layout = &frame_layouts[usize::from(multisampled)];
+                let source = shaders::frame(multisampled);
+                pipeline(device, "prismatic engine frame", &source, "frame_from_textures", &[layout])
+            }),
+            blend_history: pipeline(
                 device,
-                "prismatic engine frame",
-                &shaders::frame(),
-                "frame_from_textures",
-                &[&frame_layout],
+                "prismatic layer history",
+                &shaders::history(),
+                "blend_history",
+                &[&history_layout],
             ),
             scene_layout,
             trace_layout,
@@ -279,7 +300,8 @@ impl Pipelines {
             stats_layout,
             splat_layout,
             layer_layout,
-            frame_layout,
+            frame_layouts,
+            history_layout,
             view: Mutex::new(HashMap::new()),
             texture: Mutex::new(HashMap::new()),
         }

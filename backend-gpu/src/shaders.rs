@@ -369,10 +369,24 @@ pub fn layer() -> String {
 }
 
 /// An engine's frame from its depth and normal textures (entry
-/// `frame_from_textures`): its own parameters, the two textures and the
-/// layer's frame in group 0.
-pub fn frame() -> String {
-    [prelude(0), COMMON.into(), include_str!("shaders/frame.wgsl").into()].concat()
+/// `frame_from_textures`): its own parameters, the two textures
+/// (`multisampled`: a pixel's samples averaged) and the layer's frame in group 0.
+pub fn frame(multisampled: bool) -> String {
+    let mut source = include_str!("shaders/frame.wgsl").to_string();
+    source = if multisampled {
+        source
+            .replace("texture_depth_2d", "texture_depth_multisampled_2d")
+            .replace("texture_2d<f32>", "texture_multisampled_2d<f32>")
+            .replace("SAMPLES", "textureNumSamples(depth_texture)")
+    } else {
+        source.replace("SAMPLES", "1u")
+    };
+    [prelude(0), COMMON.into(), source].concat()
+}
+
+/// A caustic layer's temporal accumulation (entry `blend_history`).
+pub fn history() -> String {
+    [prelude(0), COMMON.into(), include_str!("shaders/history.wgsl").into()].concat()
 }
 
 /// The gathers' indirect dispatch arguments, per grid level (entry `level_dispatches`).

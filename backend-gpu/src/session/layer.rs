@@ -17,12 +17,13 @@ const FRAME_TEXEL_BYTES: u64 = 8;
 /// An engine's frame on the device, as its depth and normal prepass leave
 /// it, seen by the scene's camera at the scene's image size.
 pub struct FrameTextures<'a> {
-    /// The depth buffer: a depth format, one sample a pixel.
+    /// The depth buffer: a depth format, multisampled or not (a pixel's
+    /// samples are averaged; a pixel with a sample left clear sees nothing).
     pub depth: &'a wgpu::TextureView,
     /// How it holds depth.
     pub depth_encoding: DepthEncoding,
-    /// World-space normals in RGB: a float or unorm colour format, one
-    /// sample a pixel.
+    /// World-space normals in RGB: a float or unorm colour format, as many
+    /// samples as the depth.
     pub normal: &'a wgpu::TextureView,
     /// How they are stored.
     pub normal_encoding: NormalEncoding,
@@ -77,6 +78,26 @@ impl GpuSession {
     /// frame before the next pass. Starts the passes again; an error when
     /// the textures are not of the scene's image size.
     pub fn set_layer_textures(&mut self, textures: &FrameTextures) -> Result<(), BackendError> {
+        self.read_frame(textures)?;
+        self.passes.clear();
+        self.stale = self.stale.max(Change::View);
+        Ok(())
+    }
+
+    /// Reads the engine's frame again from `textures` and keeps the passes:
+    /// for an engine whose camera has not moved since the layer was set
+    /// (its moving objects' depths are in the passes from this one on). A
+    /// session without a layer sets one ([`GpuSession::set_layer_textures`]).
+    pub fn refresh_layer_textures(&mut self, textures: &FrameTextures) -> Result<(), BackendError> {
+        if self.layer.is_none() {
+            return self.set_layer_textures(textures);
+        }
+        self.read_frame(textures)
+    }
+
+    /// The engine's frame read from `textures` into the layer's frame
+    /// (allocated when missing or of another size).
+    fn read_frame(&mut self, textures: &FrameTextures) -> Result<(), BackendError> {
         let r = &self.scene.scene.render;
         let size = |view: &wgpu::TextureView| {
             let t = view.texture();
@@ -100,7 +121,9 @@ impl GpuSession {
                     self.ctx.device.create_buffer(&wgpu::BufferDescriptor {
                         label: Some("prismatic layer frame"),
                         size: pixels * FRAME_TEXEL_BYTES,
-                        usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                        usage: wgpu::BufferUsages::STORAGE
+                            | wgpu::BufferUsages::COPY_DST
+                            | wgpu::BufferUsages::COPY_SRC,
                         mapped_at_creation: false,
                     })
                 })?
@@ -113,6 +136,14 @@ impl GpuSession {
         let normal_encoding = u32::from(textures.normal_encoding == NormalEncoding::Signed);
         let params =
             FrameParams { width: r.width, height: r.height, depth_encoding, normal_encoding, near, far, pad: [0; 2] };
+        let multisampled = textures.depth.texture().sample_count() > 1;
+        if multisampled != (textures.normal.texture().sample_count() > 1) {
+            return Err(BackendError::Device("the engine's depth and normal textures differ in samples".into()));
+        }
+        let (layout, pipeline) = (
+            &self.pipelines.frame_layouts[usize::from(multisampled)],
+            &self.pipelines.frame_from_textures[usize::from(multisampled)],
+        );
         self.ctx.checked("reading the engine's frame", || {
             let params = self.ctx.buffer_with(
                 "prismatic frame params",
@@ -121,7 +152,7 @@ impl GpuSession {
             );
             let group = self.ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
                 label: Some("prismatic engine frame"),
-                layout: &self.pipelines.frame_layout,
+                layout,
                 entries: &[
                     wgpu::BindGroupEntry { binding: 0, resource: params.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(textures.depth) },
@@ -130,12 +161,10 @@ impl GpuSession {
                 ],
             });
             let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
-            dispatch(&mut encoder, &self.pipelines.frame_from_textures, &[&group], pixels, WORKGROUP_SIZE);
+            dispatch(&mut encoder, pipeline, &[&group], pixels, WORKGROUP_SIZE);
             self.ctx.submit(encoder);
         })?;
         self.layer = Some(frame);
-        self.passes.clear();
-        self.stale = self.stale.max(Change::View);
         Ok(())
     }
 
@@ -148,7 +177,7 @@ impl GpuSession {
             self.ctx.buffer_with(
                 "prismatic layer frame",
                 bytemuck::cast_slice(&texels),
-                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST,
+                wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::COPY_SRC,
             )
         })
     }

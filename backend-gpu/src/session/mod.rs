@@ -9,10 +9,12 @@
 //!
 //! The module's files split the work: `points` (the visible points' device
 //! buffers, in chunks of pixels), `view` (the view pass), `layer` (an
-//! engine's frame in place of the view: the caustic layer), `passes` (the
+//! engine's frame in place of the view: the caustic layer), `history` (a
+//! layer's temporal accumulation), `passes` (the
 //! pilot, the photon passes and their gathers), `readout` (what is read
 //! back).
 
+mod history;
 mod layer;
 mod passes;
 
@@ -83,6 +85,8 @@ pub struct GpuSession {
     /// The engine's frame the caustic is drawn into as a layer (layer.wgsl's
     /// `frame`), if any.
     layer: Option<wgpu::Buffer>,
+    /// A layer's temporal accumulation ([`GpuSession::layer_frame`]), once used.
+    history: Option<history::LayerHistory>,
 }
 
 impl GpuSession {
@@ -153,6 +157,7 @@ impl GpuSession {
             timer,
             in_flight: VecDeque::new(),
             layer: None,
+            history: None,
         })
     }
 

@@ -13,21 +13,30 @@
 //! `Rgba32Float` Bevy image the app shows as it likes (a sprite, a UI
 //! node, a material's texture).
 //!
-//! The plugin renders the whole prismatic image, not a caustic layer for
-//! Bevy's own lighting: the caustic is only right together with the
-//! refraction that makes it (what is seen through the glass is the
-//! dispersed floor), and prismatic's ray tracer draws both from the same
-//! scene. A caustic light map on Bevy's PBR meshes would need photons
-//! gathered in their texture space, which the session does not do.
+//! Two ways to show it:
+//! - **a caustic layer** in Bevy's own frame (a camera with
+//!   [`CausticLayer`]): the caustic falls on Bevy's own surfaces, under its
+//!   lighting, shadows, fog and tone mapping. The surfaces that receive it
+//!   use [`CausticMaterial`]; glass is a [`Glass`] entity with a `Mesh3d`
+//!   (the same mesh Bevy draws). The session draws the caustic irradiance
+//!   in the camera's frame between Bevy's prepass and main pass
+//!   (`layer`): light tracing and hero wavelengths, no view rays.
+//! - **the whole image** (a [`CausticCamera`], no [`CausticLayer`]):
+//!   prismatic's own picture in [`CausticImage`], the refraction through
+//!   the glass included, for tools that show it as it is.
 
+mod layer;
 mod mirror;
 
+pub use layer::{CausticLayer, CausticLayerView, CausticMaterial, CausticReceiver};
 pub use mirror::{CausticCamera, CausticLight, CausticShape, Glass, Receiver};
 pub use prismatic_core;
 pub use prismatic_core::StageTimes;
 
 use bevy::asset::RenderAssetUsages;
+use bevy::core_pipeline::{Core3d, Core3dSystems};
 use bevy::image::Image;
+use bevy::pbr::MaterialPlugin;
 use bevy::prelude::*;
 use bevy::render::extract_resource::{ExtractResource, ExtractResourcePlugin};
 use bevy::render::render_asset::RenderAssets;
@@ -42,44 +51,54 @@ use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 /// Adds live caustics: mirrors the scene's entities, runs a session pass a
-/// frame in the render world, fills [`CausticImage`] and [`CausticStats`].
+/// frame in the render world (in the [`CausticLayer`] camera's frame, or the
+/// whole image), fills [`CausticImage`] and [`CausticStats`].
 #[derive(Default)]
 pub struct PrismaticPlugin;
 
 impl Plugin for PrismaticPlugin {
     fn build(&self, app: &mut App) {
+        layer::embed_shader(app);
         app.init_resource::<CausticSettings>()
             .init_resource::<CausticStats>()
             .add_plugins((
+                MaterialPlugin::<CausticMaterial>::default(),
                 ExtractResourcePlugin::<CausticScene>::default(),
                 ExtractResourcePlugin::<CausticImage>::default(),
                 ExtractResourcePlugin::<CausticStats>::default(),
+                ExtractResourcePlugin::<CausticLayerView>::default(),
             ))
-            .add_systems(PostUpdate, (size_image, mirror::mirror_scene).chain().after(TransformSystems::Propagate));
+            .add_systems(
+                PostUpdate,
+                (mirror::mirror_scene, size_image, layer::attach_layer).chain().after(TransformSystems::Propagate),
+            );
         app.sub_app_mut(RenderApp)
             .init_resource::<LiveSession>()
-            .add_systems(Render, render_caustics.in_set(RenderSystems::Prepare));
+            .add_systems(Render, render_caustics.in_set(RenderSystems::Prepare))
+            .add_systems(Core3d, layer::draw_layer.after(Core3dSystems::Prepass).before(Core3dSystems::MainPass));
     }
 }
 
-/// How the caustics are rendered: the image size, photons per frame
-/// (one pass), bands, estimator, radius, α and the rest of prismatic's
-/// `[render]` settings. Changing it restarts the accumulation.
+/// How the caustics are rendered: the image size (a [`CausticLayer`]
+/// camera's target size replaces it), photons per frame (one pass), bands,
+/// wavelengths, estimator, radius and the rest of prismatic's `[render]`
+/// settings. Changing it restarts the accumulation.
 #[derive(Resource, Clone, Debug, PartialEq)]
 pub struct CausticSettings(pub RenderSettings);
 
 impl Default for CausticSettings {
-    /// 960×540, 100k white photons a frame in the paper's 7 bands, radius 0.03.
+    /// 960×540, 100k white photons a frame, the default render's light
+    /// transport (light tracing, hero wavelengths and view paths, which win
+    /// at equal error), radius 0.03.
     fn default() -> Self {
         CausticSettings(RenderSettings {
             width: 960,
             height: 540,
             photons: 100_000,
             radius: 0.03,
-            bands: prismatic_core::model::bands::BandSpec::Paper7,
             ambient: 0.06,
             exposure: 1.6,
-            ..RenderSettings::paper()
+            ..RenderSettings::default()
         })
     }
 }
@@ -140,14 +159,17 @@ impl CausticStats {
     }
 }
 
-/// Makes [`CausticImage`] (again) when there is none or the settings' size changed.
+/// Makes [`CausticImage`] (again) when there is none or the scene's image
+/// size changed.
 fn size_image(
     mut commands: Commands,
     settings: Res<CausticSettings>,
+    scene: Option<Res<CausticScene>>,
     image: Option<Res<CausticImage>>,
     mut images: ResMut<Assets<Image>>,
 ) {
-    let (w, h) = (settings.0.width.max(1), settings.0.height.max(1));
+    let r = scene.as_ref().map_or(&settings.0, |s| &s.scene.scene.render);
+    let (w, h) = (r.width.max(1), r.height.max(1));
     if let Some(image) = &image
         && images.get(&image.0).is_some_and(|i| (i.width(), i.height()) == (w, h))
     {
@@ -172,67 +194,91 @@ struct LiveSession {
     last_pass: Option<Instant>,
     /// The generation the session failed on: not tried again until the scene changes.
     failed: Option<u64>,
+    /// Frames a caustic layer has drawn (each its own pass).
+    frames: u32,
 }
 
-/// One progressive pass into the image (after updating the session when the
-/// scene changed); errors go to [`CausticStats`], never a panic.
+impl LiveSession {
+    /// One frame of `scene` into `target` (the [`CausticImage`]'s texture,
+    /// of the scene's image size: a resized one arrives a frame later):
+    /// the session made when there is none, then `work` with whether the
+    /// scene changed since the session's last frame (it updates the
+    /// session then). Figures and errors go to `stats`, never a panic; a
+    /// failed session is dropped and not tried again until the scene changes.
+    fn frame(
+        &mut self,
+        scene: &CausticScene,
+        stats: &CausticStats,
+        device: &RenderDevice,
+        queue: &RenderQueue,
+        target: &bevy::render::render_resource::Texture,
+        work: impl FnOnce(&mut GpuSession, bool) -> Result<(), prismatic_core::BackendError>,
+    ) {
+        let r = &scene.scene.scene.render;
+        if (target.width(), target.height()) != (r.width, r.height) || self.failed == Some(scene.generation) {
+            return;
+        }
+        let start = Instant::now();
+        let result = (|| {
+            let changed = match &self.session {
+                Some(_) => self.generation != scene.generation,
+                None => {
+                    let ctx = GpuContext::from_device(device.wgpu_device().clone(), (**queue).clone())?;
+                    let options = GpuOptions { stage_times: true, ..GpuOptions::default() };
+                    self.session = Some(GpuSession::new(ctx, &scene.scene, options)?);
+                    true
+                }
+            };
+            self.generation = scene.generation;
+            let session = self.session.as_mut().expect("made above");
+            work(session, changed)?;
+            let passes = session.passes().iter().map(|(a, b)| b - a).sum();
+            Ok::<_, prismatic_core::BackendError>((passes, session.stage_times()))
+        })();
+        let now = Instant::now();
+        let interval = self.last_pass.map_or(0.0, |t| (now - t).as_secs_f64());
+        self.last_pass = Some(now);
+        match result {
+            Ok((passes, gpu)) => stats.set(|s| {
+                *s = Stats {
+                    passes,
+                    photons: u64::from(r.photons),
+                    frame_seconds: interval,
+                    submit_seconds: start.elapsed().as_secs_f64(),
+                    gpu,
+                    generation: scene.generation,
+                    error: None,
+                }
+            }),
+            Err(e) => {
+                (self.session, self.failed) = (None, Some(scene.generation));
+                stats.set(|s| s.error = Some(e.to_string()));
+            }
+        }
+    }
+}
+
+/// The whole image (no [`CausticLayer`] camera): one progressive pass into
+/// the image (after updating the session when the scene changed), before
+/// Bevy's cameras draw.
+#[allow(clippy::too_many_arguments)]
 fn render_caustics(
     mut live: ResMut<LiveSession>,
     scene: Option<Res<CausticScene>>,
     image: Option<Res<CausticImage>>,
+    layer: Option<Res<CausticLayerView>>,
     stats: Res<CausticStats>,
     device: Res<RenderDevice>,
     queue: Res<RenderQueue>,
     images: Res<RenderAssets<GpuImage>>,
 ) {
-    let (Some(scene), Some(image)) = (scene, image) else { return };
+    let (Some(scene), Some(image), None) = (scene, image, layer) else { return };
     let Some(target) = images.get(&image.0) else { return };
-    let r = &scene.scene.scene.render;
-    if (target.texture.width(), target.texture.height()) != (r.width, r.height) {
-        return; // The resized image arrives next frame.
-    }
-    if live.failed == Some(scene.generation) {
-        return;
-    }
-    let start = Instant::now();
-    let result = (|| {
-        let live = &mut *live;
-        match &mut live.session {
-            Some(session) if live.generation != scene.generation => {
-                session.update(&scene.scene)?;
-            }
-            Some(_) => {}
-            None => {
-                let ctx = GpuContext::from_device(device.wgpu_device().clone(), (**queue).clone())?;
-                let options = GpuOptions { stage_times: true, ..GpuOptions::default() };
-                live.session = Some(GpuSession::new(ctx, &scene.scene, options)?);
-            }
+    live.frame(&scene, &stats, &device, &queue, &target.texture, |session, changed| {
+        if changed {
+            session.update(&scene.scene)?;
         }
-        live.generation = scene.generation;
-        let session = live.session.as_mut().expect("made above");
         session.next_pass(&mut NoProgress)?;
-        session.copy_to_texture(&target.texture)?;
-        let passes = session.passes().iter().map(|(a, b)| b - a).sum();
-        Ok::<_, prismatic_core::BackendError>((passes, session.stage_times()))
-    })();
-    let now = Instant::now();
-    let interval = live.last_pass.map_or(0.0, |t| (now - t).as_secs_f64());
-    live.last_pass = Some(now);
-    match result {
-        Ok((passes, gpu)) => stats.set(|s| {
-            *s = Stats {
-                passes,
-                photons: u64::from(scene.scene.scene.render.photons),
-                frame_seconds: interval,
-                submit_seconds: start.elapsed().as_secs_f64(),
-                gpu,
-                generation: scene.generation,
-                error: None,
-            }
-        }),
-        Err(e) => {
-            (live.session, live.failed) = (None, Some(scene.generation));
-            stats.set(|s| s.error = Some(e.to_string()));
-        }
-    }
+        session.copy_to_texture(&target.texture)
+    });
 }

@@ -1,13 +1,22 @@
 //! The scene's entities, mirrored into a prismatic scene: the components
 //! an app puts on its entities, and the system that turns them (placed by
-//! their global transforms) into a validated `PreparedScene` when they change.
+//! their global transforms) into a validated `PreparedScene` when they
+//! change. Objects are prismatic shapes ([`CausticShape`]) or Bevy's own
+//! meshes (`Mesh3d`): a [`Glass`] mesh, or a mesh drawn with a
+//! [`CausticMaterial`] (a diffuse receiver of its base colour).
 
+use crate::layer::{CausticLayer, CausticLayerView, CausticMaterial};
 use crate::{CausticScene, CausticSettings, CausticStats};
+use bevy::camera::{Camera as BevyCamera, Projection};
 use bevy::ecs::system::SystemParam;
+use bevy::mesh::{Indices, VertexAttributeValues};
 use bevy::prelude::*;
 use prismatic_core::model::dispersion::Dispersion;
-use prismatic_core::model::scene::{Camera, Checker, Light, Material, MaterialKind, Object, Scene, Shape};
+use prismatic_core::model::scene::{
+    Camera, Checker, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape,
+};
 use prismatic_core::{PreparedScene, Vec3 as CoreVec3};
+use std::collections::HashMap;
 use std::sync::Arc;
 
 /// The view prismatic renders: the entity's position, looking along its
@@ -40,7 +49,9 @@ pub enum CausticLight {
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct CausticShape(pub Shape);
 
-/// The object is a smooth dispersive dielectric.
+/// The object is a smooth dispersive dielectric: its [`CausticShape`], or
+/// else its `Mesh3d` (Bevy's mesh, its vertices welded where they repeat
+/// along UV seams: a glass must be closed).
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct Glass {
     /// Its index of refraction n(λ).
@@ -84,28 +95,104 @@ fn placed(shape: &Shape, t: &GlobalTransform) -> Shape {
     }
 }
 
+/// `mesh`'s triangles placed by `t`, its vertices welded by position;
+/// `None` when it has no positions or no longer has its data in the main world.
+fn mesh_shape(mesh: &Mesh, t: &GlobalTransform) -> Option<Shape> {
+    let Ok(Some(VertexAttributeValues::Float32x3(positions))) = mesh.try_attribute_option(Mesh::ATTRIBUTE_POSITION)
+    else {
+        return None;
+    };
+    let indices: Vec<usize> = match mesh.try_indices_option() {
+        Ok(Some(Indices::U16(i))) => i.iter().map(|&k| usize::from(k)).collect(),
+        Ok(Some(Indices::U32(i))) => i.iter().map(|&k| k as usize).collect(),
+        Ok(None) => (0..positions.len()).collect(),
+        Err(_) => return None,
+    };
+    let (mut welded, mut index_of) = (Vec::new(), HashMap::new());
+    let remap: Vec<u32> = positions
+        .iter()
+        .map(|p| {
+            *index_of.entry(p.map(f32::to_bits)).or_insert_with(|| {
+                welded.push(core(t.transform_point(Vec3::from_array(*p))));
+                welded.len() as u32 - 1
+            })
+        })
+        .collect();
+    let triangles = indices
+        .chunks_exact(3)
+        .filter_map(|c| {
+            let tri = [remap[c[0]], remap[c[1]], remap[c[2]]];
+            (tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2]).then_some(tri)
+        })
+        .collect();
+    Some(Shape::Mesh { positions: welded, triangles, uvs: Vec::new() })
+}
+
+/// A mesh drawn with a [`CausticMaterial`]: a diffuse receiver.
+type ReceiverMesh = (&'static MeshMaterial3d<CausticMaterial>, &'static Mesh3d, &'static GlobalTransform);
+
 /// The entities a scene is made of.
 #[derive(SystemParam)]
 pub(crate) struct SceneEntities<'w, 's> {
     cameras: Query<'w, 's, (&'static CausticCamera, &'static GlobalTransform)>,
+    layer_cameras: Query<
+        'w,
+        's,
+        (Entity, &'static CausticLayer, &'static BevyCamera, &'static Projection, &'static GlobalTransform),
+    >,
     lights: Query<'w, 's, (&'static CausticLight, &'static GlobalTransform)>,
     objects: Query<
         'w,
         's,
         (&'static CausticShape, &'static GlobalTransform, Option<&'static Glass>, Option<&'static Receiver>),
     >,
+    glass_meshes: Query<'w, 's, (&'static Glass, &'static Mesh3d, &'static GlobalTransform), Without<CausticShape>>,
+    receiver_meshes: Query<'w, 's, ReceiverMesh, (Without<CausticShape>, Without<Glass>)>,
+    meshes: Res<'w, Assets<Mesh>>,
+    materials: Res<'w, Assets<CausticMaterial>>,
 }
 
-/// The scene the entities make, or why it is not valid.
-fn build_scene(settings: &CausticSettings, entities: &SceneEntities) -> Result<Scene, String> {
-    let SceneEntities { cameras, lights, objects } = entities;
-    let (camera, at) = cameras.iter().next().ok_or("no entity has a CausticCamera")?;
-    let camera = Camera {
+/// The scene's view: its camera, image size and, for a layer, Bevy's view.
+struct SceneView {
+    camera: Camera,
+    size: (u32, u32),
+    layer: Option<CausticLayerView>,
+}
+
+/// The scene's view: a [`CausticLayer`] camera's (its view, vertical field
+/// of view, target size and near plane), else the [`CausticCamera`].
+fn scene_view(settings: &CausticSettings, entities: &SceneEntities) -> Result<SceneView, String> {
+    let view = |at: &GlobalTransform, fov_deg| Camera {
         position: core(at.translation()),
         look_at: core(at.translation() + at.forward().as_vec3()),
         up: core(at.up().as_vec3()),
-        fov_deg: camera.fov_deg,
+        fov_deg,
     };
+    if let Some((entity, layer, camera, projection, at)) = entities.layer_cameras.iter().next() {
+        let Projection::Perspective(p) = projection else {
+            return Err("the CausticLayer camera needs a perspective projection".into());
+        };
+        let size = camera.physical_target_size().ok_or("the CausticLayer camera's target has no size yet")?;
+        let layer = CausticLayerView {
+            camera: entity,
+            near: p.near,
+            history: layer.history,
+            moving_history: layer.moving_history,
+            lux_per_watt: layer.lux_per_watt,
+        };
+        return Ok(SceneView { camera: view(at, p.fov.to_degrees()), size: (size.x, size.y), layer: Some(layer) });
+    }
+    let (camera, at) = entities.cameras.iter().next().ok_or("no entity has a CausticCamera or a CausticLayer")?;
+    Ok(SceneView { camera: view(at, camera.fov_deg), size: (settings.0.width, settings.0.height), layer: None })
+}
+
+/// The scene the entities make (and the layer's view, if any), or why it is not valid.
+fn build_scene(
+    settings: &CausticSettings,
+    entities: &SceneEntities,
+) -> Result<(Scene, Option<CausticLayerView>), String> {
+    let SceneView { camera, size: (width, height), layer } = scene_view(settings, entities)?;
+    let SceneEntities { lights, objects, glass_meshes, receiver_meshes, meshes, materials, .. } = entities;
     let lights = lights
         .iter()
         .map(|(light, at)| match *light {
@@ -121,7 +208,7 @@ fn build_scene(settings: &CausticSettings, entities: &SceneEntities) -> Result<S
             }
         })
         .collect();
-    let mut materials = Vec::new();
+    let mut scene_materials = Vec::new();
     let mut scene_objects = Vec::new();
     for (i, (shape, at, glass, receiver)) in objects.iter().enumerate() {
         let kind = match (glass, receiver) {
@@ -133,10 +220,34 @@ fn build_scene(settings: &CausticSettings, entities: &SceneEntities) -> Result<S
             (None, Some(r)) => MaterialKind::Diffuse { albedo: r.albedo, checker: r.checker.clone(), texture: None },
             _ => return Err(format!("object {i} needs exactly one of Glass and Receiver")),
         };
-        scene_objects.push(Object { shape: placed(&shape.0, at), material: materials.len() });
-        materials.push(Material { name: format!("object{i}"), kind });
+        scene_objects.push(Object { shape: placed(&shape.0, at), material: scene_materials.len() });
+        scene_materials.push(Material { name: format!("object{i}"), kind });
     }
-    Ok(Scene { render: settings.0.clone(), camera, lights, materials, objects: scene_objects })
+    let mesh = |handle: &Mesh3d, at, what: &str| {
+        meshes.get(&handle.0).and_then(|m| mesh_shape(m, at)).ok_or(format!("{what}'s mesh has no positions here"))
+    };
+    for (i, (glass, handle, at)) in glass_meshes.iter().enumerate() {
+        let kind = MaterialKind::Dielectric {
+            dispersion: glass.dispersion.clone(),
+            outside: Dispersion::Constant(1.0),
+            attenuation: None,
+        };
+        scene_objects.push(Object { shape: mesh(handle, at, "a Glass mesh")?, material: scene_materials.len() });
+        scene_materials.push(Material { name: format!("glass mesh {i}"), kind });
+    }
+    for (i, (material, handle, at)) in receiver_meshes.iter().enumerate() {
+        let Some(m) = materials.get(&material.0) else { continue };
+        let c = m.base.base_color.to_linear();
+        let albedo = CoreVec3::new(c.red, c.green, c.blue) * (1.0 - m.base.metallic);
+        let kind = MaterialKind::Diffuse { albedo, checker: None, texture: None };
+        scene_objects
+            .push(Object { shape: mesh(handle, at, "a CausticMaterial mesh")?, material: scene_materials.len() });
+        scene_materials.push(Material { name: format!("receiver mesh {i}"), kind });
+    }
+    // A layer's irradiance is in Bevy's photometric units; an image's pixels in the settings' exposure.
+    let exposure = layer.map_or(settings.0.exposure, |l| l.lux_per_watt);
+    let render = RenderSettings { width, height, exposure, ..settings.0.clone() };
+    Ok((Scene { render, camera, lights, materials: scene_materials, objects: scene_objects }, layer))
 }
 
 /// Mirrors the entities into [`CausticScene`] when the scene they make
@@ -147,13 +258,19 @@ pub(crate) fn mirror_scene(
     settings: Res<CausticSettings>,
     current: Option<Res<CausticScene>>,
     stats: Res<CausticStats>,
+    current_layer: Option<Res<CausticLayerView>>,
     mut last: Local<Option<Scene>>,
     entities: SceneEntities,
 ) {
-    let scene = match build_scene(&settings, &entities) {
-        Ok(scene) => scene,
+    let (scene, layer) = match build_scene(&settings, &entities) {
+        Ok(built) => built,
         Err(e) => return stats.set(|s| s.error = Some(e)),
     };
+    match layer {
+        Some(layer) if current_layer.as_deref() != Some(&layer) => commands.insert_resource(layer),
+        None if current_layer.is_some() => commands.remove_resource::<CausticLayerView>(),
+        _ => {}
+    }
     if last.as_ref() == Some(&scene) {
         return;
     }

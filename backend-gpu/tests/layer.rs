@@ -160,3 +160,53 @@ fn a_recorded_frame_submitted_with_the_engines_is_the_submitted_frame() {
     assert!(image.pixels.iter().any(|p| p.max_element() > 0.0), "the recorded layer has the caustic");
     assert_eq!(image, direct, "the recorded frame differs from the submitted one");
 }
+
+#[test]
+fn the_history_is_the_mean_of_its_frames_and_starts_again_where_the_surface_changed() {
+    // Four frames behind the occluder, then one without it: where the
+    // occluder stood the history starts again (this frame's pass alone);
+    // elsewhere it is the mean of the five passes, as the protocol's
+    // progressive image of those passes is.
+    let Some(ctx) = test_context("a layer's history") else { return };
+    let v = Vec3::new;
+    let floor = raster::quad(v(-30.0, 0.0, -30.0), v(-30.0, 0.0, 30.0), v(30.0, 0.0, 30.0), v(30.0, 0.0, -30.0));
+    let (occluded, first) = raster::prepass(&ctx.device, &camera(), SIZE, &engine_triangles());
+    let (open, second) = raster::prepass(&ctx.device, &camera(), SIZE, &floor);
+    ctx.queue.submit([first, second]);
+    let views = |p: &raster::Prepass| (raster::view(&p.depth), raster::view(&p.normal));
+    let ((od, on), (fd, fnormal)) = (views(&occluded), views(&open));
+    let mut session = GpuSession::new(ctx.clone(), &scene(true), GpuOptions::default()).expect("session");
+    for frame in 0..4 {
+        session.layer_frame(&textures(&od, &on), frame, 256).expect("frame");
+    }
+    session.layer_frame(&textures(&fd, &fnormal), 4, 256).expect("frame");
+    let shown = shown_image(&session);
+    let image_of = |passes: std::ops::Range<u32>| {
+        let mut s = GpuSession::new(ctx.clone(), &scene(true), GpuOptions::default()).expect("session");
+        s.set_layer_textures(&textures(&fd, &fnormal)).expect("fits");
+        for k in passes {
+            s.run_pass(k, &mut NoProgress).expect("pass");
+        }
+        s.image().expect("image")
+    };
+    let (alone, mean) = (image_of(4..5), image_of(0..5));
+    let left = |i: usize| (i as u32 % SIZE.0) < SIZE.0 / 2;
+    let brightest = mean.pixels.iter().map(|p| p.max_element()).fold(0.0f32, f32::max);
+    let (mut restarted, mut kept) = (0, 0);
+    for (i, got) in shown.iter().enumerate() {
+        let want = if left(i) { alone.pixels[i] } else { mean.pixels[i] };
+        let off = (*got - want).abs().max_element();
+        assert!(off <= 1e-4 * brightest + 1e-3 * want.max_element(), "pixel {i}: {got} shown, {want} expected");
+        if want.max_element() > 0.0 {
+            *(if left(i) { &mut restarted } else { &mut kept }) += 1;
+        }
+    }
+    assert!(restarted > 0 && kept > 0, "{restarted} lit pixels started again, {kept} kept their history");
+}
+
+/// What the session shows (its device image, which `copy_to_texture` copies).
+fn shown_image(session: &GpuSession) -> Vec<Vec3> {
+    let ctx = session.context();
+    let bytes = ctx.read(session.pixels(), 0, session.pixels().size()).expect("read");
+    bytemuck::pod_collect_to_vec::<u8, [f32; 4]>(&bytes).iter().map(|p| Vec3::new(p[0], p[1], p[2])).collect()
+}

@@ -10,9 +10,10 @@
 //! the render built (bit l: cells of the pass radius / 4^l) and the bytes a
 //! frame moves each way. The paper's configuration gathers within a fixed
 //! radius (its frame is one pass); the others are progressive. The last
-//! six are the default render's light transport (light tracing, hero
-//! wavelengths and view paths), as prismatic's image and as a caustic layer
-//! in the frame the camera sees (what an engine's frame costs).
+//! seven are the default render's light transport (light tracing, hero
+//! wavelengths and view paths), as prismatic's image, as a caustic layer
+//! in the frame the camera sees, and as an engine's frames (its prepass
+//! read each frame, one pass, the layer's history): what an engine pays.
 //!
 //! Then the photon map of one pass read back (what `prismatic photons` pays).
 //!
@@ -22,7 +23,10 @@
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::scene::{RadiusMode, RenderSettings, WavelengthSampling};
 use prismatic_core::{LayerFrame, NoProgress, PreparedScene, Render, StageTimes};
-use prismatic_gpu::{AdapterChoice, GpuBackend, GpuContext, GpuOptions};
+use prismatic_gpu::{AdapterChoice, DepthEncoding, FrameTextures, GpuBackend, GpuContext, GpuOptions, NormalEncoding};
+
+#[path = "../../backend-gpu/examples/engine_loop/raster.rs"]
+mod raster;
 use std::time::{Duration, Instant};
 
 /// One configuration to time.
@@ -50,6 +54,10 @@ enum Transport {
     /// As light traced, drawn as a caustic layer in the frame the camera
     /// sees (an engine's depth and normals): no view rays, no gather.
     Layer,
+    /// A caustic layer as an engine draws it every frame
+    /// (`GpuSession::layer_frame`): its frame read from its prepass's
+    /// textures (engine_loop's raster of the floor), one pass, the history.
+    EngineFrames,
 }
 
 fn scene(c: &Config, width: u32, height: u32) -> PreparedScene {
@@ -96,6 +104,7 @@ fn main() {
     };
     let light_traced = |label, photons| hero(label, photons, Transport::LightTraced);
     let layer = |label, photons| hero(label, photons, Transport::Layer);
+    let engine_frames = |label, photons| hero(label, photons, Transport::EngineFrames);
     let hd = (1920, 1080);
     let configs = [
         config(
@@ -133,6 +142,7 @@ fn main() {
         layer("sphere 1080p, 100k x hero, caustic layer", 100_000),
         layer("sphere 1080p, 1M x hero, caustic layer", 1_000_000),
         layer("sphere 1080p, 4M x hero, caustic layer", 4_000_000),
+        engine_frames("sphere 1080p, 1M x hero, caustic layer in engine frames", 1_000_000),
     ];
     let args: Vec<String> = std::env::args().collect();
     let only = args.iter().position(|a| a == "--only").and_then(|i| args.get(i + 1));
@@ -189,15 +199,39 @@ fn session_frames(gpu: &GpuBackend, configs: &[Config], frames: usize) {
             if c.transport == Transport::Layer {
                 session.set_layer(Some(&LayerFrame::seen_by_camera(&scene))).map_err(|e| e.to_string())?;
             }
+            let ctx = session.context().clone();
+            let prepass = (c.transport == Transport::EngineFrames).then(|| {
+                let v = prismatic_core::Vec3::new;
+                let floor = raster::quad(v(-30., 0., -30.), v(-30., 0., 30.), v(30., 0., 30.), v(30., 0., -30.));
+                let (prepass, commands) = raster::prepass(&ctx.device, &scene.scene.camera, (width, height), &floor);
+                ctx.queue.submit([commands]);
+                (raster::view(&prepass.depth), raster::view(&prepass.normal))
+            });
+            let mut frame = 0;
+            let mut step = |session: &mut prismatic_gpu::GpuSession| -> Result<(), String> {
+                frame += 1;
+                match &prepass {
+                    Some((depth, normal)) => {
+                        let textures = FrameTextures {
+                            depth,
+                            depth_encoding: DepthEncoding::ReverseInfinite { near: raster::NEAR },
+                            normal,
+                            normal_encoding: NormalEncoding::Unorm,
+                        };
+                        session.layer_frame(&textures, frame, 256).map_err(|e| e.to_string())
+                    }
+                    None => session.next_pass(&mut NoProgress).map(|_| ()).map_err(|e| e.to_string()),
+                }
+            };
             let wait = |s: &prismatic_gpu::GpuSession| s.context().wait().map_err(|e| e.to_string());
             let t = Instant::now();
-            session.next_pass(&mut NoProgress).map_err(|e| e.to_string())?;
+            step(&mut session)?;
             wait(&session)?;
             let first = t.elapsed();
             let (mut waited, mut stages) = (Vec::with_capacity(frames), Vec::with_capacity(frames));
             for frame in 0..frames {
                 let t = Instant::now();
-                session.next_pass(&mut NoProgress).map_err(|e| e.to_string())?;
+                step(&mut session)?;
                 wait(&session)?;
                 waited.push(t.elapsed());
                 // The frame before this one's, come back while this one was
@@ -225,7 +259,7 @@ fn session_frames(gpu: &GpuBackend, configs: &[Config], frames: usize) {
             let (t, mut submit) = (Instant::now(), Duration::ZERO);
             for _ in 0..frames {
                 let s = Instant::now();
-                session.next_pass(&mut NoProgress).map_err(|e| e.to_string())?;
+                step(&mut session)?;
                 submit += s.elapsed();
             }
             wait(&session)?;

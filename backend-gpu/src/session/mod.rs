@@ -17,11 +17,11 @@
 mod history;
 mod layer;
 mod passes;
-
-pub use layer::{DepthEncoding, FrameTextures, NormalEncoding};
 mod points;
 mod readout;
 mod view;
+
+pub use layer::{DepthEncoding, FrameTextures, NormalEncoding};
 
 use crate::GpuOptions;
 use crate::context::GpuContext;
@@ -299,8 +299,9 @@ impl Render for GpuSession {
         Ok(change)
     }
 
-    /// Uploads the frame (an engine that has its depth and normals on the
-    /// device still hands them over through the host for now).
+    /// Uploads the frame from the host (an engine with its depth and
+    /// normals on the device hands them over there:
+    /// [`GpuSession::set_layer_textures`]).
     fn set_layer(&mut self, frame: Option<&LayerFrame>) -> Result<(), BackendError> {
         if let Some(frame) = frame.filter(|f| !f.fits(&self.scene)) {
             return Err(BackendError::frame_size(frame, &self.scene));

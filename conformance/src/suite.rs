@@ -166,21 +166,26 @@ pub fn sampled_view_paths_match_the_reference(backend: &mut dyn Backend) {
 }
 
 /// A caustic layer in an engine's frame (the frame the scene's camera sees,
-/// and once more with an engine's occluder in front of the left half): the
-/// reference's image after two passes, a black base and no visible points;
-/// partial renders merge into one run's sums bit for bit; leaving the
-/// layer gives a fresh render's sums; a frame of another size is refused.
+/// and for the first scene once more with an engine's occluder in front of
+/// the left half): the reference's image after two passes, a black base
+/// and no visible points; partial renders merge into one run's sums bit for
+/// bit; leaving the layer gives a fresh render's sums; a frame of another
+/// size is refused.
 pub fn caustic_layers_match_the_reference(backend: &mut dyn Backend) {
     let name = backend.name();
-    for (scene_name, scene) in scenes::with_caustics() {
+    for (i, (scene_name, scene)) in scenes::with_caustics().into_iter().enumerate() {
         let seen = LayerFrame::seen_by_camera(&scene);
-        let mut occluded = seen.clone();
-        for (i, depth) in occluded.depth.iter_mut().enumerate() {
-            if i as u32 % seen.width < seen.width / 2 {
-                *depth = depth.min(1.0);
+        let mut frames = vec![("its camera's frame", seen.clone())];
+        if i == 0 {
+            let mut occluded = seen.clone();
+            for (k, depth) in occluded.depth.iter_mut().enumerate() {
+                if k as u32 % seen.width < seen.width / 2 {
+                    *depth = depth.min(1.0);
+                }
             }
+            frames.push(("an occluded frame", occluded));
         }
-        for (frame_name, frame) in [("its camera's frame", &seen), ("an occluded frame", &occluded)] {
+        for (frame_name, frame) in &frames {
             let case = format!("{name}, {scene_name}, {frame_name}");
             let layer = |backend: &mut dyn Backend, passes: std::ops::Range<u32>| {
                 let mut render = prepare(backend, &scene);
@@ -199,18 +204,19 @@ pub fn caustic_layers_match_the_reference(backend: &mut dyn Backend) {
             merged.merge(&sums(second.as_mut())).expect("disjoint passes");
             assert_eq!(merged, sums(got.as_mut()), "{case}: merged partials differ from one run");
         }
-        let mut left = prepare(backend, &scene);
-        left.set_layer(Some(&seen)).unwrap();
-        run(left.as_mut(), 0..1);
-        left.set_layer(None).unwrap();
-        run(left.as_mut(), 0..2);
-        let mut fresh = prepare(backend, &scene);
-        run(fresh.as_mut(), 0..2);
-        assert_eq!(sums(left.as_mut()), sums(fresh.as_mut()), "{name}, {scene_name}: the image after a layer");
-        assert_eq!(left.base().unwrap(), fresh.base().unwrap(), "{name}, {scene_name}: the base after a layer");
     }
     let scene = scenes::glass_sphere();
-    let mut small = LayerFrame::seen_by_camera(&scene);
+    let seen = LayerFrame::seen_by_camera(&scene);
+    let mut left = prepare(backend, &scene);
+    left.set_layer(Some(&seen)).unwrap();
+    run(left.as_mut(), 0..1);
+    left.set_layer(None).unwrap();
+    run(left.as_mut(), 0..2);
+    let mut fresh = prepare(backend, &scene);
+    run(fresh.as_mut(), 0..2);
+    assert_eq!(sums(left.as_mut()), sums(fresh.as_mut()), "{name}: the image after a layer");
+    assert_eq!(left.base().unwrap(), fresh.base().unwrap(), "{name}: the base after a layer");
+    let mut small = seen;
     (small.width, small.depth, small.normal) = (small.width - 1, vec![1.0; 1], vec![glam::Vec3::Y; 1]);
     let refused = prepare(backend, &scene).set_layer(Some(&small));
     assert!(matches!(refused, Err(BackendError::FrameSize { .. })), "{name}: {refused:?}");

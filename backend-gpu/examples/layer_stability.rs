@@ -16,60 +16,29 @@
 //!
 //! `cargo run --release -p prismatic-gpu --example layer_stability -- [PHOTONS]`
 
+#[path = "engine_loop/ball.rs"]
+mod ball;
 #[path = "engine_loop/raster.rs"]
 mod raster;
 
 use prismatic_core::geometry::camera::PinholeCamera;
-use prismatic_core::model::dispersion::Dispersion;
-use prismatic_core::model::scene::{Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape};
+use prismatic_core::model::scene::RenderSettings;
 use prismatic_core::{PreparedScene, Render, Vec3};
 use prismatic_gpu::{AdapterChoice, DepthEncoding, FrameTextures, GpuContext, GpuOptions, GpuSession, NormalEncoding};
 
 const SIZE: (u32, u32) = (320, 180);
-/// Where the sphere's centre is.
-const CENTRE: Vec3 = Vec3::new(0.0, 1.0, 0.0);
 /// How far the light moves along x a frame.
 const SPEED: f32 = 0.02;
-
-fn camera() -> Camera {
-    Camera { position: Vec3::new(4.2, 2.6, 3.4), look_at: Vec3::new(0.4, 0.3, 0.0), up: Vec3::Y, fov_deg: 42.0 }
-}
 
 /// The light's position at `x`.
 fn light_at(x: f32) -> Vec3 {
     Vec3::new(x, 6.0, -0.5)
 }
 
-/// The glass sphere on a floor under a spot light aimed at the sphere from `light`.
+/// The ball's scene with the light at `light`, `photons` a pass.
 fn scene(light: Vec3, photons: u32) -> PreparedScene {
-    let material = |name: &str, kind| Material { name: name.into(), kind };
-    PreparedScene::new(Scene {
-        render: RenderSettings { width: SIZE.0, height: SIZE.1, photons, ..RenderSettings::default() },
-        camera: camera(),
-        lights: vec![Light::Spot {
-            position: light,
-            direction: CENTRE - light,
-            cone_deg: 20.0,
-            power: 38.0,
-            spectrum: Default::default(),
-        }],
-        materials: vec![
-            material("floor", MaterialKind::Diffuse { albedo: Vec3::splat(0.85), checker: None, texture: None }),
-            material(
-                "glass",
-                MaterialKind::Dielectric {
-                    dispersion: Dispersion::Paper,
-                    outside: Dispersion::Constant(1.0),
-                    attenuation: None,
-                },
-            ),
-        ],
-        objects: vec![
-            Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
-            Object { shape: Shape::Sphere { center: CENTRE, radius: 1.0 }, material: 1 },
-        ],
-    })
-    .expect("a valid scene")
+    let render = RenderSettings { width: SIZE.0, height: SIZE.1, photons, ..RenderSettings::default() };
+    ball::scene(render, ball::spot(light, 20.0), true)
 }
 
 /// The image the session shows (its history), as luminance per pixel.
@@ -94,10 +63,10 @@ fn centroid(lum: &[f32], fraction: f32) -> (f32, f32) {
 /// The caustic's closed-form centre for a light at `light`: the floor point
 /// on the line from the light through the sphere's centre, in pixels.
 fn closed_form(light: Vec3) -> (f32, f32) {
-    let t = light.y / (light.y - CENTRE.y);
-    let p = light + (CENTRE - light) * t;
+    let t = light.y / (light.y - ball::CENTRE.y);
+    let p = light + (ball::CENTRE - light) * t;
     // PinholeCamera::project, without rounding to a pixel.
-    let c = PinholeCamera::new(&camera(), SIZE.0, SIZE.1);
+    let c = PinholeCamera::new(&ball::camera(), SIZE.0, SIZE.1);
     let v = p - c.origin;
     let q = v / v.dot(c.forward) - c.corner;
     (q.dot(c.right) / c.right.length_squared(), q.dot(c.down) / c.down.length_squared())
@@ -108,9 +77,7 @@ fn main() {
     let ctx = GpuContext::new(AdapterChoice::Any).expect("an adapter");
     let info = ctx.adapter.as_ref().map(prismatic_gpu::describe).unwrap_or_default();
     println!("adapter: {info}; {}x{}, {photons} photons a frame", SIZE.0, SIZE.1);
-    let v = Vec3::new;
-    let floor = raster::quad(v(-30.0, 0.0, -30.0), v(-30.0, 0.0, 30.0), v(30.0, 0.0, 30.0), v(30.0, 0.0, -30.0));
-    let (prepass, commands) = raster::prepass(&ctx.device, &camera(), SIZE, &floor);
+    let (prepass, commands) = raster::prepass(&ctx.device, &ball::camera(), SIZE, &raster::floor());
     ctx.queue.submit([commands]);
     let (depth, normal) = (raster::view(&prepass.depth), raster::view(&prepass.normal));
     let textures = FrameTextures {

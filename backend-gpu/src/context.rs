@@ -195,7 +195,7 @@ impl GpuContext {
     }
 
     /// Whether submissions are being recorded ([`GpuContext::record`]).
-    pub fn recording(&self) -> bool {
+    pub(crate) fn recording(&self) -> bool {
         self.recorded.lock().map(|r| r.is_some()).unwrap_or(false)
     }
 

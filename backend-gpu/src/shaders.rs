@@ -262,7 +262,7 @@ const SCENE: &str = include_str!("shaders/scene.wgsl");
 const ALBEDO: &str = include_str!("shaders/albedo.wgsl");
 const SUMS: &str = include_str!("shaders/sums.wgsl");
 const COLOUR: &str = include_str!("shaders/colour.wgsl");
-const PROJECT: &str = include_str!("shaders/project.wgsl");
+const CONNECT: &str = include_str!("shaders/connect.wgsl");
 
 /// The functions every pipeline shares (RNG, optics, the estimator's last
 /// step, fixed-point sums) behind the prelude, with no bindings and no
@@ -345,7 +345,7 @@ pub fn splat() -> String {
         COLOUR.into(),
         ALBEDO.into(),
         SUMS.into(),
-        PROJECT.into(),
+        CONNECT.into(),
         include_str!("shaders/splat.wgsl").into(),
         photon_windows("map", 1, 2, false),
     ]
@@ -361,7 +361,7 @@ pub fn layer() -> String {
         SCENE.into(),
         COLOUR.into(),
         SUMS.into(),
-        PROJECT.into(),
+        CONNECT.into(),
         include_str!("shaders/layer.wgsl").into(),
         photon_windows("map", 1, 2, false),
     ]

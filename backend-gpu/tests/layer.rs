@@ -3,68 +3,35 @@
 //! is the layer of the same frame handed over from the host; the engine's
 //! occluder, which prismatic's scene does not hold, hides the caustic.
 
+#[path = "../examples/engine_loop/ball.rs"]
+mod ball;
 #[path = "../examples/engine_loop/raster.rs"]
 mod raster;
 
 use prismatic_core::geometry::camera::PinholeCamera;
-use prismatic_core::model::dispersion::Dispersion;
-use prismatic_core::model::scene::{
-    Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape, ViewPaths,
-};
+use prismatic_core::model::scene::{Camera, RenderSettings, ViewPaths};
 use prismatic_core::{Image, LayerFrame, NoProgress, PreparedScene, Render, Vec3};
 use prismatic_gpu::{DepthEncoding, FrameTextures, GpuOptions, GpuSession, NormalEncoding, test_context};
 
 const SIZE: (u32, u32) = (160, 120);
 
-/// A glass sphere on a floor under a spot light, light traced; without
-/// the sphere, the frame an engine draws of it (the glass is transparent
-/// to its prepass).
-fn scene(with_sphere: bool) -> PreparedScene {
-    let material = |name: &str, kind| Material { name: name.into(), kind };
-    let mut objects = vec![Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 }];
-    if with_sphere {
-        objects.push(Object { shape: Shape::Sphere { center: Vec3::Y, radius: 1.0 }, material: 1 });
-    }
-    PreparedScene::new(Scene {
-        render: RenderSettings {
-            width: SIZE.0,
-            height: SIZE.1,
-            photons: 20_000,
-            view_paths: ViewPaths::Centre,
-            ..RenderSettings::default()
-        },
-        camera: camera(),
-        lights: vec![Light::Spot {
-            position: Vec3::new(-2.5, 6.0, -0.5),
-            direction: Vec3::new(2.5, -5.0, 0.5),
-            cone_deg: 40.0,
-            power: 38.0,
-            spectrum: Default::default(),
-        }],
-        materials: vec![
-            material("floor", MaterialKind::Diffuse { albedo: Vec3::splat(0.85), checker: None, texture: None }),
-            material(
-                "glass",
-                MaterialKind::Dielectric {
-                    dispersion: Dispersion::Paper,
-                    outside: Dispersion::Constant(1.0),
-                    attenuation: None,
-                },
-            ),
-        ],
-        objects,
-    })
-    .expect("a valid scene")
-}
-
-fn camera() -> Camera {
-    Camera { position: Vec3::new(4.2, 2.6, 3.4), look_at: Vec3::new(0.4, 0.3, 0.0), up: Vec3::Y, fov_deg: 42.0 }
+/// The ball's scene, light traced through pixel centres; without the
+/// ball, the frame an engine's prepass draws.
+fn scene(with_ball: bool) -> PreparedScene {
+    let render = RenderSettings {
+        width: SIZE.0,
+        height: SIZE.1,
+        photons: 20_000,
+        view_paths: ViewPaths::Centre,
+        ..RenderSettings::default()
+    };
+    ball::scene(render, ball::spot(Vec3::new(-2.5, 6.0, -0.5), 40.0), with_ball)
 }
 
 /// The engine's frame from the host: the floor, and the occluder over the left half at depth 1.
 fn host_frame() -> LayerFrame {
     let mut frame = LayerFrame::seen_by_camera(&scene(false));
-    let forward = (camera().look_at - camera().position).normalize();
+    let forward = (ball::camera().look_at - ball::camera().position).normalize();
     for (i, (depth, normal)) in frame.depth.iter_mut().zip(&mut frame.normal).enumerate() {
         if (i as u32 % SIZE.0) < SIZE.0 / 2 {
             (*depth, *normal) = (1.0, -forward);
@@ -95,9 +62,7 @@ fn layer(session: &mut GpuSession, set: impl FnOnce(&mut GpuSession)) -> Image {
 
 /// The engine's triangles: a floor, and the occluder over the left half.
 fn engine_triangles() -> Vec<[Vec3; 3]> {
-    let v = Vec3::new;
-    let floor = raster::quad(v(-30.0, 0.0, -30.0), v(-30.0, 0.0, 30.0), v(30.0, 0.0, 30.0), v(30.0, 0.0, -30.0));
-    [floor, occluder_over_the_left_half(&camera(), SIZE.0, SIZE.1)].concat()
+    [raster::floor(), occluder_over_the_left_half(&ball::camera(), SIZE.0, SIZE.1)].concat()
 }
 
 /// The prepass's textures as the layer reads them.
@@ -113,7 +78,7 @@ fn textures<'a>(depth: &'a wgpu::TextureView, normal: &'a wgpu::TextureView) -> 
 #[test]
 fn a_layer_from_the_engines_textures_is_the_layer_of_its_frame() {
     let Some(ctx) = test_context("the layer from an engine's textures") else { return };
-    let (prepass, commands) = raster::prepass(&ctx.device, &camera(), SIZE, &engine_triangles());
+    let (prepass, commands) = raster::prepass(&ctx.device, &ball::camera(), SIZE, &engine_triangles());
     ctx.queue.submit([commands]);
     let (depth, normal) = (raster::view(&prepass.depth), raster::view(&prepass.normal));
     let mut session = GpuSession::new(ctx, &scene(true), GpuOptions::default()).expect("session");
@@ -143,7 +108,7 @@ fn a_recorded_frame_submitted_with_the_engines_is_the_submitted_frame() {
     // The engine's frame as Bevy submits one: its prepass, the layer's
     // frame and passes, then the rest, in one submission at the end.
     let Some(ctx) = test_context("a recorded layer") else { return };
-    let (prepass, prepass_commands) = raster::prepass(&ctx.device, &camera(), SIZE, &engine_triangles());
+    let (prepass, prepass_commands) = raster::prepass(&ctx.device, &ball::camera(), SIZE, &engine_triangles());
     let (depth, normal) = (raster::view(&prepass.depth), raster::view(&prepass.normal));
     let queue = ctx.queue.clone();
     let mut recorded = GpuSession::new(ctx.clone(), &scene(true), GpuOptions::default()).expect("session");
@@ -168,10 +133,8 @@ fn the_history_is_the_mean_of_its_frames_and_starts_again_where_the_surface_chan
     // elsewhere it is the mean of the five passes, as the protocol's
     // progressive image of those passes is.
     let Some(ctx) = test_context("a layer's history") else { return };
-    let v = Vec3::new;
-    let floor = raster::quad(v(-30.0, 0.0, -30.0), v(-30.0, 0.0, 30.0), v(30.0, 0.0, 30.0), v(30.0, 0.0, -30.0));
-    let (occluded, first) = raster::prepass(&ctx.device, &camera(), SIZE, &engine_triangles());
-    let (open, second) = raster::prepass(&ctx.device, &camera(), SIZE, &floor);
+    let (occluded, first) = raster::prepass(&ctx.device, &ball::camera(), SIZE, &engine_triangles());
+    let (open, second) = raster::prepass(&ctx.device, &ball::camera(), SIZE, &raster::floor());
     ctx.queue.submit([first, second]);
     let views = |p: &raster::Prepass| (raster::view(&p.depth), raster::view(&p.normal));
     let ((od, on), (fd, fnormal)) = (views(&occluded), views(&open));

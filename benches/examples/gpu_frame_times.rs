@@ -201,8 +201,7 @@ fn session_frames(gpu: &GpuBackend, configs: &[Config], frames: usize) {
             }
             let ctx = session.context().clone();
             let prepass = (c.transport == Transport::EngineFrames).then(|| {
-                let v = prismatic_core::Vec3::new;
-                let floor = raster::quad(v(-30., 0., -30.), v(-30., 0., 30.), v(30., 0., 30.), v(30., 0., -30.));
+                let floor = raster::floor();
                 let (prepass, commands) = raster::prepass(&ctx.device, &scene.scene.camera, (width, height), &floor);
                 ctx.queue.submit([commands]);
                 (raster::view(&prepass.depth), raster::view(&prepass.normal))

@@ -9,10 +9,10 @@
 //!
 //! `cargo run --release -p prismatic-gpu --example engine_loop`
 
+mod ball;
 mod raster;
 
-use prismatic_core::model::dispersion::Dispersion;
-use prismatic_core::model::scene::{Camera, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape};
+use prismatic_core::model::scene::RenderSettings;
 use prismatic_core::{NoProgress, PreparedScene, Render, Vec3};
 use prismatic_gpu::{DepthEncoding, FrameTextures, GpuContext, GpuOptions, GpuSession, NormalEncoding};
 use std::time::Instant;
@@ -20,48 +20,16 @@ use std::time::Instant;
 /// The engine's view.
 const SIZE: (u32, u32) = (640, 360);
 
-/// The engine's scene, in prismatic's terms: a glass sphere on a floor under a spot light.
+/// The engine's scene in prismatic's terms, the light at `light_x`.
 fn scene(light_x: f32) -> PreparedScene {
-    let material = |name: &str, kind| Material { name: name.into(), kind };
-    PreparedScene::new(Scene {
-        render: RenderSettings { width: SIZE.0, height: SIZE.1, photons: 100_000, ..RenderSettings::default() },
-        camera: camera(),
-        lights: vec![Light::Spot {
-            position: Vec3::new(light_x, 6.0, -0.5),
-            direction: Vec3::new(-light_x, -5.0, 0.5),
-            cone_deg: 40.0,
-            power: 38.0,
-            spectrum: Default::default(),
-        }],
-        materials: vec![
-            material("floor", MaterialKind::Diffuse { albedo: Vec3::splat(0.85), checker: None, texture: None }),
-            material(
-                "glass",
-                MaterialKind::Dielectric {
-                    dispersion: Dispersion::Paper,
-                    outside: Dispersion::Constant(1.0),
-                    attenuation: None,
-                },
-            ),
-        ],
-        objects: vec![
-            Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
-            Object { shape: Shape::Sphere { center: Vec3::new(0.0, 1.0, 0.0), radius: 1.0 }, material: 1 },
-        ],
-    })
-    .expect("a valid scene")
-}
-
-/// The engine's camera, which prismatic's scene shares.
-fn camera() -> Camera {
-    Camera { position: Vec3::new(4.2, 2.6, 3.4), look_at: Vec3::new(0.4, 0.3, 0.0), up: Vec3::Y, fov_deg: 42.0 }
+    let render = RenderSettings { width: SIZE.0, height: SIZE.1, photons: 100_000, ..RenderSettings::default() };
+    ball::scene(render, ball::spot(Vec3::new(light_x, 6.0, -0.5), 40.0), true)
 }
 
 /// The engine's opaque triangles: the floor, and a crate beside the sphere.
 fn engine_triangles() -> Vec<[Vec3; 3]> {
     let v = Vec3::new;
-    let mut triangles =
-        raster::quad(v(-30.0, 0.0, -30.0), v(-30.0, 0.0, 30.0), v(30.0, 0.0, 30.0), v(30.0, 0.0, -30.0)).to_vec();
+    let mut triangles = raster::floor().to_vec();
     let (lo, hi) = (v(1.4, 0.0, 0.6), v(2.0, 0.6, 1.2));
     let corner = |i: u32| {
         v(
@@ -87,7 +55,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         ..Default::default()
     }))?;
     // The engine's prepass of its frame, and the texture its lighting samples.
-    let (prepass, prepass_commands) = raster::prepass(&device, &camera(), SIZE, &engine_triangles());
+    let (prepass, prepass_commands) = raster::prepass(&device, &ball::camera(), SIZE, &engine_triangles());
     queue.submit([prepass_commands]);
     let texture = device.create_texture(&wgpu::TextureDescriptor {
         label: Some("caustic irradiance"),

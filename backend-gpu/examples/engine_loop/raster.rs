@@ -1,8 +1,9 @@
 //! The engine's side of a caustic layer, as a wgpu engine draws it: a depth
 //! and normal prepass of its opaque triangles (reversed Z with an infinite
 //! far plane and world-space normals stored as n · 0.5 + 0.5 in
-//! `Rgb10a2Unorm`, as Bevy's prepass leaves them). The engine_loop example
-//! and the layer's tests draw their engine's frame with it.
+//! `Rgb10a2Unorm`, as Bevy's prepass leaves them), and its floor. The
+//! engine examples, the layer's tests and its frame times draw their
+//! engine's frame with it.
 
 use glam::{Mat4, Vec4};
 use prismatic_core::Vec3;
@@ -175,6 +176,12 @@ pub fn view_projection(camera: &Camera, width: u32, height: u32) -> Mat4 {
         Vec4::new(-side.dot(eye), -up.dot(eye), forward.dot(eye), 1.0),
     );
     projection * view
+}
+
+/// The engine's floor: a 60 × 60 quad at y = 0.
+pub fn floor() -> [[Vec3; 3]; 2] {
+    let v = Vec3::new;
+    quad(v(-30.0, 0.0, -30.0), v(-30.0, 0.0, 30.0), v(30.0, 0.0, 30.0), v(30.0, 0.0, -30.0))
 }
 
 /// Two triangles of the quad with corners `a`, `b`, `c`, `d` in order.

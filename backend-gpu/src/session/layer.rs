@@ -84,11 +84,10 @@ impl GpuSession {
         Ok(())
     }
 
-    /// Reads the engine's frame again from `textures` and keeps the passes:
-    /// for an engine whose camera has not moved since the layer was set
-    /// (its moving objects' depths are in the passes from this one on). A
-    /// session without a layer sets one ([`GpuSession::set_layer_textures`]).
-    pub fn refresh_layer_textures(&mut self, textures: &FrameTextures) -> Result<(), BackendError> {
+    /// Reads the engine's frame again from `textures` and keeps the passes
+    /// (a layer's frame in [`GpuSession::layer_frame`]); a session without a
+    /// layer sets one ([`GpuSession::set_layer_textures`]).
+    pub(super) fn refresh_layer_textures(&mut self, textures: &FrameTextures) -> Result<(), BackendError> {
         if self.layer.is_none() {
             return self.set_layer_textures(textures);
         }
@@ -113,11 +112,11 @@ impl GpuSession {
             }
         }
         let pixels = u64::from(r.width) * u64::from(r.height);
-        let frame = match self.layer.take() {
-            Some(frame) if frame.size() == pixels * FRAME_TEXEL_BYTES => frame,
+        let (frame, fresh) = match self.layer.take() {
+            Some(frame) if frame.size() == pixels * FRAME_TEXEL_BYTES => (frame, false),
             old => {
                 self.stale = self.stale.max(if old.is_some() { Change::View } else { Change::Size });
-                self.ctx.checked("allocating the layer's frame", || {
+                let buffer = self.ctx.checked("allocating the layer's frame", || {
                     self.ctx.device.create_buffer(&wgpu::BufferDescriptor {
                         label: Some("prismatic layer frame"),
                         size: pixels * FRAME_TEXEL_BYTES,
@@ -126,7 +125,8 @@ impl GpuSession {
                             | wgpu::BufferUsages::COPY_SRC,
                         mapped_at_creation: false,
                     })
-                })?
+                })?;
+                (buffer, true)
             }
         };
         let (depth_encoding, near, far) = match textures.depth_encoding {
@@ -164,7 +164,16 @@ impl GpuSession {
             dispatch(&mut encoder, pipeline, &[&group], pixels, WORKGROUP_SIZE);
             self.ctx.submit(encoder);
         })?;
-        self.layer = Some(frame);
+        self.adopt_frame(Some(frame), fresh)
+    }
+
+    /// Makes `frame` the layer's frame; a `fresh` one (another buffer) is
+    /// bound to every chunk's layer group.
+    pub(super) fn adopt_frame(&mut self, frame: Option<wgpu::Buffer>, fresh: bool) -> Result<(), BackendError> {
+        self.layer = frame;
+        if fresh && !self.points.chunks.is_empty() {
+            self.bind_points()?;
+        }
         Ok(())
     }
 
@@ -194,43 +203,5 @@ impl GpuSession {
             encoder.clear_buffer(&self.pixels, 0, None);
             self.ctx.submit(encoder);
         })
-    }
-
-    /// The pass's photons added to the sums of the pixels of the layer's
-    /// frame that see them, chunk by chunk. One invocation per slot of the map.
-    pub(super) fn splat_into_layer(&mut self) -> Result<(), BackendError> {
-        let Some(frame) = &self.layer else { return Ok(()) };
-        if self.photons.capacity() == 0 {
-            return Ok(());
-        }
-        for chunk in &self.points.chunks {
-            let p = &mut self.buffers.params;
-            (p.pixel_offset, p.pixel_count) = (chunk.offset as u32, chunk.count as u32);
-            self.buffers.write_params(&self.ctx);
-            self.ctx.checked("splatting the pass into the layer", || {
-                let mut entries = vec![
-                    wgpu::BindGroupEntry { binding: 0, resource: chunk.sums.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: self.photons.cursor().as_entire_binding() },
-                ];
-                entries.extend(self.photons.photons.entries(2));
-                entries.push(wgpu::BindGroupEntry { binding: 6, resource: frame.as_entire_binding() });
-                let group = self.ctx.device.create_bind_group(&wgpu::BindGroupDescriptor {
-                    label: Some("prismatic caustic layer"),
-                    layout: &self.pipelines.layer_layout,
-                    entries: &entries,
-                });
-                let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
-                let slots = u64::from(self.photons.capacity());
-                dispatch(
-                    &mut encoder,
-                    &self.pipelines.layer_splat,
-                    &[&self.buffers.bind_group, &group],
-                    slots,
-                    WORKGROUP_SIZE,
-                );
-                self.ctx.submit(encoder);
-            })?;
-        }
-        Ok(())
     }
 }

@@ -307,7 +307,8 @@ impl Render for GpuSession {
             return Err(BackendError::frame_size(frame, &self.scene));
         }
         let was_layer = self.layer.is_some();
-        self.layer = frame.map(|f| self.upload_frame(f)).transpose()?;
+        let uploaded = frame.map(|f| self.upload_frame(f)).transpose()?;
+        self.adopt_frame(uploaded, true)?;
         self.passes.clear();
         // Entering or leaving a layer changes the room visible points need.
         let change = if was_layer == self.layer.is_some() { Change::View } else { Change::Size };

@@ -8,10 +8,11 @@
 //! and its trace tallies added to the statistics.
 
 use super::GpuSession;
+use super::points::ChunkGroups;
 use super::points::{LEVEL_ARGS_BYTES, LEVEL_HEADER_BYTES};
 use crate::layout::{RunStats, SessionParams};
 use crate::levels;
-use crate::pipelines::{dispatch, dispatch_indirect};
+use crate::pipelines::{Pipelines, dispatch, dispatch_indirect};
 use crate::shaders::WORKGROUP_SIZE;
 use prismatic_core::model::scene::{Estimator, RadiusMode};
 use prismatic_core::optics::surface::Surface;
@@ -109,20 +110,41 @@ impl GpuSession {
 
     /// Light tracing (when the scene asks for it): the pass's photons
     /// connected to the camera and added to the pixels' sums of each chunk,
-    /// before the gather shows them. One invocation per slot of the map.
+    /// before the gather shows them.
     fn splat_photons(&mut self) -> Result<(), BackendError> {
-        if !self.scene.scene.render.light_tracing || self.photons.capacity() == 0 {
+        if !self.scene.scene.render.light_tracing {
+            return Ok(());
+        }
+        self.splat_chunks("light tracing the pass", |p| &p.splat, |g| Some(&g.splat))
+    }
+
+    /// A caustic layer's pass: its photons added to the sums of the pixels
+    /// of the engine's frame that see them.
+    fn splat_into_layer(&mut self) -> Result<(), BackendError> {
+        self.splat_chunks("splatting the pass into the layer", |p| &p.layer_splat, |g| g.layer.as_ref())
+    }
+
+    /// Each chunk's dispatch of `pipeline` over the slots of the pass's
+    /// photon map, with the chunk's group 1 `group` (none: nothing to do).
+    fn splat_chunks(
+        &mut self,
+        what: &str,
+        pipeline: fn(&Pipelines) -> &wgpu::ComputePipeline,
+        group: fn(&ChunkGroups) -> Option<&wgpu::BindGroup>,
+    ) -> Result<(), BackendError> {
+        if self.photons.capacity() == 0 {
             return Ok(());
         }
         for chunk in &self.points.chunks {
+            let Some(chunk_group) = group(chunk.groups()) else { continue };
             let p = &mut self.buffers.params;
             (p.pixel_offset, p.pixel_count) = (chunk.offset as u32, chunk.count as u32);
             self.buffers.write_params(&self.ctx);
-            self.ctx.checked("light tracing the pass", || {
+            self.ctx.checked(what, || {
                 let mut encoder = self.ctx.device.create_command_encoder(&Default::default());
-                let groups = [&self.buffers.bind_group, &chunk.groups().splat];
+                let groups = [&self.buffers.bind_group, chunk_group];
                 let slots = u64::from(self.photons.capacity());
-                dispatch(&mut encoder, &self.pipelines.splat, &groups, slots, WORKGROUP_SIZE);
+                dispatch(&mut encoder, pipeline(&self.pipelines), &groups, slots, WORKGROUP_SIZE);
                 self.ctx.submit(encoder);
             })?;
         }

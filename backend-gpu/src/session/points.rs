@@ -3,8 +3,8 @@
 //! its pixel and first radius), the pixels' exact sums and direct light,
 //! the points listed by grid level with the gathers' indirect dispatch
 //! arguments, and the bind groups of the view pass, the gathers (one per
-//! built grid level), the session's entries, the dispatch arguments and
-//! light tracing.
+//! built grid level), the session's entries, the dispatch arguments,
+//! light tracing and a caustic layer.
 //! A chunk's room for points follows what the view passes found, with an
 //! eighth to spare.
 
@@ -82,6 +82,9 @@ pub struct ChunkGroups {
     pub level_dispatch: wgpu::BindGroup,
     /// Light tracing's group 1.
     pub splat: wgpu::BindGroup,
+    /// The caustic layer's group 1 (light tracing's and the engine's
+    /// frame), when the session has a layer.
+    pub layer: Option<wgpu::BindGroup>,
 }
 
 impl ChunkGroups {
@@ -267,7 +270,11 @@ impl GpuSession {
                 ];
                 entries.extend(self.photons.photons.entries(2));
                 let splat = group("prismatic light tracing", &p.splat_layout, &entries);
-                ChunkGroups { view, gather, session, level_dispatch, splat }
+                let layer = self.layer.as_ref().map(|frame| {
+                    entries.push(wgpu::BindGroupEntry { binding: 6, resource: frame.as_entire_binding() });
+                    group("prismatic caustic layer", &p.layer_layout, &entries)
+                });
+                ChunkGroups { view, gather, session, level_dispatch, splat, layer }
             })?;
             chunk.groups = Some(groups);
         }

@@ -2,11 +2,8 @@
 // per slot of the photon map (those past the stored count return at once);
 // each photon that lies where the engine's frame sees a surface (on the
 // plane of the pixel's surface, arrived on the side the camera sees) adds
-// its irradiance to that pixel's exact sums (sums.wgsl), so the sums do not
-// depend on the order the photons come in.
+// its irradiance to that pixel's sums (connect.wgsl).
 
-// The photons the pass stored (the compaction's cursor).
-@group(1) @binding(1) var<storage, read> stored_count: u32;
 // The engine's frame, per pixel of the whole image: its surface's
 // world-space normal (oct_pack) and view-space depth (f32 bits; not
 // finite, or 0, where it sees none).
@@ -25,11 +22,8 @@ fn layer_splat(
     }
     let photon = map_load(i);
     let seen = project(photon.position);
-    if seen.z <= 0.0 {
-        return;
-    }
-    let pixel = u32(seen.y) * params.width + u32(seen.x);
-    if pixel < params.pixel_offset || pixel - params.pixel_offset >= params.pixel_count {
+    let pixel = chunk_pixel(seen);
+    if pixel == NO_PIXEL {
         return;
     }
     let surface = frame[pixel];
@@ -49,8 +43,5 @@ fn layer_splat(
     let importance = -dot(v, n) / (seen.z * seen.z * seen.z) * params.splat_scale * PI;
     let band = photon.band_bounces & 0xffffu;
     let c = rgb_of_flux(band, photon.lambda_nm, photon.flux) * importance * params.white_balance;
-    let k = pixel - params.pixel_offset;
-    for (var ch = 0u; ch < 3u; ch++) {
-        add_to_sum(6u * k + 2u * ch, to_fixed(c[ch], 32));
-    }
+    add_splat(pixel, c);
 }

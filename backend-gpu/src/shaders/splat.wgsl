@@ -1,11 +1,8 @@
-// Light tracing: twin of prismatic_core::connect. One invocation per slot
-// of the photon map (those past the stored count return at once); each
-// photon that a pixel of this chunk sees directly adds its reflected flux
-// to that pixel's exact sums (sums.wgsl), so the sums do not depend on the
-// order the photons come in.
+// Light tracing: twin of prismatic_core::photons::light_tracing. One
+// invocation per slot of the photon map (those past the stored count return
+// at once); each photon that a pixel of this chunk sees directly adds its
+// reflected flux to that pixel's sums (connect.wgsl).
 
-// The photons the pass stored (the compaction's cursor).
-@group(1) @binding(1) var<storage, read> stored_count: u32;
 
 // CameraConnection::splat, added to the sums of its pixel when this chunk has it.
 @compute @workgroup_size(WORKGROUP_SIZE)
@@ -20,11 +17,8 @@ fn splat(
     }
     let photon = map_load(i);
     let seen = project(photon.position);
-    if seen.z <= 0.0 {
-        return;
-    }
-    let pixel = u32(seen.y) * params.width + u32(seen.x);
-    if pixel < params.pixel_offset || pixel - params.pixel_offset >= params.pixel_count {
+    let pixel = chunk_pixel(seen);
+    if pixel == NO_PIXEL {
         return;
     }
     let v = photon.position - params.cam_origin;
@@ -43,8 +37,5 @@ fn splat(
     let band = photon.band_bounces & 0xffffu;
     let flux = rgb_of_flux(band, photon.lambda_nm, photon.flux);
     let c = flux * reflectance(albedo, band, photon.lambda_nm) * importance * params.white_balance;
-    let k = pixel - params.pixel_offset;
-    for (var ch = 0u; ch < 3u; ch++) {
-        add_to_sum(6u * k + 2u * ch, to_fixed(c[ch], 32));
-    }
+    add_splat(pixel, c);
 }

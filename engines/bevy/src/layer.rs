@@ -24,7 +24,6 @@ use bevy::render::renderer::{RenderContext, RenderDevice, RenderQueue, ViewQuery
 use bevy::render::sync_world::MainEntity;
 use bevy::render::texture::GpuImage;
 use bevy::shader::ShaderRef;
-use prismatic_core::Render as _;
 use prismatic_gpu::{DepthEncoding, FrameTextures, NormalEncoding};
 
 /// Draws prismatic's caustic as a layer in this `Camera3d`'s frame (its
@@ -163,9 +162,6 @@ pub(crate) fn draw_layer(
     live.frame(&scene, &stats, &device, &queue, &target.texture, |session, changed| {
         let cap = if changed { layer.moving_history } else { layer.history };
         let (done, buffers) = session.record(|s| {
-            if changed {
-                s.update(&scene.scene)?;
-            }
             s.layer_frame(&textures, frame, cap)?;
             s.copy_to_texture(&target.texture)
         });

@@ -201,10 +201,10 @@ struct LiveSession {
 impl LiveSession {
     /// One frame of `scene` into `target` (the [`CausticImage`]'s texture,
     /// of the scene's image size: a resized one arrives a frame later):
-    /// the session made when there is none, then `work` with whether the
-    /// scene changed since the session's last frame (it updates the
-    /// session then). Figures and errors go to `stats`, never a panic; a
-    /// failed session is dropped and not tried again until the scene changes.
+    /// the session made when there is none or updated when the scene
+    /// changed, then `work` with whether it changed. Figures and errors go
+    /// to `stats`, never a panic; a failed session is dropped and not tried
+    /// again until the scene changes.
     fn frame(
         &mut self,
         scene: &CausticScene,
@@ -220,8 +220,12 @@ impl LiveSession {
         }
         let start = Instant::now();
         let result = (|| {
-            let changed = match &self.session {
-                Some(_) => self.generation != scene.generation,
+            let changed = match &mut self.session {
+                Some(session) if self.generation != scene.generation => {
+                    session.update(&scene.scene)?;
+                    true
+                }
+                Some(_) => false,
                 None => {
                     let ctx = GpuContext::from_device(device.wgpu_device().clone(), (**queue).clone())?;
                     let options = GpuOptions { stage_times: true, ..GpuOptions::default() };
@@ -274,10 +278,7 @@ fn render_caustics(
 ) {
     let (Some(scene), Some(image), None) = (scene, image, layer) else { return };
     let Some(target) = images.get(&image.0) else { return };
-    live.frame(&scene, &stats, &device, &queue, &target.texture, |session, changed| {
-        if changed {
-            session.update(&scene.scene)?;
-        }
+    live.frame(&scene, &stats, &device, &queue, &target.texture, |session, _| {
         session.next_pass(&mut NoProgress)?;
         session.copy_to_texture(&target.texture)
     });

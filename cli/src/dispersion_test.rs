@@ -94,4 +94,5 @@ pub fn settings(render: &mut RenderSettings) {
     render.radius = 0.03;
     render.ambient = 0.05;
     render.tone_map = ToneMap::Reinhard;
+    render.auto_exposure = false;
 }

@@ -17,8 +17,8 @@ use gltf::khr_lights_punctual::Kind;
 use gltf::texture::{MagFilter, WrappingMode};
 use prismatic_core::Dispersion;
 use prismatic_core::model::scene::{
-    Attenuation, Camera, Filter, Light, Material, MaterialKind, Object, RenderSettings, Sampler, Scene, Shape, Texture,
-    Wrap,
+    Attenuation, Camera, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, Object, RenderSettings, Sampler, Scene,
+    Shape, Texture, Wrap,
 };
 use prismatic_core::model::spectrum::Spectrum;
 use std::collections::HashMap;
@@ -28,6 +28,11 @@ use std::path::Path;
 const MIRROR_METALLIC: f32 = 0.9;
 /// ...and this roughness or less.
 const MIRROR_ROUGHNESS: f32 = 0.1;
+
+/// A spot whose `innerConeAngle` is at least this fraction of its
+/// `outerConeAngle` has a hard edge (glTF cannot write an equal pair),
+/// which is what prismatic's spot light is.
+pub const HARD_EDGE: f32 = 0.99;
 
 /// A glTF file's contents as prismatic scene parts.
 #[derive(Debug, Default)]
@@ -40,6 +45,8 @@ pub struct GltfScene {
     pub lights: Vec<Light>,
     /// The first camera, if the file has one.
     pub camera: Option<Camera>,
+    /// Its width over its height, when the file gives one.
+    pub aspect_ratio: Option<f32>,
     /// What was left out, one line per element.
     pub warnings: Vec<String>,
     /// The glTF element behind each scene key (`object[2]` →
@@ -139,6 +146,19 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
             let (spectrum, factor) = Spectrum::from_rgb(light.color());
             let intensity = light.intensity() * factor;
             let light_path = format!("{node_path}.extensions.KHR_lights_punctual");
+            if light.range().is_some() {
+                out.warnings.push(format!(
+                    "{light_path}: range left out (the light falls off as 1/d² at every distance, as the \
+                     extension's physical model says; the cut-off is a rasteriser's budget)"
+                ));
+            }
+            if let Kind::Spot { inner_cone_angle, outer_cone_angle } = light.kind()
+                && inner_cone_angle < outer_cone_angle * HARD_EDGE
+            {
+                out.warnings.push(format!(
+                    "{light_path}: the spot's soft edge (innerConeAngle) left out (uniform to outerConeAngle)"
+                ));
+            }
             let emitted = match light.kind() {
                 // A black light is valid glTF and emits nothing.
                 _ if factor == 0.0 => None,
@@ -176,6 +196,7 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
                         up: world.transform_vector3(Vec3::Y),
                         fov_deg: p.yfov().to_degrees(),
                     });
+                    out.aspect_ratio = p.aspect_ratio().filter(|a| a.is_finite() && *a > 0.0);
                 }
                 gltf::camera::Projection::Orthographic(_) => {
                     out.warnings.push(format!("cameras[{}]: orthographic cameras are left out", camera.index()))
@@ -470,7 +491,15 @@ fn scene(parts: Result<GltfScene, GltfError>, file: &str) -> Result<SceneDocumen
             spectrum: Default::default(),
         });
     }
-    let render = RenderSettings { radius: size / 100.0, ..RenderSettings::default() };
+    // Shown as viewers show a file, which brings no exposure: the
+    // log-average at middle grey, through the default tone map.
+    let mut render = RenderSettings { radius: size / 100.0, auto_exposure: true, ..RenderSettings::default() };
+    if let Some(aspect) = parts.aspect_ratio {
+        // The camera's frame, as many pixels as the default square.
+        let side = f64::from(render.width * render.height);
+        render.width = ((side * f64::from(aspect)).sqrt().round() as u32).clamp(1, MAX_IMAGE_SIDE);
+        render.height = ((side / f64::from(aspect)).sqrt().round() as u32).clamp(1, MAX_IMAGE_SIDE);
+    }
     let scene = Scene { render, camera, lights, materials: parts.materials, objects: parts.objects };
     Ok(SceneDocument::from_scene(scene, &file, warnings, parts.elements))
 }

@@ -4,6 +4,7 @@
 //! with the binary data and PNG images in the file (a base64 data URI).
 //! The project writes its own glTF scenes and test files with it.
 
+use crate::gltf_scene::HARD_EDGE;
 use glam::{Mat3, Quat, Vec3};
 use serde_json::{Value, json};
 
@@ -191,9 +192,10 @@ impl GltfDocument {
         let mut lights = Vec::new();
         for (i, l) in self.lights.iter().enumerate() {
             let (light, position, direction) = match *l {
+                // A hard edge: glTF asks innerConeAngle < outerConeAngle.
                 GltfLight::Spot { position, direction, intensity, outer_cone } => (
                     json!({ "type": "spot", "intensity": intensity,
-                            "spot": { "innerConeAngle": 0.0, "outerConeAngle": outer_cone } }),
+                            "spot": { "innerConeAngle": outer_cone * HARD_EDGE, "outerConeAngle": outer_cone } }),
                     position,
                     direction,
                 ),

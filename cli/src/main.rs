@@ -265,7 +265,7 @@ fn merge(files: &[PathBuf], output: &Path) -> Result<()> {
     if !image.is_finite() {
         anyhow::bail!("the merged partials give non-finite pixels; nothing was written");
     }
-    out.commit(|w| write_image(w, output, &image, merged.tone_map))?;
+    out.commit(|w| write_image(w, output, &image, merged.display))?;
     println!(
         "merged {} partials ({} passes: {}); wrote {} ({}x{})",
         files.len(),
@@ -324,8 +324,8 @@ fn reference(study: &StudyArgs, output: &Path) -> Result<()> {
     let mut bar = StudyBar::new();
     let built = study::build_reference(&study.options(true), &mut bar);
     bar.finish();
-    let (reference, tone_map) = built?;
-    out.commit(|w| write_png(w, &reference.image, tone_map))?;
+    let (reference, display) = built?;
+    out.commit(|w| write_png(w, &reference.image, display))?;
     println!(
         "{}: reference of {} passes (last change ΔE00 {:.3}, {}) in {:.1} s, cached in {}; wrote {}",
         study.scene,

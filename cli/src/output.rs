@@ -3,7 +3,7 @@
 //! before any work starts, so an unwritable path fails early.
 
 use anyhow::{Context, Result};
-use prismatic_core::model::color::ToneMap;
+use prismatic_core::model::color::Display;
 use prismatic_core::{Image, PhotonMap};
 use std::fs::File;
 use std::io::{BufWriter, Write};
@@ -51,10 +51,10 @@ impl Drop for PendingFile {
     }
 }
 
-/// Encodes `image` as an 8-bit sRGB PNG.
-pub fn write_png(w: &mut BufWriter<File>, image: &Image, tone_map: ToneMap) -> Result<()> {
-    let buf = image::RgbImage::from_raw(image.width, image.height, image.to_srgb8(tone_map))
-        .context("image size mismatch")?;
+/// Encodes `image` as an 8-bit sRGB PNG, shown as `display` says.
+pub fn write_png(w: &mut BufWriter<File>, image: &Image, display: Display) -> Result<()> {
+    let buf =
+        image::RgbImage::from_raw(image.width, image.height, image.to_srgb8(display)).context("image size mismatch")?;
     buf.write_to(w, image::ImageFormat::Png)?;
     Ok(())
 }
@@ -78,8 +78,8 @@ pub fn read_exr(path: &Path) -> Result<Image> {
 
 /// Writes `image` as EXR (linear) when `path` ends in `.exr`, else as a
 /// tone-mapped sRGB PNG.
-pub fn write_image(w: &mut BufWriter<File>, path: &Path, image: &Image, tone_map: ToneMap) -> Result<()> {
-    if is_exr(path) { write_exr(w, image) } else { write_png(w, image, tone_map) }
+pub fn write_image(w: &mut BufWriter<File>, path: &Path, image: &Image, display: Display) -> Result<()> {
+    if is_exr(path) { write_exr(w, image) } else { write_png(w, image, display) }
 }
 
 /// True for `.exr` paths (any case).

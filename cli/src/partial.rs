@@ -4,14 +4,15 @@
 //!
 //! Format (little endian): the magic line `PRISMATIC-PARTIAL 1\n`; the
 //! scene's fingerprint (u64); the backend's name (u8 length, bytes); width,
-//! height (u32); tone map (u8: 0 clamp, 1 reinhard); the pass ranges (u32
+//! height (u32); display (u8: the tone map's index in `ToneMap::ALL`, 0 clamp,
+//! 1 reinhard, 2 pbr_neutral, 3 agx, plus 128 with automatic exposure); the pass ranges (u32
 //! count, then u32 start and end each); the image without caustics (3 f32
 //! per pixel); the caustic sums (3 i64 per pixel); an FNV-1a checksum (u64)
 //! of everything before it.
 
 use crate::scene_file::SceneFileError;
 use prismatic_core::Accumulation;
-use prismatic_core::model::color::ToneMap;
+use prismatic_core::model::color::{Display, ToneMap};
 use prismatic_core::{Image, PreparedScene, Render, Vec3};
 use std::io::Write;
 use std::path::Path;
@@ -26,7 +27,7 @@ pub struct Partial {
     /// The backend that rendered it.
     pub backend: String,
     /// How the image is displayed.
-    pub tone_map: ToneMap,
+    pub display: Display,
     /// The image without caustics.
     pub base: Image,
     /// The passes' sums.
@@ -52,7 +53,7 @@ impl Partial {
         Partial {
             fingerprint: fingerprint(scene),
             backend: render.backend().to_string(),
-            tone_map: scene.scene.render.tone_map,
+            display: scene.scene.render.display(),
             base,
             sums,
         }
@@ -67,10 +68,8 @@ impl Partial {
         out.extend_from_slice(&self.backend.as_bytes()[..self.backend.len().min(255)]);
         out.extend_from_slice(&self.base.width.to_le_bytes());
         out.extend_from_slice(&self.base.height.to_le_bytes());
-        out.push(match self.tone_map {
-            ToneMap::Clamp => 0,
-            ToneMap::Reinhard => 1,
-        });
+        let tone_map = ToneMap::ALL.iter().position(|&t| t == self.display.tone_map).unwrap_or(0) as u8;
+        out.push(tone_map | u8::from(self.display.auto_exposure) << 7);
         out.extend_from_slice(&(self.sums.passes.len() as u32).to_le_bytes());
         for &(a, b) in &self.sums.passes {
             out.extend_from_slice(&a.to_le_bytes());
@@ -118,11 +117,10 @@ impl Partial {
         let name_len = usize::from(r.take(1)?[0]);
         let backend = String::from_utf8_lossy(r.take(name_len)?).into_owned();
         let (width, height) = (r.u32()?, r.u32()?);
-        let tone_map = match r.take(1)?[0] {
-            0 => ToneMap::Clamp,
-            1 => ToneMap::Reinhard,
-            t => return Err(format!("unknown tone map {t}")),
-        };
+        let shown = r.take(1)?[0];
+        let tone_map =
+            *ToneMap::ALL.get(usize::from(shown & 0x7f)).ok_or(format!("unknown tone map {}", shown & 0x7f))?;
+        let display = Display { tone_map, auto_exposure: shown & 0x80 != 0 };
         let ranges = r.u32()? as usize;
         let pixels = width as usize * height as usize;
         let expected = r.at + ranges * 8 + pixels * 36;
@@ -149,7 +147,7 @@ impl Partial {
             *s = [r.i64()?, r.i64()?, r.i64()?];
         }
         let sums = Accumulation::from_parts(width, height, &passes, raw).map_err(|e| format!("pass ranges: {e}"))?;
-        Ok(Partial { fingerprint, backend, tone_map, base, sums })
+        Ok(Partial { fingerprint, backend, display, base, sums })
     }
 
     /// Adds `other` (same scene, backend and size; disjoint passes).

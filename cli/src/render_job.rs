@@ -32,11 +32,11 @@ impl Output {
     /// Writes what `render`'s passes so far give (its base and `sums`) into
     /// `out`: a complete file or nothing.
     pub fn write(&self, out: PendingFile, render: &dyn Render, base: Image, sums: Accumulation) -> Result<()> {
-        let tone_map = render.scene().scene.render.tone_map;
+        let display = render.scene().scene.render.display();
         match self {
             Output::Image(path) => {
                 let image = finite_image(&base, &sums)?;
-                out.commit(|w| write_image(w, path, &image, tone_map))
+                out.commit(|w| write_image(w, path, &image, display))
             }
             Output::Partial(_) => out.commit(|w| Partial::of(render, base, sums).write(w)),
         }

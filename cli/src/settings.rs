@@ -6,10 +6,11 @@
 
 use crate::scene_file::{
     SceneDocument, SceneFileError, parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode,
-    parse_view_paths, parse_wavelengths, parse_white_point,
+    parse_tone_map, parse_view_paths, parse_wavelengths, parse_white_point,
 };
 use prismatic_core::PreparedScene;
 use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::color::ToneMap;
 use prismatic_core::model::scene::{
     Estimator, PhotonSequence, RadiusMode, RenderSettings, ViewPaths, WavelengthSampling, WhitePoint,
 };
@@ -95,6 +96,7 @@ from_name!(
     PhotonSequence = parse_photon_sequence,
     ViewPaths = parse_view_paths,
     WhitePoint = parse_white_point,
+    ToneMap = parse_tone_map,
 );
 
 /// The one list of settings. Each entry's doc comment is the CLI's help
@@ -181,6 +183,15 @@ settings! {
     /// white; the default) or D65 (sRGB's white).
     #[arg(long, value_parser = parse_white_point)]
     white_point: WhitePoint,
+    /// How the PNG shows the linear image: clamp, reinhard, pbr_neutral
+    /// (Khronos PBR Neutral, the glTF sample viewer's) or agx. An EXR
+    /// stays linear.
+    #[arg(long, value_parser = parse_tone_map)]
+    tone_map: ToneMap,
+    /// Automatic exposure (true or false): the PNG is scaled so that the
+    /// image's log-average luminance is middle grey (0.18).
+    #[arg(long)]
+    auto_exposure: bool,
     /// Image width.
     #[arg(long)]
     width: u32,
@@ -286,6 +297,8 @@ mod tests {
                 "photon_sequence" => SettingValue::Text("random".into()),
                 "view_paths" => SettingValue::Text("sampled".into()),
                 "white_point" => SettingValue::Text("D65".into()),
+                "tone_map" => SettingValue::Text("agx".into()),
+                "auto_exposure" => SettingValue::Bool(true),
                 _ => SettingValue::Int(64),
             };
             settings.set(name, &value).unwrap_or_else(|e| panic!("{name}: {e}"));

@@ -120,4 +120,5 @@ pub fn settings(render: &mut RenderSettings) {
     render.radius = 0.02;
     render.ambient = 0.12;
     render.tone_map = ToneMap::Reinhard;
+    render.auto_exposure = false;
 }

@@ -494,3 +494,27 @@ fn a_black_light_is_left_out_with_a_warning() {
     assert!(scene.warnings.iter().any(|w| w.contains("colour is black")), "{:?}", scene.warnings);
     assert!(!scene.scene.lights.iter().any(|l| matches!(l, Light::Sun { .. })), "{:?}", scene.scene.lights);
 }
+
+/// A file brings no exposure: it is shown as viewers show it, at middle
+/// grey through the default tone map; its camera's aspect ratio gives the
+/// image's shape (the default square's pixel count); what the light model
+/// leaves out (a range, a spot's soft edge) is a warning.
+#[test]
+fn a_file_is_shown_with_its_cameras_frame_and_auto_exposure() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut json: serde_json::Value = serde_json::from_str(&prism_document().to_json()).unwrap();
+    json["cameras"][0]["perspective"]["aspectRatio"] = 1.5.into();
+    let spot = &mut json["extensions"]["KHR_lights_punctual"]["lights"][0];
+    spot["range"] = 20.0.into();
+    spot["spot"]["innerConeAngle"] = 0.1.into();
+    let path = dir.path().join("framed.gltf");
+    std::fs::write(&path, json.to_string()).unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    let r = &scene.scene.render;
+    assert_eq!((r.width, r.height), (490, 327), "400² pixels at 3:2");
+    assert!(r.auto_exposure);
+    assert_eq!(r.tone_map, prismatic_core::model::color::ToneMap::PbrNeutral);
+    for left_out in ["range left out", "soft edge (innerConeAngle) left out"] {
+        assert!(scene.warnings.iter().any(|w| w.contains(left_out)), "{left_out}: {:?}", scene.warnings);
+    }
+}

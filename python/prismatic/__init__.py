@@ -11,7 +11,9 @@ settings are the ``prismatic render`` command's flags by name: ``width``,
 ``height``, ``photons``, ``bands`` (``"paper3"``, ``"paper7"`` or a
 number), ``radius``, ``radius_mode``, ``seed``, ``estimator``,
 ``light_tracing`` (``True`` or ``False``), ``wavelengths``, ``photon_sequence``
-(``"sobol"`` or ``"random"``), ``view_paths`` (``"centre"``, ``"hero"`` or ``"sampled"``), ``white_point`` (``"E"`` or ``"D65"``), ``backend`` (``"auto"``, ``"cpu"``, ``"gpu"``,
+(``"sobol"`` or ``"random"``), ``view_paths`` (``"centre"``, ``"hero"`` or ``"sampled"``), ``white_point`` (``"E"`` or ``"D65"``),
+``tone_map`` and ``auto_exposure`` (which change only a PNG the CLI writes, not
+the linear image returned here), ``backend`` (``"auto"``, ``"cpu"``, ``"gpu"``,
 ``"reference"``), and for renders ``passes`` and ``time``. The result is
 exactly the image ``prismatic render ... -o FILE.exr`` writes for the same
 scene and settings.

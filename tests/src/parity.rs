@@ -50,7 +50,7 @@ fn write_failure(case: &str, scene: &PreparedScene, outputs: &[&Output]) -> Path
         }
         if let Ok(file) = std::fs::File::create(dir.join(format!("{}.png", o.backend))) {
             let mut w = std::io::BufWriter::new(file);
-            let _ = prismatic_cli::output::write_png(&mut w, &o.image, scene.scene.render.tone_map);
+            let _ = prismatic_cli::output::write_png(&mut w, &o.image, scene.scene.render.display());
         }
     }
     dir

@@ -163,7 +163,7 @@ fn values_that_make_no_sense_are_rejected_with_their_line() {
         &format!("[render]\ntone_map = \"aces\"\n{MINIMAL}"),
         "render.tone_map",
         Some("tone_map"),
-        "clamp or reinhard",
+        "clamp, reinhard, pbr_neutral or agx",
     );
 }
 

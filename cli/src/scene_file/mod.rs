@@ -15,8 +15,8 @@ mod schema;
 
 pub use document::{SceneDocument, SceneFileError};
 pub use names::{
-    parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_view_paths, parse_wavelengths,
-    parse_white_point,
+    parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_tone_map, parse_view_paths,
+    parse_wavelengths, parse_white_point,
 };
 pub use reader::LOCAL_FRAME_RADIUS;
 

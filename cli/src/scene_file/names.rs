@@ -1,8 +1,9 @@
 //! The names of settings as scene files and command-line flags write
 //! them: band tables, estimators, wavelength sampling, photon sequences,
-//! radius modes, white points.
+//! radius modes, white points, tone maps.
 
 use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::color::ToneMap;
 use prismatic_core::model::scene::{Estimator, PhotonSequence, RadiusMode, ViewPaths, WavelengthSampling, WhitePoint};
 
 /// Parses a band table name: `paper3`, `paper7` or a number of bands.
@@ -40,6 +41,12 @@ pub fn parse_photon_sequence(s: &str) -> Result<PhotonSequence, String> {
 /// Parses a white point's name.
 pub fn parse_white_point(s: &str) -> Result<WhitePoint, String> {
     WhitePoint::from_name(s).ok_or_else(|| format!("unknown white point \"{s}\"; expected E or D65"))
+}
+
+/// Parses a tone map's name.
+pub fn parse_tone_map(s: &str) -> Result<ToneMap, String> {
+    ToneMap::from_name(s)
+        .ok_or_else(|| format!("unknown tone map \"{s}\"; expected clamp, reinhard, pbr_neutral or agx"))
 }
 
 /// Parses a view-paths name.

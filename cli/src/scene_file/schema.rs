@@ -5,8 +5,8 @@
 //! CSV files, placed glTF files through the glTF importer.
 
 use super::names::{
-    parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_view_paths, parse_wavelengths,
-    parse_white_point,
+    parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_tone_map, parse_view_paths,
+    parse_wavelengths, parse_white_point,
 };
 use super::reader::{LOCAL_FRAME_RADIUS, Reader, Result, Table, join};
 use crate::gltf_scene;
@@ -107,6 +107,7 @@ impl Reader<'_> {
                 "white_point",
                 "background",
                 "tone_map",
+                "auto_exposure",
                 "projection_maps",
                 "passes",
                 "alpha",
@@ -134,6 +135,7 @@ impl Reader<'_> {
             white_point: self.opt(t, "white_point", Self::white_point)?.unwrap_or(d.white_point),
             background: self.opt(t, "background", Self::vec3)?.unwrap_or(d.background),
             tone_map: self.opt(t, "tone_map", Self::tone_map)?.unwrap_or(d.tone_map),
+            auto_exposure: self.opt(t, "auto_exposure", Self::boolean)?.unwrap_or(d.auto_exposure),
             projection_maps: self.opt(t, "projection_maps", Self::boolean)?.unwrap_or(d.projection_maps),
             passes: self.opt(t, "passes", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.passes, |x| x as u32),
             alpha: self.opt(t, "alpha", Self::float)?.unwrap_or(d.alpha),
@@ -157,11 +159,7 @@ impl Reader<'_> {
     }
 
     fn tone_map(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<ToneMap> {
-        match self.string(key, v)? {
-            "clamp" => Ok(ToneMap::Clamp),
-            "reinhard" => Ok(ToneMap::Reinhard),
-            other => Err(self.err(key, &v.span(), format!("unknown tone map \"{other}\"; expected clamp or reinhard"))),
-        }
+        parse_tone_map(self.string(key, v)?).map_err(|reason| self.err(key, &v.span(), reason))
     }
 
     fn estimator(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Estimator> {

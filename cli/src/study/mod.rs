@@ -356,14 +356,14 @@ pub fn run(options: &StudyOptions, progress: &mut dyn StudyProgress) -> Result<S
 }
 
 /// Builds (or loads) the reference the study of `options` would use; also
-/// returns the scene's tone map, for writing it out.
+/// returns how the scene is shown, for writing it out.
 pub fn build_reference(
     options: &StudyOptions,
     progress: &mut dyn StudyProgress,
-) -> Result<(Reference, prismatic_core::model::color::ToneMap)> {
+) -> Result<(Reference, prismatic_core::model::color::Display)> {
     let (scene, plan) = study_scene(options)?;
     let r = load_reference(options, &scene, &plan, select(BackendChoice::Cpu)?.backend.as_mut(), progress)?;
-    Ok((r, scene.scene.render.tone_map))
+    Ok((r, scene.scene.render.display()))
 }
 
 /// The plan's reference for `scene`, from the cache or built on `backend`.

@@ -1,6 +1,6 @@
 //! A linear-RGB image as renderers produce it.
 
-use crate::model::color::{ToneMap, to_srgb8};
+use crate::model::color::{Display, to_srgb8};
 use alloc::vec;
 use alloc::vec::Vec;
 use glam::Vec3;
@@ -27,9 +27,11 @@ impl Image {
         self.pixels[(y * self.width + x) as usize]
     }
 
-    /// 8-bit sRGB bytes, RGBRGB…, tone mapped and clamped per pixel.
-    pub fn to_srgb8(&self, tone_map: ToneMap) -> Vec<u8> {
-        self.pixels.iter().flat_map(|&p| to_srgb8(tone_map.apply(p))).collect()
+    /// 8-bit sRGB bytes, RGBRGB…, as `display` shows them: exposed, tone
+    /// mapped and clamped per pixel.
+    pub fn to_srgb8(&self, display: Display) -> Vec<u8> {
+        let k = display.exposure(&self.pixels);
+        self.pixels.iter().flat_map(|&p| to_srgb8(display.tone_map.apply(p * k))).collect()
     }
 
     /// True when every pixel is finite.

@@ -3,7 +3,7 @@
 //! tracing needs from it.
 
 use crate::model::bands::BandSpec;
-use crate::model::color::ToneMap;
+use crate::model::color::{Display, ToneMap};
 use crate::model::dispersion::Dispersion;
 use crate::model::spectrum::Illuminant;
 pub use crate::model::spectrum::Spectrum;
@@ -333,6 +333,11 @@ pub struct RenderSettings {
     pub background: Vec3,
     /// How radiance becomes displayable.
     pub tone_map: ToneMap,
+    /// Whether the displayed image is scaled so that its log-average
+    /// luminance is middle grey ([`crate::model::color::auto_exposure`]),
+    /// after `exposure`, as viewers show a file that brings no exposure.
+    /// Only the picture changes (an EXR stays linear).
+    pub auto_exposure: bool,
     /// The spectrum that renders neutral (white balance).
     pub white_point: WhitePoint,
     /// Aim caustic photons only at mirrors and glass (projection maps).
@@ -353,8 +358,10 @@ pub struct RenderSettings {
 /// the caustic, 32 physically based bands with hero wavelengths (the
 /// continuous spectrum for 4 paths a photon, not 32 lines), the density
 /// estimator, Sobol photons, progressive radii, hero view paths (each
-/// pass's own, through the pixel centres). [`RenderSettings::paper`]
-/// is the paper's method.
+/// pass's own, through the pixel centres), shown through Khronos PBR
+/// Neutral (the glTF sample viewer's tone map: colours below 0.76 as they
+/// are, caustic highlights rolled off instead of clipped).
+/// [`RenderSettings::paper`] is the paper's method.
 impl Default for RenderSettings {
     fn default() -> Self {
         RenderSettings {
@@ -363,12 +370,18 @@ impl Default for RenderSettings {
             light_tracing: true,
             wavelengths: WavelengthSampling::Hero,
             view_paths: ViewPaths::Hero,
+            tone_map: ToneMap::PbrNeutral,
             ..RenderSettings::paper()
         }
     }
 }
 
 impl RenderSettings {
+    /// How the image is shown.
+    pub fn display(&self) -> Display {
+        Display { tone_map: self.tone_map, auto_exposure: self.auto_exposure }
+    }
+
     /// The paper's method at the default image size and photon count: the
     /// seven bands of its Table 3, every photon split into all of them at
     /// the glass and gathered everywhere with the paper's estimator (no
@@ -392,6 +405,7 @@ impl RenderSettings {
             exposure: 1.0,
             background: Vec3::ZERO,
             tone_map: ToneMap::Clamp,
+            auto_exposure: false,
             white_point: WhitePoint::E,
             projection_maps: true,
             passes: 16,

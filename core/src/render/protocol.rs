@@ -244,6 +244,7 @@ impl Change {
             background,
             // Applied when the image is read out: no pass redoes anything.
             tone_map: _,
+            auto_exposure: _,
             projection_maps,
             // How many passes an offline render runs, not what one computes.
             passes: _,
@@ -314,6 +315,7 @@ mod tests {
         };
         assert_eq!(edited(&|_| {}), Change::None);
         assert_eq!(edited(&|s| s.render.tone_map = ToneMap::Reinhard), Change::None);
+        assert_eq!(edited(&|s| s.render.auto_exposure = true), Change::None);
         assert_eq!(edited(&|s| s.render.passes = 3), Change::None);
         assert_eq!(edited(&|s| s.render.photons += 1), Change::Photons);
         assert_eq!(edited(&|s| s.render.seed += 1), Change::View, "the default hero view paths take the seed");

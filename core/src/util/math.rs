@@ -61,6 +61,11 @@ mod imp {
     pub fn ln(x: f32) -> f32 {
         x.ln()
     }
+    /// `log2` of the platform (std) or of libm (no_std).
+    #[inline]
+    pub fn log2(x: f32) -> f32 {
+        x.log2()
+    }
     /// `sqrt_f64` of the platform (std) or of libm (no_std).
     #[inline]
     pub fn sqrt_f64(x: f64) -> f64 {
@@ -129,6 +134,11 @@ mod imp {
     #[inline]
     pub fn ln(x: f32) -> f32 {
         libm::logf(x)
+    }
+    /// `log2` of the platform (std) or of libm (no_std).
+    #[inline]
+    pub fn log2(x: f32) -> f32 {
+        libm::log2f(x)
     }
     /// `sqrt_f64` of the platform (std) or of libm (no_std).
     #[inline]

@@ -48,13 +48,16 @@ impl BranchesX8 {
     }
 }
 
-/// Both branches at glass for eight rays `d` at `point` (outward normal `outward`).
+/// Both branches at glass for eight rays `d` at `point` (outward normal
+/// `outward`); the lanes of `thin` are at a thin sheet.
 #[inline]
-pub fn split_dielectric(d: Vec3x8, point: Vec3x8, outward: Vec3x8, ior: f32x8) -> BranchesX8 {
+pub fn split_dielectric(d: Vec3x8, point: Vec3x8, outward: Vec3x8, ior: f32x8, thin: f32x8) -> BranchesX8 {
     let (n, n1, n2) = interface(d, outward, ior);
-    let reflectance = fresnel(-d.dot(n), n1, n2);
+    let cos_i = -d.dot(n);
+    let reflectance = thin.select(sheet_reflectance(fresnel(cos_i, f32x8::ONE, ior)), fresnel(cos_i, n1, n2));
     let reflected = reflect(d, n);
     let (tir, refracted) = refract(d, n, n1, n2);
+    let (tir, refracted) = (tir & !thin, Vec3x8::select(thin, d, refracted));
     BranchesX8 {
         reflectance,
         reflected: (offset_origin(point, n, reflected), reflected),
@@ -65,13 +68,22 @@ pub fn split_dielectric(d: Vec3x8, point: Vec3x8, outward: Vec3x8, ior: f32x8) -
 
 /// `prismatic_core::optics::scatter::scatter_dielectric` per lane: returns the facing
 /// normal and the new direction (reflected where `u < R` or under total
-/// internal reflection, refracted otherwise).
+/// internal reflection, refracted otherwise; at a sheet, the lanes of
+/// `thin`, reflected where `u` is below its reflectance, else straight on).
 #[inline]
-pub fn scatter_dielectric(d: Vec3x8, outward: Vec3x8, ior: f32x8, u: f32x8) -> (Vec3x8, Vec3x8) {
+pub fn scatter_dielectric(d: Vec3x8, outward: Vec3x8, ior: f32x8, thin: f32x8, u: f32x8) -> (Vec3x8, Vec3x8) {
     let (n, n1, n2) = interface(d, outward, ior);
-    let r = fresnel(-d.dot(n), n1, n2);
+    let cos_i = -d.dot(n);
+    let r = thin.select(sheet_reflectance(fresnel(cos_i, f32x8::ONE, ior)), fresnel(cos_i, n1, n2));
     let (tir, refracted) = refract(d, n, n1, n2);
-    (n, Vec3x8::select(lt(u, r) | tir, reflect(d, n), refracted))
+    let (tir, through) = (tir & !thin, Vec3x8::select(thin, d, refracted));
+    (n, Vec3x8::select(lt(u, r) | tir, reflect(d, n), through))
+}
+
+/// `prismatic_core::optics::fresnel::sheet_reflectance` per lane.
+#[inline]
+pub fn sheet_reflectance(r: f32x8) -> f32x8 {
+    f32x8::splat(2.0) * r / (f32x8::ONE + r)
 }
 
 /// `prismatic_core::optics::fresnel::interface`: facing normal and the indices on either side.

@@ -38,6 +38,8 @@ struct ObjectOptics {
     dispersive: f32x8,
     /// Coloured dielectric (absorbs inside).
     absorbing: f32x8,
+    /// Thin sheet (rays pass straight through).
+    thin: f32x8,
     /// n for white light (non-dispersive glass only).
     white_ior: f32x8,
     /// n per band, eight bands per vector.
@@ -83,6 +85,7 @@ impl<'a> TraceContext<'a> {
                     dielectric: mask(glass.is_some()),
                     dispersive: mask(glass.is_some_and(|g| g.splits_photons)),
                     absorbing: mask(glass.is_some_and(|g| g.absorption.is_some())),
+                    thin: mask(glass.is_some_and(|g| g.thin)),
                     white_ior: f32x8::splat(glass.map_or(1.0, |g| g.white_ior)),
                     band_ior,
                 }
@@ -106,6 +109,7 @@ struct LaneSurfaces {
     dielectric: f32x8,
     dispersive: f32x8,
     absorbing: f32x8,
+    thin: f32x8,
     /// Index of refraction for this lane: white for white packets, the band's for band packets.
     ior: f32x8,
 }
@@ -122,6 +126,7 @@ impl TraceContext<'_> {
             dielectric: f32x8::ZERO,
             dispersive: f32x8::ZERO,
             absorbing: f32x8::ZERO,
+            thin: f32x8::ZERO,
             ior: f32x8::ONE,
         };
         for o in &self.objects {
@@ -131,6 +136,7 @@ impl TraceContext<'_> {
             s.dielectric |= m & o.dielectric;
             s.dispersive |= m & o.dispersive;
             s.absorbing |= m & o.absorbing;
+            s.thin |= m & o.thin;
             let ior = match band_chunk {
                 Some(c) => o.band_ior[c],
                 None => o.white_ior,
@@ -332,6 +338,8 @@ fn trace_bands(
             dielectric: f32x8::splat(ON),
             dispersive: f32x8::ZERO,
             absorbing: f32x8::ZERO,
+            // The glass white light splits at is dispersive: never a sheet.
+            thin: f32x8::ZERO,
             ior,
         };
         let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
@@ -470,7 +478,7 @@ fn scatter(
     if !go_on.any() {
         return (origin, dir);
     }
-    let (n_glass, dir_glass) = scatter_dielectric(d, normal, s.ior, u);
+    let (n_glass, dir_glass) = scatter_dielectric(d, normal, s.ior, s.thin, u);
     let n_face = Vec3x8::select(s.mirror, normal, n_glass);
     let new_dir = Vec3x8::select(s.mirror, reflect(d, normal), dir_glass);
     (Vec3x8::select(go_on, offset_origin(point, n_face, new_dir), origin), Vec3x8::select(go_on, new_dir, dir))

@@ -158,6 +158,7 @@ impl Shader<'_> {
         }
         let mut at_glass = 0u32;
         let mut glass_ior = [1.0f32; 8];
+        let mut glass_thin = [0.0f32; 8];
         // The rays as they arrive: what coloured glass left of those that crossed it.
         let mut arrived = [rays[0]; 8];
         arrived[..rays.len()].copy_from_slice(rays);
@@ -189,27 +190,28 @@ impl Shader<'_> {
                             let share = r.weight * w.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * w, weight: share, band, lambda_nm, hero, ..*r };
                             let ior = glass.path_ior(band, lambda_nm, &self.scene.bands);
-                            spawn_at_glass(&tinted, p, n, ior, one_branch, queue);
+                            spawn_at_glass(&tinted, p, n, (ior, glass.thin), one_branch, queue);
                         }
                     }
                     None => {
                         for (b, info) in self.scene.bands.bands().iter().enumerate() {
                             let share = r.weight * info.weight.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * info.weight, weight: share, band: b as u16, ..*r };
-                            spawn_at_glass(&tinted, p, n, glass.ior(b as u16), one_branch, queue);
+                            spawn_at_glass(&tinted, p, n, (glass.ior(b as u16), glass.thin), one_branch, queue);
                         }
                     }
                 },
                 Surface::Dielectric(glass) => {
                     glass_ior[i] = glass.path_ior(r.band, r.lambda_nm, &self.scene.bands);
+                    glass_thin[i] = if glass.thin { f32::from_bits(u32::MAX) } else { 0.0 };
                     at_glass |= 1 << i;
                 }
                 Surface::Diffuse { .. } => unreachable!("shaded above"),
             }
         }
         if at_glass != 0 {
-            let ior = f32x8::new(glass_ior);
-            spawn_packet_at_glass(&arrived[..rays.len()], at_glass, point, hit.normal, ior, one_branch, queue);
+            let glass = (f32x8::new(glass_ior), f32x8::new(glass_thin));
+            spawn_packet_at_glass(&arrived[..rays.len()], at_glass, point, hit.normal, glass, one_branch, queue);
         }
     }
 
@@ -312,16 +314,23 @@ impl Shader<'_> {
 }
 
 /// Queues the Fresnel-weighted reflection and refraction of `r` at a glass
-/// surface point `p` (outward normal `outward`), as the reference recurses
-/// (with `one_branch`, a sampled path: the one branch its number chooses,
-/// as photons choose).
-fn spawn_at_glass(r: &ViewRay, p: Vec3, outward: Vec3, ior: f32, one_branch: bool, queue: &mut Vec<ViewRay>) {
+/// surface point `p` (outward normal `outward`; the glass's index and
+/// whether it is a sheet), as the reference recurses (with `one_branch`, a
+/// sampled path: the one branch its number chooses, as photons choose).
+fn spawn_at_glass(
+    r: &ViewRay,
+    p: Vec3,
+    outward: Vec3,
+    (ior, thin): (f32, bool),
+    one_branch: bool,
+    queue: &mut Vec<ViewRay>,
+) {
     if let Some(sampler) = r.sampler.filter(|_| one_branch) {
-        let next = scatter_dielectric(r.dir, p, outward, ior, sampler.branch(r.hero, r.depth));
+        let next = scatter_dielectric(r.dir, p, outward, ior, thin, sampler.branch(r.hero, r.depth));
         queue.push(ViewRay { origin: next.origin, dir: next.direction, depth: r.depth + 1, ..*r });
         return;
     }
-    let split = scatter::split_dielectric(r.dir, p, outward, ior);
+    let split = scatter::split_dielectric(r.dir, p, outward, ior, thin);
     let f = split.reflectance;
     if f * r.weight > MIN_VIEW_WEIGHT {
         let (origin, dir) = (split.reflected.origin, split.reflected.direction);
@@ -337,18 +346,19 @@ fn spawn_at_glass(r: &ViewRay, p: Vec3, outward: Vec3, ior: f32, one_branch: boo
 }
 
 /// [`spawn_at_glass`] for the packet lanes in `lanes_at_glass`, the Fresnel
-/// factors and directions computed for all eight lanes at once.
+/// factors and directions computed for all eight lanes at once (the
+/// glass's index and sheet mask per lane).
 fn spawn_packet_at_glass(
     rays: &[ViewRay],
     lanes_at_glass: u32,
     point: Vec3x8,
     outward: Vec3x8,
-    ior: f32x8,
+    (ior, thin): (f32x8, f32x8),
     one_branch: bool,
     queue: &mut Vec<ViewRay>,
 ) {
     let d = Vec3x8::from_lanes(&core::array::from_fn(|i| rays[i.min(rays.len() - 1)].dir));
-    let split = split_dielectric(d, point, outward, ior);
+    let split = split_dielectric(d, point, outward, ior, thin);
     let f = split.reflectance.to_array();
     let tir = split.tir.to_bitmask();
     for (i, r) in rays.iter().enumerate().filter(|(i, _)| lanes_at_glass & (1 << i) != 0) {

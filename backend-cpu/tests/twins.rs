@@ -63,9 +63,10 @@ fn packet_scatter(cases: &[ScatterCase; 8]) -> [LaneScatter; 8] {
     let outward = Vec3x8::from_lanes(&cases.map(|c| c.surface.outward));
     let point = Vec3x8::from_lanes(&cases.map(|c| c.point));
     let ior = f32x8::new(cases.map(|c| c.surface.ior));
-    let (n, dir) = scatter_dielectric(d, outward, ior, f32x8::new(cases.map(|c| c.u)));
+    let thin = f32x8::new(cases.map(|c| if c.thin { f32::from_bits(u32::MAX) } else { 0.0 }));
+    let (n, dir) = scatter_dielectric(d, outward, ior, thin, f32x8::new(cases.map(|c| c.u)));
     let origin = offset_origin(point, n, dir);
-    let split = split_dielectric(d, point, outward, ior);
+    let split = split_dielectric(d, point, outward, ior, thin);
     let (r, tir) = (split.reflectance.to_array(), split.tir.to_bitmask());
     std::array::from_fn(|i| {
         let refracted = (tir & (1 << i) == 0).then(|| (split.refracted.0.lane(i), split.refracted.1.lane(i)));

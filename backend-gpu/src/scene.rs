@@ -218,6 +218,9 @@ impl EncodedScene {
                 if g.splits_view_rays {
                     s.flags |= SURFACE_SPLITS_VIEW_RAYS;
                 }
+                if g.thin {
+                    s.flags |= SURFACE_THIN;
+                }
                 if let Some(a) = &g.absorption {
                     s.flags |= SURFACE_ABSORBS;
                     s.absorption = v3(a.rgb);

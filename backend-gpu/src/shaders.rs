@@ -55,6 +55,8 @@ pub mod kind {
     pub const SURFACE_HAS_TEXTURE: u32 = 32;
     /// Its texture is read by nearest texel (else bilinearly).
     pub const SURFACE_TEXTURE_NEAREST: u32 = 64;
+    /// The dielectric is a thin sheet (rays pass straight through).
+    pub const SURFACE_THIN: u32 = 128;
     /// Where the texture's wrap along u sits in the flags (two bits, `WRAP_*`).
     pub const TEXTURE_WRAP_U_SHIFT: u32 = 8;
     /// Where the texture's wrap along v sits in the flags (two bits, `WRAP_*`).
@@ -185,6 +187,7 @@ fn prelude(stack: u32) -> String {
     u("SURFACE_ABSORBS", kind::SURFACE_ABSORBS);
     u("SURFACE_HAS_TEXTURE", kind::SURFACE_HAS_TEXTURE);
     u("SURFACE_TEXTURE_NEAREST", kind::SURFACE_TEXTURE_NEAREST);
+    u("SURFACE_THIN", kind::SURFACE_THIN);
     u("TEXTURE_WRAP_U_SHIFT", kind::TEXTURE_WRAP_U_SHIFT);
     u("TEXTURE_WRAP_V_SHIFT", kind::TEXTURE_WRAP_V_SHIFT);
     u("WRAP_CLAMP_TO_EDGE", kind::WRAP_CLAMP_TO_EDGE);

@@ -16,6 +16,7 @@ use glam::{Affine2, Mat4, Vec2, Vec3};
 use gltf::khr_lights_punctual::Kind;
 use gltf::texture::{MagFilter, WrappingMode};
 use prismatic_core::Dispersion;
+use prismatic_core::model::mesh::open_edge;
 use prismatic_core::model::scene::{
     Attenuation, Camera, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, Object, RenderSettings, Sampler, Scene,
     Shape, Texture, Wrap,
@@ -124,6 +125,19 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
                         material_of[slot] = Some((out.materials.len() - 1, uv_transform));
                         (out.materials.len() - 1, uv_transform)
                     }
+                };
+                let material = match (&out.materials[material].kind, &shape) {
+                    // A volume needs a closed surface; glTF does not ask
+                    // for one, so an open mesh is drawn as a sheet.
+                    (MaterialKind::Dielectric { thin: false, .. }, Shape::Mesh { positions, triangles, .. })
+                        if open_edge(positions, triangles).is_some() =>
+                    {
+                        out.warnings.push(format!(
+                            "{prim_path}: an open mesh has no inside: its volume is left out, drawn as thin-walled glass"
+                        ));
+                        thin_twin(&mut out, material)
+                    }
+                    _ => material,
                 };
                 if let (Some(t), Shape::Mesh { uvs, .. }) = (uv_transform, &mut shape) {
                     uvs.iter_mut().for_each(|uv| *uv = t.transform_point2(*uv));
@@ -394,10 +408,17 @@ fn material(
         if pbr.base_color_texture().is_some() {
             unused.push("baseColorTexture of glass (its colour is the volume's attenuation)");
         }
+        // Without a volume (or with thicknessFactor 0) glTF's transmission
+        // is thin-walled: a sheet, which may be any shape.
+        let thin = m.volume().is_none_or(|v| v.thickness_factor() == 0.0);
+        if thin && pbr.base_color_factor()[..3].iter().any(|&c| c < 1.0) {
+            unused.push("baseColorFactor of thin-walled glass (the sheet is clear)");
+        }
         MaterialKind::Dielectric {
             dispersion: dispersion(m),
             outside: Dispersion::Constant(1.0),
             attenuation: attenuation(m, &mut unused),
+            thin,
         }
     } else if pbr.metallic_factor() >= MIRROR_METALLIC && pbr.roughness_factor() <= MIRROR_ROUGHNESS {
         if pbr.base_color_texture().is_some() {
@@ -421,6 +442,24 @@ fn material(
         warnings.push(format!("{path} ({name}): left out: {}", unused.join(", ")));
     }
     Ok((Material { name, kind }, uv_transform))
+}
+
+/// The thin-walled twin of solid glass `material` (made once, named after
+/// it, without its volume's attenuation).
+fn thin_twin(out: &mut GltfScene, material: usize) -> usize {
+    let name = format!("{} (thin-walled)", out.materials[material].name);
+    if let Some(i) = out.materials.iter().position(|m| m.name == name) {
+        return i;
+    }
+    let mut twin = Material { name, kind: out.materials[material].kind.clone() };
+    if let MaterialKind::Dielectric { thin, attenuation, .. } = &mut twin.kind {
+        (*thin, *attenuation) = (true, None);
+    }
+    let element = out.elements.iter().find(|(key, _)| *key == format!("material.{}", out.materials[material].name));
+    let element = element.map_or_else(String::new, |(_, path)| path.clone());
+    out.elements.push((format!("material.{}", twin.name), element));
+    out.materials.push(twin);
+    out.materials.len() - 1
 }
 
 /// Where a material is in the file (`materials[3]`).

@@ -65,7 +65,7 @@ impl GltfMaterial {
         }
     }
 
-    /// Clear smooth glass of index `ior` and dispersion `dispersion`.
+    /// Clear smooth solid glass (a volume) of index `ior` and dispersion `dispersion`.
     pub fn glass(name: &str, ior: f32, dispersion: f32) -> Self {
         GltfMaterial {
             name: name.into(),
@@ -305,12 +305,14 @@ fn material_json(m: &GltfMaterial) -> Value {
         if m.dispersion > 0.0 {
             extensions.insert("KHR_materials_dispersion".into(), json!({ "dispersion": m.dispersion }));
         }
-        if let Some((color, distance)) = m.attenuation {
-            extensions.insert(
-                "KHR_materials_volume".into(),
-                json!({ "thicknessFactor": 1.0, "attenuationColor": color, "attenuationDistance": distance }),
-            );
-        }
+        // Solid glass: a volume (without one, glTF's glass is a thin sheet).
+        let volume = match m.attenuation {
+            Some((color, distance)) => {
+                json!({ "thicknessFactor": 1.0, "attenuationColor": color, "attenuationDistance": distance })
+            }
+            None => json!({ "thicknessFactor": 1.0 }),
+        };
+        extensions.insert("KHR_materials_volume".into(), volume);
     }
     json!({
         "name": m.name,

@@ -37,7 +37,10 @@ fn diffuse(name: &str, albedo: f32) -> Material {
 }
 
 fn glass(name: &str, dispersion: Dispersion) -> Material {
-    material(name, MaterialKind::Dielectric { dispersion, outside: Dispersion::Constant(1.0), attenuation: None })
+    material(
+        name,
+        MaterialKind::Dielectric { dispersion, outside: Dispersion::Constant(1.0), attenuation: None, thin: false },
+    )
 }
 
 fn prepared(scene: Scene) -> PreparedScene {

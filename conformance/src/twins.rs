@@ -248,37 +248,44 @@ pub struct ScatterCase {
     pub point: Vec3,
     /// The branch number in [0, 1).
     pub u: f32,
+    /// At a thin sheet (straight on, the sheet's reflectance).
+    pub thin: bool,
 }
 
 impl ScatterCase {
     /// The core's one branch (`optics::scatter::scatter_dielectric`): (origin, direction).
     pub fn scattered(&self) -> (Vec3, Vec3) {
         let s = &self.surface;
-        let ray = scatter_dielectric(s.d, self.point, s.outward, s.ior, self.u);
+        let ray = scatter_dielectric(s.d, self.point, s.outward, s.ior, self.thin, self.u);
         (ray.origin, ray.direction)
     }
 
     /// The core's two branches (`optics::scatter::split_dielectric`).
     pub fn branches(&self) -> DielectricBranches {
         let s = &self.surface;
-        split_dielectric(s.d, self.point, s.outward, s.ior)
+        split_dielectric(s.d, self.point, s.outward, s.ior, self.thin)
     }
 }
 
-/// Paths leaving glass: any [`surface_case`], at points from 1e-3 to 1e4
-/// from the origin, with branch numbers anywhere in [0, 1) and right at
-/// the Fresnel reflectance (where the choice flips).
+/// Paths leaving glass (a fifth of them at thin sheets): any
+/// [`surface_case`], at points from 1e-3 to 1e4 from the origin, with
+/// branch numbers anywhere in [0, 1) and right at the Fresnel reflectance
+/// (where the choice flips).
 pub fn scatter_case() -> impl Strategy<Value = ScatterCase> {
     let coordinate = prop_oneof![3 => -10.0f32..10.0, 1 => (-3.0f32..4.0, any::<bool>()).prop_map(|(e, neg)| if neg { -10f32.powf(e) } else { 10f32.powf(e) })];
     (
         surface_case(),
         [coordinate.clone(), coordinate.clone(), coordinate],
         prop_oneof![4 => 0.0f32..1.0, 1 => Just(-1.0f32)],
+        prop_oneof![4 => Just(false), 1 => Just(true)],
     )
-        .prop_map(|(surface, point, u)| {
+        .prop_map(|(surface, point, u, thin)| {
+            let mut case = ScatterCase { surface, point: Vec3::from(point), u, thin };
             // u = -1 stands for "exactly R": the smallest number that refracts.
-            let u = if u < 0.0 { surface.answer().fresnel } else { u };
-            ScatterCase { surface, point: Vec3::from(point), u }
+            if u < 0.0 {
+                case.u = case.branches().reflectance;
+            }
+            case
         })
 }
 

@@ -35,7 +35,12 @@ pub fn white(name: &str) -> Material {
 pub fn glass(name: &str, dispersion: Dispersion) -> Material {
     Material {
         name: name.into(),
-        kind: MaterialKind::Dielectric { dispersion, outside: Dispersion::Constant(1.0), attenuation: None },
+        kind: MaterialKind::Dielectric {
+            dispersion,
+            outside: Dispersion::Constant(1.0),
+            attenuation: None,
+            thin: false,
+        },
     }
 }
 

@@ -27,6 +27,7 @@ fn slab(ior: Dispersion) -> (Material, Object) {
             dispersion: ior,
             outside: Dispersion::Constant(1.0),
             attenuation: Some(Attenuation { color: COLOR, distance: DISTANCE }),
+            thin: false,
         },
     };
     let vertices = [Vec3::new(0.0, -3.0, -2.0), Vec3::new(0.0, 3.0, -2.0), Vec3::new(0.0, 0.0, 3.0)];

@@ -23,5 +23,6 @@ mod spectral_truth;
 mod spectrum;
 mod sun;
 mod textures;
+mod thin_glass;
 mod view_paths;
 mod wavelengths;

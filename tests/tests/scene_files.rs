@@ -96,7 +96,12 @@ fn every_ior_form_parses() {
         let g = doc.scene.materials.iter().find(|m| m.name == "g").unwrap();
         assert_eq!(
             g.kind,
-            MaterialKind::Dielectric { dispersion: expected, outside: Dispersion::Constant(1.0), attenuation: None },
+            MaterialKind::Dielectric {
+                dispersion: expected,
+                outside: Dispersion::Constant(1.0),
+                attenuation: None,
+                thin: false
+            },
             "{text}"
         );
     }

@@ -32,6 +32,7 @@ pub fn scene(render: RenderSettings, light: Light, with_ball: bool) -> PreparedS
         dispersion: Dispersion::Paper,
         outside: Dispersion::Constant(1.0),
         attenuation: None,
+        thin: false,
     };
     PreparedScene::new(Scene {
         render,

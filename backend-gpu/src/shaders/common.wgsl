@@ -412,13 +412,24 @@ struct Scattered {
     dir: vec3<f32>,
 }
 
+// optics::fresnel::sheet_reflectance: both faces of a thin sheet and what
+// bounces between them.
+fn sheet_reflectance(r: f32) -> f32 {
+    return 2.0 * r / (1.0 + r);
+}
+
 // optics::scatter::scatter_dielectric: reflected where u < R or under total
-// internal reflection, refracted otherwise; photons and sampled view paths.
-fn scatter_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, ior: f32, u: f32) -> Scattered {
+// internal reflection, refracted otherwise (a thin sheet: straight on);
+// photons and sampled view paths.
+fn scatter_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, ior: f32, thin: bool, u: f32) -> Scattered {
     let f = facing_interface(d, outward, ior);
     let cos_i = -dot(d, f.n);
     var out = reflect_dir(d, f.n);
-    if !(u < fresnel(cos_i, f.n1, f.n2)) {
+    if thin {
+        if !(u < sheet_reflectance(fresnel(cos_i, 1.0, ior))) {
+            out = d;
+        }
+    } else if !(u < fresnel(cos_i, f.n1, f.n2)) {
         let r = refract_dir(d, f.n, f.n1, f.n2);
         if r.w != 0.0 {
             out = r.xyz;
@@ -437,11 +448,16 @@ struct DielectricBranches {
     tir: bool,
 }
 
-fn split_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, ior: f32) -> DielectricBranches {
+fn split_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, ior: f32, thin: bool) -> DielectricBranches {
     let f = facing_interface(d, outward, ior);
-    let reflectance = fresnel(-dot(d, f.n), f.n1, f.n2);
+    let cos_i = -dot(d, f.n);
+    var reflectance = fresnel(cos_i, f.n1, f.n2);
+    var t = refract_dir(d, f.n, f.n1, f.n2);
+    if thin {
+        reflectance = sheet_reflectance(fresnel(cos_i, 1.0, ior));
+        t = vec4<f32>(d, 1.0);
+    }
     let r = reflect_dir(d, f.n);
-    let t = refract_dir(d, f.n, f.n1, f.n2);
     let reflected = Scattered(offset_origin(point, f.n, r), r);
     let refracted = Scattered(offset_origin(point, f.n, t.xyz), t.xyz);
     return DielectricBranches(reflected, reflectance, refracted, t.w == 0.0);

@@ -374,6 +374,11 @@ fn absorption_coefficient(s: GpuSurface, band: u32) -> f32 {
     return tables[s.absorption_first + band];
 }
 
+// DielectricOptics::thin: a sheet that rays pass straight through.
+fn is_sheet(s: GpuSurface) -> bool {
+    return (s.flags & SURFACE_THIN) != 0u;
+}
+
 // view::glass_transmittance: what a view ray keeps of each channel on a
 // segment of length t that ends on the glass (only a segment inside counts).
 fn glass_transmittance(s: GpuSurface, dir: vec3<f32>, normal: vec3<f32>, t: f32, band: u32) -> vec3<f32> {

@@ -32,8 +32,8 @@ const FOLLOW_END: u32 = 0u;
 const FOLLOW_SPLIT: u32 = 1u;
 
 // optics::scatter::scatter_dielectric on a photon's path.
-fn scatter_path(p: ptr<function, Path>, point: vec3<f32>, outward: vec3<f32>, ior: f32, u: f32) {
-    let s = scatter_dielectric((*p).dir, point, outward, ior, u);
+fn scatter_path(p: ptr<function, Path>, point: vec3<f32>, outward: vec3<f32>, ior: f32, thin: bool, u: f32) {
+    let s = scatter_dielectric((*p).dir, point, outward, ior, thin, u);
     (*p).origin = s.origin;
     (*p).dir = s.dir;
 }
@@ -112,10 +112,10 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             (*p).band = b.band;
             (*p).lambda_nm = b.lambda_nm;
             let u = random_f32(seed, index, scatter_dim(b.band, (*p).bounces));
-            scatter_path(p, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), u);
+            scatter_path(p, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), is_sheet(s), u);
         } else {
             let u = random_f32(seed, index, scatter_dim((*p).band, (*p).bounces));
-            scatter_path(p, hit.point, hit.normal, path_ior(s, (*p).band, (*p).lambda_nm), u);
+            scatter_path(p, hit.point, hit.normal, path_ior(s, (*p).band, (*p).lambda_nm), is_sheet(s), u);
         }
         (*p).bounces += 1u;
     }
@@ -153,7 +153,7 @@ fn trace_emitted(index: u32) {
         let b = split_band(u, path);
         var child = Path(p.origin, p.dir, p.flux / f32(n), b.band, b.lambda_nm, p.bounces + 1u);
         let u = random_f32(params.seed, index, scatter_dim(b.band, p.bounces));
-        scatter_path(&child, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), u);
+        scatter_path(&child, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), is_sheet(s), u);
         var unused: Hit;
         follow(&child, index, &unused);
     }

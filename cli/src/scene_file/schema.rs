@@ -275,7 +275,10 @@ impl Reader<'_> {
                 }
             }
             "dielectric" => {
-                self.check_keys(t, &["kind", "ior", "outside_ior", "attenuation_color", "attenuation_distance"])?;
+                self.check_keys(
+                    t,
+                    &["kind", "ior", "outside_ior", "attenuation_color", "attenuation_distance", "thin"],
+                )?;
                 let dispersion = self.req(t, "ior", |p, k, v| p.ior(k, v))?;
                 let outside = self.opt(t, "outside_ior", |p, k, v| p.ior(k, v))?.unwrap_or(Dispersion::Constant(1.0));
                 // Coloured glass names both halves of Beer–Lambert's law, as glTF does.
@@ -288,7 +291,8 @@ impl Reader<'_> {
                 } else {
                     None
                 };
-                MaterialKind::Dielectric { dispersion, outside, attenuation }
+                let thin = self.opt(t, "thin", Self::boolean)?.unwrap_or(false);
+                MaterialKind::Dielectric { dispersion, outside, attenuation, thin }
             }
             "mirror" => {
                 self.check_keys(t, &["kind"])?;

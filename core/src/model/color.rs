@@ -118,7 +118,7 @@ const AGX_INSET: Mat3 = Mat3::from_cols_array(&[
     0.078_433_6,
     0.079_223_745,
     0.079_166_13,
-    0.879_142_97,
+    0.879_143,
 ]);
 
 /// AgX's outset matrix, the inset's inverse.

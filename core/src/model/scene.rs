@@ -598,6 +598,13 @@ pub enum MaterialKind {
         outside: Dispersion,
         /// Beer–Lambert absorption inside (`None`: clear glass).
         attenuation: Option<Attenuation>,
+        /// A sheet of no thickness (glTF's thin-walled transmission, for
+        /// glass without `KHR_materials_volume` or an open mesh): it
+        /// reflects both faces' share ([`crate::optics::fresnel::sheet_reflectance`])
+        /// and passes the rest straight on, so it may be any shape, has no
+        /// inside to absorb in (`attenuation` must be `None`) and spreads no
+        /// colours apart.
+        thin: bool,
     },
     /// Perfect mirror.
     Mirror,

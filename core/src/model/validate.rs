@@ -95,7 +95,7 @@ impl Scene {
                 return Err(c.err("material", format!("refers to material #{} which does not exist", object.material)));
             };
             validate_shape(&c, &object.shape)?;
-            if matches!(material.kind, MaterialKind::Dielectric { .. }) && !object.shape.is_closed() {
+            if matches!(material.kind, MaterialKind::Dielectric { thin: false, .. }) && !object.shape.is_closed() {
                 return Err(c.err(
                     "material",
                     format!(
@@ -122,10 +122,13 @@ impl Scene {
             let checked_before = previous.is_some_and(|p| {
                 p.objects.get(i).is_some_and(|o| {
                     o.shape == object.shape
-                        && matches!(p.materials.get(o.material).map(|m| &m.kind), Some(MaterialKind::Dielectric { .. }))
+                        && matches!(
+                            p.materials.get(o.material).map(|m| &m.kind),
+                            Some(MaterialKind::Dielectric { thin: false, .. })
+                        )
                 })
             });
-            if let (MaterialKind::Dielectric { .. }, Shape::Mesh { positions, triangles, .. }) =
+            if let (MaterialKind::Dielectric { thin: false, .. }, Shape::Mesh { positions, triangles, .. }) =
                 (&material.kind, &object.shape)
                 && !checked_before
                 && let Some((a, b)) = crate::model::mesh::open_edge(positions, triangles)
@@ -292,10 +295,14 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             }
         }
         MaterialKind::Mirror => Ok(()),
-        MaterialKind::Dielectric { dispersion, outside, attenuation } => {
+        MaterialKind::Dielectric { dispersion, outside, attenuation, thin } => {
             validate_dispersion(c, "ior", dispersion, bands)?;
             validate_dispersion(c, "outside_ior", outside, bands)?;
             match attenuation {
+                Some(_) if *thin => Err(c.err(
+                    "attenuation_color",
+                    "a thin sheet has no inside to absorb in: leave out the attenuation or make the glass solid",
+                )),
                 Some(a) => validate_attenuation(c, a),
                 None => Ok(()),
             }

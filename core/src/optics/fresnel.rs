@@ -53,6 +53,15 @@ pub fn cos2_transmitted(cos_i: f32, eta: f32) -> f32 {
     (1.0 - eta2) + eta2 * cos_i * cos_i
 }
 
+/// Reflectance of a thin sheet (glTF's thin-walled transmission: two
+/// parallel faces no distance apart) whose faces each reflect `r`: the light
+/// that bounces between the faces sums to 2R/(1 + R) reflected and
+/// (1 − R)/(1 + R) transmitted (incoherently, nothing absorbed).
+#[inline]
+pub fn sheet_reflectance(r: f32) -> f32 {
+    2.0 * r / (1.0 + r)
+}
+
 /// The indices on both sides of a dielectric surface hit by a ray travelling
 /// along `d`, whose outward normal is `outward`: returns the normal facing the
 /// ray and (n_incident, n_transmitted). The outside of every dielectric is air.
@@ -70,6 +79,16 @@ mod tests {
         // ((n-1)/(n+1))^2 = 0.04 for n = 1.5
         assert!((fresnel(1.0, 1.0, 1.5) - 0.04).abs() < 1e-6);
         assert!((fresnel(1.0, 1.5, 1.0) - 0.04).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_sheet_reflects_both_faces_and_what_bounces_between_them() {
+        // Geometric series R + (1−R)²R + (1−R)²R³ + … = 2R/(1+R).
+        let r = 0.04f32;
+        let series: f32 = r + (0..40).map(|k| (1.0 - r) * (1.0 - r) * r.powi(2 * k + 1)).sum::<f32>();
+        assert!((sheet_reflectance(r) - series).abs() < 1e-7);
+        assert_eq!(sheet_reflectance(0.0), 0.0);
+        assert_eq!(sheet_reflectance(1.0), 1.0);
     }
 
     #[test]

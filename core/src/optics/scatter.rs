@@ -1,11 +1,13 @@
 //! Scattering at glass, written once: the ray a path takes when it leaves a
 //! dielectric surface (one branch chosen with its Fresnel probability, or
 //! both branches with their Fresnel weights), and where a ray leaving a
-//! surface starts. Photons, the view rays and the sampled view paths all
+//! surface starts. A thin sheet (`thin`, glTF's thin-walled transmission)
+//! reflects with [`sheet_reflectance`] and passes the rest straight on:
+//! its two faces bend a ray back to where it was going, no distance apart. Photons, the view rays and the sampled view paths all
 //! scatter here; the CPU's packets and the WGSL twin mirror these functions.
 
 use crate::geometry::ray::Ray;
-use crate::optics::fresnel::{fresnel, interface, reflect, refract};
+use crate::optics::fresnel::{fresnel, interface, reflect, refract, sheet_reflectance};
 use crate::util::tolerance;
 use glam::Vec3;
 
@@ -22,10 +24,12 @@ pub fn offset_origin(p: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
 /// probability equal to the Fresnel reflectance (`u < R`), refracted
 /// otherwise; total internal reflection always reflects. Photons and
 /// sampled view paths choose their branch with it.
-pub fn scatter_dielectric(direction: Vec3, point: Vec3, outward: Vec3, ior: f32, u: f32) -> Ray {
+pub fn scatter_dielectric(direction: Vec3, point: Vec3, outward: Vec3, ior: f32, thin: bool, u: f32) -> Ray {
     let (n, n1, n2) = interface(direction, outward, ior);
     let cos_i = -direction.dot(n);
-    let d = if u < fresnel(cos_i, n1, n2) {
+    let d = if thin {
+        if u < sheet_reflectance(fresnel(cos_i, 1.0, ior)) { reflect(direction, n) } else { direction }
+    } else if u < fresnel(cos_i, n1, n2) {
         reflect(direction, n)
     } else {
         refract(direction, n, n1, n2).unwrap_or_else(|| reflect(direction, n))
@@ -47,12 +51,14 @@ pub struct DielectricBranches {
 }
 
 /// [`DielectricBranches`] of a ray arriving along `direction` at `point`
-/// (outward normal `outward`) on glass of index `ior`.
-pub fn split_dielectric(direction: Vec3, point: Vec3, outward: Vec3, ior: f32) -> DielectricBranches {
+/// (outward normal `outward`) on glass of index `ior` (a sheet: `thin`).
+pub fn split_dielectric(direction: Vec3, point: Vec3, outward: Vec3, ior: f32, thin: bool) -> DielectricBranches {
     let (n, n1, n2) = interface(direction, outward, ior);
-    let reflectance = fresnel(-direction.dot(n), n1, n2);
+    let cos_i = -direction.dot(n);
+    let reflectance = if thin { sheet_reflectance(fresnel(cos_i, 1.0, ior)) } else { fresnel(cos_i, n1, n2) };
     let d = reflect(direction, n);
     let reflected = Ray { origin: offset_origin(point, n, d), direction: d };
-    let refracted = refract(direction, n, n1, n2).map(|d| Ray { origin: offset_origin(point, n, d), direction: d });
+    let through = if thin { Some(direction) } else { refract(direction, n, n1, n2) };
+    let refracted = through.map(|d| Ray { origin: offset_origin(point, n, d), direction: d });
     DielectricBranches { reflected, reflectance, refracted }
 }

@@ -49,6 +49,9 @@ pub struct DielectricOptics {
     pub spectrum: Option<IorCurve>,
     /// Beer–Lambert absorption inside (`None`: clear glass).
     pub absorption: Option<Absorption>,
+    /// A thin sheet ([`MaterialKind::Dielectric`]'s `thin`): rays pass
+    /// straight through ([`crate::optics::scatter`]).
+    pub thin: bool,
 }
 
 /// A relative index of refraction sampled every nanometre over the visible
@@ -138,7 +141,7 @@ impl Surface {
                 Surface::Diffuse { albedo: *albedo, checker: checker.clone(), texture: texture.clone() }
             }
             MaterialKind::Mirror => Surface::Mirror,
-            MaterialKind::Dielectric { dispersion, outside, attenuation } => {
+            MaterialKind::Dielectric { dispersion, outside, attenuation, thin } => {
                 // Snell's law and Fresnel depend only on the ratio of the
                 // indices, so the optics carry the relative index n/n_outside.
                 let per_band =
@@ -146,7 +149,9 @@ impl Surface {
                 let (inside_ior, outside_ior) = (per_band(dispersion), per_band(outside));
                 let band_ior: Vec<f32> = inside_ior.iter().zip(&outside_ior).map(|(n, m)| n / m).collect();
                 let constant = dispersion.is_constant() && outside.is_constant();
-                let dispersive = !constant && band_ior.iter().any(|&n| n != band_ior[0]);
+                // A sheet sends every band on in the one direction it came:
+                // only Fresnel differs, so white light does not split there.
+                let dispersive = !constant && !thin && band_ior.iter().any(|&n| n != band_ior[0]);
                 let white_ior = white_index(dispersion, &inside_ior) / white_index(outside, &outside_ior);
                 Surface::Dielectric(DielectricOptics {
                     band_ior,
@@ -156,6 +161,7 @@ impl Surface {
                     splits_view_rays: false,
                     spectrum: IorCurve::new(dispersion, outside),
                     absorption: attenuation.as_ref().and_then(|a| Absorption::new(a, bands)),
+                    thin: *thin,
                 })
             }
         }

@@ -166,7 +166,7 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                     p.lambda_nm = lambda_nm;
                     let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
                     let ior = glass.path_ior(band, lambda_nm, &scene.bands);
-                    p.ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, u);
+                    p.ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, glass.thin, u);
                     p.bounces += 1;
                     continue;
                 }
@@ -174,7 +174,7 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                 for (band, lambda_nm) in split_bands(scene, index) {
                     let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
                     let ior = glass.path_ior(band, lambda_nm, &scene.bands);
-                    let ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, u);
+                    let ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, glass.thin, u);
                     let child = Path { ray, flux: p.flux / paths as f32, band, lambda_nm, bounces: p.bounces + 1 };
                     trace_path(scene, index, child, out, stats);
                 }
@@ -183,7 +183,7 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
             Surface::Dielectric(glass) => {
                 let u = random_f32(settings.seed, index, dim::scatter(p.band, p.bounces));
                 let ior = glass.path_ior(p.band, p.lambda_nm, &scene.bands);
-                p.ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, u);
+                p.ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, glass.thin, u);
             }
             Surface::Diffuse { .. } => unreachable!("handled above"),
         }

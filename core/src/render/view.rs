@@ -146,7 +146,7 @@ impl<'a> ViewContext<'a> {
                     .map(|HeroViewPath { hero, band, lambda_nm, weight: w }| {
                         let share = weight * w.abs().max_element();
                         let p = ViewPath { band, hero, lambda_nm, weight: share, tint: tint * w, ..path };
-                        w * self.through_dielectric(ray, &hit, self.ior(glass, &p), p, points)
+                        w * self.through_dielectric(ray, &hit, (self.ior(glass, &p), glass.thin), p, points)
                     })
                     .sum(),
                 None => self
@@ -159,11 +159,14 @@ impl<'a> ViewContext<'a> {
                         // The band's share of the pixel bounds what its branches can add.
                         let share = weight * info.weight.abs().max_element();
                         let band_path = ViewPath { band: b as u16, weight: share, tint: tint * info.weight, ..path };
-                        info.weight * self.through_dielectric(ray, &hit, glass.ior(b as u16), band_path, points)
+                        info.weight
+                            * self.through_dielectric(ray, &hit, (glass.ior(b as u16), glass.thin), band_path, points)
                     })
                     .sum(),
             },
-            Surface::Dielectric(glass) => self.through_dielectric(ray, &hit, self.ior(glass, &path), path, points),
+            Surface::Dielectric(glass) => {
+                self.through_dielectric(ray, &hit, (self.ior(glass, &path), glass.thin), path, points)
+            }
         }
     }
 
@@ -172,12 +175,13 @@ impl<'a> ViewContext<'a> {
         glass.path_ior(path.band, path.lambda_nm, &self.scene.bands)
     }
 
-    /// Fresnel-weighted reflection plus refraction at a dielectric hit.
+    /// Fresnel-weighted reflection plus refraction at a dielectric hit
+    /// (its index, and whether it is a thin sheet).
     fn through_dielectric(
         &self,
         ray: &Ray,
         hit: &Hit,
-        ior: f32,
+        (ior, thin): (f32, bool),
         path: ViewPath,
         points: &mut Vec<VisiblePoint>,
     ) -> Vec3 {
@@ -185,9 +189,13 @@ impl<'a> ViewContext<'a> {
             // One branch, chosen with its Fresnel probability, as photons choose theirs.
             let next = ViewPath { depth: path.depth + 1, ..path };
             let u = sampler.branch(path.hero, path.depth);
-            return self.radiance(&scatter_dielectric(ray.direction, hit.point, hit.normal, ior, u), next, points);
+            return self.radiance(
+                &scatter_dielectric(ray.direction, hit.point, hit.normal, ior, thin, u),
+                next,
+                points,
+            );
         }
-        let split = split_dielectric(ray.direction, hit.point, hit.normal, ior);
+        let split = split_dielectric(ray.direction, hit.point, hit.normal, ior, thin);
         let r = split.reflectance;
         let mut sum = Vec3::ZERO;
         let branch = |f: f32| ViewPath { depth: path.depth + 1, weight: path.weight * f, tint: path.tint * f, ..path };

@@ -216,6 +216,7 @@ fn build_scene(
                 dispersion: g.dispersion.clone(),
                 outside: Dispersion::Constant(1.0),
                 attenuation: None,
+                thin: false,
             },
             (None, Some(r)) => MaterialKind::Diffuse { albedo: r.albedo, checker: r.checker.clone(), texture: None },
             _ => return Err(format!("object {i} needs exactly one of Glass and Receiver")),
@@ -231,6 +232,7 @@ fn build_scene(
             dispersion: glass.dispersion.clone(),
             outside: Dispersion::Constant(1.0),
             attenuation: None,
+            thin: false,
         };
         scene_objects.push(Object { shape: mesh(handle, at, "a Glass mesh")?, material: scene_materials.len() });
         scene_materials.push(Material { name: format!("glass mesh {i}"), kind });

@@ -1,0 +1,152 @@
+//! Thin-walled glass (glTF's transmission without a volume) against its
+//! closed form, on every backend: a sheet reflects R_s = 2R/(1+R) (both
+//! faces and every bounce between them) and passes T_s = (1−R)/(1+R)
+//! straight on, with no offset, whatever its shape.
+
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::dispersion::Dispersion;
+use prismatic_core::model::scene::{Attenuation, Camera, Light, Material, MaterialKind, Object, Shape};
+use prismatic_core::{PreparedScene, Scene, Vec3};
+use prismatic_tests::backends::{every_backend, frame, trace};
+use prismatic_tests::{camera, prepare, settings, white};
+
+/// The sheet's index.
+const IOR: f64 = 1.5;
+
+fn sheet(ior: f32) -> Material {
+    Material {
+        name: "sheet".into(),
+        kind: MaterialKind::Dielectric {
+            dispersion: Dispersion::Constant(ior),
+            outside: Dispersion::Constant(1.0),
+            attenuation: None,
+            thin: true,
+        },
+    }
+}
+
+/// Unpolarised Fresnel reflectance of one face at incidence cosine `c`.
+fn face_reflectance(c: f64, n: f64) -> f64 {
+    let t = (1.0 - (1.0 - c * c) / (n * n)).sqrt();
+    let rs = (c - n * t) / (c + n * t);
+    let rp = (t - n * c) / (t + n * c);
+    0.5 * (rs * rs + rp * rp)
+}
+
+/// What a sheet passes at incidence cosine `c`: (1 − R)/(1 + R).
+fn sheet_transmittance(c: f64, n: f64) -> f64 {
+    let r = face_reflectance(c, n);
+    (1.0 - r) / (1.0 + r)
+}
+
+/// The beam's radius.
+const BEAM: f32 = 0.2;
+
+/// A beam along +x through a sheet (a disc, an open shape) tilted 30° at
+/// x = 0 onto a white wall at x = 3.
+fn photon_scene(photons: u32) -> PreparedScene {
+    let tilt = 30f32.to_radians();
+    prepare(Scene {
+        render: settings(photons, BandSpec::Paper7),
+        camera: camera(),
+        lights: vec![Light::Beam {
+            position: Vec3::new(-1.0, 0.0, 0.0),
+            direction: Vec3::X,
+            radius: BEAM,
+            power: 1.0,
+            spectrum: Default::default(),
+        }],
+        materials: vec![sheet(IOR as f32), white("wall")],
+        objects: vec![
+            Object {
+                shape: Shape::Disk {
+                    center: Vec3::ZERO,
+                    normal: Vec3::new(tilt.cos(), tilt.sin(), 0.0),
+                    radius: 1.0,
+                    inner_radius: 0.0,
+                },
+                material: 0,
+            },
+            Object { shape: Shape::Plane { point: Vec3::new(3.0, 0.0, 0.0), normal: Vec3::NEG_X }, material: 1 },
+        ],
+    })
+}
+
+#[test]
+fn a_sheet_passes_its_closed_form_fraction_of_photons_straight_on() {
+    const PHOTONS: u32 = 20_000;
+    let scene = photon_scene(PHOTONS);
+    let expected = sheet_transmittance(30f64.to_radians().cos(), IOR);
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let map = trace(backend.as_mut(), &scene);
+        let got = map.photons.len() as f64 / f64::from(PHOTONS);
+        let sd = (expected * (1.0 - expected) / f64::from(PHOTONS)).sqrt();
+        assert!((got - expected).abs() < 5.0 * sd, "{name}: {got:.4} passed, the sheet's closed form {expected:.4}");
+        // Straight on: every photon lands inside the beam's own footprint.
+        for p in &map.photons {
+            let [x, y, z] = p.position;
+            assert!(
+                (x - 3.0).abs() < 1e-4 && y.hypot(z) <= BEAM * (1.0 + 1e-4),
+                "{name}: a photon at {:?}",
+                p.position
+            );
+        }
+        let s = &map.stats;
+        assert!((s.flux_stored + s.flux_escaped - s.flux_emitted).abs() < 1e-4 * s.flux_emitted, "{name}: {s:?}");
+    }
+}
+
+/// A camera on the x axis looking through a sheet (an open mesh: one
+/// square) at a background of radiance 1; behind the camera a black wall,
+/// which is what the sheet's reflection shows (3×3 pixels: the middle one
+/// looks straight through).
+fn view_scene() -> PreparedScene {
+    let mut render = settings(1000, BandSpec::Paper7);
+    (render.width, render.height, render.background, render.ambient) = (3, 3, Vec3::ONE, 0.0);
+    let black = Material {
+        name: "black".into(),
+        kind: MaterialKind::Diffuse { albedo: Vec3::ZERO, checker: None, texture: None },
+    };
+    let square =
+        [Vec3::new(0.0, -2.0, -2.0), Vec3::new(0.0, 2.0, -2.0), Vec3::new(0.0, 2.0, 2.0), Vec3::new(0.0, -2.0, 2.0)];
+    prepare(Scene {
+        render,
+        camera: Camera { position: Vec3::new(-5.0, 0.0, 0.0), look_at: Vec3::ZERO, up: Vec3::Z, fov_deg: 10.0 },
+        lights: vec![Light::Point { position: Vec3::new(-5.0, 0.0, 5.0), power: 1.0, spectrum: Default::default() }],
+        materials: vec![sheet(IOR as f32), black],
+        objects: vec![
+            Object {
+                shape: Shape::Mesh {
+                    positions: square.to_vec(),
+                    triangles: vec![[0, 1, 2], [0, 2, 3]],
+                    uvs: Vec::new(),
+                },
+                material: 0,
+            },
+            Object { shape: Shape::Plane { point: Vec3::new(-6.0, 0.0, 0.0), normal: Vec3::X }, material: 1 },
+        ],
+    })
+}
+
+#[test]
+fn a_view_through_a_sheet_keeps_its_closed_form_fraction() {
+    let scene = view_scene();
+    let expected = sheet_transmittance(1.0, IOR) as f32;
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let (_, image) = frame(backend.as_mut(), &scene);
+        let got = image.pixels[4];
+        assert!((got - Vec3::splat(expected)).abs().max_element() < 1e-4, "{name}: {got}, the closed form {expected}");
+    }
+}
+
+#[test]
+fn a_sheet_may_be_open_but_has_no_inside_to_absorb_in() {
+    let mut scene = view_scene().scene;
+    let MaterialKind::Dielectric { attenuation, .. } = &mut scene.materials[0].kind else { unreachable!() };
+    *attenuation = Some(Attenuation { color: Vec3::splat(0.5), distance: 1.0 });
+    let e = scene.validate().unwrap_err();
+    assert_eq!(e.key, "material.sheet.attenuation_color", "{e}");
+    assert!(e.reason.contains("thin sheet"), "{e}");
+}

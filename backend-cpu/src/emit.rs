@@ -67,7 +67,9 @@ impl Emitters {
                         radius: f32x8::splat(*radius),
                     }
                 }
-                Light::Sun { .. } => unreachable!("a sun emits as its beam (PreparedScene::emitters)"),
+                Light::Sun { .. } | Light::Environment { .. } => {
+                    unreachable!("a sun emits as its beam, an environment as its suns' (PreparedScene::emitters)")
+                }
             })
             .collect();
         let cdf = scene.light_cdf.iter().map(|&c| f32x8::splat(c)).collect();

@@ -144,7 +144,7 @@ impl Shader<'_> {
         let mut diffuse = [0.0f32; 8];
         for (i, r) in rays.iter().enumerate() {
             if object[i] < 0.0 {
-                sum[r.pixel as usize] += r.tint * settings.background;
+                sum[r.pixel as usize] += r.tint * self.scene.background(r.dir);
             } else if let Surface::Diffuse { .. } = self.scene.surfaces[object[i] as usize] {
                 diffuse[i] = f32::from_bits(u32::MAX);
             }
@@ -235,7 +235,7 @@ impl Shader<'_> {
         }
         // Each light's irradiance, in the colour the surface reflects of its spectrum.
         let mut reflected = [Vec3::ZERO; 8];
-        let lights = self.scene.scene.lights.iter().zip(&self.scene.plan.shadows).zip(&self.scene.light_spectra);
+        let lights = self.scene.lights.iter().zip(&self.scene.plan.shadows).zip(&self.scene.light_spectra);
         for ((light, plan), spectrum) in lights {
             let e = self.direct_irradiance(light, plan.on, p, n, mask).to_array();
             for i in lanes(mask) {
@@ -285,6 +285,7 @@ impl Shader<'_> {
                 let blocked = occluded(self.scene, &shadow, limit_where(lit, f32x8::splat(f32::INFINITY)));
                 (lit & !blocked).select(f32x8::splat(*irradiance) * cos_s, f32x8::ZERO)
             }
+            Light::Environment { .. } => unreachable!("an environment shines as its suns (PreparedScene::lights)"),
         }
     }
 

@@ -99,10 +99,19 @@ pub struct Params {
     pub colour_by_wavelength: u32,
     /// `PreparedScene::white_balance`: what each channel is scaled by.
     pub white_balance: [f32; 3],
-    /// Padding.
-    pub _pad_white: u32,
+    /// The environment's radiance multiplier (0: none, the background).
+    pub env_strength: f32,
+    /// Its map's first texel (three floats each, row by row from the
+    /// zenith) in the tables buffer.
+    pub env_first: u32,
+    /// Its map's texels per row.
+    pub env_width: u32,
+    /// Its map's rows.
+    pub env_height: u32,
+    /// Its turn about +y, as a fraction of a full turn.
+    pub env_turn: f32,
 }
-const _: () = assert!(core::mem::size_of::<Params>() == 240);
+const _: () = assert!(core::mem::size_of::<Params>() == 256);
 
 /// An object's primitive. Kinds: 0 sphere (`a` centre, `ra` radius), 1 plane
 /// (`a` point, `n` normal), 2 disc (`a` centre, `n` normal, `ra` radius²,

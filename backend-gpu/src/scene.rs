@@ -86,7 +86,7 @@ impl EncodedScene {
         }
         let light_cdf = e.tables.len() as u32;
         e.tables.extend_from_slice(&scene.light_cdf);
-        for (i, (light, emitter)) in scene.scene.lights.iter().zip(&scene.emitters).enumerate() {
+        for (i, (light, emitter)) in scene.lights.iter().zip(&scene.emitters).enumerate() {
             let shadows = scene.plan.shadows.get(i).is_some_and(|s| s.on);
             let mut l = e.light(emitter, scene.plan.projections.get(i).and_then(Option::as_ref), shadows);
             let spectrum = &scene.light_spectra[i];
@@ -162,6 +162,12 @@ impl EncodedScene {
             view_paths: code::view_paths(r.view_paths),
             ..Params::default()
         };
+        if let Some(env) = &scene.environment {
+            e.params.env_strength = env.strength;
+            e.params.env_first = e.tables.len() as u32;
+            (e.params.env_width, e.params.env_height, e.params.env_turn) = (env.map.width, env.map.height, env.turn);
+            e.tables.extend(env.map.texels.iter().flat_map(|t| t.to_array()));
+        }
         e
     }
 
@@ -276,7 +282,9 @@ impl EncodedScene {
                 l.bitangent = v3(b);
                 l.radius = *radius;
             }
-            Light::Sun { .. } => unreachable!("a sun emits as its beam (PreparedScene::emitters)"),
+            Light::Sun { .. } | Light::Environment { .. } => {
+                unreachable!("a sun emits as its beam, an environment as its suns' (PreparedScene::emitters)")
+            }
         }
         if let Some(p) = projection {
             l.proj_first = self.geometry.len() as u32;

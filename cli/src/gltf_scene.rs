@@ -18,8 +18,8 @@ use gltf::texture::{MagFilter, WrappingMode};
 use prismatic_core::Dispersion;
 use prismatic_core::model::mesh::open_edge;
 use prismatic_core::model::scene::{
-    Attenuation, Camera, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, Object, RenderSettings, Sampler, Scene,
-    Shape, Texture, Wrap,
+    Attenuation, Camera, EnvironmentMap, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, Object, RenderSettings,
+    Sampler, Scene, Shape, Texture, Wrap,
 };
 use prismatic_core::model::spectrum::Spectrum;
 use std::collections::HashMap;
@@ -521,12 +521,12 @@ fn scene(parts: Result<GltfScene, GltfError>, file: &str) -> Result<SceneDocumen
     let camera = parts.camera.unwrap_or_else(|| framing_camera(centre, size));
     let mut lights = parts.lights;
     if lights.is_empty() {
-        warnings.push("no light: a spot light above the scene is added".into());
-        lights.push(Light::Spot {
-            position: centre + Vec3::new(0.0, size, 0.0),
-            direction: Vec3::NEG_Y,
-            cone_deg: 30.0,
-            power: 100.0,
+        // As viewers open a file without lights: in a neutral environment.
+        warnings.push("no light: lit by the built-in studio environment".into());
+        lights.push(Light::Environment {
+            map: EnvironmentMap::studio(),
+            strength: 1.0,
+            rotation_deg: 0.0,
             spectrum: Default::default(),
         });
     }

@@ -5,6 +5,7 @@ pub mod args;
 pub mod backends;
 pub mod builtin;
 pub mod dispersion_test;
+pub mod environment_file;
 pub mod gltf_scene;
 pub mod gltf_write;
 pub mod ior_table;

@@ -5,6 +5,7 @@ use clap::{Args, Parser, Subcommand};
 use prismatic_cli::args::{parse_passes, parse_seconds};
 use prismatic_cli::backends::{self, BackendChoice};
 use prismatic_cli::builtin::{BUILTIN_SCENES, GENERATED_SCENES, find, find_generated, names};
+use prismatic_cli::environment_file::EnvironmentArgs;
 use prismatic_cli::output::{PendingFile, write_image, write_photon_csv, write_png};
 use prismatic_cli::partial::Partial;
 use prismatic_cli::progress_bar::ProgressBar;
@@ -108,6 +109,8 @@ struct JobArgs {
     backend: BackendChoice,
     #[command(flatten)]
     settings: Settings,
+    #[command(flatten)]
+    environment: EnvironmentArgs,
     /// Print every decision of the effect plan with its reason.
     #[arg(long)]
     explain: bool,
@@ -378,6 +381,7 @@ fn prepare(job: &JobArgs) -> Result<(String, PreparedScene, glam::DVec3)> {
         eprintln!("warning: {}: {w}", job.scene);
     }
     let origin = doc.origin;
+    let doc = job.environment.apply(doc)?;
     let scene = job.settings.prepare(doc, SettingsSource::CommandLine)?;
     println!("{}", scene.plan.summary());
     if job.explain {

@@ -114,7 +114,8 @@ fn what_prismatic_cannot_represent_is_a_warning_not_a_failure() {
     scene.validate().unwrap();
     let warnings = scene.warnings.join("\n");
     assert!(warnings.contains("materials[1] (glass): left out: roughness of the transmission"), "{warnings}");
-    assert!(warnings.contains("no light: a spot light"), "{warnings}");
+    assert!(warnings.contains("no light: lit by the built-in studio environment"), "{warnings}");
+    assert!(matches!(scene.scene.lights.as_slice(), [Light::Environment { .. }]), "{:?}", scene.scene.lights);
     // The binary prints them and renders.
     let out = dir.path().join("rough.png");
     let run = Command::new(env!("CARGO_BIN_EXE_prismatic"))

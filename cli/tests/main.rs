@@ -2,6 +2,7 @@
 
 mod bad_scenes;
 mod cli;
+mod environment;
 mod gltf;
 mod slurm;
 mod study;

@@ -119,7 +119,7 @@ fn moved(light: &Light, dx: f32) -> Light {
         Light::Spot { position, .. } | Light::Point { position, .. } | Light::Beam { position, .. } => {
             *position += Vec3::new(dx, 0.0, 0.0);
         }
-        Light::Sun { .. } => {} // everywhere at once: nothing to move
+        Light::Sun { .. } | Light::Environment { .. } => {} // everywhere at once: nothing to move
     }
     l
 }

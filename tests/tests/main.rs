@@ -5,6 +5,7 @@ mod caustic_layer;
 mod coloured_glass;
 mod docs_links;
 mod effects;
+mod environment;
 mod fuzz_scene_file;
 mod gather;
 mod gpu_session;

@@ -50,7 +50,11 @@ struct Params {
     cam_forward: vec3<f32>,
     colour_by_wavelength: u32,
     white_balance: vec3<f32>,
-    _pad_white: u32,
+    env_strength: f32,
+    env_first: u32,
+    env_width: u32,
+    env_height: u32,
+    env_turn: f32,
 }
 
 // Twin of prismatic_core::photon::Photon (band in the low 16 bits of

@@ -374,6 +374,69 @@ fn absorption_coefficient(s: GpuSurface, band: u32) -> f32 {
     return tables[s.absorption_first + band];
 }
 
+// EnvironmentLookup::texel_at: the map's texel (x, y), x wrapping, y clamped.
+fn env_texel(x: i32, y: i32) -> vec3<f32> {
+    let w = i32(params.env_width);
+    let row = min(y, i32(params.env_height) - 1);
+    let i = params.env_first + 3u * u32(row * w + ((x % w) + w) % w);
+    return vec3<f32>(tables[i], tables[i + 1u], tables[i + 2u]);
+}
+
+// acos to 2e-8 (Abramowitz & Stegun 4.4.46): drivers' own may be 1e-4 off
+// (lavapipe's is), which moves a sky's edge by a visible fraction of a texel.
+fn precise_acos(x: f32) -> f32 {
+    let a = abs(x);
+    let p = ((((((-0.0012624911 * a + 0.0066700901) * a - 0.0170881256) * a + 0.0308918810) * a - 0.0501743046) * a
+        + 0.0889789874) * a - 0.2145988016) * a + 1.5707963050;
+    let r = sqrt(1.0 - a) * p;
+    return select(r, PI - r, x < 0.0);
+}
+
+// atan2 to 4e-8 (Abramowitz & Stegun 4.4.49 on the smaller over the larger
+// of |y|, |x|), for the same reason.
+fn precise_atan2(y: f32, x: f32) -> f32 {
+    let ax = abs(x);
+    let ay = abs(y);
+    let big = max(ax, ay);
+    if big == 0.0 {
+        return 0.0;
+    }
+    let t = min(ax, ay) / big;
+    let t2 = t * t;
+    let p = ((((((-0.0040540580 * t2 + 0.0218612288) * t2 - 0.0559098861) * t2 + 0.0964200441) * t2 - 0.1390853351) * t2
+        + 0.1994653599) * t2 - 0.3332985605) * t2 + 0.9999993329;
+    var r = t * p;
+    if ay > ax {
+        r = 0.5 * PI - r;
+    }
+    if x < 0.0 {
+        r = PI - r;
+    }
+    return select(r, -r, y < 0.0);
+}
+
+// PreparedScene::background: what a ray leaving the scene along unit `d`
+// sees, the environment (EnvironmentLookup::radiance, bilinear) or the
+// background colour.
+fn background(d: vec3<f32>) -> vec3<f32> {
+    if params.env_strength == 0.0 {
+        return params.background;
+    }
+    let u = 0.5 + precise_atan2(d.x, -d.z) / (2.0 * PI) + params.env_turn;
+    let v = precise_acos(clamp(d.y, -1.0, 1.0)) / PI;
+    let fx = (u - floor(u)) * f32(params.env_width) - 0.5;
+    let fy = clamp(v * f32(params.env_height) - 0.5, 0.0, f32(params.env_height - 1u));
+    let x0 = floor(fx);
+    let y0 = floor(fy);
+    let tx = fx - x0;
+    let ty = fy - y0;
+    let xi = i32(x0);
+    let yi = i32(y0);
+    let top = env_texel(xi, yi) * (1.0 - tx) + env_texel(xi + 1, yi) * tx;
+    let bottom = env_texel(xi, yi + 1) * (1.0 - tx) + env_texel(xi + 1, yi + 1) * tx;
+    return (top * (1.0 - ty) + bottom * ty) * params.env_strength;
+}
+
 // DielectricOptics::thin: a sheet that rays pass straight through.
 fn is_sheet(s: GpuSurface) -> bool {
     return (s.flags & SURFACE_THIN) != 0u;

@@ -231,7 +231,7 @@ fn visit(e: Pending) -> vec3<f32> {
     }
     let hit = intersect_scene(e.origin, e.dir, BIG);
     if !hit.ok {
-        return e.tint * params.background;
+        return e.tint * background(e.dir);
     }
     let s = surfaces[hit.object];
     if s.kind == SURFACE_DIFFUSE {

@@ -9,6 +9,7 @@ use super::names::{
     parse_wavelengths, parse_white_point,
 };
 use super::reader::{LOCAL_FRAME_RADIUS, Reader, Result, Table, join};
+use crate::environment_file;
 use crate::gltf_scene;
 use crate::ior_table;
 use crate::obj;
@@ -19,8 +20,9 @@ use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::color::ToneMap;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::scene::{
-    Attenuation, Camera, Checker, Estimator, Filter, Light, Material, MaterialKind, Object, PhotonSequence, RadiusMode,
-    RenderSettings, Sampler, Shape, Texture, ViewPaths, WavelengthSampling, WhitePoint, Wrap,
+    Attenuation, Camera, Checker, EnvironmentMap, Estimator, Filter, Light, Material, MaterialKind, Object,
+    PhotonSequence, RadiusMode, RenderSettings, Sampler, Shape, Texture, ViewPaths, WavelengthSampling, WhitePoint,
+    Wrap,
 };
 use prismatic_core::model::spectrum::Spectrum;
 use prismatic_core::{Scene, Vec3};
@@ -112,6 +114,7 @@ impl Reader<'_> {
                 "passes",
                 "alpha",
                 "neighbours",
+                "environment_lights",
             ],
         )?;
         let d = RenderSettings::default();
@@ -140,6 +143,9 @@ impl Reader<'_> {
             passes: self.opt(t, "passes", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.passes, |x| x as u32),
             alpha: self.opt(t, "alpha", Self::float)?.unwrap_or(d.alpha),
             neighbours: self.opt(t, "neighbours", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.neighbours, |x| x as u32),
+            environment_lights: self
+                .opt(t, "environment_lights", |p, k, v| p.uint(k, v, u32_max))?
+                .map_or(d.environment_lights, |x| x as u32),
         })
     }
 
@@ -227,6 +233,32 @@ impl Reader<'_> {
                     spectrum: self.opt(t, "spectrum", Self::spectrum)?.unwrap_or_default(),
                 }
             }
+            "environment" => {
+                self.check_keys(t, &["kind", "map", "color", "strength", "rotation_deg", "spectrum"])?;
+                let map = match (self.get(t, "map"), self.get(t, "color")) {
+                    (Some(_), Some(v)) => {
+                        return Err(self.err(&join(&t.key, "color"), &v.span(), "give a map or a colour, not both"));
+                    }
+                    (Some(v), None) => {
+                        let key = join(&t.key, "map");
+                        let name = self.string(&key, v)?;
+                        match environment_file::built_in(name) {
+                            Some(map) => map,
+                            None => {
+                                environment_file::load(&self.beside(name)).map_err(|e| self.err(&key, &v.span(), e))?
+                            }
+                        }
+                    }
+                    (None, Some(_)) => EnvironmentMap::constant(self.req(t, "color", Self::vec3)?),
+                    (None, None) => EnvironmentMap::studio(),
+                };
+                Light::Environment {
+                    map,
+                    strength: self.opt(t, "strength", Self::float)?.unwrap_or(1.0),
+                    rotation_deg: self.opt(t, "rotation_deg", Self::float)?.unwrap_or(0.0),
+                    spectrum: self.opt(t, "spectrum", Self::spectrum)?.unwrap_or_default(),
+                }
+            }
             "sun" => {
                 self.check_keys(t, &["kind", "direction", "irradiance", "spectrum"])?;
                 Light::Sun {
@@ -240,7 +272,7 @@ impl Reader<'_> {
                 return Err(self.err(
                     &join(&t.key, "kind"),
                     &v.span(),
-                    format!("unknown light kind \"{other}\"; expected spot, point, beam or sun"),
+                    format!("unknown light kind \"{other}\"; expected spot, point, beam, sun or environment"),
                 ));
             }
         })

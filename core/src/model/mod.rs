@@ -1,4 +1,5 @@
-//! Layer 1, model: what the user described (the scene, its validation, meshes)
+//! Layer 1, model: what the user described (the scene, its validation, meshes,
+//! environment maps)
 //! and what every backend exchanges (spectral bands and the CIE tables behind
 //! them, dispersion, colour, the colour of each wavelength and the reflectance
 //! of each albedo, images, the photon and its map).
@@ -7,6 +8,7 @@ pub mod bands;
 pub mod cie;
 pub mod color;
 pub mod dispersion;
+pub mod environment;
 pub mod image;
 pub mod mesh;
 pub mod photon;

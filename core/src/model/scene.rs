@@ -5,6 +5,7 @@
 use crate::model::bands::BandSpec;
 use crate::model::color::{Display, ToneMap};
 use crate::model::dispersion::Dispersion;
+pub use crate::model::environment::EnvironmentMap;
 use crate::model::spectrum::Illuminant;
 pub use crate::model::spectrum::Spectrum;
 use alloc::string::String;
@@ -263,6 +264,14 @@ pub const DEFAULT_ALPHA: f32 = 0.7;
 /// by default (Jensen's caustic gathers use 50–100 nearest photons).
 pub const DEFAULT_NEIGHBOURS: u32 = 32;
 
+/// Directional lights an environment is drawn as by default: its median
+/// cut into 32 regions (a constant sky's irradiance exact on a floor, within
+/// 5 % on a tilted plane; 32 shadow rays per visible point).
+pub const DEFAULT_ENVIRONMENT_LIGHTS: u32 = 32;
+
+/// The most directional lights an environment may be drawn as.
+pub const MAX_ENVIRONMENT_LIGHTS: u32 = 4_096;
+
 /// How a render's gather radii behave from pass to pass.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum RadiusMode {
@@ -350,6 +359,10 @@ pub struct RenderSettings {
     /// Independent photon paths a progressive render's first radius should
     /// hold (more: smoother early passes, more blur until the radii shrink).
     pub neighbours: u32,
+    /// Directional lights an environment light is drawn as (its median
+    /// cut: more, softer shadows and a closer irradiance, each a shadow ray
+    /// per visible point).
+    pub environment_lights: u32,
 }
 
 /// The default settings are the fastest configuration measured that
@@ -411,6 +424,7 @@ impl RenderSettings {
             passes: 16,
             alpha: DEFAULT_ALPHA,
             neighbours: DEFAULT_NEIGHBOURS,
+            environment_lights: DEFAULT_ENVIRONMENT_LIGHTS,
         }
     }
 }
@@ -466,6 +480,23 @@ pub enum Light {
         /// What it emits across the spectrum.
         spectrum: Spectrum,
     },
+    /// Light from every direction: an environment map (HDR image-based
+    /// lighting, or the built-in studio). Rays that leave the scene see it
+    /// (through glass too, each wavelength along its own path); it lights
+    /// diffuse surfaces and sends caustic photons as the directional
+    /// lights of its median cut ([`crate::sampling::environment`]).
+    Environment {
+        /// Radiance per direction (before `strength`).
+        map: EnvironmentMap,
+        /// Multiplies the map's radiance.
+        strength: f32,
+        /// Turns the map about +y, in degrees (positive: counter-clockwise seen from above).
+        rotation_deg: f32,
+        /// The spectrum of a white texel: equal energy (the default) gives
+        /// each part of the map the smooth spectrum of its colour; another
+        /// spectrum is emitted at each part's luminance.
+        spectrum: Spectrum,
+    },
     /// Parallel light from one direction (the sun, glTF's directional
     /// light): it lights everything it reaches, with `irradiance` on a
     /// surface that faces it. Its photons leave a disc over the scene's
@@ -481,12 +512,13 @@ pub enum Light {
 }
 
 impl Light {
-    /// The light's flux in W; a sun's depends on how much of the scene it
-    /// covers and is its beam's ([`crate::plan::prepared::PreparedScene::emitters`]), so 0 here.
+    /// The light's flux in W; a sun's (and an environment's) depends on
+    /// how much of the scene it covers and is its beam's
+    /// ([`crate::plan::prepared::PreparedScene::emitters`]), so 0 here.
     pub fn power(&self) -> f32 {
         match self {
             Light::Spot { power, .. } | Light::Point { power, .. } | Light::Beam { power, .. } => *power,
-            Light::Sun { .. } => 0.0,
+            Light::Sun { .. } | Light::Environment { .. } => 0.0,
         }
     }
 
@@ -496,7 +528,8 @@ impl Light {
             Light::Spot { spectrum, .. }
             | Light::Point { spectrum, .. }
             | Light::Beam { spectrum, .. }
-            | Light::Sun { spectrum, .. } => spectrum,
+            | Light::Sun { spectrum, .. }
+            | Light::Environment { spectrum, .. } => spectrum,
         }
     }
 
@@ -506,7 +539,8 @@ impl Light {
             Light::Spot { spectrum, .. }
             | Light::Point { spectrum, .. }
             | Light::Beam { spectrum, .. }
-            | Light::Sun { spectrum, .. } => spectrum,
+            | Light::Sun { spectrum, .. }
+            | Light::Environment { spectrum, .. } => spectrum,
         }
     }
 }

@@ -5,9 +5,10 @@
 
 use crate::model::bands::{BandSpec, MAX_BANDS, VISIBLE_NM};
 use crate::model::dispersion::{Dispersion, MAX_SELLMEIER_TERMS};
+use crate::model::environment::MAX_ENVIRONMENT_SIDE;
 use crate::model::scene::{
-    Attenuation, Light, MAX_DEPTH, MAX_IMAGE_SIDE, MAX_MESH_TRIANGLES, MAX_PHOTONS, MAX_TEXTURE_SIDE, Material,
-    MaterialKind, Scene, SceneError, Shape, Texture,
+    Attenuation, Light, MAX_DEPTH, MAX_ENVIRONMENT_LIGHTS, MAX_IMAGE_SIDE, MAX_MESH_TRIANGLES, MAX_PHOTONS,
+    MAX_TEXTURE_SIDE, Material, MaterialKind, Scene, SceneError, Shape, Texture,
 };
 use crate::model::spectrum::Spectrum;
 use alloc::format;
@@ -85,6 +86,13 @@ impl Scene {
             let c = Check { prefix: &format!("light[{i}]") };
             validate_light(&c, light)?;
             validate_spectrum(&c, light.spectrum(), &self.render)?;
+        }
+        let mut environments = self.lights.iter().enumerate().filter(|(_, l)| matches!(l, Light::Environment { .. }));
+        if let Some((i, _)) = environments.nth(1) {
+            return Err(SceneError::new(
+                format!("light[{i}]"),
+                "a second environment: the scene has one sky (merge the maps into one)",
+            ));
         }
         for m in &self.materials {
             validate_material(&Check { prefix: &format!("material.{}", m.name) }, m, self.render.bands)?;
@@ -178,6 +186,12 @@ impl Scene {
         if r.neighbours == 0 {
             return Err(c.err("neighbours", "must be at least 1, got 0"));
         }
+        if r.environment_lights == 0 || r.environment_lights > MAX_ENVIRONMENT_LIGHTS {
+            return Err(c.err(
+                "environment_lights",
+                format!("must be 1 to {MAX_ENVIRONMENT_LIGHTS}, got {}", r.environment_lights),
+            ));
+        }
         c.non_negative("ambient", r.ambient)?;
         c.positive("exposure", r.exposure)?;
         c.colour("background", r.background)
@@ -228,6 +242,27 @@ fn validate_light(c: &Check<'_>, light: &Light) -> Result<(), SceneError> {
         Light::Sun { direction, irradiance, .. } => {
             c.direction("direction", *direction)?;
             c.positive("irradiance", *irradiance)
+        }
+        Light::Environment { map, strength, rotation_deg, .. } => {
+            c.positive("strength", *strength)?;
+            c.finite("rotation_deg", *rotation_deg)?;
+            let (w, h) = (map.width, map.height);
+            if w == 0 || h == 0 || w > MAX_ENVIRONMENT_SIDE || h > MAX_ENVIRONMENT_SIDE {
+                return Err(c.err(
+                    "map",
+                    format!("{}: {w}×{h} texels; each side must be 1 to {MAX_ENVIRONMENT_SIDE}", map.name),
+                ));
+            }
+            if map.texels.len() != w as usize * h as usize {
+                return Err(c.err("map", format!("{}: {} texels for a {w}×{h} map", map.name, map.texels.len())));
+            }
+            match map.texels.iter().position(|t| !t.is_finite() || t.min_element() < 0.0) {
+                Some(i) => Err(c.err("map", format!("{}: texel {i} is not a finite radiance ≥ 0", map.name))),
+                None if map.texels.iter().all(|t| t.max_element() == 0.0) => {
+                    Err(c.err("map", format!("{}: black everywhere, it emits nothing", map.name)))
+                }
+                None => Ok(()),
+            }
         }
     }
 }

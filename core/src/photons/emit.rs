@@ -66,6 +66,8 @@ pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
             let origin = *position + (t * cos_phi + b * sin_phi) * r;
             Emitted { origin, direction: axis, light, weight: 1.0 }
         }
-        Light::Sun { .. } => unreachable!("a sun emits as its beam (PreparedScene::emitters)"),
+        Light::Sun { .. } | Light::Environment { .. } => {
+            unreachable!("a sun emits as its beam, an environment as its suns' (PreparedScene::emitters)")
+        }
     }
 }

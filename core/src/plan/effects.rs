@@ -120,8 +120,8 @@ impl EffectPlan {
         } else {
             Effect::off("no dispersive glass visible")
         };
-        let shadows = scene
-            .lights
+        // One per light that shines (an environment's suns each), as the emitters are.
+        let shadows = emitters
             .iter()
             .map(|_| {
                 if scene.objects.len() < 2 {

@@ -6,9 +6,11 @@ use crate::geometry::primitive::{Primitive, Ray, prism_faces};
 use crate::geometry::texture::TriangleUv;
 use crate::model::bands::BandTable;
 use crate::model::scene::{Light, Scene, SceneError, Shape};
+use crate::model::spectrum::Spectrum;
 use crate::optics::surface::Surface;
 use crate::plan::effects::EffectPlan;
 use crate::plan::reach;
+use crate::sampling::environment::EnvironmentLookup;
 use crate::sampling::light_spectrum::LightSpectrum;
 use alloc::sync::Arc;
 use alloc::vec::Vec;
@@ -43,6 +45,13 @@ pub struct PreparedScene {
     /// Per object, the texture coordinates of its mesh's triangles in the
     /// hierarchy's order; empty unless its surface has a texture.
     pub texture_uvs: Vec<Vec<TriangleUv>>,
+    /// The lights that shine: the scene's, each environment replaced by
+    /// the suns of its median cut ([`EnvironmentLookup::median_cut`], as
+    /// many as `render.environment_lights`). Backends light with these.
+    pub lights: Vec<Light>,
+    /// The environment rays that leave the scene see (`None`: the
+    /// background colour).
+    pub environment: Option<EnvironmentLookup>,
     /// What each light emits photons as: the light itself, or for a sun
     /// the beam over the scene's mirrors and glass ([`crate::plan::reach::sun_beam`]).
     pub emitters: Vec<Light>,
@@ -112,8 +121,23 @@ impl PreparedScene {
             .filter(|(_, s)| !matches!(s, Surface::Diffuse { .. }))
             .map(|(b, _)| *b)
             .collect();
-        let emitters: Vec<Light> = scene
+        let environment = scene.lights.iter().find_map(|l| match l {
+            Light::Environment { map, strength, rotation_deg, .. } => {
+                Some(EnvironmentLookup::new(map.clone(), *strength, *rotation_deg))
+            }
+            _ => None,
+        });
+        let lights: Vec<Light> = scene
             .lights
+            .iter()
+            .flat_map(|l| match (l, &environment) {
+                (Light::Environment { spectrum, .. }, Some(env)) => {
+                    environment_suns(env, spectrum, scene.render.environment_lights as usize)
+                }
+                _ => Vec::from([l.clone()]),
+            })
+            .collect();
+        let emitters: Vec<Light> = lights
             .iter()
             .map(|l| match l {
                 Light::Sun { direction, irradiance, spectrum } => {
@@ -150,6 +174,8 @@ impl PreparedScene {
             primitives,
             surfaces,
             texture_uvs,
+            lights,
+            environment,
             emitters,
             light_spectra,
             light_cdf,
@@ -218,11 +244,38 @@ impl PreparedScene {
         self.surfaces[object].albedo_at(point, normal, uv)
     }
 
+    /// Radiance that a ray leaving the scene along unit `direction` sees:
+    /// the environment's, else the background colour.
+    #[inline]
+    pub fn background(&self, direction: Vec3) -> Vec3 {
+        match &self.environment {
+            Some(env) => env.radiance(direction),
+            None => self.scene.render.background,
+        }
+    }
+
     /// True when something blocks the segment from `origin` along unit `dir` before `dist`.
     pub fn occluded(&self, origin: Vec3, dir: Vec3, dist: f32) -> bool {
         let ray = Ray { origin, direction: dir };
         self.primitives.iter().any(|p| p.hits(&ray, 0.0, dist))
     }
+}
+
+/// The suns an environment shines as: one per region of its median cut
+/// into `n`, each with the smooth spectrum of its region's colour (with
+/// the environment's `spectrum` other than equal energy: that spectrum at
+/// the region's luminance).
+fn environment_suns(env: &EnvironmentLookup, spectrum: &Spectrum, n: usize) -> Vec<Light> {
+    env.median_cut(n)
+        .into_iter()
+        .filter_map(|cut| {
+            let (spectrum, irradiance) = match spectrum {
+                Spectrum::EqualEnergy => Spectrum::from_rgb(cut.rgb.to_array()),
+                other => (other.clone(), crate::model::color::luminance(cut.rgb)),
+            };
+            (irradiance > 0.0).then_some(Light::Sun { direction: -cut.toward, irradiance, spectrum })
+        })
+        .collect()
 }
 
 fn primitive(shape: &Shape) -> Primitive {

@@ -84,8 +84,9 @@ impl Projection {
                 let m = radii.iter().map(|r| r * r).collect::<Vec<_>>();
                 (Targets::Discs { center, radius: radii }, m, radius * radius)
             }
-            // A sun is aimed as the beam it emits from (`PreparedScene::emitters`).
-            Light::Sun { .. } => return None,
+            // A sun is aimed as the beam it emits from, an environment as
+            // its suns' (`PreparedScene::emitters`).
+            Light::Sun { .. } | Light::Environment { .. } => return None,
         };
         let total: f32 = measures.iter().sum();
         if !total.is_finite() || total >= light_measure {
@@ -121,7 +122,9 @@ impl Projection {
                     }
                     Light::Point { position, .. } => (*position, true),
                     Light::Beam { position, .. } => (*position, false),
-                    Light::Sun { .. } => unreachable!("a sun emits as its beam (PreparedScene::emitters)"),
+                    Light::Sun { .. } | Light::Environment { .. } => {
+                        unreachable!("a sun emits as its beam, an environment as its suns' (PreparedScene::emitters)")
+                    }
                 };
                 let covering = axis.iter().zip(cos_max).filter(|(a, c)| d.dot(**a) >= **c).count().max(1);
                 ProjectedSample { origin, direction: d, weight: weight(inside, self.scale, covering) }

@@ -47,7 +47,7 @@ pub fn light_reaches(light: &Light, c: Vec3, r: f32) -> bool {
             let off_axis = (c - *position - axis * along).length();
             along > -r && off_axis <= radius + r
         }
-        Light::Sun { .. } => true,
+        Light::Sun { .. } | Light::Environment { .. } => true,
     }
 }
 

@@ -250,6 +250,7 @@ impl Change {
             passes: _,
             alpha,
             neighbours,
+            environment_lights,
         } = a;
         let b = &new.render;
         if (*width, *height) != (b.width, b.height) {
@@ -258,6 +259,7 @@ impl Change {
             || *objects != new.objects
             || *materials != new.materials
             || *lights != new.lights
+            || *environment_lights != b.environment_lights
             || *bands != b.bands
             || *max_depth != b.max_depth
             || *light_tracing != b.light_tracing

@@ -121,9 +121,8 @@ impl<'a> ViewContext<'a> {
     /// diffuse hit that needs it is recorded in `points` instead (weighted
     /// by the path's tint).
     fn radiance(&self, ray: &Ray, path: ViewPath, points: &mut Vec<VisiblePoint>) -> Vec3 {
-        let settings = &self.scene.scene.render;
         let Some(hit) = self.scene.intersect(ray, f32::INFINITY) else {
-            return settings.background;
+            return self.scene.background(ray.direction);
         };
         let surface = &self.scene.surfaces[hit.object];
         // What coloured glass left of the ray, when it crossed glass to get here.
@@ -219,7 +218,7 @@ impl<'a> ViewContext<'a> {
         let albedo = self.scene.albedo_at(hit.object, hit.triangle, hit.point, n);
         let settings = &self.scene.scene.render;
         // Each light's irradiance, in the colour the surface reflects of its spectrum.
-        let reflected: Vec3 = (0..self.scene.scene.lights.len())
+        let reflected: Vec3 = (0..self.scene.lights.len())
             .map(|i| self.scene.light_spectra[i].reflected * albedo * self.direct_irradiance(i, hit.point, n))
             .sum();
         if gathers_at(self.scene, path.depth) {
@@ -232,7 +231,7 @@ impl<'a> ViewContext<'a> {
     /// shadow (shadow rays only where the effect plan asks for them).
     pub fn direct_irradiance(&self, index: usize, p: Vec3, n: Vec3) -> f32 {
         let shadows = self.scene.plan.shadows[index].on;
-        match &self.scene.scene.lights[index] {
+        match &self.scene.lights[index] {
             Light::Spot { position, direction, cone_deg, power, .. } => {
                 let cos_max = cos(radians(*cone_deg));
                 let Some((l, dist, cos_s)) = self.toward_light(*position, p, n, shadows) else {
@@ -271,6 +270,7 @@ impl<'a> ViewContext<'a> {
                 }
                 irradiance * cos_s
             }
+            Light::Environment { .. } => unreachable!("an environment shines as its suns (PreparedScene::lights)"),
         }
     }
 

@@ -1,0 +1,268 @@
+//! What an environment light sends along each direction (its map read
+//! bilinearly, turned and scaled), and the directional lights it is drawn
+//! as: the median cut of its map (Debevec 2005, "A median cut algorithm for
+//! light probe sampling").
+//!
+//! The cut splits the sphere into regions of about equal power (luminance
+//! times solid angle), first at the horizon, then always the region with
+//! the most power, across its longer side in angle, where half its power
+//! lies on either side. Each region becomes one directional light along
+//! its vector irradiance m = Σ L ω dω (per channel: luminance's m gives the
+//! direction, and each channel Σ L dω scaled by |m|/Σ L dω of the
+//! luminance): a diffuse surface that sees the whole region receives
+//! m·n from it, exactly what the region sends it. The direct light and
+//! shadows of an environment then are those of `n` suns, which every
+//! backend draws, and its caustics are theirs (each sun's photons aimed at
+//! the mirrors and glass). The approximation is in the regions a surface
+//! sees only in part (cut by its horizon), and in shadows (n hard ones, not
+//! one soft one); the render setting `environment_lights` sets n.
+
+use crate::model::color::luminance;
+use crate::model::environment::EnvironmentMap;
+use crate::util::math::{acos, atan2, cos, floor, sin, sqrt};
+use alloc::vec::Vec;
+use core::f32::consts::PI;
+use glam::Vec3;
+
+/// An environment map turned by `rotation_deg` about +y and scaled by `strength`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnvironmentLookup {
+    /// The map.
+    pub map: EnvironmentMap,
+    /// Radiance multiplier.
+    pub strength: f32,
+    /// The turn about +y as a fraction of a full turn (added to u).
+    pub turn: f32,
+}
+
+/// One light of the median cut.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CutLight {
+    /// Unit direction toward the light (its region's vector irradiance).
+    pub toward: Vec3,
+    /// The irradiance per channel on a surface facing it: the length of
+    /// the region's vector irradiance.
+    pub rgb: Vec3,
+}
+
+impl EnvironmentLookup {
+    /// The lookup of `map` at `strength`, turned `rotation_deg` about +y.
+    pub fn new(map: EnvironmentMap, strength: f32, rotation_deg: f32) -> Self {
+        EnvironmentLookup { map, strength, turn: rotation_deg / 360.0 }
+    }
+
+    /// Radiance arriving from the environment along direction of travel `d`
+    /// (a unit vector: the ray looks toward `d`), bilinear between texel
+    /// centres, wrapping around in longitude.
+    pub fn radiance(&self, d: Vec3) -> Vec3 {
+        let u = 0.5 + atan2(d.x, -d.z) / (2.0 * PI) + self.turn;
+        let v = acos(d.y.clamp(-1.0, 1.0)) / PI;
+        self.texel_at(u, v) * self.strength
+    }
+
+    /// The map bilinearly at (u, v) ∈ [0, 1)² (u wraps, v is clamped).
+    fn texel_at(&self, u: f32, v: f32) -> Vec3 {
+        let (w, h) = (self.map.width as i64, self.map.height as i64);
+        let fx = (u - floor(u)) * w as f32 - 0.5;
+        let fy = (v * h as f32 - 0.5).clamp(0.0, (h - 1) as f32);
+        let (x0, y0) = (floor(fx), floor(fy));
+        let (tx, ty) = (fx - x0, fy - y0);
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let at = |x: i64, y: i64| self.map.texels[(y.min(h - 1) * w + x.rem_euclid(w)) as usize];
+        let top = at(x0, y0) * (1.0 - tx) + at(x0 + 1, y0) * tx;
+        let bottom = at(x0, y0 + 1) * (1.0 - tx) + at(x0 + 1, y0 + 1) * tx;
+        top * (1.0 - ty) + bottom * ty
+    }
+
+    /// The direction of travel whose look-up lands on map point (u, v):
+    /// the inverse of [`EnvironmentLookup::radiance`]'s mapping.
+    pub fn direction(&self, u: f32, v: f32) -> Vec3 {
+        let phi = (u - self.turn - 0.5) * 2.0 * PI;
+        let theta = v * PI;
+        Vec3::new(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi))
+    }
+
+    /// The `n` directional lights of the map's median cut (fewer when the
+    /// map has fewer texels with light). A map coarser than
+    /// [`CUT_GRID`] (a constant one is a single texel) is cut on that grid,
+    /// read bilinearly.
+    pub fn median_cut(&self, n: usize) -> Vec<CutLight> {
+        let (w, h) = ((self.map.width as usize).max(CUT_GRID.0), (self.map.height as usize).max(CUT_GRID.1));
+        let at = |x: usize, y: usize| match (w, h) == (self.map.width as usize, self.map.height as usize) {
+            true => self.map.texels[y * w + x],
+            false => self.texel_at((x as f32 + 0.5) / w as f32, (y as f32 + 0.5) / h as f32),
+        };
+        let texels: Vec<Vec3> = (0..w * h).map(|i| at(i % w, i / w).max(Vec3::ZERO)).collect();
+        let d_omega = |y: usize| (2.0 * PI / w as f32) * (PI / h as f32) * sin(PI * (y as f32 + 0.5) / h as f32);
+        let power: Vec<f32> = (0..w * h).map(|i| luminance(texels[i]) * self.strength * d_omega(i / w)).collect();
+        let cut = Cut { w, h, power: &power };
+        let whole = Region { x: (0, w), y: (0, h) };
+        let mut regions: Vec<Region> = match h {
+            1 => Vec::from([whole]),
+            _ => Vec::from([Region { y: (0, h / 2), ..whole }, Region { y: (h / 2, h), ..whole }]),
+        };
+        while regions.len() < n {
+            let splittable = regions
+                .iter()
+                .enumerate()
+                .filter(|(_, r)| r.texels() > 1)
+                .max_by(|a, b| cut.power(a.1).total_cmp(&cut.power(b.1)));
+            let Some((i, &region)) = splittable else { break };
+            let (a, b) = cut.split(region);
+            regions[i] = a;
+            regions.push(b);
+        }
+        regions
+            .iter()
+            .filter_map(|r| {
+                let (mut rgb, mut toward) = (Vec3::ZERO, Vec3::ZERO);
+                for y in r.y.0..r.y.1 {
+                    for x in r.x.0..r.x.1 {
+                        let dir = self.direction((x as f32 + 0.5) / w as f32, (y as f32 + 0.5) / h as f32);
+                        rgb += texels[y * w + x] * (self.strength * d_omega(y));
+                        toward += dir * power[y * w + x];
+                    }
+                }
+                let (length, total) = (sqrt(toward.length_squared()), cut.power(r));
+                (length > 0.0 && rgb.max_element() > 0.0)
+                    .then(|| CutLight { toward: toward / length, rgb: rgb * (length / total) })
+            })
+            .collect()
+    }
+}
+
+/// The coarsest grid a map is cut on (columns, rows): fine enough for
+/// [`crate::model::scene::DEFAULT_ENVIRONMENT_LIGHTS`] regions of many cells each.
+pub const CUT_GRID: (usize, usize) = (64, 32);
+
+/// A rectangle of texels: columns `x.0..x.1`, rows `y.0..y.1`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Region {
+    x: (usize, usize),
+    y: (usize, usize),
+}
+
+impl Region {
+    fn texels(&self) -> usize {
+        (self.x.1 - self.x.0) * (self.y.1 - self.y.0)
+    }
+}
+
+/// The map's per-texel power, for cutting regions.
+struct Cut<'a> {
+    w: usize,
+    h: usize,
+    power: &'a [f32],
+}
+
+impl Cut<'_> {
+    fn power(&self, r: &Region) -> f32 {
+        (r.y.0..r.y.1).map(|y| self.power[y * self.w + r.x.0..y * self.w + r.x.1].iter().sum::<f32>()).sum()
+    }
+
+    /// `r` in two across its longer side in angle (its width measured at
+    /// its middle latitude), where half its power lies on either side (at
+    /// least one texel each).
+    fn split(&self, r: Region) -> (Region, Region) {
+        let mid = PI * (r.y.0 + r.y.1) as f32 / (2 * self.h) as f32;
+        let width = (r.x.1 - r.x.0) as f32 / self.w as f32 * 2.0 * PI * sin(mid);
+        let height = (r.y.1 - r.y.0) as f32 / self.h as f32 * PI;
+        let across_x = (width >= height && r.x.1 - r.x.0 > 1) || r.y.1 - r.y.0 == 1;
+        let (lo, hi) = if across_x { r.x } else { r.y };
+        let slice = |k: usize| match across_x {
+            true => self.power(&Region { x: (k, k + 1), ..r }),
+            false => self.power(&Region { y: (k, k + 1), ..r }),
+        };
+        let total: f32 = (lo..hi).map(slice).sum();
+        let (mut at, mut acc) = (lo + 1, slice(lo));
+        while at < hi - 1 && acc < total / 2.0 {
+            acc += slice(at);
+            at += 1;
+        }
+        match across_x {
+            true => (Region { x: (lo, at), ..r }, Region { x: (at, hi), ..r }),
+            false => (Region { y: (lo, at), ..r }, Region { y: (at, hi), ..r }),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn lookup(map: EnvironmentMap) -> EnvironmentLookup {
+        EnvironmentLookup::new(map, 2.0, 0.0)
+    }
+
+    #[test]
+    fn directions_and_radiance_round_trip_through_the_map() {
+        let texels: Vec<Vec3> = (0..8 * 4).map(|i| Vec3::splat(i as f32)).collect();
+        let env = EnvironmentLookup::new(
+            EnvironmentMap { name: "ramp".into(), width: 8, height: 4, texels: texels.into() },
+            1.0,
+            90.0,
+        );
+        for (x, y) in [(0, 0), (3, 1), (7, 3), (5, 2)] {
+            let d = env.direction((x as f32 + 0.5) / 8.0, (y as f32 + 0.5) / 4.0);
+            assert!((d.length() - 1.0).abs() < 1e-6);
+            let got = env.radiance(d).x;
+            assert!((got - (y * 8 + x) as f32).abs() < 1e-3, "texel ({x}, {y}) reads {got}");
+        }
+        // The image's centre is what a camera looking down −z sees (before turning).
+        let at_rest = EnvironmentLookup::new(EnvironmentMap::constant(Vec3::ONE), 1.0, 0.0);
+        assert!((at_rest.direction(0.5, 0.5) - Vec3::NEG_Z).length() < 1e-6);
+        assert!((at_rest.direction(0.75, 0.5) - Vec3::X).length() < 1e-6);
+    }
+
+    /// Σ over the lights above a surface of E cos θ: the irradiance the cut
+    /// gives a diffuse plane facing up.
+    fn upward_irradiance(lights: &[CutLight]) -> f32 {
+        lights.iter().map(|l| luminance(l.rgb) * l.toward.y.max(0.0)).sum()
+    }
+
+    #[test]
+    fn a_constant_environment_cut_gives_pi_l_on_planes_that_see_whole_regions() {
+        let texels: Vec<Vec3> = (0..128 * 64).map(|_| Vec3::ONE).collect();
+        let env = lookup(EnvironmentMap { name: "grey".into(), width: 128, height: 64, texels: texels.into() });
+        for n in [2, 32, 512] {
+            let lights = env.median_cut(n);
+            assert_eq!(lights.len(), n);
+            // The first cut is the horizon: a plane facing up sees the upper
+            // regions whole, and each sends it its vector irradiance.
+            let e = upward_irradiance(&lights);
+            let want = PI * 2.0;
+            assert!((e - want).abs() < 2e-3 * want, "{n} lights: E = {e}, πL = {want}");
+        }
+        // A tilted plane cuts regions with its horizon: the error is there,
+        // and shrinks as the regions do.
+        let tilted = Vec3::new(0.6, 0.8, 0.0);
+        let error = |n: usize| {
+            let e: f32 = env.median_cut(n).iter().map(|l| luminance(l.rgb) * l.toward.dot(tilted).max(0.0)).sum();
+            (e / (PI * 2.0) - 1.0).abs()
+        };
+        let (coarse, fine) = (error(32), error(512));
+        assert!(coarse < 0.05 && fine < 0.01 && fine < coarse, "{coarse} at 32 lights, {fine} at 512");
+    }
+
+    #[test]
+    fn a_constant_map_of_one_texel_is_cut_on_the_grid() {
+        let lights = lookup(EnvironmentMap::constant(Vec3::ONE)).median_cut(32);
+        assert_eq!(lights.len(), 32);
+        let e = upward_irradiance(&lights);
+        assert!((e - 2.0 * PI).abs() < 2e-3 * 2.0 * PI, "{e}");
+    }
+
+    #[test]
+    fn a_bright_patch_becomes_lights_from_its_direction() {
+        let mut texels: Vec<Vec3> = (0..32 * 16).map(|_| Vec3::splat(0.01)).collect();
+        texels[3 * 32 + 24] = Vec3::new(500.0, 400.0, 300.0);
+        let env = lookup(EnvironmentMap { name: "sun".into(), width: 32, height: 16, texels: texels.into() });
+        let patch = env.direction(24.5 / 32.0, 3.5 / 16.0);
+        let lights = env.median_cut(16);
+        // The cut spends its lights where the power is: most of them, and
+        // nearly all the power, come from around the patch.
+        let total: f32 = lights.iter().map(|l| l.rgb.x).sum();
+        let near: f32 = lights.iter().filter(|l| l.toward.dot(patch) > 0.98).map(|l| l.rgb.x).sum();
+        assert!(near > 0.9 * total, "{near} of {total} from the patch");
+    }
+}

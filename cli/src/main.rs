@@ -6,7 +6,7 @@ use prismatic_cli::args::{parse_passes, parse_seconds};
 use prismatic_cli::backends::{self, BackendChoice};
 use prismatic_cli::builtin::{BUILTIN_SCENES, GENERATED_SCENES, find, find_generated, names};
 use prismatic_cli::environment_file::EnvironmentArgs;
-use prismatic_cli::output::{PendingFile, write_image, write_photon_csv, write_png};
+use prismatic_cli::output::{ExrLayers, PendingFile, write_image, write_photon_csv, write_png};
 use prismatic_cli::partial::Partial;
 use prismatic_cli::progress_bar::ProgressBar;
 use prismatic_cli::render_job::{Output, RenderJob};
@@ -268,7 +268,9 @@ fn merge(files: &[PathBuf], output: &Path) -> Result<()> {
     if !image.is_finite() {
         anyhow::bail!("the merged partials give non-finite pixels; nothing was written");
     }
-    out.commit(|w| write_image(w, output, &image, merged.display))?;
+    // No scene here, so no features: the caustic layer only.
+    let caustic = || ExrLayers { caustic: Some(ExrLayers::caustic(&image, &merged.base)), features: None };
+    out.commit(|w| write_image(w, output, &image, merged.display, caustic))?;
     println!(
         "merged {} partials ({} passes: {}); wrote {} ({}x{})",
         files.len(),

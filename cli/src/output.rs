@@ -4,7 +4,8 @@
 
 use anyhow::{Context, Result};
 use prismatic_core::model::color::Display;
-use prismatic_core::{Image, PhotonMap};
+use prismatic_core::render::aov::{Features, features};
+use prismatic_core::{Image, PhotonMap, PreparedScene};
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
@@ -61,9 +62,66 @@ pub fn write_png(w: &mut BufWriter<File>, image: &Image, display: Display) -> Re
 
 /// Encodes `image` as OpenEXR: linear RGB, 32-bit float, no tone mapping.
 pub fn write_exr(w: &mut BufWriter<File>, image: &Image) -> Result<()> {
-    let data: Vec<f32> = image.pixels.iter().flat_map(|p| p.to_array()).collect();
-    let buf = image::Rgb32FImage::from_raw(image.width, image.height, data).context("image size mismatch")?;
-    buf.write_to(w, image::ImageFormat::OpenExr)?;
+    write_exr_layers(w, image, &ExrLayers::default())
+}
+
+/// What an EXR carries beside the image, for denoisers and compositors.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ExrLayers {
+    /// The caustic light alone (the image less its view pass): `caustic.R/G/B`.
+    pub caustic: Option<Image>,
+    /// Albedo, normal and depth at the first hit ([`features`]):
+    /// `albedo.R/G/B`, `normal.X/Y/Z`, `Z`.
+    pub features: Option<Features>,
+}
+
+impl ExrLayers {
+    /// Every layer of a render: its features and its caustic (`image`
+    /// less `base`, the view pass).
+    pub fn of(scene: &PreparedScene, image: &Image, base: &Image) -> Self {
+        ExrLayers { caustic: Some(Self::caustic(image, base)), features: Some(features(scene)) }
+    }
+
+    /// The caustic light alone: `image` less `base`, its view pass.
+    pub fn caustic(image: &Image, base: &Image) -> Image {
+        Image { pixels: image.pixels.iter().zip(&base.pixels).map(|(a, b)| *a - *b).collect(), ..base.clone() }
+    }
+}
+
+/// Encodes `image` as one OpenEXR part of 32-bit float channels: the image
+/// as `R`, `G`, `B` (what viewers show) and `layers` as named channels
+/// (OpenImageDenoise's albedo and normal, Blender's and Nuke's `Z`).
+pub fn write_exr_layers(w: &mut BufWriter<File>, image: &Image, layers: &ExrLayers) -> Result<()> {
+    use exr::prelude::{
+        AnyChannel, AnyChannels, Encoding, FlatSamples, Layer, LayerAttributes, SmallVec, WritableImage,
+    };
+    let rgb = |prefix: &str, img: &Image, names: [&str; 3]| -> Vec<AnyChannel<FlatSamples>> {
+        (0..3)
+            .map(|k| {
+                let samples = img.pixels.iter().map(|p| p[k]).collect();
+                AnyChannel::new(format!("{prefix}{}", names[k]).as_str(), FlatSamples::F32(samples))
+            })
+            .collect()
+    };
+    let mut channels = rgb("", image, ["R", "G", "B"]);
+    if let Some(caustic) = &layers.caustic {
+        channels.extend(rgb("caustic.", caustic, ["R", "G", "B"]));
+    }
+    if let Some(f) = &layers.features {
+        channels.extend(rgb("albedo.", &f.albedo, ["R", "G", "B"]));
+        channels.extend(rgb("normal.", &f.normal, ["X", "Y", "Z"]));
+        channels.push(AnyChannel::new("Z", FlatSamples::F32(f.depth.clone())));
+    }
+    let size = (image.width as usize, image.height as usize);
+    let layer = Layer::new(
+        size,
+        LayerAttributes::default(),
+        Encoding::SMALL_LOSSLESS,
+        AnyChannels::sort(SmallVec::from_vec(channels)),
+    );
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    exr::prelude::Image::from_layer(layer).write().to_buffered(&mut bytes).context("cannot encode the EXR")?;
+    w.write_all(bytes.get_ref())?;
     Ok(())
 }
 
@@ -76,10 +134,16 @@ pub fn read_exr(path: &Path) -> Result<Image> {
     Ok(Image { width, height, pixels })
 }
 
-/// Writes `image` as EXR (linear) when `path` ends in `.exr`, else as a
-/// tone-mapped sRGB PNG.
-pub fn write_image(w: &mut BufWriter<File>, path: &Path, image: &Image, display: Display) -> Result<()> {
-    if is_exr(path) { write_exr(w, image) } else { write_png(w, image, display) }
+/// Writes `image` as EXR (linear, with `layers`) when `path` ends in
+/// `.exr`, else as a tone-mapped sRGB PNG.
+pub fn write_image(
+    w: &mut BufWriter<File>,
+    path: &Path,
+    image: &Image,
+    display: Display,
+    layers: impl FnOnce() -> ExrLayers,
+) -> Result<()> {
+    if is_exr(path) { write_exr_layers(w, image, &layers()) } else { write_png(w, image, display) }
 }
 
 /// True for `.exr` paths (any case).

@@ -4,7 +4,7 @@
 //! run, and at the end an image (PNG or EXR) or a partial render's raw sums
 //! (for `prismatic merge`).
 
-use crate::output::{PendingFile, write_image};
+use crate::output::{ExrLayers, PendingFile, write_image};
 use crate::partial::Partial;
 use anyhow::{Result, bail};
 use prismatic_core::{Accumulation, Image, NoProgress, Progress, Render, RenderStats};
@@ -36,7 +36,8 @@ impl Output {
         match self {
             Output::Image(path) => {
                 let image = finite_image(&base, &sums)?;
-                out.commit(|w| write_image(w, path, &image, display))
+                let layers = || ExrLayers::of(render.scene(), &image, &base);
+                out.commit(|w| write_image(w, path, &image, display, layers))
             }
             Output::Partial(_) => out.commit(|w| Partial::of(render, base, sums).write(w)),
         }

@@ -37,7 +37,8 @@ normal = [0, 1, 0]
 fn a_scene_names_its_environment_by_file_or_as_the_studio() {
     let dir = tempfile::tempdir().unwrap();
     write_map(&dir.path().join("sky.exr"));
-    let text = format!("{SCENE}\n[[light]]\nkind = \"environment\"\nmap = \"sky.exr\"\nstrength = 3\nrotation_deg = 45\n");
+    let text =
+        format!("{SCENE}\n[[light]]\nkind = \"environment\"\nmap = \"sky.exr\"\nstrength = 3\nrotation_deg = 45\n");
     let doc = prismatic_cli::scene_file::parse(&text, "scene.toml", Some(dir.path())).unwrap();
     let [Light::Environment { map, strength, rotation_deg, .. }] = doc.scene.lights.as_slice() else { panic!() };
     assert_eq!((map.width, map.height, *strength, *rotation_deg), (16, 8, 3.0, 45.0));
@@ -75,7 +76,8 @@ fn environments_that_cannot_be_used_are_errors_that_name_the_key() {
 fn the_environment_flags_light_a_scene_and_name_themselves_in_errors() {
     let dir = tempfile::tempdir().unwrap();
     let scene = dir.path().join("floor.toml");
-    std::fs::write(&scene, format!("{SCENE}\n[[light]]\nkind = \"sun\"\ndirection = [0, -1, 0]\nirradiance = 1\n")).unwrap();
+    std::fs::write(&scene, format!("{SCENE}\n[[light]]\nkind = \"sun\"\ndirection = [0, -1, 0]\nirradiance = 1\n"))
+        .unwrap();
     write_map(&dir.path().join("sky.exr"));
     let render = |extra: &[&str]| {
         let out = dir.path().join("out.exr");

@@ -3,6 +3,7 @@
 mod bad_scenes;
 mod cli;
 mod environment;
+mod exr_layers;
 mod gltf;
 mod slurm;
 mod study;

@@ -268,9 +268,11 @@ fn merge(files: &[PathBuf], output: &Path) -> Result<()> {
     if !image.is_finite() {
         anyhow::bail!("the merged partials give non-finite pixels; nothing was written");
     }
-    // No scene here, so no features: the caustic layer only.
-    let caustic = || ExrLayers { caustic: Some(ExrLayers::caustic(&image, &merged.base)), features: None };
-    out.commit(|w| write_image(w, output, &image, merged.display, caustic))?;
+    let layers = || ExrLayers {
+        caustic: Some(ExrLayers::caustic(&image, &merged.base)),
+        features: Some(merged.features.clone()),
+    };
+    out.commit(|w| write_image(w, output, &image, merged.display, layers))?;
     println!(
         "merged {} partials ({} passes: {}); wrote {} ({}x{})",
         files.len(),

@@ -7,17 +7,22 @@
 //! height (u32); display (u8: the tone map's index in `ToneMap::ALL`, 0 clamp,
 //! 1 reinhard, 2 pbr_neutral, 3 agx, plus 128 with automatic exposure); the pass ranges (u32
 //! count, then u32 start and end each); the image without caustics (3 f32
-//! per pixel); the caustic sums (3 i64 per pixel); an FNV-1a checksum (u64)
-//! of everything before it.
+//! per pixel); the features an EXR carries (albedo, normal: 3 f32 each per
+//! pixel; depth: 1 f32 per pixel); the caustic sums (3 i64 per pixel); an
+//! FNV-1a checksum (u64) of everything before it.
 
 use crate::scene_file::SceneFileError;
 use prismatic_core::Accumulation;
 use prismatic_core::model::color::{Display, ToneMap};
+use prismatic_core::render::aov::{Features, features};
 use prismatic_core::{Image, PreparedScene, Render, Vec3};
 use std::io::Write;
 use std::path::Path;
 
-const MAGIC: &[u8] = b"PRISMATIC-PARTIAL 1\n";
+const MAGIC: &[u8] = b"PRISMATIC-PARTIAL 2\n";
+
+/// Bytes a pixel takes: base and features (10 f32), sums (3 i64).
+const PIXEL_BYTES: usize = 10 * 4 + 3 * 8;
 
 /// A partial render as stored in a file.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,6 +35,8 @@ pub struct Partial {
     pub display: Display,
     /// The image without caustics.
     pub base: Image,
+    /// Albedo, normal and depth at the first hit, for an EXR's layers.
+    pub features: Features,
     /// The passes' sums.
     pub sums: Accumulation,
 }
@@ -55,13 +62,14 @@ impl Partial {
             backend: render.backend().to_string(),
             display: scene.scene.render.display(),
             base,
+            features: features(scene),
             sums,
         }
     }
 
     /// The file's bytes.
     pub fn to_bytes(&self) -> Vec<u8> {
-        let mut out = Vec::with_capacity(MAGIC.len() + self.base.pixels.len() * 36 + 64);
+        let mut out = Vec::with_capacity(MAGIC.len() + self.base.pixels.len() * PIXEL_BYTES + 64);
         out.extend_from_slice(MAGIC);
         out.extend_from_slice(&self.fingerprint.to_le_bytes());
         out.push(self.backend.len().min(255) as u8);
@@ -75,10 +83,14 @@ impl Partial {
             out.extend_from_slice(&a.to_le_bytes());
             out.extend_from_slice(&b.to_le_bytes());
         }
-        for p in &self.base.pixels {
-            for c in p.to_array() {
+        let f = &self.features;
+        for image in [&self.base, &f.albedo, &f.normal] {
+            for c in image.pixels.iter().flat_map(|p| p.to_array()) {
                 out.extend_from_slice(&c.to_le_bytes());
             }
+        }
+        for d in &f.depth {
+            out.extend_from_slice(&d.to_le_bytes());
         }
         for s in &self.sums.sums {
             for c in s {
@@ -123,7 +135,7 @@ impl Partial {
         let display = Display { tone_map, auto_exposure: shown & 0x80 != 0 };
         let ranges = r.u32()? as usize;
         let pixels = width as usize * height as usize;
-        let expected = r.at + ranges * 8 + pixels * 36;
+        let expected = r.at + ranges * 8 + pixels * PIXEL_BYTES;
         if body.len() != expected {
             return Err(format!(
                 "{} bytes where a {width}x{height} partial with {ranges} pass ranges has {} (truncated or damaged)",
@@ -138,16 +150,24 @@ impl Partial {
         for _ in 0..ranges {
             passes.push((r.u32()?, r.u32()?));
         }
-        let mut base = Image::new(width, height);
-        for p in &mut base.pixels {
-            *p = Vec3::new(r.f32()?, r.f32()?, r.f32()?);
+        let mut images = [Image::new(width, height), Image::new(width, height), Image::new(width, height)];
+        for image in &mut images {
+            for p in &mut image.pixels {
+                *p = Vec3::new(r.f32()?, r.f32()?, r.f32()?);
+            }
         }
+        let [base, albedo, normal] = images;
+        let mut depth = vec![0.0; pixels];
+        for d in &mut depth {
+            *d = r.f32()?;
+        }
+        let features = Features { albedo, normal, depth };
         let mut raw = vec![[0i64; 3]; pixels];
         for s in &mut raw {
             *s = [r.i64()?, r.i64()?, r.i64()?];
         }
         let sums = Accumulation::from_parts(width, height, &passes, raw).map_err(|e| format!("pass ranges: {e}"))?;
-        Ok(Partial { fingerprint, backend, display, base, sums })
+        Ok(Partial { fingerprint, backend, display, base, features, sums })
     }
 
     /// Adds `other` (same scene, backend and size; disjoint passes).
@@ -175,7 +195,7 @@ impl Partial {
                 ),
             ));
         }
-        if other.base != self.base {
+        if other.base != self.base || other.features != self.features {
             return Err(bad(file, "its image without caustics differs from the first partial's".into()));
         }
         self.sums.merge(&other.sums).map_err(|e| bad(file, e.to_string()))

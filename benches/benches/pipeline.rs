@@ -19,6 +19,11 @@
 //!   shrink with k), on a render whose view rays, pilot and pass 1 are
 //!   traced, and
 //!   `progressive/prepare`: the view rays and the pilot pass;
+//! - `lights/<light>/{trace,view}`: `sphere` (default settings, 400×400,
+//!   100,000 photons) under its spot light and under the studio
+//!   environment (32 suns of its median cut, projection maps on): the CPU's
+//!   photon pass (throughput in photons) and its view pass (direct light,
+//!   one shadow ray per light per point);
 //! - `scene/{new,update-camera,update-mesh}/<triangles>`: `sphere` with its
 //!   sphere as a closed mesh, prepared from scratch (every hierarchy
 //!   built) and updated from the last frame's preparation after the camera
@@ -219,6 +224,38 @@ fn progressive_group(c: &mut Criterion) {
 }
 
 /// What preparing a changed scene costs, against preparing it anew.
+fn lights_group(c: &mut Criterion) {
+    let mut g = c.benchmark_group("lights");
+    g.sample_size(10);
+    let doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
+    let mut spot = doc.scene.clone();
+    spot.render = prismatic_core::RenderSettings { photons: 100_000, ..prismatic_core::RenderSettings::default() };
+    let mut studio = spot.clone();
+    studio.lights = vec![prismatic_core::Light::Environment {
+        map: prismatic_core::model::environment::EnvironmentMap::studio(),
+        strength: 1.0,
+        rotation_deg: 0.0,
+        spectrum: Default::default(),
+    }];
+    for (name, scene) in [("spot", spot), ("environment", studio)] {
+        let scene = PreparedScene::new(scene).expect("valid");
+        let mut render = CpuBackend::new().prepare(&scene).unwrap();
+        g.throughput(Throughput::Elements(u64::from(scene.scene.render.photons)));
+        g.bench_function(BenchmarkId::new(name, "trace"), |b| {
+            b.iter(|| black_box(render.photon_map(0, &mut NoProgress).unwrap()))
+        });
+        g.throughput(Throughput::Elements(u64::from(scene.scene.render.width * scene.scene.render.height)));
+        g.bench_function(BenchmarkId::new(name, "view"), |b| {
+            b.iter(|| {
+                let mut render = CpuBackend::new().prepare(&scene).unwrap();
+                render.ready(&mut NoProgress).unwrap();
+                black_box(render)
+            })
+        });
+    }
+    g.finish();
+}
+
 fn scene_group(c: &mut Criterion) {
     let mut g = c.benchmark_group("scene");
     g.sample_size(10);
@@ -269,6 +306,7 @@ criterion_group!(
     frame_group,
     effects_group,
     progressive_group,
+    lights_group,
     scene_group
 );
 criterion_main!(benches);

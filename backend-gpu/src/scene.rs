@@ -10,7 +10,6 @@ use crate::shaders::code;
 use crate::shaders::kind::*;
 use bytemuck::Pod;
 use glam::Vec3;
-use prismatic_core::PreparedScene;
 use prismatic_core::geometry::camera::PinholeCamera;
 use prismatic_core::geometry::primitive::{Primitive, basis};
 use prismatic_core::geometry::texture::srgb_to_linear;
@@ -20,6 +19,7 @@ use prismatic_core::optics::surface::Surface;
 use prismatic_core::photons::trace::photon_flux;
 use prismatic_core::plan::projection::Targets;
 use prismatic_core::util::math::{cos, radians};
+use prismatic_core::{BackendError, PreparedScene};
 use std::collections::HashMap;
 
 /// A sampler's filter and wraps as surface flags.
@@ -61,6 +61,21 @@ fn v4(v: Vec3, w: f32) -> [f32; 4] {
 }
 
 impl EncodedScene {
+    /// The scene's tables (indices, spectra, textures, the environment
+    /// map) fit one storage binding of `device`; otherwise what to shrink.
+    pub fn fits(&self, device: &wgpu::Device) -> Result<(), BackendError> {
+        let (bytes, limit) = (self.tables.len() as u64 * 4, u64::from(device.limits().max_storage_buffer_binding_size));
+        if bytes <= limit {
+            return Ok(());
+        }
+        Err(BackendError::OutOfMemory(format!(
+            "the scene's textures and environment map take {} MiB, more than this device binds at once ({} MiB): \
+             use smaller images",
+            bytes >> 20,
+            limit >> 20
+        )))
+    }
+
     /// Encodes `scene`.
     pub fn new(scene: &PreparedScene) -> Self {
         let mut e = EncodedScene::default();

@@ -110,6 +110,7 @@ impl GpuSession {
         let software = ctx.device.adapter_info().device_type == wgpu::DeviceType::Cpu;
         let span = options.gather_span.unwrap_or(if software { pixels::SOFTWARE_GATHER_SPAN } else { u32::MAX });
         let encoded = EncodedScene::new(scene);
+        encoded.fits(&ctx.device)?;
         let buffers =
             ctx.checked("uploading the scene", || SceneBuffers::upload(&ctx, &pipelines.scene_layout, &encoded))?;
         let photons = photon_pass(&ctx, &pipelines, scene, &buffers, window(&ctx, options))?;
@@ -271,6 +272,7 @@ impl Render for GpuSession {
             return Ok(change);
         }
         let encoded = EncodedScene::new(scene);
+        encoded.fits(&self.ctx.device)?;
         let regrouped = self.ctx.checked("updating the scene", || {
             self.buffers.update(&self.ctx, &self.pipelines.scene_layout, &self.encoded, &encoded)
         })?;

@@ -7,6 +7,7 @@ use alloc::string::String;
 use alloc::sync::Arc;
 use alloc::vec::Vec;
 use core::f32::consts::PI;
+use core::fmt;
 use glam::Vec3;
 
 /// The largest environment map side (8192 × 4096 texels of 12 bytes are
@@ -18,7 +19,7 @@ pub const MAX_ENVIRONMENT_SIDE: u32 = 8_192;
 /// it (row 0 is the zenith), so the image's centre is what a camera looking
 /// down −z sees, +x a quarter to its right and +z at both edges
 /// ([`crate::sampling::environment`] reads it).
-#[derive(Clone, Debug, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct EnvironmentMap {
     /// Where it came from (a file, `"studio"`), for messages.
     pub name: String,
@@ -29,6 +30,24 @@ pub struct EnvironmentMap {
     /// Linear RGB radiance, row by row from the zenith. Shared, so that
     /// cloning a scene does not copy the map.
     pub texels: Arc<[Vec3]>,
+}
+
+/// Its name, size and a hash of its texels (FNV-1a of their bits), not
+/// the millions of texels themselves: a scene's fingerprint prints it.
+impl fmt::Debug for EnvironmentMap {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let hash = self
+            .texels
+            .iter()
+            .flat_map(|t| t.to_array())
+            .fold(0xcbf2_9ce4_8422_2325u64, |h, c| (h ^ u64::from(c.to_bits())).wrapping_mul(0x0100_0000_01b3));
+        f.debug_struct("EnvironmentMap")
+            .field("name", &self.name)
+            .field("width", &self.width)
+            .field("height", &self.height)
+            .field("texels", &format_args!("fnv1a:{hash:016x}"))
+            .finish()
+    }
 }
 
 impl EnvironmentMap {

@@ -64,7 +64,7 @@ impl EncodedScene {
     /// The scene's tables (indices, spectra, textures, the environment
     /// map) fit one storage binding of `device`; otherwise what to shrink.
     pub fn fits(&self, device: &wgpu::Device) -> Result<(), BackendError> {
-        let (bytes, limit) = (self.tables.len() as u64 * 4, u64::from(device.limits().max_storage_buffer_binding_size));
+        let (bytes, limit) = (self.tables.len() as u64 * 4, device.limits().max_storage_buffer_binding_size);
         if bytes <= limit {
             return Ok(());
         }

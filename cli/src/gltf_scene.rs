@@ -389,7 +389,8 @@ fn material(
     for (texture, what) in [
         (pbr.metallic_roughness_texture().is_some(), "metallicRoughnessTexture"),
         (m.normal_texture().is_some(), "normalTexture"),
-        (m.occlusion_texture().is_some(), "occlusionTexture"),
+        // occlusionTexture is not left out but not needed: it bakes for
+        // rasterisers the shadowing that traced rays find themselves.
         (m.emissive_texture().is_some(), "emissiveTexture"),
     ] {
         if texture {

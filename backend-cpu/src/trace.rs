@@ -20,7 +20,9 @@ use prismatic_core::model::photon::{Photon, TraceStats, WHITE_BAND, oct_pack};
 use prismatic_core::model::scene::WavelengthSampling;
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::photons::emit::light_of;
-use prismatic_core::photons::trace::{absorbed, sample_band, split_bands, stored_wavelength, trace_emitted};
+use prismatic_core::photons::trace::{
+    absorbed, absorbed_crossing, sample_band, split_bands, stored_wavelength, trace_emitted,
+};
 use prismatic_core::plan::prepared::PreparedScene;
 use prismatic_core::util::rng::dim;
 use wide::{f32x8, u32x8};
@@ -281,7 +283,10 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
             s.ior = ctx.band_lanes_ior(&hit, go_on & s.dielectric, band, &lambda, s.ior);
         }
         let u = random_f32(settings.seed, emission, scatter_dims(band, bounces));
+        let before = dir;
         (origin, dir) = scatter(point, dir, hit.normal, &s, u, origin, go_on, dir);
+        let sheets = go_on & s.thin & s.absorbing;
+        go_on &= !absorb_crossing_lanes(ctx, &mut sink, sheets, &hit, (before, dir), flux, [emission, band, bounces]);
         bounces += bytemuck::cast::<f32x8, u32x8>(go_on) & u32x8::ONE;
         active = go_on;
     }
@@ -331,19 +336,23 @@ fn trace_bands(
             Some(c) => ctx.objects[object].band_ior[c],
             None => lane_ior(&HitX8 { object: f32x8::splat(object as f32), ..*hit }, active, f32x8::ONE),
         };
+        let glass = &ctx.objects[object];
         let start = LaneSurfaces {
             missed: f32x8::ZERO,
             diffuse: f32x8::ZERO,
             mirror: f32x8::ZERO,
             dielectric: f32x8::splat(ON),
             dispersive: f32x8::ZERO,
-            absorbing: f32x8::ZERO,
-            // The glass white light splits at is dispersive: never a sheet.
-            thin: f32x8::ZERO,
+            absorbing: glass.absorbing,
+            // A tinted sheet splits white light too (by its colour, not its index).
+            thin: glass.thin,
             ior,
         };
         let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
         let (mut origin, mut dir) = scatter(p0, d0, n0, &start, u, p0, active, d0);
+        let at_glass = HitX8 { object: f32x8::splat(object as f32), ..*hit };
+        let sheets = active & start.thin & start.absorbing;
+        active &= !absorb_crossing_lanes(ctx, sink, sheets, &at_glass, (d0, dir), flux, [emission_v, band, bounces]);
         bounces += u32x8::ONE;
         // Each band stores at most once; kept by lane so that they leave in band order.
         let mut stored: [Option<Photon>; 8] = [None; 8];
@@ -369,7 +378,10 @@ fn trace_bands(
             active &= !ended;
             active &= !absorb_lanes(ctx, sink, active & s.absorbing, &hit, dir, flux, [emission_v, band, bounces]);
             let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
+            let before = dir;
             (origin, dir) = scatter(point, dir, hit.normal, &s, u, origin, active, dir);
+            let sheets = active & s.thin & s.absorbing;
+            active &= !absorb_crossing_lanes(ctx, sink, sheets, &hit, (before, dir), flux, [emission_v, band, bounces]);
             bounces += bytemuck::cast::<f32x8, u32x8>(active) & u32x8::ONE;
         }
         sink.out.extend(stored.into_iter().flatten());
@@ -454,6 +466,39 @@ fn absorb_lanes(
         let band = b[i] as u16;
         let u = || prismatic_core::util::rng::random_f32(seed, e[i], dim::absorb(band, k[i]));
         if absorbed(glass, dir.lane(i), hit.normal.lane(i), t[i], band, u) {
+            out[i] = ON;
+            sink.stats.flux_absorbed += f64::from(f[i]);
+        }
+    }
+    f32x8::new(out)
+}
+
+/// The lanes of `at_sheet` (hits on tinted thin sheets, just scattered
+/// from `before` to `after`) whose path crossed the sheet and was absorbed
+/// there: the reference's
+/// [`absorbed_crossing`](prismatic_core::photons::trace::absorbed_crossing),
+/// lane by lane. Their flux is tallied.
+fn absorb_crossing_lanes(
+    ctx: &TraceContext<'_>,
+    sink: &mut Sink,
+    at_sheet: f32x8,
+    hit: &HitX8,
+    (before, after): (Vec3x8, Vec3x8),
+    flux: f32x8,
+    [emission, band, bounces]: [u32x8; 3],
+) -> f32x8 {
+    if !at_sheet.any() {
+        return f32x8::ZERO;
+    }
+    let seed = ctx.scene.scene.render.seed;
+    let (objects, f) = (hit.object.as_array(), flux.as_array());
+    let (e, b, k) = (emission.as_array(), band.as_array(), bounces.as_array());
+    let mut out = [0.0f32; 8];
+    for i in lanes(at_sheet) {
+        let Surface::Dielectric(glass) = &ctx.scene.surfaces[objects[i] as usize] else { continue };
+        let band = b[i] as u16;
+        let u = || prismatic_core::util::rng::random_f32(seed, e[i], dim::absorb(band, k[i]));
+        if absorbed_crossing(glass, before.lane(i), after.lane(i), band, u) {
             out[i] = ON;
             sink.stats.flux_absorbed += f64::from(f[i]);
         }

@@ -27,7 +27,7 @@ use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::model::scene::Light;
 use prismatic_core::optics::fresnel::reflect;
 use prismatic_core::optics::scatter::{self, scatter_dielectric};
-use prismatic_core::optics::surface::Surface;
+use prismatic_core::optics::surface::{DielectricOptics, Surface};
 use prismatic_core::plan::prepared::PreparedScene;
 use prismatic_core::render::view::{HeroViewPath, gathers_at, glass_transmittance, hero_view_paths};
 use prismatic_core::render::visible::{VisiblePoint, VisiblePoints};
@@ -159,6 +159,7 @@ impl Shader<'_> {
         let mut at_glass = 0u32;
         let mut glass_ior = [1.0f32; 8];
         let mut glass_thin = [0.0f32; 8];
+        let mut crossing = [Vec3::ONE; 8];
         // The rays as they arrive: what coloured glass left of those that crossed it.
         let mut arrived = [rays[0]; 8];
         arrived[..rays.len()].copy_from_slice(rays);
@@ -190,27 +191,28 @@ impl Shader<'_> {
                             let share = r.weight * w.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * w, weight: share, band, lambda_nm, hero, ..*r };
                             let ior = glass.path_ior(band, lambda_nm, &self.scene.bands);
-                            spawn_at_glass(&tinted, p, n, (ior, glass.thin), one_branch, queue);
+                            spawn_at_glass(&tinted, p, n, (ior, glass), one_branch, queue);
                         }
                     }
                     None => {
                         for (b, info) in self.scene.bands.bands().iter().enumerate() {
                             let share = r.weight * info.weight.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * info.weight, weight: share, band: b as u16, ..*r };
-                            spawn_at_glass(&tinted, p, n, (glass.ior(b as u16), glass.thin), one_branch, queue);
+                            spawn_at_glass(&tinted, p, n, (glass.ior(b as u16), glass), one_branch, queue);
                         }
                     }
                 },
                 Surface::Dielectric(glass) => {
                     glass_ior[i] = glass.path_ior(r.band, r.lambda_nm, &self.scene.bands);
                     glass_thin[i] = if glass.thin { f32::from_bits(u32::MAX) } else { 0.0 };
+                    crossing[i] = glass.sheet_crossing_rgb(r.band);
                     at_glass |= 1 << i;
                 }
                 Surface::Diffuse { .. } => unreachable!("shaded above"),
             }
         }
         if at_glass != 0 {
-            let glass = (f32x8::new(glass_ior), f32x8::new(glass_thin));
+            let glass = (f32x8::new(glass_ior), f32x8::new(glass_thin), crossing);
             spawn_packet_at_glass(&arrived[..rays.len()], at_glass, point, hit.normal, glass, one_branch, queue);
         }
     }
@@ -315,23 +317,25 @@ impl Shader<'_> {
 }
 
 /// Queues the Fresnel-weighted reflection and refraction of `r` at a glass
-/// surface point `p` (outward normal `outward`; the glass's index and
-/// whether it is a sheet), as the reference recurses (with `one_branch`, a
-/// sampled path: the one branch its number chooses, as photons choose).
+/// surface point `p` (outward normal `outward`; the path's index and the
+/// glass), as the reference recurses (with `one_branch`, a sampled path:
+/// the one branch its number chooses, as photons choose).
 fn spawn_at_glass(
     r: &ViewRay,
     p: Vec3,
     outward: Vec3,
-    (ior, thin): (f32, bool),
+    (ior, glass): (f32, &DielectricOptics),
     one_branch: bool,
     queue: &mut Vec<ViewRay>,
 ) {
+    let crossed = crossed_sheet(glass.sheet_crossing_rgb(r.band));
     if let Some(sampler) = r.sampler.filter(|_| one_branch) {
-        let next = scatter_dielectric(r.dir, p, outward, ior, thin, sampler.branch(r.hero, r.depth));
-        queue.push(ViewRay { origin: next.origin, dir: next.direction, depth: r.depth + 1, ..*r });
+        let next = scatter_dielectric(r.dir, p, outward, ior, glass.thin, sampler.branch(r.hero, r.depth));
+        let ray = ViewRay { origin: next.origin, dir: next.direction, depth: r.depth + 1, ..*r };
+        queue.push(if glass.thin && next.direction == r.dir { crossed(ray) } else { ray });
         return;
     }
-    let split = scatter::split_dielectric(r.dir, p, outward, ior, thin);
+    let split = scatter::split_dielectric(r.dir, p, outward, ior, glass.thin);
     let f = split.reflectance;
     if f * r.weight > MIN_VIEW_WEIGHT {
         let (origin, dir) = (split.reflected.origin, split.reflected.direction);
@@ -342,19 +346,25 @@ fn spawn_at_glass(
         && let Some(refracted) = split.refracted
     {
         let (origin, dir) = (refracted.origin, refracted.direction);
-        queue.push(ViewRay { origin, dir, weight: r.weight * t, tint: r.tint * t, depth: r.depth + 1, ..*r });
+        queue.push(crossed(ViewRay { origin, dir, weight: r.weight * t, tint: r.tint * t, depth: r.depth + 1, ..*r }));
     }
+}
+
+/// What crossing a sheet that keeps `crossing` of each channel does to a
+/// view ray (nothing for a clear sheet and for solid glass, whose crossing is 1).
+fn crossed_sheet(crossing: Vec3) -> impl Fn(ViewRay) -> ViewRay {
+    move |r| ViewRay { weight: r.weight * crossing.max_element(), tint: r.tint * crossing, ..r }
 }
 
 /// [`spawn_at_glass`] for the packet lanes in `lanes_at_glass`, the Fresnel
 /// factors and directions computed for all eight lanes at once (the
-/// glass's index and sheet mask per lane).
+/// glass's index, sheet mask and sheet crossing per lane).
 fn spawn_packet_at_glass(
     rays: &[ViewRay],
     lanes_at_glass: u32,
     point: Vec3x8,
     outward: Vec3x8,
-    (ior, thin): (f32x8, f32x8),
+    (ior, thin, crossing): (f32x8, f32x8, [Vec3; 8]),
     one_branch: bool,
     queue: &mut Vec<ViewRay>,
 ) {
@@ -362,11 +372,14 @@ fn spawn_packet_at_glass(
     let split = split_dielectric(d, point, outward, ior, thin);
     let f = split.reflectance.to_array();
     let tir = split.tir.to_bitmask();
+    let sheets = thin.to_bitmask();
     for (i, r) in rays.iter().enumerate().filter(|(i, _)| lanes_at_glass & (1 << i) != 0) {
+        let crossed = crossed_sheet(crossing[i]);
         if let Some(sampler) = r.sampler.filter(|_| one_branch) {
             // The one branch the path's number chooses, as `scatter_dielectric` chooses.
             let (origin, dir) = split.choose(i, sampler.branch(r.hero, r.depth));
-            queue.push(ViewRay { origin, dir, depth: r.depth + 1, ..*r });
+            let ray = ViewRay { origin, dir, depth: r.depth + 1, ..*r };
+            queue.push(if sheets & (1 << i) != 0 && dir == r.dir { crossed(ray) } else { ray });
             continue;
         }
         if f[i] * r.weight > MIN_VIEW_WEIGHT {
@@ -376,7 +389,8 @@ fn spawn_packet_at_glass(
         let t = 1.0 - f[i];
         if t * r.weight > MIN_VIEW_WEIGHT && tir & (1 << i) == 0 {
             let (origin, dir) = (split.refracted.0.lane(i), split.refracted.1.lane(i));
-            queue.push(ViewRay { origin, dir, weight: r.weight * t, tint: r.tint * t, depth: r.depth + 1, ..*r });
+            let ray = ViewRay { origin, dir, weight: r.weight * t, tint: r.tint * t, depth: r.depth + 1, ..*r };
+            queue.push(crossed(ray));
         }
     }
 }

@@ -411,16 +411,17 @@ fn material(
         }
         // Without a volume (or with thicknessFactor 0) glTF's transmission
         // is thin-walled: a sheet, which may be any shape.
+        // Its base colour tints what crosses the sheet.
         let thin = m.volume().is_none_or(|v| v.thickness_factor() == 0.0);
-        if thin && pbr.base_color_factor()[..3].iter().any(|&c| c < 1.0) {
-            unused.push("baseColorFactor of thin-walled glass (the sheet is clear)");
-        }
-        MaterialKind::Dielectric {
-            dispersion: dispersion(m),
-            outside: Dispersion::Constant(1.0),
-            attenuation: attenuation(m, &mut unused),
-            thin,
-        }
+        let [r, g, b, _] = pbr.base_color_factor();
+        let tint = Vec3::new(r, g, b).clamp(Vec3::splat(1e-4), Vec3::ONE);
+        // (A thin-walled volume's attenuation is named as left out.)
+        let volume = attenuation(m, &mut unused);
+        let attenuation = match thin {
+            true => (tint != Vec3::ONE).then_some(Attenuation { color: tint, distance: 1.0 }),
+            false => volume,
+        };
+        MaterialKind::Dielectric { dispersion: dispersion(m), outside: Dispersion::Constant(1.0), attenuation, thin }
     } else if pbr.metallic_factor() >= MIRROR_METALLIC && pbr.roughness_factor() <= MIRROR_ROUGHNESS {
         if pbr.base_color_texture().is_some() {
             unused.push("baseColorTexture of a mirror");
@@ -468,8 +469,6 @@ fn material_path(m: &gltf::Material<'_>) -> String {
     m.index().map_or("the default material".to_string(), |i| format!("materials[{i}]"))
 }
 
-/// n(λ) of a transmissive material: `KHR_materials_ior` (default 1.5) and
-/// `KHR_materials_dispersion`, whose `dispersion` is 20/V_d (0: none).
 /// Beer–Lambert absorption from `KHR_materials_volume`: `attenuationColor`
 /// after `attenuationDistance` (channels of 0 kept at 1e-4, so the
 /// coefficient stays finite). A thin-walled material (`thicknessFactor` 0)
@@ -489,6 +488,8 @@ fn attenuation(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option
     Some(Attenuation { color, distance })
 }
 
+/// n(λ) of a transmissive material: `KHR_materials_ior` (default 1.5) and
+/// `KHR_materials_dispersion`, whose `dispersion` is 20/V_d (0: none).
 fn dispersion(m: &gltf::Material<'_>) -> Dispersion {
     let ior = m.ior().unwrap_or(1.5);
     let spread = m

@@ -332,8 +332,17 @@ fn glass_without_a_volume_or_on_an_open_mesh_is_a_thin_sheet() {
     std::fs::write(&path, json.to_string()).unwrap();
     let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
     scene.validate().unwrap();
-    assert!(matches!(&scene.scene.materials[1].kind, MaterialKind::Dielectric { thin: true, .. }));
+    assert!(matches!(&scene.scene.materials[1].kind, MaterialKind::Dielectric { thin: true, attenuation: None, .. }));
     assert!(!scene.warnings.join("\n").contains("glass"), "nothing is left out: {:?}", scene.warnings);
+    // Its base colour tints what crosses it.
+    json["materials"][1]["pbrMetallicRoughness"]["baseColorFactor"] = serde_json::json!([0.2, 0.5, 0.9, 1.0]);
+    std::fs::write(&path, json.to_string()).unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    scene.validate().unwrap();
+    let MaterialKind::Dielectric { thin: true, attenuation: Some(a), .. } = &scene.scene.materials[1].kind else {
+        panic!("{:?}", scene.scene.materials[1].kind)
+    };
+    assert_eq!(a.color.to_array(), [0.2, 0.5, 0.9]);
 
     // Solid glass on an open mesh (the floor's square): drawn as a sheet, said so.
     let mut doc = prism_document();

@@ -442,10 +442,22 @@ fn is_sheet(s: GpuSurface) -> bool {
     return (s.flags & SURFACE_THIN) != 0u;
 }
 
+// DielectricOptics::sheet_crossing_rgb: what a view ray of `band` keeps of
+// each channel when it crosses a tinted thin sheet (1 elsewhere).
+fn sheet_crossing_rgb(s: GpuSurface, band: u32) -> vec3<f32> {
+    if !is_sheet(s) || (s.flags & SURFACE_ABSORBS) == 0u {
+        return vec3<f32>(1.0);
+    }
+    if band == WHITE_BAND {
+        return exp(-s.absorption);
+    }
+    return vec3<f32>(exp(-absorption_coefficient(s, band)));
+}
+
 // view::glass_transmittance: what a view ray keeps of each channel on a
 // segment of length t that ends on the glass (only a segment inside counts).
 fn glass_transmittance(s: GpuSurface, dir: vec3<f32>, normal: vec3<f32>, t: f32, band: u32) -> vec3<f32> {
-    if (s.flags & SURFACE_ABSORBS) == 0u || !(dot(dir, normal) > 0.0) {
+    if (s.flags & SURFACE_ABSORBS) == 0u || is_sheet(s) || !(dot(dir, normal) > 0.0) {
         return vec3<f32>(1.0);
     }
     if band == WHITE_BAND {

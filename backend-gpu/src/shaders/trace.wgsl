@@ -31,6 +31,21 @@ struct Path {
 const FOLLOW_END: u32 = 0u;
 const FOLLOW_SPLIT: u32 = 1u;
 
+// trace::absorbed_crossing: whether a tinted thin sheet absorbs path `p`,
+// which has just crossed it (it leaves along the direction it came,
+// `before`), tallying its flux; its bounces are still the crossing's.
+fn absorbed_crossing(s: GpuSurface, before: vec3<f32>, p: Path, seed: u32, index: u32) -> bool {
+    if !is_sheet(s) || (s.flags & SURFACE_ABSORBS) == 0u || any(before != p.dir) {
+        return false;
+    }
+    let u = random_f32(seed, index, absorb_dim(p.band, p.bounces));
+    if u >= exp(-absorption_coefficient(s, p.band)) {
+        tally_flux[5] += p.flux;
+        return true;
+    }
+    return false;
+}
+
 // optics::scatter::scatter_dielectric on a photon's path.
 fn scatter_path(p: ptr<function, Path>, point: vec3<f32>, outward: vec3<f32>, ior: f32, thin: bool, u: f32) {
     let s = scatter_dielectric((*p).dir, point, outward, ior, thin, u);
@@ -88,7 +103,7 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             return FOLLOW_END;
         }
         // trace::absorbed: a segment inside coloured glass ends here.
-        if (s.flags & SURFACE_ABSORBS) != 0u && dot((*p).dir, hit.normal) > 0.0 {
+        if (s.flags & SURFACE_ABSORBS) != 0u && !is_sheet(s) && dot((*p).dir, hit.normal) > 0.0 {
             let u = random_f32(seed, index, absorb_dim((*p).band, (*p).bounces));
             if u >= exp(-absorption_coefficient(s, (*p).band) * hit.t) {
                 tally_flux[5] += (*p).flux;
@@ -112,10 +127,18 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             (*p).band = b.band;
             (*p).lambda_nm = b.lambda_nm;
             let u = random_f32(seed, index, scatter_dim(b.band, (*p).bounces));
+            let before = (*p).dir;
             scatter_path(p, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), is_sheet(s), u);
+            if absorbed_crossing(s, before, *p, seed, index) {
+                return FOLLOW_END;
+            }
         } else {
             let u = random_f32(seed, index, scatter_dim((*p).band, (*p).bounces));
+            let before = (*p).dir;
             scatter_path(p, hit.point, hit.normal, path_ior(s, (*p).band, (*p).lambda_nm), is_sheet(s), u);
+            if absorbed_crossing(s, before, *p, seed, index) {
+                return FOLLOW_END;
+            }
         }
         (*p).bounces += 1u;
     }
@@ -154,6 +177,9 @@ fn trace_emitted(index: u32) {
         var child = Path(p.origin, p.dir, p.flux / f32(n), b.band, b.lambda_nm, p.bounces + 1u);
         let u = random_f32(params.seed, index, scatter_dim(b.band, p.bounces));
         scatter_path(&child, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), is_sheet(s), u);
+        if absorbed_crossing(s, p.dir, child, params.seed, index) {
+            continue;
+        }
         var unused: Hit;
         follow(&child, index, &unused);
     }

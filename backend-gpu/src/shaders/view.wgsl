@@ -80,16 +80,23 @@ fn spawn_ray(e: Pending, origin: vec3<f32>, dir: vec3<f32>, band: u32, weight: f
 // ViewContext::through_dielectric: the Fresnel-weighted reflection and
 // refraction (a jittered path: the one branch its number chooses).
 fn through_dielectric(e: Pending, ior: f32, thin: bool, band: u32, weight: f32, tint: vec3<f32>) {
+    // What crossing a tinted sheet keeps (1 elsewhere).
+    let crossing = sheet_crossing_rgb(surfaces[e.object], band);
+    let kept = max(crossing.x, max(crossing.y, crossing.z));
     if jittered() {
         let s = scatter_dielectric(e.dir, e.origin, e.normal, ior, thin, pixel_branch(scramble, params.view_pass, e.hero, e.depth));
-        spawn_ray(e, s.origin, s.dir, band, weight, tint);
+        if thin && all(s.dir == e.dir) {
+            spawn_ray(e, s.origin, s.dir, band, weight * kept, tint * crossing);
+        } else {
+            spawn_ray(e, s.origin, s.dir, band, weight, tint);
+        }
         return;
     }
     let split = split_dielectric(e.dir, e.origin, e.normal, ior, thin);
     let r = split.reflectance;
     let t = 1.0 - r;
     if t * weight > MIN_VIEW_WEIGHT && !split.tir {
-        spawn_ray(e, split.refracted.origin, split.refracted.dir, band, weight * t, tint * t);
+        spawn_ray(e, split.refracted.origin, split.refracted.dir, band, weight * t * kept, tint * t * crossing);
     }
     if r * weight > MIN_VIEW_WEIGHT {
         spawn_ray(e, split.reflected.origin, split.reflected.dir, band, weight * r, tint * r);

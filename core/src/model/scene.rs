@@ -635,9 +635,10 @@ pub enum MaterialKind {
         /// A sheet of no thickness (glTF's thin-walled transmission, for
         /// glass without `KHR_materials_volume` or an open mesh): it
         /// reflects both faces' share ([`crate::optics::fresnel::sheet_reflectance`])
-        /// and passes the rest straight on, so it may be any shape, has no
-        /// inside to absorb in (`attenuation` must be `None`) and spreads no
-        /// colours apart.
+        /// and passes the rest straight on, so it may be any shape and
+        /// spreads no colours apart. Its `attenuation` tints what crosses
+        /// it: a crossing keeps `color` (glTF's base colour of thin-walled
+        /// glass; `distance` is not used).
         thin: bool,
     },
     /// Perfect mirror.

@@ -330,14 +330,10 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             }
         }
         MaterialKind::Mirror => Ok(()),
-        MaterialKind::Dielectric { dispersion, outside, attenuation, thin } => {
+        MaterialKind::Dielectric { dispersion, outside, attenuation, .. } => {
             validate_dispersion(c, "ior", dispersion, bands)?;
             validate_dispersion(c, "outside_ior", outside, bands)?;
             match attenuation {
-                Some(_) if *thin => Err(c.err(
-                    "attenuation_color",
-                    "a thin sheet has no inside to absorb in: leave out the attenuation or make the glass solid",
-                )),
                 Some(a) => validate_attenuation(c, a),
                 None => Ok(()),
             }

@@ -5,7 +5,7 @@
 use crate::model::bands::{BandTable, VISIBLE_NM};
 use crate::model::dispersion::Dispersion;
 use crate::model::photon::WHITE_BAND;
-use crate::model::scene::{Checker, MaterialKind, Texture};
+use crate::model::scene::{Attenuation, Checker, MaterialKind, Texture};
 use crate::optics::absorption::Absorption;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
@@ -117,6 +117,26 @@ impl DielectricOptics {
         }
     }
 
+    /// What a crossing of this thin sheet keeps of a `band` path (white:
+    /// the channels' mean): its tint, 1 for clear sheets and solid glass.
+    #[inline]
+    pub fn sheet_crossing(&self, band: u16) -> f32 {
+        match (&self.absorption, self.thin) {
+            (Some(a), true) => a.transmittance(band, 1.0),
+            _ => 1.0,
+        }
+    }
+
+    /// What a crossing of this thin sheet keeps of each RGB channel of a
+    /// view path of `band` ([`crate::optics::absorption::Absorption::view_transmittance`]).
+    #[inline]
+    pub fn sheet_crossing_rgb(&self, band: u16) -> Vec3 {
+        match (&self.absorption, self.thin) {
+            (Some(a), true) => a.view_transmittance(band, 1.0),
+            _ => Vec3::ONE,
+        }
+    }
+
     /// True when the bands do not all share one index.
     #[inline]
     pub fn is_dispersive(&self) -> bool {
@@ -160,7 +180,12 @@ impl Surface {
                     splits_photons: false,
                     splits_view_rays: false,
                     spectrum: IorCurve::new(dispersion, outside),
-                    absorption: attenuation.as_ref().and_then(|a| Absorption::new(a, bands)),
+                    // A sheet's crossing keeps the colour: its absorption is
+                    // that of a unit length ([`DielectricOptics::sheet_crossing`]).
+                    absorption: attenuation
+                        .as_ref()
+                        .map(|a| if *thin { Attenuation { distance: 1.0, ..*a } } else { *a })
+                        .and_then(|a| Absorption::new(&a, bands)),
                     thin: *thin,
                 })
             }

@@ -160,13 +160,23 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
             }
             Surface::Dielectric(glass) if p.band == WHITE_BAND && glass.splits_photons => {
                 let paths = settings.wavelengths.paths(scene.bands.len());
+                let before = p.ray.direction;
+                let tinted = |band: u16, after: Vec3, bounces: u32| {
+                    absorbed_crossing(glass, before, after, band, || {
+                        random_f32(settings.seed, index, dim::absorb(band, bounces))
+                    })
+                };
                 if paths == 1 {
                     let (band, lambda_nm) = sample_band(scene, index);
                     p.band = band;
                     p.lambda_nm = lambda_nm;
                     let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
                     let ior = glass.path_ior(band, lambda_nm, &scene.bands);
-                    p.ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, glass.thin, u);
+                    p.ray = scatter_dielectric(before, hit.point, hit.normal, ior, glass.thin, u);
+                    if tinted(band, p.ray.direction, p.bounces) {
+                        stats.flux_absorbed += f64::from(p.flux);
+                        return;
+                    }
                     p.bounces += 1;
                     continue;
                 }
@@ -174,8 +184,12 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                 for (band, lambda_nm) in split_bands(scene, index) {
                     let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
                     let ior = glass.path_ior(band, lambda_nm, &scene.bands);
-                    let ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, glass.thin, u);
+                    let ray = scatter_dielectric(before, hit.point, hit.normal, ior, glass.thin, u);
                     let child = Path { ray, flux: p.flux / paths as f32, band, lambda_nm, bounces: p.bounces + 1 };
+                    if tinted(band, ray.direction, p.bounces) {
+                        stats.flux_absorbed += f64::from(child.flux);
+                        continue;
+                    }
                     trace_path(scene, index, child, out, stats);
                 }
                 return;
@@ -183,7 +197,14 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
             Surface::Dielectric(glass) => {
                 let u = random_f32(settings.seed, index, dim::scatter(p.band, p.bounces));
                 let ior = glass.path_ior(p.band, p.lambda_nm, &scene.bands);
-                p.ray = scatter_dielectric(p.ray.direction, hit.point, hit.normal, ior, glass.thin, u);
+                let before = p.ray.direction;
+                p.ray = scatter_dielectric(before, hit.point, hit.normal, ior, glass.thin, u);
+                if absorbed_crossing(glass, before, p.ray.direction, p.band, || {
+                    random_f32(settings.seed, index, dim::absorb(p.band, p.bounces))
+                }) {
+                    stats.flux_absorbed += f64::from(p.flux);
+                    return;
+                }
             }
             Surface::Diffuse { .. } => unreachable!("handled above"),
         }
@@ -208,8 +229,23 @@ pub fn stored_wavelength(bands: &BandTable, band: u16, lambda_nm: Option<f32>) -
 /// ([`dim::absorb`]): Russian roulette, so survivors keep their flux and
 /// both estimators (counts and flux) stay unbiased.
 pub fn absorbed(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t: f32, band: u16, u: impl FnOnce() -> f32) -> bool {
-    let Some(absorption) = &glass.absorption else { return false };
+    let Some(absorption) = glass.absorption.as_ref().filter(|_| !glass.thin) else { return false };
     dir.dot(normal) > 0.0 && u() >= absorption.transmittance(band, t)
+}
+
+/// Whether a tinted thin sheet absorbs the photon path of `band` that
+/// crossed it (it left along `after` as it came along `before`): with
+/// probability 1 − its crossing's transmittance
+/// ([`DielectricOptics::sheet_crossing`]) against the uniform number `u`
+/// ([`dim::absorb`], unused at a sheet by [`absorbed`]), as Russian roulette.
+pub fn absorbed_crossing(
+    glass: &DielectricOptics,
+    before: Vec3,
+    after: Vec3,
+    band: u16,
+    u: impl FnOnce() -> f32,
+) -> bool {
+    glass.thin && glass.absorption.is_some() && before == after && u() >= glass.sheet_crossing(band)
 }
 
 /// The band a white photon continues as when it does not split

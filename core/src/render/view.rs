@@ -145,7 +145,7 @@ impl<'a> ViewContext<'a> {
                     .map(|HeroViewPath { hero, band, lambda_nm, weight: w }| {
                         let share = weight * w.abs().max_element();
                         let p = ViewPath { band, hero, lambda_nm, weight: share, tint: tint * w, ..path };
-                        w * self.through_dielectric(ray, &hit, (self.ior(glass, &p), glass.thin), p, points)
+                        w * self.through_dielectric(ray, &hit, (self.ior(glass, &p), glass), p, points)
                     })
                     .sum(),
                 None => self
@@ -159,12 +159,12 @@ impl<'a> ViewContext<'a> {
                         let share = weight * info.weight.abs().max_element();
                         let band_path = ViewPath { band: b as u16, weight: share, tint: tint * info.weight, ..path };
                         info.weight
-                            * self.through_dielectric(ray, &hit, (glass.ior(b as u16), glass.thin), band_path, points)
+                            * self.through_dielectric(ray, &hit, (glass.ior(b as u16), glass), band_path, points)
                     })
                     .sum(),
             },
             Surface::Dielectric(glass) => {
-                self.through_dielectric(ray, &hit, (self.ior(glass, &path), glass.thin), path, points)
+                self.through_dielectric(ray, &hit, (self.ior(glass, &path), glass), path, points)
             }
         }
     }
@@ -175,24 +175,29 @@ impl<'a> ViewContext<'a> {
     }
 
     /// Fresnel-weighted reflection plus refraction at a dielectric hit
-    /// (its index, and whether it is a thin sheet).
+    /// (the path's index there, and the glass: a tinted thin sheet keeps
+    /// its crossing's colour of what passes it).
     fn through_dielectric(
         &self,
         ray: &Ray,
         hit: &Hit,
-        (ior, thin): (f32, bool),
+        (ior, glass): (f32, &DielectricOptics),
         path: ViewPath,
         points: &mut Vec<VisiblePoint>,
     ) -> Vec3 {
+        let thin = glass.thin;
+        let crossing = glass.sheet_crossing_rgb(path.band);
+        let crossed =
+            |p: ViewPath| ViewPath { weight: p.weight * crossing.max_element(), tint: p.tint * crossing, ..p };
         if let Some(sampler) = path.sampler.filter(|_| self.scene.scene.render.view_paths.jittered()) {
             // One branch, chosen with its Fresnel probability, as photons choose theirs.
             let next = ViewPath { depth: path.depth + 1, ..path };
             let u = sampler.branch(path.hero, path.depth);
-            return self.radiance(
-                &scatter_dielectric(ray.direction, hit.point, hit.normal, ior, thin, u),
-                next,
-                points,
-            );
+            let out = scatter_dielectric(ray.direction, hit.point, hit.normal, ior, thin, u);
+            if thin && out.direction == ray.direction {
+                return crossing * self.radiance(&out, crossed(next), points);
+            }
+            return self.radiance(&out, next, points);
         }
         let split = split_dielectric(ray.direction, hit.point, hit.normal, ior, thin);
         let r = split.reflectance;
@@ -205,7 +210,7 @@ impl<'a> ViewContext<'a> {
         if t * path.weight > MIN_VIEW_WEIGHT
             && let Some(refracted) = split.refracted
         {
-            sum += self.radiance(&refracted, branch(t), points) * t;
+            sum += crossing * self.radiance(&refracted, crossed(branch(t)), points) * t;
         }
         sum
     }
@@ -339,7 +344,7 @@ pub fn gathers_at(scene: &PreparedScene, depth: u32) -> bool {
 /// glass, else all of it.
 pub fn glass_transmittance(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t: f32, band: u16) -> Vec3 {
     match &glass.absorption {
-        Some(absorption) if dir.dot(normal) > 0.0 => absorption.view_transmittance(band, t),
+        Some(absorption) if dir.dot(normal) > 0.0 && !glass.thin => absorption.view_transmittance(band, t),
         _ => Vec3::ONE,
     }
 }

@@ -97,24 +97,26 @@ impl EnvironmentLookup {
         let power: Vec<f32> = (0..w * h).map(|i| luminance(texels[i]) * self.strength * d_omega(i / w)).collect();
         let cut = Cut { w, h, power: &power };
         let whole = Region { x: (0, w), y: (0, h) };
-        let mut regions: Vec<Region> = match h {
+        let halves = match h {
             1 => Vec::from([whole]),
             _ => Vec::from([Region { y: (0, h / 2), ..whole }, Region { y: (h / 2, h), ..whole }]),
         };
+        // Each region with its power, summed once.
+        let mut regions: Vec<(Region, f32)> = halves.into_iter().map(|r| (r, cut.power(&r))).collect();
         while regions.len() < n {
             let splittable = regions
                 .iter()
                 .enumerate()
-                .filter(|(_, r)| r.texels() > 1)
-                .max_by(|a, b| cut.power(a.1).total_cmp(&cut.power(b.1)));
-            let Some((i, &region)) = splittable else { break };
+                .filter(|(_, (r, _))| r.texels() > 1)
+                .max_by(|a, b| a.1.1.total_cmp(&b.1.1));
+            let Some((i, &(region, _))) = splittable else { break };
             let (a, b) = cut.split(region);
-            regions[i] = a;
-            regions.push(b);
+            regions[i] = (a, cut.power(&a));
+            regions.push((b, cut.power(&b)));
         }
         regions
             .iter()
-            .filter_map(|r| {
+            .filter_map(|(r, total)| {
                 let (mut rgb, mut toward) = (Vec3::ZERO, Vec3::ZERO);
                 for y in r.y.0..r.y.1 {
                     for x in r.x.0..r.x.1 {
@@ -123,7 +125,7 @@ impl EnvironmentLookup {
                         toward += dir * power[y * w + x];
                     }
                 }
-                let (length, total) = (sqrt(toward.length_squared()), cut.power(r));
+                let length = sqrt(toward.length_squared());
                 (length > 0.0 && rgb.max_element() > 0.0)
                     .then(|| CutLight { toward: toward / length, rgb: rgb * (length / total) })
             })

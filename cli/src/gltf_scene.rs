@@ -410,12 +410,11 @@ fn material(
             unused.push("baseColorTexture of glass (its colour is the volume's attenuation)");
         }
         // Without a volume (or with thicknessFactor 0) glTF's transmission
-        // is thin-walled: a sheet, which may be any shape.
-        // Its base colour tints what crosses the sheet.
+        // is thin-walled: a sheet, which may be any shape, tinted by its
+        // base colour (a thin-walled volume's attenuation is named as left out).
         let thin = m.volume().is_none_or(|v| v.thickness_factor() == 0.0);
         let [r, g, b, _] = pbr.base_color_factor();
         let tint = Vec3::new(r, g, b).clamp(Vec3::splat(1e-4), Vec3::ONE);
-        // (A thin-walled volume's attenuation is named as left out.)
         let volume = attenuation(m, &mut unused);
         let attenuation = match thin {
             true => (tint != Vec3::ONE).then_some(Attenuation { color: tint, distance: 1.0 }),

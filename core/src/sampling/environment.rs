@@ -104,11 +104,8 @@ impl EnvironmentLookup {
         // Each region with its power, summed once.
         let mut regions: Vec<(Region, f32)> = halves.into_iter().map(|r| (r, cut.power(&r))).collect();
         while regions.len() < n {
-            let splittable = regions
-                .iter()
-                .enumerate()
-                .filter(|(_, (r, _))| r.texels() > 1)
-                .max_by(|a, b| a.1.1.total_cmp(&b.1.1));
+            let splittable =
+                regions.iter().enumerate().filter(|(_, (r, _))| r.texels() > 1).max_by(|a, b| a.1.1.total_cmp(&b.1.1));
             let Some((i, &(region, _))) = splittable else { break };
             let (a, b) = cut.split(region);
             regions[i] = (a, cut.power(&a));

@@ -18,7 +18,7 @@ use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, lt, random_f32};
 use prismatic_core::model::photon::{Photon, TraceStats, WHITE_BAND, oct_pack};
 use prismatic_core::model::scene::WavelengthSampling;
-use prismatic_core::optics::surface::Surface;
+use prismatic_core::optics::surface::{DielectricOptics, Surface};
 use prismatic_core::photons::emit::light_of;
 use prismatic_core::photons::trace::{
     absorbed, absorbed_crossing, sample_band, split_bands, stored_wavelength, trace_emitted,
@@ -452,25 +452,12 @@ fn absorb_lanes(
     hit: &HitX8,
     dir: Vec3x8,
     flux: f32x8,
-    [emission, band, bounces]: [u32x8; 3],
+    ids: [u32x8; 3],
 ) -> f32x8 {
-    if !at_glass.any() {
-        return f32x8::ZERO;
-    }
-    let seed = ctx.scene.scene.render.seed;
-    let (objects, t, f) = (hit.object.as_array(), hit.t.as_array(), flux.as_array());
-    let (e, b, k) = (emission.as_array(), band.as_array(), bounces.as_array());
-    let mut out = [0.0f32; 8];
-    for i in lanes(at_glass) {
-        let Surface::Dielectric(glass) = &ctx.scene.surfaces[objects[i] as usize] else { continue };
-        let band = b[i] as u16;
-        let u = || prismatic_core::util::rng::random_f32(seed, e[i], dim::absorb(band, k[i]));
-        if absorbed(glass, dir.lane(i), hit.normal.lane(i), t[i], band, u) {
-            out[i] = ON;
-            sink.stats.flux_absorbed += f64::from(f[i]);
-        }
-    }
-    f32x8::new(out)
+    let t = hit.t.as_array();
+    roulette_lanes(ctx, sink, at_glass, hit.object, flux, ids, |i, glass, band, u| {
+        absorbed(glass, dir.lane(i), hit.normal.lane(i), t[i], band, u)
+    })
 }
 
 /// The lanes of `at_sheet` (hits on tinted thin sheets, just scattered
@@ -485,20 +472,37 @@ fn absorb_crossing_lanes(
     hit: &HitX8,
     (before, after): (Vec3x8, Vec3x8),
     flux: f32x8,
-    [emission, band, bounces]: [u32x8; 3],
+    ids: [u32x8; 3],
 ) -> f32x8 {
-    if !at_sheet.any() {
+    roulette_lanes(ctx, sink, at_sheet, hit.object, flux, ids, |i, glass, band, u| {
+        absorbed_crossing(glass, before.lane(i), after.lane(i), band, u)
+    })
+}
+
+/// The lanes of `mask` (hits on glass `objects`) that `absorbs` (lane, the
+/// glass, the path's band, its [`dim::absorb`] number) ends: the core's
+/// Russian roulette lane by lane, each lane's absorbed flux tallied.
+fn roulette_lanes(
+    ctx: &TraceContext<'_>,
+    sink: &mut Sink,
+    mask: f32x8,
+    objects: f32x8,
+    flux: f32x8,
+    [emission, band, bounces]: [u32x8; 3],
+    absorbs: impl Fn(usize, &DielectricOptics, u16, &dyn Fn() -> f32) -> bool,
+) -> f32x8 {
+    if !mask.any() {
         return f32x8::ZERO;
     }
     let seed = ctx.scene.scene.render.seed;
-    let (objects, f) = (hit.object.as_array(), flux.as_array());
+    let (objects, f) = (objects.as_array(), flux.as_array());
     let (e, b, k) = (emission.as_array(), band.as_array(), bounces.as_array());
     let mut out = [0.0f32; 8];
-    for i in lanes(at_sheet) {
+    for i in lanes(mask) {
         let Surface::Dielectric(glass) = &ctx.scene.surfaces[objects[i] as usize] else { continue };
         let band = b[i] as u16;
         let u = || prismatic_core::util::rng::random_f32(seed, e[i], dim::absorb(band, k[i]));
-        if absorbed_crossing(glass, before.lane(i), after.lane(i), band, u) {
+        if absorbs(i, glass, band, &u) {
             out[i] = ON;
             sink.stats.flux_absorbed += f64::from(f[i]);
         }

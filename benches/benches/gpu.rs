@@ -5,12 +5,14 @@
 //! the paper's configuration with progressive radii, the engine-facing
 //! path: photons, grid levels, gather at resident visible points, sums;
 //! also `frame/gpu-session-caustic`, a dense caustic filling the view,
-//! where the finer grid levels carry most points). Every measurement ends
+//! where the finer grid levels carry most points), `lights/{spot,environment}`
+//! (a pass's photons under the `sphere`'s spot and under the studio
+//! environment, and each one's view pass). Every measurement ends
 //! with a device sync. On lavapipe they only show that the stages run;
 //! real figures need a GPU.
 
-use criterion::{Criterion, criterion_group, criterion_main};
-use prismatic_benches::{frame, paper_config};
+use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use prismatic_benches::{frame, lit_by_each_light, paper_config};
 use prismatic_core::model::scene::RadiusMode;
 use prismatic_core::{Backend, NoProgress, Render};
 use prismatic_gpu::{AdapterChoice, GpuBackend};
@@ -52,6 +54,23 @@ fn gpu_groups(c: &mut Criterion) {
             session.context().wait().unwrap();
         })
     });
+    group.finish();
+    let mut group = c.benchmark_group("lights");
+    for (name, scene) in lit_by_each_light(1_000_000) {
+        let mut render = gpu.prepare(&scene).expect("prepare");
+        group.throughput(Throughput::Elements(u64::from(scene.scene.render.photons)));
+        group.bench_function(BenchmarkId::new(name, "trace"), |b| {
+            b.iter(|| render.photon_map(0, &mut NoProgress).unwrap())
+        });
+        group.throughput(Throughput::Elements(u64::from(scene.scene.render.width * scene.scene.render.height)));
+        group.bench_function(BenchmarkId::new(name, "view"), |b| {
+            b.iter(|| {
+                let mut session = gpu.session(&scene).unwrap();
+                session.ready(&mut NoProgress).unwrap();
+                session.context().wait().unwrap();
+            })
+        });
+    }
 }
 
 criterion_group! {

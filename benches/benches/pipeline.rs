@@ -223,22 +223,11 @@ fn progressive_group(c: &mut Criterion) {
     g.finish();
 }
 
-/// What preparing a changed scene costs, against preparing it anew.
+/// A pass's photons and the view pass under the spot and under the studio environment.
 fn lights_group(c: &mut Criterion) {
     let mut g = c.benchmark_group("lights");
     g.sample_size(10);
-    let doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
-    let mut spot = doc.scene.clone();
-    spot.render = prismatic_core::RenderSettings { photons: 100_000, ..prismatic_core::RenderSettings::default() };
-    let mut studio = spot.clone();
-    studio.lights = vec![prismatic_core::Light::Environment {
-        map: prismatic_core::model::environment::EnvironmentMap::studio(),
-        strength: 1.0,
-        rotation_deg: 0.0,
-        spectrum: Default::default(),
-    }];
-    for (name, scene) in [("spot", spot), ("environment", studio)] {
-        let scene = PreparedScene::new(scene).expect("valid");
+    for (name, scene) in prismatic_benches::lit_by_each_light(100_000) {
         let mut render = CpuBackend::new().prepare(&scene).unwrap();
         g.throughput(Throughput::Elements(u64::from(scene.scene.render.photons)));
         g.bench_function(BenchmarkId::new(name, "trace"), |b| {
@@ -256,6 +245,7 @@ fn lights_group(c: &mut Criterion) {
     g.finish();
 }
 
+/// What preparing a changed scene costs, against preparing it anew.
 fn scene_group(c: &mut Criterion) {
     let mut g = c.benchmark_group("scene");
     g.sample_size(10);

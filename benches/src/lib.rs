@@ -1,9 +1,11 @@
 //! Shared set-up for the criterion benches: the paper's configuration of a
-//! built-in scene, and its frame through the render protocol.
+//! built-in scene, the same scene under each kind of light, and a frame
+//! through the render protocol.
 
 use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::environment::EnvironmentMap;
 use prismatic_core::model::scene::RadiusMode;
-use prismatic_core::{Backend, Image, NoProgress, PreparedScene};
+use prismatic_core::{Backend, Image, Light, NoProgress, PreparedScene, RenderSettings};
 
 /// The paper's configuration (Table 5): 400×400, 20,000 white photons, 7 bands,
 /// a fixed gather radius, applied to built-in scene `name`, with `photons`
@@ -19,6 +21,24 @@ pub fn paper_config(name: &str, photons: u32) -> PreparedScene {
     r.projection_maps = false;
     r.radius_mode = RadiusMode::Fixed;
     PreparedScene::new(doc.scene).expect("built-in scene is valid")
+}
+
+/// The built-in `sphere` with today's default settings and `photons` a pass,
+/// lit by its spot (`"spot"`) and by the built-in studio environment instead
+/// (`"environment"`): what each light costs in a pass.
+pub fn lit_by_each_light(photons: u32) -> [(&'static str, PreparedScene); 2] {
+    let doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
+    let mut spot = doc.scene;
+    spot.render = RenderSettings { photons, ..RenderSettings::default() };
+    let mut studio = spot.clone();
+    studio.lights = vec![Light::Environment {
+        map: EnvironmentMap::studio(),
+        strength: 1.0,
+        rotation_deg: 0.0,
+        spectrum: Default::default(),
+    }];
+    let [spot, studio] = [spot, studio].map(|s| PreparedScene::new(s).expect("valid"));
+    [("spot", spot), ("environment", studio)]
 }
 
 /// The paper's frame of `scene` (with fixed radii) on `backend`: a render

@@ -4,7 +4,7 @@
 //! device lost) into `BackendError`s, and the count of the bytes that cross
 //! between host and device (every write and read goes through it).
 
-use prismatic_core::BackendError;
+use prismatic_core::{Arithmetic, BackendError};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
@@ -106,6 +106,16 @@ pub fn test_context(what: &str) -> Option<GpuContext> {
 }
 
 impl GpuContext {
+    /// How this device's shaders round: strict on a software rasterizer
+    /// (lavapipe), relaxed on a GPU's compiler, and on an engine's device,
+    /// whose adapter the context cannot see.
+    pub fn arithmetic(&self) -> Arithmetic {
+        match &self.adapter {
+            Some(info) if !is_hardware(info) => Arithmetic::Strict,
+            _ => Arithmetic::Relaxed,
+        }
+    }
+
     /// Creates a device on the best adapter (`choice` says which count).
     pub fn new(choice: AdapterChoice) -> Result<Self, BackendError> {
         // Only the backends searched below (no EGL opened for nothing).

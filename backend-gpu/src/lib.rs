@@ -37,7 +37,7 @@ pub use pixels::{PIXEL_BYTES, SOFTWARE_GATHER_SPAN};
 pub use session::{DepthEncoding, FrameTextures, GpuSession, NormalEncoding, PASSES_IN_FLIGHT};
 
 use pipelines::Pipelines;
-use prismatic_core::{Backend, BackendError, PreparedScene, Render};
+use prismatic_core::{Arithmetic, Backend, BackendError, PreparedScene, Render};
 use std::sync::Arc;
 
 /// Options that change how the work is cut, not what it computes.
@@ -101,6 +101,10 @@ impl GpuBackend {
 impl Backend for GpuBackend {
     fn name(&self) -> &'static str {
         "gpu"
+    }
+
+    fn arithmetic(&self) -> Arithmetic {
+        self.ctx.arithmetic()
     }
 
     fn prepare(&mut self, scene: &PreparedScene) -> Result<Box<dyn Render>, BackendError> {

@@ -19,29 +19,29 @@ pub struct ParityReport {
     pub worst_band_flux: f64,
 }
 
-/// Compares two photon maps (both in canonical order).
-pub fn compare_maps(expected: &PhotonMap, got: &PhotonMap, bands: usize) -> Result<ParityReport, String> {
-    compare_maps_allowing(expected, got, bands, OUTLIER_FRACTION)
-}
-
-/// [`compare_maps`] with `outlier_fraction` of the photons allowed to be
-/// outliers, and each band's total flux allowed to move by as much (an
-/// outlier photon missing from a band takes its flux along).
-pub fn compare_maps_allowing(
+/// Compares two photon maps (both in canonical order) under `tol`.
+pub fn compare_maps(
     expected: &PhotonMap,
     got: &PhotonMap,
     bands: usize,
-    outlier_fraction: f64,
+    tol: Tolerance,
 ) -> Result<ParityReport, String> {
     let (a, b) = (&expected.photons, &got.photons);
     let mut report = ParityReport::default();
+    // Matched outliers beyond ten times the tolerance (said when it fails).
+    let mut far = 0;
     let (mut i, mut j) = (0, 0);
     while i < a.len() || j < b.len() {
         match (a.get(i), b.get(j)) {
             (Some(x), Some(y)) if x.key() == y.key() => {
-                let position_ok = (0..3).all(|k| close(x.position[k], y.position[k], POSITION_REL, POSITION_ABS));
-                if !position_ok || !close(x.flux, y.flux, FLUX_REL, 0.0) {
+                let within = |scale: f32| {
+                    (0..3).all(|k| {
+                        close(x.position[k], y.position[k], scale * tol.position_rel, scale * tol.position_abs)
+                    }) && close(x.flux, y.flux, scale * tol.flux_rel, 0.0)
+                };
+                if !within(1.0) {
                     report.outliers += 1;
+                    far += usize::from(!within(10.0));
                 }
                 report.matched += 1;
                 i += 1;
@@ -61,9 +61,13 @@ pub fn compare_maps_allowing(
             }
         }
     }
-    let allowed = MIN_OUTLIERS.max((outlier_fraction * a.len().max(b.len()) as f64) as usize);
+    let allowed = MIN_OUTLIERS.max((tol.outlier_fraction * a.len().max(b.len()) as f64) as usize);
     if report.outliers > allowed {
-        return Err(format!("{} outlier photons of {} (allowed {allowed})", report.outliers, a.len()));
+        return Err(format!(
+            "{} outlier photons of {} (allowed {allowed}; {far} beyond 10× the tolerance)",
+            report.outliers,
+            a.len()
+        ));
     }
     let per_band = |m: &PhotonMap| {
         let mut f = vec![0.0f64; bands + 1];
@@ -78,27 +82,30 @@ pub fn compare_maps_allowing(
         // Bands that carry almost nothing are compared against the whole map's flux.
         let rel = (x - y).abs() / x.abs().max(y.abs()).max(1e-3 * total).max(f64::MIN_POSITIVE);
         report.worst_band_flux = report.worst_band_flux.max(rel);
-        if rel > BAND_FLUX_REL.max(outlier_fraction) {
+        if rel > BAND_FLUX_REL.max(tol.outlier_fraction) {
             return Err(format!("band {band}: total flux {x} vs {y} ({:.3} % apart)", rel * 100.0));
         }
     }
     Ok(report)
 }
 
-/// Compares two images pixel by pixel.
-pub fn compare_images(expected: &Image, got: &Image) -> Result<usize, String> {
+/// Compares two images pixel by pixel under `tol`.
+pub fn compare_images(expected: &Image, got: &Image, tol: Tolerance) -> Result<usize, String> {
     if (expected.width, expected.height) != (got.width, got.height) {
         return Err(format!("sizes differ: {}x{} vs {}x{}", expected.width, expected.height, got.width, got.height));
     }
-    let bad = expected
-        .pixels
-        .iter()
-        .zip(&got.pixels)
-        .filter(|(a, b)| !(0..3).all(|k| close(a[k], b[k], PIXEL_REL, PIXEL_ABS)))
-        .count();
-    let allowed = (PIXEL_OUTLIER_FRACTION * expected.pixels.len() as f64).ceil() as usize;
+    let differing = |scale: f32| {
+        let pairs = expected.pixels.iter().zip(&got.pixels);
+        pairs.filter(|(a, b)| !(0..3).all(|k| close(a[k], b[k], scale * tol.pixel_rel, scale * tol.pixel_abs))).count()
+    };
+    let bad = differing(1.0);
+    let allowed = (tol.pixel_outlier_fraction * expected.pixels.len() as f64).ceil() as usize;
     if bad > allowed {
-        return Err(format!("{bad} of {} pixels differ (allowed {allowed})", expected.pixels.len()));
+        return Err(format!(
+            "{bad} of {} pixels differ (allowed {allowed}; {} beyond 10× the tolerance)",
+            expected.pixels.len(),
+            differing(10.0)
+        ));
     }
     Ok(bad)
 }

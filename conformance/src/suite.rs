@@ -7,6 +7,7 @@
 
 use crate::compare::{compare_images, compare_maps};
 use crate::scenes;
+use crate::tolerance::Tolerance;
 use prismatic_core::model::scene::{Light, PhotonSequence, RadiusMode, ViewPaths};
 use prismatic_core::{
     Accumulation, Backend, BackendError, BandSpec, Change, LayerFrame, NoProgress, PhotonMap, PreparedScene,
@@ -45,6 +46,7 @@ fn edited(scene: &PreparedScene, edit: impl FnOnce(&mut Scene)) -> PreparedScene
 /// order, positions and flux within the parity tolerances), with the same
 /// emissions, for several passes, with Sobol and with random photons.
 pub fn photon_maps_match_the_reference(backend: &mut dyn Backend) {
+    let tol = Tolerance::of(backend.arithmetic());
     let sequences = [PhotonSequence::Sobol, PhotonSequence::Random];
     for ((name, scene), sequence) in scenes::with_caustics().into_iter().flat_map(|s| sequences.map(|q| (s.clone(), q)))
     {
@@ -57,7 +59,7 @@ pub fn photon_maps_match_the_reference(backend: &mut dyn Backend) {
             assert!(map.is_canonical(), "{case}: not in canonical order");
             assert!(!expected.photons.is_empty(), "{case}: the reference stores no photon to compare");
             assert_eq!(map.stats.emitted, expected.stats.emitted, "{case}: emitted");
-            compare_maps(&expected, &map, scene.bands.len()).unwrap_or_else(|e| panic!("{case}: {e}"));
+            compare_maps(&expected, &map, scene.bands.len(), tol).unwrap_or_else(|e| panic!("{case}: {e}"));
         }
     }
 }
@@ -65,6 +67,7 @@ pub fn photon_maps_match_the_reference(backend: &mut dyn Backend) {
 /// The paper's frame (one pass, fixed radius) and a progressive render's
 /// first passes give the reference's image, and the same visible points.
 pub fn images_match_the_reference(backend: &mut dyn Backend) {
+    let tol = Tolerance::of(backend.arithmetic());
     for (name, scene) in scenes::with_caustics() {
         for mode in [RadiusMode::Fixed, RadiusMode::Progressive] {
             let scene = edited(&scene, |s| s.render.radius_mode = mode);
@@ -75,9 +78,9 @@ pub fn images_match_the_reference(backend: &mut dyn Backend) {
             run(reference.as_mut(), 0..passes);
             run(got.as_mut(), 0..passes);
             let (expected, image) = (reference.image().unwrap(), got.image().unwrap());
-            compare_images(&reference.base().unwrap(), &got.base().unwrap())
+            compare_images(&reference.base().unwrap(), &got.base().unwrap(), tol)
                 .unwrap_or_else(|e| panic!("{case}: image without caustics: {e}"));
-            compare_images(&expected, &image).unwrap_or_else(|e| panic!("{case}: {e}"));
+            compare_images(&expected, &image, tol).unwrap_or_else(|e| panic!("{case}: {e}"));
             let (want, have) = (reference.stats().unwrap(), got.stats().unwrap());
             assert_eq!(have.visible_points, want.visible_points, "{case}: visible points");
             assert_eq!(have.passes, passes, "{case}: passes");
@@ -89,6 +92,7 @@ pub fn images_match_the_reference(backend: &mut dyn Backend) {
 /// reference's (the same visible points: only those behind a specular
 /// bounce), and partial renders merge into one run's sums bit for bit.
 pub fn light_traced_images_match_the_reference(backend: &mut dyn Backend) {
+    let tol = Tolerance::of(backend.arithmetic());
     for (name, scene) in scenes::with_caustics() {
         let scene = edited(&scene, |s| s.render.light_tracing = true);
         let case = format!("{}, {name}, light tracing, 2 passes", backend.name());
@@ -96,10 +100,10 @@ pub fn light_traced_images_match_the_reference(backend: &mut dyn Backend) {
         let mut got = prepare(backend, &scene);
         run(reference.as_mut(), 0..2);
         run(got.as_mut(), 0..2);
-        compare_images(&reference.base().unwrap(), &got.base().unwrap())
+        compare_images(&reference.base().unwrap(), &got.base().unwrap(), tol)
             .unwrap_or_else(|e| panic!("{case}: image without caustics: {e}"));
         let (expected, image) = (reference.image().unwrap(), got.image().unwrap());
-        compare_images(&expected, &image).unwrap_or_else(|e| panic!("{case}: {e}"));
+        compare_images(&expected, &image, tol).unwrap_or_else(|e| panic!("{case}: {e}"));
         let (want, have) = (reference.stats().unwrap(), got.stats().unwrap());
         assert_eq!(have.visible_points, want.visible_points, "{case}: visible points");
         let (mut first, mut second) = (prepare(backend, &scene), prepare(backend, &scene));
@@ -120,6 +124,7 @@ pub fn light_traced_images_match_the_reference(backend: &mut dyn Backend) {
 /// 0's view again), as does a new seed (a change of the view: the view
 /// paths take their numbers from it).
 pub fn sampled_view_paths_match_the_reference(backend: &mut dyn Backend) {
+    let tol = Tolerance::of(backend.arithmetic());
     let kinds = [(ViewPaths::Sampled, false), (ViewPaths::Sampled, true), (ViewPaths::Hero, true)];
     for (name, scene) in scenes::with_caustics() {
         for (view_paths, light_tracing) in kinds {
@@ -134,7 +139,7 @@ pub fn sampled_view_paths_match_the_reference(backend: &mut dyn Backend) {
             run(reference.as_mut(), 0..3);
             run(got.as_mut(), 0..3);
             let (expected, image) = (reference.image().unwrap(), got.image().unwrap());
-            compare_images(&expected, &image).unwrap_or_else(|e| panic!("{case}: {e}"));
+            compare_images(&expected, &image, tol).unwrap_or_else(|e| panic!("{case}: {e}"));
             let base = got.base().unwrap();
             assert!(base.pixels.iter().all(|p| *p == glam::Vec3::ZERO), "{case}: a base with per-pass view paths");
             let (want, have) = (reference.stats().unwrap(), got.stats().unwrap());
@@ -172,6 +177,7 @@ pub fn sampled_view_paths_match_the_reference(backend: &mut dyn Backend) {
 /// bit; leaving the layer gives a fresh render's sums; a frame of another
 /// size is refused.
 pub fn caustic_layers_match_the_reference(backend: &mut dyn Backend) {
+    let tol = Tolerance::of(backend.arithmetic());
     let name = backend.name();
     for (i, (scene_name, scene)) in scenes::with_caustics().into_iter().enumerate() {
         let seen = LayerFrame::seen_by_camera(&scene);
@@ -196,7 +202,7 @@ pub fn caustic_layers_match_the_reference(backend: &mut dyn Backend) {
             let (mut reference, mut got) = (layer(&mut ReferenceBackend, 0..2), layer(backend, 0..2));
             let expected = reference.image().unwrap();
             assert!(expected.pixels.iter().any(|p| p.max_element() > 0.0), "{case}: the reference's layer is black");
-            compare_images(&expected, &got.image().unwrap()).unwrap_or_else(|e| panic!("{case}: {e}"));
+            compare_images(&expected, &got.image().unwrap(), tol).unwrap_or_else(|e| panic!("{case}: {e}"));
             assert!(got.base().unwrap().pixels.iter().all(|p| *p == glam::Vec3::ZERO), "{case}: base");
             assert_eq!(got.stats().unwrap().visible_points, 0, "{case}: visible points");
             let (mut first, mut second) = (layer(backend, 0..1), layer(backend, 1..2));
@@ -299,6 +305,7 @@ pub fn updates_give_a_fresh_renders_sums(backend: &mut dyn Backend) {
 /// Before any pass a render reads out its base and empty sums, and its
 /// statistics count the passes, the photons and the visible points.
 pub fn read_outs_and_statistics(backend: &mut dyn Backend) {
+    let tol = Tolerance::of(backend.arithmetic());
     let scene = scenes::glass_sphere();
     let name = backend.name();
     let mut reference = prepare(&mut ReferenceBackend, &scene);
@@ -307,7 +314,7 @@ pub fn read_outs_and_statistics(backend: &mut dyn Backend) {
     let r = &scene.scene.render;
     assert_eq!((empty.pass_count(), empty.width, empty.height), (0, r.width, r.height), "{name}");
     assert!(empty.sums.iter().all(|s| *s == [0; 3]), "{name}: sums before any pass");
-    compare_images(&reference.base().unwrap(), &render.base().unwrap()).unwrap_or_else(|e| panic!("{name}: {e}"));
+    compare_images(&reference.base().unwrap(), &render.base().unwrap(), tol).unwrap_or_else(|e| panic!("{name}: {e}"));
     assert_eq!(render.stats().unwrap().passes, 0, "{name}");
     run(render.as_mut(), 0..2);
     let stats = render.stats().unwrap();

@@ -1,33 +1,99 @@
-//! Every tolerance the parity tests use, with the reason for its size.
-//! Float compare rule: `|a − b| ≤ max(rel · max(|a|, |b|), abs)`.
+//! Every tolerance the parity tests use, with the reason for its size, in
+//! two sets: [`Tolerance::STRICT`] for backends whose arithmetic rounds as
+//! the reference's does, [`Tolerance::RELAXED`] for a GPU's compiler
+//! ([`Arithmetic`]). Float compare rule: `|a − b| ≤ max(rel · max(|a|, |b|), abs)`.
 
-/// Photon positions: a backend that reorders or fuses f32 operations
-/// (a GPU) differs by a few ulps per operation; over a path of up to a dozen
-/// segments in scenes of size ~10 that is ≲ 1e-4 world units.
-pub const POSITION_ABS: f32 = 1e-4;
-/// Relative part of the position rule (f32 has 1.2e-7; 100 ulps of margin).
-pub const POSITION_REL: f32 = 1e-5;
-/// Photon flux is a product of 1/N factors: exact to an ulp or two.
-pub const FLUX_REL: f32 = 1e-6;
-/// Paths that took another branch at an edge (a Fresnel draw within an ulp
-/// of R, a ray through an edge): at most this fraction of the photons…
-pub const OUTLIER_FRACTION: f64 = 1e-3;
-/// …or this many, whichever is larger (small maps).
+use prismatic_core::Arithmetic;
+
+/// How closely two backends' photon maps and images must agree.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tolerance {
+    /// Photon positions, relative part.
+    pub position_rel: f32,
+    /// Photon positions, absolute part (world units).
+    pub position_abs: f32,
+    /// Photon flux, relative.
+    pub flux_rel: f32,
+    /// Photons allowed to be outliers (missing on one side, or elsewhere),
+    /// as a fraction of the map (at least [`MIN_OUTLIERS`]); each band's
+    /// total flux may move by as much (an outlier takes its flux along).
+    pub outlier_fraction: f64,
+    /// A pixel matches when each channel is within this relative difference…
+    pub pixel_rel: f32,
+    /// …or this absolute one.
+    pub pixel_abs: f32,
+    /// Pixels allowed to differ by more.
+    pub pixel_outlier_fraction: f64,
+}
+
+impl Tolerance {
+    /// For backends with [`Arithmetic::Strict`] (the reference, the CPU,
+    /// lavapipe):
+    /// - positions: a backend that reorders or fuses an f32 operation here
+    ///   and there differs by a few ulps per operation; over a path of up to
+    ///   a dozen segments in scenes of size ~10 that is ≲ 1e-4 world units
+    ///   (relative: f32 has 1.2e-7; 100 ulps of margin);
+    /// - flux is a product of 1/N factors: exact to an ulp or two;
+    /// - outliers are paths that took another branch at an edge (a Fresnel
+    ///   draw within an ulp of R, a ray through an edge): 0.1 %;
+    /// - pixels: 1e-3 relative, or 1/4 of an 8-bit step at mid-grey in
+    ///   linear light; 0.2 % may differ by more (a view ray through an edge,
+    ///   a gather radius that an outlier photon crosses).
+    pub const STRICT: Tolerance = Tolerance {
+        position_rel: 1e-5,
+        position_abs: 1e-4,
+        flux_rel: 1e-6,
+        outlier_fraction: 1e-3,
+        pixel_rel: 1e-3,
+        pixel_abs: 1e-3,
+        pixel_outlier_fraction: 2e-3,
+    };
+
+    /// For a GPU's compiler ([`Arithmetic::Relaxed`]), measured on an NVIDIA
+    /// H200 (2026-11-26, docs `measurements/gpu.md`): half the photons land
+    /// within 5e-7 of the reference and 97 % within 1e-4, but the rest
+    /// have a long tail (a grazing hit on a far wall, a path through a
+    /// caustic's focus, a hero wavelength one ulp apart through the prism
+    /// go on from their few-ulp start): 0.2–0.3 % beyond 1e-3. Flux is as
+    /// exact as on the CPU. Images follow the photons: a gather radius
+    /// crossed by a moved photon changes a caustic pixel by a percent.
+    /// (The H200 does not meet the image rules yet: it loses visible points
+    /// behind glass, a defect these tolerances are not to hide; see
+    /// `docs/src/measurements/gpu.md`.)
+    pub const RELAXED: Tolerance = Tolerance {
+        position_rel: 1e-3,
+        position_abs: 1e-3,
+        flux_rel: 1e-6,
+        outlier_fraction: 5e-3,
+        pixel_rel: 1e-2,
+        pixel_abs: 1e-3,
+        pixel_outlier_fraction: 1e-2,
+    };
+
+    /// The set for a backend's arithmetic.
+    pub fn of(arithmetic: Arithmetic) -> Tolerance {
+        match arithmetic {
+            Arithmetic::Strict => Tolerance::STRICT,
+            Arithmetic::Relaxed => Tolerance::RELAXED,
+        }
+    }
+
+    /// This set with at least `fraction` of the photons allowed as outliers.
+    pub fn allowing_outliers(self, fraction: f64) -> Tolerance {
+        Tolerance { outlier_fraction: self.outlier_fraction.max(fraction), ..self }
+    }
+}
+
+/// Outliers allowed however small the map.
 pub const MIN_OUTLIERS: usize = 3;
 /// Outlier fraction for the GPU on beams aimed exactly at a mesh vertex or
 /// edge: which triangle such a ray meets is decided by one rounding, and a
 /// GPU compiler may fuse multiply-adds (WGSL allows it), so a few more
 /// photons than elsewhere take the other side (lavapipe: 7 of 5,502).
 pub const KNIFE_EDGE_OUTLIER_FRACTION: f64 = 5e-3;
-/// Total flux per band (the 0.1 %).
+/// Total flux per band (the 0.1 %), or the outlier fraction where
+/// that is larger.
 pub const BAND_FLUX_REL: f64 = 1e-3;
-/// A pixel matches when each channel is within this relative difference…
-pub const PIXEL_REL: f32 = 1e-3;
-/// …or this absolute one (1/4 of an 8-bit step at mid-grey in linear light).
-pub const PIXEL_ABS: f32 = 1e-3;
-/// Pixels allowed to differ by more (a view ray through an edge, a gather
-/// radius that an outlier photon crosses).
-pub const PIXEL_OUTLIER_FRACTION: f64 = 2e-3;
 
 /// The float compare rule.
 pub fn close(a: f32, b: f32, rel: f32, abs: f32) -> bool {

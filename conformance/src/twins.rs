@@ -75,7 +75,25 @@ impl SurfaceCase {
         let cos_i = (-self.d.dot(normal)).clamp(0.0, 1.0);
         cos2_transmitted(cos_i, n1 / n2).abs() < 1e-5
     }
+
+    /// How far a copy's Fresnel reflectance may stray beyond the agreed
+    /// bound: what [`COS_ROUNDING`] of cos θ moves it. Near grazing
+    /// incidence with indices that nearly match the reflectance is steep
+    /// (its slope grows as 1/√|n² − 1|), and a copy that rounds `d · n`
+    /// otherwise lands elsewhere on it (an NVIDIA H200: 0.72461 against
+    /// 0.72458 at n = 1.0002; 0.99959 against 0.99957 at cos θ = 4e-7).
+    pub fn reflectance_slack(&self) -> f32 {
+        let (normal, n1, n2) = interface(self.d, self.outward, self.ior);
+        let cos_i = (-self.d.dot(normal)).clamp(0.0, 1.0);
+        let at = |c: f32| fresnel(c.clamp(0.0, 1.0), n1, n2);
+        (at(cos_i + COS_ROUNDING) - at(cos_i - COS_ROUNDING)).abs() / 2.0
+    }
 }
+
+/// How differently two copies may round cos θ = −d · n of unit vectors:
+/// three products and two sums, each within half an ulp of 1 (6e-8), fused
+/// or not.
+pub const COS_ROUNDING: f32 = 3e-7;
 
 /// How closely a copy must agree with the core.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -111,7 +129,7 @@ pub fn check_surface(case: &SurfaceCase, got: &SurfaceAnswer, agreement: Agreeme
     if case.at_the_critical_angle() {
         return Ok(());
     }
-    if (got.fresnel - want.fresnel).abs() > tol {
+    if (got.fresnel - want.fresnel).abs() > tol + case.reflectance_slack() {
         return fail("Fresnel reflectance");
     }
     match (got.refracted, want.refracted) {

@@ -56,7 +56,7 @@ pub use plan::effects::{Effect, EffectPlan};
 pub use plan::prepared::PreparedScene;
 pub use render::accumulation::{Accumulation, MergeError};
 pub use render::layer::LayerFrame;
-pub use render::protocol::{Backend, BackendError, Change, Render, RenderStats};
+pub use render::protocol::{Arithmetic, Backend, BackendError, Change, Render, RenderStats};
 pub use render::reference::ReferenceBackend;
 pub use util::progress::{NoProgress, Progress, Stage, StageTimes};
 

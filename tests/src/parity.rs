@@ -3,26 +3,39 @@
 //! failure both sides are written to `parity-failures/<case>/` (git-ignored)
 //! and the message names the folder.
 
-pub use prismatic_conformance::compare::{ParityReport, compare_images, compare_maps, compare_maps_allowing};
-use prismatic_core::{Image, PhotonMap, PreparedScene};
+pub use prismatic_conformance::compare::{ParityReport, compare_images, compare_maps};
+use prismatic_conformance::tolerance::Tolerance;
+use prismatic_core::{Arithmetic, Backend, Image, PhotonMap, PreparedScene};
 use std::path::PathBuf;
 
 /// One backend's output for a scene.
 pub struct Output {
     /// Backend name, for file names.
     pub backend: &'static str,
+    /// How the backend rounds (which tolerances apply).
+    pub arithmetic: Arithmetic,
     /// Its photon map.
     pub map: PhotonMap,
     /// Its image.
     pub image: Image,
 }
 
-/// Compares `got` with `expected` on `scene`; on failure writes both photon
-/// maps (CSV) and images (PNG) to `parity-failures/<case>/` and panics
-/// naming the folder.
+impl Output {
+    /// The paper's frame on `backend` ([`crate::backends::frame`]).
+    pub fn frame(backend: &mut dyn Backend, scene: &PreparedScene) -> Output {
+        let (map, image) = crate::backends::frame(backend, scene);
+        Output { backend: backend.name(), arithmetic: backend.arithmetic(), map, image }
+    }
+}
+
+/// Compares `got` with `expected` on `scene` (strictly unless either side's
+/// arithmetic is relaxed); on failure writes both photon maps (CSV) and
+/// images (PNG) to `parity-failures/<case>/` and panics naming the folder.
 pub fn assert_parity(case: &str, scene: &PreparedScene, expected: &Output, got: &Output) -> ParityReport {
-    let maps = compare_maps(&expected.map, &got.map, scene.bands.len());
-    let images = compare_images(&expected.image, &got.image);
+    let relaxed = [expected, got].iter().any(|o| o.arithmetic == Arithmetic::Relaxed);
+    let tol = Tolerance::of(if relaxed { Arithmetic::Relaxed } else { Arithmetic::Strict });
+    let maps = compare_maps(&expected.map, &got.map, scene.bands.len(), tol);
+    let images = compare_images(&expected.image, &got.image, tol);
     match (maps, images) {
         (Ok(report), Ok(_)) => report,
         (maps, images) => {

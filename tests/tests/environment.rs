@@ -102,10 +102,7 @@ fn glass_scene() -> PreparedScene {
 #[test]
 fn the_backends_agree_on_a_glass_under_an_environment() {
     let scene = glass_scene();
-    let mut outputs = every_backend().into_iter().map(|mut b| {
-        let (map, image) = frame(b.as_mut(), &scene);
-        Output { backend: b.name(), map, image }
-    });
+    let mut outputs = every_backend().into_iter().map(|mut b| Output::frame(b.as_mut(), &scene));
     let reference = outputs.next().expect("the reference backend");
     assert!(reference.map.stats.flux_stored > 0.0, "the sky's suns leave caustic photons behind the glass");
     assert!(reference.map.photons.iter().any(|p| p.band != prismatic_core::model::photon::WHITE_BAND));

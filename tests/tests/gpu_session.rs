@@ -11,6 +11,7 @@ use prismatic_core::{Backend, Image, NoProgress, PreparedScene, ReferenceBackend
 use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
 use prismatic_tests::builtin;
 use prismatic_tests::parity::compare_images;
+use prismatic_tests::tolerance::Tolerance;
 use std::time::Duration;
 
 fn small(name: &str, photons: u32) -> PreparedScene {
@@ -38,6 +39,11 @@ fn reference(scene: &PreparedScene, n: u32) -> Image {
     render.image().unwrap()
 }
 
+/// The tolerances for `s`'s device.
+fn tol(s: &GpuSession) -> Tolerance {
+    Tolerance::of(s.context().arithmetic())
+}
+
 /// The image the device shows (its pixel buffer), read back.
 fn shown(s: &GpuSession) -> Image {
     let r = &s.scene().scene.render;
@@ -58,7 +64,7 @@ fn sessions_in_bucket_segments_and_several_bindings_match_the_reference() {
     passes(&mut s, 2);
     // The segments' widest-bucket reads wait, so the second pass has the finer levels.
     assert!(s.grid_levels() > 0b1, "no finer level built (levels {:#b})", s.grid_levels());
-    compare_images(&reference(&scene, 2), &s.image().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+    compare_images(&reference(&scene, 2), &s.image().unwrap(), tol(&s)).unwrap_or_else(|e| panic!("{e}"));
 }
 
 #[test]
@@ -77,7 +83,7 @@ fn small_first_radii_are_gathered_in_finer_grid_levels() {
     passes(&mut s, 2);
     assert!(s.grid_levels() > 0b1, "no finer level built (levels {:#b})", s.grid_levels());
     assert_eq!(s.grid_levels() & 1, 1, "level 0 serves the points of levels not built");
-    compare_images(&reference(&scene, 3), &s.image().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+    compare_images(&reference(&scene, 3), &s.image().unwrap(), tol(&s)).unwrap_or_else(|e| panic!("{e}"));
 }
 
 /// An engine that gives its device the storage bindings
@@ -108,7 +114,7 @@ fn a_device_with_just_the_storage_buffers_needed_renders() {
     s.context().wait().unwrap();
     passes(&mut s, 1);
     assert!(s.grid_levels() > 0b1, "no finer level built (levels {:#b})", s.grid_levels());
-    compare_images(&reference(&scene, 2), &s.image().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+    compare_images(&reference(&scene, 2), &s.image().unwrap(), tol(&s)).unwrap_or_else(|e| panic!("{e}"));
     assert_eq!(*errors.lock().unwrap(), Vec::<String>::new());
 }
 
@@ -132,13 +138,14 @@ fn the_devices_image_is_the_passes_mean_and_follows_the_light() {
     let Some(mut s) = session(&scene, GpuOptions::default()) else { return };
     passes(&mut s, 2);
     let before = shown(&s);
-    compare_images(&s.image().unwrap(), &before).unwrap_or_else(|e| panic!("shown vs read out: {e}"));
+    compare_images(&s.image().unwrap(), &before, Tolerance::STRICT)
+        .unwrap_or_else(|e| panic!("shown vs read out: {e}"));
     let mut edited = scene.scene.clone();
     edited.lights[0] = moved(&edited.lights[0], 0.6);
     s.update(&PreparedScene::new(edited).unwrap()).unwrap();
     passes(&mut s, 2);
     let after = shown(&s);
-    assert!(compare_images(&before, &after).is_err(), "moving the light changed nothing");
+    assert!(compare_images(&before, &after, Tolerance::STRICT).is_err(), "moving the light changed nothing");
 }
 
 #[test]

@@ -17,8 +17,8 @@ use prismatic_core::photons::grid::PhotonGrid;
 use prismatic_core::{Backend, BackendError, BandTable, Image, NoProgress, PreparedScene, Scene, Vec3};
 use prismatic_cpu::CpuGrid;
 use prismatic_tests::backends::{every_backend, fixed, frame, trace};
-use prismatic_tests::parity::compare_maps_allowing;
-use prismatic_tests::tolerance::{KNIFE_EDGE_OUTLIER_FRACTION, OUTLIER_FRACTION};
+use prismatic_tests::parity::compare_maps;
+use prismatic_tests::tolerance::{KNIFE_EDGE_OUTLIER_FRACTION, Tolerance};
 use prismatic_tests::{PrismExperiment, builtin, camera, glass, prepare, settings, sphere_in_a_catcher, white};
 
 /// Panics unless every photon of `map` is finite and every pixel of `image` too.
@@ -649,8 +649,11 @@ fn beams_through_mesh_vertices_and_edges_match_the_reference() {
             assert_eq!(s.flux_escaped, 0.0, "{case}");
             let accounted = s.flux_stored + s.flux_direct + s.flux_depth_limited;
             assert!((accounted - s.flux_emitted).abs() <= 1e-6 * s.flux_emitted, "{case}: {s:?}");
-            let outliers = if backend.name() == "gpu" { KNIFE_EDGE_OUTLIER_FRACTION } else { OUTLIER_FRACTION };
-            let report = compare_maps_allowing(&reference, &map, scene.bands.len(), outliers);
+            let mut tol = Tolerance::of(backend.arithmetic());
+            if backend.name() == "gpu" {
+                tol = tol.allowing_outliers(KNIFE_EDGE_OUTLIER_FRACTION);
+            }
+            let report = compare_maps(&reference, &map, scene.bands.len(), tol);
             assert!(report.is_ok(), "{case}: {}", report.unwrap_err());
         }
     }

@@ -5,20 +5,14 @@
 use prismatic_cli::load_scene;
 use prismatic_core::{Backend, PreparedScene, ReferenceBackend};
 use prismatic_cpu::CpuBackend;
-use prismatic_tests::backends::{frame, trace};
+use prismatic_tests::backends::trace;
 use prismatic_tests::parity::{Output, assert_parity, parity_photons};
 use prismatic_tests::random_scene::random_scene;
 
-/// The paper's frame on `backend`: pass 0's photon map and its image at the scene's radius.
-fn run(backend: &mut dyn Backend, scene: &PreparedScene) -> Output {
-    let (map, image) = frame(backend, scene);
-    Output { backend: backend.name(), map, image }
-}
-
 /// The parity test body, written once: any backend against the reference.
 fn check(case: &str, scene: &PreparedScene, backend: &mut dyn Backend) {
-    let expected = run(&mut ReferenceBackend, scene);
-    let got = run(backend, scene);
+    let expected = Output::frame(&mut ReferenceBackend, scene);
+    let got = Output::frame(backend, scene);
     assert!(got.map.is_canonical(), "{case}: {} map not in canonical order", got.backend);
     assert!(
         !expected.map.photons.is_empty() || scene.scene.render.photons == 0,
@@ -60,7 +54,8 @@ fn cpu_matches_the_reference_on_random_scenes() {
 #[test]
 fn cpu_photon_map_and_image_do_not_depend_on_the_thread_count() {
     let scene = PreparedScene::new(random_scene(3, 20_000, 48)).unwrap();
-    let outputs: Vec<Output> = [1, 2, 3].map(|t| run(&mut CpuBackend::with_threads(t).unwrap(), &scene)).into();
+    let outputs: Vec<Output> =
+        [1, 2, 3].map(|t| Output::frame(&mut CpuBackend::with_threads(t).unwrap(), &scene)).into();
     for o in &outputs[1..] {
         assert_eq!(o.map.photons, outputs[0].map.photons);
         assert_eq!(o.image.pixels, outputs[0].image.pixels);
@@ -103,8 +98,8 @@ fn cpu_matches_the_reference_with_projection_maps_on_every_light_kind() {
     };
     let scene = PreparedScene::new(scene).unwrap();
     assert!(scene.plan.projections.iter().all(Option::is_some), "{}", scene.plan.explain());
-    let expected = run(&mut ReferenceBackend, &scene);
-    let got = run(&mut CpuBackend::new(), &scene);
+    let expected = Output::frame(&mut ReferenceBackend, &scene);
+    let got = Output::frame(&mut CpuBackend::new(), &scene);
     assert!(!expected.map.photons.is_empty());
     assert_eq!(expected.map.photons, got.map.photons, "projected emission differs between the backends");
     assert_parity("cpu-projection", &scene, &expected, &got);

@@ -12,12 +12,7 @@ use prismatic_tests::backends::{fixed, frame, gpu_backend, trace};
 use prismatic_tests::parity::{Output, assert_parity, compare_images};
 use prismatic_tests::parity::{compare_maps, parity_photons};
 use prismatic_tests::random_scene::random_scene;
-
-/// The paper's frame on `backend`: pass 0's photon map and its image at the scene's radius.
-fn run(backend: &mut dyn Backend, scene: &PreparedScene) -> Output {
-    let (map, image) = frame(backend, scene);
-    Output { backend: backend.name(), map, image }
-}
+use prismatic_tests::tolerance::Tolerance;
 
 fn gpu() -> Option<GpuBackend> {
     gpu_backend(GpuOptions::default())
@@ -26,9 +21,9 @@ fn gpu() -> Option<GpuBackend> {
 /// The parity test body (the CPU backend's, see parity_cpu.rs): the GPU
 /// against the reference and against the CPU backend, maps and images.
 fn check(case: &str, scene: &PreparedScene, gpu: &mut GpuBackend) {
-    let reference = run(&mut ReferenceBackend, scene);
-    let cpu = run(&mut CpuBackend::new(), scene);
-    let got = run(gpu, scene);
+    let reference = Output::frame(&mut ReferenceBackend, scene);
+    let cpu = Output::frame(&mut CpuBackend::new(), scene);
+    let got = Output::frame(gpu, scene);
     assert!(got.map.is_canonical(), "{case}: gpu map not in canonical order");
     assert!(!reference.map.photons.is_empty() || scene.scene.render.photons == 0, "{case}: no caustic photons");
     assert_eq!(got.map.stats.emitted, reference.map.stats.emitted, "{case}: emitted");
@@ -57,7 +52,8 @@ fn gpu_matches_the_reference_and_the_cpu_on_every_built_in_scene() {
         let scene = built_in(name, parity_photons(name));
         if name == IMAGE_NOT_YET_AT_PARITY {
             let (expected, got) = (trace(&mut ReferenceBackend, &scene), trace(&mut gpu, &scene));
-            compare_maps(&expected, &got, scene.bands.len()).unwrap_or_else(|e| panic!("gpu-{name}: photon maps: {e}"));
+            compare_maps(&expected, &got, scene.bands.len(), Tolerance::of(gpu.arithmetic()))
+                .unwrap_or_else(|e| panic!("gpu-{name}: photon maps: {e}"));
             eprintln!("gpu-{name}: photon maps at parity; image parity NOT checked (see IMAGE_NOT_YET_AT_PARITY)");
             continue;
         }
@@ -149,7 +145,7 @@ fn gpu_photon_map_is_identical_between_runs_and_over_several_bindings() {
     let (split, windowed) = frame(&mut small, &scene);
     assert_eq!(first.photons, split.photons, "the map differs when split over bindings");
     let (_, whole) = frame(&mut gpu, &scene);
-    compare_images(&whole, &windowed).expect("render over several bindings");
+    compare_images(&whole, &windowed, Tolerance::of(gpu.arithmetic())).expect("render over several bindings");
 }
 
 /// An engine's view: the backend built on a device it did not create, its
@@ -198,7 +194,7 @@ fn gpu_renders_into_an_engines_texture_on_the_engines_device() {
     for (px, t) in image.pixels.iter_mut().zip(texels) {
         *px = prismatic_core::Vec3::new(t[0], t[1], t[2]);
     }
-    compare_images(&session.image().unwrap(), &image).expect("texture vs the image read out");
+    compare_images(&session.image().unwrap(), &image, Tolerance::STRICT).expect("texture vs the image read out");
 }
 
 /// A render whose pixels hold more visible points than a session's first

@@ -10,6 +10,7 @@ use prismatic_cpu::CpuBackend;
 use prismatic_tests::backends::{every_backend, fixed};
 use prismatic_tests::builtin;
 use prismatic_tests::parity::compare_images;
+use prismatic_tests::tolerance::Tolerance;
 
 /// A render of `scene` on `backend` after passes `0..passes`.
 fn progressive(backend: &mut dyn Backend, scene: &PreparedScene, passes: u32) -> Box<dyn Render> {
@@ -59,10 +60,10 @@ fn every_backend_converges_to_the_reference_image() {
     let mut expected = progressive(&mut ReferenceBackend, &scene, 4);
     for mut backend in every_backend().into_iter().skip(1) {
         let mut got = progressive(backend.as_mut(), &scene, 4);
-        let name = backend.name();
-        compare_images(&expected.base().unwrap(), &got.base().unwrap())
+        let (name, tol) = (backend.name(), Tolerance::of(backend.arithmetic()));
+        compare_images(&expected.base().unwrap(), &got.base().unwrap(), tol)
             .unwrap_or_else(|e| panic!("{name}: image without caustics: {e}"));
-        compare_images(&expected.image().unwrap(), &got.image().unwrap())
+        compare_images(&expected.image().unwrap(), &got.image().unwrap(), tol)
             .unwrap_or_else(|e| panic!("{name}: 4 passes: {e}"));
     }
 }

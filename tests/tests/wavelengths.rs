@@ -8,7 +8,7 @@ use prismatic_core::model::scene::HERO_WAVELENGTHS;
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::photons::trace::{sample_band, split_bands};
 use prismatic_core::{Backend, BandSpec, Glass, NoProgress, PreparedScene, ReferenceBackend, WavelengthSampling};
-use prismatic_tests::backends::{every_backend, fixed, frame, trace};
+use prismatic_tests::backends::{every_backend, fixed, trace};
 use prismatic_tests::parity::{Output, assert_parity};
 use prismatic_tests::{PrismExperiment, builtin, prepare, settings};
 
@@ -210,11 +210,9 @@ fn every_backend_matches_the_reference_for_every_sampling() {
                 r.height = 64;
             });
             let mut backends = every_backend();
-            let (map, image) = frame(backends[0].as_mut(), &scene);
-            let expected = Output { backend: backends[0].name(), map, image };
+            let expected = Output::frame(backends[0].as_mut(), &scene);
             for backend in &mut backends[1..] {
-                let (map, image) = frame(backend.as_mut(), &scene);
-                let got = Output { backend: backend.name(), map, image };
+                let got = Output::frame(backend.as_mut(), &scene);
                 assert_parity(&format!("{}-{name}-{}", backend.name(), sampling.name()), &scene, &expected, &got);
             }
         }

@@ -76,10 +76,33 @@ impl BackendError {
     }
 }
 
+/// How a backend's floating-point operations round, which decides how
+/// closely its paths can follow the reference's ([`Backend::arithmetic`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Arithmetic {
+    /// Each operation rounded as the reference rounds it, or within an ulp
+    /// or two: the reference, the CPU's packets, lavapipe (LLVM on the CPU).
+    /// Paths agree to a few ulps a segment.
+    Strict,
+    /// A GPU's shader compiler: it fuses multiply-adds (WGSL allows it) and
+    /// divides, takes square roots and transcendentals to Vulkan's precision
+    /// (2.5 ulp for a division) rather than correctly rounded. Most paths
+    /// still agree to 1e-6; an ill-conditioned one (a grazing hit, a ray
+    /// through a caustic's focus, a wavelength one ulp apart through a
+    /// dispersive prism) goes on from its own few-ulp difference.
+    Relaxed,
+}
+
 /// Makes live renders: the scalar reference, the CPU's packets, the GPU.
 pub trait Backend: Send {
     /// Short name (`reference`, `cpu`, `gpu`); partial renders carry it.
     fn name(&self) -> &'static str;
+
+    /// How this backend's arithmetic rounds (the parity tests choose their
+    /// tolerances by it).
+    fn arithmetic(&self) -> Arithmetic {
+        Arithmetic::Strict
+    }
 
     /// A live render of `scene`: its buffers allocated, nothing traced yet
     /// (the first pass or read-out traces the view rays and the pilot).

@@ -1,8 +1,10 @@
 //! Environment maps from HDR files (Radiance `.hdr`, OpenEXR `.exr`): the
 //! equirectangular image as linear RGB radiance, the built-in names, and
-//! the command line's `--environment` flags.
+//! the command line's `--environment` flags (Python's `environment`
+//! keywords).
 
 use crate::scene_file::{SceneDocument, SceneFileError};
+use crate::settings::SettingsSource;
 use prismatic_core::model::environment::{EnvironmentMap, MAX_ENVIRONMENT_SIDE};
 use prismatic_core::model::scene::Light;
 use std::path::Path;
@@ -39,9 +41,10 @@ pub fn load(path: &Path) -> Result<EnvironmentMap, String> {
     Ok(EnvironmentMap { name: path.display().to_string(), width, height, texels })
 }
 
-/// The command line's environment: a map that lights the scene (in place
-/// of its own environment), and its strength and turn (of the scene's own
-/// environment when no map is given).
+/// The command line's environment (and Python's keywords of the same
+/// names): a map that lights the scene (in place of its own environment),
+/// and its strength and turn (of the scene's own environment when no map
+/// is given).
 #[derive(Clone, Debug, Default, PartialEq, clap::Args)]
 pub struct EnvironmentArgs {
     /// Light the scene by an environment map: an equirectangular .hdr or
@@ -58,18 +61,29 @@ pub struct EnvironmentArgs {
 }
 
 impl EnvironmentArgs {
-    /// `doc` lit as these arguments say; an error names the flag.
-    pub fn apply(&self, mut doc: SceneDocument) -> Result<SceneDocument, SceneFileError> {
-        let flag = |name: &str, reason: String| SceneFileError {
-            file: "command line".into(),
-            line: None,
-            key: format!("--{name}"),
-            reason,
-        };
+    /// The names, as Python's keywords spell them.
+    pub const NAMES: [&str; 3] = ["environment", "environment_strength", "environment_rotation"];
+
+    /// Sets the argument named `name` (one of [`EnvironmentArgs::NAMES`])
+    /// from its text; the error says why the value is not one.
+    pub fn set(&mut self, name: &str, value: &str) -> Result<(), String> {
+        let number = || value.parse::<f32>().map_err(|_| format!("expected a number, not \"{value}\""));
+        match name {
+            "environment" => self.environment = Some(value.to_string()),
+            "environment_strength" => self.environment_strength = Some(number()?),
+            "environment_rotation" => self.environment_rotation = Some(number()?),
+            _ => return Err(format!("not an environment argument: {name}")),
+        }
+        Ok(())
+    }
+
+    /// `doc` lit as these arguments say; an error names the argument as
+    /// `source` spells it.
+    pub fn apply(&self, mut doc: SceneDocument, source: SettingsSource) -> Result<SceneDocument, SceneFileError> {
         if let Some(name) = &self.environment {
             let map = match built_in(name) {
                 Some(map) => map,
-                None => load(Path::new(name)).map_err(|e| flag("environment", e))?,
+                None => load(Path::new(name)).map_err(|e| source.error("environment", e))?,
             };
             doc.scene.lights.retain(|l| !matches!(l, Light::Environment { .. }));
             doc.scene.lights.push(Light::Environment {
@@ -80,16 +94,17 @@ impl EnvironmentArgs {
             });
         }
         for (name, value) in
-            [("environment-strength", self.environment_strength), ("environment-rotation", self.environment_rotation)]
+            [("environment_strength", self.environment_strength), ("environment_rotation", self.environment_rotation)]
         {
             let Some(value) = value else { continue };
             let Some(Light::Environment { strength, rotation_deg, .. }) =
                 doc.scene.lights.iter_mut().find(|l| matches!(l, Light::Environment { .. }))
             else {
-                return Err(flag(name, "the scene has no environment (name one with --environment)".into()));
+                let reason = format!("the scene has no environment (name one with {})", source.spell("environment"));
+                return Err(source.error(name, reason));
             };
             match name {
-                "environment-strength" => *strength = value,
+                "environment_strength" => *strength = value,
                 _ => *rotation_deg = value,
             }
         }

@@ -385,7 +385,7 @@ fn prepare(job: &JobArgs) -> Result<(String, PreparedScene, glam::DVec3)> {
         eprintln!("warning: {}: {w}", job.scene);
     }
     let origin = doc.origin;
-    let doc = job.environment.apply(doc)?;
+    let doc = job.environment.apply(doc, SettingsSource::CommandLine)?;
     let scene = job.settings.prepare(doc, SettingsSource::CommandLine)?;
     println!("{}", scene.plan.summary());
     if job.explain {

@@ -218,7 +218,8 @@ impl SettingsSource {
         }
     }
 
-    fn spell(self, setting: &str) -> String {
+    /// `setting` as this source spells it (`--radius-mode`, `radius_mode`).
+    pub fn spell(self, setting: &str) -> String {
         match self {
             SettingsSource::CommandLine => format!("--{}", setting.replace('_', "-")),
             SettingsSource::Keywords => setting.to_string(),

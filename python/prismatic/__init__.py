@@ -137,7 +137,8 @@ def render(
 
     ``passes``: N (passes 0..N), a ``range`` or ``(start, stop)``; default the
     scene's, or with ``time`` as many as fit. ``time``: stop after the pass
-    that crosses this many seconds. Other keywords: the CLI's settings.
+    that crosses this many seconds. Other keywords: the CLI's settings and
+    environment flags by name (``photons=``, ``environment="studio"``).
     """
     source = _scene(scene)
     callback, close = _progress(progress, "render")

@@ -5,6 +5,7 @@
 
 use numpy::{PyArray1, PyArrayMethods};
 use prismatic_cli::backends::{self, BackendChoice};
+use prismatic_cli::environment_file::EnvironmentArgs;
 use prismatic_cli::load_scene;
 use prismatic_cli::partial::Partial;
 use prismatic_cli::render_job::{JobProgress, RenderJob, finite_image};
@@ -139,12 +140,18 @@ fn setting_value(v: &Bound<'_, PyAny>) -> Result<SettingValue, Failure> {
 
 /// The render settings and backend from the keyword dictionary the Python
 /// layer passes (names as the CLI's flags, values already checked for type).
-fn settings(kw: Option<&Bound<'_, PyDict>>) -> Result<(Settings, BackendChoice), Failure> {
+fn settings(kw: Option<&Bound<'_, PyDict>>) -> Result<(Settings, EnvironmentArgs, BackendChoice), Failure> {
     let mut s = Settings::default();
+    let mut environment = EnvironmentArgs::default();
     let mut backend = BackendChoice::Auto;
-    let Some(kw) = kw else { return Ok((s, backend)) };
+    let Some(kw) = kw else { return Ok((s, environment, backend)) };
     for (k, v) in kw.iter() {
         let key: String = k.extract().map_err(Failure::Python)?;
+        if EnvironmentArgs::NAMES.contains(&key.as_str()) {
+            let text = v.str().map(|s| s.to_string()).map_err(Failure::Python)?;
+            named(&key, environment.set(&key, &text))?;
+            continue;
+        }
         if key == "backend" {
             let name = v.str().map(|s| s.to_string()).map_err(Failure::Python)?;
             let choice = <BackendChoice as clap::ValueEnum>::from_str(&name, true);
@@ -154,7 +161,7 @@ fn settings(kw: Option<&Bound<'_, PyDict>>) -> Result<(Settings, BackendChoice),
         }
         s.set(&key, &setting_value(&v)?).map_err(|reason| bad_setting(&key, reason))?;
     }
-    Ok((s, backend))
+    Ok((s, environment, backend))
 }
 
 /// The scene with the settings applied, validated and prepared.
@@ -162,8 +169,8 @@ fn prepare(
     source: &Source,
     kw: Option<&Bound<'_, PyDict>>,
 ) -> Result<(PreparedScene, SceneDocument, BackendChoice), Failure> {
-    let (settings, backend) = settings(kw)?;
-    let doc = source.document()?;
+    let (settings, environment, backend) = settings(kw)?;
+    let doc = environment.apply(source.document()?, SettingsSource::Keywords)?;
     let prepared = settings.prepare(doc.clone(), SettingsSource::Keywords)?;
     Ok((prepared, doc, backend))
 }
@@ -420,7 +427,7 @@ fn _prismatic(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SceneError", m.py().get_type::<SceneError>())?;
     m.add("RenderError", m.py().get_type::<RenderError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
-    m.add("SETTINGS", Settings::NAMES.to_vec())?;
+    m.add("SETTINGS", [Settings::NAMES, &EnvironmentArgs::NAMES].concat())?;
     m.add_class::<Merge>()?;
     for f in [
         wrap_pyfunction!(render, m)?,

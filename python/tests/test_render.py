@@ -106,6 +106,22 @@ def test_a_named_setting_is_the_clis_bit_for_bit(cli, tmp_path, scene, passes, k
         prismatic.render(scene, progress=False, **{key: bad})
 
 
+def test_the_environment_keywords_are_the_clis_flags(cli, tmp_path):
+    cli("render", "sphere", *flags(SMALL), "--environment", "studio", "--environment-strength", "0.5",
+        "--environment-rotation", "30", "-o", "sky.exr", cwd=tmp_path)
+    sky = prismatic.render("sphere", progress=False, environment="studio", environment_strength=0.5,
+                           environment_rotation=30, **SMALL)
+    assert same_bits(sky, read_exr(tmp_path / "sky.exr"))
+    assert not same_bits(sky, prismatic.render("sphere", progress=False, **SMALL)), "the studio lit nothing"
+    with pytest.raises(prismatic.SceneError, match=r"keyword arguments: environment_strength: the scene has no "
+                       r"environment \(name one with environment\)"):
+        prismatic.render("sphere", progress=False, environment_strength=2, **SMALL)
+    with pytest.raises(prismatic.SceneError, match="environment: cannot read environment map"):
+        prismatic.render("sphere", progress=False, environment=str(tmp_path / "missing.hdr"), **SMALL)
+    with pytest.raises(prismatic.SceneError, match='environment_rotation: expected a number, not "east"'):
+        prismatic.render("sphere", progress=False, environment="studio", environment_rotation="east", **SMALL)
+
+
 def test_a_scene_file_and_its_text_render_the_same(cli, tmp_path):
     path = tmp_path / "scene.toml"
     path.write_text(SCENE_TEXT)

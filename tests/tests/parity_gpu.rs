@@ -64,9 +64,12 @@ fn gpu_matches_the_reference_and_the_cpu_on_every_built_in_scene() {
 /// The one built-in scene whose GPU image is not yet at parity: on
 /// lavapipe 192 of 9,216 pixels of `dispersion-test` at 96×96 differ from
 /// the reference (19 allowed), inside its prisms of index up to 2.42
-/// (found on 2026-11-25 when this test first covered every built-in
-/// scene; the image was the same bits before and after that day's
-/// restructuring, so the cause is older and not yet known). Its photon
+/// (found on 2026-11-25). The cause (found 2026-11-26 by marking the
+/// pixels whose view stack was not empty after its loop): a software
+/// device stops an invocation's loops after 65,535 iterations in all, and
+/// every pixel's paths through the prisms (16 bands, internal reflections,
+/// a mesh traversal for each ray and shadow ray) go past it, most near
+/// their end. It goes when direct light leaves the view pass. Its photon
 /// map is still compared.
 const IMAGE_NOT_YET_AT_PARITY: &str = "dispersion-test";
 

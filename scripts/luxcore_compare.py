@@ -1,26 +1,37 @@
 #!/usr/bin/env python3
 """prismatic and LuxCore at equal error, on one machine in one run.
 
-Two scenes, z up, each a diffuse floor (albedo 0.8) under a spot light with
-glass of n(λ) = 1.5 + 0.02/λ² (λ in µm), a 400×400 camera, depth 10,
-2 threads:
+Three scenes, each a diffuse floor (albedo 0.8) with glass of
+n(λ) = 1.5 + 0.02/λ² (λ in µm), a 400×400 camera, depth 10, 2 threads:
 
-- `prism`: issue 26's scene, a glass prism along y under a 1° spot, its
-  spectrum on the floor seen from above;
-- `sphere`: a glass ball of radius 1 resting on the floor under a 14° spot
-  that covers it, its focused caustic beside it (prismatic's analytic
-  sphere; LuxCore's a UV sphere of 36,864 triangles with smooth normals).
+- `prism` (z up): issue 26's scene, a glass prism along y under a 1° spot,
+  its spectrum on the floor seen from above;
+- `sphere` (z up): a glass ball of radius 1 resting on the floor under a
+  14° spot that covers it, its focused caustic beside it (prismatic's
+  analytic sphere; LuxCore's a UV sphere of 36,864 triangles with smooth
+  normals);
+- `sky` (y up): the same ball raised 0.6 above the floor under an HDR
+  environment, a sky (white, 0.4 at the zenith to 1 at the horizon) with a
+  sun (radius 2.5°, radiance 2,000, 50° up), written by this script as one
+  Radiance .hdr file that both renderers read (LuxCore's `infinite` light;
+  prismatic's environment light, which shines as the suns of its median
+  cut).
 
-LuxCore 2.11 (pyluxcore from PyPI) renders each with LIGHTCPU (light
-tracing with camera connections) and its Sobol sampler; prismatic renders
-it through its Python package on the CPU backend in each configuration
+LuxCore 2.11 (pyluxcore from PyPI) renders the spot scenes with LIGHTCPU
+(light tracing with camera connections) and the sky with BIDIRCPU and
+PATHCPU (the sky's direct light wants paths from the camera, the sun's
+caustic light paths), each with its Sobol sampler; prismatic renders
+through its Python package on the CPU backend in each configuration
 listed in CONFIGS.
 
 Each renderer is compared with its own converged reference (a long render
-with another seed): the error is the relRMSE over the caustic, the RMSE of
-the per-pixel R + G + B over the pixels whose reference is above 5 % of
-its maximum, divided by the reference's mean there (as
-`prismatic_conformance::compare::caustic_rel_rmse`). LuxCore's curve comes
+with another seed): the error is the relRMSE of the per-pixel R + G + B,
+the RMSE divided by the reference's mean: over the caustic (the pixels
+whose reference is above 5 % of its maximum, as
+`prismatic_conformance::compare::caustic_rel_rmse`) for the spot scenes,
+over the whole image for the sky. Against its own reference: prismatic's
+median cut converges to its own (biased) image, and the script prints how
+far the two references are apart. LuxCore's curve comes
 from snapshots of one session; each of prismatic's points is a separate
 render with `time=T` (passes until the time is spent), timed from the call
 to the returned image. The times to reach each error are interpolated
@@ -29,7 +40,7 @@ log-log between measured points.
     python3 -m venv target/compare
     target/compare/bin/pip install ./python pyluxcore numpy
     target/compare/bin/python scripts/luxcore_compare.py [--reference-s 180] [--shortest-s 0.125] [--longest-s 32]
-        [--scenes prism sphere]
+        [--scenes prism sphere sky]
 """
 
 from __future__ import annotations
@@ -55,18 +66,48 @@ ERRORS = (0.09, 0.05, 0.03)
 
 @dataclass
 class Setup:
-    """One scene of the comparison: the light, the camera, its prismatic
-    scene file's objects and the meshes LuxCore renders."""
+    """One scene of the comparison: its lights, camera and glass in both
+    renderers' terms, which way is up, and how LuxCore renders it."""
     name: str
-    spot: Dict[str, object]
     camera: Dict[str, object]
+    prismatic_lights: str
+    luxcore_lights: str
     prismatic_objects: str
     luxcore_meshes: Callable[["pyluxcore.Scene"], List[str]]
+    up: Tuple[float, float, float] = (0.0, 0.0, 1.0)
+    engines: Tuple[str, ...] = ("LIGHTCPU",)
+    configs: Sequence[Tuple[str, Dict[str, object]]] = ()
+    whole_image: bool = False
+
+
+def spot_lights(position: Tuple[float, float, float], direction: Tuple[float, float, float],
+                cone_deg: float) -> Tuple[str, str]:
+    """A spot of power 10 W as prismatic's scene file and LuxCore's
+    properties write it (LuxCore's gain 100 and 0.25° soft edge: the same
+    caustic, measured in issue 26)."""
+    (x, y, z), (dx, dy, dz) = position, direction
+    toml = f"""
+[[light]]
+kind = "spot"
+position = {list(position)}
+direction = {list(direction)}
+cone_deg = {cone_deg}
+power = 10.0
+"""
+    props = f"""
+        scene.lights.spot.type = "spot"
+        scene.lights.spot.position = {x} {y} {z}
+        scene.lights.spot.target = {x + dx} {y + dy} {z + dz}
+        scene.lights.spot.coneangle = {cone_deg}
+        scene.lights.spot.conedeltaangle = 0.25
+        scene.lights.spot.gain = 100 100 100
+"""
+    return toml, props
 
 
 def prismatic_scene(setup: Setup) -> str:
     """The scene file prismatic renders."""
-    spot, camera = setup.spot, setup.camera
+    camera = setup.camera
     return f"""
 [render]
 width = {WIDTH}
@@ -78,20 +119,14 @@ estimator = "density"
 max_depth = {DEPTH}
 ambient = 0.0
 exposure = 1.0
+tone_map = "clamp"
 
 [camera]
 position = {list(camera["position"])}
 look_at = {list(camera["look_at"])}
-up = [0.0, 0.0, 1.0]
+up = {list(setup.up)}
 fov_deg = {camera["fov_deg"]}
-
-[[light]]
-kind = "spot"
-position = {list(spot["position"])}
-direction = {list(spot["direction"])}
-cone_deg = {spot["cone_deg"]}
-power = 10.0
-
+{setup.prismatic_lights}
 [material.floor]
 kind = "diffuse"
 albedo = [0.8, 0.8, 0.8]
@@ -104,7 +139,7 @@ ior = {{ cauchy = [1.5, 0.02] }}
 shape = "plane"
 material = "floor"
 point = [0.0, 0.0, 0.0]
-normal = [0.0, 0.0, 1.0]
+normal = {list(setup.up)}
 {setup.prismatic_objects}"""
 
 
@@ -130,57 +165,91 @@ def prism_meshes(scene: "pyluxcore.Scene") -> List[str]:
     return ["glass"]
 
 
-BALL_CENTRE, BALL_RINGS, BALL_SEGMENTS = (0.0, 0.0, 1.0), 96, 192
+BALL_RINGS, BALL_SEGMENTS = 96, 192
 
 
-def ball_meshes(scene: "pyluxcore.Scene") -> List[str]:
-    """A UV sphere of radius 1 with smooth (vertex) normals."""
-    normals = [(0.0, 0.0, 1.0)]
-    for i in range(1, BALL_RINGS):
-        theta = math.pi * i / BALL_RINGS
-        for j in range(BALL_SEGMENTS):
-            phi = 2 * math.pi * j / BALL_SEGMENTS
-            normals.append((math.sin(theta) * math.cos(phi), math.sin(theta) * math.sin(phi), math.cos(theta)))
-    normals.append((0.0, 0.0, -1.0))
-    ring = lambda i, j: 1 + (i - 1) * BALL_SEGMENTS + j % BALL_SEGMENTS  # noqa: E731
-    bottom = len(normals) - 1
-    faces = [(0, ring(1, j), ring(1, j + 1)) for j in range(BALL_SEGMENTS)]
-    for i in range(1, BALL_RINGS - 1):
-        for j in range(BALL_SEGMENTS):
-            faces += [(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)), (ring(i, j), ring(i + 1, j + 1), ring(i, j + 1))]
-    faces += [(ring(BALL_RINGS - 1, j), bottom, ring(BALL_RINGS - 1, j + 1)) for j in range(BALL_SEGMENTS)]
-    points = np.array(normals) + np.array(BALL_CENTRE)
-    scene.DefineMesh("glass", [tuple(p) for p in points], outward(points, faces), normals, None, None, None)
-    return ["glass"]
+def ball_meshes(centre: Tuple[float, float, float]) -> Callable[["pyluxcore.Scene"], List[str]]:
+    """A UV sphere of radius 1 about `centre` with smooth (vertex) normals."""
+    def define(scene: "pyluxcore.Scene") -> List[str]:
+        normals = [(0.0, 0.0, 1.0)]
+        for i in range(1, BALL_RINGS):
+            theta = math.pi * i / BALL_RINGS
+            for j in range(BALL_SEGMENTS):
+                phi = 2 * math.pi * j / BALL_SEGMENTS
+                normals.append((math.sin(theta) * math.cos(phi), math.sin(theta) * math.sin(phi), math.cos(theta)))
+        normals.append((0.0, 0.0, -1.0))
+        ring = lambda i, j: 1 + (i - 1) * BALL_SEGMENTS + j % BALL_SEGMENTS  # noqa: E731
+        bottom = len(normals) - 1
+        faces = [(0, ring(1, j), ring(1, j + 1)) for j in range(BALL_SEGMENTS)]
+        for i in range(1, BALL_RINGS - 1):
+            for j in range(BALL_SEGMENTS):
+                faces += [(ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)),
+                          (ring(i, j), ring(i + 1, j + 1), ring(i, j + 1))]
+        faces += [(ring(BALL_RINGS - 1, j), bottom, ring(BALL_RINGS - 1, j + 1)) for j in range(BALL_SEGMENTS)]
+        points = np.array(normals) + np.array(centre)
+        scene.DefineMesh("glass", [tuple(p) for p in points], outward(points, faces), normals, None, None, None)
+        return ["glass"]
+    return define
 
 
-SETUPS = {
-    "prism": Setup(
-        name="prism",
-        spot={"position": (-4.11688, 0.0, 4.75578), "direction": (0.81915, 0.0, -0.57358), "cone_deg": 1.0},
-        camera={"position": (2.2, -3.2, 2.4), "look_at": (0.52, 0.0, 0.0), "fov_deg": 16.0},
-        prismatic_objects=f"""
-[[object]]
-shape = "prism"
-material = "glass"
-vertices = {[[x, -1.0, z] for x, z in PRISM_XZ]}
-extrude = [0.0, 2.0, 0.0]
-""",
-        luxcore_meshes=prism_meshes,
-    ),
-    "sphere": Setup(
-        name="sphere",
-        spot={"position": (-3.0, 0.0, 5.0), "direction": (0.6, 0.0, -0.8), "cone_deg": 14.0},
-        camera={"position": (4.5, -3.5, 3.5), "look_at": (0.5, 0.0, 0.4), "fov_deg": 30.0},
-        prismatic_objects=f"""
+def ball_object(centre: Tuple[float, float, float]) -> str:
+    """prismatic's analytic ball of radius 1 about `centre`."""
+    return f"""
 [[object]]
 shape = "sphere"
 material = "glass"
-center = {list(BALL_CENTRE)}
+center = {list(centre)}
 radius = 1.0
-""",
-        luxcore_meshes=ball_meshes,
-    ),
+"""
+
+
+# The sky: an equirectangular map (prismatic's convention: row 0 at +y,
+# u = 0.5 + atan2(x, -z) / 2π), white from 0.4 at the zenith to 1 at the
+# horizon, black below it (what is below the floor), with a sun.
+SKY_SIZE = (512, 256)
+SUN_RADIUS_DEG, SUN_RADIANCE, SUN_ELEVATION_DEG = 2.5, 2000.0, 50.0
+# The sun's u on the line where u and 0.75 − u meet, so that a renderer that
+# reads the map mirrored sees it in the same place.
+SUN_U = 0.375
+
+
+def sky_texels() -> np.ndarray:
+    """The sky's linear RGB, (height, width, 3)."""
+    w, h = SKY_SIZE
+    theta = np.pi * ((np.arange(h) + 0.5) / h)[:, None]
+    phi = 2 * np.pi * ((np.arange(w) + 0.5) / w - 0.5)[None, :]
+    d = np.stack([np.sin(theta) * np.sin(phi), np.cos(theta) * np.ones_like(phi), -np.sin(theta) * np.cos(phi)], -1)
+    y = d[..., 1]
+    radiance = np.where(y > 0, 0.4 + 0.6 * (1 - y), 0.0)
+    sun_theta, sun_phi = math.radians(90 - SUN_ELEVATION_DEG), 2 * math.pi * (SUN_U - 0.5)
+    sun = np.array([math.sin(sun_theta) * math.sin(sun_phi), math.cos(sun_theta),
+                    -math.sin(sun_theta) * math.cos(sun_phi)])
+    radiance = np.where(d @ sun > math.cos(math.radians(SUN_RADIUS_DEG)), SUN_RADIANCE, radiance)
+    return np.repeat(radiance[..., None], 3, axis=2).astype(np.float32)
+
+
+def write_hdr(path: str, rgb: np.ndarray) -> None:
+    """A Radiance .hdr (flat RGBE scanlines) of linear `rgb`."""
+    h, w, _ = rgb.shape
+    peak = rgb.max(axis=2)
+    lit = peak > 1e-32
+    exponent = np.where(lit, np.floor(np.log2(np.where(lit, peak, 1.0))) + 1, 0)
+    scale = np.where(lit, 256.0 / np.exp2(exponent), 0.0)
+    mantissa = np.clip(np.floor(rgb * scale[..., None]), 0, 255).astype(np.uint8)
+    e = np.where(lit, exponent + 128, 0).astype(np.uint8)
+    with open(path, "wb") as f:
+        f.write(f"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y {h} +X {w}\n".encode())
+        f.write(np.concatenate([mantissa, e[..., None]], axis=2).tobytes())
+
+
+SKY_FILE = os.path.abspath(os.path.join("target", "luxcore-compare-sky.hdr"))
+SKY_BALL = (0.0, 1.6, 0.0)
+# LuxCore's infinite light maps its local +z to the zenith; this turns it to +y.
+LUX_SKY_TRANSFORM = "1 0 0 0  0 0 -1 0  0 1 0 0  0 0 0 1"
+
+SPOTS = {
+    "prism": spot_lights((-4.11688, 0.0, 4.75578), (0.81915, 0.0, -0.57358), 1.0),
+    "sphere": spot_lights((-3.0, 0.0, 5.0), (0.6, 0.0, -0.8), 14.0),
 }
 
 # prismatic's configurations: (label, settings); 200,000 photons a pass
@@ -204,11 +273,61 @@ CONFIGS: List[Tuple[str, Dict[str, object]]] = [
 ]
 PRISMATIC_REFERENCE = {"light_tracing": True, "photon_sequence": "sobol", "wavelengths": "hero", "bands": 64}
 
+SETUPS = {
+    "prism": Setup(
+        name="prism",
+        camera={"position": (2.2, -3.2, 2.4), "look_at": (0.52, 0.0, 0.0), "fov_deg": 16.0},
+        prismatic_lights=SPOTS["prism"][0],
+        luxcore_lights=SPOTS["prism"][1],
+        prismatic_objects=f"""
+[[object]]
+shape = "prism"
+material = "glass"
+vertices = {[[x, -1.0, z] for x, z in PRISM_XZ]}
+extrude = [0.0, 2.0, 0.0]
+""",
+        luxcore_meshes=prism_meshes,
+        configs=CONFIGS,
+    ),
+    "sphere": Setup(
+        name="sphere",
+        camera={"position": (4.5, -3.5, 3.5), "look_at": (0.5, 0.0, 0.4), "fov_deg": 30.0},
+        prismatic_lights=SPOTS["sphere"][0],
+        luxcore_lights=SPOTS["sphere"][1],
+        prismatic_objects=ball_object((0.0, 0.0, 1.0)),
+        luxcore_meshes=ball_meshes((0.0, 0.0, 1.0)),
+        configs=CONFIGS,
+    ),
+    "sky": Setup(
+        name="sky",
+        camera={"position": (5.0, 4.0, 5.0), "look_at": (0.0, 0.6, 0.0), "fov_deg": 40.0},
+        prismatic_lights=f"""
+[[light]]
+kind = "environment"
+map = "{SKY_FILE}"
+""",
+        luxcore_lights=f"""
+        scene.lights.sky.type = "infinite"
+        scene.lights.sky.file = "{SKY_FILE}"
+        scene.lights.sky.gamma = 1.0
+        scene.lights.sky.gain = 1 1 1
+        scene.lights.sky.transformation = {LUX_SKY_TRANSFORM}
+""",
+        prismatic_objects=ball_object(SKY_BALL),
+        luxcore_meshes=ball_meshes(SKY_BALL),
+        up=(0.0, 1.0, 0.0),
+        engines=("BIDIRCPU", "PATHCPU"),
+        configs=CONFIGS[:1] + CONFIGS[-1:],
+        whole_image=True,
+    ),
+}
 
-def caustic_rel_rmse(got: np.ndarray, reference: np.ndarray) -> float:
-    """relRMSE of the per-pixel R + G + B over the reference's caustic."""
+
+def rel_rmse(got: np.ndarray, reference: np.ndarray, whole_image: bool) -> float:
+    """relRMSE of the per-pixel R + G + B: over the whole image, or over
+    the reference's caustic (its pixels above 5 % of its maximum)."""
     g, r = got.sum(axis=2).ravel(), reference.sum(axis=2).ravel()
-    mask = r > 0.05 * r.max()
+    mask = np.ones_like(r, dtype=bool) if whole_image else r > 0.05 * r.max()
     return float(np.sqrt(np.mean((g[mask] - r[mask]) ** 2)) / np.mean(r[mask]))
 
 
@@ -233,20 +352,23 @@ def prismatic_render(setup: Setup, seconds: float, seed: int, settings: Dict[str
 
 def luxcore_scene(setup: Setup) -> "pyluxcore.Scene":
     scene = pyluxcore.Scene()
-    scene.DefineMesh("floor", [(-10, -10, 0), (10, -10, 0), (10, 10, 0), (-10, 10, 0)], [(0, 1, 2), (0, 2, 3)],
-                     None, None, None, None)
+    if setup.up == (0.0, 0.0, 1.0):
+        floor = [(-10, -10, 0), (10, -10, 0), (10, 10, 0), (-10, 10, 0)]
+    else:
+        # Under a sky the floor must reach the horizon, as prismatic's plane does.
+        floor = [(-1000, 0, -1000), (-1000, 0, 1000), (1000, 0, 1000), (1000, 0, -1000)]
+    scene.DefineMesh("floor", floor, [(0, 1, 2), (0, 2, 3)], None, None, None, None)
     glass = setup.luxcore_meshes(scene)
-    x, y, z = setup.spot["position"]
-    dx, dy, dz = setup.spot["direction"]
     cx, cy, cz = setup.camera["position"]
     tx, ty, tz = setup.camera["look_at"]
+    ux, uy, uz = setup.up
     objects = "\n".join(f'scene.objects.{m}.shape = "{m}"\nscene.objects.{m}.material = "glass"' for m in glass)
     props = pyluxcore.Properties()
     props.SetFromString(f"""
         scene.camera.type = "perspective"
         scene.camera.lookat.orig = {cx} {cy} {cz}
         scene.camera.lookat.target = {tx} {ty} {tz}
-        scene.camera.up = 0 0 1
+        scene.camera.up = {ux} {uy} {uz}
         scene.camera.fieldofview = {setup.camera["fov_deg"]}
         scene.materials.matte.type = "matte"
         scene.materials.matte.kd = 0.8 0.8 0.8
@@ -258,27 +380,33 @@ def luxcore_scene(setup: Setup) -> "pyluxcore.Scene":
         scene.objects.floor.shape = "floor"
         scene.objects.floor.material = "matte"
         {objects}
-        scene.lights.spot.type = "spot"
-        scene.lights.spot.position = {x} {y} {z}
-        scene.lights.spot.target = {x + dx} {y + dy} {z + dz}
-        scene.lights.spot.coneangle = {setup.spot["cone_deg"]}
-        scene.lights.spot.conedeltaangle = 0.25
-        scene.lights.spot.gain = 100 100 100
+        {setup.luxcore_lights}
         """)
     scene.Parse(props)
     return scene
 
 
-def luxcore_curve(setup: Setup, seconds: float, seed: int,
+# Each engine's own settings: LIGHTCPU traces from the lights and connects
+# to the camera; BIDIRCPU joins both; PATHCPU with hybrid back/forward
+# tracing (LuxCore 2.5+) adds light paths for the caustics to its camera
+# paths.
+ENGINE_PROPS = {
+    "LIGHTCPU": f"light.maxdepth = {DEPTH}\npath.maxdepth = {DEPTH}",
+    "BIDIRCPU": f"light.maxdepth = {DEPTH}\npath.maxdepth = {DEPTH}",
+    "PATHCPU": f"path.pathdepth.total = {DEPTH}\npath.pathdepth.diffuse = {DEPTH}\n"
+               f"path.pathdepth.specular = {DEPTH}\npath.hybridbackforward.enable = 1",
+}
+
+
+def luxcore_curve(setup: Setup, engine: str, seconds: float, seed: int,
                   snapshots: Sequence[float]) -> Tuple[List[Tuple[float, np.ndarray]], str]:
-    """One LIGHTCPU session of `seconds`: its linear RGB at each snapshot time, and its sample rate."""
+    """One session of `engine` for `seconds`: its linear RGB at each snapshot time, and its sample rate."""
     props = pyluxcore.Properties()
     props.SetFromString(f"""
-        renderengine.type = "LIGHTCPU"
+        renderengine.type = "{engine}"
         sampler.type = "SOBOL"
         renderengine.seed = {seed}
-        light.maxdepth = {DEPTH}
-        path.maxdepth = {DEPTH}
+        {ENGINE_PROPS[engine]}
         native.threads.count = {THREADS}
         film.width = {WIDTH}
         film.height = {HEIGHT}
@@ -301,7 +429,7 @@ def luxcore_curve(setup: Setup, seconds: float, seed: int,
         session.UpdateStats()
         film = session.GetFilm()
         film.GetOutputFloat(pyluxcore.FilmOutputType.RGB_IMAGEPIPELINE, buffer)
-        out.append((elapsed, buffer.copy()))
+        out.append((elapsed, np.flipud(buffer).copy()))  # LuxCore's rows run bottom up
     stats = session.GetStats()
     rate = f"{stats.Get('stats.renderengine.total.samplesec').GetFloat() / 1e6:.2f} M samples/s"
     session.Stop()
@@ -319,14 +447,18 @@ def row(label: str, points: List[Tuple[float, float]]) -> str:
 
 def compare(setup: Setup, reference_s: float, budgets: List[float]) -> List[str]:
     """Both renderers on `setup`: the table's rows."""
-    lux_reference = luxcore_curve(setup, reference_s, 1000, [reference_s])[0][-1][1]
-    lux, rate = luxcore_curve(setup, budgets[-1], 1, budgets)
-    lux_points = [(t, caustic_rel_rmse(image, lux_reference)) for t, image in lux]
-    print(f"{setup.name}: LuxCore LIGHTCPU ({rate}): " + ", ".join(f"{t:.1f} s {e:.4f}" for t, e in lux_points))
+    rows = []
+    error = lambda image, reference: rel_rmse(image, reference, setup.whole_image)  # noqa: E731
+    lux_references = {}
+    for engine in setup.engines:
+        lux_references[engine] = luxcore_curve(setup, engine, reference_s, 1000, [reference_s])[0][-1][1]
+        lux, rate = luxcore_curve(setup, engine, budgets[-1], 1, budgets)
+        lux_points = [(t, error(image, lux_references[engine])) for t, image in lux]
+        print(f"{setup.name}: LuxCore {engine} ({rate}): " + ", ".join(f"{t:.1f} s {e:.4f}" for t, e in lux_points))
+        rows.append(row(f"LuxCore {engine}, Sobol", lux_points))
 
     references: Dict[str, np.ndarray] = {}
-    rows = [row("LuxCore LIGHTCPU, Sobol", lux_points)]
-    for label, settings in CONFIGS:
+    for label, settings in setup.configs:
         view = str(settings.get("view_paths", "hero"))  # prismatic's default
         if view not in references:
             references[view] = prismatic_render(setup, reference_s, 1000,
@@ -334,10 +466,27 @@ def compare(setup: Setup, reference_s: float, budgets: List[float]) -> List[str]
         points = []
         for budget in budgets:
             image, took = prismatic_render(setup, budget, 1, settings)
-            points.append((took, caustic_rel_rmse(image, references[view])))
+            points.append((took, error(image, references[view])))
         print(f"{setup.name}: prismatic, {label}: " + ", ".join(f"{t:.1f} s {e:.4f}" for t, e in points))
         rows.append(row(f"prismatic, {label}", points))
+    # How far the two renderers' references are apart: their means, and the
+    # relRMSE of 8×8-pixel blocks with the sun's glints through the glass
+    # clipped (a few pixels at the sun's radiance would be all of it, and
+    # pixel-centre view paths catch other glints than supersampled pixels).
+    ours = references.get("hero")
+    for engine, lux_reference in lux_references.items():
+        if ours is None:
+            break
+        blocks = [np.minimum(x, GLINT_CLIP).reshape(HEIGHT // 8, 8, WIDTH // 8, 8, 3).mean(axis=(1, 3))
+                  for x in (ours, lux_reference)]
+        print(f"{setup.name}: references, prismatic against LuxCore {engine}: means {ours.mean():.4f} and "
+              f"{lux_reference.mean():.4f}; 8×8 blocks, glints clipped: relRMSE {rel_rmse(*blocks, True):.4f}")
     return rows
+
+
+# Radiance above which a pixel counts as a glint of the sun (the sky and the
+# floor stay below 10).
+GLINT_CLIP = 30.0
 
 
 def main() -> None:
@@ -345,9 +494,12 @@ def main() -> None:
     parser.add_argument("--reference-s", type=float, default=180.0, help="seconds of each reference render")
     parser.add_argument("--shortest-s", type=float, default=0.125, help="the shortest measured render (seconds)")
     parser.add_argument("--longest-s", type=float, default=32.0, help="the longest measured render (seconds)")
-    parser.add_argument("--scenes", nargs="+", choices=sorted(SETUPS), default=["prism", "sphere"])
+    parser.add_argument("--scenes", nargs="+", choices=sorted(SETUPS), default=["prism", "sphere", "sky"])
     args = parser.parse_args()
     pyluxcore.Init(lambda _: None)
+    if "sky" in args.scenes:
+        os.makedirs(os.path.dirname(SKY_FILE), exist_ok=True)
+        write_hdr(SKY_FILE, sky_texels())
     budgets = [args.shortest_s * 2 ** k for k in range(int(math.log2(args.longest_s / args.shortest_s)) + 1)]
     print(f"# {platform.processor() or platform.machine()}, {os.cpu_count()} CPUs; "
           f"prismatic {prismatic.__version__}, LuxCore {pyluxcore.Version()}, {THREADS} threads each")

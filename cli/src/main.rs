@@ -249,6 +249,13 @@ fn render(
         scene.scene.render.width,
         scene.scene.render.height
     );
+    if s.view_paths_cut > 0 {
+        eprintln!(
+            "warning: {name}: the device stopped the view paths of {} pixels short (a software GPU stops an \
+             invocation's loops after 65,535 iterations): light is missing there; render with --backend cpu",
+            s.view_paths_cut
+        );
+    }
     Ok(())
 }
 

@@ -323,6 +323,7 @@ pub fn read_outs_and_statistics(backend: &mut dyn Backend) {
     assert_eq!(stats.trace.emitted, 2 * u64::from(r.photons), "{name}: photons emitted");
     assert_eq!(stats.trace.stored, stored, "{name}: photons stored, against the passes' maps");
     assert_eq!(stats.visible_points, reference.stats().unwrap().visible_points, "{name}: visible points");
+    assert_eq!(stats.view_paths_cut, 0, "{name}: view paths cut short");
     let (lo, hi) = stats.first_radii.unwrap_or_else(|| panic!("{name}: no first radii"));
     assert!(0.0 < lo && lo <= hi && hi <= r.radius, "{name}: first radii {lo}..{hi} of {}", r.radius);
 }

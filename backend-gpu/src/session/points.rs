@@ -52,7 +52,9 @@ pub struct PointChunk {
     pub capacity: u64,
     /// The visible points, appended by the view pass.
     pub points: wgpu::Buffer,
-    /// One u32: points the view pass appended (past the capacity: counted only).
+    /// Two u32 (view.wgsl's `ViewCounts`): points the view pass appended
+    /// (past the capacity: counted only), and pixels whose paths the
+    /// device cut short.
     pub total: wgpu::Buffer,
     /// Per pixel: Σ over passes and points of weight × caustic, three i64
     /// in 2^32 per unit (`prismatic_core::Accumulation`'s sums).
@@ -183,7 +185,7 @@ impl GpuSession {
                 count,
                 capacity,
                 points: buffer("prismatic visible points", capacity * POINT_BYTES),
-                total: buffer("prismatic visible-point count", 4),
+                total: buffer("prismatic visible-point count and cut pixels", 8),
                 sums: buffer("prismatic caustic sums", count * SUM_BYTES),
                 base: buffer("prismatic direct light", count * PIXEL_BYTES),
                 pixel_ratios: buffer("prismatic pixel radii", count * 4),

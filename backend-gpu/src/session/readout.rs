@@ -35,10 +35,11 @@ impl GpuSession {
     /// The statistics: the passes' trace tallies, the visible points and
     /// their first radii (the device's), the bytes moved (the context's).
     pub(super) fn read_stats(&self) -> Result<RenderStats, BackendError> {
-        let mut points = 0;
+        let (mut points, mut cut) = (0, 0);
         for chunk in &self.points.chunks {
-            let total = u32::from_le_bytes(self.ctx.read(&chunk.total, 0, 4)?[..4].try_into().expect("4 bytes"));
-            points += u64::from(total).min(chunk.capacity);
+            let counts: Vec<u32> = bytemuck::pod_collect_to_vec(&self.ctx.read(&chunk.total, 0, 8)?);
+            points += u64::from(counts[0]).min(chunk.capacity);
+            cut += u64::from(counts[1]);
         }
         let bytes = self.ctx.read(&self.run_stats, 0, size_of::<RunStats>() as u64)?;
         let s: RunStats = bytemuck::pod_read_unaligned(&bytes);
@@ -70,6 +71,7 @@ impl GpuSession {
             trace,
             visible_points: points,
             first_radii,
+            view_paths_cut: cut,
             uploaded,
             read_back,
         })

@@ -20,9 +20,14 @@
 
 @group(1) @binding(0) var<storage, read_write> pixels: array<vec4<f32>>;
 @group(1) @binding(1) var<storage, read_write> points: array<VisiblePoint>;
-// Points appended so far; those past `point_capacity` are counted, not
-// written (the host reads the count back and traces again with room).
-@group(1) @binding(2) var<storage, read_write> point_total: atomic<u32>;
+// Points appended so far (those past `point_capacity` are counted, not
+// written: the host reads the count back and traces again with room), and
+// the pixels whose paths the device cut short (RenderStats::view_paths_cut).
+struct ViewCounts {
+    points: atomic<u32>,
+    cut: atomic<u32>,
+}
+@group(1) @binding(2) var<storage, read_write> counts: ViewCounts;
 // Per pixel of the chunk: its first radius as a fraction of R, stored as
 // the complement of its bits (0: none, the pilot found no point there;
 // see session.wgsl's first_radius).
@@ -166,7 +171,7 @@ var<private> pixel_index: u32;
 // on the viewer's side, what unit reflected caustic irradiance there adds
 // to the pixel, the surface's albedo, and the pixel (within the chunk).
 fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>, albedo: vec3<f32>) {
-    let i = atomicAdd(&point_total, 1u);
+    let i = atomicAdd(&counts.points, 1u);
     if i < params.point_capacity {
         let none = vec2<u32>(0u);
         let sums = array<vec2<u32>, 3>(none, none, none);
@@ -307,4 +312,9 @@ fn main(
     let i = params.pixel_offset + k;
     pixel_index = k;
     pixels[k] = vec4<f32>(pixel(i % params.width, i / params.width), 1.0);
+    // Entries left on the stack: the device stopped the loop (a software
+    // device's cap on an invocation's loop iterations), not the paths.
+    if top > 0u {
+        atomicAdd(&counts.cut, 1u);
+    }
 }

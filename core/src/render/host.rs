@@ -278,6 +278,7 @@ impl<K: HostKernels> Render for HostRender<K> {
             trace: self.trace,
             visible_points: self.last_view_points as u64,
             first_radii,
+            view_paths_cut: 0,
             uploaded: 0,
             read_back: 0,
         })

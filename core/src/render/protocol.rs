@@ -208,6 +208,13 @@ pub struct RenderStats {
     pub visible_points: u64,
     /// The smallest and largest first radius; `None` without visible points.
     pub first_radii: Option<(f32, f32)>,
+    /// Pixels of the last view traced whose view paths the device stopped
+    /// short of their end: a software device (lavapipe) stops an
+    /// invocation's loops after 65,535 iterations in all, and a pixel whose
+    /// paths split at glass and shade every diffuse hit with many lights
+    /// goes past it; their light and visible points are missing. 0 on the
+    /// host and on a GPU.
+    pub view_paths_cut: u64,
     /// Bytes written to a device since the render was prepared (0 on the host).
     pub uploaded: u64,
     /// Bytes read back from a device since the render was prepared (0 on the host).

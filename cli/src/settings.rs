@@ -192,6 +192,11 @@ settings! {
     /// image's log-average luminance is middle grey (0.18).
     #[arg(long)]
     auto_exposure: bool,
+    /// Suns an environment light is cut into (its median cut, 1 to 4096):
+    /// more follow the sky's light and soft shadows more closely, and each
+    /// is one more shadow ray at every point the camera sees.
+    #[arg(long)]
+    environment_lights: u32,
     /// Image width.
     #[arg(long)]
     width: u32,

@@ -100,4 +100,13 @@ fn the_environment_flags_light_a_scene_and_name_themselves_in_errors() {
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(stderr.contains("--environment-rotation") && stderr.contains("no environment"), "{stderr}");
     assert!(!out.exists());
+    // The median cut's size.
+    let (run, out) = render(&["--environment", "studio", "--environment-lights", "4"]);
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    assert!(out.exists());
+    let (run, out) = render(&["--environment", "studio", "--environment-lights", "0"]);
+    assert_eq!(run.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert!(stderr.contains("--environment-lights: must be 1 to 4096"), "{stderr}");
+    assert!(!out.exists());
 }

@@ -108,9 +108,9 @@ def test_a_named_setting_is_the_clis_bit_for_bit(cli, tmp_path, scene, passes, k
 
 def test_the_environment_keywords_are_the_clis_flags(cli, tmp_path):
     cli("render", "sphere", *flags(SMALL), "--environment", "studio", "--environment-strength", "0.5",
-        "--environment-rotation", "30", "-o", "sky.exr", cwd=tmp_path)
+        "--environment-rotation", "30", "--environment-lights", "8", "-o", "sky.exr", cwd=tmp_path)
     sky = prismatic.render("sphere", progress=False, environment="studio", environment_strength=0.5,
-                           environment_rotation=30, **SMALL)
+                           environment_rotation=30, environment_lights=8, **SMALL)
     assert same_bits(sky, read_exr(tmp_path / "sky.exr"))
     assert not same_bits(sky, prismatic.render("sphere", progress=False, **SMALL)), "the studio lit nothing"
     with pytest.raises(prismatic.SceneError, match=r"keyword arguments: environment_strength: the scene has no "

@@ -111,3 +111,34 @@ impl EnvironmentArgs {
         Ok(doc)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    /// The names Python's keywords take are the flags' (one list could
+    /// drift from the other), and each one sets its own field.
+    #[test]
+    fn the_keyword_names_are_the_flags() {
+        #[derive(clap::Parser)]
+        struct Flags {
+            #[command(flatten)]
+            environment: EnvironmentArgs,
+        }
+        let flags: Vec<String> =
+            Flags::command().get_arguments().filter_map(|a| a.get_long()).map(|f| f.replace('-', "_")).collect();
+        assert_eq!(flags, EnvironmentArgs::NAMES);
+        let mut args = EnvironmentArgs::default();
+        for name in EnvironmentArgs::NAMES {
+            args.set(name, "2").unwrap();
+        }
+        let set = EnvironmentArgs {
+            environment: Some("2".into()),
+            environment_strength: Some(2.0),
+            environment_rotation: Some(2.0),
+        };
+        assert_eq!(args, set);
+        assert_eq!(args.set("environment_strength", "bright").unwrap_err(), "expected a number, not \"bright\"");
+    }
+}

@@ -1,5 +1,6 @@
 //! Packet emission: `prismatic_core::photons::emit::emit` for eight photon indices at once.
 
+use crate::optics::offset_origin;
 use crate::simd::{Vec3x8, ge, photon_f32, sin_cos_turns};
 use prismatic_core::geometry::primitive::basis;
 use prismatic_core::model::scene::{Light, PhotonSequence};
@@ -12,9 +13,32 @@ use wide::{f32x8, u32x8};
 /// A light with its frame precomputed (the scalar `emit` computes the same values per photon).
 #[derive(Clone, Copy, Debug)]
 enum Emitter {
-    Spot { position: Vec3x8, axis: Vec3x8, t: Vec3x8, b: Vec3x8, cos_max: f32x8 },
-    Point { position: Vec3x8 },
-    Beam { position: Vec3x8, axis: Vec3x8, t: Vec3x8, b: Vec3x8, radius: f32x8 },
+    Spot {
+        position: Vec3x8,
+        axis: Vec3x8,
+        t: Vec3x8,
+        b: Vec3x8,
+        cos_max: f32x8,
+    },
+    Point {
+        position: Vec3x8,
+    },
+    Beam {
+        position: Vec3x8,
+        axis: Vec3x8,
+        t: Vec3x8,
+        b: Vec3x8,
+        radius: f32x8,
+    },
+    /// A triangle: a corner, its edges from there, its front normal and the normal's basis.
+    Area {
+        corner: Vec3x8,
+        e1: Vec3x8,
+        e2: Vec3x8,
+        normal: Vec3x8,
+        t: Vec3x8,
+        b: Vec3x8,
+    },
 }
 
 /// A light's projection map with its vectors splatted (see `prismatic_core::plan::projection`).
@@ -65,6 +89,18 @@ impl Emitters {
                         t: Vec3x8::splat(t),
                         b: Vec3x8::splat(b),
                         radius: f32x8::splat(*radius),
+                    }
+                }
+                Light::Area { vertices: [a, b, c], .. } => {
+                    let normal = (*b - *a).cross(*c - *a).normalize();
+                    let (t, bt) = basis(normal);
+                    Emitter::Area {
+                        corner: Vec3x8::splat(*a),
+                        e1: Vec3x8::splat(*b - *a),
+                        e2: Vec3x8::splat(*c - *a),
+                        normal: Vec3x8::splat(normal),
+                        t: Vec3x8::splat(t),
+                        b: Vec3x8::splat(bt),
                     }
                 }
                 Light::Sun { .. } | Light::Environment { .. } => {
@@ -140,7 +176,7 @@ impl Emitters {
         if let Some(p) = &self.projections[k] {
             return self.emit_projected(&self.lights[k], p, index, u1, u2);
         }
-        let (origin, dir) = self.emit_whole(&self.lights[k], u1, u2);
+        let (origin, dir) = self.emit_whole(&self.lights[k], index, u1, u2);
         (origin, dir, f32x8::ONE)
     }
 
@@ -182,6 +218,7 @@ impl Emitters {
                 origin = position;
                 inside = f32x8::splat(f32::from_bits(u32::MAX));
             }
+            Emitter::Area { .. } => unreachable!("an area light has no projection map (Projection::new)"),
             Emitter::Beam { position, axis, t, b, radius } => {
                 let (sin_phi, cos_phi) = sin_cos_turns(u2);
                 for (j, (c, r)) in p.discs.iter().enumerate() {
@@ -203,7 +240,7 @@ impl Emitters {
     }
 
     #[inline]
-    fn emit_whole(&self, light: &Emitter, u1: f32x8, u2: f32x8) -> (Vec3x8, Vec3x8) {
+    fn emit_whole(&self, light: &Emitter, index: u32x8, u1: f32x8, u2: f32x8) -> (Vec3x8, Vec3x8) {
         match *light {
             Emitter::Spot { position, axis, t, b, cos_max } => {
                 let cos_t = f32x8::ONE - u1 * (f32x8::ONE - cos_max);
@@ -219,6 +256,13 @@ impl Emitters {
                 let r = radius * u1.sqrt();
                 let (sin_phi, cos_phi) = sin_cos_turns(u2);
                 (position + (t * cos_phi + b * sin_phi) * r, axis)
+            }
+            Emitter::Area { corner, e1, e2, normal, t, b } => {
+                let rnd = |d: u32| crate::simd::random_f32(self.seed, index, u32x8::splat(d));
+                let (s, w2) = (rnd(dim::AREA).sqrt(), rnd(dim::AREA + 1));
+                let point = corner + e1 * (s * (f32x8::ONE - w2)) + e2 * (s * w2);
+                let cos_t = (f32x8::ONE - u1).sqrt();
+                (offset_origin(point, normal, normal), cone_direction(normal, t, b, cos_t, u2))
             }
         }
     }

@@ -23,17 +23,19 @@ use crate::simd::{Vec3x8, ge, gt, lt};
 use glam::Vec3;
 use prismatic_core::Image;
 use prismatic_core::geometry::camera::PinholeCamera;
+use prismatic_core::geometry::form_factor::{in_front_of, triangle_view};
 use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::model::scene::Light;
 use prismatic_core::optics::fresnel::reflect;
 use prismatic_core::optics::scatter::{self, scatter_dielectric};
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
+use prismatic_core::plan::area::area;
 use prismatic_core::plan::prepared::PreparedScene;
 use prismatic_core::render::view::{HeroViewPath, gathers_at, glass_transmittance, hero_view_paths};
 use prismatic_core::render::visible::{VisiblePoint, VisiblePoints};
 use prismatic_core::sampling::pixel_sample::PixelSampler;
 use prismatic_core::util::math::{cos, radians};
-use prismatic_core::util::tolerance::MIN_VIEW_WEIGHT;
+use prismatic_core::util::tolerance::{CONNECTION_REL, MIN_VIEW_WEIGHT};
 use rayon::prelude::*;
 use std::f32::consts::PI;
 use wide::f32x8;
@@ -244,7 +246,12 @@ impl Shader<'_> {
                 reflected[i] += spectrum.reflected * albedo[i] * e[i];
             }
         }
-        core::array::from_fn(|i| reflected[i] * (1.0 / PI) + albedo[i] * settings.ambient)
+        // An emissive surface's own glow, seen from its front.
+        let mut glow = [Vec3::ZERO; 8];
+        for i in lanes(mask) {
+            glow[i] = self.scene.surfaces[objects[i] as usize].emitted(rays[i].dir, hit.normal.lane(i));
+        }
+        core::array::from_fn(|i| reflected[i] * (1.0 / PI) + albedo[i] * settings.ambient + glow[i])
     }
 
     /// `ViewContext::direct_irradiance` for eight points (shadow rays if `shadows`).
@@ -286,6 +293,28 @@ impl Shader<'_> {
                 let shadow = RayX8 { origin: offset_origin(p, n, to_sun), dir: to_sun };
                 let blocked = occluded(self.scene, &shadow, limit_where(lit, f32x8::splat(f32::INFINITY)));
                 (lit & !blocked).select(f32x8::splat(*irradiance) * cos_s, f32x8::ZERO)
+            }
+            Light::Area { vertices, power, .. } => {
+                // The closed form lane by lane, the shadow rays as a packet.
+                let (mut angle, mut centre) = ([0.0f32; 8], [Vec3::ZERO; 8]);
+                for i in lanes(mask) {
+                    let (pi, ni) = (p.lane(i), n.lane(i));
+                    if in_front_of(pi, *vertices) {
+                        let seen = triangle_view(pi, ni, *vertices);
+                        (angle[i], centre[i]) = (seen.projected_solid_angle, seen.centre);
+                    }
+                }
+                let (angle, centre) = (f32x8::new(angle), Vec3x8::from_lanes(&centre));
+                let lit = mask & gt(angle, f32x8::ZERO);
+                let irradiance = f32x8::splat(power / (PI * area(vertices))) * angle;
+                if !lit.any() || !shadows {
+                    return lit.select(irradiance, f32x8::ZERO);
+                }
+                let dir = (centre - p).normalize();
+                let origin = offset_origin(p, n, dir);
+                let reach = (centre - origin).length_squared().sqrt() * f32x8::splat(1.0 - CONNECTION_REL);
+                let blocked = occluded(self.scene, &RayX8 { origin, dir }, limit_where(lit, reach));
+                (lit & !blocked).select(irradiance, f32x8::ZERO)
             }
             Light::Environment { .. } => unreachable!("an environment shines as its suns (PreparedScene::lights)"),
         }

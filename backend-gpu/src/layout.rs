@@ -177,11 +177,17 @@ pub struct GpuSurface {
     pub texture_height: u32,
     /// Record of the first triangle's texture coordinates in the geometry buffer.
     pub uv_first: u32,
+    /// Radiance its front faces emit (an area light's glow).
+    pub emission: [f32; 3],
+    /// Padding.
+    pub _pad: u32,
 }
-const _: () = assert!(core::mem::size_of::<GpuSurface>() == 96);
+const _: () = assert!(core::mem::size_of::<GpuSurface>() == 112);
 
 /// A light. Kinds: 0 spot, 1 point, 2 beam (a sun is the beam it emits
-/// from, with `sun` set: lit everywhere, not only inside the disc).
+/// from, with `sun` set: lit everywhere, not only inside the disc), 3 area
+/// (a triangle: `position` its first corner, `tangent` and `bitangent` its
+/// edges from there, `axis` its unit front normal, `radius` its radiance).
 /// Projection kinds: 0 none,
 /// 1 cones, 2 discs (targets are vec4s in the geometry buffer: axis and
 /// cos θ_max, or centre and radius; their CDF is in the tables buffer).

@@ -17,6 +17,7 @@ use prismatic_core::model::scene::{Filter, Light, Sampler, Texture, Wrap};
 use prismatic_core::model::wavelength_rgb;
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::photons::trace::photon_flux;
+use prismatic_core::plan::area::area;
 use prismatic_core::plan::projection::Targets;
 use prismatic_core::util::math::{cos, radians};
 use prismatic_core::{BackendError, PreparedScene};
@@ -214,8 +215,13 @@ impl EncodedScene {
 
     fn surface(&mut self, surface: &Surface) -> GpuSurface {
         match surface {
-            Surface::Diffuse { albedo, checker, .. } => {
-                let mut s = GpuSurface { kind: SURFACE_DIFFUSE, albedo: v3(*albedo), ..GpuSurface::default() };
+            Surface::Diffuse { albedo, checker, emission, .. } => {
+                let mut s = GpuSurface {
+                    kind: SURFACE_DIFFUSE,
+                    albedo: v3(*albedo),
+                    emission: v3(*emission),
+                    ..GpuSurface::default()
+                };
                 if let Some(c) = checker {
                     s.flags |= SURFACE_HAS_CHECKER;
                     s.checker_albedo = v3(c.albedo);
@@ -296,6 +302,14 @@ impl EncodedScene {
                 l.tangent = v3(t);
                 l.bitangent = v3(b);
                 l.radius = *radius;
+            }
+            Light::Area { vertices: [a, b, c], power, .. } => {
+                l.kind = LIGHT_AREA;
+                l.position = v3(*a);
+                l.tangent = v3(*b - *a);
+                l.bitangent = v3(*c - *a);
+                l.axis = v3((*b - *a).cross(*c - *a).normalize());
+                l.radius = power / (core::f32::consts::PI * area(&[*a, *b, *c]));
             }
             Light::Sun { .. } | Light::Environment { .. } => {
                 unreachable!("a sun emits as its beam, an environment as its suns' (PreparedScene::emitters)")

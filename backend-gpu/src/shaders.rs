@@ -83,6 +83,8 @@ pub mod kind {
     pub const LIGHT_POINT: u32 = 1;
     /// Beam.
     pub const LIGHT_BEAM: u32 = 2;
+    /// Emitting triangle.
+    pub const LIGHT_AREA: u32 = 3;
     /// No projection map.
     pub const PROJECTION_NONE: u32 = 0;
     /// Projection onto cones of directions.
@@ -156,6 +158,7 @@ fn prelude(stack: u32) -> String {
     u("DIM_DIRECTION", dim::DIRECTION);
     u("DIM_TARGET", dim::TARGET);
     u("DIM_SPECTRUM", dim::SPECTRUM);
+    u("DIM_AREA", dim::AREA);
     u("DIM_PATH", dim::PATH);
     u("DIM_PER_BAND", dim::PER_BAND);
     u("DIM_ABSORB", dim::ABSORB);
@@ -195,6 +198,7 @@ fn prelude(stack: u32) -> String {
     u("LIGHT_SPOT", kind::LIGHT_SPOT);
     u("LIGHT_POINT", kind::LIGHT_POINT);
     u("LIGHT_BEAM", kind::LIGHT_BEAM);
+    u("LIGHT_AREA", kind::LIGHT_AREA);
     u("PROJECTION_NONE", kind::PROJECTION_NONE);
     u("PROJECTION_CONES", kind::PROJECTION_CONES);
     u("PROJECTION_DISCS", kind::PROJECTION_DISCS);

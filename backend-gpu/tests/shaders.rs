@@ -140,6 +140,8 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 texture_width,
                 texture_height,
                 uv_first,
+                emission,
+                _pad,
             }),
         ),
         (

@@ -4,8 +4,11 @@
 //! volume and dispersion extensions, `KHR_lights_punctual` lights, and the
 //! first camera (else one that frames the scene).
 //!
+//! Emissive materials (`emissiveFactor` × `KHR_materials_emissive_strength`)
+//! make their meshes area lights.
+//!
 //! What prismatic cannot represent (other textures, rough transmission,
-//! emission, skins, morph targets, lines and points) is reported once per
+//! skins, morph targets, lines and points) is reported once per
 //! element as a warning and left out; what makes no sense (a missing
 //! buffer, an unreadable image, an index out of range, a NaN) is an error
 //! naming the element's glTF path.
@@ -397,10 +400,12 @@ fn material(
             unused.push(what);
         }
     }
-    if m.emissive_factor().iter().any(|&e| e > 0.0) {
-        unused.push("emission (meshes do not emit)");
-    }
     let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor());
+    let glass_or_mirror =
+        transmission > 0.0 || (pbr.metallic_factor() >= MIRROR_METALLIC && pbr.roughness_factor() <= MIRROR_ROUGHNESS);
+    if glass_or_mirror && emission(m) != Vec3::ZERO {
+        unused.push("emission of glass or a mirror (only diffuse surfaces emit)");
+    }
     let mut uv_transform = None;
     let kind = if transmission > 0.0 {
         if pbr.roughness_factor() > 0.0 {
@@ -437,7 +442,7 @@ fn material(
         };
         let (texture, transform) = texture.unzip();
         uv_transform = transform.flatten();
-        MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture }
+        MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission: emission(m) }
     };
     if !unused.is_empty() {
         warnings.push(format!("{path} ({name}): left out: {}", unused.join(", ")));
@@ -489,6 +494,12 @@ fn attenuation(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option
 
 /// n(λ) of a transmissive material: `KHR_materials_ior` (default 1.5) and
 /// `KHR_materials_dispersion`, whose `dispersion` is 20/V_d (0: none).
+/// The radiance a material emits: `emissiveFactor` × `KHR_materials_emissive_strength`
+/// (the texture is named as left out above).
+fn emission(m: &gltf::Material<'_>) -> Vec3 {
+    Vec3::from(m.emissive_factor()) * m.emissive_strength().unwrap_or(1.0)
+}
+
 fn dispersion(m: &gltf::Material<'_>) -> Dispersion {
     let ior = m.ior().unwrap_or(1.5);
     let spread = m
@@ -521,7 +532,8 @@ fn scene(parts: Result<GltfScene, GltfError>, file: &str) -> Result<SceneDocumen
     let mut warnings = parts.warnings;
     let camera = parts.camera.unwrap_or_else(|| framing_camera(centre, size));
     let mut lights = parts.lights;
-    if lights.is_empty() {
+    let emissive = parts.objects.iter().any(|o| parts.materials[o.material].kind.emission() != Vec3::ZERO);
+    if lights.is_empty() && !emissive {
         // As viewers open a file without lights: in a neutral environment.
         warnings.push("no light: lit by the built-in studio environment".into());
         lights.push(Light::Environment {

@@ -197,6 +197,11 @@ settings! {
     /// is one more shadow ray at every point the camera sees.
     #[arg(long)]
     environment_lights: u32,
+    /// Pieces the emissive meshes' triangles are cut into for direct light
+    /// (1 to 4096, at least one a triangle): more draw their soft shadows
+    /// more finely, each one more shadow ray at every point the camera sees.
+    #[arg(long)]
+    area_lights: u32,
     /// Image width.
     #[arg(long)]
     width: u32,

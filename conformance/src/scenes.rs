@@ -4,7 +4,8 @@
 //! seen through glass; once more as a closed triangle mesh, once more in
 //! amber glass that absorbs, once more on a textured floor), a prism
 //! fanning a beam onto a wall (split bands),
-//! a mirror folding a beam onto a floor (no dispersion), and a room with
+//! a mirror folding a beam onto a floor (no dispersion), the sphere under a
+//! light panel (an area light), and a room with
 //! no mirror or glass (no caustics at all).
 
 use glam::Vec3;
@@ -33,7 +34,10 @@ fn material(name: &str, kind: MaterialKind) -> Material {
 }
 
 fn diffuse(name: &str, albedo: f32) -> Material {
-    material(name, MaterialKind::Diffuse { albedo: Vec3::splat(albedo), checker: None, texture: None })
+    material(
+        name,
+        MaterialKind::Diffuse { albedo: Vec3::splat(albedo), checker: None, texture: None, emission: Vec3::ZERO },
+    )
 }
 
 fn glass(name: &str, dispersion: Dispersion) -> Material {
@@ -68,7 +72,12 @@ pub fn glass_sphere() -> PreparedScene {
         materials: vec![
             material(
                 "floor",
-                MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: Some(checker), texture: None },
+                MaterialKind::Diffuse {
+                    albedo: Vec3::splat(0.8),
+                    checker: Some(checker),
+                    texture: None,
+                    emission: Vec3::ZERO,
+                },
             ),
             glass("glass", Glass::Sf11.dispersion()),
         ],
@@ -77,6 +86,42 @@ pub fn glass_sphere() -> PreparedScene {
             Object { shape: Shape::Sphere { center: Vec3::new(0.0, 1.0, 0.0), radius: 0.8 }, material: 1 },
         ],
     })
+}
+
+/// A warm light panel: a square mesh at `height` facing down, emitting
+/// `emission` (half a metre a side, cut into two triangles).
+pub fn light_panel(center: Vec3, emission: Vec3) -> (Material, Shape) {
+    let h = 0.25;
+    let positions = vec![
+        center + Vec3::new(-h, 0.0, -h),
+        center + Vec3::new(h, 0.0, -h),
+        center + Vec3::new(h, 0.0, h),
+        center + Vec3::new(-h, 0.0, h),
+    ];
+    // Wound so that (b − a) × (c − a) points down, toward the scene.
+    let shape = Shape::Mesh { positions, triangles: vec![[0, 1, 2], [0, 2, 3]], uvs: Vec::new() };
+    let kind = MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: None, texture: None, emission };
+    (material("panel", kind), shape)
+}
+
+/// The paper's sphere lit by a light panel above it and nothing else: an
+/// area light's direct light, soft shadow and caustic.
+pub fn panel_lit_sphere() -> PreparedScene {
+    let mut scene = glass_sphere().scene;
+    scene.lights.clear();
+    // A round floor: photons that graze the sphere and would land tens of
+    // metres away (where an ulp at the start has grown past the parity
+    // tolerances) leave the scene instead.
+    scene.objects[0].shape = Shape::Disk { center: Vec3::ZERO, normal: Vec3::Y, radius: 3.0, inner_radius: 0.0 };
+    // A panel lights the ball from every side, so many of its photons run
+    // round inside it by internal reflection, where an emission direction
+    // one ulp apart (a twin's sine) grows past the parity tolerances after
+    // four bounces or more; three keep the caustic's paths (in, out, floor).
+    scene.render.max_depth = 3;
+    let (panel, shape) = light_panel(Vec3::new(-0.6, 3.0, -0.2), Vec3::splat(50.0));
+    scene.objects.push(Object { shape, material: scene.materials.len() });
+    scene.materials.push(panel);
+    prepared(scene)
 }
 
 /// The paper's sphere in amber glass: Beer–Lambert absorption on the
@@ -99,7 +144,8 @@ pub fn textured_floor() -> PreparedScene {
         (0..64u32).map(|i| (40 + 25 * (i % 8)) | (230 - 25 * (i / 8)) << 8 | ((i * 37) % 256) << 16).collect();
     let sampler = Sampler { filter: Filter::Linear, wrap_u: Wrap::Repeat, wrap_v: Wrap::MirroredRepeat };
     let texture = Texture { name: "tiles".into(), width: 8, height: 8, texels: texels.into(), sampler };
-    scene.materials[0].kind = MaterialKind::Diffuse { albedo: Vec3::splat(0.9), checker: None, texture: Some(texture) };
+    scene.materials[0].kind =
+        MaterialKind::Diffuse { albedo: Vec3::splat(0.9), checker: None, texture: Some(texture), emission: Vec3::ZERO };
     let corners = [(-4.0, -4.0), (4.0, -4.0), (4.0, 4.0), (-4.0, 4.0)];
     scene.objects[0].shape = Shape::Mesh {
         positions: corners.iter().map(|&(x, z)| Vec3::new(x, 0.0, z)).collect(),
@@ -244,6 +290,9 @@ pub fn lit_by_every_light_kind(projection_maps: bool, sequence: PhotonSequence) 
         },
         Light::Sun { direction: Vec3::new(0.3, -1.0, 0.2), irradiance: 2.0, spectrum: Default::default() },
     ]);
+    let (panel, shape) = light_panel(Vec3::new(0.8, 3.5, 0.4), Vec3::splat(20.0));
+    scene.objects.push(Object { shape, material: scene.materials.len() });
+    scene.materials.push(panel);
     scene.render.projection_maps = projection_maps;
     scene.render.photon_sequence = sequence;
     prepared(scene)
@@ -258,6 +307,7 @@ pub fn with_caustics() -> Vec<(&'static str, PreparedScene)> {
         ("textured floor", textured_floor()),
         ("prism", prism()),
         ("mirror", mirror()),
+        ("panel-lit sphere", panel_lit_sphere()),
     ]
 }
 

@@ -27,7 +27,7 @@ pub fn camera() -> Camera {
 pub fn white(name: &str) -> Material {
     Material {
         name: name.into(),
-        kind: MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: None, texture: None },
+        kind: MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: None, texture: None, emission: Vec3::ZERO },
     }
 }
 

@@ -63,6 +63,7 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
                 offset: Vec3::ZERO,
             }),
             texture: None,
+            emission: Vec3::ZERO,
         },
     };
     let materials = vec![

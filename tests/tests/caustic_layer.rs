@@ -18,7 +18,8 @@ fn scene() -> PreparedScene {
     let mut doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
     let r = &mut doc.scene.render;
     (r.width, r.height, r.photons, r.light_tracing, r.view_paths) = (96, 72, 20_000, true, ViewPaths::Centre);
-    doc.scene.materials[0].kind = MaterialKind::Diffuse { albedo: Vec3::splat(ALBEDO), checker: None, texture: None };
+    doc.scene.materials[0].kind =
+        MaterialKind::Diffuse { albedo: Vec3::splat(ALBEDO), checker: None, texture: None, emission: Vec3::ZERO };
     PreparedScene::new(doc.scene).expect("valid")
 }
 

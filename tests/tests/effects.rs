@@ -125,7 +125,7 @@ fn the_plan_never_skips_light_that_would_show() {
                     *direction = aim - *position;
                 }
                 Light::Sun { direction, .. } => *direction = aim,
-                Light::Point { .. } | Light::Environment { .. } => {}
+                Light::Point { .. } | Light::Environment { .. } | Light::Area { .. } => {}
             }
         }
         // Projection maps change where photons start (their unbiasedness is tested separately).

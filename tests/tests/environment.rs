@@ -18,7 +18,7 @@ const ALBEDO: f32 = 0.6;
 fn floor() -> (Material, Object) {
     let m = Material {
         name: "floor".into(),
-        kind: MaterialKind::Diffuse { albedo: Vec3::splat(ALBEDO), checker: None, texture: None },
+        kind: MaterialKind::Diffuse { albedo: Vec3::splat(ALBEDO), checker: None, texture: None, emission: Vec3::ZERO },
     };
     (m, Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 })
 }

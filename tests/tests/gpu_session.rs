@@ -125,6 +125,7 @@ fn moved(light: &Light, dx: f32) -> Light {
         Light::Spot { position, .. } | Light::Point { position, .. } | Light::Beam { position, .. } => {
             *position += Vec3::new(dx, 0.0, 0.0);
         }
+        Light::Area { vertices, .. } => vertices.iter_mut().for_each(|v| *v += Vec3::new(dx, 0.0, 0.0)),
         Light::Sun { .. } | Light::Environment { .. } => {} // everywhere at once: nothing to move
     }
     l

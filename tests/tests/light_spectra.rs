@@ -177,7 +177,12 @@ fn sodium_on_green(backend: &mut dyn prismatic_core::Backend, render: RenderSett
         prismatic_core::Camera { position: Vec3::new(0.0, 0.6, 0.0), look_at: Vec3::ZERO, up: Vec3::Z, fov_deg: 90.0 };
     let green = Material {
         name: "green".into(),
-        kind: MaterialKind::Diffuse { albedo: Vec3::new(0.1, 0.7, 0.2), checker: None, texture: None },
+        kind: MaterialKind::Diffuse {
+            albedo: Vec3::new(0.1, 0.7, 0.2),
+            checker: None,
+            texture: None,
+            emission: Vec3::ZERO,
+        },
     };
     let scene = Scene {
         render,

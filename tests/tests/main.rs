@@ -1,5 +1,6 @@
 //! Cross-crate tests of prismatic, one binary: physics, determinism, parity, scene files.
 
+mod area_lights;
 mod builtin_scenes;
 mod caustic_layer;
 mod coloured_glass;

@@ -27,7 +27,7 @@ fn scene(photons: u32) -> PreparedScene {
     (render.width, render.height, render.ambient) = (48, 48, 0.0);
     let floor = Material {
         name: "floor".into(),
-        kind: MaterialKind::Diffuse { albedo: Vec3::splat(ALBEDO), checker: None, texture: None },
+        kind: MaterialKind::Diffuse { albedo: Vec3::splat(ALBEDO), checker: None, texture: None, emission: Vec3::ZERO },
     };
     prepare(Scene {
         render,

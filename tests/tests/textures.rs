@@ -55,7 +55,7 @@ fn scene(texture: Texture, albedo: Vec3, lo: f32, hi: f32) -> PreparedScene {
         triangles: vec![[0, 2, 1], [0, 3, 2]],
         uvs: corners.iter().map(|&(x, z)| uv_at(x, z, lo, hi).into()).collect(),
     };
-    let material = MaterialKind::Diffuse { albedo, checker: None, texture: Some(texture) };
+    let material = MaterialKind::Diffuse { albedo, checker: None, texture: Some(texture), emission: Vec3::ZERO };
     PreparedScene::new(Scene {
         render,
         // Seen from 10 above with a 20° field: the view is ±1.76 wide, inside the floor.

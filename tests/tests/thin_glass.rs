@@ -108,7 +108,7 @@ fn view_scene() -> PreparedScene {
     (render.width, render.height, render.background, render.ambient) = (3, 3, Vec3::ONE, 0.0);
     let black = Material {
         name: "black".into(),
-        kind: MaterialKind::Diffuse { albedo: Vec3::ZERO, checker: None, texture: None },
+        kind: MaterialKind::Diffuse { albedo: Vec3::ZERO, checker: None, texture: None, emission: Vec3::ZERO },
     };
     let square =
         [Vec3::new(0.0, -2.0, -2.0), Vec3::new(0.0, 2.0, -2.0), Vec3::new(0.0, 2.0, 2.0), Vec3::new(0.0, -2.0, 2.0)];

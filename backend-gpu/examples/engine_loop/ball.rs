@@ -39,7 +39,10 @@ pub fn scene(render: RenderSettings, light: Light, with_ball: bool) -> PreparedS
         camera: camera(),
         lights: vec![light],
         materials: vec![
-            material("floor", MaterialKind::Diffuse { albedo: Vec3::splat(0.85), checker: None, texture: None }),
+            material(
+                "floor",
+                MaterialKind::Diffuse { albedo: Vec3::splat(0.85), checker: None, texture: None, emission: Vec3::ZERO },
+            ),
             material("glass", glass),
         ],
         objects,

@@ -98,6 +98,8 @@ struct GpuSurface {
     texture_width: u32,
     texture_height: u32,
     uv_first: u32,
+    emission: vec3<f32>,
+    _pad: u32,
 }
 
 // Twin of prismatic_gpu::layout::GpuLight.

@@ -89,6 +89,14 @@ fn emit(seed: u32, index: u32) -> Emitted {
         let cos_t = 1.0 - u1 * (1.0 - l.cos_max);
         return Emitted(l.position, cone_direction(l.axis, cos_t, u2), light, 1.0);
     }
+    if l.kind == LIGHT_AREA {
+        // A uniform point on the triangle, a cosine-weighted direction out of its front.
+        let s = sqrt(random_f32(seed, index, DIM_AREA));
+        let w2 = random_f32(seed, index, DIM_AREA + 1u);
+        let point = l.position + l.tangent * (s * (1.0 - w2)) + l.bitangent * (s * w2);
+        let origin = offset_origin(point, l.axis, l.axis);
+        return Emitted(origin, cone_direction(l.axis, sqrt(1.0 - u1), u2), light, 1.0);
+    }
     if l.kind == LIGHT_POINT {
         let z = 1.0 - 2.0 * u1;
         let r = sqrt(max(1.0 - z * z, 0.0));

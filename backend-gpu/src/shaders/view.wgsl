@@ -126,9 +126,66 @@ fn toward_light(light: vec3<f32>, p: vec3<f32>, n: vec3<f32>, shadows: bool) -> 
     return vec4<f32>(l, dist);
 }
 
+// geometry::form_factor::triangle_view: the projected solid angle of the
+// part of triangle (a, b, c) above p's tangent plane (xyz: that part's
+// centre, w: the angle; w = 0 when none of it is).
+fn triangle_view(p: vec3<f32>, n: vec3<f32>, a: vec3<f32>, b: vec3<f32>, c: vec3<f32>) -> vec4<f32> {
+    let v = array<vec3<f32>, 3>(a - p, b - p, c - p);
+    var corners: array<vec3<f32>, 4>;
+    var count = 0u;
+    for (var i = 0u; i < 3u; i++) {
+        let x = v[i];
+        let y = v[(i + 1u) % 3u];
+        let hx = dot(x, n);
+        let hy = dot(y, n);
+        if hx > 0.0 {
+            corners[count] = x;
+            count++;
+        }
+        if (hx > 0.0) != (hy > 0.0) {
+            corners[count] = x + (y - x) * (hx / (hx - hy));
+            count++;
+        }
+    }
+    if count < 3u {
+        return vec4<f32>(p, 0.0);
+    }
+    var sum = 0.0;
+    var centre = vec3<f32>(0.0);
+    for (var i = 0u; i < count; i++) {
+        let x = corners[i];
+        let y = corners[(i + 1u) % count];
+        centre += x;
+        let c = cross(x, y);
+        let sin_len = sqrt(dot(c, c));
+        if sin_len > 0.0 {
+            sum += atan2(sin_len, dot(x, y)) * dot(c, n) / sin_len;
+        }
+    }
+    return vec4<f32>(p + centre / f32(count), 0.5 * abs(sum));
+}
+
 // ViewContext::direct_irradiance
 fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     let shadows = l.shadows != 0u;
+    if l.kind == LIGHT_AREA {
+        // form_factor::in_front_of
+        if dot(p - l.position, l.axis) <= surface_offset(p) {
+            return 0.0;
+        }
+        let seen = triangle_view(p, n, l.position, l.position + l.tangent, l.position + l.bitangent);
+        if seen.w <= 0.0 {
+            return 0.0;
+        }
+        if shadows {
+            let dir = nrm(seen.xyz - p);
+            let origin = offset_origin(p, n, dir);
+            if occluded(origin, dir, length(seen.xyz - origin) * (1.0 - CONNECTION_REL)) {
+                return 0.0;
+            }
+        }
+        return l.radius * seen.w;
+    }
     if l.sun != 0u {
         // A sun: its beam's irradiance wherever it is not blocked, inside
         // the disc or not.
@@ -200,7 +257,11 @@ fn shade_diffuse(dir: vec3<f32>, hit: Hit, tint: vec3<f32>, depth: u32) -> vec3<
     if params.stored > 0u && (depth > 0u || params.light_tracing == 0u) {
         add_visible_point(hit.point, n, tint * params.white_balance * (params.exposure / PI), albedo);
     }
-    return reflected * (1.0 / PI) + albedo * params.ambient;
+    var emitted = vec3<f32>(0.0);
+    if dot(dir, hit.normal) < 0.0 {
+        emitted = surfaces[hit.object].emission;
+    }
+    return reflected * (1.0 / PI) + albedo * params.ambient + emitted;
 }
 
 // One pending entry: what it adds to the pixel; what it spawns goes to `kids`.

@@ -115,6 +115,7 @@ impl Reader<'_> {
                 "alpha",
                 "neighbours",
                 "environment_lights",
+                "area_lights",
             ],
         )?;
         let d = RenderSettings::default();
@@ -146,6 +147,9 @@ impl Reader<'_> {
             environment_lights: self
                 .opt(t, "environment_lights", |p, k, v| p.uint(k, v, u32_max))?
                 .map_or(d.environment_lights, |x| x as u32),
+            area_lights: self
+                .opt(t, "area_lights", |p, k, v| p.uint(k, v, u32_max))?
+                .map_or(d.area_lights, |x| x as u32),
         })
     }
 
@@ -282,7 +286,10 @@ impl Reader<'_> {
         let kind = self.req(t, "kind", |p, k, v| p.string(k, v).map(str::to_string))?;
         Ok(match kind.as_str() {
             "diffuse" => {
-                self.check_keys(t, &["kind", "albedo", "checker", "texture", "texture_filter", "texture_wrap"])?;
+                self.check_keys(
+                    t,
+                    &["kind", "albedo", "checker", "texture", "texture_filter", "texture_wrap", "emission"],
+                )?;
                 let checker = match self.get(t, "checker") {
                     Some(v) => {
                         let ct = self.table(&join(&t.key, "checker"), v)?;
@@ -304,6 +311,7 @@ impl Reader<'_> {
                     albedo: self.opt(t, "albedo", Self::vec3)?.unwrap_or(default_albedo),
                     checker,
                     texture,
+                    emission: self.opt(t, "emission", Self::vec3)?.unwrap_or(Vec3::ZERO),
                 }
             }
             "dielectric" => {

@@ -1,9 +1,11 @@
 //! Layer 3, geometry: rays, triangles, the primitives and their intersections,
-//! bounding volume hierarchies, the camera and texture lookup.
+//! bounding volume hierarchies, the camera, texture lookup and what a point
+//! sees of a triangle (form factors).
 
 pub mod bvh;
 pub mod bvh_build;
 pub mod camera;
+pub mod form_factor;
 pub mod primitive;
 pub mod ray;
 pub mod texture;

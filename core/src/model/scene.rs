@@ -272,6 +272,15 @@ pub const DEFAULT_ENVIRONMENT_LIGHTS: u32 = 32;
 /// The most directional lights an environment may be drawn as.
 pub const MAX_ENVIRONMENT_LIGHTS: u32 = 4_096;
 
+/// Pieces emissive triangles are cut into by default for direct light:
+/// 16 shadow rays per visible point; the unblocked irradiance is exact at
+/// any count, so the count sets only how finely soft shadows are drawn.
+pub const DEFAULT_AREA_LIGHTS: u32 = 16;
+
+/// The most pieces emissive triangles are cut into (a mesh with more
+/// triangles keeps one piece per triangle).
+pub const MAX_AREA_LIGHTS: u32 = 4_096;
+
 /// How a render's gather radii behave from pass to pass.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum RadiusMode {
@@ -363,6 +372,11 @@ pub struct RenderSettings {
     /// cut: more, softer shadows and a closer irradiance, each a shadow ray
     /// per visible point).
     pub environment_lights: u32,
+    /// Pieces the emissive meshes' triangles are cut into for direct light
+    /// (at least one per triangle): each lights a point with its exact
+    /// unblocked irradiance, seen or shadowed from its centre (more: finer
+    /// soft shadows, each a shadow ray per visible point).
+    pub area_lights: u32,
 }
 
 /// The default settings are the fastest configuration measured that
@@ -425,6 +439,7 @@ impl RenderSettings {
             alpha: DEFAULT_ALPHA,
             neighbours: DEFAULT_NEIGHBOURS,
             environment_lights: DEFAULT_ENVIRONMENT_LIGHTS,
+            area_lights: DEFAULT_AREA_LIGHTS,
         }
     }
 }
@@ -497,6 +512,18 @@ pub enum Light {
         /// spectrum is emitted at each part's luminance.
         spectrum: Spectrum,
     },
+    /// A Lambertian emitting triangle, lit on the side its winding faces
+    /// ((b − a) × (c − a)) with radiance `power` / (π · area). Not written
+    /// in scene files: a mesh whose material has an `emission` becomes these
+    /// ([`crate::plan::prepared::PreparedScene::lights`]).
+    Area {
+        /// Its corners a, b, c.
+        vertices: [Vec3; 3],
+        /// Flux in W (out of its front face).
+        power: f32,
+        /// What it emits across the spectrum.
+        spectrum: Spectrum,
+    },
     /// Parallel light from one direction (the sun, glTF's directional
     /// light): it lights everything it reaches, with `irradiance` on a
     /// surface that faces it. Its photons leave a disc over the scene's
@@ -517,7 +544,10 @@ impl Light {
     /// ([`crate::plan::prepared::PreparedScene::emitters`]), so 0 here.
     pub fn power(&self) -> f32 {
         match self {
-            Light::Spot { power, .. } | Light::Point { power, .. } | Light::Beam { power, .. } => *power,
+            Light::Spot { power, .. }
+            | Light::Point { power, .. }
+            | Light::Beam { power, .. }
+            | Light::Area { power, .. } => *power,
             Light::Sun { .. } | Light::Environment { .. } => 0.0,
         }
     }
@@ -528,6 +558,7 @@ impl Light {
             Light::Spot { spectrum, .. }
             | Light::Point { spectrum, .. }
             | Light::Beam { spectrum, .. }
+            | Light::Area { spectrum, .. }
             | Light::Sun { spectrum, .. }
             | Light::Environment { spectrum, .. } => spectrum,
         }
@@ -539,6 +570,7 @@ impl Light {
             Light::Spot { spectrum, .. }
             | Light::Point { spectrum, .. }
             | Light::Beam { spectrum, .. }
+            | Light::Area { spectrum, .. }
             | Light::Sun { spectrum, .. }
             | Light::Environment { spectrum, .. } => spectrum,
         }
@@ -621,6 +653,12 @@ pub enum MaterialKind {
         checker: Option<Checker>,
         /// Optional image multiplying the albedo (on meshes with texture coordinates).
         texture: Option<Texture>,
+        /// Radiance the surface emits from its front faces, per linear RGB
+        /// channel (glTF's `emissiveFactor` × `KHR_materials_emissive_strength`;
+        /// zero for most surfaces). A mesh with it is an area light: its
+        /// triangles light the scene and emit photons
+        /// ([`crate::plan::area::area_lights`]), and the camera sees it glow.
+        emission: Vec3,
     },
     /// Smooth dielectric with a dispersion model, clear or coloured.
     Dielectric {
@@ -643,6 +681,16 @@ pub enum MaterialKind {
     },
     /// Perfect mirror.
     Mirror,
+}
+
+impl MaterialKind {
+    /// The radiance its surface emits (zero but for an emissive diffuse material).
+    pub fn emission(&self) -> Vec3 {
+        match self {
+            MaterialKind::Diffuse { emission, .. } => *emission,
+            MaterialKind::Dielectric { .. } | MaterialKind::Mirror => Vec3::ZERO,
+        }
+    }
 }
 
 /// Beer–Lambert absorption inside a dielectric, stated as glTF's
@@ -712,6 +760,14 @@ pub enum Shape {
         /// image), or empty when the mesh has none.
         uvs: Vec<Vec2>,
     },
+}
+
+impl Scene {
+    /// Does `object` emit light (an emissive material on a mesh, the only
+    /// shape that may have one)?
+    pub fn emits(&self, object: &Object) -> bool {
+        self.materials.get(object.material).is_some_and(|m| m.kind.emission() != Vec3::ZERO)
+    }
 }
 
 impl Shape {

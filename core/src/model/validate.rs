@@ -7,8 +7,8 @@ use crate::model::bands::{BandSpec, MAX_BANDS, VISIBLE_NM};
 use crate::model::dispersion::{Dispersion, MAX_SELLMEIER_TERMS};
 use crate::model::environment::MAX_ENVIRONMENT_SIDE;
 use crate::model::scene::{
-    Attenuation, Light, MAX_DEPTH, MAX_ENVIRONMENT_LIGHTS, MAX_IMAGE_SIDE, MAX_MESH_TRIANGLES, MAX_PHOTONS,
-    MAX_TEXTURE_SIDE, Material, MaterialKind, Scene, SceneError, Shape, Texture,
+    Attenuation, Light, MAX_AREA_LIGHTS, MAX_DEPTH, MAX_ENVIRONMENT_LIGHTS, MAX_IMAGE_SIDE, MAX_MESH_TRIANGLES,
+    MAX_PHOTONS, MAX_TEXTURE_SIDE, Material, MaterialKind, Scene, SceneError, Shape, Texture,
 };
 use crate::model::spectrum::Spectrum;
 use alloc::format;
@@ -79,8 +79,8 @@ impl Scene {
     pub fn validate_since(&self, previous: Option<&Scene>) -> Result<(), SceneError> {
         self.validate_render()?;
         self.validate_camera()?;
-        if self.lights.is_empty() {
-            return Err(SceneError::new("light", "the scene has no light"));
+        if self.lights.is_empty() && !self.objects.iter().any(|o| self.emits(o)) {
+            return Err(SceneError::new("light", "the scene has no light (no [[light]] and no emissive mesh)"));
         }
         for (i, light) in self.lights.iter().enumerate() {
             let c = Check { prefix: &format!("light[{i}]") };
@@ -108,6 +108,16 @@ impl Scene {
                     "material",
                     format!(
                         "dielectric '{}' needs a closed shape (sphere, prism or mesh), not a {}",
+                        material.name,
+                        object.shape.name()
+                    ),
+                ));
+            }
+            if material.kind.emission() != Vec3::ZERO && !matches!(object.shape, Shape::Mesh { .. }) {
+                return Err(c.err(
+                    "material",
+                    format!(
+                        "'{}' emits light, which only a mesh can (its triangles are the area light); this is a {}",
                         material.name,
                         object.shape.name()
                     ),
@@ -186,6 +196,9 @@ impl Scene {
         if r.neighbours == 0 {
             return Err(c.err("neighbours", "must be at least 1, got 0"));
         }
+        if r.area_lights == 0 || r.area_lights > MAX_AREA_LIGHTS {
+            return Err(c.err("area_lights", format!("must be 1 to {MAX_AREA_LIGHTS}, got {}", r.area_lights)));
+        }
         if r.environment_lights == 0 || r.environment_lights > MAX_ENVIRONMENT_LIGHTS {
             return Err(c.err(
                 "environment_lights",
@@ -237,6 +250,16 @@ fn validate_light(c: &Check<'_>, light: &Light) -> Result<(), SceneError> {
             c.vector("position", *position)?;
             c.direction("direction", *direction)?;
             c.positive("radius", *radius)?;
+            c.positive("power", *power)
+        }
+        Light::Area { vertices, power, .. } => {
+            for (k, v) in vertices.iter().enumerate() {
+                c.vector(&format!("vertices[{k}]"), *v)?;
+            }
+            let [a, b, cc] = *vertices;
+            if (b - a).cross(cc - a).length_squared() <= 0.0 {
+                return Err(c.err("vertices", "must span a triangle of non-zero area"));
+            }
             c.positive("power", *power)
         }
         Light::Sun { direction, irradiance, .. } => {
@@ -318,8 +341,9 @@ fn validate_spectrum(
 
 fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(), SceneError> {
     match &m.kind {
-        MaterialKind::Diffuse { albedo, checker, texture } => {
+        MaterialKind::Diffuse { albedo, checker, texture, emission } => {
             c.colour("albedo", *albedo)?;
+            c.colour("emission", *emission)?;
             if let Some(ch) = checker {
                 c.positive("checker.size", ch.size)?;
                 c.colour("checker.albedo", ch.albedo)?;

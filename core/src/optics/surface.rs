@@ -21,6 +21,9 @@ pub enum Surface {
         checker: Option<Checker>,
         /// Optional image multiplying the albedo.
         texture: Option<Texture>,
+        /// Radiance its front faces emit, per linear RGB channel (what the
+        /// camera sees of an area light; its light is in the scene's lights).
+        emission: Vec3,
     },
     /// Perfect mirror.
     Mirror,
@@ -157,9 +160,12 @@ impl Surface {
     /// plan decides it ([`crate::plan::prepared::PreparedScene::new`]).
     pub fn new(material: &MaterialKind, bands: &BandTable) -> Self {
         match material {
-            MaterialKind::Diffuse { albedo, checker, texture } => {
-                Surface::Diffuse { albedo: *albedo, checker: checker.clone(), texture: texture.clone() }
-            }
+            MaterialKind::Diffuse { albedo, checker, texture, emission } => Surface::Diffuse {
+                albedo: *albedo,
+                checker: checker.clone(),
+                texture: texture.clone(),
+                emission: *emission,
+            },
             MaterialKind::Mirror => Surface::Mirror,
             MaterialKind::Dielectric { dispersion, outside, attenuation, thin } => {
                 // Snell's law and Fresnel depend only on the ratio of the
@@ -192,12 +198,23 @@ impl Surface {
         }
     }
 
+    /// Radiance it emits toward a viewer on the side of `facing` (a ray's
+    /// direction): its emission where the ray meets a front face (against
+    /// the outward normal `outward`), else zero.
+    #[inline]
+    pub fn emitted(&self, facing: Vec3, outward: Vec3) -> Vec3 {
+        match self {
+            Surface::Diffuse { emission, .. } if facing.dot(outward) < 0.0 => *emission,
+            _ => Vec3::ZERO,
+        }
+    }
+
     /// Albedo at world point `p` with unit normal `n` and texture
     /// coordinates `uv` (read only with a texture; the checker is evaluated
     /// a hair below the surface so that planes through a cell border do not flicker).
     #[inline]
     pub fn albedo_at(&self, p: Vec3, n: Vec3, uv: Vec2) -> Vec3 {
-        let Surface::Diffuse { albedo, checker, texture } = self else { return Vec3::ZERO };
+        let Surface::Diffuse { albedo, checker, texture, .. } = self else { return Vec3::ZERO };
         let base = match checker {
             None => *albedo,
             Some(ch) => {

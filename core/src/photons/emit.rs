@@ -2,6 +2,7 @@
 
 use crate::geometry::primitive::basis;
 use crate::model::scene::Light;
+use crate::optics::scatter::offset_origin;
 use crate::plan::prepared::PreparedScene;
 use crate::plan::projection::cone_direction;
 use crate::sampling::sobol::photon_f32;
@@ -65,6 +66,16 @@ pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
             let (sin_phi, cos_phi) = sin_cos_turns(u2);
             let origin = *position + (t * cos_phi + b * sin_phi) * r;
             Emitted { origin, direction: axis, light, weight: 1.0 }
+        }
+        Light::Area { vertices: [a, b, c], .. } => {
+            // A uniform point on the triangle, a cosine-weighted direction out of its front.
+            let w1 = random_f32(seed, index, dim::AREA);
+            let w2 = random_f32(seed, index, dim::AREA + 1);
+            let s = sqrt(w1);
+            let point = *a + (*b - *a) * (s * (1.0 - w2)) + (*c - *a) * (s * w2);
+            let normal = (*b - *a).cross(*c - *a).normalize();
+            let origin = offset_origin(point, normal, normal);
+            Emitted { origin, direction: cone_direction(normal, sqrt(1.0 - u1), u2), light, weight: 1.0 }
         }
         Light::Sun { .. } | Light::Environment { .. } => {
             unreachable!("a sun emits as its beam, an environment as its suns' (PreparedScene::emitters)")

@@ -1,7 +1,9 @@
-//! Layer 5, plan: what a render of this scene will do. Which lights reach which
+//! Layer 5, plan: what a render of this scene will do. Which lights (emissive
+//! meshes' triangles among them) reach which
 //! objects, where photons are aimed, which effects the scene calls for, the
 //! prepared scene, and the pass schedule.
 
+pub mod area;
 pub mod effects;
 pub mod prepared;
 pub mod projection;

@@ -9,7 +9,7 @@ use crate::model::scene::{Light, Scene, SceneError, Shape};
 use crate::model::spectrum::Spectrum;
 use crate::optics::surface::Surface;
 use crate::plan::effects::EffectPlan;
-use crate::plan::reach;
+use crate::plan::{area, reach};
 use crate::sampling::environment::EnvironmentLookup;
 use crate::sampling::light_spectrum::LightSpectrum;
 use alloc::sync::Arc;
@@ -47,7 +47,8 @@ pub struct PreparedScene {
     pub texture_uvs: Vec<Vec<TriangleUv>>,
     /// The lights that shine: the scene's, each environment replaced by
     /// the suns of its median cut ([`EnvironmentLookup::median_cut`], as
-    /// many as `render.environment_lights`). Backends light with these.
+    /// many as `render.environment_lights`), then the emissive meshes'
+    /// area lights ([`area::area_lights`]). Backends light with these.
     pub lights: Vec<Light>,
     /// The environment rays that leave the scene see (`None`: the
     /// background colour).
@@ -136,6 +137,7 @@ impl PreparedScene {
                 }
                 _ => Vec::from([l.clone()]),
             })
+            .chain(area::area_lights(&scene))
             .collect();
         let emitters: Vec<Light> = lights
             .iter()

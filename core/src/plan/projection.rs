@@ -85,8 +85,9 @@ impl Projection {
                 (Targets::Discs { center, radius: radii }, m, radius * radius)
             }
             // A sun is aimed as the beam it emits from, an environment as
-            // its suns' (`PreparedScene::emitters`).
-            Light::Sun { .. } | Light::Environment { .. } => return None,
+            // its suns' (`PreparedScene::emitters`); an area light's photons
+            // leave every point of it, which one cone per target cannot hold.
+            Light::Sun { .. } | Light::Environment { .. } | Light::Area { .. } => return None,
         };
         let total: f32 = measures.iter().sum();
         if !total.is_finite() || total >= light_measure {
@@ -122,8 +123,8 @@ impl Projection {
                     }
                     Light::Point { position, .. } => (*position, true),
                     Light::Beam { position, .. } => (*position, false),
-                    Light::Sun { .. } | Light::Environment { .. } => {
-                        unreachable!("a sun emits as its beam, an environment as its suns' (PreparedScene::emitters)")
+                    Light::Sun { .. } | Light::Environment { .. } | Light::Area { .. } => {
+                        unreachable!("a projection map holds spot, point and beam lights only (Projection::new)")
                     }
                 };
                 let covering = axis.iter().zip(cos_max).filter(|(a, c)| d.dot(**a) >= **c).count().max(1);

@@ -47,6 +47,11 @@ pub fn light_reaches(light: &Light, c: Vec3, r: f32) -> bool {
             let off_axis = (c - *position - axis * along).length();
             along > -r && off_axis <= radius + r
         }
+        Light::Area { vertices: [v0, v1, v2], .. } => {
+            // In front of its plane (it emits from its front face only).
+            let normal = (*v1 - *v0).cross(*v2 - *v0).normalize();
+            (c - *v0).dot(normal) > -r
+        }
         Light::Sun { .. } | Light::Environment { .. } => true,
     }
 }

@@ -281,6 +281,7 @@ impl Change {
             alpha,
             neighbours,
             environment_lights,
+            area_lights,
         } = a;
         let b = &new.render;
         if (*width, *height) != (b.width, b.height) {
@@ -290,6 +291,7 @@ impl Change {
             || *materials != new.materials
             || *lights != new.lights
             || *environment_lights != b.environment_lights
+            || *area_lights != b.area_lights
             || *bands != b.bands
             || *max_depth != b.max_depth
             || *light_tracing != b.light_tracing

@@ -39,6 +39,7 @@
 //! the passes' mean converges to it.
 
 use crate::geometry::camera::PinholeCamera;
+use crate::geometry::form_factor::{in_front_of, triangle_view};
 use crate::geometry::primitive::Ray;
 use crate::model::image::Image;
 use crate::model::photon::WHITE_BAND;
@@ -47,12 +48,13 @@ use crate::optics::fresnel::reflect;
 use crate::optics::scatter::{offset_origin, scatter_dielectric, split_dielectric};
 use crate::optics::surface::{DielectricOptics, Surface};
 use crate::photons::trace::spectrum_share;
+use crate::plan::area::area;
 use crate::plan::prepared::{Hit, PreparedScene};
 use crate::render::visible::{VisiblePoint, VisiblePoints};
 use crate::sampling::pixel_sample::PixelSampler;
 use crate::util::math::{cos, radians};
 use crate::util::progress::{Progress, Stage};
-use crate::util::tolerance::MIN_VIEW_WEIGHT;
+use crate::util::tolerance::{CONNECTION_REL, MIN_VIEW_WEIGHT};
 use alloc::vec::Vec;
 use core::f32::consts::PI;
 use glam::Vec3;
@@ -215,7 +217,8 @@ impl<'a> ViewContext<'a> {
         sum
     }
 
-    /// Radiance leaving a diffuse hit toward the viewer, less its caustic,
+    /// Radiance leaving a diffuse hit toward the viewer (an emissive
+    /// surface's own glow included), less its caustic,
     /// which is left to a visible point (when the plan traces caustics and
     /// light tracing does not bring it: see [`gathers_at`]).
     fn shade_diffuse(&self, ray: &Ray, hit: &Hit, path: ViewPath, points: &mut Vec<VisiblePoint>) -> Vec3 {
@@ -229,7 +232,8 @@ impl<'a> ViewContext<'a> {
         if gathers_at(self.scene, path.depth) {
             points.push(VisiblePoint { point: hit.point, normal: n, weight: path.tint / PI, albedo, pixel: 0 });
         }
-        reflected * (1.0 / PI) + albedo * settings.ambient
+        let emitted = self.scene.surfaces[hit.object].emitted(ray.direction, hit.normal);
+        reflected * (1.0 / PI) + albedo * settings.ambient + emitted
     }
 
     /// Irradiance from light `index` at `p` (unit normal `n`), zero when in
@@ -274,6 +278,23 @@ impl<'a> ViewContext<'a> {
                     return 0.0;
                 }
                 irradiance * cos_s
+            }
+            Light::Area { vertices, power, .. } => {
+                if !in_front_of(p, *vertices) {
+                    return 0.0;
+                }
+                let seen = triangle_view(p, n, *vertices);
+                if seen.projected_solid_angle <= 0.0
+                    || (shadows && {
+                        let to = seen.centre - p;
+                        let l = to.normalize();
+                        let origin = offset_origin(p, n, l);
+                        self.scene.occluded(origin, l, (seen.centre - origin).length() * (1.0 - CONNECTION_REL))
+                    })
+                {
+                    return 0.0;
+                }
+                power / (PI * area(vertices)) * seen.projected_solid_angle
             }
             Light::Environment { .. } => unreachable!("an environment shines as its suns (PreparedScene::lights)"),
         }

@@ -39,6 +39,9 @@ pub mod dim {
     /// continues as and, for continuous sampling, its wavelength within the
     /// band (one number, so a stratified sequence stratifies the spectrum).
     pub const SPECTRUM: u32 = 4;
+    /// Two dimensions for where on an area light a photon starts (its
+    /// direction takes [`DIRECTION`]'s two).
+    pub const AREA: u32 = 5;
     /// First dimension of the path's scattering decisions.
     pub const PATH: u32 = 8;
     /// Dimensions reserved per band path (one per bounce, at most this many bounces).

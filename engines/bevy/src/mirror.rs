@@ -218,7 +218,12 @@ fn build_scene(
                 attenuation: None,
                 thin: false,
             },
-            (None, Some(r)) => MaterialKind::Diffuse { albedo: r.albedo, checker: r.checker.clone(), texture: None },
+            (None, Some(r)) => MaterialKind::Diffuse {
+                albedo: r.albedo,
+                checker: r.checker.clone(),
+                texture: None,
+                emission: CoreVec3::ZERO,
+            },
             _ => return Err(format!("object {i} needs exactly one of Glass and Receiver")),
         };
         scene_objects.push(Object { shape: placed(&shape.0, at), material: scene_materials.len() });
@@ -241,7 +246,7 @@ fn build_scene(
         let Some(m) = materials.get(&material.0) else { continue };
         let c = m.base.base_color.to_linear();
         let albedo = CoreVec3::new(c.red, c.green, c.blue) * (1.0 - m.base.metallic);
-        let kind = MaterialKind::Diffuse { albedo, checker: None, texture: None };
+        let kind = MaterialKind::Diffuse { albedo, checker: None, texture: None, emission: CoreVec3::ZERO };
         scene_objects
             .push(Object { shape: mesh(handle, at, "a CausticMaterial mesh")?, material: scene_materials.len() });
         scene_materials.push(Material { name: format!("receiver mesh {i}"), kind });

@@ -1,0 +1,138 @@
+//! Area lights against their closed forms, on every backend: an emissive
+//! rectangle over a floor gives the textbook form factor's irradiance
+//! whatever it is cut into; the camera sees its glow from the front only;
+//! a ball between it and the floor shadows the floor under it.
+
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::scene::{Camera, Material, MaterialKind, Object, Shape};
+use prismatic_core::{PreparedScene, Scene, Vec3};
+use prismatic_tests::backends::{every_backend, frame};
+use prismatic_tests::{prepare, settings};
+use std::f32::consts::PI;
+
+/// The floor's albedo.
+const ALBEDO: f32 = 0.6;
+/// The panel's half side along x.
+const HALF_X: f32 = 0.5;
+/// The panel's half side along z.
+const HALF_Z: f32 = 0.3;
+/// The panel's height over the floor.
+const HEIGHT: f32 = 0.8;
+/// The panel's radiance.
+const L: f32 = 3.0;
+/// The image's side: its centre pixel looks at the camera's `look_at`.
+const SIDE: u32 = 33;
+
+fn diffuse(name: &str, albedo: f32, emission: Vec3) -> Material {
+    let kind = MaterialKind::Diffuse { albedo: Vec3::splat(albedo), checker: None, texture: None, emission };
+    Material { name: name.into(), kind }
+}
+
+/// The panel over the origin, facing down (`down`) or up.
+fn panel(down: bool) -> Shape {
+    let positions = vec![
+        Vec3::new(-HALF_X, HEIGHT, -HALF_Z),
+        Vec3::new(HALF_X, HEIGHT, -HALF_Z),
+        Vec3::new(HALF_X, HEIGHT, HALF_Z),
+        Vec3::new(-HALF_X, HEIGHT, HALF_Z),
+    ];
+    let triangles = if down { vec![[0, 1, 2], [0, 2, 3]] } else { vec![[0, 2, 1], [0, 3, 2]] };
+    Shape::Mesh { positions, triangles, uvs: Vec::new() }
+}
+
+/// A floor under the panel, seen by `camera`, lit by nothing else.
+fn panel_scene(camera: Camera, down: bool, pieces: u32) -> PreparedScene {
+    let mut render = settings(1000, BandSpec::Paper7);
+    (render.width, render.height, render.ambient, render.area_lights) = (SIDE, SIDE, 0.0, pieces);
+    prepare(Scene {
+        render,
+        camera,
+        lights: Vec::new(),
+        materials: vec![diffuse("floor", ALBEDO, Vec3::ZERO), diffuse("panel", 0.5, Vec3::splat(L))],
+        objects: vec![
+            Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
+            Object { shape: panel(down), material: 1 },
+        ],
+    })
+}
+
+/// Looking at the floor under the panel's centre from low down (its view
+/// ray passes below the panel).
+fn floor_camera() -> Camera {
+    Camera { position: Vec3::new(0.0, 0.3, 3.0), look_at: Vec3::ZERO, up: Vec3::Y, fov_deg: 30.0 }
+}
+
+/// The irradiance a rectangle a × b of radiance 1 parallel to a surface
+/// at height h gives the point under one of its corners: π F, with the
+/// textbook form factor F = (1/2π)[A/√(1+A²) atan(B/√(1+A²)) + B/√(1+B²) atan(A/√(1+B²))],
+/// A = a/h, B = b/h.
+fn under_a_corner(a: f64, b: f64, h: f64) -> f64 {
+    let (x, y) = (a / h, b / h);
+    let (sx, sy) = ((1.0 + x * x).sqrt(), (1.0 + y * y).sqrt());
+    0.5 * (x / sx * (y / sx).atan() + y / sy * (x / sy).atan())
+}
+
+#[test]
+fn a_panels_irradiance_on_the_floor_is_the_closed_form_whatever_it_is_cut_into() {
+    // Four rectangles meet under the centre.
+    let e = 4.0 * under_a_corner(f64::from(HALF_X), f64::from(HALF_Z), f64::from(HEIGHT)) * f64::from(L);
+    let want = ALBEDO * e as f32 / PI;
+    let centre = (SIDE / 2 * SIDE + SIDE / 2) as usize;
+    for pieces in [1, 16, 64] {
+        let scene = panel_scene(floor_camera(), true, pieces);
+        assert_eq!(scene.lights.len(), [2, 14, 62][[1, 16, 64].iter().position(|&p| p == pieces).unwrap()]);
+        assert!((scene.total_power - PI * 4.0 * HALF_X * HALF_Z * L).abs() < 1e-4, "flux π A L");
+        for mut backend in every_backend() {
+            let name = backend.name();
+            let (_, image) = frame(backend.as_mut(), &scene);
+            let got = image.pixels[centre];
+            assert!(
+                (got - Vec3::splat(want)).abs().max_element() < 2e-4 * want,
+                "{name}, {pieces} pieces: the floor under the panel shows {got}, the closed form ρE/π = {want}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_camera_sees_a_panels_glow_from_the_front_only() {
+    // From below, looking up at the panel's centre.
+    let below =
+        Camera { position: Vec3::new(0.0, 0.1, 0.5), look_at: Vec3::new(0.0, HEIGHT, 0.0), up: Vec3::Z, fov_deg: 20.0 };
+    let centre = (SIDE / 2 * SIDE + SIDE / 2) as usize;
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let (_, front) = frame(backend.as_mut(), &panel_scene(below.clone(), true, 16));
+        assert!((front.pixels[centre] - Vec3::splat(L)).abs().max_element() < 1e-5, "{name}: {}", front.pixels[centre]);
+        // Wound the other way it shines up: seen from below it is a dark
+        // panel (lit by nothing), and the floor under it is dark too.
+        let (_, back) = frame(backend.as_mut(), &panel_scene(below.clone(), false, 16));
+        assert_eq!(back.pixels[centre], Vec3::ZERO, "{name}: the panel's back");
+        let (_, floor) = frame(backend.as_mut(), &panel_scene(floor_camera(), false, 16));
+        assert_eq!(floor.pixels[centre], Vec3::ZERO, "{name}: the floor under a panel that faces away");
+    }
+}
+
+#[test]
+fn a_ball_under_the_panel_shadows_the_floor_beneath_it_and_softens_its_edge() {
+    let mut scene = panel_scene(floor_camera(), true, 64).scene;
+    // A ball that hides the whole panel from the point under its centre.
+    scene.objects.push(Object { shape: Shape::Sphere { center: Vec3::new(0.0, 0.4, 0.0), radius: 0.3 }, material: 0 });
+    let scene = prepare(scene);
+    let lit = panel_scene(floor_camera(), true, 64);
+    let row = (SIDE / 2 * SIDE) as usize;
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let (_, shadowed) = frame(backend.as_mut(), &scene);
+        let (_, open) = frame(backend.as_mut(), &lit);
+        // Along the row through the centre: dark under the ball, the open
+        // floor's light far from it, in between a penumbra that rises.
+        let ratio: Vec<f32> =
+            (0..SIDE as usize).map(|x| shadowed.pixels[row + x].x / open.pixels[row + x].x.max(1e-12)).collect();
+        let mid = SIDE as usize / 2;
+        assert!(ratio[mid] < 0.05, "{name}: under the ball {ratio:?}");
+        assert!(ratio[0] > 0.5 && ratio[SIDE as usize - 1] > 0.5, "{name}: the row's ends {ratio:?}");
+        let partial = ratio.iter().filter(|r| **r > 0.05 && **r < 0.95).count();
+        assert!(partial >= 4, "{name}: a soft edge, not a hard one: {ratio:?}");
+    }
+}

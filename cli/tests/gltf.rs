@@ -551,3 +551,36 @@ fn a_file_is_shown_with_its_cameras_frame_and_auto_exposure() {
         assert!(scene.warnings.iter().any(|w| w.contains(left_out)), "{left_out}: {:?}", scene.warnings);
     }
 }
+
+/// An emissive material makes its mesh an area light (its strength from
+/// `KHR_materials_emissive_strength`), and a file lit only so gets no studio.
+#[test]
+fn an_emissive_material_is_an_area_light() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    doc.lights.clear();
+    let mut json: serde_json::Value = serde_json::from_str(&doc.to_json()).unwrap();
+    json["materials"][0]["emissiveFactor"] = serde_json::json!([1.0, 1.0, 1.0]);
+    json["materials"][0]["extensions"]["KHR_materials_emissive_strength"] =
+        serde_json::json!({ "emissiveStrength": 5.0 });
+    json["extensionsUsed"].as_array_mut().unwrap().push("KHR_materials_emissive_strength".into());
+    // Emission on the glass is left out, with a warning.
+    json["materials"][1]["emissiveFactor"] = serde_json::json!([0.5, 0.0, 0.0]);
+    let path = dir.path().join("glowing.gltf");
+    std::fs::write(&path, json.to_string()).unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    scene.validate().unwrap();
+    assert!(scene.scene.lights.is_empty(), "no studio for a file lit by its own emission: {:?}", scene.scene.lights);
+    let warnings = scene.warnings.join("\n");
+    assert!(warnings.contains("materials[1] (glass): left out: emission of glass"), "{warnings}");
+    assert!(!warnings.contains("materials[0]"), "{warnings}");
+    assert_eq!(scene.scene.materials[0].kind.emission(), glam::Vec3::splat(5.0));
+    let prepared = PreparedScene::new(scene.scene).unwrap();
+    assert!(prepared.lights.iter().all(|l| matches!(l, Light::Area { .. })));
+    // The 8 m × 8 m floor glows up at 5: π A L.
+    let want = std::f32::consts::PI * 64.0 * 5.0;
+    assert!((prepared.total_power - want).abs() < 1e-3 * want, "{} vs {want}", prepared.total_power);
+    // Its photons reach the prism above it and make a caustic.
+    let s = trace::trace_photons(&prepared, &mut prismatic_core::NoProgress).stats;
+    assert!(s.specular_paths > 0, "{s:?}");
+}

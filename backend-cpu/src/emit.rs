@@ -1,13 +1,14 @@
 //! Packet emission: `prismatic_core::photons::emit::emit` for eight photon indices at once.
 
 use crate::optics::offset_origin;
-use crate::simd::{Vec3x8, ge, photon_f32, sin_cos_turns};
+use crate::simd::{Vec3x8, ge, gt, photon_f32, sin_cos_turns};
 use prismatic_core::geometry::primitive::basis;
 use prismatic_core::model::scene::{Light, PhotonSequence};
 use prismatic_core::plan::prepared::PreparedScene;
 use prismatic_core::plan::projection::Targets;
 use prismatic_core::util::math::{cos, radians};
 use prismatic_core::util::rng::dim;
+use std::f32::consts::PI;
 use wide::{f32x8, u32x8};
 
 /// A light with its frame precomputed (the scalar `emit` computes the same values per photon).
@@ -47,6 +48,8 @@ struct ProjectionX8 {
     cones: Vec<(Vec3x8, Vec3x8, Vec3x8, f32x8)>,
     /// Disc targets: centre and radius.
     discs: Vec<(Vec3x8, f32x8)>,
+    /// Sphere targets of an area light: centre, radius, probability.
+    spheres: Vec<(Vec3x8, f32x8, f32x8)>,
     /// Cumulative target probabilities.
     cdf: Vec<f32x8>,
     scale: f32x8,
@@ -115,7 +118,7 @@ impl Emitters {
             .iter()
             .map(|p| {
                 p.as_ref().map(|p| {
-                    let (mut cones, mut discs) = (Vec::new(), Vec::new());
+                    let (mut cones, mut discs, mut spheres) = (Vec::new(), Vec::new(), Vec::new());
                     match &p.targets {
                         Targets::Cones { axis, cos_max } => {
                             for (a, c) in axis.iter().zip(cos_max) {
@@ -128,10 +131,16 @@ impl Emitters {
                                 discs.push((Vec3x8::splat(*c), f32x8::splat(*r)));
                             }
                         }
+                        Targets::Spheres { center, radius, probability } => {
+                            for ((c, r), p) in center.iter().zip(radius).zip(probability) {
+                                spheres.push((Vec3x8::splat(*c), f32x8::splat(*r), f32x8::splat(*p)));
+                            }
+                        }
                     }
                     ProjectionX8 {
                         cones,
                         discs,
+                        spheres,
                         cdf: p.cdf.iter().map(|&c| f32x8::splat(c)).collect(),
                         scale: f32x8::splat(p.scale),
                     }
@@ -200,6 +209,9 @@ impl Emitters {
         for c in &p.cdf[..n - 1] {
             target += ge(u_target, *c) & f32x8::ONE;
         }
+        if let Emitter::Area { .. } = light {
+            return self.emit_aimed_area(light, p, target, index, u1, u2);
+        }
         let (mut origin, mut dir) = (Vec3x8::ZERO, Vec3x8::ZERO);
         let mut covering = f32x8::ZERO;
         // Spot and point lights: a direction in the chosen target's cone.
@@ -257,15 +269,76 @@ impl Emitters {
                 let (sin_phi, cos_phi) = sin_cos_turns(u2);
                 (position + (t * cos_phi + b * sin_phi) * r, axis)
             }
-            Emitter::Area { corner, e1, e2, normal, t, b } => {
-                let rnd = |d: u32| crate::simd::random_f32(self.seed, index, u32x8::splat(d));
-                let (s, w2) = (rnd(dim::AREA).sqrt(), rnd(dim::AREA + 1));
-                let point = corner + e1 * (s * (f32x8::ONE - w2)) + e2 * (s * w2);
+            Emitter::Area { normal, t, b, .. } => {
                 let cos_t = (f32x8::ONE - u1).sqrt();
-                (offset_origin(point, normal, normal), cone_direction(normal, t, b, cos_t, u2))
+                (self.area_origin(light, index), cone_direction(normal, t, b, cos_t, u2))
             }
         }
     }
+
+    /// `prismatic_core::photons::emit::area_origin` for eight photons.
+    #[inline]
+    fn area_origin(&self, light: &Emitter, index: u32x8) -> Vec3x8 {
+        let Emitter::Area { corner, e1, e2, normal, .. } = *light else { unreachable!("an area light") };
+        let rnd = |d: u32| crate::simd::random_f32(self.seed, index, u32x8::splat(d));
+        let (s, w2) = (rnd(dim::AREA).sqrt(), rnd(dim::AREA + 1));
+        let point = corner + e1 * (s * (f32x8::ONE - w2)) + e2 * (s * w2);
+        offset_origin(point, normal, normal)
+    }
+
+    /// `Projection::sample_area` for eight photons (`target`: the sphere each aims at).
+    #[inline]
+    fn emit_aimed_area(
+        &self,
+        light: &Emitter,
+        p: &ProjectionX8,
+        target: f32x8,
+        index: u32x8,
+        u1: f32x8,
+        u2: f32x8,
+    ) -> (Vec3x8, Vec3x8, f32x8) {
+        let Emitter::Area { normal, .. } = *light else { unreachable!("an area light") };
+        let origin = self.area_origin(light, index);
+        let cones: Vec<(Vec3x8, f32x8)> = p.spheres.iter().map(|(c, r, _)| sphere_cone(origin, *c, *r)).collect();
+        let (mut axis, mut gap) = (Vec3x8::ZERO, f32x8::ZERO);
+        for (j, (a, g)) in cones.iter().enumerate() {
+            let mine = target.simd_eq(f32x8::splat(j as f32));
+            axis = Vec3x8::select(mine, *a, axis);
+            gap = mine.select(*g, gap);
+        }
+        let (t, b) = basis_x8(axis);
+        let dir = cone_direction(axis, t, b, f32x8::ONE - u1 * gap, u2);
+        let mut density = f32x8::ZERO;
+        for ((a, g), (_, _, probability)) in cones.iter().zip(&p.spheres) {
+            let inside = ge(dir.dot(*a), f32x8::ONE - *g);
+            density += inside & (*probability / (f32x8::splat(2.0 * PI) * *g));
+        }
+        let cos_n = dir.dot(normal);
+        let lit = gt(cos_n, f32x8::ZERO) & gt(density, f32x8::ZERO);
+        (origin, dir, lit.select(cos_n / f32x8::splat(PI) / density, f32x8::ZERO))
+    }
+}
+
+/// `prismatic_core::plan::projection::sphere_cone` for eight points.
+#[inline]
+fn sphere_cone(p: Vec3x8, c: Vec3x8, r: f32x8) -> (Vec3x8, f32x8) {
+    let to = c - p;
+    let d = to.length_squared().sqrt();
+    let s2 = (r / d) * (r / d);
+    (to / d, s2 / (f32x8::ONE + (f32x8::ONE - s2).sqrt()))
+}
+
+/// `prismatic_core::geometry::primitive::basis` for eight unit vectors.
+#[inline]
+fn basis_x8(n: Vec3x8) -> (Vec3x8, Vec3x8) {
+    // copysign(1, z): one with z's sign bit.
+    let sign = f32x8::ONE | (n.z & f32x8::splat(-0.0));
+    let a = f32x8::splat(-1.0) / (sign + n.z);
+    let b = n.x * n.y * a;
+    (
+        Vec3x8 { x: f32x8::ONE + sign * n.x * n.x * a, y: sign * b, z: -sign * n.x },
+        Vec3x8 { x: b, y: sign + n.y * n.y * a, z: -n.y },
+    )
 }
 
 /// `prismatic_core::plan::projection::cone_direction` with the basis (t, b) of `axis` given.

@@ -326,11 +326,19 @@ impl EncodedScene {
                     l.proj_kind = PROJECTION_DISCS;
                     self.geometry.extend(center.iter().zip(radius).map(|(c, r)| v4(*c, *r)));
                 }
+                Targets::Spheres { center, radius, .. } => {
+                    l.proj_kind = PROJECTION_SPHERES;
+                    self.geometry.extend(center.iter().zip(radius).map(|(c, r)| v4(*c, *r)));
+                }
             }
             l.proj_count = p.cdf.len() as u32;
             l.proj_cdf = self.tables.len() as u32;
             l.proj_scale = p.scale;
             self.tables.extend_from_slice(&p.cdf);
+            // A sphere target's probability follows its CDF.
+            if let Targets::Spheres { probability, .. } = &p.targets {
+                self.tables.extend_from_slice(probability);
+            }
         }
         l
     }

@@ -91,6 +91,8 @@ pub mod kind {
     pub const PROJECTION_CONES: u32 = 1;
     /// Projection onto discs of the beam's plane.
     pub const PROJECTION_DISCS: u32 = 2;
+    /// Projection of an area light onto spheres, a cone from each photon's start.
+    pub const PROJECTION_SPHERES: u32 = 3;
 }
 
 /// The codes of the render settings' enums in `Params` (`scene.rs` writes
@@ -202,6 +204,7 @@ fn prelude(stack: u32) -> String {
     u("PROJECTION_NONE", kind::PROJECTION_NONE);
     u("PROJECTION_CONES", kind::PROJECTION_CONES);
     u("PROJECTION_DISCS", kind::PROJECTION_DISCS);
+    u("PROJECTION_SPHERES", kind::PROJECTION_SPHERES);
     u("WAVELENGTH_RGB_ROWS", wavelength_rgb::ROWS as u32);
     u("GRID_LEVELS", prismatic_core::plan::schedule::GRID_LEVELS as u32);
     u("MAX_BVH_DEPTH", prismatic_core::geometry::bvh::MAX_DEPTH as u32);

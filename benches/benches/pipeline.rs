@@ -223,7 +223,7 @@ fn progressive_group(c: &mut Criterion) {
     g.finish();
 }
 
-/// A pass's photons and the view pass under the spot and under the studio environment.
+/// A pass's photons and the view pass under the spot, the studio environment and a light panel.
 fn lights_group(c: &mut Criterion) {
     let mut g = c.benchmark_group("lights");
     g.sample_size(10);

@@ -4,8 +4,8 @@
 
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::environment::EnvironmentMap;
-use prismatic_core::model::scene::RadiusMode;
-use prismatic_core::{Backend, Image, Light, NoProgress, PreparedScene, RenderSettings};
+use prismatic_core::model::scene::{Object, RadiusMode};
+use prismatic_core::{Backend, Image, Light, NoProgress, PreparedScene, RenderSettings, Vec3};
 
 /// The paper's configuration (Table 5): 400×400, 20,000 white photons, 7 bands,
 /// a fixed gather radius, applied to built-in scene `name`, with `photons`
@@ -24,9 +24,10 @@ pub fn paper_config(name: &str, photons: u32) -> PreparedScene {
 }
 
 /// The built-in `sphere` with today's default settings and `photons` a pass,
-/// lit by its spot (`"spot"`) and by the built-in studio environment instead
-/// (`"environment"`): what each light costs in a pass.
-pub fn lit_by_each_light(photons: u32) -> [(&'static str, PreparedScene); 2] {
+/// lit by its spot (`"spot"`), by the built-in studio environment instead
+/// (`"environment"`) and by a light panel of the spot's power above the
+/// ball (`"area"`): what each light costs in a pass.
+pub fn lit_by_each_light(photons: u32) -> [(&'static str, PreparedScene); 3] {
     let doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
     let mut spot = doc.scene;
     spot.render = RenderSettings { photons, ..RenderSettings::default() };
@@ -37,8 +38,15 @@ pub fn lit_by_each_light(photons: u32) -> [(&'static str, PreparedScene); 2] {
         rotation_deg: 0.0,
         spectrum: Default::default(),
     }];
-    let [spot, studio] = [spot, studio].map(|s| PreparedScene::new(s).expect("valid"));
-    [("spot", spot), ("environment", studio)]
+    let mut area = spot.clone();
+    area.lights.clear();
+    // Half a metre a side at 38 W: radiance 38 / (π · 0.25).
+    let emission = Vec3::splat(38.0 / (core::f32::consts::PI * 0.25));
+    let (panel, shape) = prismatic_conformance::scenes::light_panel(Vec3::new(-1.0, 4.0, -0.2), emission);
+    area.objects.push(Object { shape, material: area.materials.len() });
+    area.materials.push(panel);
+    let [spot, studio, area] = [spot, studio, area].map(|s| PreparedScene::new(s).expect("valid"));
+    [("spot", spot), ("environment", studio), ("area", area)]
 }
 
 /// The paper's frame of `scene` (with fixed radii) on `backend`: a render

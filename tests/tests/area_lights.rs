@@ -136,3 +136,49 @@ fn a_ball_under_the_panel_shadows_the_floor_beneath_it_and_softens_its_edge() {
         assert!(partial >= 4, "{name}: a soft edge, not a hard one: {ratio:?}");
     }
 }
+
+/// The built-in sphere lit by a panel above it instead of its spot, with
+/// or without projection maps.
+fn panel_lit_sphere(photons: u32, projection_maps: bool) -> PreparedScene {
+    let mut scene = prismatic_tests::builtin("sphere", |r| {
+        (r.photons, r.width, r.height, r.projection_maps) = (photons, 64, 64, projection_maps)
+    })
+    .scene;
+    scene.lights.clear();
+    let (panel, shape) = prismatic_conformance::scenes::light_panel(Vec3::new(-1.0, 4.0, -0.2), Vec3::splat(48.0));
+    scene.objects.push(Object { shape, material: scene.materials.len() });
+    scene.materials.push(panel);
+    prepare(scene)
+}
+
+#[test]
+fn a_panels_photons_aimed_at_the_glass_store_the_same_caustic() {
+    const AIMED: u32 = 20_000;
+    let aimed = panel_lit_sphere(AIMED, true);
+    let scales: Vec<f32> =
+        aimed.plan.projections.iter().map(|p| p.as_ref().expect("every piece is aimed").scale).collect();
+    let scale = scales.iter().sum::<f32>() / scales.len() as f32;
+    assert!(scale < 0.2, "the ball takes {:.1} % of the panel's emission", scale * 100.0);
+    let whole = panel_lit_sphere((AIMED as f32 / scale) as u32, false);
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let (map_aimed, image_aimed) = frame(backend.as_mut(), &aimed);
+        let (map_whole, image_whole) = frame(backend.as_mut(), &whole);
+        assert!(
+            map_aimed.stats.specular_paths > u64::from(AIMED) * 9 / 10,
+            "{name}: {} of {AIMED} aimed photons meet the glass",
+            map_aimed.stats.specular_paths
+        );
+        // Unbiased: the same caustic flux and, within photon noise, the same image.
+        let (fa, fw) = (map_aimed.stats.flux_stored, map_whole.stats.flux_stored);
+        assert!((fa - fw).abs() < 0.02 * fw, "{name}: stored flux {fa} vs {fw}");
+        let diff: f64 = image_aimed
+            .pixels
+            .iter()
+            .zip(&image_whole.pixels)
+            .map(|(a, b)| f64::from((*a - *b).abs().element_sum()))
+            .sum();
+        let total: f64 = image_whole.pixels.iter().map(|p| f64::from(p.element_sum())).sum();
+        assert!(diff < 0.03 * total, "{name}: images differ by {:.2} % (L1)", 100.0 * diff / total);
+    }
+}

@@ -58,6 +58,43 @@ fn projected(l: GpuLight, u_target: f32, u1: f32, u2: f32) -> Emitted {
     return Emitted(origin, l.axis, 0u, select(0.0, l.proj_scale / f32(max(covering, 1u)), inside));
 }
 
+// projection::sphere_cone: the cone of sphere `s` (centre, radius) seen
+// from `p`: unit axis and 1 − cos of its half-angle.
+fn sphere_cone(p: vec3<f32>, s: vec4<f32>) -> vec4<f32> {
+    let to = s.xyz - p;
+    let d = sqrt(dot(to, to));
+    let s2 = (s.w / d) * (s.w / d);
+    return vec4<f32>(to / d, s2 / (1.0 + sqrt(1.0 - s2)));
+}
+
+// emit::area_origin
+fn area_origin(l: GpuLight, seed: u32, index: u32) -> vec3<f32> {
+    let s = sqrt(random_f32(seed, index, DIM_AREA));
+    let w2 = random_f32(seed, index, DIM_AREA + 1u);
+    let point = l.position + l.tangent * (s * (1.0 - w2)) + l.bitangent * (s * w2);
+    return offset_origin(point, l.axis, l.axis);
+}
+
+// Projection::sample_area (a sphere's probability follows the CDF in the tables).
+fn aimed_from_area(l: GpuLight, origin: vec3<f32>, u_target: f32, u1: f32, u2: f32) -> Emitted {
+    let j = pick(l.proj_cdf, l.proj_count, u_target);
+    let cone = sphere_cone(origin, geometry[l.proj_first + j]);
+    let d = cone_direction(cone.xyz, 1.0 - u1 * cone.w, u2);
+    var density = 0.0;
+    for (var k = 0u; k < l.proj_count; k++) {
+        let c = sphere_cone(origin, geometry[l.proj_first + k]);
+        if dot(d, c.xyz) >= 1.0 - c.w {
+            density += tables[l.proj_cdf + l.proj_count + k] / (2.0 * PI * c.w);
+        }
+    }
+    let cos_n = dot(d, l.axis);
+    var weight = 0.0;
+    if cos_n > 0.0 && density > 0.0 {
+        weight = cos_n / PI / density;
+    }
+    return Emitted(origin, d, 0u, weight);
+}
+
 // sobol::photon_f32 (sobol::sobol_dimension inlined).
 fn photon_f32(seed: u32, index: u32, dimension: u32) -> f32 {
     if params.photon_sequence == SEQUENCE_SOBOL {
@@ -81,7 +118,12 @@ fn emit(seed: u32, index: u32) -> Emitted {
     let u2 = photon_f32(seed, index, DIM_DIRECTION + 1u);
     if l.proj_kind != PROJECTION_NONE {
         let u_target = random_f32(seed, index, DIM_TARGET);
-        var e = projected(l, u_target, u1, u2);
+        var e: Emitted;
+        if l.kind == LIGHT_AREA {
+            e = aimed_from_area(l, area_origin(l, seed, index), u_target, u1, u2);
+        } else {
+            e = projected(l, u_target, u1, u2);
+        }
         e.light = light;
         return e;
     }
@@ -90,12 +132,8 @@ fn emit(seed: u32, index: u32) -> Emitted {
         return Emitted(l.position, cone_direction(l.axis, cos_t, u2), light, 1.0);
     }
     if l.kind == LIGHT_AREA {
-        // A uniform point on the triangle, a cosine-weighted direction out of its front.
-        let s = sqrt(random_f32(seed, index, DIM_AREA));
-        let w2 = random_f32(seed, index, DIM_AREA + 1u);
-        let point = l.position + l.tangent * (s * (1.0 - w2)) + l.bitangent * (s * w2);
-        let origin = offset_origin(point, l.axis, l.axis);
-        return Emitted(origin, cone_direction(l.axis, sqrt(1.0 - u1), u2), light, 1.0);
+        // A cosine-weighted direction out of its front.
+        return Emitted(area_origin(l, seed, index), cone_direction(l.axis, sqrt(1.0 - u1), u2), light, 1.0);
     }
     if l.kind == LIGHT_POINT {
         let z = 1.0 - 2.0 * u1;

@@ -43,7 +43,13 @@ pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
     let source = &scene.emitters[light];
     if let Some(projection) = &scene.plan.projections[light] {
         let u_target = random_f32(seed, index, dim::TARGET);
-        let s = projection.sample(source, u_target, u1, u2);
+        let s = match source {
+            Light::Area { vertices, .. } => {
+                let (origin, normal) = area_origin(vertices, seed, index);
+                projection.sample_area(origin, normal, u_target, u1, u2)
+            }
+            _ => projection.sample(source, u_target, u1, u2),
+        };
         return Emitted { origin: s.origin, direction: s.direction, light, weight: s.weight };
     }
     match source {
@@ -67,18 +73,26 @@ pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
             let origin = *position + (t * cos_phi + b * sin_phi) * r;
             Emitted { origin, direction: axis, light, weight: 1.0 }
         }
-        Light::Area { vertices: [a, b, c], .. } => {
-            // A uniform point on the triangle, a cosine-weighted direction out of its front.
-            let w1 = random_f32(seed, index, dim::AREA);
-            let w2 = random_f32(seed, index, dim::AREA + 1);
-            let s = sqrt(w1);
-            let point = *a + (*b - *a) * (s * (1.0 - w2)) + (*c - *a) * (s * w2);
-            let normal = (*b - *a).cross(*c - *a).normalize();
-            let origin = offset_origin(point, normal, normal);
+        Light::Area { vertices, .. } => {
+            // A cosine-weighted direction out of its front.
+            let (origin, normal) = area_origin(vertices, seed, index);
             Emitted { origin, direction: cone_direction(normal, sqrt(1.0 - u1), u2), light, weight: 1.0 }
         }
         Light::Sun { .. } | Light::Environment { .. } => {
             unreachable!("a sun emits as its beam, an environment as its suns' (PreparedScene::emitters)")
         }
     }
+}
+
+/// Where white photon `index` leaves area light `vertices`: a uniform point
+/// of the triangle ([`dim::AREA`]) pushed off it to its front, and its unit
+/// front normal.
+#[inline]
+pub fn area_origin(vertices: &[Vec3; 3], seed: u32, index: u32) -> (Vec3, Vec3) {
+    let [a, b, c] = *vertices;
+    let s = sqrt(random_f32(seed, index, dim::AREA));
+    let w2 = random_f32(seed, index, dim::AREA + 1);
+    let point = a + (b - a) * (s * (1.0 - w2)) + (c - a) * (s * w2);
+    let normal = (b - a).cross(c - a).normalize();
+    (offset_origin(point, normal, normal), normal)
 }

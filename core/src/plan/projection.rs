@@ -14,6 +14,7 @@ use crate::model::scene::Light;
 use crate::plan::reach::light_reaches;
 use crate::util::math::{cos, radians, sin_cos_turns, sqrt};
 use alloc::vec::Vec;
+use core::f32::consts::PI;
 use glam::Vec3;
 
 /// Where a light's photons are aimed.
@@ -32,6 +33,16 @@ pub enum Targets {
         center: Vec<Vec3>,
         /// Radius of each disc.
         radius: Vec<f32>,
+    },
+    /// Bounding spheres, each seen in a cone from wherever on an area light
+    /// a photon starts ([`Projection::sample_area`]).
+    Spheres {
+        /// Centre of each sphere.
+        center: Vec<Vec3>,
+        /// Radius of each sphere.
+        radius: Vec<f32>,
+        /// The probability of aiming at each (the differences of the CDF).
+        probability: Vec<f32>,
     },
 }
 
@@ -84,10 +95,10 @@ impl Projection {
                 let m = radii.iter().map(|r| r * r).collect::<Vec<_>>();
                 (Targets::Discs { center, radius: radii }, m, radius * radius)
             }
+            Light::Area { vertices, .. } => return area_projection(light, vertices, spheres),
             // A sun is aimed as the beam it emits from, an environment as
-            // its suns' (`PreparedScene::emitters`); an area light's photons
-            // leave every point of it, which one cone per target cannot hold.
-            Light::Sun { .. } | Light::Environment { .. } | Light::Area { .. } => return None,
+            // its suns' (`PreparedScene::emitters`).
+            Light::Sun { .. } | Light::Environment { .. } => return None,
         };
         let total: f32 = measures.iter().sum();
         if !total.is_finite() || total >= light_measure {
@@ -145,9 +156,91 @@ impl Projection {
                     .max(1);
                 ProjectedSample { origin, direction: a, weight: weight(inside, self.scale, covering) }
             }
-            (Targets::Discs { .. }, _) => ProjectedSample { origin: Vec3::ZERO, direction: Vec3::Z, weight: 0.0 },
+            (Targets::Discs { .. } | Targets::Spheres { .. }, _) => {
+                ProjectedSample { origin: Vec3::ZERO, direction: Vec3::Z, weight: 0.0 }
+            }
         }
     }
+
+    /// Samples the direction of a photon that leaves an area light at
+    /// `origin` (unit front normal `normal`): into the cone from `origin`
+    /// of the sphere that `u_target` chooses, at (`u1`, `u2`) within it.
+    /// Its weight is the light's cosine-weighted density over the mixture
+    /// of the cones' uniform densities, (cos θ / π) / Σⱼ pⱼ [in cone j] /
+    /// (2π (1 − cos θⱼ)), so every direction toward a sphere keeps its
+    /// expected flux (0 behind the light: not traced).
+    pub fn sample_area(&self, origin: Vec3, normal: Vec3, u_target: f32, u1: f32, u2: f32) -> ProjectedSample {
+        let Targets::Spheres { center, radius, probability } = &self.targets else {
+            return ProjectedSample { origin, direction: normal, weight: 0.0 };
+        };
+        let j = self.cdf.iter().position(|&c| u_target < c).unwrap_or(self.cdf.len() - 1);
+        let (axis, gap) = sphere_cone(origin, center[j], radius[j]);
+        let direction = cone_direction(axis, 1.0 - u1 * gap, u2);
+        let mut density = 0.0;
+        for k in 0..center.len() {
+            let (axis, gap) = sphere_cone(origin, center[k], radius[k]);
+            if direction.dot(axis) >= 1.0 - gap {
+                density += probability[k] / (2.0 * PI * gap);
+            }
+        }
+        let cos_n = direction.dot(normal);
+        let weight = if cos_n > 0.0 && density > 0.0 { cos_n / PI / density } else { 0.0 };
+        ProjectedSample { origin, direction, weight }
+    }
+}
+
+/// The cone in which a sphere (centre `c`, radius `r`) is seen from `p`,
+/// outside it: unit axis, and 1 − cos of its half-angle, written
+/// s²/(1 + cos) (s = r/d) so that a far sphere's small cone keeps its digits.
+#[inline]
+pub fn sphere_cone(p: Vec3, c: Vec3, r: f32) -> (Vec3, f32) {
+    let to = c - p;
+    let d = sqrt(to.length_squared());
+    let s2 = (r / d) * (r / d);
+    (to / d, s2 / (1.0 + sqrt(1.0 - s2)))
+}
+
+/// The projection map of an area light (`vertices`) onto the spheres in
+/// front of it: each chosen by its cosine-weighted solid angle seen from
+/// the triangle's centre (sin² θ cos α, at least a twentieth of sin² θ, so
+/// that a sphere low over the light's horizon keeps a chance); `None` when
+/// a sphere comes as near the triangle as its own size (a cone from every
+/// point of it would not exist) or the spheres fill the light's emission.
+fn area_projection(light: &Light, vertices: &[Vec3; 3], spheres: &[(Vec3, f32)]) -> Option<Projection> {
+    let [a, b, c] = *vertices;
+    let normal = (b - a).cross(c - a).normalize();
+    let centre = (a + b + c) / 3.0;
+    let size = vertices.iter().map(|v| (*v - centre).length()).fold(0.0, f32::max);
+    let (mut center, mut radius, mut measure) = (Vec::new(), Vec::new(), Vec::new());
+    for &(c, r) in spheres {
+        let d = (c - centre).length();
+        if !r.is_finite() || d <= r + size {
+            return None;
+        }
+        if light_reaches(light, c, r) {
+            let sin2 = (r / d) * (r / d);
+            center.push(c);
+            radius.push(r);
+            measure.push(sin2 * ((c - centre) / d).dot(normal).max(0.05));
+        }
+    }
+    let total: f32 = measure.iter().sum();
+    if center.is_empty() || !total.is_finite() || total >= 1.0 {
+        return None;
+    }
+    let probability: Vec<f32> = measure.iter().map(|m| m / total).collect();
+    let mut acc = 0.0;
+    let mut cdf: Vec<f32> = probability
+        .iter()
+        .map(|p| {
+            acc += p;
+            acc
+        })
+        .collect();
+    if let Some(last) = cdf.last_mut() {
+        *last = 1.0;
+    }
+    Some(Projection { targets: Targets::Spheres { center, radius, probability }, cdf, scale: total })
 }
 
 #[inline]

@@ -6,7 +6,7 @@ use prismatic_core::geometry::primitive::basis;
 use prismatic_core::model::scene::{Light, PhotonSequence};
 use prismatic_core::plan::prepared::PreparedScene;
 use prismatic_core::plan::projection::Targets;
-use prismatic_core::util::math::{cos, radians};
+use prismatic_core::sampling::spot_cone::SpotCone;
 use prismatic_core::util::rng::dim;
 use std::f32::consts::PI;
 use wide::{f32x8, u32x8};
@@ -20,6 +20,7 @@ enum Emitter {
         t: Vec3x8,
         b: Vec3x8,
         cos_max: f32x8,
+        cone: SpotCone,
     },
     Point {
         position: Vec3x8,
@@ -71,15 +72,17 @@ impl Emitters {
             .emitters
             .iter()
             .map(|l| match l {
-                Light::Spot { position, direction, cone_deg, .. } => {
+                Light::Spot { position, direction, cone_deg, inner_cone_deg, .. } => {
                     let axis = direction.normalize();
                     let (t, b) = basis(axis);
+                    let cone = SpotCone::new(*cone_deg, *inner_cone_deg);
                     Emitter::Spot {
                         position: Vec3x8::splat(*position),
                         axis: Vec3x8::splat(axis),
                         t: Vec3x8::splat(t),
                         b: Vec3x8::splat(b),
-                        cos_max: f32x8::splat(cos(radians(*cone_deg))),
+                        cos_max: f32x8::splat(cone.cos_outer),
+                        cone,
                     }
                 }
                 Light::Point { position, .. } => Emitter::Point { position: Vec3x8::splat(*position) },
@@ -214,6 +217,7 @@ impl Emitters {
         }
         let (mut origin, mut dir) = (Vec3x8::ZERO, Vec3x8::ZERO);
         let mut covering = f32x8::ZERO;
+        let mut soft = f32x8::ONE;
         // Spot and point lights: a direction in the chosen target's cone.
         for (j, (a, t, b, c)) in p.cones.iter().enumerate() {
             let cos_t = f32x8::ONE - u1 * (f32x8::ONE - *c);
@@ -222,9 +226,15 @@ impl Emitters {
         }
         let inside;
         match *light {
-            Emitter::Spot { position, axis: light_axis, cos_max: cone, .. } => {
+            Emitter::Spot { position, axis: light_axis, cos_max, cone, .. } => {
                 origin = position;
-                inside = ge(dir.dot(light_axis), cone);
+                inside = ge(dir.dot(light_axis), cos_max);
+                if cone.cos_inner != cone.cos_outer {
+                    // The soft edge's density over a uniform cone's, lane by lane.
+                    let c = dir.dot(light_axis).to_array();
+                    let ratio = (1.0 - cone.cos_outer) / cone.measure();
+                    soft = f32x8::new(core::array::from_fn(|i| cone.falloff(c[i]) * ratio));
+                }
             }
             Emitter::Point { position } => {
                 origin = position;
@@ -248,14 +258,19 @@ impl Emitters {
             covering += !(origin - *c).length_squared().simd_gt(*r * *r) & f32x8::ONE;
         }
         let weight = inside.select(p.scale / covering.max(f32x8::ONE), f32x8::ZERO);
-        (origin, dir, weight)
+        (origin, dir, weight * soft)
     }
 
     #[inline]
     fn emit_whole(&self, light: &Emitter, index: u32x8, u1: f32x8, u2: f32x8) -> (Vec3x8, Vec3x8) {
         match *light {
-            Emitter::Spot { position, axis, t, b, cos_max } => {
-                let cos_t = f32x8::ONE - u1 * (f32x8::ONE - cos_max);
+            Emitter::Spot { position, axis, t, b, cos_max, cone } => {
+                let cos_t = if cone.cos_inner == cone.cos_outer {
+                    f32x8::ONE - u1 * (f32x8::ONE - cos_max)
+                } else {
+                    let u = u1.to_array();
+                    f32x8::new(core::array::from_fn(|i| cone.sample_cos(u[i])))
+                };
                 (position, cone_direction(axis, t, b, cos_t, u2))
             }
             Emitter::Point { position } => {

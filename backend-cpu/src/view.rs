@@ -34,7 +34,7 @@ use prismatic_core::plan::prepared::PreparedScene;
 use prismatic_core::render::view::{HeroViewPath, gathers_at, glass_transmittance, hero_view_paths};
 use prismatic_core::render::visible::{VisiblePoint, VisiblePoints};
 use prismatic_core::sampling::pixel_sample::PixelSampler;
-use prismatic_core::util::math::{cos, radians};
+use prismatic_core::sampling::spot_cone::SpotCone;
 use prismatic_core::util::tolerance::{CONNECTION_REL, MIN_VIEW_WEIGHT};
 use rayon::prelude::*;
 use std::f32::consts::PI;
@@ -257,13 +257,20 @@ impl Shader<'_> {
     /// `ViewContext::direct_irradiance` for eight points (shadow rays if `shadows`).
     fn direct_irradiance(&self, light: &Light, shadows: bool, p: Vec3x8, n: Vec3x8, mask: f32x8) -> f32x8 {
         match light {
-            Light::Spot { position, direction, cone_deg, power, .. } => {
-                let cos_max = cos(radians(*cone_deg));
+            Light::Spot { position, direction, cone_deg, inner_cone_deg, power, .. } => {
+                let cone = SpotCone::new(*cone_deg, *inner_cone_deg);
                 let axis = Vec3x8::splat(direction.normalize());
                 let (l, dist, cos_s, visible) = self.toward_light(*position, p, n, mask, shadows);
-                let inside = ge((-l).dot(axis), f32x8::splat(cos_max));
-                let intensity = f32x8::splat(power / (2.0 * PI * (1.0 - cos_max)));
-                (visible & inside).select(intensity * cos_s / (dist * dist), f32x8::ZERO)
+                let c = (-l).dot(axis);
+                let inside = ge(c, f32x8::splat(cone.cos_outer));
+                let intensity = f32x8::splat(power / (2.0 * PI * cone.measure()));
+                let lit = (visible & inside).select(intensity * cos_s / (dist * dist), f32x8::ZERO);
+                if cone.cos_inner == cone.cos_outer {
+                    return lit;
+                }
+                // The soft edge, lane by lane.
+                let (c, lit) = (c.to_array(), lit.to_array());
+                f32x8::new(core::array::from_fn(|i| cone.falloff(c[i]) * lit[i]))
             }
             Light::Point { position, power, .. } => {
                 let (_, dist, cos_s, visible) = self.toward_light(*position, p, n, mask, shadows);

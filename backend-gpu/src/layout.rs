@@ -236,8 +236,8 @@ pub struct GpuLight {
     pub spectrum_first: u32,
     /// Column 1 of `LightSpectrum::reflected` (the green primary).
     pub reflected_g: [f32; 3],
-    /// Padding.
-    pub _pad0: u32,
+    /// cos of the spot's inner half-angle (`cos_max` for a hard edge).
+    pub cos_inner: f32,
     /// Column 2 of `LightSpectrum::reflected` (the blue primary).
     pub reflected_b: [f32; 3],
     /// Padding.

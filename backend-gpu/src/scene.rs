@@ -19,7 +19,7 @@ use prismatic_core::optics::surface::Surface;
 use prismatic_core::photons::trace::photon_flux;
 use prismatic_core::plan::area::area;
 use prismatic_core::plan::projection::Targets;
-use prismatic_core::util::math::{cos, radians};
+use prismatic_core::sampling::spot_cone::SpotCone;
 use prismatic_core::{BackendError, PreparedScene};
 use std::collections::HashMap;
 
@@ -282,12 +282,14 @@ impl EncodedScene {
     ) -> GpuLight {
         let mut l = GpuLight { shadows: u32::from(shadows), power: light.power(), ..GpuLight::default() };
         match light {
-            Light::Spot { position, direction, cone_deg, .. } => {
+            Light::Spot { position, direction, cone_deg, inner_cone_deg, .. } => {
                 let axis = direction.normalize();
+                let cone = SpotCone::new(*cone_deg, *inner_cone_deg);
                 l.kind = LIGHT_SPOT;
                 l.position = v3(*position);
                 l.axis = v3(axis);
-                l.cos_max = cos(radians(*cone_deg));
+                l.cos_max = cone.cos_outer;
+                l.cos_inner = cone.cos_inner;
             }
             Light::Point { position, .. } => {
                 l.kind = LIGHT_POINT;

@@ -167,7 +167,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 reflected_r,
                 spectrum_first,
                 reflected_g,
-                _pad0,
+                cos_inner,
                 reflected_b,
                 _pad1,
             }),

@@ -25,6 +25,7 @@ use prismatic_core::model::scene::{
     Sampler, Scene, Shape, Texture, Wrap,
 };
 use prismatic_core::model::spectrum::Spectrum;
+use prismatic_core::sampling::spot_cone::SpotCone;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -34,8 +35,8 @@ const MIRROR_METALLIC: f32 = 0.9;
 const MIRROR_ROUGHNESS: f32 = 0.1;
 
 /// A spot whose `innerConeAngle` is at least this fraction of its
-/// `outerConeAngle` has a hard edge (glTF cannot write an equal pair),
-/// which is what prismatic's spot light is.
+/// `outerConeAngle` is read as a hard edge (glTF cannot write an equal
+/// pair): the paper's spot, as prismatic's scene files write it.
 pub const HARD_EDGE: f32 = 0.99;
 
 /// A glTF file's contents as prismatic scene parts.
@@ -169,24 +170,25 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
                      extension's physical model says; the cut-off is a rasteriser's budget)"
                 ));
             }
-            if let Kind::Spot { inner_cone_angle, outer_cone_angle } = light.kind()
-                && inner_cone_angle < outer_cone_angle * HARD_EDGE
-            {
-                out.warnings.push(format!(
-                    "{light_path}: the spot's soft edge (innerConeAngle) left out (uniform to outerConeAngle)"
-                ));
-            }
             let emitted = match light.kind() {
                 // A black light is valid glTF and emits nothing.
                 _ if factor == 0.0 => None,
                 Kind::Point => Some(Light::Point { position, power: 4.0 * std::f32::consts::PI * intensity, spectrum }),
-                Kind::Spot { outer_cone_angle, .. } => {
-                    let solid_angle = 2.0 * std::f32::consts::PI * (1.0 - outer_cone_angle.cos());
+                Kind::Spot { inner_cone_angle, outer_cone_angle } => {
+                    // The intensity is the axis's; the soft edge (innerConeAngle,
+                    // 0 by default) holds less power than a uniform cone.
+                    let cone_deg = outer_cone_angle.to_degrees();
+                    let inner_cone_deg = match inner_cone_angle >= outer_cone_angle * HARD_EDGE {
+                        true => cone_deg,
+                        false => inner_cone_angle.to_degrees(),
+                    };
+                    let cone = SpotCone::new(cone_deg, inner_cone_deg);
                     Some(Light::Spot {
                         position,
                         direction,
-                        cone_deg: outer_cone_angle.to_degrees(),
-                        power: solid_angle * intensity,
+                        cone_deg,
+                        inner_cone_deg,
+                        power: 2.0 * std::f32::consts::PI * cone.measure() * intensity,
                         spectrum,
                     })
                 }

@@ -66,6 +66,7 @@ pub fn glass_sphere() -> PreparedScene {
             position: Vec3::new(-1.5, 6.0, -0.5),
             direction: Vec3::new(1.5, -6.0, 0.5),
             cone_deg: 30.0,
+            inner_cone_deg: 30.0,
             power: 40.0,
             spectrum: Default::default(),
         }],
@@ -281,6 +282,15 @@ pub fn lit_by_every_light_kind(projection_maps: bool, sequence: PhotonSequence) 
     let mut scene = glass_sphere().scene;
     scene.lights.extend([
         Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 25.0, spectrum: Default::default() },
+        // A soft edge from 10° to 35° (glTF's innerConeAngle).
+        Light::Spot {
+            position: Vec3::new(2.0, 5.0, -1.0),
+            direction: Vec3::new(-2.0, -4.0, 1.0),
+            cone_deg: 35.0,
+            inner_cone_deg: 10.0,
+            power: 30.0,
+            spectrum: Default::default(),
+        },
         Light::Beam {
             position: Vec3::new(-3.0, 1.0, 0.0),
             direction: Vec3::X,

@@ -102,6 +102,7 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
             position: from,
             direction: first_center - from,
             cone_deg: d.f(8.0, 30.0),
+            inner_cone_deg: 8.0,
             power: d.f(5.0, 50.0),
             spectrum: Default::default(),
         },

@@ -182,3 +182,54 @@ fn a_panels_photons_aimed_at_the_glass_store_the_same_caustic() {
         assert!(diff < 0.03 * total, "{name}: images differ by {:.2} % (L1)", 100.0 * diff / total);
     }
 }
+
+/// A spot with glTF's soft edge lights a floor with I₀ f(cos θ) cos θ / d²,
+/// f the edge's x² between the inner and outer angles, I₀ = Φ / (2π ·
+/// the cone's measure): seen from the spot itself, looking down its axis.
+#[test]
+fn a_soft_edged_spot_lights_the_floor_as_its_falloff_says() {
+    use prismatic_core::geometry::camera::PinholeCamera;
+    use prismatic_core::model::scene::Light;
+    use prismatic_core::sampling::spot_cone::SpotCone;
+    let (h, power, outer, inner) = (2.0f32, 40.0f32, 35.0f32, 15.0f32);
+    let camera = Camera { position: Vec3::new(0.0, h, 0.0), look_at: Vec3::ZERO, up: Vec3::Z, fov_deg: 80.0 };
+    let mut render = settings(1000, BandSpec::Paper7);
+    (render.width, render.height, render.ambient) = (SIDE, SIDE, 0.0);
+    let scene = prepare(Scene {
+        render,
+        camera: camera.clone(),
+        lights: vec![Light::Spot {
+            position: camera.position,
+            direction: Vec3::NEG_Y,
+            cone_deg: outer,
+            inner_cone_deg: inner,
+            power,
+            spectrum: Default::default(),
+        }],
+        materials: vec![diffuse("floor", ALBEDO, Vec3::ZERO)],
+        objects: vec![Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 }],
+    });
+    let cone = SpotCone::new(outer, inner);
+    let i0 = power / (2.0 * PI * cone.measure());
+    let pinhole = PinholeCamera::new(&camera, SIDE, SIDE);
+    let (mut edge, mut inside) = (0, 0);
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let (_, image) = frame(backend.as_mut(), &scene);
+        for y in 0..SIDE {
+            for x in 0..SIDE {
+                let c = -pinhole.ray(x, y).direction.normalize().y;
+                let f = cone.falloff(c);
+                let want = ALBEDO / PI * i0 * f * c * c * c / (h * h);
+                let got = image.pixels[(y * SIDE + x) as usize].x;
+                assert!(
+                    (got - want).abs() <= 1e-4 * i0 / (h * h),
+                    "{name}: pixel ({x}, {y}) at cos {c}: {got} vs {want}"
+                );
+                edge += usize::from(f > 0.0 && f < 1.0);
+                inside += usize::from(f == 1.0);
+            }
+        }
+    }
+    assert!(edge > 100 && inside > 100, "the image holds the edge ({edge}) and the full cone ({inside})");
+}

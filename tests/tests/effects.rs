@@ -26,6 +26,7 @@ fn sphere_scene(dispersion: Dispersion, cone_deg: f32, aim: Vec3) -> Scene {
             position: Vec3::new(0.0, 6.0, 0.0),
             direction: aim,
             cone_deg,
+            inner_cone_deg: cone_deg,
             power: 20.0,
             spectrum: Default::default(),
         }],

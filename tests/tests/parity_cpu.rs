@@ -84,6 +84,7 @@ fn cpu_matches_the_reference_with_projection_maps_on_every_light_kind() {
                 position: Vec3::new(-3.0, 5.0, 1.0),
                 direction: Vec3::new(3.0, -4.0, -1.0),
                 cone_deg: 50.0,
+                inner_cone_deg: 50.0,
                 power: 5.0,
                 spectrum: Default::default(),
             },

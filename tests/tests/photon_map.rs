@@ -20,6 +20,7 @@ fn sphere_scene(dispersion: Dispersion, bands: BandSpec, photons: u32, seed: u32
             position: Vec3::new(0.0, 5.0, 0.0),
             direction: -Vec3::Y,
             cone_deg: 12.0,
+            inner_cone_deg: 12.0,
             power: 10.0,
             spectrum: Default::default(),
         }],
@@ -76,6 +77,7 @@ fn mirrors_reflect_white_light_without_splitting() {
         position: Vec3::new(-3.0, 3.0, 0.0),
         direction: Vec3::new(3.0, -1.5, 0.0),
         cone_deg: 15.0,
+        inner_cone_deg: 15.0,
         power: 1.0,
         spectrum: Default::default(),
     };

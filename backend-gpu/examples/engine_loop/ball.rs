@@ -16,7 +16,14 @@ pub fn camera() -> Camera {
 
 /// A 38 W spot light at `position`, aimed at the ball's centre, of half-angle `cone_deg`.
 pub fn spot(position: Vec3, cone_deg: f32) -> Light {
-    Light::Spot { position, direction: CENTRE - position, cone_deg, power: 38.0, spectrum: Default::default() }
+    Light::Spot {
+        position,
+        direction: CENTRE - position,
+        cone_deg,
+        inner_cone_deg: cone_deg,
+        power: 38.0,
+        spectrum: Default::default(),
+    }
 }
 
 /// The floor and (`with_ball`) the ball under `light`, rendered with `render`;

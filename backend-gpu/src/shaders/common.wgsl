@@ -123,7 +123,7 @@ struct GpuLight {
     reflected_r: vec3<f32>,
     spectrum_first: u32,
     reflected_g: vec3<f32>,
-    _pad0: u32,
+    cos_inner: f32,
     reflected_b: vec3<f32>,
     _pad1: u32,
 }
@@ -288,6 +288,23 @@ fn basis(n: vec3<f32>) -> Basis {
         vec3<f32>(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
         vec3<f32>(b, sign + n.y * n.y * a, -n.y),
     );
+}
+
+// spot_cone::SpotCone::measure
+fn spot_measure(l: GpuLight) -> f32 {
+    return (1.0 - l.cos_inner) + (l.cos_inner - l.cos_max) / 3.0;
+}
+
+// spot_cone::SpotCone::falloff
+fn spot_falloff(l: GpuLight, c: f32) -> f32 {
+    if c < l.cos_max {
+        return 0.0;
+    }
+    if c >= l.cos_inner {
+        return 1.0;
+    }
+    let x = (c - l.cos_max) / (l.cos_inner - l.cos_max);
+    return x * x;
 }
 
 // projection::cone_direction

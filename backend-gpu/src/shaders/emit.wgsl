@@ -26,11 +26,12 @@ fn projected(l: GpuLight, u_target: f32, u1: f32, u2: f32) -> Emitted {
     if l.proj_kind == PROJECTION_CONES {
         let cos_t = 1.0 - u1 * (1.0 - target_.w);
         let d = cone_direction(target_.xyz, cos_t, u2);
-        var inside = true;
+        // The light's density there over a uniform cone's (a spot's soft edge).
+        var density = 1.0;
         if l.kind == LIGHT_SPOT {
-            inside = dot(d, l.axis) >= l.cos_max;
+            density = spot_falloff(l, dot(d, l.axis)) * ((1.0 - l.cos_max) / spot_measure(l));
         } else if l.kind == LIGHT_BEAM {
-            inside = false;
+            density = 0.0;
         }
         var covering = 0u;
         for (var i = 0u; i < l.proj_count; i++) {
@@ -39,7 +40,7 @@ fn projected(l: GpuLight, u_target: f32, u1: f32, u2: f32) -> Emitted {
                 covering++;
             }
         }
-        return Emitted(l.position, d, 0u, select(0.0, l.proj_scale / f32(max(covering, 1u)), inside));
+        return Emitted(l.position, d, 0u, select(0.0, l.proj_scale / f32(max(covering, 1u)), density > 0.0) * density);
     }
     // Discs on the beam's emitting plane.
     let r = target_.w * sqrt(u1);
@@ -95,6 +96,17 @@ fn aimed_from_area(l: GpuLight, origin: vec3<f32>, u_target: f32, u1: f32, u2: f
     return Emitted(origin, d, 0u, weight);
 }
 
+// spot_cone::SpotCone::sample_cos
+fn spot_cos(l: GpuLight, u: f32) -> f32 {
+    let t = u * spot_measure(l);
+    let core = 1.0 - l.cos_inner;
+    if t <= core {
+        return 1.0 - t;
+    }
+    let w = l.cos_inner - l.cos_max;
+    return l.cos_max + w * pow(max(1.0 - 3.0 * (t - core) / w, 0.0), 1.0 / 3.0);
+}
+
 // sobol::photon_f32 (sobol::sobol_dimension inlined).
 fn photon_f32(seed: u32, index: u32, dimension: u32) -> f32 {
     if params.photon_sequence == SEQUENCE_SOBOL {
@@ -128,8 +140,7 @@ fn emit(seed: u32, index: u32) -> Emitted {
         return e;
     }
     if l.kind == LIGHT_SPOT {
-        let cos_t = 1.0 - u1 * (1.0 - l.cos_max);
-        return Emitted(l.position, cone_direction(l.axis, cos_t, u2), light, 1.0);
+        return Emitted(l.position, cone_direction(l.axis, spot_cos(l, u1), u2), light, 1.0);
     }
     if l.kind == LIGHT_AREA {
         // A cosine-weighted direction out of its front.

@@ -213,11 +213,12 @@ fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     let cos_s = dot(v.xyz, n);
     let dist = v.w;
     if l.kind == LIGHT_SPOT {
-        if dot(-v.xyz, l.axis) < l.cos_max {
+        let falloff = spot_falloff(l, dot(-v.xyz, l.axis));
+        if falloff == 0.0 {
             return 0.0;
         }
-        let intensity = l.power / (2.0 * PI * (1.0 - l.cos_max));
-        return intensity * cos_s / (dist * dist);
+        let intensity = l.power / (2.0 * PI * spot_measure(l));
+        return falloff * (intensity * cos_s / (dist * dist));
     }
     return l.power / (4.0 * PI) * cos_s / (dist * dist);
 }

@@ -210,11 +210,16 @@ impl Reader<'_> {
         let kind = self.req(t, "kind", |p, k, v| p.string(k, v).map(str::to_string))?;
         Ok(match kind.as_str() {
             "spot" => {
-                self.check_keys(t, &["kind", "position", "direction", "cone_deg", "power", "spectrum"])?;
+                self.check_keys(
+                    t,
+                    &["kind", "position", "direction", "cone_deg", "inner_cone_deg", "power", "spectrum"],
+                )?;
+                let cone_deg = self.req(t, "cone_deg", Self::float)?;
                 Light::Spot {
                     position: self.req(t, "position", Self::point)?,
                     direction: self.req(t, "direction", Self::vec3)?,
-                    cone_deg: self.req(t, "cone_deg", Self::float)?,
+                    cone_deg,
+                    inner_cone_deg: self.opt(t, "inner_cone_deg", Self::float)?.unwrap_or(cone_deg),
                     power: self.req(t, "power", Self::float)?,
                     spectrum: self.opt(t, "spectrum", Self::spectrum)?.unwrap_or_default(),
                 }

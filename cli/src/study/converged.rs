@@ -309,6 +309,7 @@ mod tests {
                 position,
                 direction,
                 cone_deg,
+                inner_cone_deg: cone_deg,
                 power: power * 1.01,
                 spectrum: Default::default(),
             },

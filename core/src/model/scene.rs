@@ -468,6 +468,11 @@ pub enum Light {
         direction: Vec3,
         /// Half-angle of the cone in degrees.
         cone_deg: f32,
+        /// Half-angle in degrees within which the intensity is full (glTF's
+        /// `innerConeAngle`); between it and `cone_deg` it falls off
+        /// smoothly ([`crate::sampling::spot_cone::SpotCone`]). Equal to
+        /// `cone_deg`: a hard edge (the paper's spot).
+        inner_cone_deg: f32,
         /// Flux in W.
         power: f32,
         /// What it emits across the spectrum.

@@ -233,12 +233,19 @@ impl Scene {
 
 fn validate_light(c: &Check<'_>, light: &Light) -> Result<(), SceneError> {
     match light {
-        Light::Spot { position, direction, cone_deg, power, .. } => {
+        Light::Spot { position, direction, cone_deg, inner_cone_deg, power, .. } => {
             c.vector("position", *position)?;
             c.direction("direction", *direction)?;
             c.finite("cone_deg", *cone_deg)?;
             if !(*cone_deg > 0.0 && *cone_deg <= 90.0) {
                 return Err(c.err("cone_deg", format!("must be a half-angle in (0, 90] degrees, got {cone_deg}")));
+            }
+            c.finite("inner_cone_deg", *inner_cone_deg)?;
+            if !(*inner_cone_deg >= 0.0 && inner_cone_deg <= cone_deg) {
+                return Err(c.err(
+                    "inner_cone_deg",
+                    format!("must be a half-angle from 0 to cone_deg ({cone_deg}), got {inner_cone_deg}"),
+                ));
             }
             c.positive("power", *power)
         }

@@ -6,7 +6,8 @@ use crate::optics::scatter::offset_origin;
 use crate::plan::prepared::PreparedScene;
 use crate::plan::projection::cone_direction;
 use crate::sampling::sobol::photon_f32;
-use crate::util::math::{cos, radians, sin_cos_turns, sqrt};
+use crate::sampling::spot_cone::SpotCone;
+use crate::util::math::{sin_cos_turns, sqrt};
 use crate::util::rng::{dim, random_f32};
 use glam::Vec3;
 
@@ -53,10 +54,9 @@ pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
         return Emitted { origin: s.origin, direction: s.direction, light, weight: s.weight };
     }
     match source {
-        Light::Spot { position, direction, cone_deg, .. } => {
+        Light::Spot { position, direction, cone_deg, inner_cone_deg, .. } => {
             let axis = direction.normalize();
-            let cos_max = cos(radians(*cone_deg));
-            let cos_t = 1.0 - u1 * (1.0 - cos_max);
+            let cos_t = SpotCone::new(*cone_deg, *inner_cone_deg).sample_cos(u1);
             Emitted { origin: *position, direction: cone_direction(axis, cos_t, u2), light, weight: 1.0 }
         }
         Light::Point { position, .. } => {

@@ -12,6 +12,7 @@
 use crate::geometry::primitive::basis;
 use crate::model::scene::Light;
 use crate::plan::reach::light_reaches;
+use crate::sampling::spot_cone::SpotCone;
 use crate::util::math::{cos, radians, sin_cos_turns, sqrt};
 use alloc::vec::Vec;
 use core::f32::consts::PI;
@@ -128,18 +129,23 @@ impl Projection {
             (Targets::Cones { axis, cos_max }, _) => {
                 let cos_t = 1.0 - u1 * (1.0 - cos_max[j]);
                 let d = cone_direction(axis[j], cos_t, u2);
-                let (origin, inside) = match light {
-                    Light::Spot { position, direction, cone_deg, .. } => {
-                        (*position, d.dot(direction.normalize()) >= cos(radians(*cone_deg)))
+                // The light's density there over a uniform cone's (its soft edge).
+                let (origin, density) = match light {
+                    Light::Spot { position, direction, cone_deg, inner_cone_deg, .. } => {
+                        let cone = SpotCone::new(*cone_deg, *inner_cone_deg);
+                        let f = cone.falloff(d.dot(direction.normalize()));
+                        // Exactly f for a hard edge (its measure is 1 − cos_outer).
+                        (*position, f * ((1.0 - cone.cos_outer) / cone.measure()))
                     }
-                    Light::Point { position, .. } => (*position, true),
-                    Light::Beam { position, .. } => (*position, false),
+                    Light::Point { position, .. } => (*position, 1.0),
+                    Light::Beam { position, .. } => (*position, 0.0),
                     Light::Sun { .. } | Light::Environment { .. } | Light::Area { .. } => {
                         unreachable!("a projection map holds spot, point and beam lights only (Projection::new)")
                     }
                 };
                 let covering = axis.iter().zip(cos_max).filter(|(a, c)| d.dot(**a) >= **c).count().max(1);
-                ProjectedSample { origin, direction: d, weight: weight(inside, self.scale, covering) }
+                let w = weight(density > 0.0, self.scale, covering);
+                ProjectedSample { origin, direction: d, weight: w * density }
             }
             (Targets::Discs { center, radius }, Light::Beam { position, direction, radius: beam_radius, .. }) => {
                 let a = direction.normalize();

@@ -52,7 +52,7 @@ use crate::plan::area::area;
 use crate::plan::prepared::{Hit, PreparedScene};
 use crate::render::visible::{VisiblePoint, VisiblePoints};
 use crate::sampling::pixel_sample::PixelSampler;
-use crate::util::math::{cos, radians};
+use crate::sampling::spot_cone::SpotCone;
 use crate::util::progress::{Progress, Stage};
 use crate::util::tolerance::{CONNECTION_REL, MIN_VIEW_WEIGHT};
 use alloc::vec::Vec;
@@ -241,16 +241,17 @@ impl<'a> ViewContext<'a> {
     pub fn direct_irradiance(&self, index: usize, p: Vec3, n: Vec3) -> f32 {
         let shadows = self.scene.plan.shadows[index].on;
         match &self.scene.lights[index] {
-            Light::Spot { position, direction, cone_deg, power, .. } => {
-                let cos_max = cos(radians(*cone_deg));
+            Light::Spot { position, direction, cone_deg, inner_cone_deg, power, .. } => {
+                let cone = SpotCone::new(*cone_deg, *inner_cone_deg);
                 let Some((l, dist, cos_s)) = self.toward_light(*position, p, n, shadows) else {
                     return 0.0;
                 };
-                if (-l).dot(direction.normalize()) < cos_max {
+                let falloff = cone.falloff((-l).dot(direction.normalize()));
+                if falloff == 0.0 {
                     return 0.0;
                 }
-                let intensity = power / (2.0 * PI * (1.0 - cos_max));
-                intensity * cos_s / (dist * dist)
+                let intensity = power / (2.0 * PI * cone.measure());
+                falloff * (intensity * cos_s / (dist * dist))
             }
             Light::Point { position, power, .. } => {
                 let Some((_, dist, cos_s)) = self.toward_light(*position, p, n, shadows) else {

@@ -200,6 +200,7 @@ fn build_scene(
                 position: core(at.translation()),
                 direction: core(at.forward().as_vec3()),
                 cone_deg,
+                inner_cone_deg: cone_deg,
                 power,
                 spectrum: Default::default(),
             },

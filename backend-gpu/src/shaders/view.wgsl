@@ -108,67 +108,92 @@ fn through_dielectric(e: Pending, ior: f32, thin: bool, band: u32, weight: f32, 
     }
 }
 
-// Direction to a point light, distance and surface cosine (w < 0: not lit).
-fn toward_light(light: vec3<f32>, p: vec3<f32>, n: vec3<f32>, shadows: bool) -> vec4<f32> {
-    let to = light - p;
-    let dist = length(to);
-    let l = to / dist;
-    let cos_s = dot(l, n);
-    if cos_s <= 0.0 {
-        return vec4<f32>(0.0, 0.0, 0.0, -1.0);
+// One edge (x to y, relative to the point) of form_factor::triangle_view's
+// clipping: x if above the tangent plane, and where the edge crosses it.
+fn clip_edge(x: vec3<f32>, y: vec3<f32>, n: vec3<f32>, corners: ptr<function, array<vec3<f32>, 4>>, count: ptr<function, u32>) {
+    let hx = dot(x, n);
+    let hy = dot(y, n);
+    if hx > 0.0 {
+        (*corners)[*count] = x;
+        *count += 1u;
     }
-    if shadows {
-        let origin = offset_origin(p, n, l);
-        if occluded(origin, l, length(light - origin)) {
-            return vec4<f32>(0.0, 0.0, 0.0, -1.0);
-        }
+    if (hx > 0.0) != (hy > 0.0) {
+        (*corners)[*count] = x + (y - x) * (hx / (hx - hy));
+        *count += 1u;
     }
-    return vec4<f32>(l, dist);
+}
+
+// One edge's term of Lambert's formula: Θ (n · γ̂).
+fn edge_term(x: vec3<f32>, y: vec3<f32>, n: vec3<f32>) -> f32 {
+    let c = cross(x, y);
+    let sin_len = sqrt(dot(c, c));
+    if sin_len > 0.0 {
+        return atan2(sin_len, dot(x, y)) * dot(c, n) / sin_len;
+    }
+    return 0.0;
 }
 
 // geometry::form_factor::triangle_view: the projected solid angle of the
 // part of triangle (a, b, c) above p's tangent plane (xyz: that part's
-// centre, w: the angle; w = 0 when none of it is).
+// centre, w: the angle; w = 0 when none of it is). Written without loops:
+// lavapipe's per-invocation cap on loop iterations also counts loops in
+// branches no invocation takes (see direct_irradiance).
 fn triangle_view(p: vec3<f32>, n: vec3<f32>, a: vec3<f32>, b: vec3<f32>, c: vec3<f32>) -> vec4<f32> {
-    let v = array<vec3<f32>, 3>(a - p, b - p, c - p);
     var corners: array<vec3<f32>, 4>;
     var count = 0u;
-    for (var i = 0u; i < 3u; i++) {
-        let x = v[i];
-        let y = v[(i + 1u) % 3u];
-        let hx = dot(x, n);
-        let hy = dot(y, n);
-        if hx > 0.0 {
-            corners[count] = x;
-            count++;
-        }
-        if (hx > 0.0) != (hy > 0.0) {
-            corners[count] = x + (y - x) * (hx / (hx - hy));
-            count++;
-        }
-    }
+    clip_edge(a - p, b - p, n, &corners, &count);
+    clip_edge(b - p, c - p, n, &corners, &count);
+    clip_edge(c - p, a - p, n, &corners, &count);
     if count < 3u {
         return vec4<f32>(p, 0.0);
     }
-    var sum = 0.0;
-    var centre = vec3<f32>(0.0);
-    for (var i = 0u; i < count; i++) {
-        let x = corners[i];
-        let y = corners[(i + 1u) % count];
-        centre += x;
-        let c = cross(x, y);
-        let sin_len = sqrt(dot(c, c));
-        if sin_len > 0.0 {
-            sum += atan2(sin_len, dot(x, y)) * dot(c, n) / sin_len;
-        }
+    var sum = edge_term(corners[0], corners[1], n);
+    sum += edge_term(corners[1], corners[2], n);
+    var centre = corners[0] + corners[1] + corners[2];
+    if count == 3u {
+        sum += edge_term(corners[2], corners[0], n);
+    } else {
+        sum += edge_term(corners[2], corners[3], n);
+        sum += edge_term(corners[3], corners[0], n);
+        centre += corners[3];
     }
     return vec4<f32>(p + centre / f32(count), 0.5 * abs(sum));
 }
 
-// ViewContext::direct_irradiance
+// ViewContext::direct_irradiance. Each kind of light gives its unblocked
+// irradiance and the shadow ray that may block it, and one call traces
+// that ray: lavapipe's cap of 65,535 loop iterations an invocation counts
+// every inlined copy of the hierarchy's loop, in branches taken or not (a
+// fourth copy, for area lights, cut 10 view paths of the environment
+// glass test, which one copy for all lights does not).
 fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
-    let shadows = l.shadows != 0u;
-    if l.kind == LIGHT_AREA {
+    var value = 0.0;
+    // The shadow ray: its origin, direction and length.
+    var origin = p;
+    var dir = vec3<f32>(0.0);
+    var reach = 0.0;
+    if l.sun != 0u {
+        // A sun: its beam's irradiance wherever it is not blocked, inside
+        // the disc or not.
+        let cos_s = -dot(l.axis, n);
+        if cos_s <= 0.0 {
+            return 0.0;
+        }
+        value = l.power / (PI * l.radius * l.radius) * cos_s;
+        dir = -l.axis;
+        origin = offset_origin(p, n, dir);
+        reach = BIG;
+    } else if l.kind == LIGHT_BEAM {
+        let along = dot(p - l.position, l.axis);
+        let cos_s = -dot(l.axis, n);
+        if along <= 0.0 || cos_s <= 0.0 || length(p - l.position - l.axis * along) > l.radius {
+            return 0.0;
+        }
+        value = l.power / (PI * l.radius * l.radius) * cos_s;
+        dir = -l.axis;
+        origin = offset_origin(p, n, dir);
+        reach = along;
+    } else if l.kind == LIGHT_AREA {
         // form_factor::in_front_of
         if dot(p - l.position, l.axis) <= surface_offset(p) {
             return 0.0;
@@ -177,50 +202,36 @@ fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
         if seen.w <= 0.0 {
             return 0.0;
         }
-        if shadows {
-            let dir = nrm(seen.xyz - p);
-            let origin = offset_origin(p, n, dir);
-            if occluded(origin, dir, length(seen.xyz - origin) * (1.0 - CONNECTION_REL)) {
+        value = l.radius * seen.w;
+        dir = nrm(seen.xyz - p);
+        origin = offset_origin(p, n, dir);
+        reach = length(seen.xyz - origin) * (1.0 - CONNECTION_REL);
+    } else {
+        // A point or spot light.
+        let to = l.position - p;
+        let dist = length(to);
+        dir = to / dist;
+        let cos_s = dot(dir, n);
+        if cos_s <= 0.0 {
+            return 0.0;
+        }
+        if l.kind == LIGHT_SPOT {
+            let falloff = spot_falloff(l, dot(-dir, l.axis));
+            if falloff == 0.0 {
                 return 0.0;
             }
+            let intensity = l.power / (2.0 * PI * spot_measure(l));
+            value = falloff * (intensity * cos_s / (dist * dist));
+        } else {
+            value = l.power / (4.0 * PI) * cos_s / (dist * dist);
         }
-        return l.radius * seen.w;
+        origin = offset_origin(p, n, dir);
+        reach = length(l.position - origin);
     }
-    if l.sun != 0u {
-        // A sun: its beam's irradiance wherever it is not blocked, inside
-        // the disc or not.
-        let cos_s = -dot(l.axis, n);
-        if cos_s <= 0.0 || (shadows && occluded(offset_origin(p, n, -l.axis), -l.axis, BIG)) {
-            return 0.0;
-        }
-        return l.power / (PI * l.radius * l.radius) * cos_s;
-    }
-    if l.kind == LIGHT_BEAM {
-        let along = dot(p - l.position, l.axis);
-        let cos_s = -dot(l.axis, n);
-        if along <= 0.0 || cos_s <= 0.0 || length(p - l.position - l.axis * along) > l.radius {
-            return 0.0;
-        }
-        if shadows && occluded(offset_origin(p, n, -l.axis), -l.axis, along) {
-            return 0.0;
-        }
-        return l.power / (PI * l.radius * l.radius) * cos_s;
-    }
-    let v = toward_light(l.position, p, n, shadows);
-    if v.w < 0.0 {
+    if l.shadows != 0u && occluded(origin, dir, reach) {
         return 0.0;
     }
-    let cos_s = dot(v.xyz, n);
-    let dist = v.w;
-    if l.kind == LIGHT_SPOT {
-        let falloff = spot_falloff(l, dot(-v.xyz, l.axis));
-        if falloff == 0.0 {
-            return 0.0;
-        }
-        let intensity = l.power / (2.0 * PI * spot_measure(l));
-        return falloff * (intensity * cos_s / (dist * dist));
-    }
-    return l.power / (4.0 * PI) * cos_s / (dist * dist);
+    return value;
 }
 
 var<private> pixel_index: u32;

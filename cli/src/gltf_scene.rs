@@ -19,6 +19,7 @@ use glam::{Affine2, Mat4, Vec2, Vec3};
 use gltf::khr_lights_punctual::Kind;
 use gltf::texture::{MagFilter, WrappingMode};
 use prismatic_core::Dispersion;
+use prismatic_core::geometry::texture::srgb_to_linear;
 use prismatic_core::model::mesh::open_edge;
 use prismatic_core::model::scene::{
     Attenuation, Camera, EnvironmentMap, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, Object, RenderSettings,
@@ -330,6 +331,23 @@ impl Images<'_> {
         Ok(Some((texture, transform)))
     }
 
+    /// The mean linear colour of a texture's image (what an emissive
+    /// texture emits on average).
+    fn mean_colour(&mut self, info: &gltf::texture::Info<'_>) -> Result<Vec3, GltfError> {
+        let image = info.texture().source();
+        let decoded = match self.decoded.get(&image.index()) {
+            Some(t) => t.clone(),
+            None => {
+                let t = self.decode(&image)?;
+                self.decoded.insert(image.index(), t.clone());
+                t
+            }
+        };
+        let channel = |x: u32, shift: u32| srgb_to_linear((x >> shift) & 0xff);
+        let sum: Vec3 = decoded.texels.iter().map(|&x| Vec3::new(channel(x, 0), channel(x, 8), channel(x, 16))).sum();
+        Ok(sum / decoded.texels.len().max(1) as f32)
+    }
+
     /// An image's pixels as 8-bit sRGB texels (grey images as grey, alpha
     /// left out, 16-bit channels to their high byte).
     fn decode(&self, image: &gltf::Image<'_>) -> Result<Texture, GltfError> {
@@ -396,7 +414,6 @@ fn material(
         (m.normal_texture().is_some(), "normalTexture"),
         // occlusionTexture is not left out but not needed: it bakes for
         // rasterisers the shadowing that traced rays find themselves.
-        (m.emissive_texture().is_some(), "emissiveTexture"),
     ] {
         if texture {
             unused.push(what);
@@ -405,8 +422,13 @@ fn material(
     let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor());
     let glass_or_mirror =
         transmission > 0.0 || (pbr.metallic_factor() >= MIRROR_METALLIC && pbr.roughness_factor() <= MIRROR_ROUGHNESS);
-    if glass_or_mirror && emission(m) != Vec3::ZERO {
+    let mut emission = emission(m);
+    if glass_or_mirror && emission != Vec3::ZERO {
         unused.push("emission of glass or a mirror (only diffuse surfaces emit)");
+    } else if let Some(info) = m.emissive_texture().filter(|_| emission != Vec3::ZERO) {
+        // Emission is per mesh: the texture's mean keeps its flux, not its pattern.
+        emission *= images.mean_colour(&info)?;
+        unused.push("emissiveTexture's pattern (the mesh emits the texture's mean colour evenly)");
     }
     let mut uv_transform = None;
     let kind = if transmission > 0.0 {
@@ -444,7 +466,7 @@ fn material(
         };
         let (texture, transform) = texture.unzip();
         uv_transform = transform.flatten();
-        MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission: emission(m) }
+        MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission }
     };
     if !unused.is_empty() {
         warnings.push(format!("{path} ({name}): left out: {}", unused.join(", ")));

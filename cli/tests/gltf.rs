@@ -592,3 +592,31 @@ fn an_emissive_material_is_an_area_light() {
     let s = trace::trace_photons(&prepared, &mut prismatic_core::NoProgress).stats;
     assert!(s.specular_paths > 0, "{s:?}");
 }
+
+/// An emissive texture scales the emission by its mean linear colour (the
+/// mesh's flux; its pattern is named as left out).
+#[test]
+fn an_emissive_texture_gives_its_mean_colour() {
+    use prismatic_cli::gltf_write::GltfTexture;
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    // Half the texels white, half black: a mean of ½ in linear light.
+    doc.materials[0].base_color_texture = Some(GltfTexture {
+        width: 2,
+        height: 1,
+        pixels: vec![[255, 255, 255], [0, 0, 0]],
+        nearest: true,
+        wrap: [10497, 10497],
+    });
+    doc.meshes[0].uvs = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+    let mut json: serde_json::Value = serde_json::from_str(&doc.to_json()).unwrap();
+    json["materials"][0]["emissiveFactor"] = serde_json::json!([2.0, 1.0, 4.0]);
+    json["materials"][0]["emissiveTexture"] = json["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"].clone();
+    let path = dir.path().join("screen.gltf");
+    std::fs::write(&path, json.to_string()).unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    scene.validate().unwrap();
+    assert_eq!(scene.scene.materials[0].kind.emission().to_array(), [1.0, 0.5, 2.0]);
+    let warnings = scene.warnings.join("\n");
+    assert!(warnings.contains("materials[0] (floor): left out: emissiveTexture's pattern"), "{warnings}");
+}

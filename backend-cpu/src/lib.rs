@@ -11,6 +11,7 @@
 
 mod bvh;
 pub mod emit;
+mod form_factor;
 mod grid;
 mod intersect;
 mod kernels;

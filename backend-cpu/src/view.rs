@@ -16,6 +16,7 @@
 //! hero paths): the reference's start (the centre, or jittered), Fresnel
 //! choices and hero bands, from the same [`PixelSampler`] numbers.
 
+use crate::form_factor::triangle_view;
 use crate::intersect::{HitX8, intersect_scene, occluded};
 use crate::optics::{offset_origin, split_dielectric};
 use crate::ray::{RayX8, limit_where};
@@ -23,7 +24,6 @@ use crate::simd::{Vec3x8, ge, gt, lt};
 use glam::Vec3;
 use prismatic_core::Image;
 use prismatic_core::geometry::camera::PinholeCamera;
-use prismatic_core::geometry::form_factor::{in_front_of, triangle_view};
 use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::model::scene::Light;
 use prismatic_core::optics::fresnel::reflect;
@@ -302,16 +302,7 @@ impl Shader<'_> {
                 (lit & !blocked).select(f32x8::splat(*irradiance) * cos_s, f32x8::ZERO)
             }
             Light::Area { vertices, power, .. } => {
-                // The closed form lane by lane, the shadow rays as a packet.
-                let (mut angle, mut centre) = ([0.0f32; 8], [Vec3::ZERO; 8]);
-                for i in lanes(mask) {
-                    let (pi, ni) = (p.lane(i), n.lane(i));
-                    if in_front_of(pi, *vertices) {
-                        let seen = triangle_view(pi, ni, *vertices);
-                        (angle[i], centre[i]) = (seen.projected_solid_angle, seen.centre);
-                    }
-                }
-                let (angle, centre) = (f32x8::new(angle), Vec3x8::from_lanes(&centre));
+                let (angle, centre) = triangle_view(p, n, *vertices);
                 let lit = mask & gt(angle, f32x8::ZERO);
                 let irradiance = f32x8::splat(power / (PI * area(vertices))) * angle;
                 if !lit.any() || !shadows {

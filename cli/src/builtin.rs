@@ -13,7 +13,7 @@ pub struct BuiltinScene {
 }
 
 /// Every built-in scene file.
-pub const BUILTIN_SCENES: [BuiltinScene; 7] = [
+pub const BUILTIN_SCENES: [BuiltinScene; 8] = [
     BuiltinScene {
         name: "spectrum",
         description: "a prism's spectrum on a wall behind the paper's glass sphere and its caustic (the default)",
@@ -28,6 +28,11 @@ pub const BUILTIN_SCENES: [BuiltinScene; 7] = [
         name: "sphere",
         description: "the paper's glass sphere on a checkered floor under a spot light (7-band caustic)",
         source: include_str!("../../scenes/sphere.toml"),
+    },
+    BuiltinScene {
+        name: "softbox",
+        description: "a flint glass ball under a photographer's softbox: soft shadow, the box's coloured, blurred caustic",
+        source: include_str!("../../scenes/softbox.toml"),
     },
     BuiltinScene {
         name: "prism",

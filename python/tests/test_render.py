@@ -122,6 +122,16 @@ def test_the_environment_keywords_are_the_clis_flags(cli, tmp_path):
         prismatic.render("sphere", progress=False, environment="studio", environment_rotation="east", **SMALL)
 
 
+def test_area_lights_is_the_clis_flag(cli, tmp_path):
+    cli("render", "softbox", "--passes", "1", *flags(SMALL), "--area-lights", "4", "-o", "box.exr", cwd=tmp_path)
+    given = prismatic.render("softbox", passes=1, progress=False, area_lights=4, **SMALL)
+    default = prismatic.render("softbox", passes=1, progress=False, **SMALL)
+    assert same_bits(given, read_exr(tmp_path / "box.exr"))
+    assert not same_bits(given, default), "4 pieces draw the box's shadow more coarsely than its 32"
+    with pytest.raises(prismatic.SceneError, match="area_lights: must be 1 to 4096"):
+        prismatic.render("softbox", progress=False, area_lights=0)
+
+
 def test_a_scene_file_and_its_text_render_the_same(cli, tmp_path):
     path = tmp_path / "scene.toml"
     path.write_text(SCENE_TEXT)

@@ -198,8 +198,9 @@ settings! {
     #[arg(long)]
     environment_lights: u32,
     /// Pieces the emissive meshes' triangles are cut into for direct light
-    /// (1 to 4096, at least one a triangle): more draw their soft shadows
-    /// more finely, each one more shadow ray at every point the camera sees.
+    /// (1 to 4096): more draw their soft shadows more finely, each one more
+    /// shadow ray at every point the camera sees; with more emissive
+    /// triangles than this, that many chosen by power carry their flux.
     #[arg(long)]
     area_lights: u32,
     /// Image width.

@@ -277,8 +277,9 @@ pub const MAX_ENVIRONMENT_LIGHTS: u32 = 4_096;
 /// any count, so the count sets only how finely soft shadows are drawn.
 pub const DEFAULT_AREA_LIGHTS: u32 = 16;
 
-/// The most pieces emissive triangles are cut into (a mesh with more
-/// triangles keeps one piece per triangle).
+/// The most pieces emissive triangles are cut into (more emissive
+/// triangles than the setting: a choice of that many by power, carrying
+/// the whole flux; [`crate::plan::area::area_lights`]).
 pub const MAX_AREA_LIGHTS: u32 = 4_096;
 
 /// How a render's gather radii behave from pass to pass.
@@ -372,10 +373,11 @@ pub struct RenderSettings {
     /// cut: more, softer shadows and a closer irradiance, each a shadow ray
     /// per visible point).
     pub environment_lights: u32,
-    /// Pieces the emissive meshes' triangles are cut into for direct light
-    /// (at least one per triangle): each lights a point with its exact
-    /// unblocked irradiance, seen or shadowed from its centre (more: finer
-    /// soft shadows, each a shadow ray per visible point).
+    /// Pieces the emissive meshes' triangles are cut into for direct light:
+    /// each lights a point with its exact unblocked irradiance, seen or
+    /// shadowed from its centre (more: finer soft shadows, each a shadow
+    /// ray per visible point). With more emissive triangles than this, a
+    /// choice of this many by power carries their whole flux.
     pub area_lights: u32,
 }
 

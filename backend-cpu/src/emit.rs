@@ -240,7 +240,7 @@ impl Emitters {
                 origin = position;
                 inside = f32x8::splat(f32::from_bits(u32::MAX));
             }
-            Emitter::Area { .. } => unreachable!("an area light has no projection map (Projection::new)"),
+            Emitter::Area { .. } => unreachable!("an area light is aimed by emit_aimed_area (above)"),
             Emitter::Beam { position, axis, t, b, radius } => {
                 let (sin_phi, cos_phi) = sin_cos_turns(u2);
                 for (j, (c, r)) in p.discs.iter().enumerate() {

@@ -116,7 +116,7 @@ pub fn panel_lit_sphere() -> PreparedScene {
     scene.objects[0].shape = Shape::Disk { center: Vec3::ZERO, normal: Vec3::Y, radius: 3.0, inner_radius: 0.0 };
     // A panel lights the ball from every side, so many of its photons run
     // round inside it by internal reflection, where an emission direction
-    // one ulp apart (a twin's sine) grows past the parity tolerances after
+    // one ulp apart (lavapipe's) grows past the parity tolerances after
     // four bounces or more; three keep the caustic's paths (in, out, floor).
     scene.render.max_depth = 3;
     let (panel, shape) = light_panel(Vec3::new(-0.6, 3.0, -0.2), Vec3::splat(50.0));

@@ -52,3 +52,14 @@ pub fn frame(backend: &mut dyn Backend, scene: &PreparedScene) -> (PhotonMap, Im
     let map = render.photon_map(0, &mut NoProgress).unwrap_or_else(|e| panic!("{name}: photon map: {e}"));
     (map, image)
 }
+
+/// That aiming photons changed nothing but the noise: the aimed and the
+/// unaimed frame of one scene store the same caustic flux (2 %) and give
+/// the same image within photon noise (3 % of its L1 norm).
+pub fn assert_same_caustic(name: &str, (aimed_map, aimed): (&PhotonMap, &Image), (map, image): (&PhotonMap, &Image)) {
+    let (fa, fw) = (aimed_map.stats.flux_stored, map.stats.flux_stored);
+    assert!((fa - fw).abs() < 0.02 * fw, "{name}: stored flux {fa} vs {fw}");
+    let diff: f64 = aimed.pixels.iter().zip(&image.pixels).map(|(a, b)| f64::from((*a - *b).abs().element_sum())).sum();
+    let total: f64 = image.pixels.iter().map(|p| f64::from(p.element_sum())).sum();
+    assert!(diff < 0.03 * total, "{name}: images differ by {:.2} % (L1)", 100.0 * diff / total);
+}

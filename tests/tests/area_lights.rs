@@ -6,7 +6,7 @@
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::scene::{Camera, Material, MaterialKind, Object, Shape};
 use prismatic_core::{PreparedScene, Scene, Vec3};
-use prismatic_tests::backends::{every_backend, frame};
+use prismatic_tests::backends::{assert_same_caustic, every_backend, frame};
 use prismatic_tests::{prepare, settings};
 use std::f32::consts::PI;
 
@@ -169,17 +169,7 @@ fn a_panels_photons_aimed_at_the_glass_store_the_same_caustic() {
             "{name}: {} of {AIMED} aimed photons meet the glass",
             map_aimed.stats.specular_paths
         );
-        // Unbiased: the same caustic flux and, within photon noise, the same image.
-        let (fa, fw) = (map_aimed.stats.flux_stored, map_whole.stats.flux_stored);
-        assert!((fa - fw).abs() < 0.02 * fw, "{name}: stored flux {fa} vs {fw}");
-        let diff: f64 = image_aimed
-            .pixels
-            .iter()
-            .zip(&image_whole.pixels)
-            .map(|(a, b)| f64::from((*a - *b).abs().element_sum()))
-            .sum();
-        let total: f64 = image_whole.pixels.iter().map(|p| f64::from(p.element_sum())).sum();
-        assert!(diff < 0.03 * total, "{name}: images differ by {:.2} % (L1)", 100.0 * diff / total);
+        assert_same_caustic(name, (&map_aimed, &image_aimed), (&map_whole, &image_whole));
     }
 }
 

@@ -356,7 +356,7 @@ fn basis_x8(n: Vec3x8) -> (Vec3x8, Vec3x8) {
     )
 }
 
-/// `prismatic_core::plan::projection::cone_direction` with the basis (t, b) of `axis` given.
+/// `prismatic_core::geometry::primitive::cone_direction` with the basis (t, b) of `axis` given.
 #[inline]
 fn cone_direction(axis: Vec3x8, t: Vec3x8, b: Vec3x8, cos_t: f32x8, u: f32x8) -> Vec3x8 {
     let sin_t = (f32x8::ONE - cos_t * cos_t).max(f32x8::ZERO).sqrt();

@@ -122,8 +122,7 @@ fn splat_photons(scene: &PreparedScene, photons: &[Photon]) -> Vec<Splat> {
 /// Traces fixed chunks of emissions in parallel (each unsorted into its own
 /// buffer), then sorts each chunk straight into its slice of the map.
 fn trace_chunks(scene: &PreparedScene, chunks: &mut Vec<ChunkBuffer>, map: &mut PhotonMap) {
-    // The effect plan may skip the photon pass altogether.
-    let total = if scene.plan.caustics.on { scene.scene.render.photons } else { 0 };
+    let total = prismatic_core::photons::trace::traced_photons(scene);
     let ctx = trace::TraceContext::new(scene);
     let n_chunks = total.div_ceil(TRACE_CHUNK) as usize;
     chunks.resize_with(n_chunks.max(chunks.len()), ChunkBuffer::default);

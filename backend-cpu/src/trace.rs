@@ -20,6 +20,7 @@ use prismatic_core::model::photon::{Photon, TraceStats, WHITE_BAND, oct_pack};
 use prismatic_core::model::scene::WavelengthSampling;
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
 use prismatic_core::photons::emit::light_of;
+use prismatic_core::photons::indirect::trace_indirect;
 use prismatic_core::photons::trace::{
     absorbed, absorbed_crossing, sample_band, split_bands, stored_wavelength, trace_emitted,
 };
@@ -54,6 +55,8 @@ pub struct TraceContext<'a> {
     emitters: Emitters,
     objects: Vec<ObjectOptics>,
     flux: f32,
+    /// Emission indices below this are caustic photons, the rest indirect light's.
+    caustic_photons: u32,
     /// Some light has a spectrum other than equal energy: its photons are
     /// traced by the core's scalar tracer (see [`trace_chunk`]).
     coloured_lights: bool,
@@ -98,6 +101,7 @@ impl<'a> TraceContext<'a> {
             emitters: Emitters::new(scene),
             objects,
             flux: prismatic_core::photons::trace::photon_flux(scene),
+            caustic_photons: prismatic_core::photons::trace::caustic_photons(scene),
             coloured_lights: scene.light_spectra.iter().any(|s| !s.is_uniform()),
         }
     }
@@ -203,6 +207,8 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
     let settings = &ctx.scene.scene.render;
     out.clear();
     let mut sink = Sink { out: core::mem::take(out), stats: TraceStats::default() };
+    // Caustic photons in packets, then indirect light's (see `indirect`).
+    let caustic_end = range.end.min(ctx.caustic_photons);
     let mut next = range.start;
     let mut origin = Vec3x8::ZERO;
     let mut dir = Vec3x8::ZERO;
@@ -219,18 +225,18 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
     loop {
         // Refill free lanes with the next white photons.
         let free = !active;
-        if next < range.end && free.any() {
+        if next < caustic_end && free.any() {
             let free_bits = free.to_bitmask();
             let mut indices = [0u32; 8];
             let mut fresh = [0.0f32; 8];
             for (i, (index, on)) in indices.iter_mut().zip(&mut fresh).enumerate() {
                 // A coloured light's photons start as several paths at their
                 // light: the core's scalar tracer takes them, in its order.
-                while ctx.coloured_lights && next < range.end && ctx.is_coloured(next) {
+                while ctx.coloured_lights && next < caustic_end && ctx.is_coloured(next) {
                     trace_emitted(ctx.scene, next, ctx.flux, &mut sink.out, &mut sink.stats);
                     next += 1;
                 }
-                if free_bits & (1 << i) != 0 && next < range.end {
+                if free_bits & (1 << i) != 0 && next < caustic_end {
                     *index = next;
                     *on = ON;
                     next += 1;
@@ -289,6 +295,9 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
         go_on &= !absorb_crossing_lanes(ctx, &mut sink, sheets, &hit, (before, dir), flux, [emission, band, bounces]);
         bounces += bytemuck::cast::<f32x8, u32x8>(go_on) & u32x8::ONE;
         active = go_on;
+    }
+    for index in caustic_end.max(range.start)..range.end {
+        trace_indirect(ctx.scene, index, &mut sink.out, &mut sink.stats);
     }
     *out = sink.out;
     sink.stats
@@ -534,10 +543,11 @@ fn scatter(
 }
 
 /// Writes a chunk's photons (emissions `start..start + len`) into `dest` in
-/// canonical (emission, band) order: a stable counting sort by emission.
+/// canonical (emission, band, bounces) order: a stable counting sort by emission.
 /// Within one emission the photons are already in band order (band packets
-/// run in band order and flush by lane), and an emission stores either one
-/// white photon or band photons, never both. `offsets` is scratch space.
+/// run in band order and flush by lane), an emission stores either one
+/// white photon or band photons, never both, and an indirect emission's
+/// photons (one band) come in path order. `offsets` is scratch space.
 pub fn canonical_order(unsorted: &[Photon], start: u32, len: usize, offsets: &mut Vec<u32>, dest: &mut [Photon]) {
     offsets.clear();
     offsets.resize(len + 1, 0);

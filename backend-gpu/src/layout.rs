@@ -18,7 +18,7 @@ pub struct Params {
     pub chunk_start: u32,
     /// Emissions in the current trace chunk.
     pub chunk_len: u32,
-    /// Scratch slots per emission (N bands when white light splits, else 1).
+    /// Scratch slots per emission (the most photons one stores).
     pub slots: u32,
     /// Number of bands.
     pub band_count: u32,
@@ -110,8 +110,15 @@ pub struct Params {
     pub env_height: u32,
     /// Its turn about +y, as a fraction of a full turn.
     pub env_turn: f32,
+    /// Emission indices below this are caustic photons, the rest indirect
+    /// light's (`prismatic_core::photons::indirect`).
+    pub caustic_photons: u32,
+    /// Flux of one indirect photon.
+    pub indirect_flux: f32,
+    /// Padding to a multiple of 16 bytes.
+    pub _pad: [u32; 2],
 }
-const _: () = assert!(core::mem::size_of::<Params>() == 256);
+const _: () = assert!(core::mem::size_of::<Params>() == 272);
 
 /// An object's primitive. Kinds: 0 sphere (`a` centre, `ra` radius), 1 plane
 /// (`a` point, `n` normal), 2 disc (`a` centre, `n` normal, `ra` radius²,

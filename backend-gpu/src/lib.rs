@@ -2,7 +2,7 @@
 //!
 //! Every stage runs on the device in WGSL (`src/shaders/`), each a twin of
 //! the core stage of the same name: emit + trace (same counter-based RNG,
-//! bit for bit), compaction into canonical (emission, band) order, hash-grid
+//! bit for bit), compaction into canonical (emission, band, bounces) order, hash-grid
 //! build (count, prefix sum, scatter), the view rays into visible points,
 //! and the gather at them. A render ([`GpuSession`], the backend's
 //! implementation of the render protocol) keeps the scene, photon map,

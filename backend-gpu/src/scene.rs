@@ -16,7 +16,8 @@ use prismatic_core::geometry::texture::srgb_to_linear;
 use prismatic_core::model::scene::{Filter, Light, Sampler, Texture, Wrap};
 use prismatic_core::model::wavelength_rgb;
 use prismatic_core::optics::surface::Surface;
-use prismatic_core::photons::trace::photon_flux;
+use prismatic_core::photons::indirect::indirect_flux;
+use prismatic_core::photons::trace::{caustic_photons, photon_flux};
 use prismatic_core::plan::area::area;
 use prismatic_core::plan::projection::Targets;
 use prismatic_core::sampling::spot_cone::SpotCone;
@@ -161,6 +162,8 @@ impl EncodedScene {
             width: r.width,
             height: r.height,
             flux: photon_flux(scene),
+            caustic_photons: caustic_photons(scene),
+            indirect_flux: indirect_flux(scene),
             radius: r.radius,
             inv_cell: 1.0 / (2.0 * r.radius),
             exposure: r.exposure,

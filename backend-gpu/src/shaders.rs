@@ -164,6 +164,7 @@ fn prelude(stack: u32) -> String {
     u("DIM_PATH", dim::PATH);
     u("DIM_PER_BAND", dim::PER_BAND);
     u("DIM_ABSORB", dim::ABSORB);
+    u("DIM_BOUNCE", dim::BOUNCE);
     u("SEQUENCE_SOBOL", code::photon_sequence(PhotonSequence::Sobol));
     u("WAVELENGTHS_SPLIT", code::wavelengths(WavelengthSampling::Split));
     u("WAVELENGTHS_RANDOM_BAND", code::wavelengths(WavelengthSampling::RandomBand));
@@ -283,7 +284,7 @@ pub fn library() -> String {
 
 /// Emit + trace (entry `main`).
 pub fn trace() -> String {
-    [emission(), include_str!("shaders/trace.wgsl").into()].concat()
+    [emission(), COLOUR.into(), ALBEDO.into(), include_str!("shaders/trace.wgsl").into()].concat()
 }
 
 /// The scene's bindings (group 0) and photon emission (`emit`): the first

@@ -15,17 +15,36 @@ use crate::scan::Scan;
 use crate::scene::SceneBuffers;
 use crate::shaders::{MAX_WORKGROUPS, WORKGROUP_SIZE};
 use prismatic_core::optics::surface::Surface;
+use prismatic_core::photons::indirect::indirect_photons;
+use prismatic_core::photons::trace::{caustic_photons, traced_photons};
 use prismatic_core::{BackendError, PreparedScene, Progress, Stage, TraceStats};
 
 /// Largest chunk of emissions per dispatch (keeps progress reports coming
 /// and the scratch small).
 pub const MAX_CHUNK: u32 = 1 << 20;
 
-/// Scratch slots per emission: one per path a white photon splits into
-/// (every band, or the hero wavelengths), else one.
+/// Scratch slots per emission: the most photons one emission stores.
 pub fn slots_per_emission(scene: &PreparedScene) -> u32 {
+    caustic_slots(scene).max(indirect_slots(scene))
+}
+
+/// The most photons a caustic emission stores: one per path a white photon
+/// splits into (every band, or the hero wavelengths), else one.
+fn caustic_slots(scene: &PreparedScene) -> u32 {
     let splits = scene.surfaces.iter().any(|s| matches!(s, Surface::Dielectric(g) if g.splits_photons));
     if splits { scene.scene.render.wavelengths.paths(scene.bands.len()) } else { 1 }
+}
+
+/// The most photons an indirect emission stores: one at every diffuse hit
+/// up to the depth limit (none without indirect light).
+fn indirect_slots(scene: &PreparedScene) -> u32 {
+    if indirect_photons(scene) > 0 { scene.plan.max_depth.max(1) } else { 0 }
+}
+
+/// Photons a pass of `scene` can store at most: every emission filling its slots.
+pub fn map_bound(scene: &PreparedScene) -> u64 {
+    u64::from(caustic_photons(scene)) * u64::from(caustic_slots(scene))
+        + u64::from(indirect_photons(scene)) * u64::from(indirect_slots(scene))
 }
 
 fn storage(ctx: &GpuContext, label: &str, bytes: u64) -> wgpu::Buffer {
@@ -74,11 +93,10 @@ impl PhotonPass {
         scene_buffers: &SceneBuffers,
         window: u32,
     ) -> Result<Self, BackendError> {
-        let total = if scene.plan.caustics.on { scene.scene.render.photons } else { 0 };
+        let total = traced_photons(scene);
         let slots = slots_per_emission(scene);
         let chunk = (window / slots).clamp(1, MAX_CHUNK).min(total.max(1));
-        let bound = u64::from(total) * u64::from(slots);
-        let capacity = bound.min(u64::from(u32::MAX)) as u32;
+        let capacity = map_bound(scene).min(u64::from(u32::MAX)) as u32;
         let photons = PhotonArray::new(ctx, "prismatic photon map", capacity, window)?;
         let groups = u64::from(chunk).div_ceil(u64::from(WORKGROUP_SIZE));
         let (scratch, counts, offsets, cursor, tallies) = ctx.checked("allocating the photon pass", || {
@@ -134,8 +152,9 @@ impl PhotonPass {
 
     /// Whether these buffers hold `scene`'s passes (same photons, same slots per emission).
     pub fn fits(&self, scene: &PreparedScene, window: u32) -> bool {
-        let total = if scene.plan.caustics.on { scene.scene.render.photons } else { 0 };
-        (self.total, self.slots, self.photons.window) == (total, slots_per_emission(scene), window)
+        let capacity = map_bound(scene).min(u64::from(u32::MAX)) as u32;
+        (self.total, self.slots, self.photons.capacity, self.photons.window)
+            == (traced_photons(scene), slots_per_emission(scene), capacity, window)
     }
 
     /// Photons the map holds at most: every emission storing every slot.

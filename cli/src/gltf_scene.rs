@@ -23,7 +23,7 @@ use prismatic_core::geometry::texture::srgb_to_linear;
 use prismatic_core::model::mesh::open_edge;
 use prismatic_core::model::scene::{
     Attenuation, Camera, EnvironmentMap, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, Object, RenderSettings,
-    Sampler, Scene, Shape, Texture, Wrap,
+    Sampler, Scene, Shape, Texture, Wrap, default_ambient,
 };
 use prismatic_core::model::spectrum::Spectrum;
 use prismatic_core::sampling::spot_cone::SpotCone;
@@ -568,8 +568,16 @@ fn scene(parts: Result<GltfScene, GltfError>, file: &str) -> Result<SceneDocumen
         });
     }
     // Shown as viewers show a file, which brings no exposure: the
-    // log-average at middle grey, through the default tone map.
-    let mut render = RenderSettings { radius: size / 100.0, auto_exposure: true, ..RenderSettings::default() };
+    // log-average at middle grey, through the default tone map; lit with
+    // its indirect light (as many photons as caustic ones), not an ambient.
+    let d = RenderSettings::default();
+    let mut render = RenderSettings {
+        radius: size / 100.0,
+        auto_exposure: true,
+        indirect_photons: d.photons,
+        ambient: default_ambient(d.photons),
+        ..d
+    };
     if let Some(aspect) = parts.aspect_ratio {
         // The camera's frame, as many pixels as the default square.
         let side = f64::from(render.width * render.height);

@@ -12,7 +12,7 @@ use prismatic_core::PreparedScene;
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::color::ToneMap;
 use prismatic_core::model::scene::{
-    Estimator, PhotonSequence, RadiusMode, RenderSettings, ViewPaths, WavelengthSampling, WhitePoint,
+    Estimator, PhotonSequence, RadiusMode, RenderSettings, ViewPaths, WavelengthSampling, WhitePoint, default_ambient,
 };
 use std::fmt;
 
@@ -147,6 +147,11 @@ settings! {
     /// White photons to emit.
     #[arg(long)]
     photons: u32,
+    /// Photons a pass traces for indirect light (0: none): light bounced
+    /// off diffuse surfaces. Without an ambient in the scene file, on
+    /// sets it to 0 and off to its default.
+    #[arg(long)]
+    indirect_photons: u32,
     /// Gather radius (with progressive radii: the largest first radius).
     #[arg(long)]
     radius: f32,
@@ -249,6 +254,11 @@ impl Settings {
     /// setting (`source`), any other against the scene file.
     pub fn prepare(&self, mut doc: SceneDocument, source: SettingsSource) -> Result<PreparedScene, SceneFileError> {
         self.apply(&mut doc.scene.render);
+        if let Some(indirect) = self.indirect_photons
+            && !doc.names("render.ambient")
+        {
+            doc.scene.render.ambient = default_ambient(indirect);
+        }
         doc.validate().map_err(|e| self.blame(e, source))?;
         PreparedScene::new(doc.scene.clone()).map_err(|e| self.blame(doc.error(e), source))
     }

@@ -276,7 +276,8 @@ fn a_gltf_placed_in_a_scene_file_brings_its_meshes_and_materials() {
         placed.warnings
     );
     let trace = |mut s: prismatic_core::Scene| {
-        (s.render.photons, s.render.radius) = (3000, 0.05);
+        // The meshes' caustics (a scene file's render settings have no indirect light).
+        (s.render.photons, s.render.indirect_photons, s.render.radius) = (3000, 0, 0.05);
         trace::trace_photons(&PreparedScene::new(s).unwrap(), &mut prismatic_core::NoProgress)
     };
     assert_eq!(trace(placed.scene.clone()), trace(alone.scene.clone()));
@@ -374,9 +375,12 @@ fn a_directional_light_becomes_the_sun() {
     };
     assert!((*direction - glam::Vec3::new(1.0, -2.0, 0.5).normalize()).length() < 1e-5, "{direction}");
     assert_eq!(*irradiance, 4.0);
-    // Its photons leave toward the prism (the only glass), across its
-    // bounding sphere: at least half of them meet it.
-    let prepared = PreparedScene::new(scene.scene).unwrap();
+    // Its caustic photons leave toward the prism (the only glass), across
+    // its bounding sphere: at least half of them meet it (without indirect
+    // light, whose photons the beam spreads over every object).
+    let mut caustic_only = scene.scene;
+    caustic_only.render.indirect_photons = 0;
+    let prepared = PreparedScene::new(caustic_only).unwrap();
     let s = trace::trace_photons(&prepared, &mut prismatic_core::NoProgress).stats;
     assert!(s.specular_paths * 2 > s.emitted, "{s:?}");
 }

@@ -11,6 +11,7 @@ mod fuzz_scene_file;
 mod gather;
 mod gpu_session;
 mod hard_cases;
+mod indirect_light;
 mod light_spectra;
 mod light_tracing;
 mod meshes;

@@ -33,7 +33,7 @@ use crate::pixels::{self, pixel_buffer};
 use crate::readback::PendingRead;
 use crate::scene::{EncodedScene, SceneBuffers};
 use crate::timing::StageTimer;
-use crate::trace::{PhotonPass, slots_per_emission};
+use crate::trace::{PhotonPass, map_bound};
 use points::PointChunks;
 use prismatic_core::plan::schedule::pass_scene;
 use prismatic_core::render::accumulation::{contains_pass, insert_passes};
@@ -403,11 +403,12 @@ fn photon_pass(
     window: u32,
 ) -> Result<PhotonPass, BackendError> {
     let pass = PhotonPass::new(ctx, pipelines, scene, buffers, window)?;
-    let bound = u64::from(pass.emissions()) * u64::from(slots_per_emission(scene));
+    let bound = map_bound(scene);
     if bound > u64::from(pass.capacity()) {
         return Err(BackendError::OutOfMemory(format!(
-            "a pass of {} photons can store {bound} band photons; this device's photon map holds {} ({} storage \
-             bindings of {} photons): trace fewer photons per pass, use --wavelengths random_band, or use --backend cpu",
+            "a pass of {} photons can store {bound} photons; this device's photon map holds {} ({} storage \
+             bindings of {} photons): trace fewer (indirect) photons per pass, use --wavelengths random_band, or use \
+             --backend cpu",
             pass.emissions(),
             pass.capacity(),
             crate::shaders::WINDOWS,

@@ -16,7 +16,8 @@ use crate::pipelines::{Pipelines, dispatch, dispatch_indirect};
 use crate::shaders::WORKGROUP_SIZE;
 use prismatic_core::model::scene::{Estimator, RadiusMode};
 use prismatic_core::optics::surface::Surface;
-use prismatic_core::photons::trace::photon_flux;
+use prismatic_core::photons::indirect::indirect_flux;
+use prismatic_core::photons::trace::{photon_flux, traced_photons};
 use prismatic_core::plan::schedule::{GRID_LEVELS, PilotScale, pass_scene, pilot_scene};
 use prismatic_core::{BackendError, NoProgress, PreparedScene, Progress, Stage};
 
@@ -160,10 +161,10 @@ impl GpuSession {
         let r = &pass.scene.render;
         let (sum_shift, flux_shift) = gather_shifts(pass);
         let p = &mut self.buffers.params;
-        (p.seed, p.radius, p.flux, p.sum_shift, p.flux_shift) =
-            (r.seed, r.radius, photon_flux(pass), sum_shift, flux_shift);
+        (p.seed, p.radius, p.flux, p.indirect_flux, p.sum_shift, p.flux_shift) =
+            (r.seed, r.radius, photon_flux(pass), indirect_flux(pass), sum_shift, flux_shift);
         if self.photons.capacity() > 0 {
-            let emissions = r.photons.min(self.photons.emissions());
+            let emissions = traced_photons(pass).min(self.photons.emissions());
             self.photons.record(&self.ctx, &self.pipelines, &mut self.buffers, emissions, progress)?;
         }
         Ok(())

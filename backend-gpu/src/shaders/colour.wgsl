@@ -50,6 +50,23 @@ fn reflectance(albedo: vec3<f32>, band: u32, lambda_nm: f32) -> vec3<f32> {
     return vec3<f32>(dot(albedo, primaries_at(lambda_nm)));
 }
 
+// BandTable::bounce_reflectance: the share of a path's flux a diffuse
+// surface reflects (indirect light's Russian roulette).
+fn bounce_reflectance(albedo: vec3<f32>, band: u32, lambda_nm: f32) -> f32 {
+    if albedo.x == albedo.y && albedo.y == albedo.z {
+        return clamp(albedo.x, 0.0, 1.0);
+    }
+    if params.colour_by_wavelength != 0u && band < params.band_count {
+        return clamp(dot(albedo, primaries_at(lambda_nm)), 0.0, 1.0);
+    }
+    let colour = max(rgb_of_flux(band, lambda_nm, 1.0), vec3<f32>(0.0));
+    let total = colour.x + colour.y + colour.z;
+    if total > 0.0 {
+        return clamp(dot(colour, albedo) / total, 0.0, 1.0);
+    }
+    return clamp((albedo.x + albedo.y + albedo.z) / 3.0, 0.0, 1.0);
+}
+
 // BandTable::hue: what one path adds to the paper estimator's W.
 fn hue(band: u32, lambda_nm: f32) -> vec3<f32> {
     if band >= params.band_count {

@@ -55,6 +55,9 @@ struct Params {
     env_width: u32,
     env_height: u32,
     env_turn: f32,
+    caustic_photons: u32,
+    indirect_flux: f32,
+    _pad: vec2<u32>,
 }
 
 // Twin of prismatic_core::photon::Photon (band in the low 16 bits of
@@ -249,6 +252,12 @@ fn absorb_dim(band: u32, bounce: u32) -> u32 {
     return scatter_dim(band, bounce) + DIM_ABSORB;
 }
 
+// rng::dim::bounce: the first of a diffuse bounce's two dimensions (the
+// second is DIM_ABSORB above it).
+fn bounce_dim(band: u32, bounce: u32) -> u32 {
+    return scatter_dim(band, bounce) + DIM_BOUNCE;
+}
+
 // ---- math.rs ----
 
 // glam's normalize: v · (1 / |v|).
@@ -307,7 +316,7 @@ fn spot_falloff(l: GpuLight, c: f32) -> f32 {
     return x * x;
 }
 
-// projection::cone_direction
+// geometry::primitive::cone_direction
 fn cone_direction(axis: vec3<f32>, cos_t: f32, u: f32) -> vec3<f32> {
     let sin_t = sqrt(max(1.0 - cos_t * cos_t, 0.0));
     let sc = sin_cos_turns(u);
@@ -459,6 +468,14 @@ fn scatter_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, ior: f
         }
     }
     return Scattered(offset_origin(point, f.n, out), out);
+}
+
+// optics::scatter::scatter_diffuse: Lambert's law on the side the ray
+// came from; indirect light's photons.
+fn scatter_diffuse(d: vec3<f32>, point: vec3<f32>, normal: vec3<f32>, u1: f32, u2: f32) -> Scattered {
+    let n = select(-normal, normal, dot(d, normal) < 0.0);
+    let out = cone_direction(n, sqrt(1.0 - u1), u2);
+    return Scattered(offset_origin(point, n, out), out);
 }
 
 // optics::scatter::split_dielectric: both branches with their Fresnel

@@ -2,7 +2,7 @@
 // backend's `canonical_order`). After the trace pass, `offsets` holds the
 // exclusive prefix sum of `counts` over the chunk's emissions, so emission
 // k's j-th stored photon goes to cursor + offsets[k] + j: the chunk lands in
-// (emission, band) order after the chunks before it, with no atomics and no
+// (emission, band, bounces) order after the chunks before it, with no atomics and no
 // trip to the host. Photons past `capacity` are dropped; the cursor still
 // counts them, so the host sees the overflow.
 

@@ -122,13 +122,19 @@ fn photon_f32(seed: u32, index: u32, dimension: u32) -> f32 {
 
 // emit::emit: white photon `index` of the pass.
 fn emit(seed: u32, index: u32) -> Emitted {
+    return emit_from(seed, index, true);
+}
+
+// emit::emit_with: photon `index`, aimed by its light's projection map
+// (caustic photons) or not (emit::emit_unaimed, indirect light's).
+fn emit_from(seed: u32, index: u32, aimed: bool) -> Emitted {
     let u = random_f32(seed, index, DIM_LIGHT);
     let light = pick(params.light_cdf, params.light_count, u);
     let l = lights[light];
     // The light's own sample: a direction, or a point on a beam's disc.
     let u1 = photon_f32(seed, index, DIM_DIRECTION);
     let u2 = photon_f32(seed, index, DIM_DIRECTION + 1u);
-    if l.proj_kind != PROJECTION_NONE {
+    if aimed && l.proj_kind != PROJECTION_NONE {
         let u_target = random_f32(seed, index, DIM_TARGET);
         var e: Emitted;
         if l.kind == LIGHT_AREA {

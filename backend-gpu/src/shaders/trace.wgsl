@@ -1,7 +1,7 @@
-// Emit + trace: twin of prismatic_core::trace. One invocation per white
-// photon of the chunk; its stored photons go to its own `slots` scratch
+// Emit + trace: twin of prismatic_core::photons::{trace, indirect}. One
+// invocation per photon of the chunk (caustic, then indirect light's); its stored photons go to its own `slots` scratch
 // slots in (band) order, its count to `counts`, so that the compaction pass
-// can put the chunk into canonical (emission, band) order without atomics.
+// can put the chunk into canonical (emission, band, bounces) order without atomics.
 // The workgroup sums its statistics into its `tallies` slot.
 
 @group(1) @binding(0) var<storage, read_write> scratch: array<Photon>;
@@ -98,26 +98,13 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             }
             return FOLLOW_END;
         }
-        if (*p).bounces >= params.max_depth {
-            tally_flux[4] += (*p).flux;
+        if !arrives_at_specular(*p, hit, s, index) {
             return FOLLOW_END;
-        }
-        // trace::absorbed: a segment inside coloured glass ends here.
-        if (s.flags & SURFACE_ABSORBS) != 0u && !is_sheet(s) && dot((*p).dir, hit.normal) > 0.0 {
-            let u = random_f32(seed, index, absorb_dim((*p).band, (*p).bounces));
-            if u >= exp(-absorption_coefficient(s, (*p).band) * hit.t) {
-                tally_flux[5] += (*p).flux;
-                return FOLLOW_END;
-            }
         }
         if (*p).bounces == 0u {
             tally_counts[3] += 1u;
         }
-        if s.kind == SURFACE_MIRROR {
-            let d = reflect_dir((*p).dir, hit.normal);
-            (*p).origin = offset_origin(hit.point, hit.normal, d);
-            (*p).dir = d;
-        } else if (*p).band == WHITE_BAND && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u {
+        if s.kind != SURFACE_MIRROR && (*p).band == WHITE_BAND && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u {
             if split_paths() > 1u {
                 *split_at = hit;
                 return FOLLOW_SPLIT;
@@ -132,17 +119,137 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             if absorbed_crossing(s, before, *p, seed, index) {
                 return FOLLOW_END;
             }
-        } else {
-            let u = random_f32(seed, index, scatter_dim((*p).band, (*p).bounces));
-            let before = (*p).dir;
-            scatter_path(p, hit.point, hit.normal, path_ior(s, (*p).band, (*p).lambda_nm), is_sheet(s), u);
-            if absorbed_crossing(s, before, *p, seed, index) {
-                return FOLLOW_END;
-            }
+        } else if !cross_specular(p, hit, s, index) {
+            return FOLLOW_END;
         }
         (*p).bounces += 1u;
     }
     return FOLLOW_END;
+}
+
+// trace::arrives_at_specular: whether path `p` goes on at the mirror or
+// glass `s` it reached at `hit` (not past the depth limit, not absorbed
+// inside coloured glass); an ended path's flux is tallied.
+fn arrives_at_specular(p: Path, hit: Hit, s: GpuSurface, index: u32) -> bool {
+    if p.bounces >= params.max_depth {
+        tally_flux[4] += p.flux;
+        return false;
+    }
+    // trace::absorbed: a segment inside coloured glass ends here.
+    if (s.flags & SURFACE_ABSORBS) != 0u && !is_sheet(s) && dot(p.dir, hit.normal) > 0.0 {
+        let u = random_f32(params.seed, index, absorb_dim(p.band, p.bounces));
+        if u >= exp(-absorption_coefficient(s, p.band) * hit.t) {
+            tally_flux[5] += p.flux;
+            return false;
+        }
+    }
+    return true;
+}
+
+// trace::cross_specular: path `p` (one that does not split here) across
+// mirror or glass `s` at `hit`; false when a tinted sheet absorbed it.
+fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -> bool {
+    if s.kind == SURFACE_MIRROR {
+        let d = reflect_dir((*p).dir, hit.normal);
+        (*p).origin = offset_origin(hit.point, hit.normal, d);
+        (*p).dir = d;
+        return true;
+    }
+    let u = random_f32(params.seed, index, scatter_dim((*p).band, (*p).bounces));
+    let before = (*p).dir;
+    scatter_path(p, hit.point, hit.normal, path_ior(s, (*p).band, (*p).lambda_nm), is_sheet(s), u);
+    return !absorbed_crossing(s, before, *p, params.seed, index);
+}
+
+// indirect::trace_indirect: photon `index` of indirect light, unaimed, at
+// one wavelength, stored at every diffuse hit after its first and going on
+// from it with the surface's reflectance (Russian roulette).
+fn trace_indirect(index: u32) {
+    let seed = params.seed;
+    let e = emit_from(seed, index, false);
+    tally_counts[0] += 1u;
+    tally_counts[1] += 1u;
+    tally_flux[0] += params.indirect_flux;
+    let w = indirect_wavelength(e.light, index);
+    var p = Path(e.origin, e.direction, params.indirect_flux, w.band, w.lambda_nm, 0u);
+    var bounced = false;
+    loop {
+        tally_counts[2] += 1u;
+        let hit = intersect_scene(p.origin, p.dir, BIG);
+        if !hit.ok {
+            tally_flux[2] += p.flux;
+            return;
+        }
+        let s = surfaces[hit.object];
+        if s.kind == SURFACE_DIFFUSE {
+            if bounced {
+                store(&p, hit.point, index);
+            }
+            if p.bounces >= params.max_depth {
+                tally_flux[4] += p.flux;
+                return;
+            }
+            let facing = select(-hit.normal, hit.normal, dot(p.dir, hit.normal) < 0.0);
+            let survives = bounce_reflectance(albedo_at(hit, facing), p.band, stored_wavelength(p.band, p.lambda_nm));
+            if random_f32(seed, index, scatter_dim(p.band, p.bounces)) >= survives {
+                tally_flux[5] += p.flux;
+                return;
+            }
+            let d = bounce_dim(p.band, p.bounces);
+            let u1 = random_f32(seed, index, d);
+            let u2 = random_f32(seed, index, d + DIM_ABSORB);
+            let out = scatter_diffuse(p.dir, hit.point, hit.normal, u1, u2);
+            p.origin = out.origin;
+            p.dir = out.dir;
+            bounced = true;
+        } else {
+            if !arrives_at_specular(p, hit, s, index) {
+                return;
+            }
+            if p.bounces == 0u {
+                tally_counts[3] += 1u;
+            }
+            if !cross_specular(&p, hit, s, index) {
+                return;
+            }
+        }
+        p.bounces += 1u;
+    }
+}
+
+// indirect::indirect_wavelength: a band uniform over the table (and a
+// wavelength in it when continuous) for an equal-energy light, else a band
+// drawn by power or, when continuous, a wavelength from its spectrum.
+fn indirect_wavelength(light: u32, index: u32) -> SpectrumSample {
+    let l = lights[light];
+    let u = photon_f32(params.seed, index, DIM_SPECTRUM);
+    if l.spectrum_len == 0u {
+        return spectrum_share(u, 0u, 1u);
+    }
+    if params.wavelengths == WAVELENGTHS_CONTINUOUS || params.wavelengths == WAVELENGTHS_HERO {
+        return light_spectrum_share(l, u, 0u, 1u);
+    }
+    return SpectrumSample(band_by_power(l, u), -1.0);
+}
+
+// trace::band_by_power: the band at cumulative share `u` of light `l`'s
+// band shares (the last with power when rounding leaves `u` past the sum).
+fn band_by_power(l: GpuLight, u: f32) -> u32 {
+    let shares = l.spectrum_first + 3u * l.spectrum_len;
+    var band = params.band_count;
+    var last = 0u;
+    var acc = 0.0;
+    for (var b = 0u; b < params.band_count; b++) {
+        let s = tables[shares + b];
+        acc += s;
+        if s > 0.0 {
+            last = b;
+        }
+        if band == params.band_count && u < acc {
+            band = b;
+        }
+    }
+    return select(band, last, band == params.band_count);
 }
 
 // trace::trace_emitted
@@ -209,23 +316,7 @@ fn trace_coloured(e: Emitted, flux: f32, index: u32) {
         return;
     }
     if params.wavelengths == WAVELENGTHS_RANDOM_BAND {
-        var band = params.band_count;
-        var last = 0u;
-        var acc = 0.0;
-        for (var b = 0u; b < params.band_count; b++) {
-            let s = tables[shares + b];
-            acc += s;
-            if s > 0.0 {
-                last = b;
-            }
-            if band == params.band_count && u < acc {
-                band = b;
-            }
-        }
-        if band == params.band_count {
-            band = last;
-        }
-        var child = Path(e.origin, e.direction, flux, band, -1.0, 0u);
+        var child = Path(e.origin, e.direction, flux, band_by_power(l, u), -1.0, 0u);
         follow(&child, index, &unused);
         return;
     }
@@ -267,7 +358,12 @@ fn main(
     let k = flat_index(wid, nwg, lid);
     if k < params.chunk_len {
         slot_base = k * params.slots;
-        trace_emitted(params.chunk_start + k);
+        let index = params.chunk_start + k;
+        if index < params.caustic_photons {
+            trace_emitted(index);
+        } else {
+            trace_indirect(index);
+        }
         counts[k] = slot_used;
     }
     for (var j = 0u; j < TALLY_COUNTS; j++) {

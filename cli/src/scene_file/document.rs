@@ -71,6 +71,12 @@ impl SceneDocument {
         SceneDocument { scene, origin: DVec3::ZERO, warnings, file: file.to_string(), lines: HashMap::new(), elements }
     }
 
+    /// Whether the file wrote scene key `key` (`render.ambient`), rather
+    /// than leaving it to its default.
+    pub fn names(&self, key: &str) -> bool {
+        self.lines.contains_key(key)
+    }
+
     /// Validates the scene, reporting problems at their key's line.
     pub fn validate(&self) -> Result<(), SceneFileError> {
         self.scene.validate().map_err(|e| self.error(e))

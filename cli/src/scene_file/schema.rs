@@ -22,7 +22,7 @@ use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, EnvironmentMap, Estimator, Filter, Light, Material, MaterialKind, Object,
     PhotonSequence, RadiusMode, RenderSettings, Sampler, Shape, Texture, ViewPaths, WavelengthSampling, WhitePoint,
-    Wrap,
+    Wrap, default_ambient,
 };
 use prismatic_core::model::spectrum::Spectrum;
 use prismatic_core::{Scene, Vec3};
@@ -94,6 +94,7 @@ impl Reader<'_> {
                 "width",
                 "height",
                 "photons",
+                "indirect_photons",
                 "radius",
                 "radius_mode",
                 "bands",
@@ -120,10 +121,13 @@ impl Reader<'_> {
         )?;
         let d = RenderSettings::default();
         let u32_max = u64::from(u32::MAX);
+        let indirect_photons =
+            self.opt(t, "indirect_photons", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.indirect_photons, |x| x as u32);
         Ok(RenderSettings {
             width: self.opt(t, "width", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.width, |x| x as u32),
             height: self.opt(t, "height", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.height, |x| x as u32),
             photons: self.opt(t, "photons", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.photons, |x| x as u32),
+            indirect_photons,
             radius: self.opt(t, "radius", Self::float)?.unwrap_or(d.radius),
             radius_mode: self.opt(t, "radius_mode", Self::radius_mode)?.unwrap_or(d.radius_mode),
             bands: self.opt(t, "bands", Self::bands)?.unwrap_or(d.bands),
@@ -134,7 +138,7 @@ impl Reader<'_> {
             view_paths: self.opt(t, "view_paths", Self::view_paths)?.unwrap_or(d.view_paths),
             seed: self.opt(t, "seed", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.seed, |x| x as u32),
             max_depth: self.opt(t, "max_depth", |p, k, v| p.uint(k, v, u32_max))?.map_or(d.max_depth, |x| x as u32),
-            ambient: self.opt(t, "ambient", Self::float)?.unwrap_or(d.ambient),
+            ambient: self.opt(t, "ambient", Self::float)?.unwrap_or(default_ambient(indirect_photons)),
             exposure: self.opt(t, "exposure", Self::float)?.unwrap_or(d.exposure),
             white_point: self.opt(t, "white_point", Self::white_point)?.unwrap_or(d.white_point),
             background: self.opt(t, "background", Self::vec3)?.unwrap_or(d.background),

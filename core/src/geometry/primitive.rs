@@ -5,6 +5,7 @@
 //! the facing side with the sign of `dot(direction, normal)`.
 
 use crate::geometry::bvh::MeshBvh;
+use crate::util::math::{sin_cos_turns, sqrt};
 use alloc::sync::Arc;
 use alloc::vec::Vec;
 use glam::Vec3;
@@ -217,6 +218,16 @@ pub fn basis(n: Vec3) -> (Vec3, Vec3) {
     let a = -1.0 / (sign + n.z);
     let b = n.x * n.y * a;
     (Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x), Vec3::new(b, sign + n.y * n.y * a, -n.y))
+}
+
+/// A unit direction at polar cosine `cos_t` around `axis`, azimuth `u · 2π`
+/// (an emitter's cone, a projection map's, a diffuse bounce's).
+#[inline]
+pub fn cone_direction(axis: Vec3, cos_t: f32, u: f32) -> Vec3 {
+    let sin_t = sqrt((1.0 - cos_t * cos_t).max(0.0));
+    let (sin_phi, cos_phi) = sin_cos_turns(u);
+    let (t, b) = basis(axis);
+    (t * (sin_t * cos_phi) + b * (sin_t * sin_phi) + axis * cos_t).normalize()
 }
 
 #[cfg(test)]

@@ -142,6 +142,28 @@ impl BandTable {
         }
     }
 
+    /// The share of a path's flux that a diffuse surface of RGB albedo
+    /// `albedo` reflects, the survival probability of indirect light's
+    /// Russian roulette: ρ(λ) when paths are coloured by their wavelength
+    /// (exact), else the albedo weighted by the path's colour (a band's
+    /// colour is one number after the bounce, so a coloured surface's
+    /// light keeps the band's hue: exact for grey surfaces and the paper's
+    /// primaries). At most 1.
+    #[inline]
+    pub fn bounce_reflectance(&self, albedo: Vec3, band: u16, lambda_nm: f32) -> f32 {
+        let grey = albedo.x == albedo.y && albedo.y == albedo.z;
+        match &self.primaries {
+            _ if grey => albedo.x.clamp(0.0, 1.0),
+            Some(p) if band != WHITE_BAND => p.reflectance(albedo, lambda_nm).clamp(0.0, 1.0),
+            _ => {
+                let colour = self.rgb_of_flux(band, lambda_nm, 1.0).max(Vec3::ZERO);
+                let total = colour.x + colour.y + colour.z;
+                let mean = (albedo.x + albedo.y + albedo.z) / 3.0;
+                if total > 0.0 { (colour.dot(albedo) / total).clamp(0.0, 1.0) } else { mean.clamp(0.0, 1.0) }
+            }
+        }
+    }
+
     /// The colour of each wavelength, when paths take their colour from it.
     pub fn wavelength_colours(&self) -> Option<&WavelengthRgb> {
         self.by_wavelength.as_ref()

@@ -54,10 +54,12 @@ impl Photon {
         (self.band != WHITE_BAND).then_some(self.lambda_nm)
     }
 
-    /// The canonical sort key: (emission, band).
+    /// The canonical sort key: (emission, band, bounces). A caustic
+    /// emission stores once per band; an indirect one may store several
+    /// times, in path order (bounces increase along a path).
     #[inline]
-    pub fn key(&self) -> (u32, u16) {
-        (self.emission, self.band)
+    pub fn key(&self) -> (u32, u16, u16) {
+        (self.emission, self.band, self.bounces)
     }
 }
 
@@ -151,7 +153,7 @@ impl TraceStats {
     }
 }
 
-/// The dispersion caustic map: stored photons in canonical (emission, band) order.
+/// The dispersion caustic map: stored photons in canonical (emission, band, bounces) order.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PhotonMap {
     /// The photons.
@@ -161,7 +163,7 @@ pub struct PhotonMap {
 }
 
 impl PhotonMap {
-    /// Puts the photons in canonical (emission, band) order.
+    /// Puts the photons in canonical (emission, band, bounces) order.
     pub fn sort_canonical(&mut self) {
         self.photons.sort_unstable_by_key(Photon::key);
     }

@@ -282,6 +282,13 @@ pub const DEFAULT_AREA_LIGHTS: u32 = 16;
 /// the whole flux; [`crate::plan::area::area_lights`]).
 pub const MAX_AREA_LIGHTS: u32 = 4_096;
 
+/// The ambient irradiance factor a scene gets when it names none: 0.03 of
+/// the albedo as a stand-in for indirect light, none when indirect light
+/// is simulated (`indirect_photons` > 0).
+pub fn default_ambient(indirect_photons: u32) -> f32 {
+    if indirect_photons > 0 { 0.0 } else { 0.03 }
+}
+
 /// How a render's gather radii behave from pass to pass.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum RadiusMode {
@@ -320,6 +327,11 @@ pub struct RenderSettings {
     pub height: u32,
     /// White photons emitted (over all lights).
     pub photons: u32,
+    /// Photons a pass traces for indirect light (0: none), besides the
+    /// caustic `photons`: emitted over the lights' whole distributions,
+    /// each at one wavelength, bouncing off diffuse surfaces and stored at
+    /// every diffuse hit after its first ([`crate::photons::indirect`]).
+    pub indirect_photons: u32,
     /// Gather radius in world units (with progressive radii: the largest first radius).
     pub radius: f32,
     /// Fixed or progressive gather radii.
@@ -344,7 +356,9 @@ pub struct RenderSettings {
     pub seed: u32,
     /// Most specular interactions on a photon path or view ray.
     pub max_depth: u32,
-    /// Uniform ambient irradiance factor (fraction of albedo added everywhere).
+    /// Uniform ambient irradiance factor (fraction of albedo added
+    /// everywhere), a stand-in for indirect light: scene files and glTF
+    /// files default it to 0 when `indirect_photons` is on.
     pub ambient: f32,
     /// Multiplier applied to radiance before the sRGB encoding.
     pub exposure: f32,
@@ -420,6 +434,7 @@ impl RenderSettings {
             width: 400,
             height: 400,
             photons: 100_000,
+            indirect_photons: 0,
             radius: 0.05,
             radius_mode: RadiusMode::Progressive,
             bands: BandSpec::Paper7,
@@ -430,7 +445,7 @@ impl RenderSettings {
             view_paths: ViewPaths::Centre,
             seed: 1,
             max_depth: 12,
-            ambient: 0.03,
+            ambient: default_ambient(0),
             exposure: 1.0,
             background: Vec3::ZERO,
             tone_map: ToneMap::Clamp,

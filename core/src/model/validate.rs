@@ -178,6 +178,15 @@ impl Scene {
                 format!("{} white photons would not fit in memory; at most {MAX_PHOTONS}", r.photons),
             ));
         }
+        if r.photons.saturating_add(r.indirect_photons) > MAX_PHOTONS {
+            return Err(c.err(
+                "indirect_photons",
+                format!(
+                    "{} caustic and {} indirect photons would not fit in memory; at most {MAX_PHOTONS} together",
+                    r.photons, r.indirect_photons
+                ),
+            ));
+        }
         c.positive("radius", r.radius)?;
         if let BandSpec::Physical(n) = r.bands
             && (n == 0 || usize::from(n) > MAX_BANDS)

@@ -1,13 +1,16 @@
-//! Scattering at glass, written once: the ray a path takes when it leaves a
+//! Scattering, written once: the ray a path takes when it leaves a
 //! dielectric surface (one branch chosen with its Fresnel probability, or
-//! both branches with their Fresnel weights), and where a ray leaving a
+//! both branches with their Fresnel weights) or bounces off a diffuse one
+//! (Lambert's law, indirect light's photons), and where a ray leaving a
 //! surface starts. A thin sheet (`thin`, glTF's thin-walled transmission)
 //! reflects with [`sheet_reflectance`] and passes the rest straight on:
 //! its two faces bend a ray back to where it was going, no distance apart. Photons, the view rays and the sampled view paths all
 //! scatter here; the CPU's packets and the WGSL twin mirror these functions.
 
+use crate::geometry::primitive::cone_direction;
 use crate::geometry::ray::Ray;
 use crate::optics::fresnel::{fresnel, interface, reflect, refract, sheet_reflectance};
+use crate::util::math::sqrt;
 use crate::util::tolerance;
 use glam::Vec3;
 
@@ -34,6 +37,17 @@ pub fn scatter_dielectric(direction: Vec3, point: Vec3, outward: Vec3, ior: f32,
     } else {
         refract(direction, n, n1, n2).unwrap_or_else(|| reflect(direction, n))
     };
+    Ray { origin: offset_origin(point, n, d), direction: d }
+}
+
+/// The ray leaving a diffuse surface at `point` (normal `normal`, either
+/// side) for one arriving along `direction`: Lambert's law, a
+/// cosine-distributed direction about the normal on the side the ray came
+/// from (polar cosine √(1 − `u1`), azimuth `u2` turns). Indirect light's
+/// photons bounce with it.
+pub fn scatter_diffuse(direction: Vec3, point: Vec3, normal: Vec3, u1: f32, u2: f32) -> Ray {
+    let n = if direction.dot(normal) < 0.0 { normal } else { -normal };
+    let d = cone_direction(n, sqrt(1.0 - u1), u2);
     Ray { origin: offset_origin(point, n, d), direction: d }
 }
 

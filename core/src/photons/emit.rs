@@ -1,10 +1,10 @@
 //! Photon emission: where white photon `index` starts, where it goes, and which light sent it.
 
-use crate::geometry::primitive::basis;
+use crate::geometry::primitive::{basis, cone_direction};
 use crate::model::scene::Light;
 use crate::optics::scatter::offset_origin;
 use crate::plan::prepared::PreparedScene;
-use crate::plan::projection::cone_direction;
+
 use crate::sampling::sobol::photon_f32;
 use crate::sampling::spot_cone::SpotCone;
 use crate::util::math::{sin_cos_turns, sqrt};
@@ -36,13 +36,24 @@ pub fn light_of(scene: &PreparedScene, seed: u32, index: u32) -> usize {
 /// probability proportional to their power, so every photon carries the same
 /// flux, Σ power / photons, times its projection-map weight.
 pub fn emit(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
+    emit_with(scene, seed, index, true)
+}
+
+/// Emits photon `index` over its light's whole distribution, never aimed
+/// by a projection map: indirect light's photons
+/// ([`crate::photons::indirect`]), for which every surface counts.
+pub fn emit_unaimed(scene: &PreparedScene, seed: u32, index: u32) -> Emitted {
+    emit_with(scene, seed, index, false)
+}
+
+fn emit_with(scene: &PreparedScene, seed: u32, index: u32, aimed: bool) -> Emitted {
     let light = light_of(scene, seed, index);
     // The light's own two-dimensional sample: a direction, or a point on a beam's disc.
     let sequence = scene.scene.render.photon_sequence;
     let u1 = photon_f32(sequence, seed, index, dim::DIRECTION);
     let u2 = photon_f32(sequence, seed, index, dim::DIRECTION + 1);
     let source = &scene.emitters[light];
-    if let Some(projection) = &scene.plan.projections[light] {
+    if let Some(projection) = scene.plan.projections[light].as_ref().filter(|_| aimed) {
         let u_target = random_f32(seed, index, dim::TARGET);
         let s = match source {
             Light::Area { vertices, .. } => {

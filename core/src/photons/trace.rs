@@ -28,6 +28,8 @@ use crate::optics::fresnel::reflect;
 use crate::optics::scatter::{offset_origin, scatter_dielectric};
 use crate::optics::surface::{DielectricOptics, Surface};
 use crate::photons::emit::emit;
+use crate::photons::indirect;
+use crate::plan::prepared::Hit;
 use crate::plan::prepared::PreparedScene;
 use crate::sampling::light_spectrum::LightSpectrum;
 use crate::sampling::sobol::photon_f32;
@@ -39,8 +41,7 @@ use glam::Vec3;
 /// Traces every white photon of the scene's render settings, reporting
 /// progress about a hundred times.
 pub fn trace_photons(scene: &PreparedScene, progress: &mut dyn Progress) -> PhotonMap {
-    // The effect plan may skip the photon pass altogether.
-    let total = if scene.plan.caustics.on { scene.scene.render.photons } else { 0 };
+    let total = traced_photons(scene);
     let chunk = (total / 100).max(1024);
     let mut map = PhotonMap::default();
     let mut start = 0;
@@ -53,6 +54,19 @@ pub fn trace_photons(scene: &PreparedScene, progress: &mut dyn Progress) -> Phot
     map
 }
 
+/// The caustic photons a pass traces: emission indices 0 to this (none
+/// when the effect plan skips caustics).
+pub fn caustic_photons(scene: &PreparedScene) -> u32 {
+    if scene.plan.caustics.on { scene.scene.render.photons } else { 0 }
+}
+
+/// The photons a pass traces: the caustic ones, then indirect light's
+/// ([`crate::photons::indirect`], emission indices from
+/// [`caustic_photons`] on).
+pub fn traced_photons(scene: &PreparedScene) -> u32 {
+    caustic_photons(scene) + indirect::indirect_photons(scene)
+}
+
 /// Flux of one emitted white photon.
 pub fn photon_flux(scene: &PreparedScene) -> f32 {
     match scene.scene.render.photons {
@@ -61,24 +75,44 @@ pub fn photon_flux(scene: &PreparedScene) -> f32 {
     }
 }
 
-/// Traces white photons `range` (emission indices), appending stored photons
-/// in canonical order. Backends use it for chunks and scalar tails.
+/// Traces photons `range` (emission indices: caustic, then indirect),
+/// appending stored photons in canonical order. Backends use it for chunks
+/// and scalar tails.
 pub fn trace_range(scene: &PreparedScene, range: core::ops::Range<u32>, out: &mut Vec<Photon>, stats: &mut TraceStats) {
-    let flux = photon_flux(scene);
+    let (flux, caustic) = (photon_flux(scene), caustic_photons(scene));
     for index in range {
-        trace_emitted(scene, index, flux, out, stats);
+        if index < caustic {
+            trace_emitted(scene, index, flux, out, stats);
+        } else {
+            indirect::trace_indirect(scene, index, out, stats);
+        }
     }
 }
 
 /// One photon path in flight.
 #[derive(Clone, Copy, Debug)]
-struct Path {
-    ray: Ray,
-    flux: f32,
-    band: u16,
+pub(crate) struct Path {
+    pub(crate) ray: Ray,
+    pub(crate) flux: f32,
+    pub(crate) band: u16,
     /// The wavelength a continuous-spectrum photon is traced at.
-    lambda_nm: Option<f32>,
-    bounces: u32,
+    pub(crate) lambda_nm: Option<f32>,
+    pub(crate) bounces: u32,
+}
+
+impl Path {
+    /// The photon this path stores where it meets a diffuse surface at `point`.
+    pub(crate) fn photon(&self, scene: &PreparedScene, point: Vec3, index: u32) -> Photon {
+        Photon {
+            position: point.to_array(),
+            flux: self.flux,
+            direction_oct: oct_pack(self.ray.direction),
+            lambda_nm: stored_wavelength(&scene.bands, self.band, self.lambda_nm),
+            emission: index,
+            band: self.band,
+            bounces: self.bounces as u16,
+        }
+    }
 }
 
 /// Traces white photon `index` and all the band photons it splits into.
@@ -126,38 +160,17 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
             } else {
                 stats.stored += 1;
                 stats.flux_stored += f64::from(p.flux);
-                out.push(Photon {
-                    position: hit.point.to_array(),
-                    flux: p.flux,
-                    direction_oct: oct_pack(p.ray.direction),
-                    lambda_nm: stored_wavelength(&scene.bands, p.band, p.lambda_nm),
-                    emission: index,
-                    band: p.band,
-                    bounces: p.bounces as u16,
-                });
+                out.push(p.photon(scene, hit.point, index));
             }
             return;
         }
-        if p.bounces >= scene.plan.max_depth {
-            stats.flux_depth_limited += f64::from(p.flux);
-            return;
-        }
-        if let Surface::Dielectric(glass) = surface
-            && absorbed(glass, p.ray.direction, hit.normal, hit.t, p.band, || {
-                random_f32(settings.seed, index, dim::absorb(p.band, p.bounces))
-            })
-        {
-            stats.flux_absorbed += f64::from(p.flux);
+        if !arrives_at_specular(scene, index, &p, &hit, stats) {
             return;
         }
         if p.bounces == 0 {
             stats.specular_paths += 1;
         }
         match surface {
-            Surface::Mirror => {
-                let d = reflect(p.ray.direction, hit.normal);
-                p.ray = Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d };
-            }
             Surface::Dielectric(glass) if p.band == WHITE_BAND && glass.splits_photons => {
                 let paths = settings.wavelengths.paths(scene.bands.len());
                 let before = p.ray.direction;
@@ -194,21 +207,74 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                 }
                 return;
             }
-            Surface::Dielectric(glass) => {
-                let u = random_f32(settings.seed, index, dim::scatter(p.band, p.bounces));
-                let ior = glass.path_ior(p.band, p.lambda_nm, &scene.bands);
-                let before = p.ray.direction;
-                p.ray = scatter_dielectric(before, hit.point, hit.normal, ior, glass.thin, u);
-                if absorbed_crossing(glass, before, p.ray.direction, p.band, || {
-                    random_f32(settings.seed, index, dim::absorb(p.band, p.bounces))
-                }) {
-                    stats.flux_absorbed += f64::from(p.flux);
+            _ => {
+                if !cross_specular(scene, index, &mut p, &hit, stats) {
                     return;
                 }
             }
-            Surface::Diffuse { .. } => unreachable!("handled above"),
         }
         p.bounces += 1;
+    }
+}
+
+/// Whether path `p` goes on at the mirror or glass it has reached at `hit`:
+/// not past the depth limit, not absorbed on the segment inside coloured
+/// glass that ends here ([`absorbed`]). An ended path's flux is tallied.
+pub(crate) fn arrives_at_specular(
+    scene: &PreparedScene,
+    index: u32,
+    p: &Path,
+    hit: &Hit,
+    stats: &mut TraceStats,
+) -> bool {
+    if p.bounces >= scene.plan.max_depth {
+        stats.flux_depth_limited += f64::from(p.flux);
+        return false;
+    }
+    if let Surface::Dielectric(glass) = &scene.surfaces[hit.object]
+        && absorbed(glass, p.ray.direction, hit.normal, hit.t, p.band, || {
+            random_f32(scene.scene.render.seed, index, dim::absorb(p.band, p.bounces))
+        })
+    {
+        stats.flux_absorbed += f64::from(p.flux);
+        return false;
+    }
+    true
+}
+
+/// Takes path `p` (one that does not split here) across the mirror or
+/// glass at `hit`: reflected, or Fresnel's choice between reflection and
+/// refraction at the path's own index; false when a tinted sheet absorbed
+/// it on the way ([`absorbed_crossing`], its flux tallied). The bounce is
+/// the caller's to count.
+pub(crate) fn cross_specular(
+    scene: &PreparedScene,
+    index: u32,
+    p: &mut Path,
+    hit: &Hit,
+    stats: &mut TraceStats,
+) -> bool {
+    let seed = scene.scene.render.seed;
+    match &scene.surfaces[hit.object] {
+        Surface::Mirror => {
+            let d = reflect(p.ray.direction, hit.normal);
+            p.ray = Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d };
+            true
+        }
+        Surface::Dielectric(glass) => {
+            let u = random_f32(seed, index, dim::scatter(p.band, p.bounces));
+            let ior = glass.path_ior(p.band, p.lambda_nm, &scene.bands);
+            let before = p.ray.direction;
+            p.ray = scatter_dielectric(before, hit.point, hit.normal, ior, glass.thin, u);
+            let absorbed = absorbed_crossing(glass, before, p.ray.direction, p.band, || {
+                random_f32(seed, index, dim::absorb(p.band, p.bounces))
+            });
+            if absorbed {
+                stats.flux_absorbed += f64::from(p.flux);
+            }
+            !absorbed
+        }
+        Surface::Diffuse { .. } => unreachable!("a diffuse surface is not crossed"),
     }
 }
 
@@ -311,6 +377,18 @@ pub fn spectrum_share_of(
     (band as u16, lambda_nm)
 }
 
+/// The band at cumulative share `u` of a light's band `shares` (a band
+/// drawn by power; the last band with power when rounding leaves `u` past
+/// the sum).
+pub fn band_by_power(shares: &[f32], u: f32) -> u16 {
+    let mut acc = 0.0;
+    let band = shares.iter().position(|s| {
+        acc += s;
+        u < acc
+    });
+    band.unwrap_or_else(|| shares.iter().rposition(|s| *s > 0.0).unwrap_or(0)) as u16
+}
+
 /// The paths a photon of a coloured light (one whose spectrum is not
 /// equal energy) starts as, at its light, each with its band, wavelength
 /// and share of the photon's flux: every band with its share of the
@@ -325,15 +403,7 @@ pub fn emission_paths(scene: &PreparedScene, light: usize, index: u32) -> Vec<(u
         WavelengthSampling::Split => {
             shares.iter().enumerate().filter(|(_, s)| **s > 0.0).map(|(band, s)| (band as u16, None, *s)).collect()
         }
-        WavelengthSampling::RandomBand => {
-            let mut acc = 0.0;
-            let band = shares.iter().position(|s| {
-                acc += s;
-                u < acc
-            });
-            let band = band.unwrap_or_else(|| shares.iter().rposition(|s| *s > 0.0).unwrap_or(0));
-            alloc::vec![(band as u16, None, 1.0)]
-        }
+        WavelengthSampling::RandomBand => alloc::vec![(band_by_power(shares, u), None, 1.0)],
         sampling => {
             let m = sampling.paths(scene.bands.len());
             (0..m)

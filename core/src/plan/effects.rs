@@ -37,6 +37,9 @@ impl Effect {
 pub struct EffectPlan {
     /// The caustic photon pass.
     pub caustics: Effect,
+    /// Indirect light: photons that bounce off diffuse surfaces
+    /// ([`crate::photons::indirect`]).
+    pub indirect: Effect,
     /// Splitting white photons into bands at dispersive glass.
     pub band_splitting: Effect,
     /// Splitting view rays into bands at dispersive glass.
@@ -121,6 +124,20 @@ impl EffectPlan {
             Effect::off("no dispersive glass visible")
         };
         // One per light that shines (an environment's suns each), as the emitters are.
+        let indirect = if scene.render.indirect_photons == 0 {
+            Effect::off("render.indirect_photons = 0")
+        } else if !has_diffuse {
+            Effect::off("no diffuse surface to bounce light")
+        } else if emitters.is_empty() {
+            Effect::off("no light")
+        } else {
+            let diffuse = surfaces.iter().filter(|s| matches!(s, Surface::Diffuse { .. })).count();
+            Effect::on(format!(
+                "{} photons bounce off {diffuse} diffuse object{}",
+                scene.render.indirect_photons,
+                plural(diffuse)
+            ))
+        };
         let shadows = emitters
             .iter()
             .map(|_| {
@@ -131,7 +148,9 @@ impl EffectPlan {
                 }
             })
             .collect();
-        let (max_depth, depth_reason) = if specular.is_empty() {
+        let (max_depth, depth_reason) = if indirect.on {
+            (scene.render.max_depth, String::from("render.max_depth (indirect light bounces count too)"))
+        } else if specular.is_empty() {
             (0, String::from("no mirror or glass: paths end at the first surface"))
         } else {
             (scene.render.max_depth, String::from("render.max_depth"))
@@ -160,6 +179,7 @@ impl EffectPlan {
         };
         EffectPlan {
             caustics,
+            indirect,
             band_splitting,
             view_dispersion,
             shadows,
@@ -168,6 +188,11 @@ impl EffectPlan {
             max_depth,
             depth_reason,
         }
+    }
+
+    /// Whether a pass traces photons at all (caustic or indirect).
+    pub fn photon_pass(&self) -> bool {
+        self.caustics.on || self.indirect.on
     }
 
     /// Turns every effect on and projection maps off: the scene simulated in
@@ -201,6 +226,7 @@ impl EffectPlan {
             if e.on { on.push(item) } else { off.push(item) }
         };
         put("caustics", &self.caustics);
+        put("indirect light", &self.indirect);
         if self.caustics.on {
             put("band splitting", &self.band_splitting);
             put("projection maps", &self.projection);
@@ -223,9 +249,11 @@ impl EffectPlan {
     pub fn explain(&self) -> String {
         let yes = |e: &Effect| if e.on { "yes" } else { "no " };
         let mut s = format!(
-            "caustic photon pass: {} {}\nprojection maps:     {} {}\nband splitting:      {} {}\nview dispersion:     {} {}\n",
+            "caustic photon pass: {} {}\nindirect light:      {} {}\nprojection maps:     {} {}\nband splitting:      {} {}\nview dispersion:     {} {}\n",
             yes(&self.caustics),
             self.caustics.reason,
+            yes(&self.indirect),
+            self.indirect.reason,
             yes(&self.projection),
             self.projection.reason,
             yes(&self.band_splitting),

@@ -54,7 +54,8 @@ pub struct PreparedScene {
     /// background colour).
     pub environment: Option<EnvironmentLookup>,
     /// What each light emits photons as: the light itself, or for a sun
-    /// the beam over the scene's mirrors and glass ([`crate::plan::reach::sun_beam`]).
+    /// the beam over the scene's mirrors and glass, with indirect light over
+    /// every bounded object ([`crate::plan::reach::sun_beam`]).
     pub emitters: Vec<Light>,
     /// What each emitter's photons' wavelengths are drawn from, and its
     /// colour and shares of the bands.
@@ -116,10 +117,12 @@ impl PreparedScene {
             })
             .collect();
         let bounds: Vec<(Vec3, f32)> = scene.objects.iter().map(|o| reach::bounds(&o.shape)).collect();
-        let specular: Vec<(Vec3, f32)> = bounds
+        // A sun's beam covers the mirrors and glass, or with indirect light
+        // every bounded object (the light they bounce counts too).
+        let beam_targets: Vec<(Vec3, f32)> = bounds
             .iter()
             .zip(&surfaces)
-            .filter(|(_, s)| !matches!(s, Surface::Diffuse { .. }))
+            .filter(|(_, s)| !matches!(s, Surface::Diffuse { .. }) && scene.render.indirect_photons == 0)
             .map(|(b, _)| *b)
             .collect();
         let environment = scene.lights.iter().find_map(|l| match l {
@@ -143,7 +146,7 @@ impl PreparedScene {
             .iter()
             .map(|l| match l {
                 Light::Sun { direction, irradiance, spectrum } => {
-                    reach::sun_beam(*direction, *irradiance, spectrum, &specular, &bounds)
+                    reach::sun_beam(*direction, *irradiance, spectrum, &beam_targets, &bounds)
                 }
                 other => other.clone(),
             })

@@ -9,7 +9,7 @@
 //! of targets that cover its sample (targets may overlap); samples outside
 //! the light's own cone or disc get weight 0 and are not traced.
 
-use crate::geometry::primitive::basis;
+use crate::geometry::primitive::{basis, cone_direction};
 use crate::model::scene::Light;
 use crate::plan::reach::light_reaches;
 use crate::sampling::spot_cone::SpotCone;
@@ -269,14 +269,4 @@ fn cones(light: &Light, position: Vec3, spheres: &[(Vec3, f32)]) -> Option<(Vec<
         }
     }
     Some((axis, cos_max))
-}
-
-/// A unit direction at polar cosine `cos_t` around `axis`, azimuth `u · 2π`
-/// (the same construction as the emitter's).
-#[inline]
-pub fn cone_direction(axis: Vec3, cos_t: f32, u: f32) -> Vec3 {
-    let sin_t = sqrt((1.0 - cos_t * cos_t).max(0.0));
-    let (sin_phi, cos_phi) = sin_cos_turns(u);
-    let (t, b) = basis(axis);
-    (t * (sin_t * cos_phi) + b * (sin_t * sin_phi) + axis * cos_t).normalize()
 }

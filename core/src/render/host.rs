@@ -232,7 +232,7 @@ impl<K: HostKernels> Render for HostRender<K> {
         if self.sampled() {
             self.sums.add_view(&view.base);
         }
-        if points.is_empty() && !(self.scene.scene.render.light_tracing && self.scene.plan.caustics.on) {
+        if points.is_empty() && !(self.scene.scene.render.light_tracing && self.scene.plan.photon_pass()) {
             self.sums.add_pass(pass, &[], &[], &[]);
             return Ok(());
         }

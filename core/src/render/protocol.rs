@@ -258,6 +258,7 @@ impl Change {
             width,
             height,
             photons,
+            indirect_photons,
             radius,
             radius_mode,
             bands,
@@ -294,6 +295,8 @@ impl Change {
             || *area_lights != b.area_lights
             || *bands != b.bands
             || *max_depth != b.max_depth
+            // Indirect light on or off: where view paths gather, the plan's depth.
+            || (*indirect_photons == 0) != (b.indirect_photons == 0)
             || *light_tracing != b.light_tracing
             || *wavelengths != b.wavelengths
             || *view_paths != b.view_paths
@@ -305,6 +308,7 @@ impl Change {
         {
             Change::View
         } else if *photons != b.photons
+            || *indirect_photons != b.indirect_photons
             || *seed != b.seed
             || *photon_sequence != b.photon_sequence
             || *radius != b.radius

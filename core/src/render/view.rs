@@ -353,11 +353,11 @@ pub fn hero_view_paths(scene: &PreparedScene, u: f32) -> impl Iterator<Item = He
 }
 
 /// Whether a diffuse hit that a view path reaches after `depth` specular
-/// bounces gathers the caustic: when the plan traces caustics, unless light
-/// tracing brings them there (it does for every diffuse surface the camera
+/// bounces gathers photons: when the plan traces caustics or indirect
+/// light, unless light tracing brings them there (it does for every diffuse surface the camera
 /// sees directly, depth 0: see [`crate::photons::light_tracing`]).
 pub fn gathers_at(scene: &PreparedScene, depth: u32) -> bool {
-    scene.plan.caustics.on && (depth > 0 || !scene.scene.render.light_tracing)
+    scene.plan.photon_pass() && (depth > 0 || !scene.scene.render.light_tracing)
 }
 
 /// What a view ray of `band` keeps of each RGB channel on a segment of

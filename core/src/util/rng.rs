@@ -64,6 +64,19 @@ pub mod dim {
     pub fn absorb(band: u16, bounce: u32) -> u32 {
         scatter(band, bounce) + ABSORB
     }
+
+    /// Added to a scattering dimension for the first of the two numbers of
+    /// a diffuse bounce's direction at the same hit (indirect light; the
+    /// second is one [`ABSORB`] above it): above every absorption decision.
+    pub const BOUNCE: u32 = 2 << 24;
+
+    /// The two dimensions of the direction a path of `band` leaves a
+    /// diffuse surface in at `bounce` (its survival takes [`scatter`]'s).
+    #[inline]
+    pub fn bounce(band: u16, bounce: u32) -> [u32; 2] {
+        let first = scatter(band, bounce) + BOUNCE;
+        [first, first + ABSORB]
+    }
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! Packet emission: `prismatic_core::photons::emit::emit` for eight photon indices at once.
 
 use crate::optics::offset_origin;
-use crate::simd::{Vec3x8, ge, gt, photon_f32, sin_cos_turns};
+use crate::simd::{Vec3x8, basis_x8, cone_direction, ge, gt, photon_f32, sin_cos_turns};
 use prismatic_core::geometry::primitive::basis;
 use prismatic_core::model::scene::{Light, PhotonSequence};
 use prismatic_core::plan::prepared::PreparedScene;
@@ -157,12 +157,26 @@ impl Emitters {
     /// Origins, directions and flux weights of white photons `index`.
     #[inline]
     pub fn emit(&self, index: u32x8) -> (Vec3x8, Vec3x8, f32x8) {
+        self.emit_with(index, true)
+    }
+
+    /// Origins and directions of photons `index` over their lights' whole
+    /// distributions (`prismatic_core::photons::emit::emit_unaimed`,
+    /// indirect light's photons).
+    #[inline]
+    pub fn emit_unaimed(&self, index: u32x8) -> (Vec3x8, Vec3x8) {
+        let (origin, dir, _) = self.emit_with(index, false);
+        (origin, dir)
+    }
+
+    #[inline]
+    fn emit_with(&self, index: u32x8, aimed: bool) -> (Vec3x8, Vec3x8, f32x8) {
         let rnd = |d: u32| crate::simd::random_f32(self.seed, index, u32x8::splat(d));
         // The light's own sample: a direction, or a point on a beam's disc.
         let sample = |d: u32| photon_f32(self.sequence, self.seed, index, d);
         let (u1, u2) = (sample(dim::DIRECTION), sample(dim::DIRECTION + 1));
         if self.lights.len() == 1 {
-            return self.emit_from(0, index, u1, u2);
+            return self.emit_from(0, index, u1, u2, aimed);
         }
         // Light k is the first whose cumulative probability exceeds u.
         let u = rnd(dim::LIGHT);
@@ -174,7 +188,7 @@ impl Emitters {
         for k in 0..self.lights.len() {
             let mine = chosen.simd_eq(f32x8::splat(k as f32));
             if mine.any() {
-                let (o, d, w) = self.emit_from(k, index, u1, u2);
+                let (o, d, w) = self.emit_from(k, index, u1, u2, aimed);
                 origin = Vec3x8::select(mine, o, origin);
                 dir = Vec3x8::select(mine, d, dir);
                 weight = mine.select(w, weight);
@@ -184,8 +198,8 @@ impl Emitters {
     }
 
     #[inline]
-    fn emit_from(&self, k: usize, index: u32x8, u1: f32x8, u2: f32x8) -> (Vec3x8, Vec3x8, f32x8) {
-        if let Some(p) = &self.projections[k] {
+    fn emit_from(&self, k: usize, index: u32x8, u1: f32x8, u2: f32x8, aimed: bool) -> (Vec3x8, Vec3x8, f32x8) {
+        if let Some(p) = self.projections[k].as_ref().filter(|_| aimed) {
             return self.emit_projected(&self.lights[k], p, index, u1, u2);
         }
         let (origin, dir) = self.emit_whole(&self.lights[k], index, u1, u2);
@@ -341,25 +355,4 @@ fn sphere_cone(p: Vec3x8, c: Vec3x8, r: f32x8) -> (Vec3x8, f32x8) {
     let d = to.length_squared().sqrt();
     let s2 = (r / d) * (r / d);
     (to / d, s2 / (f32x8::ONE + (f32x8::ONE - s2).sqrt()))
-}
-
-/// `prismatic_core::geometry::primitive::basis` for eight unit vectors.
-#[inline]
-fn basis_x8(n: Vec3x8) -> (Vec3x8, Vec3x8) {
-    // copysign(1, z): one with z's sign bit.
-    let sign = f32x8::ONE | (n.z & f32x8::splat(-0.0));
-    let a = f32x8::splat(-1.0) / (sign + n.z);
-    let b = n.x * n.y * a;
-    (
-        Vec3x8 { x: f32x8::ONE + sign * n.x * n.x * a, y: sign * b, z: -sign * n.x },
-        Vec3x8 { x: b, y: sign + n.y * n.y * a, z: -n.y },
-    )
-}
-
-/// `prismatic_core::geometry::primitive::cone_direction` with the basis (t, b) of `axis` given.
-#[inline]
-fn cone_direction(axis: Vec3x8, t: Vec3x8, b: Vec3x8, cos_t: f32x8, u: f32x8) -> Vec3x8 {
-    let sin_t = (f32x8::ONE - cos_t * cos_t).max(f32x8::ZERO).sqrt();
-    let (sin_phi, cos_phi) = sin_cos_turns(u);
-    (t * (sin_t * cos_phi) + b * (sin_t * sin_phi) + axis * cos_t).normalize()
 }

@@ -82,7 +82,7 @@ impl HostKernels for PacketKernels {
     fn trace(&mut self, scene: &PreparedScene, progress: &mut dyn Progress) -> PhotonMap {
         let mut map = PhotonMap::default();
         self.trace_into(scene, &mut map);
-        let total = u64::from(scene.scene.render.photons);
+        let total = u64::from(scene.traced_photons());
         progress.advance(Stage::Photons, total, total);
         map
     }
@@ -122,7 +122,7 @@ fn splat_photons(scene: &PreparedScene, photons: &[Photon]) -> Vec<Splat> {
 /// Traces fixed chunks of emissions in parallel (each unsorted into its own
 /// buffer), then sorts each chunk straight into its slice of the map.
 fn trace_chunks(scene: &PreparedScene, chunks: &mut Vec<ChunkBuffer>, map: &mut PhotonMap) {
-    let total = prismatic_core::photons::trace::traced_photons(scene);
+    let total = scene.traced_photons();
     let ctx = trace::TraceContext::new(scene);
     let n_chunks = total.div_ceil(TRACE_CHUNK) as usize;
     chunks.resize_with(n_chunks.max(chunks.len()), ChunkBuffer::default);

@@ -13,6 +13,7 @@ mod bvh;
 pub mod emit;
 mod form_factor;
 mod grid;
+mod indirect;
 mod intersect;
 mod kernels;
 pub mod optics;

@@ -3,7 +3,7 @@
 //! operation for operation, so that a packet scatters as the scalar
 //! reference does (the twin tests compare them lane by lane).
 
-use crate::simd::{Vec3x8, ge, lt};
+use crate::simd::{Vec3x8, basis_x8, cone_direction, ge, lt};
 use glam::Vec3;
 use prismatic_core::util::tolerance::{SURFACE_OFFSET_ABS, SURFACE_OFFSET_REL};
 use wide::f32x8;
@@ -20,6 +20,17 @@ pub fn offset_origin(p: Vec3x8, n: Vec3x8, dir: Vec3x8) -> Vec3x8 {
     let eps = f32x8::splat(SURFACE_OFFSET_ABS) + f32x8::splat(SURFACE_OFFSET_REL) * p.abs_max_element();
     let ne = n * eps;
     Vec3x8::select(ge(dir.dot(n), f32x8::ZERO), p + ne, p - ne)
+}
+
+/// `prismatic_core::optics::scatter::scatter_diffuse` per lane: Lambert's
+/// law about the normal on the side each ray came from; the new origins
+/// and directions.
+#[inline]
+pub fn scatter_diffuse(d: Vec3x8, point: Vec3x8, normal: Vec3x8, u1: f32x8, u2: f32x8) -> (Vec3x8, Vec3x8) {
+    let n = Vec3x8::select(lt(d.dot(normal), f32x8::ZERO), normal, -normal);
+    let (t, b) = basis_x8(n);
+    let dir = cone_direction(n, t, b, (f32x8::ONE - u1).sqrt(), u2);
+    (offset_origin(point, n, dir), dir)
 }
 
 /// `prismatic_core::optics::scatter::split_dielectric` per lane: both

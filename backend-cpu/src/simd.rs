@@ -177,6 +177,27 @@ pub fn sin_cos_turns(u: f32x8) -> (f32x8, f32x8) {
     (f32x8::splat(2.0) * s * c, f32x8::ONE - f32x8::splat(2.0) * s * s)
 }
 
+/// `prismatic_core::geometry::primitive::basis` for eight unit vectors.
+#[inline]
+pub fn basis_x8(n: Vec3x8) -> (Vec3x8, Vec3x8) {
+    // copysign(1, z): one with z's sign bit.
+    let sign = f32x8::ONE | (n.z & f32x8::splat(-0.0));
+    let a = f32x8::splat(-1.0) / (sign + n.z);
+    let b = n.x * n.y * a;
+    (
+        Vec3x8 { x: f32x8::ONE + sign * n.x * n.x * a, y: sign * b, z: -sign * n.x },
+        Vec3x8 { x: b, y: sign + n.y * n.y * a, z: -n.y },
+    )
+}
+
+/// `prismatic_core::geometry::primitive::cone_direction` with the basis (t, b) of `axis` given.
+#[inline]
+pub fn cone_direction(axis: Vec3x8, t: Vec3x8, b: Vec3x8, cos_t: f32x8, u: f32x8) -> Vec3x8 {
+    let sin_t = (f32x8::ONE - cos_t * cos_t).max(f32x8::ZERO).sqrt();
+    let (sin_phi, cos_phi) = sin_cos_turns(u);
+    (t * (sin_t * cos_phi) + b * (sin_t * sin_phi) + axis * cos_t).normalize()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -12,6 +12,7 @@
 //! operation, so the photon map is the reference's bit for bit.
 
 use crate::emit::Emitters;
+use crate::indirect::trace_indirect_packets;
 use crate::intersect::{HitX8, intersect_scene};
 use crate::optics::{offset_origin, reflect, scatter_dielectric};
 use crate::ray::{RayX8, limit_where};
@@ -20,7 +21,6 @@ use prismatic_core::model::photon::{Photon, TraceStats, WHITE_BAND, oct_pack};
 use prismatic_core::model::scene::WavelengthSampling;
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
 use prismatic_core::photons::emit::light_of;
-use prismatic_core::photons::indirect::trace_indirect;
 use prismatic_core::photons::trace::{
     absorbed, absorbed_crossing, sample_band, split_bands, stored_wavelength, trace_emitted,
 };
@@ -29,7 +29,7 @@ use prismatic_core::util::rng::dim;
 use wide::{f32x8, u32x8};
 
 /// A lane mask with every bit set.
-const ON: f32 = f32::from_bits(u32::MAX);
+pub(crate) const ON: f32 = f32::from_bits(u32::MAX);
 
 /// What a surface does, per object, as lane masks and index vectors.
 struct ObjectOptics {
@@ -51,8 +51,8 @@ struct ObjectOptics {
 
 /// The scene's tracing tables, shared by all chunks.
 pub struct TraceContext<'a> {
-    scene: &'a PreparedScene,
-    emitters: Emitters,
+    pub(crate) scene: &'a PreparedScene,
+    pub(crate) emitters: Emitters,
     objects: Vec<ObjectOptics>,
     flux: f32,
     /// Emission indices below this are caustic photons, the rest indirect light's.
@@ -101,30 +101,30 @@ impl<'a> TraceContext<'a> {
             emitters: Emitters::new(scene),
             objects,
             flux: prismatic_core::photons::trace::photon_flux(scene),
-            caustic_photons: prismatic_core::photons::trace::caustic_photons(scene),
+            caustic_photons: scene.caustic_photons(),
             coloured_lights: scene.light_spectra.iter().any(|s| !s.is_uniform()),
         }
     }
 }
 
 /// The surface facts of each lane's hit.
-struct LaneSurfaces {
-    missed: f32x8,
-    diffuse: f32x8,
-    mirror: f32x8,
-    dielectric: f32x8,
-    dispersive: f32x8,
-    absorbing: f32x8,
-    thin: f32x8,
+pub(crate) struct LaneSurfaces {
+    pub(crate) missed: f32x8,
+    pub(crate) diffuse: f32x8,
+    pub(crate) mirror: f32x8,
+    pub(crate) dielectric: f32x8,
+    pub(crate) dispersive: f32x8,
+    pub(crate) absorbing: f32x8,
+    pub(crate) thin: f32x8,
     /// Index of refraction for this lane: white for white packets, the band's for band packets.
-    ior: f32x8,
+    pub(crate) ior: f32x8,
 }
 
 impl TraceContext<'_> {
     /// Classifies the hits of a packet. `band_chunk` selects band indices
     /// (band packets) or white indices (`None`).
     #[inline]
-    fn classify(&self, hit: &HitX8, band_chunk: Option<usize>) -> LaneSurfaces {
+    pub(crate) fn classify(&self, hit: &HitX8, band_chunk: Option<usize>) -> LaneSurfaces {
         let mut s = LaneSurfaces {
             missed: lt(hit.object, f32x8::ZERO),
             diffuse: f32x8::ZERO,
@@ -157,7 +157,14 @@ impl TraceContext<'_> {
     /// `ior` with the lanes of `mask` that carry one band (non-split
     /// sampling) set to their band's index, or their own wavelength's; the
     /// scalar rule of the reference, lane by lane.
-    fn band_lanes_ior(&self, hit: &HitX8, mask: f32x8, band: u32x8, lambda: &[Option<f32>; 8], ior: f32x8) -> f32x8 {
+    pub(crate) fn band_lanes_ior(
+        &self,
+        hit: &HitX8,
+        mask: f32x8,
+        band: u32x8,
+        lambda: &[Option<f32>; 8],
+        ior: f32x8,
+    ) -> f32x8 {
         let mask = mask & bytemuck::cast::<u32x8, f32x8>(!band.simd_eq(u32x8::splat(u32::from(WHITE_BAND))));
         if !mask.any() {
             return ior;
@@ -185,14 +192,14 @@ impl TraceContext<'_> {
 }
 
 /// Output of a chunk.
-struct Sink {
-    out: Vec<Photon>,
-    stats: TraceStats,
+pub(crate) struct Sink {
+    pub(crate) out: Vec<Photon>,
+    pub(crate) stats: TraceStats,
 }
 
 impl Sink {
     #[inline]
-    fn add_flux(total: &mut f64, mask: f32x8, flux: f32x8) {
+    pub(crate) fn add_flux(total: &mut f64, mask: f32x8, flux: f32x8) {
         let f = flux.as_array();
         for i in lanes(mask) {
             *total += f64::from(f[i]);
@@ -296,9 +303,7 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
         bounces += bytemuck::cast::<f32x8, u32x8>(go_on) & u32x8::ONE;
         active = go_on;
     }
-    for index in caustic_end.max(range.start)..range.end {
-        trace_indirect(ctx.scene, index, &mut sink.out, &mut sink.stats);
-    }
+    trace_indirect_packets(ctx, caustic_end.max(range.start)..range.end, &mut sink);
     *out = sink.out;
     sink.stats
 }
@@ -454,7 +459,7 @@ fn end_paths(
 /// absorbs on the segment just ended: the reference's
 /// [`absorbed`](prismatic_core::photons::trace::absorbed), lane by lane with the
 /// core's own `exp`, so the same paths survive. Their flux is tallied.
-fn absorb_lanes(
+pub(crate) fn absorb_lanes(
     ctx: &TraceContext<'_>,
     sink: &mut Sink,
     at_glass: f32x8,
@@ -474,7 +479,7 @@ fn absorb_lanes(
 /// there: the reference's
 /// [`absorbed_crossing`](prismatic_core::photons::trace::absorbed_crossing),
 /// lane by lane. Their flux is tallied.
-fn absorb_crossing_lanes(
+pub(crate) fn absorb_crossing_lanes(
     ctx: &TraceContext<'_>,
     sink: &mut Sink,
     at_sheet: f32x8,
@@ -523,7 +528,7 @@ fn roulette_lanes(
 /// Fresnel scattering); other lanes keep `origin`/`dir`.
 #[expect(clippy::too_many_arguments, reason = "one packet's state, passed in registers")]
 #[inline]
-fn scatter(
+pub(crate) fn scatter(
     point: Vec3x8,
     d: Vec3x8,
     normal: Vec3x8,
@@ -566,14 +571,14 @@ pub fn canonical_order(unsorted: &[Photon], start: u32, len: usize, offsets: &mu
 
 /// Indices of the lanes set in `mask`.
 #[inline]
-fn lanes(mask: f32x8) -> impl Iterator<Item = usize> {
+pub(crate) fn lanes(mask: f32x8) -> impl Iterator<Item = usize> {
     let bits = mask.to_bitmask();
     (0..8).filter(move |i| bits & (1 << i) != 0)
 }
 
 /// `dim::scatter(band, bounce)` per lane (`band` as u32, WHITE_BAND = 0xFFFF).
 #[inline]
-fn scatter_dims(band: u32x8, bounces: u32x8) -> u32x8 {
+pub(crate) fn scatter_dims(band: u32x8, bounces: u32x8) -> u32x8 {
     let slot = (band + u32x8::ONE) & u32x8::splat(0xFFFF);
     u32x8::splat(dim::PATH) + slot * u32x8::splat(dim::PER_BAND) + bounces
 }

@@ -17,7 +17,7 @@ use prismatic_core::model::scene::{Filter, Light, Sampler, Texture, Wrap};
 use prismatic_core::model::wavelength_rgb;
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::photons::indirect::indirect_flux;
-use prismatic_core::photons::trace::{caustic_photons, photon_flux};
+use prismatic_core::photons::trace::photon_flux;
 use prismatic_core::plan::area::area;
 use prismatic_core::plan::projection::Targets;
 use prismatic_core::sampling::spot_cone::SpotCone;
@@ -162,7 +162,7 @@ impl EncodedScene {
             width: r.width,
             height: r.height,
             flux: photon_flux(scene),
-            caustic_photons: caustic_photons(scene),
+            caustic_photons: scene.caustic_photons(),
             indirect_flux: indirect_flux(scene),
             radius: r.radius,
             inv_cell: 1.0 / (2.0 * r.radius),

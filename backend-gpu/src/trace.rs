@@ -15,8 +15,6 @@ use crate::scan::Scan;
 use crate::scene::SceneBuffers;
 use crate::shaders::{MAX_WORKGROUPS, WORKGROUP_SIZE};
 use prismatic_core::optics::surface::Surface;
-use prismatic_core::photons::indirect::indirect_photons;
-use prismatic_core::photons::trace::{caustic_photons, traced_photons};
 use prismatic_core::{BackendError, PreparedScene, Progress, Stage, TraceStats};
 
 /// Largest chunk of emissions per dispatch (keeps progress reports coming
@@ -38,13 +36,13 @@ fn caustic_slots(scene: &PreparedScene) -> u32 {
 /// The most photons an indirect emission stores: one at every diffuse hit
 /// up to the depth limit (none without indirect light).
 fn indirect_slots(scene: &PreparedScene) -> u32 {
-    if indirect_photons(scene) > 0 { scene.plan.max_depth.max(1) } else { 0 }
+    if scene.indirect_photons() > 0 { scene.plan.max_depth.max(1) } else { 0 }
 }
 
 /// Photons a pass of `scene` can store at most: every emission filling its slots.
 pub fn map_bound(scene: &PreparedScene) -> u64 {
-    u64::from(caustic_photons(scene)) * u64::from(caustic_slots(scene))
-        + u64::from(indirect_photons(scene)) * u64::from(indirect_slots(scene))
+    u64::from(scene.caustic_photons()) * u64::from(caustic_slots(scene))
+        + u64::from(scene.indirect_photons()) * u64::from(indirect_slots(scene))
 }
 
 fn storage(ctx: &GpuContext, label: &str, bytes: u64) -> wgpu::Buffer {
@@ -93,7 +91,7 @@ impl PhotonPass {
         scene_buffers: &SceneBuffers,
         window: u32,
     ) -> Result<Self, BackendError> {
-        let total = traced_photons(scene);
+        let total = scene.traced_photons();
         let slots = slots_per_emission(scene);
         let chunk = (window / slots).clamp(1, MAX_CHUNK).min(total.max(1));
         let capacity = map_bound(scene).min(u64::from(u32::MAX)) as u32;
@@ -154,7 +152,7 @@ impl PhotonPass {
     pub fn fits(&self, scene: &PreparedScene, window: u32) -> bool {
         let capacity = map_bound(scene).min(u64::from(u32::MAX)) as u32;
         (self.total, self.slots, self.photons.capacity, self.photons.window)
-            == (traced_photons(scene), slots_per_emission(scene), capacity, window)
+            == (scene.traced_photons(), slots_per_emission(scene), capacity, window)
     }
 
     /// Photons the map holds at most: every emission storing every slot.

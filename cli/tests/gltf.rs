@@ -116,6 +116,14 @@ fn what_prismatic_cannot_represent_is_a_warning_not_a_failure() {
     assert!(warnings.contains("materials[1] (glass): left out: roughness of the transmission"), "{warnings}");
     assert!(warnings.contains("no light: lit by the built-in studio environment"), "{warnings}");
     assert!(matches!(scene.scene.lights.as_slice(), [Light::Environment { .. }]), "{:?}", scene.scene.lights);
+    // Lit as viewers light it: with its indirect light, no ambient.
+    let r = &scene.scene.render;
+    assert!(
+        r.indirect_photons == r.photons && r.ambient == 0.0,
+        "{} indirect photons, ambient {}",
+        r.indirect_photons,
+        r.ambient
+    );
     // The binary prints them and renders.
     let out = dir.path().join("rough.png");
     let run = Command::new(env!("CARGO_BIN_EXE_prismatic"))

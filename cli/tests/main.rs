@@ -6,5 +6,6 @@ mod cli;
 mod environment;
 mod exr_layers;
 mod gltf;
+mod indirect_light;
 mod slurm;
 mod study;

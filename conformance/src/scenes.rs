@@ -5,7 +5,7 @@
 //! amber glass that absorbs, once more on a textured floor), a prism
 //! fanning a beam onto a wall (split bands),
 //! a mirror folding a beam onto a floor (no dispersion), the sphere under a
-//! light panel (an area light), and a room with
+//! light panel (an area light), once more with indirect light, and a room with
 //! no mirror or glass (no caustics at all).
 
 use glam::Vec3;
@@ -122,6 +122,18 @@ pub fn panel_lit_sphere() -> PreparedScene {
     let (panel, shape) = light_panel(Vec3::new(-0.6, 3.0, -0.2), Vec3::splat(50.0));
     scene.objects.push(Object { shape, material: scene.materials.len() });
     scene.materials.push(panel);
+    prepared(scene)
+}
+
+/// The paper's sphere with indirect light: photons that bounce off the
+/// floor (and off the floor again after the glass) besides its caustic.
+pub fn sphere_with_indirect_light() -> PreparedScene {
+    let mut scene = glass_sphere().scene;
+    // A round floor, so that bounced photons end within the parity
+    // tolerances' reach (an infinite floor sends some tens of metres).
+    scene.objects[0].shape = Shape::Disk { center: Vec3::ZERO, normal: Vec3::Y, radius: 3.0, inner_radius: 0.0 };
+    scene.render.indirect_photons = 8_000;
+    scene.render.max_depth = 4;
     prepared(scene)
 }
 
@@ -318,6 +330,7 @@ pub fn with_caustics() -> Vec<(&'static str, PreparedScene)> {
         ("prism", prism()),
         ("mirror", mirror()),
         ("panel-lit sphere", panel_lit_sphere()),
+        ("sphere with indirect light", sphere_with_indirect_light()),
     ]
 }
 

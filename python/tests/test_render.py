@@ -132,6 +132,16 @@ def test_area_lights_is_the_clis_flag(cli, tmp_path):
         prismatic.render("softbox", progress=False, area_lights=0)
 
 
+def test_indirect_photons_is_the_clis_flag(cli, tmp_path):
+    cli("render", "softbox", "--passes", "1", *flags(SMALL), "--indirect-photons", "5000", "-o", "gi.exr", cwd=tmp_path)
+    given = prismatic.render("softbox", passes=1, progress=False, indirect_photons=5000, **SMALL)
+    default = prismatic.render("softbox", passes=1, progress=False, **SMALL)
+    assert same_bits(given, read_exr(tmp_path / "gi.exr"))
+    assert not same_bits(given, default), "light bounced off the table lights the ball's underside"
+    with pytest.raises(prismatic.SceneError, match="would not fit in memory"):
+        prismatic.render("softbox", progress=False, indirect_photons=4294967295)
+
+
 def test_a_scene_file_and_its_text_render_the_same(cli, tmp_path):
     path = tmp_path / "scene.toml"
     path.write_text(SCENE_TEXT)

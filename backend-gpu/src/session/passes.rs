@@ -17,7 +17,7 @@ use crate::shaders::WORKGROUP_SIZE;
 use prismatic_core::model::scene::{Estimator, RadiusMode};
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::photons::indirect::indirect_flux;
-use prismatic_core::photons::trace::{photon_flux, traced_photons};
+use prismatic_core::photons::trace::photon_flux;
 use prismatic_core::plan::schedule::{GRID_LEVELS, PilotScale, pass_scene, pilot_scene};
 use prismatic_core::{BackendError, NoProgress, PreparedScene, Progress, Stage};
 
@@ -161,10 +161,10 @@ impl GpuSession {
         let r = &pass.scene.render;
         let (sum_shift, flux_shift) = gather_shifts(pass);
         let p = &mut self.buffers.params;
-        (p.seed, p.radius, p.flux, p.indirect_flux, p.sum_shift, p.flux_shift) =
-            (r.seed, r.radius, photon_flux(pass), indirect_flux(pass), sum_shift, flux_shift);
+        (p.seed, p.radius, p.sum_shift, p.flux_shift) = (r.seed, r.radius, sum_shift, flux_shift);
+        (p.flux, p.caustic_photons, p.indirect_flux) = (photon_flux(pass), pass.caustic_photons(), indirect_flux(pass));
         if self.photons.capacity() > 0 {
-            let emissions = traced_photons(pass).min(self.photons.emissions());
+            let emissions = pass.traced_photons().min(self.photons.emissions());
             self.photons.record(&self.ctx, &self.pipelines, &mut self.buffers, emissions, progress)?;
         }
         Ok(())
@@ -271,7 +271,8 @@ impl GpuSession {
 /// The powers of two that put a pass's gather sums in fixed point (colour
 /// sums, flux sum): the largest term a photon can add is worth at most
 /// 2^[`TERM_BITS`] units. A photon carries at most the white flux Φ (a
-/// projection map's weights are below 1); the density estimator adds
+/// projection map's weights are below 1), or an indirect photon's when
+/// that is larger (fewer indirect photons than caustic ones); the density estimator adds
 /// Φ·max(1, N·max|C_i|) at most, the paper's max(1, max|C_i|) (C_i, or
 /// the colour of a wavelength over N: [`BandTable::max_colour`]), each
 /// times what the surface reflects of it, at most its largest albedo
@@ -279,7 +280,8 @@ impl GpuSession {
 ///
 /// [`BandTable::max_colour`]: prismatic_core::BandTable::max_colour
 pub fn gather_shifts(pass: &PreparedScene) -> (i32, i32) {
-    let flux = photon_flux(pass);
+    let indirect = if pass.indirect_photons() > 0 { indirect_flux(pass) } else { 0.0 };
+    let flux = photon_flux(pass).max(indirect);
     let weight = pass.bands.max_colour().max(1.0) * max_albedo(pass).max(1.0);
     let term = match pass.scene.render.estimator {
         Estimator::Density => flux * (weight * pass.bands.len() as f32).max(1.0),

@@ -3,7 +3,7 @@
 //!
 //! Besides its caustic photons a pass traces `render.indirect_photons`
 //! photons, with the emission indices after the caustic ones
-//! ([`crate::photons::trace::caustic_photons`]). Each leaves its light over
+//! ([`PreparedScene::caustic_photons`]). Each leaves its light over
 //! the light's whole distribution (no projection map: light bounced by any
 //! diffuse surface counts, [`emit_unaimed`]) and takes one wavelength there
 //! with all its flux ([`indirect_wavelength`]), so a bounce can weigh it by
@@ -32,18 +32,12 @@ use crate::optics::scatter::scatter_diffuse;
 use crate::optics::surface::Surface;
 use crate::photons::emit::emit_unaimed;
 use crate::photons::trace::{
-    Path, arrives_at_specular, band_by_power, caustic_photons, cross_specular, sample_band, spectrum_number,
-    spectrum_share_of, stored_wavelength,
+    Path, arrives_at_specular, band_by_power, cross_specular, sample_band, spectrum_number, spectrum_share_of,
+    stored_wavelength,
 };
 use crate::plan::prepared::PreparedScene;
 use crate::util::rng::{dim, random_f32};
 use alloc::vec::Vec;
-
-/// The indirect photons a pass traces (none when the effect plan has no
-/// indirect light).
-pub fn indirect_photons(scene: &PreparedScene) -> u32 {
-    if scene.plan.indirect.on { scene.scene.render.indirect_photons } else { 0 }
-}
 
 /// Flux of one indirect photon: the lights' power shared by all of them.
 pub fn indirect_flux(scene: &PreparedScene) -> f32 {
@@ -74,7 +68,7 @@ pub fn indirect_wavelength(scene: &PreparedScene, light: usize, index: u32) -> (
 /// Traces indirect photon `index` (an emission index at or after the
 /// caustic photons'), appending what it stores in path order.
 pub fn trace_indirect(scene: &PreparedScene, index: u32, out: &mut Vec<Photon>, stats: &mut TraceStats) {
-    debug_assert!(index >= caustic_photons(scene), "indirect photons follow the caustic ones");
+    debug_assert!(index >= scene.caustic_photons(), "indirect photons follow the caustic ones");
     let seed = scene.scene.render.seed;
     let e = emit_unaimed(scene, seed, index);
     let flux = indirect_flux(scene);

@@ -41,7 +41,7 @@ use glam::Vec3;
 /// Traces every white photon of the scene's render settings, reporting
 /// progress about a hundred times.
 pub fn trace_photons(scene: &PreparedScene, progress: &mut dyn Progress) -> PhotonMap {
-    let total = traced_photons(scene);
+    let total = scene.traced_photons();
     let chunk = (total / 100).max(1024);
     let mut map = PhotonMap::default();
     let mut start = 0;
@@ -52,19 +52,6 @@ pub fn trace_photons(scene: &PreparedScene, progress: &mut dyn Progress) -> Phot
         start = end;
     }
     map
-}
-
-/// The caustic photons a pass traces: emission indices 0 to this (none
-/// when the effect plan skips caustics).
-pub fn caustic_photons(scene: &PreparedScene) -> u32 {
-    if scene.plan.caustics.on { scene.scene.render.photons } else { 0 }
-}
-
-/// The photons a pass traces: the caustic ones, then indirect light's
-/// ([`crate::photons::indirect`], emission indices from
-/// [`caustic_photons`] on).
-pub fn traced_photons(scene: &PreparedScene) -> u32 {
-    caustic_photons(scene) + indirect::indirect_photons(scene)
 }
 
 /// Flux of one emitted white photon.
@@ -79,7 +66,7 @@ pub fn photon_flux(scene: &PreparedScene) -> f32 {
 /// appending stored photons in canonical order. Backends use it for chunks
 /// and scalar tails.
 pub fn trace_range(scene: &PreparedScene, range: core::ops::Range<u32>, out: &mut Vec<Photon>, stats: &mut TraceStats) {
-    let (flux, caustic) = (photon_flux(scene), caustic_photons(scene));
+    let (flux, caustic) = (photon_flux(scene), scene.caustic_photons());
     for index in range {
         if index < caustic {
             trace_emitted(scene, index, flux, out, stats);

@@ -218,6 +218,23 @@ impl PreparedScene {
         crate::geometry::bvh_build::refit(bvh, positions, triangles).map(|refitted| Primitive::Mesh(Arc::new(refitted)))
     }
 
+    /// The caustic photons a pass traces: emission indices 0 to this (none
+    /// when the effect plan skips caustics).
+    pub fn caustic_photons(&self) -> u32 {
+        if self.plan.caustics.on { self.scene.render.photons } else { 0 }
+    }
+
+    /// The indirect photons a pass traces, emission indices after the
+    /// caustic ones (none when the plan has no indirect light).
+    pub fn indirect_photons(&self) -> u32 {
+        if self.plan.indirect.on { self.scene.render.indirect_photons } else { 0 }
+    }
+
+    /// The photons a pass traces: the caustic ones, then indirect light's.
+    pub fn traced_photons(&self) -> u32 {
+        self.caustic_photons() + self.indirect_photons()
+    }
+
     /// Simulates every effect, ignoring the plan (see [`EffectPlan::simulate_everything`]).
     pub fn simulate_everything(&mut self) {
         self.plan.simulate_everything(self.scene.render.max_depth, &mut self.surfaces);

@@ -82,7 +82,8 @@ pub fn pass_scene(scene: &PreparedScene, pass: u32) -> PreparedScene {
 
 /// The pilot pass of a render with progressive radii: a seed no photon
 /// pass uses, the scene's radius, and 1/[`PILOT_PHOTON_DIVISOR`] of the
-/// photons. `None` with fixed radii (every first radius is R).
+/// photons, caustic and indirect. `None` with fixed radii (every first
+/// radius is R).
 pub fn pilot_scene(scene: &PreparedScene) -> Option<PreparedScene> {
     if scene.scene.render.radius_mode == RadiusMode::Fixed {
         return None;
@@ -91,6 +92,9 @@ pub fn pilot_scene(scene: &PreparedScene) -> Option<PreparedScene> {
     let r = &mut pilot.scene.render;
     r.seed = random_u32(r.seed, 0, u32::MAX);
     r.photons = (r.photons / PILOT_PHOTON_DIVISOR).max(1);
+    if r.indirect_photons > 0 {
+        r.indirect_photons = (r.indirect_photons / PILOT_PHOTON_DIVISOR).max(1);
+    }
     Some(pilot)
 }
 
@@ -111,7 +115,7 @@ impl PilotScale {
     pub fn new(scene: &PreparedScene, pilot: &PreparedScene) -> Self {
         let r = &scene.scene.render;
         PilotScale {
-            scale: r.photons as f32 / pilot.scene.render.photons as f32,
+            scale: scene.traced_photons() as f32 / pilot.traced_photons().max(1) as f32,
             neighbours: (r.neighbours * photons_per_path(scene)) as f32,
         }
     }

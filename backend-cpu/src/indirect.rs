@@ -1,0 +1,171 @@
+//! Indirect light's photons in packets: the core's
+//! `prismatic_core::photons::indirect`, eight paths per packet,
+//! lane-parallel with masks, operation for operation, so that the photon
+//! map is the reference's bit for bit.
+//!
+//! Each lane carries one photon from its light to its end: it takes its
+//! wavelength as it leaves, crosses mirrors and glass as a band photon
+//! does (the caustic packets' scattering and absorption), and at a diffuse
+//! surface is stored (after its first diffuse hit), survives with the
+//! surface's reflectance and bounces in a cosine-distributed direction. A
+//! lane whose path ends is refilled with the range's next photon; a lane's
+//! photons leave in path order, which the chunk's sort by emission keeps.
+
+use crate::intersect::intersect_scene;
+use crate::optics::scatter_diffuse;
+use crate::ray::{RayX8, limit_where};
+use crate::simd::{Vec3x8, random_f32};
+use crate::trace::{ON, Sink, TraceContext, absorb_crossing_lanes, absorb_lanes, lanes, scatter, scatter_dims};
+use prismatic_core::model::photon::{Photon, oct_pack};
+use prismatic_core::photons::emit::light_of;
+use prismatic_core::photons::indirect::{indirect_flux, indirect_wavelength};
+use prismatic_core::photons::trace::stored_wavelength;
+use prismatic_core::util::rng::dim;
+use wide::{f32x8, u32x8};
+
+/// Traces indirect photons `range` (emission indices) in packets into `sink`.
+pub(crate) fn trace_indirect_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mut Sink) {
+    let scene = ctx.scene;
+    let seed = scene.scene.render.seed;
+    let max_depth = u32x8::splat(scene.plan.max_depth);
+    let flux = f32x8::splat(indirect_flux(scene));
+    let mut next = range.start;
+    let (mut origin, mut dir) = (Vec3x8::ZERO, Vec3x8::ZERO);
+    let (mut emission, mut band, mut bounces) = (u32x8::ZERO, u32x8::ZERO, u32x8::ZERO);
+    let mut lambda = [None::<f32>; 8];
+    // Lanes in flight, and those that have bounced off a diffuse surface.
+    let (mut active, mut bounced) = (f32x8::ZERO, f32x8::ZERO);
+    loop {
+        let free = !active;
+        if next < range.end && free.any() {
+            let free_bits = free.to_bitmask();
+            let (mut indices, mut fresh, mut bands) = ([0u32; 8], [0.0f32; 8], band.to_array());
+            for i in 0..8 {
+                if free_bits & (1 << i) != 0 && next < range.end {
+                    (indices[i], fresh[i]) = (next, ON);
+                    let (b, l) = indirect_wavelength(scene, light_of(scene, seed, next), next);
+                    (bands[i], lambda[i]) = (u32::from(b), l);
+                    next += 1;
+                }
+            }
+            let fresh = f32x8::new(fresh);
+            let fresh_u = bytemuck::cast::<f32x8, u32x8>(fresh);
+            let (o, d) = ctx.emitters.emit_unaimed(u32x8::new(indices));
+            origin = Vec3x8::select(fresh, o, origin);
+            dir = Vec3x8::select(fresh, d, dir);
+            emission = fresh_u.select(u32x8::new(indices), emission);
+            band = u32x8::new(bands);
+            bounces = fresh_u.select(u32x8::ZERO, bounces);
+            bounced &= !fresh;
+            active |= fresh;
+            let count = u64::from(fresh.to_bitmask().count_ones());
+            (sink.stats.emitted, sink.stats.paths) = (sink.stats.emitted + count, sink.stats.paths + count);
+            Sink::add_flux(&mut sink.stats.flux_emitted, fresh, flux);
+        }
+        if !active.any() {
+            break;
+        }
+        let ray = RayX8 { origin, dir };
+        let hit = intersect_scene(scene, &ray, limit_where(active, f32x8::splat(f32::INFINITY)));
+        let mut s = ctx.classify(&hit, None);
+        s.ior = ctx.band_lanes_ior(&hit, active & s.dielectric, band, &lambda, s.ior);
+        let point = ray.at(hit.t);
+        sink.stats.segments += u64::from(active.to_bitmask().count_ones());
+        let missed = active & s.missed;
+        Sink::add_flux(&mut sink.stats.flux_escaped, missed, flux);
+        let deep = bytemuck::cast::<u32x8, f32x8>(bounces.simd_ge(max_depth));
+        let first = bytemuck::cast::<u32x8, f32x8>(bounces.simd_eq(u32x8::ZERO));
+        let diffuse = active & s.diffuse;
+        let specular = active & (s.mirror | s.dielectric);
+        // Diffuse hits: stored after the first, then the depth limit, then the roulette.
+        store(ctx, sink, diffuse & bounced, point, dir, [emission, band, bounces], &lambda);
+        Sink::add_flux(&mut sink.stats.flux_depth_limited, (diffuse | specular) & deep, flux);
+        let reflecting = diffuse & !deep;
+        let survives = roulette(ctx, sink, reflecting, &hit, point, dir, [emission, band, bounces], &lambda);
+        let [d1, d2] = [0, 1].map(|k| bounce_dims(band, bounces) + u32x8::splat(k * dim::ABSORB));
+        let (u1, u2) = (random_f32(seed, emission, d1), random_f32(seed, emission, d2));
+        let (o, d) = scatter_diffuse(dir, point, hit.normal, u1, u2);
+        // Mirror and glass: the caustic packets' steps.
+        let mut crossing = specular & !deep;
+        crossing &= !absorb_lanes(ctx, sink, crossing & s.absorbing, &hit, dir, flux, [emission, band, bounces]);
+        sink.stats.specular_paths += u64::from((crossing & first).to_bitmask().count_ones());
+        let u = random_f32(seed, emission, scatter_dims(band, bounces));
+        let before = dir;
+        let (so, sd) = scatter(point, dir, hit.normal, &s, u, origin, crossing, dir);
+        let sheets = crossing & s.thin & s.absorbing;
+        crossing &= !absorb_crossing_lanes(ctx, sink, sheets, &hit, (before, sd), flux, [emission, band, bounces]);
+        origin = Vec3x8::select(survives, o, so);
+        dir = Vec3x8::select(survives, d, sd);
+        bounced |= survives;
+        active = survives | crossing;
+        bounces += bytemuck::cast::<f32x8, u32x8>(active) & u32x8::ONE;
+    }
+}
+
+/// Stores the photons of the lanes of `mask` at `point`.
+fn store(
+    ctx: &TraceContext<'_>,
+    sink: &mut Sink,
+    mask: f32x8,
+    point: Vec3x8,
+    dir: Vec3x8,
+    [emission, band, bounces]: [u32x8; 3],
+    lambda: &[Option<f32>; 8],
+) {
+    let flux = indirect_flux(ctx.scene);
+    let (e, b, k) = (emission.as_array(), band.as_array(), bounces.as_array());
+    for i in lanes(mask) {
+        sink.stats.stored += 1;
+        sink.stats.flux_stored += f64::from(flux);
+        sink.out.push(Photon {
+            position: point.lane(i).to_array(),
+            flux,
+            direction_oct: oct_pack(dir.lane(i)),
+            lambda_nm: stored_wavelength(&ctx.scene.bands, b[i] as u16, lambda[i]),
+            emission: e[i],
+            band: b[i] as u16,
+            bounces: k[i] as u16,
+        });
+    }
+}
+
+/// The lanes of `mask` (diffuse hits) whose photon survives the surface's
+/// reflectance at its wavelength (the core's roulette, lane by lane with
+/// the core's albedo and reflectance); the others' flux is tallied as absorbed.
+#[expect(clippy::too_many_arguments, reason = "one packet's state at the hit")]
+fn roulette(
+    ctx: &TraceContext<'_>,
+    sink: &mut Sink,
+    mask: f32x8,
+    hit: &crate::intersect::HitX8,
+    point: Vec3x8,
+    dir: Vec3x8,
+    [emission, band, bounces]: [u32x8; 3],
+    lambda: &[Option<f32>; 8],
+) -> f32x8 {
+    if !mask.any() {
+        return f32x8::ZERO;
+    }
+    let scene = ctx.scene;
+    let u = random_f32(scene.scene.render.seed, emission, scatter_dims(band, bounces)).to_array();
+    let (objects, triangles, b) = (hit.object.as_array(), hit.triangle.as_array(), band.as_array());
+    let mut out = [0.0f32; 8];
+    for i in lanes(mask) {
+        let (d, n) = (dir.lane(i), hit.normal.lane(i));
+        let facing = if d.dot(n) < 0.0 { n } else { -n };
+        let albedo = scene.albedo_at(objects[i] as usize, triangles[i] as u32, point.lane(i), facing);
+        let lambda_nm = stored_wavelength(&scene.bands, b[i] as u16, lambda[i]);
+        if u[i] < scene.bands.bounce_reflectance(albedo, b[i] as u16, lambda_nm) {
+            out[i] = ON;
+        } else {
+            sink.stats.flux_absorbed += f64::from(indirect_flux(scene));
+        }
+    }
+    f32x8::new(out)
+}
+
+/// `dim::bounce(band, bounce)[0]` per lane.
+#[inline]
+fn bounce_dims(band: u32x8, bounces: u32x8) -> u32x8 {
+    scatter_dims(band, bounces) + u32x8::splat(dim::BOUNCE)
+}

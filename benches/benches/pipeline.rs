@@ -245,6 +245,30 @@ fn lights_group(c: &mut Criterion) {
     g.finish();
 }
 
+/// A pass of 100,000 indirect photons (no caustic ones) in the built-in
+/// sphere scene: the scalar reference against the CPU's packets, and the
+/// spot's caustic pass of as many photons beside it.
+fn indirect_group(c: &mut Criterion) {
+    let mut g = c.benchmark_group("indirect");
+    g.sample_size(10);
+    let [(_, spot), ..] = prismatic_benches::lit_by_each_light(100_000);
+    let mut indirect = spot.scene.clone();
+    (indirect.render.photons, indirect.render.indirect_photons) = (0, 100_000);
+    let indirect = PreparedScene::new(indirect).unwrap();
+    g.throughput(Throughput::Elements(100_000));
+    for (name, scene) in [("indirect", &indirect), ("caustic", &spot)] {
+        let mut cpu = CpuBackend::new().prepare(scene).unwrap();
+        g.bench_function(BenchmarkId::new(name, "cpu"), |b| {
+            b.iter(|| black_box(cpu.photon_map(0, &mut NoProgress).unwrap()))
+        });
+    }
+    let mut reference = ReferenceBackend.prepare(&indirect).unwrap();
+    g.bench_function(BenchmarkId::new("indirect", "reference"), |b| {
+        b.iter(|| black_box(reference.photon_map(0, &mut NoProgress).unwrap()))
+    });
+    g.finish();
+}
+
 /// What preparing a changed scene costs, against preparing it anew.
 fn scene_group(c: &mut Criterion) {
     let mut g = c.benchmark_group("scene");
@@ -297,6 +321,7 @@ criterion_group!(
     effects_group,
     progressive_group,
     lights_group,
+    indirect_group,
     scene_group
 );
 criterion_main!(benches);

@@ -13,7 +13,7 @@ pub struct BuiltinScene {
 }
 
 /// Every built-in scene file.
-pub const BUILTIN_SCENES: [BuiltinScene; 8] = [
+pub const BUILTIN_SCENES: [BuiltinScene; 9] = [
     BuiltinScene {
         name: "spectrum",
         description: "a prism's spectrum on a wall behind the paper's glass sphere and its caustic (the default)",
@@ -33,6 +33,11 @@ pub const BUILTIN_SCENES: [BuiltinScene; 8] = [
         name: "softbox",
         description: "a flint glass ball under a photographer's softbox: soft shadow, the box's coloured, blurred caustic",
         source: include_str!("../../scenes/softbox.toml"),
+    },
+    BuiltinScene {
+        name: "room",
+        description: "a Cornell box lit by its ceiling lamp: light bounced off the red and green walls, a flint ball's caustic",
+        source: include_str!("../../scenes/room.toml"),
     },
     BuiltinScene {
         name: "prism",

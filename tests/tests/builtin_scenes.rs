@@ -24,6 +24,7 @@ fn every_built_in_scene_renders_finite_and_its_caustic_adds_light() {
         ("caustic", 20_000),
         ("sphere", 20_000),
         ("softbox", 20_000),
+        ("room", 20_000),
         ("prism", 4_000),
         ("recombine", 4_000),
         ("rainbow", 100_000),

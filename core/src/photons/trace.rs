@@ -18,7 +18,8 @@
 //! equal energy) are never white: they start as their bands or
 //! wavelengths at the light (see [`emission_paths`]). Fresnel chooses
 //! reflection or refraction with a counter-based random number, so the
-//! result is a pure function of the scene and the seed.
+//! result is a pure function of the scene and the seed. A pass's indirect
+//! photons follow its caustic ones ([`crate::photons::indirect`]).
 
 use crate::geometry::primitive::Ray;
 use crate::model::bands::BandTable;

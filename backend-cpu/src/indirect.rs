@@ -16,15 +16,28 @@ use crate::optics::scatter_diffuse;
 use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, random_f32};
 use crate::trace::{ON, Sink, TraceContext, absorb_crossing_lanes, absorb_lanes, lanes, scatter, scatter_dims};
-use prismatic_core::model::photon::{Photon, oct_pack};
+use prismatic_core::model::photon::{Photon, TraceStats, oct_pack};
 use prismatic_core::photons::emit::light_of;
 use prismatic_core::photons::indirect::{indirect_flux, indirect_wavelength};
-use prismatic_core::photons::trace::stored_wavelength;
+use prismatic_core::photons::path::stored_wavelength;
 use prismatic_core::util::rng::dim;
 use wide::{f32x8, u32x8};
 
-/// Traces indirect photons `range` (emission indices) in packets into `sink`.
-pub(crate) fn trace_indirect_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mut Sink) {
+/// Traces indirect photons `range` (emission indices) in packets, adding
+/// what they store to `out` and what they did to `stats`.
+pub(crate) fn trace_indirect_packets(
+    ctx: &TraceContext<'_>,
+    range: core::ops::Range<u32>,
+    out: &mut Vec<Photon>,
+    stats: &mut TraceStats,
+) {
+    let mut sink = Sink { out: core::mem::take(out), stats: TraceStats::default() };
+    trace_packets(ctx, range, &mut sink);
+    *out = sink.out;
+    stats.merge(&sink.stats);
+}
+
+fn trace_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mut Sink) {
     let scene = ctx.scene;
     let seed = scene.scene.render.seed;
     let max_depth = u32x8::splat(scene.plan.max_depth);

@@ -6,7 +6,7 @@
 //! pass.
 
 use crate::pass::PassGrids;
-use crate::{TRACE_CHUNK, trace, view};
+use crate::{TRACE_CHUNK, indirect, trace, view};
 use prismatic_core::model::photon::{Photon, TraceStats};
 use prismatic_core::photons::light_tracing::{CameraConnection, Splat};
 use prismatic_core::render::host::{HostKernels, PassGather};
@@ -127,8 +127,12 @@ fn trace_chunks(scene: &PreparedScene, chunks: &mut Vec<ChunkBuffer>, map: &mut 
     let n_chunks = total.div_ceil(TRACE_CHUNK) as usize;
     chunks.resize_with(n_chunks.max(chunks.len()), ChunkBuffer::default);
     let range = |c: usize| c as u32 * TRACE_CHUNK..((c as u32 + 1) * TRACE_CHUNK).min(total);
+    let caustic = scene.caustic_photons();
     chunks[..n_chunks].par_iter_mut().enumerate().for_each(|(c, buf)| {
-        buf.stats = trace::trace_chunk(&ctx, range(c), &mut buf.photons);
+        // Caustic photons in packets, then indirect light's.
+        let r = range(c);
+        buf.stats = trace::trace_chunk(&ctx, r.start..r.end.min(caustic), &mut buf.photons);
+        indirect::trace_indirect_packets(&ctx, r.start.max(caustic)..r.end, &mut buf.photons, &mut buf.stats);
     });
     let stored: usize = chunks[..n_chunks].iter().map(|b| b.photons.len()).sum();
     map.photons.clear();

@@ -12,7 +12,6 @@
 //! operation, so the photon map is the reference's bit for bit.
 
 use crate::emit::Emitters;
-use crate::indirect::trace_indirect_packets;
 use crate::intersect::{HitX8, intersect_scene};
 use crate::optics::{offset_origin, reflect, scatter_dielectric};
 use crate::ray::{RayX8, limit_where};
@@ -21,9 +20,9 @@ use prismatic_core::model::photon::{Photon, TraceStats, WHITE_BAND, oct_pack};
 use prismatic_core::model::scene::WavelengthSampling;
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
 use prismatic_core::photons::emit::light_of;
-use prismatic_core::photons::trace::{
-    absorbed, absorbed_crossing, sample_band, split_bands, stored_wavelength, trace_emitted,
-};
+use prismatic_core::photons::path::{absorbed, absorbed_crossing, stored_wavelength};
+use prismatic_core::photons::trace::trace_emitted;
+use prismatic_core::photons::wavelengths::{sample_band, split_bands};
 use prismatic_core::plan::prepared::PreparedScene;
 use prismatic_core::util::rng::dim;
 use wide::{f32x8, u32x8};
@@ -55,8 +54,6 @@ pub struct TraceContext<'a> {
     pub(crate) emitters: Emitters,
     objects: Vec<ObjectOptics>,
     flux: f32,
-    /// Emission indices below this are caustic photons, the rest indirect light's.
-    caustic_photons: u32,
     /// Some light has a spectrum other than equal energy: its photons are
     /// traced by the core's scalar tracer (see [`trace_chunk`]).
     coloured_lights: bool,
@@ -101,7 +98,6 @@ impl<'a> TraceContext<'a> {
             emitters: Emitters::new(scene),
             objects,
             flux: prismatic_core::photons::trace::photon_flux(scene),
-            caustic_photons: scene.caustic_photons(),
             coloured_lights: scene.light_spectra.iter().any(|s| !s.is_uniform()),
         }
     }
@@ -207,15 +203,13 @@ impl Sink {
     }
 }
 
-/// Traces white photons `range` (emission indices) in packets into `out`
+/// Traces caustic photons `range` (emission indices) in packets into `out`
 /// (cleared first; not yet in canonical order, see [`canonical_order`]) and
 /// returns the pass statistics.
 pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &mut Vec<Photon>) -> TraceStats {
     let settings = &ctx.scene.scene.render;
     out.clear();
     let mut sink = Sink { out: core::mem::take(out), stats: TraceStats::default() };
-    // Caustic photons in packets, then indirect light's (see `indirect`).
-    let caustic_end = range.end.min(ctx.caustic_photons);
     let mut next = range.start;
     let mut origin = Vec3x8::ZERO;
     let mut dir = Vec3x8::ZERO;
@@ -232,18 +226,18 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
     loop {
         // Refill free lanes with the next white photons.
         let free = !active;
-        if next < caustic_end && free.any() {
+        if next < range.end && free.any() {
             let free_bits = free.to_bitmask();
             let mut indices = [0u32; 8];
             let mut fresh = [0.0f32; 8];
             for (i, (index, on)) in indices.iter_mut().zip(&mut fresh).enumerate() {
                 // A coloured light's photons start as several paths at their
                 // light: the core's scalar tracer takes them, in its order.
-                while ctx.coloured_lights && next < caustic_end && ctx.is_coloured(next) {
+                while ctx.coloured_lights && next < range.end && ctx.is_coloured(next) {
                     trace_emitted(ctx.scene, next, ctx.flux, &mut sink.out, &mut sink.stats);
                     next += 1;
                 }
-                if free_bits & (1 << i) != 0 && next < caustic_end {
+                if free_bits & (1 << i) != 0 && next < range.end {
                     *index = next;
                     *on = ON;
                     next += 1;
@@ -303,7 +297,6 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
         bounces += bytemuck::cast::<f32x8, u32x8>(go_on) & u32x8::ONE;
         active = go_on;
     }
-    trace_indirect_packets(ctx, caustic_end.max(range.start)..range.end, &mut sink);
     *out = sink.out;
     sink.stats
 }
@@ -311,7 +304,7 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
 /// Traces the paths a white photon splits into (lane `lane` of `hit`; its
 /// emission index, bounces and flux in `white`) from the dispersive surface
 /// it has just met, eight per packet: its `paths` bands
-/// ([`prismatic_core::photons::trace::split_bands`]: every band, each with the
+/// ([`prismatic_core::photons::wavelengths::split_bands`]: every band, each with the
 /// glass's band table, or the hero wavelengths, each at its own wavelength).
 #[expect(clippy::too_many_arguments, reason = "one lane's state at the split")]
 fn trace_bands(
@@ -457,7 +450,7 @@ fn end_paths(
 
 /// The lanes of `at_glass` (hits on coloured glass) whose path the glass
 /// absorbs on the segment just ended: the reference's
-/// [`absorbed`](prismatic_core::photons::trace::absorbed), lane by lane with the
+/// [`absorbed`](prismatic_core::photons::path::absorbed), lane by lane with the
 /// core's own `exp`, so the same paths survive. Their flux is tallied.
 pub(crate) fn absorb_lanes(
     ctx: &TraceContext<'_>,
@@ -477,7 +470,7 @@ pub(crate) fn absorb_lanes(
 /// The lanes of `at_sheet` (hits on tinted thin sheets, just scattered
 /// from `before` to `after`) whose path crossed the sheet and was absorbed
 /// there: the reference's
-/// [`absorbed_crossing`](prismatic_core::photons::trace::absorbed_crossing),
+/// [`absorbed_crossing`](prismatic_core::photons::path::absorbed_crossing),
 /// lane by lane. Their flux is tallied.
 pub(crate) fn absorb_crossing_lanes(
     ctx: &TraceContext<'_>,

@@ -6,7 +6,7 @@
 use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::model::scene::HERO_WAVELENGTHS;
 use prismatic_core::optics::surface::Surface;
-use prismatic_core::photons::trace::{sample_band, split_bands};
+use prismatic_core::photons::wavelengths::{sample_band, split_bands};
 use prismatic_core::{Backend, BandSpec, Glass, NoProgress, PreparedScene, ReferenceBackend, WavelengthSampling};
 use prismatic_tests::backends::{every_backend, fixed, trace};
 use prismatic_tests::parity::{Output, assert_parity};

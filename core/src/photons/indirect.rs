@@ -31,10 +31,8 @@ use crate::model::photon::{Photon, TraceStats};
 use crate::optics::scatter::scatter_diffuse;
 use crate::optics::surface::Surface;
 use crate::photons::emit::emit_unaimed;
-use crate::photons::trace::{
-    Path, arrives_at_specular, band_by_power, cross_specular, sample_band, spectrum_number, spectrum_share_of,
-    stored_wavelength,
-};
+use crate::photons::path::{Path, arrives_at_specular, cross_specular, stored_wavelength};
+use crate::photons::wavelengths::{band_by_power, sample_band, spectrum_number, spectrum_share_of};
 use crate::plan::prepared::PreparedScene;
 use crate::util::rng::{dim, random_f32};
 use alloc::vec::Vec;

@@ -6,4 +6,6 @@ pub mod gather;
 pub mod grid;
 pub mod indirect;
 pub mod light_tracing;
+pub mod path;
 pub mod trace;
+pub mod wavelengths;

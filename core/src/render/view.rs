@@ -47,7 +47,7 @@ use crate::model::scene::{Light, WavelengthSampling};
 use crate::optics::fresnel::reflect;
 use crate::optics::scatter::{offset_origin, scatter_dielectric, split_dielectric};
 use crate::optics::surface::{DielectricOptics, Surface};
-use crate::photons::trace::spectrum_share;
+use crate::photons::wavelengths::spectrum_share;
 use crate::plan::area::area;
 use crate::plan::prepared::{Hit, PreparedScene};
 use crate::render::visible::{VisiblePoint, VisiblePoints};

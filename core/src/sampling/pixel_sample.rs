@@ -50,7 +50,7 @@ impl PixelSampler {
     }
 
     /// The path's spectrum number: the shift of its hero wavelengths at
-    /// the first dispersive glass ([`crate::photons::trace::spectrum_share`]).
+    /// the first dispersive glass ([`crate::photons::wavelengths::spectrum_share`]).
     #[inline]
     pub fn spectrum(&self) -> f32 {
         sobol_f32(self.scramble, self.pass, 2)

@@ -1,0 +1,138 @@
+//! One photon path in flight and what every photon does on its way: the
+//! steps at mirrors and glass (depth limit, absorption in coloured glass,
+//! reflection or Fresnel's choice), shared by caustic and indirect light's
+//! photons, and what a path stores.
+
+use crate::geometry::primitive::Ray;
+use crate::model::bands::BandTable;
+use crate::model::photon::{Photon, TraceStats, oct_pack};
+use crate::optics::fresnel::reflect;
+use crate::optics::scatter::{offset_origin, scatter_dielectric};
+use crate::optics::surface::{DielectricOptics, Surface};
+use crate::plan::prepared::{Hit, PreparedScene};
+use crate::util::rng::{dim, random_f32};
+use glam::Vec3;
+
+/// One photon path in flight: where it goes, its flux, band and wavelength, and
+/// the specular interactions it has had.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Path {
+    pub(crate) ray: Ray,
+    pub(crate) flux: f32,
+    pub(crate) band: u16,
+    /// The wavelength a continuous-spectrum photon is traced at.
+    pub(crate) lambda_nm: Option<f32>,
+    pub(crate) bounces: u32,
+}
+
+impl Path {
+    /// The photon this path stores where it meets a diffuse surface at `point`.
+    pub(crate) fn photon(&self, scene: &PreparedScene, point: Vec3, index: u32) -> Photon {
+        Photon {
+            position: point.to_array(),
+            flux: self.flux,
+            direction_oct: oct_pack(self.ray.direction),
+            lambda_nm: stored_wavelength(&scene.bands, self.band, self.lambda_nm),
+            emission: index,
+            band: self.band,
+            bounces: self.bounces as u16,
+        }
+    }
+}
+
+/// Whether path `p` goes on at the mirror or glass it has reached at `hit`:
+/// not past the depth limit, not absorbed on the segment inside coloured
+/// glass that ends here ([`absorbed`]). An ended path's flux is tallied.
+pub(crate) fn arrives_at_specular(
+    scene: &PreparedScene,
+    index: u32,
+    p: &Path,
+    hit: &Hit,
+    stats: &mut TraceStats,
+) -> bool {
+    if p.bounces >= scene.plan.max_depth {
+        stats.flux_depth_limited += f64::from(p.flux);
+        return false;
+    }
+    if let Surface::Dielectric(glass) = &scene.surfaces[hit.object]
+        && absorbed(glass, p.ray.direction, hit.normal, hit.t, p.band, || {
+            random_f32(scene.scene.render.seed, index, dim::absorb(p.band, p.bounces))
+        })
+    {
+        stats.flux_absorbed += f64::from(p.flux);
+        return false;
+    }
+    true
+}
+
+/// Takes path `p` (one that does not split here) across the mirror or
+/// glass at `hit`: reflected, or Fresnel's choice between reflection and
+/// refraction at the path's own index; false when a tinted sheet absorbed
+/// it on the way ([`absorbed_crossing`], its flux tallied). The bounce is
+/// the caller's to count.
+pub(crate) fn cross_specular(
+    scene: &PreparedScene,
+    index: u32,
+    p: &mut Path,
+    hit: &Hit,
+    stats: &mut TraceStats,
+) -> bool {
+    let seed = scene.scene.render.seed;
+    match &scene.surfaces[hit.object] {
+        Surface::Mirror => {
+            let d = reflect(p.ray.direction, hit.normal);
+            p.ray = Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d };
+            true
+        }
+        Surface::Dielectric(glass) => {
+            let u = random_f32(seed, index, dim::scatter(p.band, p.bounces));
+            let ior = glass.path_ior(p.band, p.lambda_nm, &scene.bands);
+            let before = p.ray.direction;
+            p.ray = scatter_dielectric(before, hit.point, hit.normal, ior, glass.thin, u);
+            let absorbed = absorbed_crossing(glass, before, p.ray.direction, p.band, || {
+                random_f32(seed, index, dim::absorb(p.band, p.bounces))
+            });
+            if absorbed {
+                stats.flux_absorbed += f64::from(p.flux);
+            }
+            !absorbed
+        }
+        Surface::Diffuse { .. } => unreachable!("a diffuse surface is not crossed"),
+    }
+}
+
+/// The wavelength a photon of `band` traced at `lambda_nm` (`None`: the
+/// band's own) stores: the one it was traced at, 0 for white light.
+#[inline]
+pub fn stored_wavelength(bands: &BandTable, band: u16, lambda_nm: Option<f32>) -> f32 {
+    match bands.bands().get(usize::from(band)) {
+        Some(b) => lambda_nm.unwrap_or(b.lambda_nm),
+        None => 0.0,
+    }
+}
+
+/// Whether coloured `glass` absorbs the photon path of `band` on a segment
+/// of length `t` along `dir` that ends on it (outward `normal` there). Only
+/// a segment that ran inside (it meets the glass from within) can be
+/// absorbed, with probability 1 − e^(−σt) against the uniform number `u`
+/// ([`dim::absorb`]): Russian roulette, so survivors keep their flux and
+/// both estimators (counts and flux) stay unbiased.
+pub fn absorbed(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t: f32, band: u16, u: impl FnOnce() -> f32) -> bool {
+    let Some(absorption) = glass.absorption.as_ref().filter(|_| !glass.thin) else { return false };
+    dir.dot(normal) > 0.0 && u() >= absorption.transmittance(band, t)
+}
+
+/// Whether a tinted thin sheet absorbs the photon path of `band` that
+/// crossed it (it left along `after` as it came along `before`): with
+/// probability 1 − its crossing's transmittance
+/// ([`DielectricOptics::sheet_crossing`]) against the uniform number `u`
+/// ([`dim::absorb`], unused at a sheet by [`absorbed`]), as Russian roulette.
+pub fn absorbed_crossing(
+    glass: &DielectricOptics,
+    before: Vec3,
+    after: Vec3,
+    band: u16,
+    u: impl FnOnce() -> f32,
+) -> bool {
+    glass.thin && glass.absorption.is_some() && before == after && u() >= glass.sheet_crossing(band)
+}

@@ -34,6 +34,9 @@ fn check(case: &str, scene: &PreparedScene, gpu: &mut GpuBackend) {
 fn built_in(name: &str, photons: u32) -> PreparedScene {
     let mut doc = load_scene(name).unwrap();
     doc.scene.render.photons = photons;
+    if doc.scene.render.indirect_photons > 0 {
+        doc.scene.render.indirect_photons = photons;
+    }
     doc.scene.render.width = 96;
     doc.scene.render.height = 96;
     PreparedScene::new(doc.scene).unwrap()

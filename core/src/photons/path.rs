@@ -14,7 +14,7 @@ use crate::util::rng::{dim, random_f32};
 use glam::Vec3;
 
 /// One photon path in flight: where it goes, its flux, band and wavelength, and
-/// the specular interactions it has had.
+/// how many surfaces it has met after leaving its light (`bounces`).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Path {
     pub(crate) ray: Ray,

@@ -6,8 +6,8 @@
 //! dielectric a white photon splits into one photon per band (each with 1/N
 //! of the flux) and each band continues with its own index of refraction
 //! and absorption; clear non-dispersive glass and mirrors never split. With
-//! [`WavelengthSampling::Hero`] it splits into M hero wavelengths instead
-//! (see [`split_bands`]); with [`WavelengthSampling::RandomBand`] or
+//! [`WavelengthSampling::Hero`](crate::model::scene::WavelengthSampling::Hero) it splits into M hero wavelengths instead
+//! (see [`split_bands`]); with [`WavelengthSampling::RandomBand`](crate::model::scene::WavelengthSampling::RandomBand) or
 //! `Continuous` it does not split but continues as one random band with all
 //! its flux (see [`sample_band`]; the wavelengths in
 //! [`crate::photons::wavelengths`]). A photon that reaches a diffuse surface

@@ -6,18 +6,18 @@
 //! dielectric a white photon splits into one photon per band (each with 1/N
 //! of the flux) and each band continues with its own index of refraction
 //! and absorption; clear non-dispersive glass and mirrors never split. With
-//! [`WavelengthSampling::Hero`](crate::model::scene::WavelengthSampling::Hero) it splits into M hero wavelengths instead
-//! (see [`split_bands`]); with [`WavelengthSampling::RandomBand`](crate::model::scene::WavelengthSampling::RandomBand) or
-//! `Continuous` it does not split but continues as one random band with all
-//! its flux (see [`sample_band`]; the wavelengths in
-//! [`crate::photons::wavelengths`]). A photon that reaches a diffuse surface
-//! after at least one specular interaction is stored (the dispersion caustic
-//! map, L S+ D paths); one that reaches it directly is direct light, which
-//! the renderer ray traces instead. Inside coloured glass a path survives
-//! each segment with its band's Beer–Lambert transmittance (see
-//! [`crate::photons::path::absorbed`], a path's steps). A coloured light's photons (a spectrum other than
-//! equal energy) are never white: they start as their bands or
-//! wavelengths at the light (see [`emission_paths`]). Fresnel chooses
+//! hero sampling it splits into M hero wavelengths instead (see
+//! [`split_bands`]); with random-band or continuous sampling it does not
+//! split but continues as one random band with all its flux (see
+//! [`sample_band`]; the wavelengths in [`crate::photons::wavelengths`]). A
+//! photon that reaches a diffuse surface after at least one specular
+//! interaction is stored (the dispersion caustic map, L S+ D paths); one
+//! that reaches it directly is direct light, which the renderer ray traces
+//! instead. Inside coloured glass a path survives each segment with its
+//! band's Beer–Lambert transmittance (see [`crate::photons::path::absorbed`],
+//! a path's steps). A coloured light's photons (a spectrum other than equal
+//! energy) are never white: they start as their bands or wavelengths at the
+//! light (see [`emission_paths`]). Fresnel chooses
 //! reflection or refraction with a counter-based random number, so the
 //! result is a pure function of the scene and the seed. A pass's indirect
 //! photons follow its caustic ones ([`crate::photons::indirect`]).

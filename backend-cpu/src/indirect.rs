@@ -16,7 +16,7 @@ use crate::optics::scatter_diffuse;
 use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, random_f32};
 use crate::trace::{ON, Sink, TraceContext, absorb_crossing_lanes, absorb_lanes, lanes, scatter, scatter_dims};
-use prismatic_core::model::photon::{Photon, TraceStats, oct_pack};
+use prismatic_core::model::photon::{Photon, TraceStats};
 use prismatic_core::photons::emit::light_of;
 use prismatic_core::photons::indirect::{indirect_flux, indirect_wavelength};
 use prismatic_core::photons::path::stored_wavelength;
@@ -126,19 +126,10 @@ fn store(
     lambda: &[Option<f32>; 8],
 ) {
     let flux = indirect_flux(ctx.scene);
-    let (e, b, k) = (emission.as_array(), band.as_array(), bounces.as_array());
+    let ids = [emission.as_array(), band.as_array(), bounces.as_array()];
     for i in lanes(mask) {
-        sink.stats.stored += 1;
-        sink.stats.flux_stored += f64::from(flux);
-        sink.out.push(Photon {
-            position: point.lane(i).to_array(),
-            flux,
-            direction_oct: oct_pack(dir.lane(i)),
-            lambda_nm: stored_wavelength(&ctx.scene.bands, b[i] as u16, lambda[i]),
-            emission: e[i],
-            band: b[i] as u16,
-            bounces: k[i] as u16,
-        });
+        let photon = sink.lane_photon(&ctx.scene.bands, i, (point, dir), flux, ids, lambda);
+        sink.out.push(photon);
     }
 }
 
@@ -160,6 +151,7 @@ fn roulette(
         return f32x8::ZERO;
     }
     let scene = ctx.scene;
+    let flux = f64::from(indirect_flux(scene));
     let u = random_f32(scene.scene.render.seed, emission, scatter_dims(band, bounces)).to_array();
     let (objects, triangles, b) = (hit.object.as_array(), hit.triangle.as_array(), band.as_array());
     let mut out = [0.0f32; 8];
@@ -171,7 +163,7 @@ fn roulette(
         if u[i] < scene.bands.bounce_reflectance(albedo, b[i] as u16, lambda_nm) {
             out[i] = ON;
         } else {
-            sink.stats.flux_absorbed += f64::from(indirect_flux(scene));
+            sink.stats.flux_absorbed += flux;
         }
     }
     f32x8::new(out)

@@ -16,6 +16,7 @@ use crate::intersect::{HitX8, intersect_scene};
 use crate::optics::{offset_origin, reflect, scatter_dielectric};
 use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, lt, random_f32};
+use prismatic_core::model::bands::BandTable;
 use prismatic_core::model::photon::{Photon, TraceStats, WHITE_BAND, oct_pack};
 use prismatic_core::model::scene::WavelengthSampling;
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
@@ -194,6 +195,32 @@ pub(crate) struct Sink {
 }
 
 impl Sink {
+    /// The photon that lane `i` of a packet (at `point`, along `dir`, its
+    /// emission, band and bounces in `ids`, its wavelength in `lambda`)
+    /// stores with `flux`, tallied as stored.
+    #[inline]
+    pub(crate) fn lane_photon(
+        &mut self,
+        bands: &BandTable,
+        i: usize,
+        (point, dir): (Vec3x8, Vec3x8),
+        flux: f32,
+        [emission, band, bounces]: [&[u32; 8]; 3],
+        lambda: &[Option<f32>; 8],
+    ) -> Photon {
+        self.stats.stored += 1;
+        self.stats.flux_stored += f64::from(flux);
+        Photon {
+            position: point.lane(i).to_array(),
+            flux,
+            direction_oct: oct_pack(dir.lane(i)),
+            lambda_nm: stored_wavelength(bands, band[i] as u16, lambda[i]),
+            emission: emission[i],
+            band: band[i] as u16,
+            bounces: bounces[i] as u16,
+        }
+    }
+
     #[inline]
     pub(crate) fn add_flux(total: &mut f64, mask: f32x8, flux: f32x8) {
         let f = flux.as_array();
@@ -428,17 +455,7 @@ fn end_paths(
     if store.any() {
         let (f, e, b, k) = (flux.as_array(), emission.as_array(), band.as_array(), bounces.as_array());
         for i in lanes(store) {
-            sink.stats.stored += 1;
-            sink.stats.flux_stored += f64::from(f[i]);
-            let photon = Photon {
-                position: point.lane(i).to_array(),
-                flux: f[i],
-                direction_oct: oct_pack(dir.lane(i)),
-                lambda_nm: stored_wavelength(&ctx.scene.bands, b[i] as u16, lambda[i]),
-                emission: e[i],
-                band: b[i] as u16,
-                bounces: k[i] as u16,
-            };
+            let photon = sink.lane_photon(&ctx.scene.bands, i, (point, dir), f[i], [e, b, k], lambda);
             match lane_slots.as_deref_mut() {
                 Some(slots) => slots[i] = Some(photon),
                 None => sink.out.push(photon),

@@ -4,7 +4,6 @@
 
 use prismatic_core::PreparedScene;
 use prismatic_core::model::scene::Light;
-use std::process::Command;
 
 const SCENE: &str = r#"
 [render]
@@ -52,16 +51,7 @@ fn an_emissive_mesh_is_the_scenes_light() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("panel.toml");
     std::fs::write(&path, SCENE).unwrap();
-    let render = |extra: &[&str]| {
-        let out = dir.path().join("out.exr");
-        let _ = std::fs::remove_file(&out);
-        let run = Command::new(env!("CARGO_BIN_EXE_prismatic"))
-            .args(["render", path.to_str().unwrap(), "--backend", "cpu", "-o", out.to_str().unwrap()])
-            .args(extra)
-            .output()
-            .unwrap();
-        (run, out)
-    };
+    let render = |extra: &[&str]| crate::render_to_exr(&path, dir.path(), extra);
     let (run, out) = render(&["--area-lights", "2"]);
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let image = prismatic_cli::output::read_exr(&out).unwrap();

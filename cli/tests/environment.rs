@@ -4,7 +4,6 @@
 
 use prismatic_core::model::scene::Light;
 use std::path::Path;
-use std::process::Command;
 
 /// A 16 × 8 equirectangular map: 2 above the horizon, 0.5 below, linear.
 fn write_map(path: &Path) {
@@ -79,16 +78,7 @@ fn the_environment_flags_light_a_scene_and_name_themselves_in_errors() {
     std::fs::write(&scene, format!("{SCENE}\n[[light]]\nkind = \"sun\"\ndirection = [0, -1, 0]\nirradiance = 1\n"))
         .unwrap();
     write_map(&dir.path().join("sky.exr"));
-    let render = |extra: &[&str]| {
-        let out = dir.path().join("out.exr");
-        let _ = std::fs::remove_file(&out);
-        let run = Command::new(env!("CARGO_BIN_EXE_prismatic"))
-            .args(["render", scene.to_str().unwrap(), "--backend", "cpu", "-o", out.to_str().unwrap()])
-            .args(extra)
-            .output()
-            .unwrap();
-        (run, out)
-    };
+    let render = |extra: &[&str]| crate::render_to_exr(&scene, dir.path(), extra);
     let sky = dir.path().join("sky.exr");
     let (run, out) = render(&["--environment", sky.to_str().unwrap(), "--environment-strength", "2"]);
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));

@@ -5,7 +5,6 @@
 
 use prismatic_cli::scene_file::parse;
 use prismatic_cli::settings::{Settings, SettingsSource};
-use std::process::Command;
 
 const SCENE: &str = r#"
 [render]
@@ -81,16 +80,7 @@ fn the_command_line_renders_indirect_light_and_names_a_bad_count() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("room.toml");
     std::fs::write(&path, SCENE).unwrap();
-    let render = |extra: &[&str]| {
-        let out = dir.path().join("out.exr");
-        let _ = std::fs::remove_file(&out);
-        let run = Command::new(env!("CARGO_BIN_EXE_prismatic"))
-            .args(["render", path.to_str().unwrap(), "--backend", "cpu", "-o", out.to_str().unwrap()])
-            .args(extra)
-            .output()
-            .unwrap();
-        (run, out)
-    };
+    let render = |extra: &[&str]| crate::render_to_exr(&path, dir.path(), extra);
     let (run, out) = render(&["--indirect-photons", "20000"]);
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let said = String::from_utf8_lossy(&run.stdout) + String::from_utf8_lossy(&run.stderr);

@@ -4,12 +4,14 @@
 //! map is the reference's bit for bit.
 //!
 //! Each lane carries one photon from its light to its end: it takes its
-//! wavelength as it leaves, crosses mirrors and glass as a band photon
-//! does (the caustic packets' scattering and absorption), and at a diffuse
-//! surface is stored (after its first diffuse hit), survives with the
-//! surface's reflectance and bounces in a cosine-distributed direction. A
-//! lane whose path ends is refilled with the range's next photon; a lane's
-//! photons leave in path order, which the chunk's sort by emission keeps.
+//! wavelengths as it leaves, crosses mirrors and glass as a band photon
+//! does (the caustic packets' scattering and absorption; at glass that
+//! disperses it goes on as one wavelength), and at a diffuse surface is
+//! stored (after its first diffuse hit, a photon per wavelength), survives
+//! with the surface's reflectance and bounces in a cosine-distributed
+//! direction. A lane whose path ends is refilled with the range's next
+//! photon; a lane's photons leave in path order, which the chunk's sort
+//! puts into canonical order.
 
 use crate::intersect::intersect_scene;
 use crate::optics::scatter_diffuse;
@@ -18,8 +20,8 @@ use crate::simd::{Vec3x8, random_f32};
 use crate::trace::{ON, Sink, TraceContext, absorb_crossing_lanes, absorb_lanes, lanes, scatter, scatter_dims};
 use prismatic_core::model::photon::{Photon, TraceStats};
 use prismatic_core::photons::emit::light_of;
-use prismatic_core::photons::indirect::{indirect_flux, indirect_wavelength};
-use prismatic_core::photons::path::stored_wavelength;
+use prismatic_core::photons::indirect::indirect_flux;
+use prismatic_core::photons::wavelengths::IndirectWavelengths;
 use prismatic_core::util::rng::dim;
 use wide::{f32x8, u32x8};
 
@@ -41,23 +43,30 @@ fn trace_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mu
     let scene = ctx.scene;
     let seed = scene.scene.render.seed;
     let max_depth = u32x8::splat(scene.plan.max_depth);
-    let flux = f32x8::splat(indirect_flux(scene));
     let mut next = range.start;
     let (mut origin, mut dir) = (Vec3x8::ZERO, Vec3x8::ZERO);
     let (mut emission, mut band, mut bounces) = (u32x8::ZERO, u32x8::ZERO, u32x8::ZERO);
+    let mut flux = f32x8::ZERO;
     let mut lambda = [None::<f32>; 8];
+    let mut carried = [IndirectWavelengths::NONE; 8];
     // Lanes in flight, and those that have bounced off a diffuse surface.
     let (mut active, mut bounced) = (f32x8::ZERO, f32x8::ZERO);
     loop {
         let free = !active;
         if next < range.end && free.any() {
             let free_bits = free.to_bitmask();
-            let (mut indices, mut fresh, mut bands) = ([0u32; 8], [0.0f32; 8], band.to_array());
+            let (mut indices, mut fresh, mut bands, mut fluxes) =
+                ([0u32; 8], [0.0f32; 8], band.to_array(), flux.to_array());
             for i in 0..8 {
-                if free_bits & (1 << i) != 0 && next < range.end {
-                    (indices[i], fresh[i]) = (next, ON);
-                    let (b, l) = indirect_wavelength(scene, light_of(scene, seed, next), next);
-                    (bands[i], lambda[i]) = (u32::from(b), l);
+                while free_bits & (1 << i) != 0 && next < range.end && fresh[i] == 0.0 {
+                    let (wavelengths, share) = IndirectWavelengths::at_light(scene, light_of(scene, seed, next), next);
+                    let lane_flux = indirect_flux(scene) * share;
+                    (sink.stats.emitted, sink.stats.paths) = (sink.stats.emitted + 1, sink.stats.paths + 1);
+                    sink.stats.flux_emitted += f64::from(lane_flux);
+                    if wavelengths.count > 0 {
+                        (indices[i], fresh[i], fluxes[i], carried[i]) = (next, ON, lane_flux, wavelengths);
+                        (bands[i], lambda[i]) = (u32::from(wavelengths.path_band()), wavelengths.path_lambda());
+                    }
                     next += 1;
                 }
             }
@@ -68,12 +77,10 @@ fn trace_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mu
             dir = Vec3x8::select(fresh, d, dir);
             emission = fresh_u.select(u32x8::new(indices), emission);
             band = u32x8::new(bands);
+            flux = f32x8::new(fluxes);
             bounces = fresh_u.select(u32x8::ZERO, bounces);
             bounced &= !fresh;
             active |= fresh;
-            let count = u64::from(fresh.to_bitmask().count_ones());
-            (sink.stats.emitted, sink.stats.paths) = (sink.stats.emitted + count, sink.stats.paths + count);
-            Sink::add_flux(&mut sink.stats.flux_emitted, fresh, flux);
         }
         if !active.any() {
             break;
@@ -81,6 +88,14 @@ fn trace_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mu
         let ray = RayX8 { origin, dir };
         let hit = intersect_scene(scene, &ray, limit_where(active, f32x8::splat(f32::INFINITY)));
         let mut s = ctx.classify(&hit, None);
+        choose_at_dispersive_glass(
+            ctx,
+            active & s.dispersive,
+            [emission, bounces],
+            &mut band,
+            &mut lambda,
+            &mut carried,
+        );
         s.ior = ctx.band_lanes_ior(&hit, active & s.dielectric, band, &lambda, s.ior);
         let point = ray.at(hit.t);
         sink.stats.segments += u64::from(active.to_bitmask().count_ones());
@@ -91,10 +106,11 @@ fn trace_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mu
         let diffuse = active & s.diffuse;
         let specular = active & (s.mirror | s.dielectric);
         // Diffuse hits: stored after the first, then the depth limit, then the roulette.
-        store(ctx, sink, diffuse & bounced, point, dir, [emission, band, bounces], &lambda);
+        store(ctx, sink, diffuse & bounced, (point, dir), flux, [emission, bounces], &carried);
         Sink::add_flux(&mut sink.stats.flux_depth_limited, (diffuse | specular) & deep, flux);
         let reflecting = diffuse & !deep;
-        let survives = roulette(ctx, sink, reflecting, &hit, point, dir, [emission, band, bounces], &lambda);
+        let survives =
+            roulette(ctx, sink, reflecting, (&hit, point, dir), flux, [emission, band, bounces], &mut carried);
         let [d1, d2] = [0, 1].map(|k| bounce_dims(band, bounces) + u32x8::splat(k * dim::ABSORB));
         let (u1, u2) = (random_f32(seed, emission, d1), random_f32(seed, emission, d2));
         let (o, d) = scatter_diffuse(dir, point, hit.normal, u1, u2);
@@ -115,55 +131,84 @@ fn trace_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mu
     }
 }
 
-/// Stores the photons of the lanes of `mask` at `point`.
+/// The lanes of `mask` (at glass that disperses or tints light) that carry
+/// several wavelengths go on as one ([`IndirectWavelengths::choose`]).
+fn choose_at_dispersive_glass(
+    ctx: &TraceContext<'_>,
+    mask: f32x8,
+    [emission, bounces]: [u32x8; 2],
+    band: &mut u32x8,
+    lambda: &mut [Option<f32>; 8],
+    carried: &mut [IndirectWavelengths; 8],
+) {
+    if !mask.any() {
+        return;
+    }
+    let seed = ctx.scene.scene.render.seed;
+    let (emission, bounces, mut bands) = (emission.as_array(), bounces.as_array(), band.to_array());
+    for i in lanes(mask) {
+        if !carried[i].several() {
+            continue;
+        }
+        carried[i] =
+            carried[i].choose(prismatic_core::util::rng::random_f32(seed, emission[i], dim::choose(bounces[i])));
+        (bands[i], lambda[i]) = (u32::from(carried[i].path_band()), carried[i].path_lambda());
+    }
+    *band = u32x8::new(bands);
+}
+
+/// Stores the photons of the lanes of `mask` at `point`, one per
+/// wavelength each carries.
 fn store(
     ctx: &TraceContext<'_>,
     sink: &mut Sink,
     mask: f32x8,
-    point: Vec3x8,
-    dir: Vec3x8,
-    [emission, band, bounces]: [u32x8; 3],
-    lambda: &[Option<f32>; 8],
+    (point, dir): (Vec3x8, Vec3x8),
+    flux: f32x8,
+    [emission, bounces]: [u32x8; 2],
+    carried: &[IndirectWavelengths; 8],
 ) {
-    let flux = indirect_flux(ctx.scene);
-    let ids = [emission.as_array(), band.as_array(), bounces.as_array()];
+    let (flux, emission, bounces) = (flux.as_array(), emission.as_array(), bounces.as_array());
     for i in lanes(mask) {
-        let photon = sink.lane_photon(&ctx.scene.bands, i, (point, dir), flux, ids, lambda);
-        sink.out.push(photon);
+        let at = (point.lane(i), dir.lane(i));
+        for photon in carried[i].photons(&ctx.scene.bands, at, flux[i], emission[i], bounces[i]) {
+            sink.stats.stored += 1;
+            sink.stats.flux_stored += f64::from(photon.flux);
+            sink.out.push(photon);
+        }
     }
 }
 
 /// The lanes of `mask` (diffuse hits) whose photon survives the surface's
-/// reflectance at its wavelength (the core's roulette, lane by lane with
-/// the core's albedo and reflectance); the others' flux is tallied as absorbed.
-#[expect(clippy::too_many_arguments, reason = "one packet's state at the hit")]
+/// reflectance at its wavelengths (the core's roulette, lane by lane with
+/// the core's albedo and reflectance; survivors go on with the fractions
+/// it leaves them); the others' flux is tallied as absorbed.
 fn roulette(
     ctx: &TraceContext<'_>,
     sink: &mut Sink,
     mask: f32x8,
-    hit: &crate::intersect::HitX8,
-    point: Vec3x8,
-    dir: Vec3x8,
+    (hit, point, dir): (&crate::intersect::HitX8, Vec3x8, Vec3x8),
+    flux: f32x8,
     [emission, band, bounces]: [u32x8; 3],
-    lambda: &[Option<f32>; 8],
+    carried: &mut [IndirectWavelengths; 8],
 ) -> f32x8 {
     if !mask.any() {
         return f32x8::ZERO;
     }
     let scene = ctx.scene;
-    let flux = f64::from(indirect_flux(scene));
     let u = random_f32(scene.scene.render.seed, emission, scatter_dims(band, bounces)).to_array();
-    let (objects, triangles, b) = (hit.object.as_array(), hit.triangle.as_array(), band.as_array());
+    let (objects, triangles, flux) = (hit.object.as_array(), hit.triangle.as_array(), flux.as_array());
     let mut out = [0.0f32; 8];
     for i in lanes(mask) {
         let (d, n) = (dir.lane(i), hit.normal.lane(i));
         let facing = if d.dot(n) < 0.0 { n } else { -n };
         let albedo = scene.albedo_at(objects[i] as usize, triangles[i] as u32, point.lane(i), facing);
-        let lambda_nm = stored_wavelength(&scene.bands, b[i] as u16, lambda[i]);
-        if u[i] < scene.bands.bounce_reflectance(albedo, b[i] as u16, lambda_nm) {
-            out[i] = ON;
+        let (survives, after) =
+            carried[i].bounce(&scene.bands, |band, lambda_nm| scene.bands.bounce_reflectance(albedo, band, lambda_nm));
+        if u[i] < survives {
+            (out[i], carried[i]) = (ON, after);
         } else {
-            sink.stats.flux_absorbed += flux;
+            sink.stats.flux_absorbed += f64::from(flux[i]);
         }
     }
     f32x8::new(out)

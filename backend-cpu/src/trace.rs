@@ -559,10 +559,11 @@ pub(crate) fn scatter(
 
 /// Writes a chunk's photons (emissions `start..start + len`) into `dest` in
 /// canonical (emission, band, bounces) order: a stable counting sort by emission.
-/// Within one emission the photons are already in band order (band packets
-/// run in band order and flush by lane), an emission stores either one
-/// white photon or band photons, never both, and an indirect emission's
-/// photons (one band) come in path order. `offsets` is scratch space.
+/// Within one emission a caustic photon's are already in band order (band
+/// packets run in band order and flush by lane; an emission stores either
+/// one white photon or band photons, never both); an indirect photon's come
+/// in path order (bounce by bounce, a photon per wavelength) and are sorted
+/// by band there. `offsets` is scratch space.
 pub fn canonical_order(unsorted: &[Photon], start: u32, len: usize, offsets: &mut Vec<u32>, dest: &mut [Photon]) {
     offsets.clear();
     offsets.resize(len + 1, 0);
@@ -576,6 +577,11 @@ pub fn canonical_order(unsorted: &[Photon], start: u32, len: usize, offsets: &mu
         let slot = &mut offsets[(p.emission - start) as usize];
         dest[*slot as usize] = *p;
         *slot += 1;
+    }
+    for emission in dest[..unsorted.len()].chunk_by_mut(|a, b| a.emission == b.emission) {
+        if !emission.is_sorted_by_key(Photon::key) {
+            emission.sort_by_key(Photon::key);
+        }
     }
 }
 

@@ -165,6 +165,7 @@ fn prelude(stack: u32) -> String {
     u("DIM_PER_BAND", dim::PER_BAND);
     u("DIM_ABSORB", dim::ABSORB);
     u("DIM_BOUNCE", dim::BOUNCE);
+    u("DIM_CHOOSE", dim::CHOOSE);
     u("SEQUENCE_SOBOL", code::photon_sequence(PhotonSequence::Sobol));
     u("WAVELENGTHS_SPLIT", code::wavelengths(WavelengthSampling::Split));
     u("WAVELENGTHS_RANDOM_BAND", code::wavelengths(WavelengthSampling::RandomBand));

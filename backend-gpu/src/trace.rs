@@ -15,6 +15,7 @@ use crate::scan::Scan;
 use crate::scene::SceneBuffers;
 use crate::shaders::{MAX_WORKGROUPS, WORKGROUP_SIZE};
 use prismatic_core::optics::surface::Surface;
+use prismatic_core::photons::wavelengths::IndirectWavelengths;
 use prismatic_core::{BackendError, PreparedScene, Progress, Stage, TraceStats};
 
 /// Largest chunk of emissions per dispatch (keeps progress reports coming
@@ -33,10 +34,14 @@ fn caustic_slots(scene: &PreparedScene) -> u32 {
     if splits { scene.scene.render.wavelengths.paths(scene.bands.len()) } else { 1 }
 }
 
-/// The most photons an indirect emission stores: one at every diffuse hit
-/// up to the depth limit (none without indirect light).
+/// The most photons an indirect emission stores: one per wavelength it
+/// carries at every diffuse hit up to the depth limit (none without
+/// indirect light).
 fn indirect_slots(scene: &PreparedScene) -> u32 {
-    if scene.indirect_photons() > 0 { scene.plan.max_depth.max(1) } else { 0 }
+    match scene.indirect_photons() {
+        0 => 0,
+        _ => scene.plan.max_depth.max(1) * IndirectWavelengths::most(scene),
+    }
 }
 
 /// Photons a pass of `scene` can store at most: every emission filling its slots.

@@ -92,7 +92,11 @@ pub const MIN_OUTLIERS: usize = 3;
 /// photons than elsewhere take the other side (lavapipe: 7 of 5,502).
 pub const KNIFE_EDGE_OUTLIER_FRACTION: f64 = 5e-3;
 /// Total flux per band (the 0.1 %), or the outlier fraction where
-/// that is larger.
+/// that is larger; up to [`MIN_OUTLIERS`] photons of a band found on one
+/// side only are left out of its totals (one path that took the other
+/// branch at an edge: since an indirect path carries its whole flux after
+/// dispersive glass, its few photons can hold a percent of a band's flux
+/// in a small map).
 pub const BAND_FLUX_REL: f64 = 1e-3;
 
 /// The float compare rule.

@@ -185,3 +185,59 @@ fn a_red_wall_bleeds_red_onto_a_white_floor() {
         );
     }
 }
+
+#[test]
+fn each_bands_bounced_flux_matches_its_closed_form_with_one_wavelength_a_path_or_several() {
+    // The glowing box with coloured walls: band b of the power Φ_b the
+    // walls emit is stored Φ_b Σ_{k=1}^{D} ρ_bᵏ (second diffuse hit to the
+    // depth limit's). A path carrying several wavelengths goes on with
+    // survival Σ fⱼ ρⱼ and fractions fⱼ ρⱼ / Σ fⱼ ρⱼ, which must keep
+    // every band's expectation, as one wavelength a path does.
+    use prismatic_core::model::bands::BandSpec;
+    use prismatic_core::model::scene::WavelengthSampling::{RandomBand, Split};
+    use prismatic_tests::backends::trace;
+    let albedo = Vec3::new(0.8, 0.5, 0.2);
+    let depth = 6;
+    let cases = [
+        (Split, BandSpec::Paper7, 4, 40_000),
+        (Split, BandSpec::Paper3, 3, 40_000),
+        (Split, BandSpec::Physical(12), 4, 40_000),
+        (RandomBand, BandSpec::Paper7, 1, 150_000),
+    ];
+    for (sampling, bands, carried, photons) in cases {
+        let mut scene = furnace(0.5, photons, |r| (r.wavelengths, r.bands, r.max_depth) = (sampling, bands, depth));
+        scene.scene.materials[0] = diffuse("wall", albedo, Vec3::splat(GLOW));
+        let scene = prepare(scene.scene);
+        let n = scene.bands.len();
+        let spectrum = &scene.light_spectra[0];
+        let emitted =
+            |b: usize| scene.total_power * if spectrum.is_uniform() { 1.0 / n as f32 } else { spectrum.band_shares[b] };
+        let want: Vec<f64> = (0..n)
+            .map(|b| {
+                let rho = scene.bands.bounce_reflectance(albedo, b as u16, scene.bands.band(b).lambda_nm);
+                f64::from(emitted(b)) * (1..=depth as i32).map(|k| f64::from(rho).powi(k)).sum::<f64>()
+            })
+            .collect();
+        for mut backend in every_backend() {
+            let name = backend.name();
+            let map = trace(backend.as_mut(), &scene);
+            let mut got = vec![0.0f64; n];
+            for p in &map.photons {
+                got[usize::from(p.band)] += f64::from(p.flux);
+            }
+            let case = format!("{name}, {sampling:?} over {bands}");
+            for b in 0..n {
+                let err = (got[b] - want[b]).abs() / want[b];
+                assert!(err < 0.04, "{case}: band {b} stored {:.4} W, closed form {:.4} W", got[b], want[b]);
+            }
+            // Photons stored at one hit: one per wavelength the path carries.
+            let hits = map.photons.iter().map(|p| (p.emission, p.bounces)).collect::<std::collections::HashSet<_>>();
+            let per_hit = map.photons.len() as f64 / hits.len() as f64;
+            let most = f64::from(carried);
+            assert!(
+                per_hit <= most && per_hit > most - 0.25,
+                "{case}: {per_hit} photons a hit, {carried} wavelengths a path"
+            );
+        }
+    }
+}

@@ -18,6 +18,7 @@ use prismatic_core::model::scene::{Estimator, RadiusMode};
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::photons::indirect::indirect_flux;
 use prismatic_core::photons::trace::photon_flux;
+use prismatic_core::photons::wavelengths::IndirectWavelengths;
 use prismatic_core::plan::schedule::{GRID_LEVELS, PilotScale, pass_scene, pilot_scene};
 use prismatic_core::{BackendError, NoProgress, PreparedScene, Progress, Stage};
 
@@ -280,7 +281,10 @@ impl GpuSession {
 ///
 /// [`BandTable::max_colour`]: prismatic_core::BandTable::max_colour
 pub fn gather_shifts(pass: &PreparedScene) -> (i32, i32) {
-    let indirect = if pass.indirect_photons() > 0 { indirect_flux(pass) } else { 0.0 };
+    let indirect = match pass.indirect_photons() {
+        0 => 0.0,
+        _ => indirect_flux(pass) * IndirectWavelengths::largest_share(pass),
+    };
     let flux = photon_flux(pass).max(indirect);
     let weight = pass.bands.max_colour().max(1.0) * max_albedo(pass).max(1.0);
     let term = match pass.scene.render.estimator {

@@ -258,6 +258,12 @@ fn bounce_dim(band: u32, bounce: u32) -> u32 {
     return scatter_dim(band, bounce) + DIM_BOUNCE;
 }
 
+// rng::dim::choose: which wavelength an indirect photon goes on as at
+// dispersive glass.
+fn choose_dim(bounce: u32) -> u32 {
+    return scatter_dim(WHITE_BAND, bounce) + DIM_CHOOSE;
+}
+
 // ---- math.rs ----
 
 // glam's normalize: v · (1 / |v|).

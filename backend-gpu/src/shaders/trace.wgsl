@@ -161,39 +161,45 @@ fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -
     return !absorbed_crossing(s, before, *p, params.seed, index);
 }
 
-// indirect::trace_indirect: photon `index` of indirect light, unaimed, at
-// one wavelength, stored at every diffuse hit after its first and going on
-// from it with the surface's reflectance (Russian roulette).
+// indirect::trace_indirect: photon `index` of indirect light, unaimed,
+// carrying its wavelengths together until dispersive glass, stored (a
+// photon per wavelength) at every diffuse hit after its first and going on
+// from it with the surface's reflectance (Russian roulette); its stored
+// photons sorted into (band, bounces) order at the end.
 fn trace_indirect(index: u32) {
     let seed = params.seed;
     let e = emit_from(seed, index, false);
+    var c: Carried;
+    let flux = params.indirect_flux * carried_at_light(e.light, index, &c);
     tally_counts[0] += 1u;
     tally_counts[1] += 1u;
-    tally_flux[0] += params.indirect_flux;
-    let w = indirect_wavelength(e.light, index);
-    var p = Path(e.origin, e.direction, params.indirect_flux, w.band, w.lambda_nm, 0u);
+    tally_flux[0] += flux;
+    if c.count == 0u {
+        return;
+    }
+    var p = Path(e.origin, e.direction, flux, carried_band(&c), carried_lambda(&c), 0u);
     var bounced = false;
     loop {
         tally_counts[2] += 1u;
         let hit = intersect_scene(p.origin, p.dir, BIG);
         if !hit.ok {
             tally_flux[2] += p.flux;
-            return;
+            break;
         }
         let s = surfaces[hit.object];
         if s.kind == SURFACE_DIFFUSE {
             if bounced {
-                store(&p, hit.point, index);
+                store_carried(&p, &c, hit.point, index);
             }
             if p.bounces >= params.max_depth {
                 tally_flux[4] += p.flux;
-                return;
+                break;
             }
             let facing = select(-hit.normal, hit.normal, dot(p.dir, hit.normal) < 0.0);
-            let survives = bounce_reflectance(albedo_at(hit, facing), p.band, stored_wavelength(p.band, p.lambda_nm));
-            if random_f32(seed, index, scatter_dim(p.band, p.bounces)) >= survives {
+            let u = random_f32(seed, index, scatter_dim(p.band, p.bounces));
+            if !carried_bounce(&c, albedo_at(hit, facing), u) {
                 tally_flux[5] += p.flux;
-                return;
+                break;
             }
             let d = bounce_dim(p.band, p.bounces);
             let u1 = random_f32(seed, index, d);
@@ -203,33 +209,148 @@ fn trace_indirect(index: u32) {
             p.dir = out.dir;
             bounced = true;
         } else {
+            if c.count > 1u && s.kind != SURFACE_MIRROR && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u {
+                carried_choose(&c, random_f32(seed, index, choose_dim(p.bounces)));
+                p.band = carried_band(&c);
+                p.lambda_nm = carried_lambda(&c);
+            }
             if !arrives_at_specular(p, hit, s, index) {
-                return;
+                break;
             }
             if p.bounces == 0u {
                 tally_counts[3] += 1u;
             }
             if !cross_specular(&p, hit, s, index) {
-                return;
+                break;
             }
         }
         p.bounces += 1u;
     }
+    sort_slots_by_band();
 }
 
-// indirect::indirect_wavelength: a band uniform over the table (and a
-// wavelength in it when continuous) for an equal-energy light, else a band
-// drawn by power or, when continuous, a wavelength from its spectrum.
-fn indirect_wavelength(light: u32, index: u32) -> SpectrumSample {
+// wavelengths::IndirectWavelengths: the wavelengths an indirect photon
+// carries, each with its fraction of the path's flux.
+struct Carried {
+    count: u32,
+    band: array<u32, HERO_WAVELENGTHS>,
+    // < 0 for none (the band's own).
+    lambda_nm: array<f32, HERO_WAVELENGTHS>,
+    fraction: array<f32, HERO_WAVELENGTHS>,
+}
+
+// IndirectWavelengths::at_light: the wavelengths photon `index` of light
+// `light` leaves with; returns the factor its flux takes.
+fn carried_at_light(light: u32, index: u32, c: ptr<function, Carried>) -> f32 {
     let l = lights[light];
+    let n = params.band_count;
+    let m = min(split_paths(), HERO_WAVELENGTHS);
     let u = photon_f32(params.seed, index, DIM_SPECTRUM);
-    if l.spectrum_len == 0u {
-        return spectrum_share(u, 0u, 1u);
+    let uniform = l.spectrum_len == 0u;
+    let split = params.wavelengths == WAVELENGTHS_SPLIT;
+    (*c).count = 0u;
+    var total = 0.0;
+    for (var i = 0u; i < m; i++) {
+        var w = SpectrumSample(i, -1.0);
+        var share = 1.0 / f32(m);
+        if uniform || split {
+            if !split || m != n {
+                w = spectrum_share(u, i, m);
+            }
+            if !uniform {
+                share = tables[l.spectrum_first + 3u * l.spectrum_len + w.band] * f32(n) / f32(m);
+            }
+        } else if params.wavelengths == WAVELENGTHS_RANDOM_BAND {
+            w = SpectrumSample(band_by_power(l, u), -1.0);
+            share = 1.0;
+        } else {
+            w = light_spectrum_share(l, u, i, m);
+        }
+        if share > 0.0 {
+            let k = (*c).count;
+            (*c).band[k] = w.band;
+            (*c).lambda_nm[k] = w.lambda_nm;
+            (*c).fraction[k] = share;
+            (*c).count = k + 1u;
+            total += share;
+        }
     }
-    if params.wavelengths == WAVELENGTHS_CONTINUOUS || params.wavelengths == WAVELENGTHS_HERO {
-        return light_spectrum_share(l, u, 0u, 1u);
+    for (var j = 0u; j < (*c).count; j++) {
+        (*c).fraction[j] /= total;
     }
-    return SpectrumSample(band_by_power(l, u), -1.0);
+    return total;
+}
+
+// IndirectWavelengths::path_band: the one wavelength's band, or white.
+fn carried_band(c: ptr<function, Carried>) -> u32 {
+    return select(WHITE_BAND, (*c).band[0], (*c).count == 1u);
+}
+
+// IndirectWavelengths::path_lambda.
+fn carried_lambda(c: ptr<function, Carried>) -> f32 {
+    return select(-1.0, (*c).lambda_nm[0], (*c).count == 1u);
+}
+
+// IndirectWavelengths::bounce: whether the path survives a diffuse bounce
+// off `albedo` against `u` (p = Σ fⱼ ρⱼ), and if so its fractions fⱼ ρⱼ / p.
+fn carried_bounce(c: ptr<function, Carried>, albedo: vec3<f32>, u: f32) -> bool {
+    var rho: array<f32, HERO_WAVELENGTHS>;
+    var p = 0.0;
+    for (var j = 0u; j < (*c).count; j++) {
+        rho[j] = bounce_reflectance(albedo, (*c).band[j], stored_wavelength((*c).band[j], (*c).lambda_nm[j]));
+        p += (*c).fraction[j] * rho[j];
+    }
+    if u >= p {
+        return false;
+    }
+    for (var j = 0u; j < (*c).count; j++) {
+        (*c).fraction[j] = (*c).fraction[j] * rho[j] / p;
+    }
+    return true;
+}
+
+// IndirectWavelengths::choose: go on as wavelength j with probability fⱼ.
+fn carried_choose(c: ptr<function, Carried>, u: f32) {
+    var acc = 0.0;
+    var j = (*c).count - 1u;
+    for (var k = 0u; k < (*c).count; k++) {
+        acc += (*c).fraction[k];
+        if u < acc {
+            j = k;
+            break;
+        }
+    }
+    (*c).band[0] = (*c).band[j];
+    (*c).lambda_nm[0] = (*c).lambda_nm[j];
+    (*c).fraction[0] = 1.0;
+    (*c).count = 1u;
+}
+
+// IndirectWavelengths::photons: a photon per wavelength at `point`.
+fn store_carried(p: ptr<function, Path>, c: ptr<function, Carried>, point: vec3<f32>, index: u32) {
+    for (var j = 0u; j < (*c).count; j++) {
+        var one = *p;
+        one.flux = (*p).flux * (*c).fraction[j];
+        one.band = (*c).band[j];
+        one.lambda_nm = (*c).lambda_nm[j];
+        store(&one, point, index);
+    }
+}
+
+// The emission's stored photons (path order: bounce by bounce, a photon
+// per wavelength) into (band, bounces) order: a stable insertion sort.
+fn sort_slots_by_band() {
+    let n = min(slot_used, params.slots);
+    for (var i = 1u; i < n; i++) {
+        let photon = scratch[slot_base + i];
+        let band = photon.band_bounces & 0xffffu;
+        var k = i;
+        while k > 0u && (scratch[slot_base + k - 1u].band_bounces & 0xffffu) > band {
+            scratch[slot_base + k] = scratch[slot_base + k - 1u];
+            k--;
+        }
+        scratch[slot_base + k] = photon;
+    }
 }
 
 // trace::band_by_power: the band at cumulative share `u` of light `l`'s

@@ -5,16 +5,18 @@
 //! photons, with the emission indices after the caustic ones
 //! ([`PreparedScene::caustic_photons`]). Each leaves its light over
 //! the light's whole distribution (no projection map: light bounced by any
-//! diffuse surface counts, [`emit_unaimed`]) and takes one wavelength there
-//! with all its flux ([`indirect_wavelength`]), so a bounce can weigh it by
-//! the surface's reflectance at that wavelength. Through mirrors and glass
-//! it goes as a band photon does. At a diffuse surface it is stored if it
-//! has bounced off a diffuse surface before, then survives with the
-//! probability ρ(λ) that the surface reflects
+//! diffuse surface counts, [`emit_unaimed`]) carrying up to four
+//! wavelengths with their fractions of its flux ([`IndirectWavelengths`]:
+//! a diffuse bounce sends them all one way, and a hit stores a photon for
+//! each, so bounced light is not speckled with colour). Through mirrors and
+//! clear glass they go together; at glass that disperses or tints light the
+//! path goes on as one of them, as a band photon does. At a diffuse surface
+//! it is stored if it has bounced off a diffuse surface before, then
+//! survives with the probability Σ fⱼ ρ(λⱼ) that the surface reflects
 //! ([`crate::model::bands::BandTable::bounce_reflectance`]; Russian
-//! roulette, so survivors keep their flux) and leaves in a
-//! cosine-distributed direction ([`scatter_diffuse`]). Every bounce counts
-//! toward `max_depth`.
+//! roulette, so the path keeps its flux and its fractions become
+//! fⱼ ρ(λⱼ) / Σ) and leaves in a cosine-distributed direction
+//! ([`scatter_diffuse`]). Every bounce counts toward `max_depth`.
 //!
 //! The stored photons are the paths L (S|D)* D (S|D)* D, with at least one
 //! diffuse vertex before the last: the caustic map holds L S+ D and the
@@ -31,8 +33,8 @@ use crate::model::photon::{Photon, TraceStats};
 use crate::optics::scatter::scatter_diffuse;
 use crate::optics::surface::Surface;
 use crate::photons::emit::emit_unaimed;
-use crate::photons::path::{Path, arrives_at_specular, cross_specular, stored_wavelength};
-use crate::photons::wavelengths::{band_by_power, sample_band, spectrum_number, spectrum_share_of};
+use crate::photons::path::{Path, arrives_at_specular, cross_specular};
+use crate::photons::wavelengths::IndirectWavelengths;
 use crate::plan::prepared::PreparedScene;
 use crate::util::rng::{dim, random_f32};
 use alloc::vec::Vec;
@@ -45,77 +47,75 @@ pub fn indirect_flux(scene: &PreparedScene) -> f32 {
     }
 }
 
-/// The band and wavelength indirect photon `index` of `light` is traced
-/// at, from its spectrum number ([`dim::SPECTRUM`]): a band uniform over the
-/// table (and a wavelength uniform in it when continuous) for an
-/// equal-energy light, else a band drawn by the light's power or, when
-/// continuous, a wavelength drawn from its spectrum.
-pub fn indirect_wavelength(scene: &PreparedScene, light: usize, index: u32) -> (u16, Option<f32>) {
-    let spectrum = &scene.light_spectra[light];
-    if spectrum.is_uniform() {
-        return sample_band(scene, index);
-    }
-    let u = spectrum_number(scene, index);
-    if scene.scene.render.wavelengths.continuous() {
-        spectrum_share_of(scene, Some(spectrum), u, 0, 1)
-    } else {
-        (band_by_power(&spectrum.band_shares, u), None)
-    }
-}
-
 /// Traces indirect photon `index` (an emission index at or after the
-/// caustic photons'), appending what it stores in path order.
+/// caustic photons'), appending what it stores in canonical (band,
+/// bounces) order.
 pub fn trace_indirect(scene: &PreparedScene, index: u32, out: &mut Vec<Photon>, stats: &mut TraceStats) {
     debug_assert!(index >= scene.caustic_photons(), "indirect photons follow the caustic ones");
     let seed = scene.scene.render.seed;
     let e = emit_unaimed(scene, seed, index);
-    let flux = indirect_flux(scene);
+    let (mut lanes, share) = IndirectWavelengths::at_light(scene, e.light, index);
+    let flux = indirect_flux(scene) * share;
     stats.emitted += 1;
     stats.paths += 1;
     stats.flux_emitted += f64::from(flux);
-    let (band, lambda_nm) = indirect_wavelength(scene, e.light, index);
+    if lanes.count == 0 {
+        return; // a coloured light with no power where its photon's strata fell
+    }
     let ray = Ray { origin: e.origin, direction: e.direction };
-    let mut p = Path { ray, flux, band, lambda_nm, bounces: 0 };
+    let mut p = Path { ray, flux, band: lanes.path_band(), lambda_nm: lanes.path_lambda(), bounces: 0 };
     let mut bounced_diffusely = false;
+    let first = out.len();
     loop {
         stats.segments += 1;
         let Some(hit) = scene.intersect(&p.ray, f32::INFINITY) else {
             stats.flux_escaped += f64::from(p.flux);
-            return;
+            break;
         };
-        if let Surface::Diffuse { .. } = scene.surfaces[hit.object] {
+        let surface = &scene.surfaces[hit.object];
+        if let Surface::Diffuse { .. } = surface {
             if bounced_diffusely {
-                stats.stored += 1;
-                stats.flux_stored += f64::from(p.flux);
-                out.push(p.photon(scene, hit.point, index));
+                let stored = lanes.photons(&scene.bands, (hit.point, p.ray.direction), p.flux, index, p.bounces);
+                for photon in stored {
+                    stats.stored += 1;
+                    stats.flux_stored += f64::from(photon.flux);
+                    out.push(photon);
+                }
             }
             if p.bounces >= scene.plan.max_depth {
                 stats.flux_depth_limited += f64::from(p.flux);
-                return;
+                break;
             }
             let facing = if p.ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
             let albedo = scene.albedo_at(hit.object, hit.triangle, hit.point, facing);
-            let lambda_nm = stored_wavelength(&scene.bands, p.band, p.lambda_nm);
-            let survives = scene.bands.bounce_reflectance(albedo, p.band, lambda_nm);
+            let (survives, after) =
+                lanes.bounce(&scene.bands, |band, lambda_nm| scene.bands.bounce_reflectance(albedo, band, lambda_nm));
             if random_f32(seed, index, dim::scatter(p.band, p.bounces)) >= survives {
                 stats.flux_absorbed += f64::from(p.flux);
-                return;
+                break;
             }
+            lanes = after;
             let [d1, d2] = dim::bounce(p.band, p.bounces);
             let (u1, u2) = (random_f32(seed, index, d1), random_f32(seed, index, d2));
             p.ray = scatter_diffuse(p.ray.direction, hit.point, hit.normal, u1, u2);
             bounced_diffusely = true;
         } else {
+            if lanes.several() && matches!(surface, Surface::Dielectric(glass) if glass.splits_photons) {
+                lanes = lanes.choose(random_f32(seed, index, dim::choose(p.bounces)));
+                (p.band, p.lambda_nm) = (lanes.path_band(), lanes.path_lambda());
+            }
             if !arrives_at_specular(scene, index, &p, &hit, stats) {
-                return;
+                break;
             }
             if p.bounces == 0 {
                 stats.specular_paths += 1;
             }
             if !cross_specular(scene, index, &mut p, &hit, stats) {
-                return;
+                break;
             }
         }
         p.bounces += 1;
     }
+    // Stored wavelength by wavelength, bounce by bounce: (band, bounces) order.
+    out[first..].sort_by_key(|photon| photon.band);
 }

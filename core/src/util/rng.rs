@@ -77,6 +77,18 @@ pub mod dim {
         let first = scatter(band, bounce) + BOUNCE;
         [first, first + ABSORB]
     }
+
+    /// Added to a scattering dimension for the choice of the one wavelength
+    /// an indirect photon goes on as at dispersive glass: above both of a
+    /// diffuse bounce's direction numbers.
+    pub const CHOOSE: u32 = 4 << 24;
+
+    /// The dimension of that choice at `bounce` (the path carries several
+    /// wavelengths, so its band is [`crate::model::photon::WHITE_BAND`]).
+    #[inline]
+    pub fn choose(bounce: u32) -> u32 {
+        scatter(u16::MAX, bounce) + CHOOSE
+    }
 }
 
 #[cfg(test)]

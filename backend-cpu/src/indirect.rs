@@ -43,6 +43,7 @@ fn trace_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mu
     let scene = ctx.scene;
     let seed = scene.scene.render.seed;
     let max_depth = u32x8::splat(scene.plan.max_depth);
+    let photon_flux = indirect_flux(scene);
     let mut next = range.start;
     let (mut origin, mut dir) = (Vec3x8::ZERO, Vec3x8::ZERO);
     let (mut emission, mut band, mut bounces) = (u32x8::ZERO, u32x8::ZERO, u32x8::ZERO);
@@ -60,7 +61,7 @@ fn trace_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mu
             for i in 0..8 {
                 while free_bits & (1 << i) != 0 && next < range.end && fresh[i] == 0.0 {
                     let (wavelengths, share) = IndirectWavelengths::at_light(scene, light_of(scene, seed, next), next);
-                    let lane_flux = indirect_flux(scene) * share;
+                    let lane_flux = photon_flux * share;
                     (sink.stats.emitted, sink.stats.paths) = (sink.stats.emitted + 1, sink.stats.paths + 1);
                     sink.stats.flux_emitted += f64::from(lane_flux);
                     if wavelengths.count > 0 {
@@ -172,8 +173,7 @@ fn store(
     for i in lanes(mask) {
         let at = (point.lane(i), dir.lane(i));
         for photon in carried[i].photons(&ctx.scene.bands, at, flux[i], emission[i], bounces[i]) {
-            sink.stats.stored += 1;
-            sink.stats.flux_stored += f64::from(photon.flux);
+            sink.stats.count_stored(photon.flux);
             sink.out.push(photon);
         }
     }

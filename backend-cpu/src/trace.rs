@@ -208,8 +208,7 @@ impl Sink {
         [emission, band, bounces]: [&[u32; 8]; 3],
         lambda: &[Option<f32>; 8],
     ) -> Photon {
-        self.stats.stored += 1;
-        self.stats.flux_stored += f64::from(flux);
+        self.stats.count_stored(flux);
         Photon {
             position: point.lane(i).to_array(),
             flux,

@@ -29,7 +29,8 @@ pub struct Photon {
     pub emission: u32,
     /// Band id, or [`WHITE_BAND`].
     pub band: u16,
-    /// Number of specular interactions on its path.
+    /// Surfaces its path met before this one (specular interactions for a
+    /// caustic photon; diffuse bounces too for indirect light's).
     pub bounces: u16,
 }
 
@@ -137,6 +138,13 @@ pub struct TraceStats {
 }
 
 impl TraceStats {
+    /// Tallies one stored photon of `flux`.
+    #[inline]
+    pub fn count_stored(&mut self, flux: f32) {
+        self.stored += 1;
+        self.flux_stored += f64::from(flux);
+    }
+
     /// Adds another pass's statistics (for backends that trace in chunks).
     pub fn merge(&mut self, o: &TraceStats) {
         self.emitted += o.emitted;

@@ -77,8 +77,7 @@ pub fn trace_indirect(scene: &PreparedScene, index: u32, out: &mut Vec<Photon>, 
             if bounced_diffusely {
                 let stored = lanes.photons(&scene.bands, (hit.point, p.ray.direction), p.flux, index, p.bounces);
                 for photon in stored {
-                    stats.stored += 1;
-                    stats.flux_stored += f64::from(photon.flux);
+                    stats.count_stored(photon.flux);
                     out.push(photon);
                 }
             }

@@ -117,8 +117,7 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
             if p.bounces == 0 {
                 stats.flux_direct += f64::from(p.flux);
             } else {
-                stats.stored += 1;
-                stats.flux_stored += f64::from(p.flux);
+                stats.count_stored(p.flux);
                 out.push(p.photon(scene, hit.point, index));
             }
             return;

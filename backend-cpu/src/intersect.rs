@@ -101,7 +101,7 @@ fn sphere(ray: &RayX8, center: Vec3x8, radius: f32, t_max: f32x8) -> (f32x8, f32
     let near_ok = in_range(near, t_max);
     let t = near_ok.select(near, far);
     let mask = valid & (near_ok | in_range(far, t_max));
-    (mask, t, (ray.at(t) - center) / r)
+    (mask, t, (ray.at(t) - center).normalize())
 }
 
 #[inline]

@@ -44,6 +44,7 @@ fn plane_t(o: vec3<f32>, d: vec3<f32>, point: vec3<f32>, normal: vec3<f32>) -> v
     return vec2<f32>(dot(point - o, normal) / denom, 1.0);
 }
 
+// Primitive::intersect_sphere (the normal normalised: see there).
 fn hit_sphere(o: vec3<f32>, d: vec3<f32>, center: vec3<f32>, radius: f32, t_min: f32, t_max: f32) -> SurfaceHit {
     let f = o - center;
     let b = dot(f, d);
@@ -70,7 +71,7 @@ fn hit_sphere(o: vec3<f32>, d: vec3<f32>, center: vec3<f32>, radius: f32, t_min:
     } else {
         return no_hit();
     }
-    return SurfaceHit(true, t, (o + d * t - center) / radius, 0u);
+    return SurfaceHit(true, t, nrm(o + d * t - center), 0u);
 }
 
 fn hit_convex(o: vec3<f32>, d: vec3<f32>, first: u32, count: u32, t_min: f32, t_max: f32) -> SurfaceHit {

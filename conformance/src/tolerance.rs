@@ -54,16 +54,21 @@ impl Tolerance {
     /// within 5e-7 of the reference and 97 % within 1e-4, but the rest
     /// have a long tail (a grazing hit on a far wall, a path through a
     /// caustic's focus, a hero wavelength one ulp apart through the prism
-    /// go on from their few-ulp start): 0.2–0.3 % beyond 1e-3. Flux is as
-    /// exact as on the CPU. Images follow the photons: a gather radius
+    /// go on from their few-ulp start): 0.2–0.3 % beyond 1e-3. Flux is
+    /// exact to an ulp or two but where a photon carries a weight of its
+    /// own: aimed at glass under a soft-edged spot (the falloff, a ratio of
+    /// differences of cosines, over the aiming's density) it was up to
+    /// 1.3e-5 apart in random scene 8 (median 1.1e-6, 99 % within 5.1e-6),
+    /// so 1e-4. Images follow the photons: a gather radius
     /// crossed by a moved photon changes a caustic pixel by a percent.
-    /// (The H200 does not meet the image rules yet: it loses visible points
-    /// behind glass, a defect these tolerances are not to hide; see
-    /// `docs/src/measurements/gpu.md`.)
+    /// The H200 meets the image rules since the sphere's normal is
+    /// normalised (it had lost visible points behind glass to false total
+    /// internal reflection); see `docs/src/measurements/gpu.md` for what it
+    /// still fails.
     pub const RELAXED: Tolerance = Tolerance {
         position_rel: 1e-3,
         position_abs: 1e-3,
-        flux_rel: 1e-6,
+        flux_rel: 1e-4,
         outlier_fraction: 5e-3,
         pixel_rel: 1e-2,
         pixel_abs: 1e-3,

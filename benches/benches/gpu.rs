@@ -7,7 +7,9 @@
 //! also `frame/gpu-session-caustic`, a dense caustic filling the view,
 //! where the finer grid levels carry most points), `lights/{spot,environment}`
 //! (a pass's photons under the `sphere`'s spot and under the studio
-//! environment, and each one's view pass). Every measurement ends
+//! environment, and each one's view pass), `indirect/{indirect,caustic}/gpu`
+//! (a pass of 100,000 indirect photons in the `sphere`, beside its spot's
+//! caustic pass of as many, as the CPU's `indirect` group). Every measurement ends
 //! with a device sync. On lavapipe they only show that the stages run;
 //! real figures need a GPU.
 
@@ -69,6 +71,15 @@ fn gpu_groups(c: &mut Criterion) {
                 session.ready(&mut NoProgress).unwrap();
                 session.context().wait().unwrap();
             })
+        });
+    }
+    group.finish();
+    let mut group = c.benchmark_group("indirect");
+    for (name, scene) in prismatic_benches::indirect_and_caustic(100_000) {
+        let mut render = gpu.prepare(&scene).expect("prepare");
+        group.throughput(Throughput::Elements(100_000));
+        group.bench_function(BenchmarkId::new(name, "gpu"), |b| {
+            b.iter(|| render.photon_map(0, &mut NoProgress).unwrap())
         });
     }
 }

@@ -251,12 +251,9 @@ fn lights_group(c: &mut Criterion) {
 fn indirect_group(c: &mut Criterion) {
     let mut g = c.benchmark_group("indirect");
     g.sample_size(10);
-    let [(_, spot), ..] = prismatic_benches::lit_by_each_light(100_000);
-    let mut indirect = spot.scene.clone();
-    (indirect.render.photons, indirect.render.indirect_photons) = (0, 100_000);
-    let indirect = PreparedScene::new(indirect).unwrap();
+    let [(_, indirect), (_, caustic)] = prismatic_benches::indirect_and_caustic(100_000);
     g.throughput(Throughput::Elements(100_000));
-    for (name, scene) in [("indirect", &indirect), ("caustic", &spot)] {
+    for (name, scene) in [("indirect", &indirect), ("caustic", &caustic)] {
         let mut cpu = CpuBackend::new().prepare(scene).unwrap();
         g.bench_function(BenchmarkId::new(name, "cpu"), |b| {
             b.iter(|| black_box(cpu.photon_map(0, &mut NoProgress).unwrap()))

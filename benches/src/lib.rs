@@ -49,6 +49,16 @@ pub fn lit_by_each_light(photons: u32) -> [(&'static str, PreparedScene); 3] {
     [("spot", spot), ("environment", studio), ("area", area)]
 }
 
+/// The `sphere` under its spot with `photons` indirect photons and no
+/// caustic ones, and the same scene with as many caustic photons and no
+/// indirect ones: the `indirect` groups' pair.
+pub fn indirect_and_caustic(photons: u32) -> [(&'static str, PreparedScene); 2] {
+    let [(_, spot), ..] = lit_by_each_light(photons);
+    let mut indirect = spot.scene.clone();
+    (indirect.render.photons, indirect.render.indirect_photons) = (0, photons);
+    [("indirect", PreparedScene::new(indirect).expect("valid")), ("caustic", spot)]
+}
+
 /// The paper's frame of `scene` (with fixed radii) on `backend`: a render
 /// prepared, its view rays, pass 0, the image read out.
 pub fn frame(backend: &mut dyn Backend, scene: &PreparedScene) -> Image {

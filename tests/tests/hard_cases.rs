@@ -1,9 +1,10 @@
 //! Hard cases stay numerically stable: no NaN or Inf anywhere, and the
-//! expected answer, on every backend. Grazing and tangent rays, total
-//! internal reflection, prism edges and vertices, thin walls, scenes far from
-//! the origin, extreme gather radii, index 1 and diamond, glass in water,
-//! degenerate triangles, empty gathers, more than 2^24 photons in one gather,
-//! photons on grid cell borders, 1 and 256 bands.
+//! expected answer, on every backend. Grazing and tangent rays, light
+//! reflected a dozen times inside a glass ball, total internal reflection,
+//! prism edges and vertices, thin walls, scenes far from the origin, extreme
+//! gather radii, index 1 and diamond, glass in water, degenerate triangles,
+//! empty gathers, more than 2^24 photons in one gather, photons on grid cell
+//! borders, 1 and 256 bands.
 
 use prismatic_core::geometry::primitive::{Primitive, Ray, prism_faces};
 use prismatic_core::model::bands::BandSpec;

@@ -16,6 +16,14 @@
 //! the mirrors and glass). The approximation is in the regions a surface
 //! sees only in part (cut by its horizon), and in shadows (n hard ones, not
 //! one soft one); the render setting `environment_lights` sets n.
+//!
+//! With per-pass view paths the regions are strata instead: each pass
+//! draws every region's sun anew ([`EnvironmentCut::draw`]), along a
+//! direction of the region chosen with probability ∝ its radiance, with
+//! the region's whole Σ L dω as irradiance. A surface then receives in
+//! expectation exactly ∫ L cos θ V dω from the region, its horizon and
+//! shadows included, so the passes' mean converges to the map's light
+//! with no bias left.
 
 use crate::model::color::luminance;
 use crate::model::environment::EnvironmentMap;
@@ -35,7 +43,7 @@ pub struct EnvironmentLookup {
     pub turn: f32,
 }
 
-/// One light of the median cut.
+/// One light of the median cut: its region's fixed sun.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct CutLight {
     /// Unit direction toward the light (its region's vector irradiance).
@@ -77,23 +85,28 @@ impl EnvironmentLookup {
     /// The direction of travel whose look-up lands on map point (u, v):
     /// the inverse of [`EnvironmentLookup::radiance`]'s mapping.
     pub fn direction(&self, u: f32, v: f32) -> Vec3 {
-        let phi = (u - self.turn - 0.5) * 2.0 * PI;
-        let theta = v * PI;
-        Vec3::new(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi))
+        direction_at(u, v, self.turn)
     }
 
     /// The `n` directional lights of the map's median cut (fewer when the
-    /// map has fewer texels with light). A map coarser than
-    /// [`CUT_GRID`] (a constant one is a single texel) is cut on that grid,
-    /// read bilinearly.
+    /// map has fewer texels with light): [`EnvironmentLookup::cut`]'s fixed suns.
     pub fn median_cut(&self, n: usize) -> Vec<CutLight> {
+        self.cut(n).regions.iter().map(|r| r.fixed).collect()
+    }
+
+    /// The map's median cut into `n` regions (fewer when the map has fewer
+    /// texels with light), each with its fixed sun and what a draw needs. A
+    /// map coarser than [`CUT_GRID`] (a constant one is a single texel) is
+    /// cut on that grid, read bilinearly. A texel's solid angle is exact
+    /// (Δφ · (cos θ₀ − cos θ₁)), so a constant map's regions sum to 4π L.
+    pub fn cut(&self, n: usize) -> EnvironmentCut {
         let (w, h) = ((self.map.width as usize).max(CUT_GRID.0), (self.map.height as usize).max(CUT_GRID.1));
         let at = |x: usize, y: usize| match (w, h) == (self.map.width as usize, self.map.height as usize) {
             true => self.map.texels[y * w + x],
             false => self.texel_at((x as f32 + 0.5) / w as f32, (y as f32 + 0.5) / h as f32),
         };
         let texels: Vec<Vec3> = (0..w * h).map(|i| at(i % w, i / w).max(Vec3::ZERO)).collect();
-        let d_omega = |y: usize| (2.0 * PI / w as f32) * (PI / h as f32) * sin(PI * (y as f32 + 0.5) / h as f32);
+        let d_omega = |y: usize| (2.0 * PI / w as f32) * (row_cos(y, h) - row_cos(y + 1, h));
         let power: Vec<f32> = (0..w * h).map(|i| luminance(texels[i]) * self.strength * d_omega(i / w)).collect();
         let cut = Cut { w, h, power: &power };
         let whole = Region { x: (0, w), y: (0, h) };
@@ -111,23 +124,106 @@ impl EnvironmentLookup {
             regions[i] = (a, cut.power(&a));
             regions.push((b, cut.power(&b)));
         }
-        regions
+        let regions = regions
             .iter()
-            .filter_map(|(r, total)| {
+            .filter_map(|&(rect, total)| {
                 let (mut rgb, mut toward) = (Vec3::ZERO, Vec3::ZERO);
-                for y in r.y.0..r.y.1 {
-                    for x in r.x.0..r.x.1 {
+                for y in rect.y.0..rect.y.1 {
+                    for x in rect.x.0..rect.x.1 {
                         let dir = self.direction((x as f32 + 0.5) / w as f32, (y as f32 + 0.5) / h as f32);
                         rgb += texels[y * w + x] * (self.strength * d_omega(y));
                         toward += dir * power[y * w + x];
                     }
                 }
                 let length = sqrt(toward.length_squared());
-                (length > 0.0 && rgb.max_element() > 0.0)
-                    .then(|| CutLight { toward: toward / length, rgb: rgb * (length / total) })
+                (length > 0.0 && rgb.max_element() > 0.0).then(|| CutRegion {
+                    rect,
+                    rows: (rect.y.0..rect.y.1).map(|y| cut.power(&Region { y: (y, y + 1), ..rect })).collect(),
+                    power: total,
+                    rgb,
+                    fixed: CutLight { toward: toward / length, rgb: rgb * (length / total) },
+                })
             })
-            .collect()
+            .collect();
+        EnvironmentCut { w, h, turn: self.turn, power, regions }
     }
+}
+
+/// The direction of travel whose look-up lands on map point (u, v) of a
+/// map turned by `turn`.
+fn direction_at(u: f32, v: f32, turn: f32) -> Vec3 {
+    let phi = (u - turn - 0.5) * 2.0 * PI;
+    let theta = v * PI;
+    Vec3::new(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi))
+}
+
+/// cos θ at the top of row `y` of `h` (θ from the zenith).
+fn row_cos(y: usize, h: usize) -> f32 {
+    cos(PI * y as f32 / h as f32)
+}
+
+/// An environment's median cut, kept to draw its suns from: the grid it
+/// was cut on, each texel's power (luminance × solid angle) and the
+/// regions with light.
+#[derive(Clone, Debug, PartialEq)]
+pub struct EnvironmentCut {
+    w: usize,
+    h: usize,
+    /// The map's turn (see [`EnvironmentLookup::turn`]).
+    turn: f32,
+    power: Vec<f32>,
+    /// The regions, each with its fixed sun.
+    pub regions: Vec<CutRegion>,
+}
+
+/// A region of the cut.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CutRegion {
+    rect: Region,
+    /// Each of its rows' power.
+    rows: Vec<f32>,
+    /// Σ luminance × dω over the region.
+    pub power: f32,
+    /// Σ L dω per channel: the irradiance of a drawn sun on a surface facing it.
+    pub rgb: Vec3,
+    /// The sun along the region's vector irradiance.
+    pub fixed: CutLight,
+}
+
+impl EnvironmentCut {
+    /// A direction toward region `region`'s light, drawn with two uniform
+    /// numbers: a texel with probability ∝ its power (`u1` picks the row,
+    /// `u2` the texel in it), and a point of the texel uniform in solid
+    /// angle (each number's remainder within its pick). The density over
+    /// solid angle is L/Σ L dω (the map as constant texels), so the sun
+    /// [`CutRegion::rgb`] along it sends a surface ∫ L cos θ V dω in expectation.
+    pub fn draw(&self, region: usize, u1: f32, u2: f32) -> Vec3 {
+        let CutRegion { rect: r, rows, .. } = &self.regions[region];
+        let (row, t) = pick(rows, u1);
+        let y = r.y.0 + row;
+        let (column, s) = pick(&self.power[y * self.w + r.x.0..y * self.w + r.x.1], u2);
+        let x = r.x.0 + column;
+        // Uniform in cos θ across the row and in φ across the texel.
+        let (c0, c1) = (row_cos(y, self.h), row_cos(y + 1, self.h));
+        let v = acos((c0 - t * (c0 - c1)).clamp(-1.0, 1.0)) / PI;
+        let u = (x as f32 + s) / self.w as f32;
+        direction_at(u, v, self.turn)
+    }
+}
+
+/// The entry of `weights` at cumulative share `u` and where `u` fell inside
+/// it (a fraction in [0, 1)); the last entry with weight when rounding
+/// leaves `u` past the sum.
+fn pick(weights: &[f32], u: f32) -> (usize, f32) {
+    let target = u * weights.iter().sum::<f32>();
+    let mut acc = 0.0;
+    for (i, &w) in weights.iter().enumerate() {
+        if w > 0.0 && target < acc + w {
+            return (i, ((target - acc) / w).clamp(0.0, 0.999_999_9));
+        }
+        acc += w;
+    }
+    (weights.iter().rposition(|&w| w > 0.0).unwrap_or(0), 0.5)
 }
 
 /// The coarsest grid a map is cut on (columns, rows): fine enough for
@@ -241,6 +337,68 @@ mod tests {
         };
         let (coarse, fine) = (error(32), error(512));
         assert!(coarse < 0.05 && fine < 0.01 && fine < coarse, "{coarse} at 32 lights, {fine} at 512");
+    }
+
+    /// The irradiance of a plane facing `n` from every region's drawn suns,
+    /// each region's draws on a 24 × 24 grid of numbers averaged.
+    fn drawn_irradiance(cut: &EnvironmentCut, n: Vec3) -> f32 {
+        let k = 24;
+        let mut e = 0.0;
+        for (i, region) in cut.regions.iter().enumerate() {
+            for a in 0..k * k {
+                let (u1, u2) = (((a / k) as f32 + 0.5) / k as f32, ((a % k) as f32 + 0.5) / k as f32);
+                e += luminance(region.rgb) * cut.draw(i, u1, u2).dot(n).max(0.0) / (k * k) as f32;
+            }
+        }
+        e
+    }
+
+    #[test]
+    fn drawn_suns_give_a_constant_sky_pi_l_on_any_plane() {
+        let env = lookup(EnvironmentMap::constant(Vec3::ONE));
+        let cut = env.cut(32);
+        let whole: f32 = cut.regions.iter().map(|r| r.power).sum();
+        assert!((whole - 8.0 * PI).abs() < 1e-4 * whole, "Σ L dω = {whole}, 4π · 2");
+        // A tilted plane cuts regions with its horizon: the fixed suns err
+        // there, drawn ones do not (on average over the draws).
+        for n in [Vec3::Y, Vec3::new(0.6, 0.8, 0.0), Vec3::new(0.0, -0.28, 0.96)] {
+            let e = drawn_irradiance(&cut, n);
+            assert!((e - 2.0 * PI).abs() < 2e-3 * 2.0 * PI, "facing {n}: E = {e}, πL = {}", 2.0 * PI);
+        }
+    }
+
+    #[test]
+    fn a_drawn_direction_lies_in_its_region_and_follows_the_light() {
+        let (w, h) = CUT_GRID;
+        let mut texels: Vec<Vec3> = (0..w * h).map(|_| Vec3::splat(0.01)).collect();
+        let (px, py) = (48, 7);
+        texels[py * w + px] = Vec3::new(500.0, 400.0, 300.0);
+        let map = EnvironmentMap { name: "sun".into(), width: w as u32, height: h as u32, texels: texels.into() };
+        let env = EnvironmentLookup::new(map, 1.0, 40.0);
+        let cut = env.cut(16);
+        let at = |x: usize, y: usize| env.direction((x as f32 + 0.5) / w as f32, (y as f32 + 0.5) / h as f32);
+        // Within the texel: closer than the angle between neighbouring rows' centres.
+        let texel = at(px, py).dot(at(px, py + 1));
+        let mut drew_patch = 0;
+        for (i, region) in cut.regions.iter().enumerate() {
+            let r = region.rect;
+            let patch_share = match (r.x.0..r.x.1).contains(&px) && (r.y.0..r.y.1).contains(&py) {
+                true => cut.power[py * w + px] / region.power,
+                false => 0.0,
+            };
+            for a in 0..64 {
+                let d = cut.draw(i, (a as f32 + 0.5) / 64.0, ((a * 37 % 64) as f32 + 0.5) / 64.0);
+                // Back to map coordinates (the turn undone).
+                let u = (0.5 + atan2(d.x, -d.z) / (2.0 * PI) + env.turn).rem_euclid(1.0);
+                let (x, y) = (((u * w as f32) as usize).min(w - 1), ((acos(d.y) / PI * h as f32) as usize).min(h - 1));
+                assert!(r.x.0 <= x && x < r.x.1 && r.y.0 <= y && y < r.y.1, "region {i} {r:?} drew texel ({x}, {y})");
+                if patch_share > 0.99 {
+                    assert!(d.dot(at(px, py)) > texel, "the patch's region drew {d}");
+                    drew_patch += 1;
+                }
+            }
+        }
+        assert_eq!(drew_patch, 64, "one region is the patch's alone");
     }
 
     #[test]

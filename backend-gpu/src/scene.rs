@@ -347,6 +347,56 @@ impl EncodedScene {
         }
         l
     }
+
+    /// Encodes again, in place, the environment's drawn suns of `scene`
+    /// (this encoding's scene with its suns of another pass,
+    /// [`PreparedScene::suns_of_pass`]): each sun's record and its
+    /// projection map's targets and CDF. Returns the elements that changed
+    /// (lights, geometry records, table entries), or `None` when a
+    /// projection map changed its size (then encode the scene again).
+    pub fn point_suns(&mut self, scene: &PreparedScene) -> Option<PointedSuns> {
+        let drawn = scene.drawn_suns.as_ref()?;
+        let mut changed = PointedSuns::default();
+        for &(i, _) in &drawn.suns {
+            let old = self.lights[i];
+            let shadows = old.shadows != 0;
+            let mut scratch = EncodedScene::default();
+            let mut l = scratch.light(&scene.emitters[i], scene.plan.projections[i].as_ref(), shadows);
+            // The same kind and number of targets take the same room.
+            if (l.proj_kind, l.proj_count) != (old.proj_kind, old.proj_count) {
+                return None;
+            }
+            let (geometry, tables) = (scratch.geometry.len(), scratch.tables.len());
+            (l.proj_first, l.proj_cdf) = (old.proj_first, old.proj_cdf);
+            (l.reflected_r, l.reflected_g, l.reflected_b) = (old.reflected_r, old.reflected_g, old.reflected_b);
+            (l.spectrum_len, l.spectrum_first, l.sun) = (old.spectrum_len, old.spectrum_first, old.sun);
+            self.lights[i] = l;
+            changed.lights.push(i);
+            if geometry > 0 {
+                let at = l.proj_first as usize;
+                self.geometry[at..at + geometry].copy_from_slice(&scratch.geometry);
+                changed.geometry.push(at..at + geometry);
+            }
+            if tables > 0 {
+                let at = l.proj_cdf as usize;
+                self.tables[at..at + tables].copy_from_slice(&scratch.tables);
+                changed.tables.push(at..at + tables);
+            }
+        }
+        Some(changed)
+    }
+}
+
+/// What [`EncodedScene::point_suns`] changed: light indices, and ranges of
+/// geometry records and table entries.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PointedSuns {
+    /// The suns' records.
+    pub lights: Vec<usize>,
+    /// Their projection targets.
+    pub geometry: Vec<std::ops::Range<usize>>,
+    /// Their projection CDFs.
+    pub tables: Vec<std::ops::Range<usize>>,
 }
 
 /// The scene's buffers on the device and their bind group (group 0 of the
@@ -420,6 +470,23 @@ impl SceneBuffers {
             entries: &entries,
         });
         SceneBuffers { params, params_buffer, bind_group, storage }
+    }
+
+    /// Writes what [`EncodedScene::point_suns`] changed in `encoded`.
+    pub fn write_suns(&self, ctx: &GpuContext, encoded: &EncodedScene, changed: &PointedSuns) {
+        fn write<T: Pod>(ctx: &GpuContext, buffer: &wgpu::Buffer, items: &[T], range: std::ops::Range<usize>) {
+            let size = std::mem::size_of::<T>();
+            ctx.write(buffer, (range.start * size) as u64, bytemuck::cast_slice(&items[range]));
+        }
+        for &i in &changed.lights {
+            write(ctx, &self.storage[2], &encoded.lights, i..i + 1);
+        }
+        for range in &changed.geometry {
+            write(ctx, &self.storage[4], &encoded.geometry, range.clone());
+        }
+        for range in &changed.tables {
+            write(ctx, &self.storage[5], &encoded.tables, range.clone());
+        }
     }
 
     /// Makes the buffers hold `new` where they held `old`: each storage
@@ -497,7 +564,28 @@ fn changed_range(was: &[u8], now: &[u8]) -> Option<(usize, usize)> {
 
 #[cfg(test)]
 mod tests {
-    use super::changed_range;
+    use super::{EncodedScene, changed_range};
+
+    #[test]
+    fn suns_pointed_in_place_are_the_pass_encoded_afresh() {
+        // The ball alone fills its beams; with indirect light (the scene's)
+        // they cover the floor too, and their projection maps aim at the ball.
+        for indirect_photons in [0, 2_000] {
+            let mut sky = prismatic_conformance::scenes::sky_lit_sphere().scene;
+            sky.render.view_paths = prismatic_core::model::scene::ViewPaths::Hero;
+            sky.render.indirect_photons = indirect_photons;
+            let scene = prismatic_core::PreparedScene::new(sky).unwrap();
+            let mut encoded = EncodedScene::new(&scene);
+            for pass in [3, 1, 0] {
+                let moved = scene.suns_of_pass(pass).expect("suns drawn each pass");
+                let changed = encoded.point_suns(&moved).expect("the projection maps keep their size");
+                assert_eq!(changed.lights.len(), 8, "pass {pass}");
+                let aimed = !changed.geometry.is_empty() && !changed.tables.is_empty();
+                assert_eq!(aimed, indirect_photons > 0, "pass {pass}: projection maps written");
+                assert!(encoded == EncodedScene::new(&moved), "pass {pass}: pointed in place differs from afresh");
+            }
+        }
+    }
 
     #[test]
     fn only_the_changed_bytes_are_written() {

@@ -198,8 +198,11 @@ settings! {
     #[arg(long)]
     auto_exposure: bool,
     /// Suns an environment light is cut into (its median cut, 1 to 4096):
-    /// more follow the sky's light and soft shadows more closely, and each
-    /// is one more shadow ray at every point the camera sees.
+    /// each is one more shadow ray at every point the camera sees. With
+    /// per-pass view paths (the default) each pass draws them anew inside
+    /// their regions, so more lower the noise of the sky's shadows; with
+    /// centre view paths they stay fixed, and more follow the sky's light
+    /// and soft shadows more closely.
     #[arg(long)]
     environment_lights: u32,
     /// Pieces the emissive meshes' triangles are cut into for direct light

@@ -5,11 +5,13 @@
 //! amber glass that absorbs, once more on a textured floor), a prism
 //! fanning a beam onto a wall (split bands),
 //! a mirror folding a beam onto a floor (no dispersion), the sphere under a
-//! light panel (an area light), once more with indirect light, and a room with
-//! no mirror or glass (no caustics at all).
+//! light panel (an area light), once more with indirect light, once more
+//! under a sky (an environment light, whose suns per-pass view paths draw
+//! anew each pass), and a room with no mirror or glass (no caustics at all).
 
 use glam::Vec3;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::environment::EnvironmentMap;
 use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, Filter, Light, Material, MaterialKind, Object, PhotonSequence, RenderSettings,
     Sampler, Shape, Texture, Wrap,
@@ -134,6 +136,28 @@ pub fn sphere_with_indirect_light() -> PreparedScene {
     scene.objects[0].shape = Shape::Disk { center: Vec3::ZERO, normal: Vec3::Y, radius: 3.0, inner_radius: 0.0 };
     scene.render.indirect_photons = 8_000;
     scene.render.max_depth = 4;
+    prepared(scene)
+}
+
+/// The paper's sphere under a sky of 16 × 8 texels (blue above the
+/// horizon, a bright sun low in the west, dark below) and nothing else, cut
+/// into 8 suns: their direct light, shadows and caustics, and light
+/// bounced off the floor (so that the suns' beams cover the floor and
+/// their projection maps aim at the ball), drawn anew each pass where the
+/// view paths are per pass.
+pub fn sky_lit_sphere() -> PreparedScene {
+    let mut scene = sphere_with_indirect_light().scene;
+    scene.render.indirect_photons = 2_000;
+    scene.render.max_depth = 3;
+    scene.render.environment_lights = 8;
+    let (w, h) = (16, 8);
+    let texels = (0..w * h).map(|i| match (i % w, i / w) {
+        (3, 2) => Vec3::new(60.0, 50.0, 40.0),
+        (_, y) if y < h / 2 => Vec3::new(0.5, 0.6, 0.9),
+        _ => Vec3::splat(0.05),
+    });
+    let map = EnvironmentMap { name: "sky".into(), width: w, height: h, texels: texels.collect::<Vec<_>>().into() };
+    scene.lights = vec![Light::Environment { map, strength: 1.0, rotation_deg: 20.0, spectrum: Default::default() }];
     prepared(scene)
 }
 
@@ -337,6 +361,7 @@ pub fn with_caustics() -> Vec<(&'static str, PreparedScene)> {
         ("mirror", mirror()),
         ("panel-lit sphere", panel_lit_sphere()),
         ("sphere with indirect light", sphere_with_indirect_light()),
+        ("sky-lit sphere", sky_lit_sphere()),
     ]
 }
 

@@ -11,14 +11,15 @@
 //! buffers, in chunks of pixels), `view` (the view pass), `layer` (an
 //! engine's frame in place of the view: the caustic layer), `history` (a
 //! layer's temporal accumulation), `passes` (the
-//! pilot, the photon passes and their gathers), `readout` (what is read
-//! back).
+//! pilot, the photon passes and their gathers), `suns` (an environment's
+//! suns drawn each pass), `readout` (what is read back).
 
 mod history;
 mod layer;
 mod passes;
 mod points;
 mod readout;
+mod suns;
 mod view;
 
 pub use layer::{DepthEncoding, FrameTextures, NormalEncoding};
@@ -60,6 +61,8 @@ pub struct GpuSession {
     scene: PreparedScene,
     encoded: EncodedScene,
     buffers: SceneBuffers,
+    /// The pass whose environment suns the buffers hold (0 after an upload).
+    suns_pass: u32,
     photons: PhotonPass,
     levels: GridLevels,
     /// The image: row-major `vec4<f32>`, linear RGB, exposure applied.
@@ -145,6 +148,7 @@ impl GpuSession {
             scene: scene.clone(),
             encoded,
             buffers,
+            suns_pass: 0,
             photons,
             levels,
             pixels,
@@ -209,6 +213,10 @@ impl GpuSession {
     fn bring_up_to_date(&mut self) -> Result<(), BackendError> {
         self.check_reads()?;
         let redone = std::mem::take(&mut self.stale);
+        if redone != Change::None {
+            // Pass 0's view and the pilot are lit by pass 0's suns.
+            self.use_suns_of(0)?;
+        }
         if redone >= Change::Size {
             self.allocate_points()?;
         }
@@ -277,6 +285,7 @@ impl Render for GpuSession {
             self.buffers.update(&self.ctx, &self.pipelines.scene_layout, &self.encoded, &encoded)
         })?;
         self.encoded = encoded;
+        self.suns_pass = 0;
         let window = window(&self.ctx, self.options);
         let mut rebind = regrouped;
         if !self.photons.fits(scene, window) {
@@ -373,6 +382,7 @@ impl Render for GpuSession {
     }
 
     fn photon_map(&mut self, pass: u32, progress: &mut dyn Progress) -> Result<PhotonMap, BackendError> {
+        self.use_suns_of(pass)?;
         self.trace_photons(&pass_scene(&self.scene, pass), progress)?;
         self.photons.read_map(&self.ctx)
     }

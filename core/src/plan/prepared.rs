@@ -8,9 +8,10 @@ use crate::model::bands::BandTable;
 use crate::model::scene::{Light, Scene, SceneError, Shape};
 use crate::model::spectrum::Spectrum;
 use crate::optics::surface::Surface;
+use crate::plan::drawn_suns::DrawnSuns;
 use crate::plan::effects::EffectPlan;
 use crate::plan::{area, reach};
-use crate::sampling::environment::EnvironmentLookup;
+use crate::sampling::environment::{EnvironmentCut, EnvironmentLookup};
 use crate::sampling::light_spectrum::LightSpectrum;
 use alloc::sync::Arc;
 use alloc::vec::Vec;
@@ -46,9 +47,11 @@ pub struct PreparedScene {
     /// hierarchy's order; empty unless its surface has a texture.
     pub texture_uvs: Vec<Vec<TriangleUv>>,
     /// The lights that shine: the scene's, each environment replaced by
-    /// the suns of its median cut ([`EnvironmentLookup::median_cut`], as
+    /// the suns of its median cut ([`EnvironmentLookup::cut`], as
     /// many as `render.environment_lights`), then the emissive meshes'
     /// area lights ([`area::area_lights`]). Backends light with these.
+    /// With per-pass view paths the suns are pass 0's draw
+    /// ([`PreparedScene::drawn_suns`]).
     pub lights: Vec<Light>,
     /// The environment rays that leave the scene see (`None`: the
     /// background colour).
@@ -69,6 +72,9 @@ pub struct PreparedScene {
     pub white_balance: Vec3,
     /// What the render simulates; backends follow it.
     pub plan: EffectPlan,
+    /// With an environment and per-pass view paths, how each pass draws
+    /// its suns ([`crate::plan::drawn_suns`]); `None`: the suns stay fixed.
+    pub drawn_suns: Option<DrawnSuns>,
 }
 
 impl PreparedScene {
@@ -131,17 +137,24 @@ impl PreparedScene {
             }
             _ => None,
         });
-        let lights: Vec<Light> = scene
-            .lights
-            .iter()
-            .flat_map(|l| match (l, &environment) {
+        // Drawn each pass with per-pass view paths, fixed along the cut otherwise.
+        let draw = scene.render.view_paths.per_pass();
+        let mut lights: Vec<Light> = Vec::new();
+        let mut sky: Option<(EnvironmentCut, Vec<(usize, usize)>)> = None;
+        for l in &scene.lights {
+            match (l, &environment) {
                 (Light::Environment { spectrum, .. }, Some(env)) => {
-                    environment_suns(env, spectrum, scene.render.environment_lights as usize)
+                    let cut = env.cut(scene.render.environment_lights as usize);
+                    let suns = environment_suns(&cut, spectrum, draw);
+                    let first = lights.len();
+                    let drawn = suns.iter().enumerate().map(|(k, (_, region))| (first + k, *region)).collect();
+                    lights.extend(suns.into_iter().map(|(sun, _)| sun));
+                    sky = Some((cut, drawn));
                 }
-                _ => Vec::from([l.clone()]),
-            })
-            .chain(area::area_lights(&scene))
-            .collect();
+                _ => lights.push(l.clone()),
+            }
+        }
+        lights.extend(area::area_lights(&scene));
         let emitters: Vec<Light> = lights
             .iter()
             .map(|l| match l {
@@ -173,7 +186,11 @@ impl PreparedScene {
                 g.splits_view_rays = g.dispersive && plan.view_dispersion.on;
             }
         }
-        Ok(PreparedScene {
+        let drawn_suns = sky.filter(|_| draw).map(|(cut, suns)| {
+            let aimed_at = bounds.iter().zip(&surfaces).filter(|(_, s)| !matches!(s, Surface::Diffuse { .. }));
+            DrawnSuns { cut: Arc::new(cut), suns, beam_targets, aimed_at: aimed_at.map(|(b, _)| *b).collect(), bounds }
+        });
+        let mut prepared = PreparedScene {
             scene,
             bands,
             primitives,
@@ -187,7 +204,28 @@ impl PreparedScene {
             total_power,
             white_balance,
             plan,
-        })
+            drawn_suns,
+        };
+        prepared.point_suns(0);
+        Ok(prepared)
+    }
+
+    /// This scene with its environment's suns of pass `pass`, or `None`
+    /// when its suns stay where the cut put them (no environment, or view
+    /// paths that every pass shares). See [`crate::plan::drawn_suns`].
+    pub fn suns_of_pass(&self, pass: u32) -> Option<PreparedScene> {
+        self.drawn_suns.as_ref()?;
+        let mut moved = self.clone();
+        moved.point_suns(pass);
+        Some(moved)
+    }
+
+    /// Points the drawn suns (if any) along their directions of pass `pass`.
+    fn point_suns(&mut self, pass: u32) {
+        if let Some(drawn) = &self.drawn_suns {
+            let parts = (&mut self.lights[..], &mut self.emitters[..], &mut self.plan.projections[..]);
+            drawn.point(parts, self.scene.render.seed, pass);
+        }
     }
 
     /// What the camera multiplies radiance by, per channel: the exposure
@@ -283,19 +321,24 @@ impl PreparedScene {
     }
 }
 
-/// The suns an environment shines as: one per region of its median cut
-/// into `n`, each with the smooth spectrum of its region's colour (with
-/// the environment's `spectrum` other than equal energy: that spectrum at
-/// the region's luminance).
-fn environment_suns(env: &EnvironmentLookup, spectrum: &Spectrum, n: usize) -> Vec<Light> {
-    env.median_cut(n)
-        .into_iter()
-        .filter_map(|cut| {
+/// The suns an environment shines as, each with its region of `cut`: one
+/// per region, with the smooth spectrum of its region's colour (with the
+/// environment's `spectrum` other than equal energy: that spectrum at the
+/// region's luminance). Fixed suns point along the region's vector
+/// irradiance with its length; suns to be drawn each pass (`drawn`) carry
+/// the region's whole Σ L dω (their direction is the draw's).
+fn environment_suns(cut: &EnvironmentCut, spectrum: &Spectrum, drawn: bool) -> Vec<(Light, usize)> {
+    cut.regions
+        .iter()
+        .enumerate()
+        .filter_map(|(k, region)| {
+            let rgb = if drawn { region.rgb } else { region.fixed.rgb };
             let (spectrum, irradiance) = match spectrum {
-                Spectrum::EqualEnergy => Spectrum::from_rgb(cut.rgb.to_array()),
-                other => (other.clone(), crate::model::color::luminance(cut.rgb)),
+                Spectrum::EqualEnergy => Spectrum::from_rgb(rgb.to_array()),
+                other => (other.clone(), crate::model::color::luminance(rgb)),
             };
-            (irradiance > 0.0).then_some(Light::Sun { direction: -cut.toward, irradiance, spectrum })
+            let sun = Light::Sun { direction: -region.fixed.toward, irradiance, spectrum };
+            (irradiance > 0.0).then_some((sun, k))
         })
         .collect()
 }

@@ -225,7 +225,11 @@ impl<K: HostKernels> Render for HostRender<K> {
             self.layer_pass(pass, progress);
             return Ok(());
         }
-        let own_view = (self.sampled() && pass != 0).then(|| self.kernels.visible_points(&self.scene, pass, progress));
+        // A pass's own view is lit by the pass's suns.
+        let own_view = (self.sampled() && pass != 0).then(|| {
+            let suns = self.scene.suns_of_pass(pass);
+            self.kernels.visible_points(suns.as_ref().unwrap_or(&self.scene), pass, progress)
+        });
         let view = own_view.as_ref().unwrap_or(&self.view);
         let points = &view.points;
         self.last_view_points = points.len();

@@ -42,6 +42,10 @@ pub mod dim {
     /// Two dimensions for where on an area light a photon starts (its
     /// direction takes [`DIRECTION`]'s two).
     pub const AREA: u32 = 5;
+    /// The scramble of an environment region's suns, one Sobol sequence over
+    /// the passes (the index is the region's, not a photon's; see
+    /// `plan::drawn_suns`).
+    pub const SKY: u32 = 7;
     /// First dimension of the path's scattering decisions.
     pub const PATH: u32 = 8;
     /// Dimensions reserved per band path (one per bounce, at most this many bounces).

@@ -17,9 +17,9 @@ import subprocess
 import tempfile
 from pathlib import Path
 
-import Imath
 import numpy as np
-import OpenEXR
+
+from exr_rgb import brightness_error, read_rgb
 
 TIMES = (1, 2, 4, 8, 16)
 
@@ -28,17 +28,7 @@ def render(binary: str, seconds: float, seed: int, out: Path) -> np.ndarray:
     args = ["render", "room", "--width", "200", "--height", "200", "--backend", "cpu"]
     subprocess.run([binary, *args, "--time", str(seconds), "--seed", str(seed), "-o", str(out)], check=True,
                    capture_output=True)
-    exr = OpenEXR.InputFile(str(out))
-    window = exr.header()["dataWindow"]
-    width, height = window.max.x - window.min.x + 1, window.max.y - window.min.y + 1
-    channel = Imath.PixelType(Imath.PixelType.FLOAT)
-    planes = [np.frombuffer(exr.channel(c, channel), dtype=np.float32).reshape(height, width) for c in "RGB"]
-    return np.stack(planes, axis=2)
-
-
-def brightness_error(got: np.ndarray, reference: np.ndarray) -> float:
-    g, r = got.sum(axis=2), reference.sum(axis=2)
-    return float(np.sqrt(np.mean((g - r) ** 2)) / np.mean(r))
+    return read_rgb(out)
 
 
 def colour_error(got: np.ndarray, reference: np.ndarray) -> float:

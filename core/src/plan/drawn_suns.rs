@@ -39,7 +39,7 @@ pub struct DrawnSuns {
 impl DrawnSuns {
     /// The direction toward sun `sun`'s light in pass `pass` (`seed`: the
     /// render's seed).
-    pub fn toward(&self, sun: usize, seed: u32, pass: u32) -> Vec3 {
+    fn toward(&self, sun: usize, seed: u32, pass: u32) -> Vec3 {
         let region = self.suns[sun].1;
         let stream = random_u32(seed, region as u32, dim::SKY);
         self.cut.draw(region, sobol_f32(stream, pass, 0), sobol_f32(stream, pass, 1))

@@ -88,12 +88,6 @@ impl EnvironmentLookup {
         direction_at(u, v, self.turn)
     }
 
-    /// The `n` directional lights of the map's median cut (fewer when the
-    /// map has fewer texels with light): [`EnvironmentLookup::cut`]'s fixed suns.
-    pub fn median_cut(&self, n: usize) -> Vec<CutLight> {
-        self.cut(n).regions.iter().map(|r| r.fixed).collect()
-    }
-
     /// The map's median cut into `n` regions (fewer when the map has fewer
     /// texels with light), each with its fixed sun and what a draw needs. A
     /// map coarser than [`CUT_GRID`] (a constant one is a single texel) is
@@ -285,6 +279,11 @@ impl Cut<'_> {
 mod tests {
     use super::*;
 
+    /// The cut's fixed suns.
+    fn fixed_suns(env: &EnvironmentLookup, n: usize) -> Vec<CutLight> {
+        env.cut(n).regions.iter().map(|r| r.fixed).collect()
+    }
+
     fn lookup(map: EnvironmentMap) -> EnvironmentLookup {
         EnvironmentLookup::new(map, 2.0, 0.0)
     }
@@ -320,7 +319,7 @@ mod tests {
         let texels: Vec<Vec3> = (0..128 * 64).map(|_| Vec3::ONE).collect();
         let env = lookup(EnvironmentMap { name: "grey".into(), width: 128, height: 64, texels: texels.into() });
         for n in [2, 32, 512] {
-            let lights = env.median_cut(n);
+            let lights = fixed_suns(&env, n);
             assert_eq!(lights.len(), n);
             // The first cut is the horizon: a plane facing up sees the upper
             // regions whole, and each sends it its vector irradiance.
@@ -332,7 +331,7 @@ mod tests {
         // and shrinks as the regions do.
         let tilted = Vec3::new(0.6, 0.8, 0.0);
         let error = |n: usize| {
-            let e: f32 = env.median_cut(n).iter().map(|l| luminance(l.rgb) * l.toward.dot(tilted).max(0.0)).sum();
+            let e: f32 = fixed_suns(&env, n).iter().map(|l| luminance(l.rgb) * l.toward.dot(tilted).max(0.0)).sum();
             (e / (PI * 2.0) - 1.0).abs()
         };
         let (coarse, fine) = (error(32), error(512));
@@ -403,7 +402,7 @@ mod tests {
 
     #[test]
     fn a_constant_map_of_one_texel_is_cut_on_the_grid() {
-        let lights = lookup(EnvironmentMap::constant(Vec3::ONE)).median_cut(32);
+        let lights = fixed_suns(&lookup(EnvironmentMap::constant(Vec3::ONE)), 32);
         assert_eq!(lights.len(), 32);
         let e = upward_irradiance(&lights);
         assert!((e - 2.0 * PI).abs() < 2e-3 * 2.0 * PI, "{e}");
@@ -415,7 +414,7 @@ mod tests {
         texels[3 * 32 + 24] = Vec3::new(500.0, 400.0, 300.0);
         let env = lookup(EnvironmentMap { name: "sun".into(), width: 32, height: 16, texels: texels.into() });
         let patch = env.direction(24.5 / 32.0, 3.5 / 16.0);
-        let lights = env.median_cut(16);
+        let lights = fixed_suns(&env, 16);
         // The cut spends its lights where the power is: most of them, and
         // nearly all the power, come from around the patch.
         let total: f32 = lights.iter().map(|l| l.rgb.x).sum();

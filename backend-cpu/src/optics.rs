@@ -106,16 +106,16 @@ pub fn interface(d: Vec3x8, outward: Vec3x8, ior: f32x8) -> (Vec3x8, f32x8, f32x
 
 /// `prismatic_core::optics::fresnel::cos2_transmitted` per lane.
 #[inline]
-pub fn cos2_transmitted(cos_i: f32x8, eta: f32x8) -> f32x8 {
-    let eta2 = eta * eta;
-    (f32x8::ONE - eta2) + eta2 * cos_i * cos_i
+pub fn cos2_transmitted(cos_i: f32x8, n1: f32x8, n2: f32x8) -> f32x8 {
+    let eta = n1 / n2;
+    (n2 - n1) * (n2 + n1) / (n2 * n2) + eta * eta * cos_i * cos_i
 }
 
 /// `prismatic_core::optics::fresnel::fresnel` per lane.
 #[inline]
 pub fn fresnel(cos_i: f32x8, n1: f32x8, n2: f32x8) -> f32x8 {
     let cos_i = cos_i.max(f32x8::ZERO).min(f32x8::ONE);
-    let cos2_t = cos2_transmitted(cos_i, n1 / n2);
+    let cos2_t = cos2_transmitted(cos_i, n1, n2);
     let tir = !cos2_t.simd_gt(f32x8::ZERO);
     let cos_t = cos2_t.max(f32x8::ZERO).sqrt();
     let rs = (n1 * cos_i - n2 * cos_t) / (n1 * cos_i + n2 * cos_t);
@@ -129,7 +129,7 @@ pub fn fresnel(cos_i: f32x8, n1: f32x8, n2: f32x8) -> f32x8 {
 pub fn refract(d: Vec3x8, n: Vec3x8, n1: f32x8, n2: f32x8) -> (f32x8, Vec3x8) {
     let eta = n1 / n2;
     let cos_i = (-d.dot(n)).max(f32x8::ZERO).min(f32x8::ONE);
-    let cos2_t = cos2_transmitted(cos_i, eta);
+    let cos2_t = cos2_transmitted(cos_i, n1, n2);
     let cos_t = cos2_t.max(f32x8::ZERO).sqrt();
     (lt(cos2_t, f32x8::ZERO), (d * eta + n * (eta * cos_i - cos_t)).normalize())
 }

@@ -368,9 +368,9 @@ fn reflect_dir(d: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     return d - n * (2.0 * dot(d, n));
 }
 
-fn cos2_transmitted(cos_i: f32, eta: f32) -> f32 {
-    let eta2 = eta * eta;
-    return (1.0 - eta2) + eta2 * cos_i * cos_i;
+fn cos2_transmitted(cos_i: f32, n1: f32, n2: f32) -> f32 {
+    let eta = n1 / n2;
+    return (n2 - n1) * (n2 + n1) / (n2 * n2) + eta * eta * cos_i * cos_i;
 }
 
 fn fresnel(cos_in: f32, n1: f32, n2: f32) -> f32 {
@@ -378,7 +378,7 @@ fn fresnel(cos_in: f32, n1: f32, n2: f32) -> f32 {
         return 0.0;
     }
     let cos_i = clamp(cos_in, 0.0, 1.0);
-    let cos2_t = cos2_transmitted(cos_i, n1 / n2);
+    let cos2_t = cos2_transmitted(cos_i, n1, n2);
     if cos2_t <= 0.0 {
         return 1.0;
     }
@@ -392,7 +392,7 @@ fn fresnel(cos_in: f32, n1: f32, n2: f32) -> f32 {
 fn refract_dir(d: vec3<f32>, n: vec3<f32>, n1: f32, n2: f32) -> vec4<f32> {
     let eta = n1 / n2;
     let cos_i = clamp(-dot(d, n), 0.0, 1.0);
-    let cos2_t = cos2_transmitted(cos_i, eta);
+    let cos2_t = cos2_transmitted(cos_i, n1, n2);
     if cos2_t < 0.0 {
         return vec4<f32>(0.0);
     }

@@ -16,7 +16,7 @@ pub fn reflect(d: Vec3, n: Vec3) -> Vec3 {
 pub fn refract(d: Vec3, n: Vec3, n1: f32, n2: f32) -> Option<Vec3> {
     let eta = n1 / n2;
     let cos_i = (-d.dot(n)).clamp(0.0, 1.0);
-    let cos2_t = cos2_transmitted(cos_i, eta);
+    let cos2_t = cos2_transmitted(cos_i, n1, n2);
     if cos2_t < 0.0 {
         return None;
     }
@@ -33,7 +33,7 @@ pub fn fresnel(cos_i: f32, n1: f32, n2: f32) -> f32 {
         return 0.0; // index-matched: no interface at all (exact, also at grazing angles)
     }
     let cos_i = cos_i.clamp(0.0, 1.0);
-    let cos2_t = cos2_transmitted(cos_i, n1 / n2);
+    let cos2_t = cos2_transmitted(cos_i, n1, n2);
     if cos2_t <= 0.0 {
         return 1.0;
     }
@@ -43,14 +43,17 @@ pub fn fresnel(cos_i: f32, n1: f32, n2: f32) -> f32 {
     (0.5 * (rs * rs + rp * rp)).clamp(0.0, 1.0)
 }
 
-/// cos² θ_t = 1 − η²(1 − cos² θ_i), arranged as (1 − η²) + η² cos² θ_i so that
-/// it keeps its precision at grazing incidence when η ≈ 1 (the textbook form
-/// rounds 1 − cos² θ_i to 1 there and loses the whole answer). Negative
+/// cos² θ_t = 1 − η²(1 − cos² θ_i) for η = n1/n2, arranged as
+/// (n2 − n1)(n2 + n1)/n2² + η² cos² θ_i so that it keeps its precision at
+/// grazing incidence when the indices nearly match. The textbook form rounds
+/// 1 − cos² θ_i to 1 there and loses the whole answer; 1 − η² would lose it
+/// to η's rounding (one ulp of η is 3e-4 of 1 − η² at n = 1.0002, and a
+/// GPU's division may be 2.5 ulps off), where n2 − n1 is exact. Negative
 /// means total internal reflection.
 #[inline]
-pub fn cos2_transmitted(cos_i: f32, eta: f32) -> f32 {
-    let eta2 = eta * eta;
-    (1.0 - eta2) + eta2 * cos_i * cos_i
+pub fn cos2_transmitted(cos_i: f32, n1: f32, n2: f32) -> f32 {
+    let eta = n1 / n2;
+    (n2 - n1) * (n2 + n1) / (n2 * n2) + eta * eta * cos_i * cos_i
 }
 
 /// Reflectance of a thin sheet (glTF's thin-walled transmission: two
@@ -100,5 +103,23 @@ mod tests {
         let cos_t = (1.0 - (theta_b.sin() / n).powi(2)).sqrt();
         let rs = (cos_i - n * cos_t) / (cos_i + n * cos_t);
         assert!((fresnel(cos_i, 1.0, n) - 0.5 * rs * rs).abs() < 1e-6);
+    }
+
+    #[test]
+    fn cos2_transmitted_keeps_its_digits_when_the_indices_nearly_match() {
+        // Against f64 at grazing incidence: 1 − η² from a rounded η would be
+        // 1e-4 of itself off at n = 1.0002 (an ulp of η over 4e-4).
+        for n in [1.0000356f32, 1.0002084, 1.01, 1.5] {
+            for (n1, n2) in [(1.0, n), (n, 1.0)] {
+                for cos_i in [0.0f32, 1e-4, 0.02, 0.5] {
+                    let eta = f64::from(n1) / f64::from(n2);
+                    let c = f64::from(cos_i);
+                    let exact = 1.0 - eta * eta * (1.0 - c * c);
+                    let got = f64::from(cos2_transmitted(cos_i, n1, n2));
+                    let rel = (got - exact).abs() / exact.abs();
+                    assert!(rel < 1e-6, "n1 {n1}, n2 {n2}, cos {cos_i}: {got} against {exact} ({rel:e})");
+                }
+            }
+        }
     }
 }

@@ -33,6 +33,8 @@ pub fn compare_maps(
     let band_of = |band: u16| if band == WHITE_BAND { bands } else { usize::from(band) };
     // Per band: photons on one side only, and their flux on each side.
     let mut lone = vec![(0usize, 0.0f64, 0.0f64); bands + 1];
+    let s = &expected.stats;
+    let flux_abs = tol.flux_rel * (s.flux_emitted / s.emitted.max(1) as f64) as f32;
     let (mut i, mut j) = (0, 0);
     while i < a.len() || j < b.len() {
         match (a.get(i), b.get(j)) {
@@ -40,7 +42,7 @@ pub fn compare_maps(
                 let within = |scale: f32| {
                     (0..3).all(|k| {
                         close(x.position[k], y.position[k], scale * tol.position_rel, scale * tol.position_abs)
-                    }) && close(x.flux, y.flux, scale * tol.flux_rel, 0.0)
+                    }) && close(x.flux, y.flux, scale * tol.flux_rel, scale * flux_abs)
                 };
                 if !within(1.0) {
                     report.outliers += 1;

@@ -73,7 +73,15 @@ impl SurfaceCase {
     pub fn at_the_critical_angle(&self) -> bool {
         let (normal, n1, n2) = interface(self.d, self.outward, self.ior);
         let cos_i = (-self.d.dot(normal)).clamp(0.0, 1.0);
-        cos2_transmitted(cos_i, n1 / n2).abs() < 1e-5
+        cos2_transmitted(cos_i, n1, n2).abs() < 1e-5
+    }
+
+    /// Whether the ray runs within a rounding of the surface's plane
+    /// (|d · n| ≤ [`COS_ROUNDING`]): which side it meets the surface from,
+    /// and so which side its new origin is pushed to, is one rounding
+    /// (an NVIDIA H200 pushed d · n = 6e-9 off the other side).
+    pub fn grazing(&self) -> bool {
+        self.d.dot(self.outward).abs() <= COS_ROUNDING
     }
 
     /// How far a copy's Fresnel reflectance may stray beyond the agreed
@@ -84,10 +92,30 @@ impl SurfaceCase {
     /// 0.72458 at n = 1.0002; 0.99959 against 0.99957 at cos θ = 4e-7).
     pub fn reflectance_slack(&self) -> f32 {
         let (normal, n1, n2) = interface(self.d, self.outward, self.ior);
-        let cos_i = (-self.d.dot(normal)).clamp(0.0, 1.0);
-        let at = |c: f32| fresnel(c.clamp(0.0, 1.0), n1, n2);
-        (at(cos_i + COS_ROUNDING) - at(cos_i - COS_ROUNDING)).abs() / 2.0
+        fresnel_slack(-self.d.dot(normal), n1, n2)
     }
+
+    /// How far a copy's refracted direction may stray beyond the agreed
+    /// bound: what [`COS_ROUNDING`] of cos θ moves it. The direction
+    /// η d + (η cos θ_i − cos θ_t) n moves by |η − η² cos θ_i / cos θ_t|
+    /// per unit of cos θ_i, steeply as cos θ_t → 0 near the critical angle.
+    pub fn refraction_slack(&self) -> f32 {
+        let (normal, n1, n2) = interface(self.d, self.outward, self.ior);
+        let cos_i = (-self.d.dot(normal)).clamp(0.0, 1.0);
+        let cos2_t = cos2_transmitted(cos_i, n1, n2);
+        if cos2_t <= 0.0 {
+            return 0.0;
+        }
+        let eta = n1 / n2;
+        (eta - eta * eta * cos_i / cos2_t.sqrt()).abs() * COS_ROUNDING
+    }
+}
+
+/// How far [`COS_ROUNDING`] of `cos_i` moves the Fresnel reflectance from
+/// `n1` into `n2`.
+fn fresnel_slack(cos_i: f32, n1: f32, n2: f32) -> f32 {
+    let at = |c: f32| fresnel(c.clamp(0.0, 1.0), n1, n2);
+    (at(cos_i + COS_ROUNDING) - at(cos_i - COS_ROUNDING)).abs() / 2.0
 }
 
 /// How differently two copies may round cos θ = −d · n of unit vectors:
@@ -110,7 +138,8 @@ pub enum Agreement {
 pub fn check_surface(case: &SurfaceCase, got: &SurfaceAnswer, agreement: Agreement) -> Result<(), String> {
     let want = case.answer();
     let fail = |what: &str| Err(format!("{what}: {got:?}, the core says {want:?}, for {case:?}"));
-    if (got.normal, got.n1, got.n2) != (want.normal, want.n1, want.n2) {
+    let flipped = (got.normal, got.n1, got.n2) == (-want.normal, want.n2, want.n1);
+    if (got.normal, got.n1, got.n2) != (want.normal, want.n1, want.n2) && !(case.grazing() && flipped) {
         return fail("interface");
     }
     let tol = match agreement {
@@ -126,7 +155,8 @@ pub fn check_surface(case: &SurfaceCase, got: &SurfaceAnswer, agreement: Agreeme
     if !close(got.reflected, want.reflected) {
         return fail("reflection");
     }
-    if case.at_the_critical_angle() {
+    // A graze met from the other side is another case; its reflection is the same.
+    if case.at_the_critical_angle() || flipped {
         return Ok(());
     }
     if (got.fresnel - want.fresnel).abs() > tol + case.reflectance_slack() {
@@ -134,7 +164,7 @@ pub fn check_surface(case: &SurfaceCase, got: &SurfaceAnswer, agreement: Agreeme
     }
     match (got.refracted, want.refracted) {
         (None, None) => Ok(()),
-        (Some(a), Some(b)) if close(a, b) => Ok(()),
+        (Some(a), Some(b)) if (a - b).abs().max_element() <= tol + case.refraction_slack() => Ok(()),
         _ => fail("refraction"),
     }
 }
@@ -276,6 +306,15 @@ impl ScatterCase {
         let s = &self.surface;
         let ray = scatter_dielectric(s.d, self.point, s.outward, s.ior, self.thin, self.u);
         (ray.origin, ray.direction)
+    }
+
+    /// How far a copy's reflectance may stray beyond the agreed bound: the
+    /// surface's [`SurfaceCase::reflectance_slack`], or for a sheet twice
+    /// its faces' (air into glass from either side; the sheet's
+    /// 2R/(1 + R) moves by at most twice R's).
+    pub fn reflectance_slack(&self) -> f32 {
+        let s = &self.surface;
+        if self.thin { 2.0 * fresnel_slack(s.d.dot(s.outward).abs(), 1.0, s.ior) } else { s.reflectance_slack() }
     }
 
     /// The core's two branches (`optics::scatter::split_dielectric`).

@@ -30,6 +30,7 @@ use prismatic_core::optics::fresnel::reflect;
 use prismatic_core::optics::scatter::{self, scatter_dielectric};
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
 use prismatic_core::plan::area::area;
+use prismatic_core::plan::area_aims::on_triangle;
 use prismatic_core::plan::prepared::PreparedScene;
 use prismatic_core::render::view::{HeroViewPath, gathers_at, glass_transmittance, hero_view_paths};
 use prismatic_core::render::visible::{VisiblePoint, VisiblePoints};
@@ -301,18 +302,38 @@ impl Shader<'_> {
                 let blocked = occluded(self.scene, &shadow, limit_where(lit, f32x8::splat(f32::INFINITY)));
                 (lit & !blocked).select(f32x8::splat(*irradiance) * cos_s, f32x8::ZERO)
             }
-            Light::Area { vertices, power, .. } => {
+            Light::Area { vertices, power, aim, .. } => {
                 let (angle, centre) = triangle_view(p, n, *vertices);
                 let lit = mask & gt(angle, f32x8::ZERO);
                 let irradiance = f32x8::splat(power / (PI * area(vertices))) * angle;
                 if !lit.any() || !shadows {
                     return lit.select(irradiance, f32x8::ZERO);
                 }
-                let dir = (centre - p).normalize();
+                let Some(st) = aim else {
+                    let dir = (centre - p).normalize();
+                    let origin = offset_origin(p, n, dir);
+                    let reach = (centre - origin).length_squared().sqrt() * f32x8::splat(1.0 - CONNECTION_REL);
+                    let blocked = occluded(self.scene, &RayX8 { origin, dir }, limit_where(lit, reach));
+                    return (lit & !blocked).select(irradiance, f32x8::ZERO);
+                };
+                // `area_aims::shadow_sample` per lane: the pass's point y, and
+                // what it stands for, taken where it is hidden.
+                let [a, b, c] = *vertices;
+                let y = Vec3x8::splat(on_triangle(*vertices, *st));
+                let d = y - p;
+                let cos_p = n.dot(d);
+                let cos_y = -Vec3x8::splat((b - a).cross(c - a).normalize()).dot(d);
+                let r2 = d.length_squared();
+                let share = f32x8::splat(power / PI) * cos_p * cos_y.max(f32x8::ZERO) / (r2 * r2);
+                let sampled = lit & gt(cos_p, f32x8::ZERO);
+                if !sampled.any() {
+                    return lit.select(irradiance, f32x8::ZERO);
+                }
+                let dir = d.normalize();
                 let origin = offset_origin(p, n, dir);
-                let reach = (centre - origin).length_squared().sqrt() * f32x8::splat(1.0 - CONNECTION_REL);
-                let blocked = occluded(self.scene, &RayX8 { origin, dir }, limit_where(lit, reach));
-                (lit & !blocked).select(irradiance, f32x8::ZERO)
+                let reach = (y - origin).length_squared().sqrt() * f32x8::splat(1.0 - CONNECTION_REL);
+                let blocked = occluded(self.scene, &RayX8 { origin, dir }, limit_where(sampled, reach));
+                lit.select(irradiance - (sampled & blocked).select(share, f32x8::ZERO), f32x8::ZERO)
             }
             Light::Environment { .. } => unreachable!("an environment shines as its suns (PreparedScene::lights)"),
         }

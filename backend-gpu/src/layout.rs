@@ -247,10 +247,15 @@ pub struct GpuLight {
     pub cos_inner: f32,
     /// Column 2 of `LightSpectrum::reflected` (the blue primary).
     pub reflected_b: [f32; 3],
+    /// 1 when an area light's shadow rays aim at `aim` this pass
+    /// (`prismatic_core::plan::area_aims`).
+    pub aimed: u32,
+    /// The aim's barycentric (s, t) along (`tangent`, `bitangent`).
+    pub aim: [f32; 2],
     /// Padding.
-    pub _pad1: u32,
+    pub _pad1: [u32; 2],
 }
-const _: () = assert!(core::mem::size_of::<GpuLight>() == 144);
+const _: () = assert!(core::mem::size_of::<GpuLight>() == 160);
 
 /// A spectral band; after a table's N bands, the band buffer holds the
 /// rows of the colour of each wavelength

@@ -308,8 +308,11 @@ impl EncodedScene {
                 l.bitangent = v3(b);
                 l.radius = *radius;
             }
-            Light::Area { vertices: [a, b, c], power, .. } => {
+            Light::Area { vertices: [a, b, c], power, aim, .. } => {
                 l.kind = LIGHT_AREA;
+                if let Some(st) = aim {
+                    (l.aimed, l.aim) = (1, *st);
+                }
                 l.position = v3(*a);
                 l.tangent = v3(*b - *a);
                 l.bitangent = v3(*c - *a);
@@ -348,16 +351,25 @@ impl EncodedScene {
         l
     }
 
-    /// Encodes again, in place, the environment's drawn suns of `scene`
-    /// (this encoding's scene with its suns of another pass,
-    /// [`PreparedScene::suns_of_pass`]): each sun's record and its
-    /// projection map's targets and CDF. Returns the elements that changed
-    /// (lights, geometry records, table entries), or `None` when a
-    /// projection map changed its size (then encode the scene again).
-    pub fn point_suns(&mut self, scene: &PreparedScene) -> Option<PointedSuns> {
-        let drawn = scene.drawn_suns.as_ref()?;
-        let mut changed = PointedSuns::default();
-        for &(i, _) in &drawn.suns {
+    /// Encodes again, in place, the lights of `scene` that change each pass
+    /// (this encoding's scene with its lights of another pass,
+    /// [`PreparedScene::lights_of_pass`]): each drawn sun's record and its
+    /// projection map's targets and CDF, and each area light's aim. Returns
+    /// the elements that changed (lights, geometry records, table entries),
+    /// or `None` when a projection map changed its size (then encode the
+    /// scene again).
+    pub fn point_lights(&mut self, scene: &PreparedScene) -> Option<PointedLights> {
+        let mut changed = PointedLights::default();
+        if scene.draws_aims {
+            for (i, light) in scene.emitters.iter().enumerate() {
+                if let Light::Area { aim: Some(st), .. } = light {
+                    (self.lights[i].aimed, self.lights[i].aim) = (1, *st);
+                    changed.lights.push(i);
+                }
+            }
+        }
+        let suns = scene.drawn_suns.as_ref().map_or(&[][..], |d| &d.suns[..]);
+        for &(i, _) in suns {
             let old = self.lights[i];
             let shadows = old.shadows != 0;
             let mut scratch = EncodedScene::default();
@@ -387,10 +399,10 @@ impl EncodedScene {
     }
 }
 
-/// What [`EncodedScene::point_suns`] changed: light indices, and ranges of
+/// What [`EncodedScene::point_lights`] changed: light indices, and ranges of
 /// geometry records and table entries.
 #[derive(Clone, Debug, Default, PartialEq)]
-pub struct PointedSuns {
+pub struct PointedLights {
     /// The suns' records.
     pub lights: Vec<usize>,
     /// Their projection targets.
@@ -472,8 +484,8 @@ impl SceneBuffers {
         SceneBuffers { params, params_buffer, bind_group, storage }
     }
 
-    /// Writes what [`EncodedScene::point_suns`] changed in `encoded`.
-    pub fn write_suns(&self, ctx: &GpuContext, encoded: &EncodedScene, changed: &PointedSuns) {
+    /// Writes what [`EncodedScene::point_lights`] changed in `encoded`.
+    pub fn write_lights(&self, ctx: &GpuContext, encoded: &EncodedScene, changed: &PointedLights) {
         fn write<T: Pod>(ctx: &GpuContext, buffer: &wgpu::Buffer, items: &[T], range: std::ops::Range<usize>) {
             let size = std::mem::size_of::<T>();
             ctx.write(buffer, (range.start * size) as u64, bytemuck::cast_slice(&items[range]));
@@ -564,7 +576,7 @@ fn changed_range(was: &[u8], now: &[u8]) -> Option<(usize, usize)> {
 
 #[cfg(test)]
 mod tests {
-    use super::{EncodedScene, changed_range};
+    use super::{EncodedScene, Light, changed_range};
 
     #[test]
     fn suns_pointed_in_place_are_the_pass_encoded_afresh() {
@@ -577,13 +589,29 @@ mod tests {
             let scene = prismatic_core::PreparedScene::new(sky).unwrap();
             let mut encoded = EncodedScene::new(&scene);
             for pass in [3, 1, 0] {
-                let moved = scene.suns_of_pass(pass).expect("suns drawn each pass");
-                let changed = encoded.point_suns(&moved).expect("the projection maps keep their size");
+                let moved = scene.lights_of_pass(pass).expect("suns drawn each pass");
+                let changed = encoded.point_lights(&moved).expect("the projection maps keep their size");
                 assert_eq!(changed.lights.len(), 8, "pass {pass}");
                 let aimed = !changed.geometry.is_empty() && !changed.tables.is_empty();
                 assert_eq!(aimed, indirect_photons > 0, "pass {pass}: projection maps written");
                 assert!(encoded == EncodedScene::new(&moved), "pass {pass}: pointed in place differs from afresh");
             }
+        }
+    }
+
+    #[test]
+    fn area_lights_aimed_in_place_are_the_pass_encoded_afresh() {
+        let mut panel = prismatic_conformance::scenes::panel_lit_sphere().scene;
+        panel.render.view_paths = prismatic_core::model::scene::ViewPaths::Hero;
+        let scene = prismatic_core::PreparedScene::new(panel).unwrap();
+        assert!(scene.draws_aims);
+        let areas = scene.lights.iter().filter(|l| matches!(l, Light::Area { .. })).count();
+        let mut encoded = EncodedScene::new(&scene);
+        for pass in [3, 1, 0] {
+            let moved = scene.lights_of_pass(pass).expect("aims drawn each pass");
+            let changed = encoded.point_lights(&moved).expect("area lights keep their room");
+            assert_eq!(changed.lights.len(), areas, "pass {pass}");
+            assert!(encoded == EncodedScene::new(&moved), "pass {pass}: aimed in place differs from afresh");
         }
     }
 

@@ -172,6 +172,8 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 reflected_g,
                 cos_inner,
                 reflected_b,
+                aimed,
+                aim,
                 _pad1,
             }),
         ),

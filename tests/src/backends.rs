@@ -53,6 +53,16 @@ pub fn frame(backend: &mut dyn Backend, scene: &PreparedScene) -> (PhotonMap, Im
     (map, image)
 }
 
+/// The image of passes 0..`passes` of `scene` (as given, not fixed) on `backend`.
+pub fn image_after(backend: &mut dyn Backend, scene: &PreparedScene, passes: u32) -> Image {
+    let name = backend.name();
+    let mut render = backend.prepare(scene).unwrap_or_else(|e| panic!("{name}: prepare: {e}"));
+    for pass in 0..passes {
+        render.run_pass(pass, &mut NoProgress).unwrap_or_else(|e| panic!("{name}: pass {pass}: {e}"));
+    }
+    render.image().unwrap_or_else(|e| panic!("{name}: image: {e}"))
+}
+
 /// That aiming photons changed nothing but the noise: the aimed and the
 /// unaimed frame of one scene store the same caustic flux (2 %) and give
 /// the same image within photon noise (3 % of its L1 norm).

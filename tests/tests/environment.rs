@@ -9,8 +9,8 @@
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::environment::EnvironmentMap;
 use prismatic_core::model::scene::{Camera, Light, Material, MaterialKind, Object, Shape, ViewPaths};
-use prismatic_core::{NoProgress, PreparedScene, Scene, Vec3};
-use prismatic_tests::backends::{every_backend, frame};
+use prismatic_core::{PreparedScene, Scene, Vec3};
+use prismatic_tests::backends::{every_backend, frame, image_after};
 use prismatic_tests::parity::{Output, assert_parity};
 use prismatic_tests::{glass, prepare, settings};
 
@@ -100,12 +100,8 @@ fn walled_floor_error(scene: &PreparedScene, l: f32, passes: u32) -> Vec<(&'stat
     every_backend()
         .into_iter()
         .map(|mut backend| {
+            let image = image_after(backend.as_mut(), scene, passes);
             let name = backend.name();
-            let mut render = backend.prepare(scene).unwrap_or_else(|e| panic!("{name}: prepare: {e}"));
-            for pass in 0..passes {
-                render.run_pass(pass, &mut NoProgress).unwrap_or_else(|e| panic!("{name}: pass {pass}: {e}"));
-            }
-            let image = render.image().unwrap_or_else(|e| panic!("{name}: image: {e}"));
             let want = ALBEDO * l / 2.0;
             let off = image.pixels.iter().map(|p| (p.x / want - 1.0).abs()).fold(0.0, f32::max);
             (name, off)

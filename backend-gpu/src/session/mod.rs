@@ -11,15 +11,15 @@
 //! buffers, in chunks of pixels), `view` (the view pass), `layer` (an
 //! engine's frame in place of the view: the caustic layer), `history` (a
 //! layer's temporal accumulation), `passes` (the
-//! pilot, the photon passes and their gathers), `suns` (an environment's
-//! suns drawn each pass), `readout` (what is read back).
+//! pilot, the photon passes and their gathers), `pass_lights` (the lights
+//! that change each pass: drawn suns, area lights' aims), `readout` (what is read back).
 
 mod history;
 mod layer;
+mod pass_lights;
 mod passes;
 mod points;
 mod readout;
-mod suns;
 mod view;
 
 pub use layer::{DepthEncoding, FrameTextures, NormalEncoding};
@@ -61,8 +61,8 @@ pub struct GpuSession {
     scene: PreparedScene,
     encoded: EncodedScene,
     buffers: SceneBuffers,
-    /// The pass whose environment suns the buffers hold (0 after an upload).
-    suns_pass: u32,
+    /// The pass whose lights the buffers hold (0 after an upload).
+    lights_pass: u32,
     photons: PhotonPass,
     levels: GridLevels,
     /// The image: row-major `vec4<f32>`, linear RGB, exposure applied.
@@ -148,7 +148,7 @@ impl GpuSession {
             scene: scene.clone(),
             encoded,
             buffers,
-            suns_pass: 0,
+            lights_pass: 0,
             photons,
             levels,
             pixels,
@@ -214,8 +214,8 @@ impl GpuSession {
         self.check_reads()?;
         let redone = std::mem::take(&mut self.stale);
         if redone != Change::None {
-            // Pass 0's view and the pilot are lit by pass 0's suns.
-            self.use_suns_of(0)?;
+            // Pass 0's view and the pilot are lit by pass 0's lights.
+            self.use_lights_of(0)?;
         }
         if redone >= Change::Size {
             self.allocate_points()?;
@@ -285,7 +285,7 @@ impl Render for GpuSession {
             self.buffers.update(&self.ctx, &self.pipelines.scene_layout, &self.encoded, &encoded)
         })?;
         self.encoded = encoded;
-        self.suns_pass = 0;
+        self.lights_pass = 0;
         let window = window(&self.ctx, self.options);
         let mut rebind = regrouped;
         if !self.photons.fits(scene, window) {
@@ -382,7 +382,7 @@ impl Render for GpuSession {
     }
 
     fn photon_map(&mut self, pass: u32, progress: &mut dyn Progress) -> Result<PhotonMap, BackendError> {
-        self.use_suns_of(pass)?;
+        self.use_lights_of(pass)?;
         self.trace_photons(&pass_scene(&self.scene, pass), progress)?;
         self.photons.read_map(&self.ctx)
     }

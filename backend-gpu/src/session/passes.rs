@@ -84,7 +84,7 @@ impl GpuSession {
     /// Photon pass `k`, gathered at the points with their radii and added to
     /// the pixels' sums; `summed` passes are in the image with it.
     pub(super) fn pass(&mut self, k: u32, summed: u32, progress: &mut dyn Progress) -> Result<(), BackendError> {
-        self.use_suns_of(k)?;
+        self.use_lights_of(k)?;
         let pass = pass_scene(&self.scene, k);
         let fixed = self.scene.scene.render.radius_mode == RadiusMode::Fixed;
         let settings = SessionParams {

@@ -128,7 +128,9 @@ struct GpuLight {
     reflected_g: vec3<f32>,
     cos_inner: f32,
     reflected_b: vec3<f32>,
-    _pad1: u32,
+    aimed: u32,
+    aim: vec2<f32>,
+    _pad1: vec2<u32>,
 }
 
 // Twin of prismatic_gpu::layout::GpuBand.

@@ -168,6 +168,9 @@ fn triangle_view(p: vec3<f32>, n: vec3<f32>, a: vec3<f32>, b: vec3<f32>, c: vec3
 // glass test, which one copy for all lights does not).
 fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     var value = 0.0;
+    // What is left where the shadow ray is blocked (an area light's drawn
+    // point takes only its share: plan::area_aims).
+    var hidden = 0.0;
     // The shadow ray: its origin, direction and length.
     var origin = p;
     var dir = vec3<f32>(0.0);
@@ -203,9 +206,23 @@ fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
             return 0.0;
         }
         value = l.radius * seen.w;
-        dir = nrm(seen.xyz - p);
+        var aim_at = seen.xyz;
+        if l.aimed != 0u {
+            // area_aims::shadow_sample: the pass's point y, and what it
+            // stands for, taken where it is hidden.
+            aim_at = l.position + l.tangent * l.aim.x + l.bitangent * l.aim.y;
+            let d = aim_at - p;
+            let cos_p = dot(n, d);
+            if cos_p <= 0.0 {
+                return value;
+            }
+            let cos_y = -dot(l.axis, d);
+            let r2 = dot(d, d);
+            hidden = value - l.power / PI * cos_p * max(cos_y, 0.0) / (r2 * r2);
+        }
+        dir = nrm(aim_at - p);
         origin = offset_origin(p, n, dir);
-        reach = length(seen.xyz - origin) * (1.0 - CONNECTION_REL);
+        reach = length(aim_at - origin) * (1.0 - CONNECTION_REL);
     } else {
         // A point or spot light.
         let to = l.position - p;
@@ -229,7 +246,7 @@ fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
         reach = length(l.position - origin);
     }
     if l.shadows != 0u && occluded(origin, dir, reach) {
-        return 0.0;
+        return hidden;
     }
     return value;
 }

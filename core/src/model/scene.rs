@@ -545,6 +545,10 @@ pub enum Light {
         power: f32,
         /// What it emits across the spectrum.
         spectrum: Spectrum,
+        /// Its shadows' point of the pass, a + s(b − a) + t(c − a) for
+        /// `Some([s, t])` (drawn anew each pass, [`crate::plan::area_aims`]);
+        /// `None`: shadow rays aim at the centre of the part a point sees.
+        aim: Option<[f32; 2]>,
     },
     /// Parallel light from one direction (the sun, glTF's directional
     /// light): it lights everything it reaches, with `irradiance` on a

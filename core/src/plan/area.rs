@@ -53,7 +53,7 @@ pub fn area_lights(scene: &Scene) -> Vec<Light> {
     pieces
         .iter()
         .filter(|p| power(p) > 0.0)
-        .map(|p| Light::Area { vertices: p.0, power: power(p), spectrum: emissions[p.1].0.clone() })
+        .map(|p| Light::Area { vertices: p.0, power: power(p), spectrum: emissions[p.1].0.clone(), aim: None })
         .collect()
 }
 
@@ -78,7 +78,7 @@ fn chosen_by_power(
         }
         if picked > 0 {
             let share = (total * picked as f64 / budget as f64) as f32;
-            lights.push(Light::Area { vertices: p.0, power: share, spectrum: emissions[p.1].0.clone() });
+            lights.push(Light::Area { vertices: p.0, power: share, spectrum: emissions[p.1].0.clone(), aim: None });
         }
     }
     lights

@@ -4,6 +4,7 @@
 //! prepared scene, and the pass schedule.
 
 pub mod area;
+pub mod area_aims;
 pub mod drawn_suns;
 pub mod effects;
 pub mod prepared;

@@ -10,7 +10,7 @@ use crate::model::spectrum::Spectrum;
 use crate::optics::surface::Surface;
 use crate::plan::drawn_suns::DrawnSuns;
 use crate::plan::effects::EffectPlan;
-use crate::plan::{area, reach};
+use crate::plan::{area, area_aims, reach};
 use crate::sampling::environment::{EnvironmentCut, EnvironmentLookup};
 use crate::sampling::light_spectrum::LightSpectrum;
 use alloc::sync::Arc;
@@ -51,7 +51,8 @@ pub struct PreparedScene {
     /// many as `render.environment_lights`), then the emissive meshes'
     /// area lights ([`area::area_lights`]). Backends light with these.
     /// With per-pass view paths the suns are pass 0's draw
-    /// ([`PreparedScene::drawn_suns`]).
+    /// ([`PreparedScene::drawn_suns`]), and so are the area lights' aims
+    /// ([`PreparedScene::draws_aims`]).
     pub lights: Vec<Light>,
     /// The environment rays that leave the scene see (`None`: the
     /// background colour).
@@ -75,6 +76,9 @@ pub struct PreparedScene {
     /// With an environment and per-pass view paths, how each pass draws
     /// its suns ([`crate::plan::drawn_suns`]); `None`: the suns stay fixed.
     pub drawn_suns: Option<DrawnSuns>,
+    /// With area lights that cast shadows and per-pass view paths, whether
+    /// each pass aims their shadow rays anew ([`crate::plan::area_aims`]).
+    pub draws_aims: bool,
 }
 
 impl PreparedScene {
@@ -190,6 +194,7 @@ impl PreparedScene {
             let aimed_at = bounds.iter().zip(&surfaces).filter(|(_, s)| !matches!(s, Surface::Diffuse { .. }));
             DrawnSuns { cut: Arc::new(cut), suns, beam_targets, aimed_at: aimed_at.map(|(b, _)| *b).collect(), bounds }
         });
+        let draws_aims = draw && lights.iter().zip(&plan.shadows).any(|(l, s)| matches!(l, Light::Area { .. }) && s.on);
         let mut prepared = PreparedScene {
             scene,
             bands,
@@ -205,26 +210,35 @@ impl PreparedScene {
             white_balance,
             plan,
             drawn_suns,
+            draws_aims,
         };
-        prepared.point_suns(0);
+        prepared.point_lights(0);
         Ok(prepared)
     }
 
-    /// This scene with its environment's suns of pass `pass`, or `None`
-    /// when its suns stay where the cut put them (no environment, or view
-    /// paths that every pass shares). See [`crate::plan::drawn_suns`].
-    pub fn suns_of_pass(&self, pass: u32) -> Option<PreparedScene> {
-        self.drawn_suns.as_ref()?;
+    /// This scene with its lights of pass `pass`: its environment's suns
+    /// drawn ([`crate::plan::drawn_suns`]) and its area lights' shadows
+    /// aimed ([`crate::plan::area_aims`]) for that pass. `None` when its
+    /// lights are the same every pass (none of those, or view paths that
+    /// every pass shares).
+    pub fn lights_of_pass(&self, pass: u32) -> Option<PreparedScene> {
+        if self.drawn_suns.is_none() && !self.draws_aims {
+            return None;
+        }
         let mut moved = self.clone();
-        moved.point_suns(pass);
+        moved.point_lights(pass);
         Some(moved)
     }
 
-    /// Points the drawn suns (if any) along their directions of pass `pass`.
-    fn point_suns(&mut self, pass: u32) {
+    /// Points the drawn suns and aims the area lights' shadows (if drawn) for pass `pass`.
+    fn point_lights(&mut self, pass: u32) {
+        let seed = self.scene.render.seed;
         if let Some(drawn) = &self.drawn_suns {
-            let parts = (&mut self.lights[..], &mut self.emitters[..], &mut self.plan.projections[..]);
-            drawn.point(parts, self.scene.render.seed, pass);
+            drawn.point((&mut self.lights[..], &mut self.emitters[..], &mut self.plan.projections[..]), seed, pass);
+        }
+        if self.draws_aims {
+            area_aims::aim(&mut self.lights, seed, pass);
+            area_aims::aim(&mut self.emitters, seed, pass);
         }
     }
 

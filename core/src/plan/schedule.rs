@@ -69,11 +69,11 @@ pub fn pass_shrink(scene: &PreparedScene, pass: u32) -> f32 {
 /// The scene of photon pass `pass` (0-based): its own seed (derived from
 /// the scene's, so passes are independent), as its radius the pass's
 /// largest radius R·s_k (k = pass + 1; R with fixed radii), and its
-/// environment's suns where they are drawn each pass
-/// ([`PreparedScene::suns_of_pass`]).
+/// lights of the pass where they change each pass (drawn suns, area
+/// lights' aims: [`PreparedScene::lights_of_pass`]).
 pub fn pass_scene(scene: &PreparedScene, pass: u32) -> PreparedScene {
     let k = pass.saturating_add(1);
-    let mut photons = scene.suns_of_pass(pass).unwrap_or_else(|| scene.clone());
+    let mut photons = scene.lights_of_pass(pass).unwrap_or_else(|| scene.clone());
     let r = &mut photons.scene.render;
     r.seed = random_u32(r.seed, k, u32::MAX);
     if r.radius_mode == RadiusMode::Progressive {

@@ -225,10 +225,10 @@ impl<K: HostKernels> Render for HostRender<K> {
             self.layer_pass(pass, progress);
             return Ok(());
         }
-        // A pass's own view is lit by the pass's suns.
+        // A pass's own view is lit by the pass's lights (drawn suns, aimed shadows).
         let own_view = (self.sampled() && pass != 0).then(|| {
-            let suns = self.scene.suns_of_pass(pass);
-            self.kernels.visible_points(suns.as_ref().unwrap_or(&self.scene), pass, progress)
+            let lights = self.scene.lights_of_pass(pass);
+            self.kernels.visible_points(lights.as_ref().unwrap_or(&self.scene), pass, progress)
         });
         let view = own_view.as_ref().unwrap_or(&self.view);
         let points = &view.points;

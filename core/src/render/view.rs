@@ -49,6 +49,7 @@ use crate::optics::scatter::{offset_origin, scatter_dielectric, split_dielectric
 use crate::optics::surface::{DielectricOptics, Surface};
 use crate::photons::wavelengths::spectrum_share;
 use crate::plan::area::area;
+use crate::plan::area_aims::shadow_sample;
 use crate::plan::prepared::{Hit, PreparedScene};
 use crate::render::visible::{VisiblePoint, VisiblePoints};
 use crate::sampling::pixel_sample::PixelSampler;
@@ -237,7 +238,9 @@ impl<'a> ViewContext<'a> {
     }
 
     /// Irradiance from light `index` at `p` (unit normal `n`), zero when in
-    /// shadow (shadow rays only where the effect plan asks for them).
+    /// shadow (shadow rays only where the effect plan asks for them). An
+    /// area light's drawn shadow point takes its share only, which can leave
+    /// a pass's irradiance negative in a penumbra ([`crate::plan::area_aims`]).
     pub fn direct_irradiance(&self, index: usize, p: Vec3, n: Vec3) -> f32 {
         let shadows = self.scene.plan.shadows[index].on;
         match &self.scene.lights[index] {
@@ -280,22 +283,30 @@ impl<'a> ViewContext<'a> {
                 }
                 irradiance * cos_s
             }
-            Light::Area { vertices, power, .. } => {
+            Light::Area { vertices, power, aim, .. } => {
                 if !in_front_of(p, *vertices) {
                     return 0.0;
                 }
                 let seen = triangle_view(p, n, *vertices);
-                if seen.projected_solid_angle <= 0.0
-                    || (shadows && {
-                        let to = seen.centre - p;
-                        let l = to.normalize();
-                        let origin = offset_origin(p, n, l);
-                        self.scene.occluded(origin, l, (seen.centre - origin).length() * (1.0 - CONNECTION_REL))
-                    })
-                {
+                if seen.projected_solid_angle <= 0.0 {
                     return 0.0;
                 }
-                power / (PI * area(vertices)) * seen.projected_solid_angle
+                let unblocked = power / (PI * area(vertices)) * seen.projected_solid_angle;
+                let blocked = |target: Vec3| {
+                    let l = (target - p).normalize();
+                    let origin = offset_origin(p, n, l);
+                    self.scene.occluded(origin, l, (target - origin).length() * (1.0 - CONNECTION_REL))
+                };
+                match aim {
+                    _ if !shadows => unblocked,
+                    // The pass's point: what it stands for goes where it is hidden.
+                    Some(st) => match shadow_sample(*vertices, *power, *st, p, n) {
+                        Some((y, share)) if blocked(y) => unblocked - share,
+                        _ => unblocked,
+                    },
+                    None if blocked(seen.centre) => 0.0,
+                    None => unblocked,
+                }
             }
             Light::Environment { .. } => unreachable!("an environment shines as its suns (PreparedScene::lights)"),
         }

@@ -48,6 +48,10 @@ pub mod dim {
     pub const SKY: u32 = 7;
     /// First dimension of the path's scattering decisions.
     pub const PATH: u32 = 8;
+    /// The scramble of an area light's shadow aims, one Sobol sequence over
+    /// the passes (the index is the light's; see `plan::area_aims`), past
+    /// every dimension a photon uses.
+    pub const AIM: u32 = u32::MAX;
     /// Dimensions reserved per band path (one per bounce, at most this many bounces).
     pub const PER_BAND: u32 = 64;
 

@@ -403,7 +403,7 @@ impl EncodedScene {
 /// geometry records and table entries.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PointedLights {
-    /// The suns' records.
+    /// The records: drawn suns', aimed area lights'.
     pub lights: Vec<usize>,
     /// Their projection targets.
     pub geometry: Vec<std::ops::Range<usize>>,

@@ -14,6 +14,10 @@
 //! wavelengths and view paths), as prismatic's image, as a caustic layer
 //! in the frame the camera sees, and as an engine's frames (its prepass
 //! read each frame, one pass, the layer's history): what an engine pays.
+//! Then `room` as authored (caustic and indirect photons), with four
+//! wavelengths a path and one, each also without light tracing: the
+//! "gather" stage holds the photons' splat to the camera, so the
+//! difference is what the splat costs.
 //!
 //! Then the photon map of one pass read back (what `prismatic photons` pays).
 //!
@@ -32,6 +36,8 @@ use std::time::{Duration, Instant};
 /// One configuration to time.
 struct Config {
     label: &'static str,
+    /// The built-in scene.
+    scene: &'static str,
     width: u32,
     height: u32,
     photons: u32,
@@ -58,11 +64,18 @@ enum Transport {
     /// (`GpuSession::layer_frame`): its frame read from its prepass's
     /// textures (engine_loop's raster of the floor), one pass, the history.
     EngineFrames,
+    /// The scene's own settings but the size and wavelengths, with light
+    /// tracing as given.
+    AsAuthored { light_tracing: bool },
 }
 
 fn scene(c: &Config, width: u32, height: u32) -> PreparedScene {
-    let mut doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
+    let mut doc = prismatic_cli::load_scene(c.scene).expect("a built-in scene");
     let r = &mut doc.scene.render;
+    if let Transport::AsAuthored { light_tracing } = c.transport {
+        (r.width, r.height, r.wavelengths, r.light_tracing) = (width, height, c.wavelengths, light_tracing);
+        return PreparedScene::new(doc.scene).expect("valid");
+    }
     (r.width, r.height, r.photons) = (width, height, c.photons);
     r.bands = c.bands;
     r.wavelengths = c.wavelengths;
@@ -89,6 +102,7 @@ fn main() {
     let (split, progressive) = (WavelengthSampling::Split, RadiusMode::Progressive);
     let config = |label, (width, height), photons, bands, wavelengths, projection_maps, radius_mode| Config {
         label,
+        scene: "sphere",
         width,
         height,
         photons,
@@ -106,6 +120,11 @@ fn main() {
     let layer = |label, photons| hero(label, photons, Transport::Layer);
     let engine_frames = |label, photons| hero(label, photons, Transport::EngineFrames);
     let hd = (1920, 1080);
+    let room = |label, wavelengths, light_tracing| Config {
+        scene: "room",
+        transport: Transport::AsAuthored { light_tracing },
+        ..config(label, (400, 400), 0, BandSpec::Physical(32), wavelengths, true, progressive)
+    };
     let configs = [
         config(
             "paper: 400x400, 20k, paper7, fixed radius",
@@ -143,6 +162,10 @@ fn main() {
         layer("sphere 1080p, 1M x hero, caustic layer", 1_000_000),
         layer("sphere 1080p, 4M x hero, caustic layer", 4_000_000),
         engine_frames("sphere 1080p, 1M x hero, caustic layer in engine frames", 1_000_000),
+        room("room 400x400, hero", WavelengthSampling::Hero, true),
+        room("room 400x400, random_band", WavelengthSampling::RandomBand, true),
+        room("room 400x400, hero, no light tracing", WavelengthSampling::Hero, false),
+        room("room 400x400, random_band, no light tracing", WavelengthSampling::RandomBand, false),
     ];
     let args: Vec<String> = std::env::args().collect();
     let only = args.iter().position(|a| a == "--only").and_then(|i| args.get(i + 1));

@@ -291,16 +291,21 @@ impl Shader<'_> {
                 let blocked = occluded(self.scene, &shadow, limit_where(lit, along));
                 (lit & !blocked).select(f32x8::splat(power / (PI * radius * radius)) * cos_s, f32x8::ZERO)
             }
-            Light::Sun { direction, irradiance, .. } => {
+            Light::Sun { direction, irradiance, mean_toward, .. } => {
                 let to_sun = Vec3x8::splat(-direction.normalize());
                 let cos_s = to_sun.dot(n);
-                let lit = mask & gt(cos_s, f32x8::ZERO);
-                if !lit.any() || !shadows {
-                    return lit.select(f32x8::splat(*irradiance) * cos_s, f32x8::ZERO);
+                let mut lit = mask & gt(cos_s, f32x8::ZERO);
+                if lit.any() && shadows {
+                    let shadow = RayX8 { origin: offset_origin(p, n, to_sun), dir: to_sun };
+                    lit = lit & !occluded(self.scene, &shadow, limit_where(lit, f32x8::splat(f32::INFINITY)));
                 }
-                let shadow = RayX8 { origin: offset_origin(p, n, to_sun), dir: to_sun };
-                let blocked = occluded(self.scene, &shadow, limit_where(lit, f32x8::splat(f32::INFINITY)));
-                (lit & !blocked).select(f32x8::splat(*irradiance) * cos_s, f32x8::ZERO)
+                let e = f32x8::splat(*irradiance);
+                let plain = lit.select(e * cos_s, f32x8::ZERO);
+                let Some(mean) = mean_toward else { return plain };
+                // A drawn sun's control variate (plan::drawn_suns), lane by lane.
+                let mean_cos = Vec3x8::splat(*mean).dot(n);
+                let varied = lit.select(e * mean_cos, e * (mean_cos - cos_s));
+                (mask & gt(mean_cos, f32x8::ZERO)).select(varied, plain)
             }
             Light::Area { vertices, power, aim, .. } => {
                 let (angle, centre) = triangle_view(p, n, *vertices);

@@ -254,8 +254,14 @@ pub struct GpuLight {
     pub aim: [f32; 2],
     /// Padding.
     pub _pad1: [u32; 2],
+    /// A drawn sun's mean direction toward its light over the draws
+    /// (`Light::Sun::mean_toward`; zero for any other light, which its
+    /// control variate's test n · m̄ > 0 then never takes).
+    pub mean_toward: [f32; 3],
+    /// Padding.
+    pub _pad2: u32,
 }
-const _: () = assert!(core::mem::size_of::<GpuLight>() == 160);
+const _: () = assert!(core::mem::size_of::<GpuLight>() == 176);
 
 /// A spectral band; after a table's N bands, the band buffer holds the
 /// rows of the colour of each wavelength

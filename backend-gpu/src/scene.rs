@@ -116,8 +116,9 @@ impl EncodedScene {
                     e.tables.extend_from_slice(column);
                 }
             }
-            if let Light::Sun { .. } = light {
+            if let Light::Sun { mean_toward, .. } = light {
                 l.sun = 1;
+                l.mean_toward = v3(mean_toward.unwrap_or(Vec3::ZERO));
             }
             e.lights.push(l);
         }
@@ -382,6 +383,9 @@ impl EncodedScene {
             (l.proj_first, l.proj_cdf) = (old.proj_first, old.proj_cdf);
             (l.reflected_r, l.reflected_g, l.reflected_b) = (old.reflected_r, old.reflected_g, old.reflected_b);
             (l.spectrum_len, l.spectrum_first, l.sun) = (old.spectrum_len, old.spectrum_first, old.sun);
+            if let Light::Sun { mean_toward, .. } = &scene.lights[i] {
+                l.mean_toward = v3(mean_toward.unwrap_or(Vec3::ZERO));
+            }
             self.lights[i] = l;
             changed.lights.push(i);
             if geometry > 0 {

@@ -175,6 +175,8 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 aimed,
                 aim,
                 _pad1,
+                mean_toward,
+                _pad2,
             }),
         ),
         ("GpuBand", &trace, rust_layout!(GpuBand { weight, lambda_nm, lo_nm, hi_nm, max_weight, _pad })),

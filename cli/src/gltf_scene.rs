@@ -193,7 +193,7 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
                         spectrum,
                     })
                 }
-                Kind::Directional => Some(Light::Sun { direction, irradiance: intensity, spectrum }),
+                Kind::Directional => Some(Light::Sun { direction, irradiance: intensity, spectrum, mean_toward: None }),
             };
             match emitted {
                 Some(l) => {

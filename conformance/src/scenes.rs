@@ -340,7 +340,12 @@ pub fn lit_by_every_light_kind(projection_maps: bool, sequence: PhotonSequence) 
             power: 10.0,
             spectrum: Default::default(),
         },
-        Light::Sun { direction: Vec3::new(0.3, -1.0, 0.2), irradiance: 2.0, spectrum: Default::default() },
+        Light::Sun {
+            direction: Vec3::new(0.3, -1.0, 0.2),
+            irradiance: 2.0,
+            spectrum: Default::default(),
+            mean_toward: None,
+        },
     ]);
     let (panel, shape) = light_panel(Vec3::new(0.8, 3.5, 0.4), Vec3::splat(20.0));
     scene.objects.push(Object { shape, material: scene.materials.len() });

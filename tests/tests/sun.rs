@@ -32,7 +32,12 @@ fn scene(photons: u32) -> PreparedScene {
     prepare(Scene {
         render,
         camera: Camera { position: Vec3::new(0.0, 20.0, 0.0), look_at: Vec3::ZERO, up: Vec3::Z, fov_deg: 30.0 },
-        lights: vec![Light::Sun { direction: sun_direction(), irradiance: IRRADIANCE, spectrum: Default::default() }],
+        lights: vec![Light::Sun {
+            direction: sun_direction(),
+            irradiance: IRRADIANCE,
+            spectrum: Default::default(),
+            mean_toward: None,
+        }],
         materials: vec![floor, glass("glass", Dispersion::Paper)],
         objects: vec![
             Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },

@@ -60,7 +60,12 @@ fn scene(texture: Texture, albedo: Vec3, lo: f32, hi: f32) -> PreparedScene {
         render,
         // Seen from 10 above with a 20° field: the view is ±1.76 wide, inside the floor.
         camera: Camera { position: Vec3::new(0.0, 10.0, 0.0), look_at: Vec3::ZERO, up: Vec3::Z, fov_deg: 20.0 },
-        lights: vec![Light::Sun { direction: Vec3::NEG_Y, irradiance: IRRADIANCE, spectrum: Default::default() }],
+        lights: vec![Light::Sun {
+            direction: Vec3::NEG_Y,
+            irradiance: IRRADIANCE,
+            spectrum: Default::default(),
+            mean_toward: None,
+        }],
         materials: vec![Material { name: "floor".into(), kind: material }],
         objects: vec![Object { shape: floor, material: 0 }],
     })

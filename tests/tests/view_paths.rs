@@ -29,6 +29,7 @@ fn edge_scene(view_paths: ViewPaths) -> Scene {
             direction: -Vec3::Z,
             irradiance: std::f32::consts::PI,
             spectrum: Default::default(),
+            mean_toward: None,
         }],
         materials: vec![white("floor")],
         objects: vec![Object {

@@ -131,6 +131,8 @@ struct GpuLight {
     aimed: u32,
     aim: vec2<f32>,
     _pad1: vec2<u32>,
+    mean_toward: vec3<f32>,
+    _pad2: u32,
 }
 
 // Twin of prismatic_gpu::layout::GpuBand.

@@ -178,11 +178,22 @@ fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
     if l.sun != 0u {
         // A sun: its beam's irradiance wherever it is not blocked, inside
         // the disc or not.
+        let e = l.power / (PI * l.radius * l.radius);
         let cos_s = -dot(l.axis, n);
-        if cos_s <= 0.0 {
+        let mean_cos = dot(l.mean_toward, n);
+        if mean_cos > 0.0 {
+            // A drawn sun's control variate (plan::drawn_suns): the mean
+            // unshadowed light, less the draw's where it is not lit.
+            value = e * mean_cos;
+            hidden = e * (mean_cos - cos_s);
+            if cos_s <= 0.0 {
+                return hidden;
+            }
+        } else if cos_s <= 0.0 {
             return 0.0;
+        } else {
+            value = e * cos_s;
         }
-        value = l.power / (PI * l.radius * l.radius) * cos_s;
         dir = -l.axis;
         origin = offset_origin(p, n, dir);
         reach = BIG;

@@ -278,6 +278,7 @@ impl Reader<'_> {
                     direction: self.req(t, "direction", Self::vec3)?,
                     irradiance: self.req(t, "irradiance", Self::float)?,
                     spectrum: self.opt(t, "spectrum", Self::spectrum)?.unwrap_or_default(),
+                    mean_toward: None,
                 }
             }
             other => {

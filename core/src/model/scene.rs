@@ -561,6 +561,11 @@ pub enum Light {
         irradiance: f32,
         /// What it emits across the spectrum.
         spectrum: Spectrum,
+        /// For an environment's sun drawn anew each pass: the mean over the
+        /// draws of its direction toward the light (shorter than 1), which
+        /// makes its direct light a control variate
+        /// ([`crate::plan::drawn_suns`]); `None` for any other sun.
+        mean_toward: Option<Vec3>,
     },
 }
 

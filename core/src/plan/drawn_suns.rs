@@ -10,6 +10,15 @@
 //! Owen-scrambled Sobol sequence over the passes, so the draws are
 //! stratified across passes and any pass is made alone (split and merged
 //! renders agree).
+//!
+//! A drawn sun's direct light at a visible point is a control variate.
+//! With E its irradiance, ω its direction and m̄ the draws' mean direction
+//! ([`crate::sampling::environment::CutRegion::mean_toward`]), E n·ω has the
+//! known mean E n·m̄, so the estimate E cos⁺θ V − E cos θ + E n·m̄ has the
+//! same mean as E cos⁺θ V and is E n·m̄ exactly wherever the draw is above
+//! the horizon and seen. It is taken where n·m̄ > 0, and E cos⁺θ V (0
+//! wholly below) elsewhere; which one is taken changes the noise, never
+//! the mean. A pass can be negative in a shadow; the passes' mean cannot.
 
 use crate::model::scene::Light;
 use crate::plan::projection::Projection;
@@ -54,7 +63,7 @@ impl DrawnSuns {
         seed: u32,
         pass: u32,
     ) {
-        for (sun, &(i, _)) in self.suns.iter().enumerate() {
+        for (sun, &(i, region)) in self.suns.iter().enumerate() {
             let Light::Sun { irradiance, spectrum, .. } = &lights[i] else {
                 unreachable!("light {i} is an environment's sun")
             };
@@ -63,7 +72,8 @@ impl DrawnSuns {
             if projections[i].is_some() {
                 projections[i] = Projection::new(&beam, &self.aimed_at);
             }
-            lights[i] = Light::Sun { direction, irradiance: *irradiance, spectrum: spectrum.clone() };
+            let mean_toward = Some(self.cut.regions[region].mean_toward);
+            lights[i] = Light::Sun { direction, irradiance: *irradiance, spectrum: spectrum.clone(), mean_toward };
             emitters[i] = beam;
         }
     }

@@ -162,7 +162,7 @@ impl PreparedScene {
         let emitters: Vec<Light> = lights
             .iter()
             .map(|l| match l {
-                Light::Sun { direction, irradiance, spectrum } => {
+                Light::Sun { direction, irradiance, spectrum, .. } => {
                     reach::sun_beam(*direction, *irradiance, spectrum, &beam_targets, &bounds)
                 }
                 other => other.clone(),
@@ -351,7 +351,7 @@ fn environment_suns(cut: &EnvironmentCut, spectrum: &Spectrum, drawn: bool) -> V
                 Spectrum::EqualEnergy => Spectrum::from_rgb(rgb.to_array()),
                 other => (other.clone(), crate::model::color::luminance(rgb)),
             };
-            let sun = Light::Sun { direction: -region.fixed.toward, irradiance, spectrum };
+            let sun = Light::Sun { direction: -region.fixed.toward, irradiance, spectrum, mean_toward: None };
             (irradiance > 0.0).then_some((sun, k))
         })
         .collect()

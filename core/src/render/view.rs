@@ -240,7 +240,8 @@ impl<'a> ViewContext<'a> {
     /// Irradiance from light `index` at `p` (unit normal `n`), zero when in
     /// shadow (shadow rays only where the effect plan asks for them). An
     /// area light's drawn shadow point takes its share only, which can leave
-    /// a pass's irradiance negative in a penumbra ([`crate::plan::area_aims`]).
+    /// a pass's irradiance negative in a penumbra ([`crate::plan::area_aims`]);
+    /// so can a drawn sun's shadow ([`crate::plan::drawn_suns`]).
     pub fn direct_irradiance(&self, index: usize, p: Vec3, n: Vec3) -> f32 {
         let shadows = self.scene.plan.shadows[index].on;
         match &self.scene.lights[index] {
@@ -274,14 +275,22 @@ impl<'a> ViewContext<'a> {
                 }
                 power / (PI * radius * radius) * cos_s
             }
-            Light::Sun { direction, irradiance, .. } => {
+            Light::Sun { direction, irradiance, mean_toward, .. } => {
                 let to_sun = -direction.normalize();
                 let cos_s = to_sun.dot(n);
-                if cos_s <= 0.0 || (shadows && self.scene.occluded(offset_origin(p, n, to_sun), to_sun, f32::INFINITY))
-                {
-                    return 0.0;
+                let lit = || {
+                    cos_s > 0.0 && !(shadows && self.scene.occluded(offset_origin(p, n, to_sun), to_sun, f32::INFINITY))
+                };
+                match mean_toward.map(|m| m.dot(n)) {
+                    // A drawn sun's control variate (plan::drawn_suns): the
+                    // mean unshadowed light, less the draw's where it is not lit.
+                    Some(mean_cos) if mean_cos > 0.0 => match lit() {
+                        true => irradiance * mean_cos,
+                        false => irradiance * (mean_cos - cos_s),
+                    },
+                    _ if lit() => irradiance * cos_s,
+                    _ => 0.0,
                 }
-                irradiance * cos_s
             }
             Light::Area { vertices, power, aim, .. } => {
                 if !in_front_of(p, *vertices) {

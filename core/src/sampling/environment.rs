@@ -23,7 +23,9 @@
 //! the region's whole Σ L dω as irradiance. A surface then receives in
 //! expectation exactly ∫ L cos θ V dω from the region, its horizon and
 //! shadows included, so the passes' mean converges to the map's light
-//! with no bias left.
+//! with no bias left. The draws' mean direction ([`CutRegion::mean_toward`],
+//! exact for the draw's density) lets the direct light subtract what it
+//! knows: a control variate ([`crate::plan::drawn_suns`]).
 
 use crate::model::color::luminance;
 use crate::model::environment::EnvironmentMap;
@@ -121,12 +123,13 @@ impl EnvironmentLookup {
         let regions = regions
             .iter()
             .filter_map(|&(rect, total)| {
-                let (mut rgb, mut toward) = (Vec3::ZERO, Vec3::ZERO);
+                let (mut rgb, mut toward, mut mean) = (Vec3::ZERO, Vec3::ZERO, Vec3::ZERO);
                 for y in rect.y.0..rect.y.1 {
                     for x in rect.x.0..rect.x.1 {
                         let dir = self.direction((x as f32 + 0.5) / w as f32, (y as f32 + 0.5) / h as f32);
                         rgb += texels[y * w + x] * (self.strength * d_omega(y));
                         toward += dir * power[y * w + x];
+                        mean += texel_mean_direction(x, y, (w, h), self.turn) * power[y * w + x];
                     }
                 }
                 let length = sqrt(toward.length_squared());
@@ -136,6 +139,7 @@ impl EnvironmentLookup {
                     power: total,
                     rgb,
                     fixed: CutLight { toward: toward / length, rgb: rgb * (length / total) },
+                    mean_toward: mean / total,
                 })
             })
             .collect();
@@ -154,6 +158,25 @@ fn direction_at(u: f32, v: f32, turn: f32) -> Vec3 {
 /// cos θ at the top of row `y` of `h` (θ from the zenith).
 fn row_cos(y: usize, h: usize) -> f32 {
     cos(PI * y as f32 / h as f32)
+}
+
+/// The mean of the directions [`EnvironmentCut::draw`] takes in texel
+/// (`x`, `y`) of a `w` × `h` grid turned by `turn`: uniform in cos θ across
+/// the row and in φ across the texel, so E[cos θ] is the row's mid cos θ,
+/// E[sin θ] = (Δθ − cos(θ₀ + θ₁) sin Δθ) / (4 sin θ_mid sin(Δθ/2)) (the
+/// integral of √(1 − c²) over the row's c), and the azimuth's mean is the
+/// centre's shortened by sin(Δφ/2)/(Δφ/2). Shorter than 1: a texel's
+/// directions spread.
+fn texel_mean_direction(x: usize, y: usize, (w, h): (usize, usize), turn: f32) -> Vec3 {
+    let (theta0, theta1) = (PI * y as f32 / h as f32, PI * (y + 1) as f32 / h as f32);
+    let d_theta = theta1 - theta0;
+    let mean_cos = 0.5 * (cos(theta0) + cos(theta1));
+    let mean_sin =
+        (d_theta - cos(theta0 + theta1) * sin(d_theta)) / (4.0 * sin(0.5 * (theta0 + theta1)) * sin(0.5 * d_theta));
+    let half_phi = PI / w as f32;
+    let shorten = sin(half_phi) / half_phi;
+    let centre = direction_at((x as f32 + 0.5) / w as f32, 0.5, turn);
+    Vec3::new(centre.x * mean_sin * shorten, mean_cos, centre.z * mean_sin * shorten)
 }
 
 /// An environment's median cut, kept to draw its suns from: the grid it
@@ -182,6 +205,11 @@ pub struct CutRegion {
     pub rgb: Vec3,
     /// The sun along the region's vector irradiance.
     pub fixed: CutLight,
+    /// The mean of [`EnvironmentCut::draw`]'s directions in the region
+    /// (shorter than 1): a drawn sun of irradiance E sends an unshadowed
+    /// plane facing n the mean E · n·`mean_toward` over the draws, below
+    /// the horizon included (cos θ signed).
+    pub mean_toward: Vec3,
 }
 
 impl EnvironmentCut {
@@ -278,6 +306,7 @@ impl Cut<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use core::f64::consts::PI as PI64;
 
     /// The cut's fixed suns.
     fn fixed_suns(env: &EnvironmentLookup, n: usize) -> Vec<CutLight> {
@@ -398,6 +427,49 @@ mod tests {
             }
         }
         assert_eq!(drew_patch, 64, "one region is the patch's alone");
+    }
+
+    #[test]
+    fn a_texels_mean_direction_is_the_integral_of_its_directions() {
+        // Uniform in cos θ and φ over the texel, integrated on a fine grid in f64.
+        let (w, h, turn) = (64, 32, 0.3_f64);
+        for (x, y) in [(0, 0), (17, 5), (40, 16), (63, 31)] {
+            let k = 400;
+            let (c0, c1) = ((PI64 * y as f64 / h as f64).cos(), (PI64 * (y + 1) as f64 / h as f64).cos());
+            let mut sum = [0.0_f64; 3];
+            for i in 0..k {
+                for j in 0..k {
+                    let c = c0 + (c1 - c0) * (i as f64 + 0.5) / k as f64;
+                    let u = (x as f64 + (j as f64 + 0.5) / k as f64) / w as f64;
+                    let (s, phi) = ((1.0 - c * c).sqrt(), (u - turn - 0.5) * 2.0 * PI64);
+                    for (a, v) in sum.iter_mut().zip([s * phi.sin(), c, -s * phi.cos()]) {
+                        *a += v / (k * k) as f64;
+                    }
+                }
+            }
+            let got = texel_mean_direction(x, y, (w, h), turn as f32);
+            let want = Vec3::new(sum[0] as f32, sum[1] as f32, sum[2] as f32);
+            assert!((got - want).length() < 2e-6, "texel ({x}, {y}): {got}, integral {want}");
+            // The spread shortens it below the centre's unit length.
+            assert!(got.length() < 1.0 - 1e-4, "texel ({x}, {y}): |mean| = {}", got.length());
+        }
+    }
+
+    #[test]
+    fn a_regions_mean_direction_is_its_draws_mean() {
+        let (w, h) = CUT_GRID;
+        let texels: Vec<Vec3> = (0..w * h).map(|i| Vec3::splat(1.0 + (i * 7919 % 13) as f32)).collect();
+        let map = EnvironmentMap { name: "patches".into(), width: w as u32, height: h as u32, texels: texels.into() };
+        let cut = EnvironmentLookup::new(map, 1.0, 25.0).cut(16);
+        let k = 128;
+        for (i, region) in cut.regions.iter().enumerate() {
+            let mut sum = Vec3::ZERO;
+            for a in 0..k * k {
+                sum += cut.draw(i, ((a / k) as f32 + 0.5) / k as f32, ((a % k) as f32 + 0.5) / k as f32);
+            }
+            let mean = sum / (k * k) as f32;
+            assert!((mean - region.mean_toward).length() < 1e-3, "region {i}: draws {mean}, {}", region.mean_toward);
+        }
     }
 
     #[test]

@@ -100,10 +100,15 @@ fn trace_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mu
         s.ior = ctx.band_lanes_ior(&hit, active & s.dielectric, band, &lambda, s.ior);
         let point = ray.at(hit.t);
         sink.stats.segments += u64::from(active.to_bitmask().count_ones());
+        let first = bytemuck::cast::<u32x8, f32x8>(bounces.simd_eq(u32x8::ZERO));
+        if ctx.ranged_lights {
+            let gone;
+            (flux, gone) = ctx.reach(sink, active & first & !s.missed, emission, hit.t, flux);
+            active &= !gone;
+        }
         let missed = active & s.missed;
         Sink::add_flux(&mut sink.stats.flux_escaped, missed, flux);
         let deep = bytemuck::cast::<u32x8, f32x8>(bounces.simd_ge(max_depth));
-        let first = bytemuck::cast::<u32x8, f32x8>(bounces.simd_eq(u32x8::ZERO));
         let diffuse = active & s.diffuse;
         let specular = active & (s.mirror | s.dielectric);
         // Diffuse hits: stored after the first, then the depth limit, then the roulette.

@@ -17,6 +17,7 @@ use crate::optics::{offset_origin, reflect, scatter_dielectric};
 use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, lt, random_f32};
 use prismatic_core::model::bands::BandTable;
+use prismatic_core::model::light_range::range_window;
 use prismatic_core::model::photon::{Photon, TraceStats, WHITE_BAND, oct_pack};
 use prismatic_core::model::scene::WavelengthSampling;
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
@@ -58,6 +59,9 @@ pub struct TraceContext<'a> {
     /// Some light has a spectrum other than equal energy: its photons are
     /// traced by the core's scalar tracer (see [`trace_chunk`]).
     coloured_lights: bool,
+    /// Some light has a range, which windows its photons' first segment
+    /// ([`TraceContext::reach`]).
+    pub(crate) ranged_lights: bool,
 }
 
 impl<'a> TraceContext<'a> {
@@ -100,7 +104,35 @@ impl<'a> TraceContext<'a> {
             objects,
             flux: prismatic_core::photons::trace::photon_flux(scene),
             coloured_lights: scene.light_spectra.iter().any(|s| !s.is_uniform()),
+            ranged_lights: scene.emitters.iter().any(|l| l.range().is_some()),
         }
+    }
+
+    /// `Path::reach` for the `first` lanes (paths on their first segment,
+    /// met a surface at `t`) of photons `emission`: each flux windowed by
+    /// its light's range, what the window takes tallied as escaped.
+    /// Returns the new flux and the lanes left with nothing.
+    pub(crate) fn reach(
+        &self,
+        sink: &mut Sink,
+        first: f32x8,
+        emission: u32x8,
+        t: f32x8,
+        flux: f32x8,
+    ) -> (f32x8, f32x8) {
+        let (e, t, mut f) = (emission.as_array(), t.to_array(), flux.to_array());
+        let mut gone = [0.0f32; 8];
+        for i in lanes(first) {
+            let light = light_of(self.scene, self.scene.scene.render.seed, e[i]);
+            let Some(range) = self.scene.emitters[light].range() else { continue };
+            let kept = f[i] * range_window(t[i], Some(range));
+            sink.stats.flux_escaped += f64::from(f[i] - kept);
+            f[i] = kept;
+            if kept <= 0.0 {
+                gone[i] = ON;
+            }
+        }
+        (f32x8::new(f), f32x8::new(gone))
     }
 }
 
@@ -292,6 +324,14 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
         let hit = intersect_scene(ctx.scene, &ray, limit_where(active, f32x8::splat(f32::INFINITY)));
         let mut s = ctx.classify(&hit, None);
         let point = ray.at(hit.t);
+        if ctx.ranged_lights {
+            // A path the range leaves nothing has still travelled its segment.
+            let first = active & !s.missed & bytemuck::cast::<u32x8, f32x8>(bounces.simd_eq(u32x8::ZERO));
+            let gone;
+            (flux, gone) = ctx.reach(&mut sink, first, emission, hit.t, flux);
+            sink.stats.segments += u64::from(gone.to_bitmask().count_ones());
+            active &= !gone;
+        }
         let ended = end_paths(ctx, &mut sink, active, &s, point, dir, flux, emission, (band, &lambda), bounces, None);
         let mut go_on = active & !ended;
         go_on &= !absorb_lanes(ctx, &mut sink, go_on & s.absorbing, &hit, dir, flux, [emission, band, bounces]);

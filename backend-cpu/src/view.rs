@@ -24,6 +24,7 @@ use crate::simd::{Vec3x8, ge, gt, lt};
 use glam::Vec3;
 use prismatic_core::Image;
 use prismatic_core::geometry::camera::PinholeCamera;
+use prismatic_core::model::light_range::range_window;
 use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::model::scene::Light;
 use prismatic_core::optics::fresnel::reflect;
@@ -258,7 +259,7 @@ impl Shader<'_> {
     /// `ViewContext::direct_irradiance` for eight points (shadow rays if `shadows`).
     fn direct_irradiance(&self, light: &Light, shadows: bool, p: Vec3x8, n: Vec3x8, mask: f32x8) -> f32x8 {
         match light {
-            Light::Spot { position, direction, cone_deg, inner_cone_deg, power, .. } => {
+            Light::Spot { position, direction, cone_deg, inner_cone_deg, power, range, .. } => {
                 let cone = SpotCone::new(*cone_deg, *inner_cone_deg);
                 let axis = Vec3x8::splat(direction.normalize());
                 let (l, dist, cos_s, visible) = self.toward_light(*position, p, n, mask, shadows);
@@ -266,16 +267,21 @@ impl Shader<'_> {
                 let inside = ge(c, f32x8::splat(cone.cos_outer));
                 let intensity = f32x8::splat(power / (2.0 * PI * cone.measure()));
                 let lit = (visible & inside).select(intensity * cos_s / (dist * dist), f32x8::ZERO);
-                if cone.cos_inner == cone.cos_outer {
+                if cone.cos_inner == cone.cos_outer && range.is_none() {
                     return lit;
                 }
-                // The soft edge, lane by lane.
-                let (c, lit) = (c.to_array(), lit.to_array());
-                f32x8::new(core::array::from_fn(|i| cone.falloff(c[i]) * lit[i]))
+                // The soft edge and the range's window, lane by lane.
+                let (c, lit, dist) = (c.to_array(), lit.to_array(), dist.to_array());
+                f32x8::new(core::array::from_fn(|i| cone.falloff(c[i]) * range_window(dist[i], *range) * lit[i]))
             }
-            Light::Point { position, power, .. } => {
+            Light::Point { position, power, range, .. } => {
                 let (_, dist, cos_s, visible) = self.toward_light(*position, p, n, mask, shadows);
-                visible.select(f32x8::splat(power / (4.0 * PI)) * cos_s / (dist * dist), f32x8::ZERO)
+                let lit = visible.select(f32x8::splat(power / (4.0 * PI)) * cos_s / (dist * dist), f32x8::ZERO);
+                if range.is_none() {
+                    return lit;
+                }
+                let (lit, dist) = (lit.to_array(), dist.to_array());
+                f32x8::new(core::array::from_fn(|i| range_window(dist[i], *range) * lit[i]))
             }
             Light::Beam { position, direction, radius, power, .. } => {
                 let axis = direction.normalize();

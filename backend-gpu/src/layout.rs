@@ -258,8 +258,9 @@ pub struct GpuLight {
     /// (`Light::Sun::mean_toward`; zero for any other light, which its
     /// control variate's test n · m̄ > 0 then never takes).
     pub mean_toward: [f32; 3],
-    /// Padding.
-    pub _pad2: u32,
+    /// A spot or point light's range (`prismatic_core::model::light_range`);
+    /// 0: none.
+    pub range: f32,
 }
 const _: () = assert!(core::mem::size_of::<GpuLight>() == 176);
 

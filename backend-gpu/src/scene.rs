@@ -286,7 +286,7 @@ impl EncodedScene {
     ) -> GpuLight {
         let mut l = GpuLight { shadows: u32::from(shadows), power: light.power(), ..GpuLight::default() };
         match light {
-            Light::Spot { position, direction, cone_deg, inner_cone_deg, .. } => {
+            Light::Spot { position, direction, cone_deg, inner_cone_deg, range, .. } => {
                 let axis = direction.normalize();
                 let cone = SpotCone::new(*cone_deg, *inner_cone_deg);
                 l.kind = LIGHT_SPOT;
@@ -294,10 +294,12 @@ impl EncodedScene {
                 l.axis = v3(axis);
                 l.cos_max = cone.cos_outer;
                 l.cos_inner = cone.cos_inner;
+                l.range = range.unwrap_or(0.0);
             }
-            Light::Point { position, .. } => {
+            Light::Point { position, range, .. } => {
                 l.kind = LIGHT_POINT;
                 l.position = v3(*position);
+                l.range = range.unwrap_or(0.0);
             }
             Light::Beam { position, direction, radius, .. } => {
                 let axis = direction.normalize();

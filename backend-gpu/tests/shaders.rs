@@ -176,7 +176,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 aim,
                 _pad1,
                 mean_toward,
-                _pad2,
+                range,
             }),
         ),
         ("GpuBand", &trace, rust_layout!(GpuBand { weight, lambda_nm, lo_nm, hi_nm, max_weight, _pad })),

@@ -165,16 +165,14 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
             let (spectrum, factor) = Spectrum::from_rgb(light.color());
             let intensity = light.intensity() * factor;
             let light_path = format!("{node_path}.extensions.KHR_lights_punctual");
-            if light.range().is_some() {
-                out.warnings.push(format!(
-                    "{light_path}: range left out (the light falls off as 1/d² at every distance, as the \
-                     extension's physical model says; the cut-off is a rasteriser's budget)"
-                ));
-            }
+            // A distance, which the node's scale leaves alone (as the extension says).
+            let range = light.range();
             let emitted = match light.kind() {
                 // A black light is valid glTF and emits nothing.
                 _ if factor == 0.0 => None,
-                Kind::Point => Some(Light::Point { position, power: 4.0 * std::f32::consts::PI * intensity, spectrum }),
+                Kind::Point => {
+                    Some(Light::Point { position, power: 4.0 * std::f32::consts::PI * intensity, spectrum, range })
+                }
                 Kind::Spot { inner_cone_angle, outer_cone_angle } => {
                     // The intensity is the axis's; the soft edge (innerConeAngle,
                     // 0 by default) holds less power than a uniform cone.
@@ -191,6 +189,7 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
                         inner_cone_deg,
                         power: 2.0 * std::f32::consts::PI * cone.measure() * intensity,
                         spectrum,
+                        range,
                     })
                 }
                 Kind::Directional => Some(Light::Sun { direction, irradiance: intensity, spectrum, mean_toward: None }),

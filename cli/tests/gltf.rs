@@ -543,8 +543,8 @@ fn a_black_light_is_left_out_with_a_warning() {
 /// A file brings no exposure: it is shown as viewers show it, at middle
 /// grey through the default tone map; its camera's aspect ratio gives the
 /// image's shape (the default square's pixel count); a spot keeps its soft
-/// edge, with the axis's intensity; what the light model leaves out (a
-/// range) is a warning.
+/// edge, with the axis's intensity, and its range (which its node's scale
+/// leaves alone); a range of 0 is refused, naming the light.
 #[test]
 fn a_file_is_shown_with_its_cameras_frame_and_auto_exposure() {
     let dir = tempfile::tempdir().unwrap();
@@ -560,16 +560,25 @@ fn a_file_is_shown_with_its_cameras_frame_and_auto_exposure() {
     assert_eq!((r.width, r.height), (490, 327), "400² pixels at 3:2");
     assert!(r.auto_exposure);
     assert_eq!(r.tone_map, prismatic_core::model::color::ToneMap::PbrNeutral);
-    assert!(scene.warnings.iter().any(|w| w.contains("range left out")), "{:?}", scene.warnings);
-    assert!(!scene.warnings.iter().any(|w| w.contains("innerConeAngle")), "{:?}", scene.warnings);
-    let [Light::Spot { cone_deg, inner_cone_deg, power, .. }] = scene.scene.lights.as_slice() else {
+    assert!(
+        !scene.warnings.iter().any(|w| w.contains("range") || w.contains("innerConeAngle")),
+        "{:?}",
+        scene.warnings
+    );
+    let [Light::Spot { cone_deg, inner_cone_deg, power, range, .. }] = scene.scene.lights.as_slice() else {
         panic!("{:?}", scene.scene.lights)
     };
+    assert_eq!(*range, Some(20.0));
     assert_eq!((*cone_deg, *inner_cone_deg), (SPOT_CONE.to_degrees(), 0.1f32.to_degrees()));
     // I₀ · 2π [(1 − cos inner) + (cos inner − cos outer)/3].
     let (ci, co) = (0.1f32.cos(), SPOT_CONE.cos());
     let want = SPOT_INTENSITY * 2.0 * std::f32::consts::PI * ((1.0 - ci) + (ci - co) / 3.0);
     assert!((power - want).abs() < 1e-4 * want, "{power} vs {want}");
+    // A range must be greater than 0 (the extension's schema says so too).
+    json["extensions"]["KHR_lights_punctual"]["lights"][0]["range"] = 0.0.into();
+    std::fs::write(&path, json.to_string()).unwrap();
+    let err = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap().validate().unwrap_err().to_string();
+    assert!(err.contains("KHR_lights_punctual") && err.contains("range"), "{err}");
 }
 
 /// An emissive material makes its mesh an area light (its strength from

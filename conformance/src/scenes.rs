@@ -71,6 +71,7 @@ pub fn glass_sphere() -> PreparedScene {
             inner_cone_deg: 30.0,
             power: 40.0,
             spectrum: Default::default(),
+            range: None,
         }],
         materials: vec![
             material(
@@ -271,7 +272,12 @@ pub fn no_caustics() -> PreparedScene {
     prepared(Scene {
         render: settings(24, 2_000, 0.1),
         camera: Camera { position: Vec3::new(0.0, 2.0, 5.0), look_at: Vec3::ZERO, up: Vec3::Y, fov_deg: 45.0 },
-        lights: vec![Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 30.0, spectrum: Default::default() }],
+        lights: vec![Light::Point {
+            position: Vec3::new(1.0, 4.0, 1.0),
+            power: 30.0,
+            spectrum: Default::default(),
+            range: None,
+        }],
         materials: vec![diffuse("floor", 0.7), diffuse("ball", 0.5)],
         objects: vec![
             Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 },
@@ -323,7 +329,7 @@ pub fn sphere_mesh(center: Vec3, radius: f32, rings: u32) -> Shape {
 pub fn lit_by_every_light_kind(projection_maps: bool, sequence: PhotonSequence) -> PreparedScene {
     let mut scene = glass_sphere().scene;
     scene.lights.extend([
-        Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 25.0, spectrum: Default::default() },
+        Light::Point { position: Vec3::new(1.0, 4.0, 1.0), power: 25.0, spectrum: Default::default(), range: None },
         // A soft edge from 10° to 35° (glTF's innerConeAngle).
         Light::Spot {
             position: Vec3::new(2.0, 5.0, -1.0),
@@ -332,6 +338,7 @@ pub fn lit_by_every_light_kind(projection_maps: bool, sequence: PhotonSequence) 
             inner_cone_deg: 10.0,
             power: 30.0,
             spectrum: Default::default(),
+            range: None,
         },
         Light::Beam {
             position: Vec3::new(-3.0, 1.0, 0.0),

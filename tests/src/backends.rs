@@ -73,3 +73,35 @@ pub fn assert_same_caustic(name: &str, (aimed_map, aimed): (&PhotonMap, &Image),
     let total: f64 = image.pixels.iter().map(|p| f64::from(p.element_sum())).sum();
     assert!(diff < 0.03 * total, "{name}: images differ by {:.2} % (L1)", 100.0 * diff / total);
 }
+
+/// Asserts that each backend's frame of `scene` (seen by `camera`, `side`
+/// pixels square, from straight above a floor at y = 0) shows in each
+/// pixel the red channel `want(c)`, within `tolerance`, where c is the
+/// cosine between the pixel's ray and straight down.
+pub fn assert_floor_from_above(
+    scene: &PreparedScene,
+    camera: &prismatic_core::model::scene::Camera,
+    side: u32,
+    want: impl Fn(f32) -> f32,
+    tolerance: f32,
+) {
+    let pinhole = prismatic_core::geometry::camera::PinholeCamera::new(camera, side, side);
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let (_, image) = frame(backend.as_mut(), scene);
+        for y in 0..side {
+            for x in 0..side {
+                let c = -pinhole.ray(x, y).direction.normalize().y;
+                let (got, want) = (image.pixels[(y * side + x) as usize].x, want(c));
+                assert!((got - want).abs() <= tolerance, "{name}: pixel ({x}, {y}) at cos {c}: {got} vs {want}");
+            }
+        }
+    }
+}
+
+/// The cosines between straight down and each pixel's ray of `camera`
+/// (`side` pixels square), for counting what an image holds.
+pub fn pixel_cosines(camera: &prismatic_core::model::scene::Camera, side: u32) -> Vec<f32> {
+    let pinhole = prismatic_core::geometry::camera::PinholeCamera::new(camera, side, side);
+    (0..side * side).map(|i| -pinhole.ray(i % side, i / side).direction.normalize().y).collect()
+}

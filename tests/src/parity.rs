@@ -123,6 +123,7 @@ pub fn coloured_light_scenes() -> Vec<(String, prismatic_core::PreparedScene)> {
                     position: Vec3::new(1.0, 3.0, 2.0),
                     power,
                     spectrum: Spectrum::default(),
+                    range: None,
                 });
             }),
         ),

@@ -105,8 +105,9 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
             inner_cone_deg: 8.0,
             power: d.f(5.0, 50.0),
             spectrum: Default::default(),
+            range: None,
         },
-        1 => Light::Point { position: from, power: d.f(5.0, 50.0), spectrum: Default::default() },
+        1 => Light::Point { position: from, power: d.f(5.0, 50.0), spectrum: Default::default(), range: None },
         _ => Light::Beam {
             position: from,
             direction: first_center - from,
@@ -119,5 +120,14 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
     cam.position = Vec3::new(0.5, 3.5, 7.0);
     cam.look_at = Vec3::new(0.0, 0.8, -0.5);
     cam.fov_deg = 55.0;
+    // A third of the spots and points get a range (drawn last, so that the
+    // rest of each scene is what it was): from short of the first object,
+    // which then gets part of the light, to well beyond it.
+    let mut light = light;
+    if let Light::Spot { range, .. } | Light::Point { range, .. } = &mut light
+        && d.pick(3) == 0
+    {
+        *range = Some((first_center - from).length() * d.f(0.8, 2.0));
+    }
     Scene { render, camera: cam, lights: vec![light], materials, objects }
 }

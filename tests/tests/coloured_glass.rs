@@ -115,7 +115,12 @@ fn view_scene(ior: Dispersion, bands: BandSpec) -> PreparedScene {
             up: Vec3::Z,
             fov_deg: 10.0,
         },
-        lights: vec![Light::Point { position: Vec3::new(-5.0, 0.0, 5.0), power: 1.0, spectrum: Default::default() }],
+        lights: vec![Light::Point {
+            position: Vec3::new(-5.0, 0.0, 5.0),
+            power: 1.0,
+            spectrum: Default::default(),
+            range: None,
+        }],
         materials: vec![amber],
         objects: vec![object],
     })

@@ -29,6 +29,7 @@ fn sphere_scene(dispersion: Dispersion, cone_deg: f32, aim: Vec3) -> Scene {
             inner_cone_deg: cone_deg,
             power: 20.0,
             spectrum: Default::default(),
+            range: None,
         }],
         materials: vec![glass("glass", dispersion), white("floor")],
         objects: vec![

@@ -74,6 +74,7 @@ fn wall_colour(
             inner_cone_deg: 30.0,
             power: 50.0,
             spectrum,
+            range: None,
         }],
         materials: vec![prismatic_tests::white("wall")],
         objects: vec![Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Z }, material: 0 }],
@@ -195,6 +196,7 @@ fn sodium_on_green(backend: &mut dyn prismatic_core::Backend, render: RenderSett
             inner_cone_deg: 20.0,
             power: 40.0,
             spectrum: Spectrum::Lamp(Lamp::Sodium),
+            range: None,
         }],
         materials: vec![green, prismatic_tests::glass("glass", Glass::Bk7.dispersion())],
         objects: vec![

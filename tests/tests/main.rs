@@ -12,6 +12,7 @@ mod gather;
 mod gpu_session;
 mod hard_cases;
 mod indirect_light;
+mod light_range;
 mod light_spectra;
 mod light_tracing;
 mod meshes;

@@ -87,8 +87,9 @@ fn cpu_matches_the_reference_with_projection_maps_on_every_light_kind() {
                 inner_cone_deg: 50.0,
                 power: 5.0,
                 spectrum: Default::default(),
+                range: None,
             },
-            Light::Point { position: Vec3::new(2.0, 4.0, 2.0), power: 5.0, spectrum: Default::default() },
+            Light::Point { position: Vec3::new(2.0, 4.0, 2.0), power: 5.0, spectrum: Default::default(), range: None },
         ],
         materials: vec![glass("glass", Glass::Bk7.dispersion()), white("floor")],
         objects: vec![

@@ -23,6 +23,7 @@ fn sphere_scene(dispersion: Dispersion, bands: BandSpec, photons: u32, seed: u32
             inner_cone_deg: 12.0,
             power: 10.0,
             spectrum: Default::default(),
+            range: None,
         }],
         materials: vec![glass("glass", dispersion), white("floor")],
         objects: vec![
@@ -80,6 +81,7 @@ fn mirrors_reflect_white_light_without_splitting() {
         inner_cone_deg: 15.0,
         power: 1.0,
         spectrum: Default::default(),
+        range: None,
     };
     let map = trace(scene);
     assert!(!map.photons.is_empty(), "the mirror sphere should cast a caustic");

@@ -23,6 +23,7 @@ pub fn spot(position: Vec3, cone_deg: f32) -> Light {
         inner_cone_deg: cone_deg,
         power: 38.0,
         spectrum: Default::default(),
+        range: None,
     }
 }
 

@@ -132,7 +132,7 @@ struct GpuLight {
     aim: vec2<f32>,
     _pad1: vec2<u32>,
     mean_toward: vec3<f32>,
-    _pad2: u32,
+    range: f32,
 }
 
 // Twin of prismatic_gpu::layout::GpuBand.
@@ -312,6 +312,17 @@ fn basis(n: vec3<f32>) -> Basis {
 // spot_cone::SpotCone::measure
 fn spot_measure(l: GpuLight) -> f32 {
     return (1.0 - l.cos_inner) + (l.cos_inner - l.cos_max) / 3.0;
+}
+
+// light_range::range_window: light that has travelled `distance` from a
+// light of `range` (0: none).
+fn range_window(distance: f32, range: f32) -> f32 {
+    if range <= 0.0 {
+        return 1.0;
+    }
+    let ratio = distance / range;
+    let squared = ratio * ratio;
+    return clamp(1.0 - squared * squared, 0.0, 1.0);
 }
 
 // spot_cone::SpotCone::falloff

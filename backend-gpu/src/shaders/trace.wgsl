@@ -14,6 +14,8 @@ var<private> tally_counts: array<u32, TALLY_COUNTS>;
 var<private> tally_flux: array<f32, TALLY_FLUXES>;
 var<private> slot_base: u32;
 var<private> slot_used: u32;
+// The range of the light the invocation's photon left (0: none).
+var<private> photon_range: f32;
 
 var<workgroup> reduce_counts: array<u32, TALLY_COUNTS * WORKGROUP_SIZE>;
 var<workgroup> reduce_flux: array<f32, TALLY_FLUXES * WORKGROUP_SIZE>;
@@ -77,6 +79,19 @@ fn store(p: ptr<function, Path>, point: vec3<f32>, index: u32) {
     slot_used++;
 }
 
+// Path::reach: a path on its first segment windowed by its light's range
+// at its first hit, `t` from the light, what the window takes tallied as
+// escaped; false when nothing is left.
+fn reach(p: ptr<function, Path>, t: f32) -> bool {
+    if (*p).bounces > 0u || photon_range <= 0.0 {
+        return true;
+    }
+    let kept = (*p).flux * range_window(t, photon_range);
+    tally_flux[2] += (*p).flux - kept;
+    (*p).flux = kept;
+    return kept > 0.0;
+}
+
 // Follows a path until it is stored, escapes, is absorbed or hits the
 // depth limit (FOLLOW_END), or reaches glass where a white photon splits
 // into bands (FOLLOW_SPLIT, with the hit in `split_at`).
@@ -87,6 +102,9 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
         let hit = intersect_scene((*p).origin, (*p).dir, BIG);
         if !hit.ok {
             tally_flux[2] += (*p).flux;
+            return FOLLOW_END;
+        }
+        if !reach(p, hit.t) {
             return FOLLOW_END;
         }
         let s = surfaces[hit.object];
@@ -174,6 +192,7 @@ fn trace_indirect(index: u32) {
     tally_counts[0] += 1u;
     tally_counts[1] += 1u;
     tally_flux[0] += flux;
+    photon_range = lights[e.light].range;
     if c.count == 0u {
         return;
     }
@@ -184,6 +203,9 @@ fn trace_indirect(index: u32) {
         let hit = intersect_scene(p.origin, p.dir, BIG);
         if !hit.ok {
             tally_flux[2] += p.flux;
+            break;
+        }
+        if !reach(&p, hit.t) {
             break;
         }
         let s = surfaces[hit.object];
@@ -383,6 +405,7 @@ fn trace_emitted(index: u32) {
     let flux = params.flux * e.weight;
     tally_counts[1] += 1u;
     tally_flux[0] += flux;
+    photon_range = lights[e.light].range;
     if lights[e.light].spectrum_len > 0u {
         trace_coloured(e, flux, index);
         return;

@@ -244,14 +244,14 @@ fn direct_irradiance(l: GpuLight, p: vec3<f32>, n: vec3<f32>) -> f32 {
             return 0.0;
         }
         if l.kind == LIGHT_SPOT {
-            let falloff = spot_falloff(l, dot(-dir, l.axis));
+            let falloff = spot_falloff(l, dot(-dir, l.axis)) * range_window(dist, l.range);
             if falloff == 0.0 {
                 return 0.0;
             }
             let intensity = l.power / (2.0 * PI * spot_measure(l));
             value = falloff * (intensity * cos_s / (dist * dist));
         } else {
-            value = l.power / (4.0 * PI) * cos_s / (dist * dist);
+            value = range_window(dist, l.range) * (l.power / (4.0 * PI) * cos_s / (dist * dist));
         }
         origin = offset_origin(p, n, dir);
         reach = length(l.position - origin);

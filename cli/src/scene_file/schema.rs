@@ -216,7 +216,7 @@ impl Reader<'_> {
             "spot" => {
                 self.check_keys(
                     t,
-                    &["kind", "position", "direction", "cone_deg", "inner_cone_deg", "power", "spectrum"],
+                    &["kind", "position", "direction", "cone_deg", "inner_cone_deg", "power", "spectrum", "range"],
                 )?;
                 let cone_deg = self.req(t, "cone_deg", Self::float)?;
                 Light::Spot {
@@ -226,14 +226,16 @@ impl Reader<'_> {
                     inner_cone_deg: self.opt(t, "inner_cone_deg", Self::float)?.unwrap_or(cone_deg),
                     power: self.req(t, "power", Self::float)?,
                     spectrum: self.opt(t, "spectrum", Self::spectrum)?.unwrap_or_default(),
+                    range: self.opt(t, "range", Self::float)?,
                 }
             }
             "point" => {
-                self.check_keys(t, &["kind", "position", "power", "spectrum"])?;
+                self.check_keys(t, &["kind", "position", "power", "spectrum", "range"])?;
                 Light::Point {
                     position: self.req(t, "position", Self::point)?,
                     power: self.req(t, "power", Self::float)?,
                     spectrum: self.opt(t, "spectrum", Self::spectrum)?.unwrap_or_default(),
+                    range: self.opt(t, "range", Self::float)?,
                 }
             }
             "beam" => {

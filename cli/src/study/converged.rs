@@ -312,6 +312,7 @@ mod tests {
                 inner_cone_deg: cone_deg,
                 power: power * 1.01,
                 spectrum: Default::default(),
+                range: None,
             },
             other => other,
         };

@@ -10,6 +10,7 @@ pub mod color;
 pub mod dispersion;
 pub mod environment;
 pub mod image;
+pub mod light_range;
 pub mod mesh;
 pub mod photon;
 pub mod reflectance;

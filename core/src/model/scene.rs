@@ -494,6 +494,9 @@ pub enum Light {
         power: f32,
         /// What it emits across the spectrum.
         spectrum: Spectrum,
+        /// The distance its light reaches ([`crate::model::light_range`]);
+        /// `None`: every distance.
+        range: Option<f32>,
     },
     /// Isotropic point light.
     Point {
@@ -503,6 +506,9 @@ pub enum Light {
         power: f32,
         /// What it emits across the spectrum.
         spectrum: Spectrum,
+        /// The distance its light reaches ([`crate::model::light_range`]);
+        /// `None`: every distance.
+        range: Option<f32>,
     },
     /// Collimated beam leaving a disc (prism experiments, rainbows).
     Beam {
@@ -580,6 +586,14 @@ impl Light {
             | Light::Beam { power, .. }
             | Light::Area { power, .. } => *power,
             Light::Sun { .. } | Light::Environment { .. } => 0.0,
+        }
+    }
+
+    /// The distance its light reaches (spot and point lights with a range).
+    pub fn range(&self) -> Option<f32> {
+        match self {
+            Light::Spot { range, .. } | Light::Point { range, .. } => *range,
+            _ => None,
         }
     }
 

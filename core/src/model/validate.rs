@@ -241,6 +241,9 @@ impl Scene {
 }
 
 fn validate_light(c: &Check<'_>, light: &Light) -> Result<(), SceneError> {
+    if let Some(range) = light.range() {
+        c.positive("range", range)?;
+    }
     match light {
         Light::Spot { position, direction, cone_deg, inner_cone_deg, power, .. } => {
             c.vector("position", *position)?;

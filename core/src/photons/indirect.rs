@@ -72,6 +72,9 @@ pub fn trace_indirect(scene: &PreparedScene, index: u32, out: &mut Vec<Photon>, 
             stats.flux_escaped += f64::from(p.flux);
             break;
         };
+        if !p.reach(scene.emitters[e.light].range(), hit.t, stats) {
+            break;
+        }
         let surface = &scene.surfaces[hit.object];
         if let Surface::Diffuse { .. } = surface {
             if bounced_diffusely {

@@ -5,6 +5,7 @@
 
 use crate::geometry::primitive::Ray;
 use crate::model::bands::BandTable;
+use crate::model::light_range::range_window;
 use crate::model::photon::{Photon, TraceStats, oct_pack};
 use crate::optics::fresnel::reflect;
 use crate::optics::scatter::{offset_origin, scatter_dielectric};
@@ -26,6 +27,20 @@ pub(crate) struct Path {
 }
 
 impl Path {
+    /// Windows the flux of a path on its first segment by its light's
+    /// `range` at its first hit, `t` from the light
+    /// ([`crate::model::light_range`]); what the window takes counts as
+    /// escaped. False when nothing is left.
+    pub(crate) fn reach(&mut self, range: Option<f32>, t: f32, stats: &mut TraceStats) -> bool {
+        if self.bounces > 0 || range.is_none() {
+            return true;
+        }
+        let kept = self.flux * range_window(t, range);
+        stats.flux_escaped += f64::from(self.flux - kept);
+        self.flux = kept;
+        kept > 0.0
+    }
+
     /// The photon this path stores where it meets a diffuse surface at `point`.
     pub(crate) fn photon(&self, scene: &PreparedScene, point: Vec3, index: u32) -> Photon {
         Photon {

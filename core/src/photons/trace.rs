@@ -84,13 +84,15 @@ pub fn trace_emitted(scene: &PreparedScene, index: u32, flux: f32, out: &mut Vec
     }
     stats.paths += 1;
     stats.flux_emitted += f64::from(flux);
+    let range = scene.emitters[e.light].range();
     if !scene.light_spectra[e.light].is_uniform() {
         // A coloured light's photon takes its wavelengths as it leaves.
         let paths = emission_paths(scene, e.light, index);
         stats.paths += paths.len() as u64 - 1;
         for (band, lambda_nm, share) in paths {
             let ray = Ray { origin: e.origin, direction: e.direction };
-            trace_path(scene, index, Path { ray, flux: flux * share, band, lambda_nm, bounces: 0 }, out, stats);
+            let path = Path { ray, flux: flux * share, band, lambda_nm, bounces: 0 };
+            trace_path(scene, index, path, range, out, stats);
         }
         return;
     }
@@ -101,10 +103,19 @@ pub fn trace_emitted(scene: &PreparedScene, index: u32, flux: f32, out: &mut Vec
         lambda_nm: None,
         bounces: 0,
     };
-    trace_path(scene, index, path, out, stats);
+    trace_path(scene, index, path, range, out, stats);
 }
 
-fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Photon>, stats: &mut TraceStats) {
+/// Follows path `p` of white photon `index` (its light's `range` windows
+/// its first segment) and the band paths it splits into.
+fn trace_path(
+    scene: &PreparedScene,
+    index: u32,
+    mut p: Path,
+    range: Option<f32>,
+    out: &mut Vec<Photon>,
+    stats: &mut TraceStats,
+) {
     let settings = &scene.scene.render;
     loop {
         stats.segments += 1;
@@ -112,6 +123,9 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
             stats.flux_escaped += f64::from(p.flux);
             return;
         };
+        if !p.reach(range, hit.t, stats) {
+            return;
+        }
         let surface = &scene.surfaces[hit.object];
         if let Surface::Diffuse { .. } = surface {
             if p.bounces == 0 {
@@ -161,7 +175,7 @@ fn trace_path(scene: &PreparedScene, index: u32, mut p: Path, out: &mut Vec<Phot
                         stats.flux_absorbed += f64::from(child.flux);
                         continue;
                     }
-                    trace_path(scene, index, child, out, stats);
+                    trace_path(scene, index, child, None, out, stats);
                 }
                 return;
             }

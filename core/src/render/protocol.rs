@@ -342,6 +342,7 @@ mod tests {
                 position: Vec3::new(0.0, 4.0, 0.0),
                 power: 10.0,
                 spectrum: Default::default(),
+                range: None,
             }],
             materials: vec![],
             objects: vec![],
@@ -361,7 +362,8 @@ mod tests {
         assert_eq!(edited(&|s| s.render.alpha = 0.5), Change::Photons);
         assert_eq!(edited(&|s| s.render.radius_mode = RadiusMode::Fixed), Change::Photons);
         assert_eq!(
-            edited(&|s| s.lights[0] = Light::Point { position: Vec3::ONE, power: 10.0, spectrum: Default::default() }),
+            edited(&|s| s.lights[0] =
+                Light::Point { position: Vec3::ONE, power: 10.0, spectrum: Default::default(), range: None }),
             Change::View
         );
         assert_eq!(edited(&|s| s.camera.position.x += 0.1), Change::View);

@@ -42,6 +42,7 @@ use crate::geometry::camera::PinholeCamera;
 use crate::geometry::form_factor::{in_front_of, triangle_view};
 use crate::geometry::primitive::Ray;
 use crate::model::image::Image;
+use crate::model::light_range::range_window;
 use crate::model::photon::WHITE_BAND;
 use crate::model::scene::{Light, WavelengthSampling};
 use crate::optics::fresnel::reflect;
@@ -245,23 +246,23 @@ impl<'a> ViewContext<'a> {
     pub fn direct_irradiance(&self, index: usize, p: Vec3, n: Vec3) -> f32 {
         let shadows = self.scene.plan.shadows[index].on;
         match &self.scene.lights[index] {
-            Light::Spot { position, direction, cone_deg, inner_cone_deg, power, .. } => {
+            Light::Spot { position, direction, cone_deg, inner_cone_deg, power, range, .. } => {
                 let cone = SpotCone::new(*cone_deg, *inner_cone_deg);
                 let Some((l, dist, cos_s)) = self.toward_light(*position, p, n, shadows) else {
                     return 0.0;
                 };
-                let falloff = cone.falloff((-l).dot(direction.normalize()));
+                let falloff = cone.falloff((-l).dot(direction.normalize())) * range_window(dist, *range);
                 if falloff == 0.0 {
                     return 0.0;
                 }
                 let intensity = power / (2.0 * PI * cone.measure());
                 falloff * (intensity * cos_s / (dist * dist))
             }
-            Light::Point { position, power, .. } => {
+            Light::Point { position, power, range, .. } => {
                 let Some((_, dist, cos_s)) = self.toward_light(*position, p, n, shadows) else {
                     return 0.0;
                 };
-                power / (4.0 * PI) * cos_s / (dist * dist)
+                range_window(dist, *range) * (power / (4.0 * PI) * cos_s / (dist * dist))
             }
             Light::Beam { position, direction, radius, power, .. } => {
                 let axis = direction.normalize();

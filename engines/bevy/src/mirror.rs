@@ -203,9 +203,10 @@ fn build_scene(
                 inner_cone_deg: cone_deg,
                 power,
                 spectrum: Default::default(),
+                range: None,
             },
             CausticLight::Point { power } => {
-                Light::Point { position: core(at.translation()), power, spectrum: Default::default() }
+                Light::Point { position: core(at.translation()), power, spectrum: Default::default(), range: None }
             }
         })
         .collect();

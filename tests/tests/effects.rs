@@ -99,7 +99,7 @@ fn glass_outside_every_light_cone_skips_the_photon_pass_and_says_why() {
     let scene = prepare(sphere_scene(Glass::Bk7.dispersion(), 10.0, Vec3::new(1.0, -0.2, 0.0)));
     assert!(!scene.plan.caustics.on);
     assert!(
-        scene.plan.caustics.reason.contains("object[0] outside every light's cone or beam"),
+        scene.plan.caustics.reason.contains("object[0] outside every light's cone, beam or range"),
         "{}",
         scene.plan.caustics.reason
     );

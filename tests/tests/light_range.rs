@@ -65,8 +65,9 @@ fn a_ranged_point_light_lights_the_floor_as_its_window_says() {
 fn a_ranged_lights_photons_reach_the_floor_with_the_windows_share() {
     // The photons that go down meet the floor first: Φ/(4π) ∫ w(h/μ) 2π dμ
     // over the lower hemisphere, Φ/2 · (1 − 4a/3 + a⁴/3) with a = h/R. A
-    // small mirror high above makes the plan trace photons (no projection
-    // maps, so they leave in every direction); beyond the range it gets nothing.
+    // small mirror above the light, within its range, makes the plan trace
+    // photons (no projection maps, so they leave in every direction); what
+    // it reflects lands on the floor as a caustic, not first.
     let mut render = settings(40_000, BandSpec::Paper7);
     (render.width, render.height, render.projection_maps) = (8, 8, false);
     let mirror = Material { name: "mirror".into(), kind: MaterialKind::Mirror };
@@ -79,7 +80,7 @@ fn a_ranged_lights_photons_reach_the_floor_with_the_windows_share() {
             floor(),
             Object {
                 shape: Shape::Disk {
-                    center: Vec3::new(0.0, 4.0, 0.0),
+                    center: Vec3::new(0.0, 2.5, 0.0),
                     normal: Vec3::NEG_Y,
                     radius: 0.5,
                     inner_radius: 0.0,
@@ -95,12 +96,36 @@ fn a_ranged_lights_photons_reach_the_floor_with_the_windows_share() {
         let stats = trace(backend.as_mut(), &scene).stats;
         let share = stats.flux_direct / stats.flux_emitted;
         assert!((share - f64::from(want)).abs() < 2e-3, "{name}: {share} of the flux lit the floor first, not {want}");
-        assert_eq!(stats.stored, 0, "{name}: the mirror is out of range");
+        assert!(stats.stored > 0, "{name}: the mirror within range casts a caustic");
         // What the window takes leaves as if it escaped.
         let ledger =
             stats.flux_direct + stats.flux_escaped + stats.flux_stored + stats.flux_absorbed + stats.flux_depth_limited;
         assert!((ledger / stats.flux_emitted - 1.0).abs() < 1e-4, "{name}: {ledger} of {}", stats.flux_emitted);
     }
+}
+
+#[test]
+fn a_glass_beyond_the_range_is_left_out_of_the_plan() {
+    // Nothing of it is nearer than the range: no caustic is traced, and the
+    // plan says why.
+    let glass_at = |z: f32| {
+        let mut render = settings(1000, BandSpec::Paper7);
+        (render.width, render.height) = (8, 8);
+        prepare(Scene {
+            render,
+            camera: prismatic_tests::camera(),
+            lights: vec![point_light()],
+            materials: vec![white("floor"), glass("glass", Glass::Sf11.dispersion())],
+            objects: vec![
+                floor(),
+                Object { shape: Shape::Sphere { center: Vec3::new(0.0, HEIGHT, z), radius: 0.5 }, material: 1 },
+            ],
+        })
+    };
+    let beyond = glass_at(RANGE + 0.6);
+    assert!(!beyond.plan.caustics.on && beyond.plan.caustics.reason.contains("range"), "{:?}", beyond.plan.caustics);
+    let within = glass_at(RANGE + 0.4);
+    assert!(within.plan.caustics.on, "{:?}", within.plan.caustics);
 }
 
 #[test]

@@ -77,7 +77,7 @@ impl EffectPlan {
             Effect::off("no mirror or glass in the scene")
         } else if lit.is_empty() {
             Effect::off(format!(
-                "no light reaches a mirror or glass ({} outside every light's cone or beam)",
+                "no light reaches a mirror or glass ({} outside every light's cone, beam or range)",
                 name_list(&specular)
             ))
         } else if !has_diffuse {

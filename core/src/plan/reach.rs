@@ -24,14 +24,19 @@ pub fn bounds(shape: &Shape) -> (Vec3, f32) {
     }
 }
 
-/// Can `light` send light into the sphere (centre `c`, radius `r`)?
+/// Can `light` send light into the sphere (centre `c`, radius `r`)? Not
+/// beyond its range, where its first segment ends
+/// ([`crate::model::light_range`]).
 pub fn light_reaches(light: &Light, c: Vec3, r: f32) -> bool {
     if !r.is_finite() {
         return true;
     }
     match light {
-        Light::Point { .. } => true,
-        Light::Spot { position, direction, cone_deg, .. } => {
+        Light::Point { position, range, .. } => within_range(*position, *range, c, r),
+        Light::Spot { position, direction, cone_deg, range, .. } => {
+            if !within_range(*position, *range, c, r) {
+                return false;
+            }
             let to = c - *position;
             let dist = to.length();
             if dist <= r {
@@ -54,6 +59,12 @@ pub fn light_reaches(light: &Light, c: Vec3, r: f32) -> bool {
         }
         Light::Sun { .. } | Light::Environment { .. } => true,
     }
+}
+
+/// Whether some point of the sphere (centre `c`, radius `r`) is nearer
+/// than `range` to a light at `position` (always, without a range).
+fn within_range(position: Vec3, range: Option<f32>, c: Vec3, r: f32) -> bool {
+    range.is_none_or(|range| (c - position).length() - r < range)
 }
 
 /// The beam a sun's photons leave from: a disc across the sun's direction

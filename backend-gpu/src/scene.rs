@@ -359,9 +359,13 @@ impl EncodedScene {
     /// [`PreparedScene::lights_of_pass`]): each drawn sun's record and its
     /// projection map's targets and CDF, and each area light's aim. Returns
     /// the elements that changed (lights, geometry records, table entries),
-    /// or `None` when a projection map changed its size (then encode the
-    /// scene again).
+    /// or `None` when a projection map changed its size or the pass chose
+    /// other emissive triangles (then encode the scene again).
     pub fn point_lights(&mut self, scene: &PreparedScene) -> Option<PointedLights> {
+        if scene.drawn_triangles.is_some() {
+            // Each chosen light's triangle, spectrum and projection map may differ.
+            return None;
+        }
         let mut changed = PointedLights::default();
         if scene.draws_aims {
             for (i, light) in scene.emitters.iter().enumerate() {
@@ -609,6 +613,8 @@ mod tests {
     fn area_lights_aimed_in_place_are_the_pass_encoded_afresh() {
         let mut panel = prismatic_conformance::scenes::panel_lit_sphere().scene;
         panel.render.view_paths = prismatic_core::model::scene::ViewPaths::Hero;
+        // Cut into pieces (a choice of triangles is encoded again each pass).
+        panel.render.area_lights = 16;
         let scene = prismatic_core::PreparedScene::new(panel).unwrap();
         assert!(scene.draws_aims);
         let areas = scene.lights.iter().filter(|l| matches!(l, Light::Area { .. })).count();

@@ -208,7 +208,7 @@ settings! {
     /// Pieces the emissive meshes' triangles are cut into for direct light
     /// (1 to 4096): more draw their soft shadows more finely, each one more
     /// shadow ray at every point the camera sees; with more emissive
-    /// triangles than this, that many chosen by power carry their flux.
+    /// triangles than this, each pass chooses that many by power.
     #[arg(long)]
     area_lights: u32,
     /// Image width.

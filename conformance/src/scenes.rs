@@ -109,7 +109,9 @@ pub fn light_panel(center: Vec3, emission: Vec3) -> (Material, Shape) {
 }
 
 /// The paper's sphere lit by a light panel above it and nothing else: an
-/// area light's direct light, soft shadow and caustic.
+/// area light's direct light, soft shadow and caustic. Its two triangles
+/// with a budget of one light are a choice by power, drawn anew each pass
+/// where the view paths are per pass ([`prismatic_core::plan::drawn_triangles`]).
 pub fn panel_lit_sphere() -> PreparedScene {
     let mut scene = glass_sphere().scene;
     scene.lights.clear();
@@ -122,6 +124,7 @@ pub fn panel_lit_sphere() -> PreparedScene {
     // one ulp apart (lavapipe's) grows past the parity tolerances after
     // four bounces or more; three keep the caustic's paths (in, out, floor).
     scene.render.max_depth = 3;
+    scene.render.area_lights = 1;
     let (panel, shape) = light_panel(Vec3::new(-0.6, 3.0, -0.2), Vec3::splat(50.0));
     scene.objects.push(Object { shape, material: scene.materials.len() });
     scene.materials.push(panel);

@@ -1,6 +1,7 @@
 //! A session's lights that change each pass (an environment's drawn suns,
 //! `prismatic_core::plan::drawn_suns`; area lights' shadow aims,
-//! `prismatic_core::plan::area_aims`): before a pass's view rays and
+//! `prismatic_core::plan::area_aims`; a choice of emissive triangles,
+//! `prismatic_core::plan::drawn_triangles`): before a pass's view rays and
 //! photons, the scene buffers get that pass's lights, written in place
 //! (each light's record, a sun's projection map), unless they hold them
 //! already.
@@ -22,7 +23,8 @@ impl GpuSession {
                 self.buffers.write_lights(&self.ctx, &self.encoded, &changed);
             })?,
             None => {
-                // A projection map changed its size: the scene again, its changed bytes written.
+                // A projection map changed its size, or other emissive triangles
+                // were chosen: the scene again, its changed bytes written.
                 let encoded = EncodedScene::new(&scene);
                 let regrouped = self.ctx.checked("pointing the pass's lights", || {
                     self.buffers.update(&self.ctx, &self.pipelines.scene_layout, &self.encoded, &encoded)

@@ -279,7 +279,7 @@ pub const DEFAULT_AREA_LIGHTS: u32 = 16;
 
 /// The most pieces emissive triangles are cut into (more emissive
 /// triangles than the setting: a choice of that many by power, carrying
-/// the whole flux; [`crate::plan::area::area_lights`]).
+/// the whole flux, anew each pass; [`crate::plan::drawn_triangles`]).
 pub const MAX_AREA_LIGHTS: u32 = 4_096;
 
 /// The ambient irradiance factor a scene gets when it names none: 0.03 of
@@ -391,7 +391,8 @@ pub struct RenderSettings {
     /// each lights a point with its exact unblocked irradiance, seen or
     /// shadowed from its centre (more: finer soft shadows, each a shadow
     /// ray per visible point). With more emissive triangles than this, a
-    /// choice of this many by power carries their whole flux.
+    /// choice of this many by power carries their whole flux, made anew
+    /// each pass with per-pass view paths.
     pub area_lights: u32,
 }
 

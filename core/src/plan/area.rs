@@ -1,14 +1,25 @@
 //! Emissive meshes as lights: each triangle of a mesh whose material emits
 //! becomes a Lambertian area light, and the most powerful are cut into
 //! four until the render's `area_lights` budget is spent; more emissive
-//! triangles than the budget are drawn as a choice of them by power that
-//! carries the whole flux.
+//! triangles than the budget are a choice of them by power that carries
+//! the whole flux ([`crate::plan::drawn_triangles`]).
 
 use crate::model::scene::{Light, Scene, Shape};
 use crate::model::spectrum::Spectrum;
+use crate::plan::drawn_triangles::TriangleChoice;
 use alloc::vec::Vec;
 use core::f32::consts::PI;
 use glam::Vec3;
+
+/// A scene's emissive meshes as area lights.
+#[derive(Clone, Debug, PartialEq)]
+pub enum AreaLights {
+    /// As many triangles as the budget or fewer: each is lit, cut into pieces.
+    Pieces(Vec<Light>),
+    /// More: the budget's lights are a choice of them by power
+    /// ([`TriangleChoice::lights`]).
+    Chosen(TriangleChoice),
+}
 
 /// The area lights of `scene`'s emissive meshes, in object and triangle
 /// order: one per triangle of non-zero area, the most powerful cut at its
@@ -19,13 +30,13 @@ use glam::Vec3;
 ///
 /// With more emissive triangles than `render.area_lights` (an emissive
 /// mesh of thousands, which as many lights would make every visible point
-/// trace thousands of shadow rays), that many are chosen by systematic
-/// sampling of their power, each carrying Φ/budget (a triangle chosen k
-/// times, k of them): the total flux is kept, and the light comes from
-/// fewer places than the mesh's; the camera still sees every triangle glow.
-pub fn area_lights(scene: &Scene) -> Vec<Light> {
+/// trace thousands of shadow rays), the triangles to choose that many from
+/// by power ([`crate::plan::drawn_triangles`]); the camera still sees every
+/// triangle glow.
+pub fn area_lights(scene: &Scene) -> AreaLights {
     let mut pieces: Vec<([Vec3; 3], usize)> = Vec::new();
     let mut emissions: Vec<(Spectrum, f32)> = Vec::new();
+    let budget = scene.render.area_lights as usize;
     for object in scene.objects.iter().filter(|o| scene.emits(o)) {
         let Shape::Mesh { positions, triangles, .. } = &object.shape else { continue };
         let (spectrum, radiance) = Spectrum::from_rgb(scene.materials[object.material].kind.emission().to_array());
@@ -38,11 +49,20 @@ pub fn area_lights(scene: &Scene) -> Vec<Light> {
         }
     }
     let power = |&(v, e): &([Vec3; 3], usize)| PI * area(&v) * emissions[e].1;
-    let budget = scene.render.area_lights as usize;
+    pieces.retain(|p| power(p) > 0.0);
     if pieces.len() > budget {
-        return chosen_by_power(&pieces, &emissions, budget, power);
+        let mut acc = 0.0f64;
+        let cdf = pieces
+            .iter()
+            .map(|p| {
+                acc += f64::from(power(p));
+                acc
+            })
+            .collect();
+        let spectra = emissions.into_iter().map(|(spectrum, _)| spectrum).collect();
+        return AreaLights::Chosen(TriangleChoice { triangles: pieces, spectra, cdf, budget });
     }
-    while pieces.len() + 3 <= scene.render.area_lights as usize {
+    while pieces.len() + 3 <= budget {
         let strongest = (0..pieces.len()).max_by(|&a, &b| power(&pieces[a]).total_cmp(&power(&pieces[b])));
         let Some(k) = strongest else { break };
         let ([a, b, c], e) = pieces[k];
@@ -50,38 +70,12 @@ pub fn area_lights(scene: &Scene) -> Vec<Light> {
         pieces[k] = ([ab, bc, ca], e);
         pieces.extend([([a, ab, ca], e), ([ab, b, bc], e), ([ca, bc, c], e)]);
     }
-    pieces
-        .iter()
-        .filter(|p| power(p) > 0.0)
-        .map(|p| Light::Area { vertices: p.0, power: power(p), spectrum: emissions[p.1].0.clone(), aim: None })
-        .collect()
-}
-
-/// `budget` of `pieces` by systematic sampling of their power: the
-/// k-th of the evenly spaced points (k + ½)/budget of the power's CDF
-/// picks a piece; a piece picked m times carries m/budget of the flux.
-fn chosen_by_power(
-    pieces: &[([Vec3; 3], usize)],
-    emissions: &[(Spectrum, f32)],
-    budget: usize,
-    power: impl Fn(&([Vec3; 3], usize)) -> f32,
-) -> Vec<Light> {
-    let total: f64 = pieces.iter().map(|p| f64::from(power(p))).sum();
-    let mut lights: Vec<Light> = Vec::new();
-    let (mut acc, mut next) = (0.0f64, 0usize);
-    for p in pieces {
-        acc += f64::from(power(p));
-        let mut picked = 0;
-        while next < budget && (next as f64 + 0.5) / budget as f64 * total < acc {
-            picked += 1;
-            next += 1;
-        }
-        if picked > 0 {
-            let share = (total * picked as f64 / budget as f64) as f32;
-            lights.push(Light::Area { vertices: p.0, power: share, spectrum: emissions[p.1].0.clone(), aim: None });
-        }
-    }
-    lights
+    AreaLights::Pieces(
+        pieces
+            .iter()
+            .map(|p| Light::Area { vertices: p.0, power: power(p), spectrum: emissions[p.1].0.clone(), aim: None })
+            .collect(),
+    )
 }
 
 /// The area of triangle `v`.
@@ -125,16 +119,24 @@ mod tests {
         let triangles: Vec<[u32; 3]> = (0..40u32).map(|i| [2 * i, 2 * i + 1, 2 * i + 2]).collect();
         let total: f32 = triangles.iter().map(|t| area(&t.map(|i| positions[i as usize]))).sum::<f32>() * PI * 2.0;
         scene.objects[0].shape = Shape::Mesh { positions, triangles, uvs: Vec::new() };
-        let lights = area_lights(&scene);
-        assert!(lights.len() <= 8, "{} lights", lights.len());
-        let flux: f32 = lights.iter().map(Light::power).sum();
-        assert!((flux - total).abs() < 1e-4 * total, "{flux} vs {total}");
+        let AreaLights::Chosen(choice) = area_lights(&scene) else { panic!("40 triangles, a budget of 8") };
+        assert_eq!(choice.triangles.len(), 40);
+        for xi in [0.0, 0.5, 0.99] {
+            let lights = choice.lights(xi);
+            assert_eq!(lights.len(), 8, "offset {xi}");
+            let flux: f32 = lights.iter().map(Light::power).sum();
+            assert!((flux - total).abs() < 1e-4 * total, "offset {xi}: {flux} vs {total}");
+        }
     }
 
     #[test]
     fn cutting_keeps_the_flux_and_spends_the_budget() {
         for (budget, pieces) in [(1, 1), (2, 2), (5, 5), (16, 14), (64, 62)] {
-            let lights = area_lights(&panel_scene(budget));
+            // The two triangles with a budget of 1: a choice of one, carrying both's flux.
+            let lights = match area_lights(&panel_scene(budget)) {
+                AreaLights::Pieces(lights) => lights,
+                AreaLights::Chosen(choice) => choice.lights(0.5),
+            };
             assert_eq!(lights.len(), pieces, "budget {budget}");
             let flux: f32 = lights.iter().map(Light::power).sum();
             // A white emission of 2: the equal-energy spectrum at factor 2, over 2 m².

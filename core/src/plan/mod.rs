@@ -6,6 +6,7 @@
 pub mod area;
 pub mod area_aims;
 pub mod drawn_suns;
+pub mod drawn_triangles;
 pub mod effects;
 pub mod prepared;
 pub mod projection;

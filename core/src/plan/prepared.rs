@@ -8,8 +8,11 @@ use crate::model::bands::BandTable;
 use crate::model::scene::{Light, Scene, SceneError, Shape};
 use crate::model::spectrum::Spectrum;
 use crate::optics::surface::Surface;
+use crate::plan::area::AreaLights;
 use crate::plan::drawn_suns::DrawnSuns;
+use crate::plan::drawn_triangles::DrawnTriangles;
 use crate::plan::effects::EffectPlan;
+use crate::plan::projection::Projection;
 use crate::plan::{area, area_aims, reach};
 use crate::sampling::environment::{EnvironmentCut, EnvironmentLookup};
 use crate::sampling::light_spectrum::LightSpectrum;
@@ -52,7 +55,8 @@ pub struct PreparedScene {
     /// area lights ([`area::area_lights`]). Backends light with these.
     /// With per-pass view paths the suns are pass 0's draw
     /// ([`PreparedScene::drawn_suns`]), and so are the area lights' aims
-    /// ([`PreparedScene::draws_aims`]).
+    /// ([`PreparedScene::draws_aims`]) and a choice of emissive triangles
+    /// ([`PreparedScene::drawn_triangles`]).
     pub lights: Vec<Light>,
     /// The environment rays that leave the scene see (`None`: the
     /// background colour).
@@ -79,6 +83,10 @@ pub struct PreparedScene {
     /// With area lights that cast shadows and per-pass view paths, whether
     /// each pass aims their shadow rays anew ([`crate::plan::area_aims`]).
     pub draws_aims: bool,
+    /// With more emissive triangles than `render.area_lights` and per-pass
+    /// view paths, how each pass chooses its area lights among them
+    /// ([`crate::plan::drawn_triangles`]); `None`: the lights stay fixed.
+    pub drawn_triangles: Option<DrawnTriangles>,
 }
 
 impl PreparedScene {
@@ -158,7 +166,18 @@ impl PreparedScene {
                 _ => lights.push(l.clone()),
             }
         }
-        lights.extend(area::area_lights(&scene));
+        let first_area = lights.len();
+        let choice = match area::area_lights(&scene) {
+            AreaLights::Pieces(pieces) => {
+                lights.extend(pieces);
+                None
+            }
+            AreaLights::Chosen(choice) => {
+                // The middle of the strata; with per-pass view paths pass 0's draw replaces it.
+                lights.extend(choice.lights(0.5));
+                Some(choice)
+            }
+        };
         let emitters: Vec<Light> = lights
             .iter()
             .map(|l| match l {
@@ -190,9 +209,23 @@ impl PreparedScene {
                 g.splits_view_rays = g.dispersive && plan.view_dispersion.on;
             }
         }
-        let drawn_suns = sky.filter(|_| draw).map(|(cut, suns)| {
-            let aimed_at = bounds.iter().zip(&surfaces).filter(|(_, s)| !matches!(s, Surface::Diffuse { .. }));
-            DrawnSuns { cut: Arc::new(cut), suns, beam_targets, aimed_at: aimed_at.map(|(b, _)| *b).collect(), bounds }
+        let aimed_at: Vec<(Vec3, f32)> = bounds
+            .iter()
+            .zip(&surfaces)
+            .filter(|(_, s)| !matches!(s, Surface::Diffuse { .. }))
+            .map(|(b, _)| *b)
+            .collect();
+        let drawn_triangles = choice.filter(|_| draw).map(|choice| DrawnTriangles {
+            choice: Arc::new(choice),
+            first: first_area,
+            aimed_at: aimed_at.clone(),
+        });
+        let drawn_suns = sky.filter(|_| draw).map(|(cut, suns)| DrawnSuns {
+            cut: Arc::new(cut),
+            suns,
+            beam_targets,
+            aimed_at,
+            bounds,
         });
         let draws_aims = draw && lights.iter().zip(&plan.shadows).any(|(l, s)| matches!(l, Light::Area { .. }) && s.on);
         let mut prepared = PreparedScene {
@@ -211,18 +244,20 @@ impl PreparedScene {
             plan,
             drawn_suns,
             draws_aims,
+            drawn_triangles,
         };
         prepared.point_lights(0);
         Ok(prepared)
     }
 
     /// This scene with its lights of pass `pass`: its environment's suns
-    /// drawn ([`crate::plan::drawn_suns`]) and its area lights' shadows
+    /// drawn ([`crate::plan::drawn_suns`]), its emissive triangles chosen
+    /// ([`crate::plan::drawn_triangles`]) and its area lights' shadows
     /// aimed ([`crate::plan::area_aims`]) for that pass. `None` when its
     /// lights are the same every pass (none of those, or view paths that
     /// every pass shares).
     pub fn lights_of_pass(&self, pass: u32) -> Option<PreparedScene> {
-        if self.drawn_suns.is_none() && !self.draws_aims {
+        if self.drawn_suns.is_none() && self.drawn_triangles.is_none() && !self.draws_aims {
             return None;
         }
         let mut moved = self.clone();
@@ -230,11 +265,25 @@ impl PreparedScene {
         Some(moved)
     }
 
-    /// Points the drawn suns and aims the area lights' shadows (if drawn) for pass `pass`.
+    /// Points the drawn suns, chooses the emissive triangles and aims the
+    /// area lights' shadows (those drawn) for pass `pass`.
     fn point_lights(&mut self, pass: u32) {
         let seed = self.scene.render.seed;
         if let Some(drawn) = &self.drawn_suns {
             drawn.point((&mut self.lights[..], &mut self.emitters[..], &mut self.plan.projections[..]), seed, pass);
+        }
+        if let Some(drawn) = &self.drawn_triangles {
+            let was: Vec<Light> = self.emitters[drawn.slots()].to_vec();
+            drawn.draw(&mut self.lights, &mut self.emitters, seed, pass);
+            for (i, old) in drawn.slots().zip(&was) {
+                let light = &self.emitters[i];
+                if light.spectrum() != old.spectrum() {
+                    self.light_spectra[i] = LightSpectrum::new(light.spectrum(), &self.bands);
+                }
+                if self.plan.projection.on {
+                    self.plan.projections[i] = Projection::new(light, &drawn.aimed_at);
+                }
+            }
         }
         if self.draws_aims {
             area_aims::aim(&mut self.lights, seed, pass);

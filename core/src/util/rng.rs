@@ -52,6 +52,10 @@ pub mod dim {
     /// the passes (the index is the light's; see `plan::area_aims`), past
     /// every dimension a photon uses.
     pub const AIM: u32 = u32::MAX;
+    /// The scramble of the offset of each pass's choice of emissive
+    /// triangles, one Sobol sequence over the passes (index 0; see
+    /// `plan::drawn_triangles`), below [`AIM`].
+    pub const TRIANGLES: u32 = u32::MAX - 1;
     /// Dimensions reserved per band path (one per bounce, at most this many bounces).
     pub const PER_BAND: u32 = 64;
 

@@ -62,6 +62,15 @@ fn v4(v: Vec3, w: f32) -> [f32; 4] {
     [v.x, v.y, v.z, w]
 }
 
+/// Marks the record `l` of scene light `light` (whose emitter a sun's beam
+/// is) as a sun with its drawn suns' mean direction (zero: not drawn).
+fn mark_sun(l: &mut GpuLight, light: &Light) {
+    if let Light::Sun { mean_toward, .. } = light {
+        l.sun = 1;
+        l.mean_toward = v3(mean_toward.unwrap_or(Vec3::ZERO));
+    }
+}
+
 impl EncodedScene {
     /// The scene's tables (indices, spectra, textures, the environment
     /// map) fit one storage binding of `device`; otherwise what to shrink.
@@ -116,10 +125,7 @@ impl EncodedScene {
                     e.tables.extend_from_slice(column);
                 }
             }
-            if let Light::Sun { mean_toward, .. } = light {
-                l.sun = 1;
-                l.mean_toward = v3(mean_toward.unwrap_or(Vec3::ZERO));
-            }
+            mark_sun(&mut l, light);
             e.lights.push(l);
         }
         for band in scene.bands.bands() {
@@ -388,10 +394,8 @@ impl EncodedScene {
             let (geometry, tables) = (scratch.geometry.len(), scratch.tables.len());
             (l.proj_first, l.proj_cdf) = (old.proj_first, old.proj_cdf);
             (l.reflected_r, l.reflected_g, l.reflected_b) = (old.reflected_r, old.reflected_g, old.reflected_b);
-            (l.spectrum_len, l.spectrum_first, l.sun) = (old.spectrum_len, old.spectrum_first, old.sun);
-            if let Light::Sun { mean_toward, .. } = &scene.lights[i] {
-                l.mean_toward = v3(mean_toward.unwrap_or(Vec3::ZERO));
-            }
+            (l.spectrum_len, l.spectrum_first) = (old.spectrum_len, old.spectrum_first);
+            mark_sun(&mut l, &scene.lights[i]);
             self.lights[i] = l;
             changed.lights.push(i);
             if geometry > 0 {

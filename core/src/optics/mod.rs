@@ -4,5 +4,7 @@
 
 pub mod absorption;
 pub mod fresnel;
+pub mod microfacet;
 pub mod scatter;
 pub mod surface;
+pub mod thin_film;

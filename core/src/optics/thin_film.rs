@@ -107,6 +107,8 @@ impl ThinFilm {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::cie::cmf;
+    use crate::model::color::xyz_to_linear_srgb;
     use crate::optics::fresnel::fresnel;
 
     /// The reflectance by the characteristic (transfer) matrix of the film
@@ -187,6 +189,38 @@ mod tests {
         let quarter = ThinFilm { ior: n, thickness_nm: lambda / (4.0 * n) };
         let got = quarter.reflectance(1.0, 1.0, 1.0, lambda);
         assert!((got - want).abs() < 1e-6, "{got} vs {want}");
+    }
+
+    /// The CIE XYZ a soap film `d` nm thick reflects of equal-energy white
+    /// at normal incidence (CIE 1931, 5 nm steps), white itself of Y = 1.
+    fn soap_film_xyz(d: f32) -> glam::DVec3 {
+        let film = ThinFilm { ior: 1.33, thickness_nm: d };
+        let xyz: glam::DVec3 = (0..=80)
+            .map(|k| {
+                let lambda = 380.0 + 5.0 * k as f32;
+                cmf(f64::from(lambda)) * f64::from(film.reflectance(1.0, 1.0, 1.0, lambda))
+            })
+            .sum();
+        let white: f64 = (0..=80).map(|k| cmf(380.0 + 5.0 * f64::from(k)).y).sum();
+        xyz / white
+    }
+
+    #[test]
+    fn a_wedge_of_soap_film_shows_newtons_colours_in_their_order() {
+        // Black at the thin edge, first-order white brightest where 2nd ≈ 555/2 nm,
+        // then each thickness 2nd = λ cancels λ: blue (yellow shows), green
+        // (purple shows), red (blue shows), in Newton's order.
+        assert!(soap_film_xyz(5.0).y < 1e-3, "black");
+        let luminance = |d: u32| soap_film_xyz(d as f32).y;
+        let brightest = (0..=200).step_by(2).max_by(|&a, &b| luminance(a).total_cmp(&luminance(b)));
+        assert!((90..=120).contains(&brightest.unwrap()), "first-order white at {brightest:?} nm");
+        let cancelled = |lambda: f32| xyz_to_linear_srgb(soap_film_xyz(lambda / (2.0 * 1.33)));
+        let yellow = cancelled(450.0);
+        assert!(yellow.z < yellow.x.min(yellow.y), "450 nm cancelled: {yellow}");
+        let purple = cancelled(550.0);
+        assert!(purple.y < purple.x.min(purple.z), "550 nm cancelled: {purple}");
+        let blue = cancelled(650.0);
+        assert!(blue.x < blue.y.min(blue.z), "650 nm cancelled: {blue}");
     }
 
     #[test]

@@ -81,6 +81,13 @@ impl GpuBackend {
         GpuBackend { ctx, pipelines, options }
     }
 
+    /// A backend on this one's device with its compiled pipelines and
+    /// `options` (nothing compiled again: a software device such as
+    /// lavapipe takes about a second to compile them).
+    pub fn with_options(&self, options: GpuOptions) -> Self {
+        GpuBackend { ctx: self.ctx.clone(), pipelines: Arc::clone(&self.pipelines), options }
+    }
+
     /// The adapter, when the backend chose it.
     pub fn adapter(&self) -> Option<&wgpu::AdapterInfo> {
         self.ctx.adapter.as_ref()

@@ -20,10 +20,11 @@ fn small(name: &str, photons: u32) -> PreparedScene {
     })
 }
 
-/// A session on the best adapter (lavapipe in CI, where a missing adapter fails).
+/// A session on the best adapter (lavapipe in CI, where a missing adapter
+/// fails), on the device and pipelines the tests share.
 fn session(scene: &PreparedScene, options: GpuOptions) -> Option<GpuSession> {
-    let ctx = prismatic_gpu::test_context("the GPU session")?;
-    Some(GpuSession::new(ctx, scene, options).unwrap_or_else(|e| panic!("session: {e}")))
+    let gpu = prismatic_tests::backends::gpu_backend(options)?;
+    Some(gpu.session(scene).unwrap_or_else(|e| panic!("session: {e}")))
 }
 
 fn passes(render: &mut dyn Render, n: u32) {

@@ -88,6 +88,17 @@ impl GpuBackend {
         GpuBackend { ctx: self.ctx.clone(), pipelines: Arc::clone(&self.pipelines), options }
     }
 
+    /// A backend for a test with `options`, on the device and compiled
+    /// pipelines every test of the process shares ([`test_context`]'s
+    /// rule: `None` only outside CI on a machine without an adapter). Each
+    /// session keeps its own buffers and its own count of bytes moved.
+    pub fn for_test(what: &str, options: GpuOptions) -> Option<Self> {
+        static SHARED: std::sync::OnceLock<Option<GpuBackend>> = std::sync::OnceLock::new();
+        let shared =
+            SHARED.get_or_init(|| test_context(what).map(|ctx| GpuBackend::with_context(ctx, GpuOptions::default())));
+        shared.as_ref().map(|gpu| gpu.with_options(options))
+    }
+
     /// The adapter, when the backend chose it.
     pub fn adapter(&self) -> Option<&wgpu::AdapterInfo> {
         self.ctx.adapter.as_ref()

@@ -7,21 +7,14 @@ use prismatic_core::model::scene::RadiusMode;
 use prismatic_core::{Backend, Image, NoProgress, PhotonMap, PreparedScene, ReferenceBackend};
 use prismatic_cpu::CpuBackend;
 use prismatic_gpu::{GpuBackend, GpuOptions};
-use std::sync::OnceLock;
-
-/// The device and compiled pipelines every test of the process shares
-/// (each session keeps its own buffers and its own count of bytes moved).
-static GPU: OnceLock<Option<GpuBackend>> = OnceLock::new();
 
 /// The GPU backend on the best adapter there is (lavapipe on machines
 /// without a GPU), with `options`. Without any adapter: under `CI=true` the
 /// test fails (CI installs lavapipe, so a missing adapter is a broken
-/// machine); elsewhere it says it is skipping and returns `None`.
+/// machine); elsewhere it says it is skipping and returns `None`. The
+/// process's tests share one device ([`GpuBackend::for_test`]).
 pub fn gpu_backend(options: GpuOptions) -> Option<GpuBackend> {
-    let shared = GPU.get_or_init(|| {
-        prismatic_gpu::test_context("the gpu backend").map(|ctx| GpuBackend::with_context(ctx, GpuOptions::default()))
-    });
-    shared.as_ref().map(|gpu| gpu.with_options(options))
+    GpuBackend::for_test("the gpu backend", options)
 }
 
 /// The reference, the CPU backend and the GPU backend (outside CI, only

@@ -57,7 +57,7 @@ fn prepared(scene: Scene) -> PreparedScene {
 pub fn glass_sphere() -> PreparedScene {
     let checker = Checker { size: 0.5, albedo: Vec3::splat(0.35), offset: Vec3::ZERO };
     prepared(Scene {
-        render: settings(48, 12_000, 0.08),
+        render: settings(32, 6_000, 0.08),
         camera: Camera {
             position: Vec3::new(3.0, 2.4, 3.2),
             look_at: Vec3::new(0.3, 0.4, 0.0),

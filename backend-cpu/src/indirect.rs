@@ -17,7 +17,9 @@ use crate::intersect::intersect_scene;
 use crate::optics::scatter_diffuse;
 use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, random_f32};
-use crate::trace::{ON, Sink, TraceContext, absorb_crossing_lanes, absorb_lanes, lanes, scatter, scatter_dims};
+use crate::trace::{
+    LaneIds, ON, Sink, TraceContext, absorb_crossing_lanes, absorb_lanes, lanes, scatter, scatter_dims,
+};
 use prismatic_core::model::photon::{Photon, TraceStats};
 use prismatic_core::photons::emit::light_of;
 use prismatic_core::photons::indirect::indirect_flux;
@@ -126,7 +128,8 @@ fn trace_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mu
         sink.stats.specular_paths += u64::from((crossing & first).to_bitmask().count_ones());
         let u = random_f32(seed, emission, scatter_dims(band, bounces));
         let before = dir;
-        let (so, sd) = scatter(point, dir, hit.normal, &s, u, origin, crossing, dir);
+        let ids = LaneIds { object: hit.object, band, lambda: &lambda };
+        let (so, sd) = scatter(ctx, ids, point, dir, hit.normal, &s, u, origin, crossing, dir);
         let sheets = crossing & s.thin & s.absorbing;
         crossing &= !absorb_crossing_lanes(ctx, sink, sheets, &hit, (before, sd), flux, [emission, band, bounces]);
         origin = Vec3x8::select(survives, o, so);

@@ -16,10 +16,12 @@ use crate::intersect::{HitX8, intersect_scene};
 use crate::optics::{offset_origin, reflect, scatter_dielectric};
 use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, lt, random_f32};
+use glam::Vec3;
 use prismatic_core::model::bands::BandTable;
 use prismatic_core::model::light_range::range_window;
 use prismatic_core::model::photon::{Photon, TraceStats, WHITE_BAND, oct_pack};
 use prismatic_core::model::scene::WavelengthSampling;
+use prismatic_core::optics::scatter::scatter_dielectric as scalar_scatter;
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
 use prismatic_core::photons::emit::light_of;
 use prismatic_core::photons::path::{absorbed, absorbed_crossing, stored_wavelength};
@@ -44,6 +46,8 @@ struct ObjectOptics {
     absorbing: f32x8,
     /// Thin sheet (rays pass straight through).
     thin: f32x8,
+    /// Glass with a film (its lanes scatter by the core's scalar rule).
+    coated: f32x8,
     /// n for white light (non-dispersive glass only).
     white_ior: f32x8,
     /// n per band, eight bands per vector.
@@ -93,6 +97,7 @@ impl<'a> TraceContext<'a> {
                     dispersive: mask(glass.is_some_and(|g| g.splits_photons)),
                     absorbing: mask(glass.is_some_and(|g| g.absorption.is_some())),
                     thin: mask(glass.is_some_and(|g| g.thin)),
+                    coated: mask(glass.is_some_and(|g| g.film.is_some())),
                     white_ior: f32x8::splat(glass.map_or(1.0, |g| g.white_ior)),
                     band_ior,
                 }
@@ -145,6 +150,8 @@ pub(crate) struct LaneSurfaces {
     pub(crate) dispersive: f32x8,
     pub(crate) absorbing: f32x8,
     pub(crate) thin: f32x8,
+    /// Glass with a film.
+    pub(crate) coated: f32x8,
     /// Index of refraction for this lane: white for white packets, the band's for band packets.
     pub(crate) ior: f32x8,
 }
@@ -162,6 +169,7 @@ impl TraceContext<'_> {
             dispersive: f32x8::ZERO,
             absorbing: f32x8::ZERO,
             thin: f32x8::ZERO,
+            coated: f32x8::ZERO,
             ior: f32x8::ONE,
         };
         for o in &self.objects {
@@ -172,6 +180,7 @@ impl TraceContext<'_> {
             s.dispersive |= m & o.dispersive;
             s.absorbing |= m & o.absorbing;
             s.thin |= m & o.thin;
+            s.coated |= m & o.coated;
             let ior = match band_chunk {
                 Some(c) => o.band_ior[c],
                 None => o.white_ior,
@@ -357,7 +366,8 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
         }
         let u = random_f32(settings.seed, emission, scatter_dims(band, bounces));
         let before = dir;
-        (origin, dir) = scatter(point, dir, hit.normal, &s, u, origin, go_on, dir);
+        let ids = LaneIds { object: hit.object, band, lambda: &lambda };
+        (origin, dir) = scatter(ctx, ids, point, dir, hit.normal, &s, u, origin, go_on, dir);
         let sheets = go_on & s.thin & s.absorbing;
         go_on &= !absorb_crossing_lanes(ctx, &mut sink, sheets, &hit, (before, dir), flux, [emission, band, bounces]);
         bounces += bytemuck::cast::<f32x8, u32x8>(go_on) & u32x8::ONE;
@@ -419,10 +429,12 @@ fn trace_bands(
             absorbing: glass.absorbing,
             // A tinted sheet splits white light too (by its colour, not its index).
             thin: glass.thin,
+            coated: glass.coated,
             ior,
         };
         let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
-        let (mut origin, mut dir) = scatter(p0, d0, n0, &start, u, p0, active, d0);
+        let ids = LaneIds { object: f32x8::splat(object as f32), band, lambda: &lambda };
+        let (mut origin, mut dir) = scatter(ctx, ids, p0, d0, n0, &start, u, p0, active, d0);
         let at_glass = HitX8 { object: f32x8::splat(object as f32), ..*hit };
         let sheets = active & start.thin & start.absorbing;
         active &= !absorb_crossing_lanes(ctx, sink, sheets, &at_glass, (d0, dir), flux, [emission_v, band, bounces]);
@@ -452,7 +464,8 @@ fn trace_bands(
             active &= !absorb_lanes(ctx, sink, active & s.absorbing, &hit, dir, flux, [emission_v, band, bounces]);
             let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
             let before = dir;
-            (origin, dir) = scatter(point, dir, hit.normal, &s, u, origin, active, dir);
+            let ids = LaneIds { object: hit.object, band, lambda: &lambda };
+            (origin, dir) = scatter(ctx, ids, point, dir, hit.normal, &s, u, origin, active, dir);
             let sheets = active & s.thin & s.absorbing;
             active &= !absorb_crossing_lanes(ctx, sink, sheets, &hit, (before, dir), flux, [emission_v, band, bounces]);
             bounces += bytemuck::cast::<f32x8, u32x8>(active) & u32x8::ONE;
@@ -573,11 +586,21 @@ fn roulette_lanes(
     f32x8::new(out)
 }
 
+/// Which object each lane met, and its band and wavelength: what the
+/// lanes at coated glass need to scatter by the core's scalar rule.
+pub(crate) struct LaneIds<'a> {
+    pub(crate) object: f32x8,
+    pub(crate) band: u32x8,
+    pub(crate) lambda: &'a [Option<f32>; 8],
+}
+
 /// New origins and directions of the lanes in `go_on` (mirror reflection or
 /// Fresnel scattering); other lanes keep `origin`/`dir`.
 #[expect(clippy::too_many_arguments, reason = "one packet's state, passed in registers")]
 #[inline]
 pub(crate) fn scatter(
+    ctx: &TraceContext<'_>,
+    ids: LaneIds<'_>,
     point: Vec3x8,
     d: Vec3x8,
     normal: Vec3x8,
@@ -590,10 +613,36 @@ pub(crate) fn scatter(
     if !go_on.any() {
         return (origin, dir);
     }
-    let (n_glass, dir_glass) = scatter_dielectric(d, normal, s.ior, s.thin, u);
+    let (n_glass, mut dir_glass) = scatter_dielectric(d, normal, s.ior, s.thin, u);
+    let coated = go_on & s.coated;
+    if coated.any() {
+        dir_glass = coated_directions(ctx, &ids, (point, d, normal), u, coated, dir_glass);
+    }
     let n_face = Vec3x8::select(s.mirror, normal, n_glass);
     let new_dir = Vec3x8::select(s.mirror, reflect(d, normal), dir_glass);
     (Vec3x8::select(go_on, offset_origin(point, n_face, new_dir), origin), Vec3x8::select(go_on, new_dir, dir))
+}
+
+/// `dir` with the lanes of `mask` (at glass with a film) sent where the
+/// core's scalar `scatter_dielectric` sends them: a film's reflectance is a
+/// complex sum per lane's wavelength, so those lanes take the scalar rule
+/// (the facing normal, and so the origin's offset, is the packet's).
+fn coated_directions(
+    ctx: &TraceContext<'_>,
+    ids: &LaneIds<'_>,
+    (point, d, normal): (Vec3x8, Vec3x8, Vec3x8),
+    u: f32x8,
+    mask: f32x8,
+    dir: Vec3x8,
+) -> Vec3x8 {
+    let mut out: [Vec3; 8] = core::array::from_fn(|i| dir.lane(i));
+    let (objects, bands, us) = (ids.object.as_array(), ids.band.as_array(), u.as_array());
+    for i in lanes(mask) {
+        let Surface::Dielectric(glass) = &ctx.scene.surfaces[objects[i] as usize] else { continue };
+        let face = glass.face(bands[i] as u16, ids.lambda[i], &ctx.scene.bands);
+        out[i] = scalar_scatter(d.lane(i), point.lane(i), normal.lane(i), face, us[i]).direction;
+    }
+    Vec3x8::from_lanes(&out)
 }
 
 /// Writes a chunk's photons (emissions `start..start + len`) into `dest` in

@@ -28,7 +28,7 @@ use prismatic_core::model::light_range::range_window;
 use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::model::scene::Light;
 use prismatic_core::optics::fresnel::reflect;
-use prismatic_core::optics::scatter::{self, scatter_dielectric};
+use prismatic_core::optics::scatter::{self, Face, scatter_dielectric};
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
 use prismatic_core::plan::area::area;
 use prismatic_core::plan::area_aims::on_triangle;
@@ -194,18 +194,24 @@ impl Shader<'_> {
                         {
                             let share = r.weight * w.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * w, weight: share, band, lambda_nm, hero, ..*r };
-                            let ior = glass.path_ior(band, lambda_nm, &self.scene.bands);
-                            spawn_at_glass(&tinted, p, n, (ior, glass), one_branch, queue);
+                            let face = glass.face(band, lambda_nm, &self.scene.bands);
+                            spawn_at_glass(&tinted, p, n, (face, glass), one_branch, queue);
                         }
                     }
                     None => {
                         for (b, info) in self.scene.bands.bands().iter().enumerate() {
                             let share = r.weight * info.weight.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * info.weight, weight: share, band: b as u16, ..*r };
-                            spawn_at_glass(&tinted, p, n, (glass.ior(b as u16), glass), one_branch, queue);
+                            let face = glass.face(b as u16, None, &self.scene.bands);
+                            spawn_at_glass(&tinted, p, n, (face, glass), one_branch, queue);
                         }
                     }
                 },
+                // A film's reflectance is a complex sum per ray: the scalar rule.
+                Surface::Dielectric(glass) if glass.film.is_some() => {
+                    let face = glass.face(r.band, r.lambda_nm, &self.scene.bands);
+                    spawn_at_glass(r, p, n, (face, glass), one_branch, queue);
+                }
                 Surface::Dielectric(glass) => {
                     glass_ior[i] = glass.path_ior(r.band, r.lambda_nm, &self.scene.bands);
                     glass_thin[i] = if glass.thin { f32::from_bits(u32::MAX) } else { 0.0 };
@@ -383,18 +389,18 @@ fn spawn_at_glass(
     r: &ViewRay,
     p: Vec3,
     outward: Vec3,
-    (ior, glass): (f32, &DielectricOptics),
+    (face, glass): (Face, &DielectricOptics),
     one_branch: bool,
     queue: &mut Vec<ViewRay>,
 ) {
     let crossed = crossed_sheet(glass.sheet_crossing_rgb(r.band));
     if let Some(sampler) = r.sampler.filter(|_| one_branch) {
-        let next = scatter_dielectric(r.dir, p, outward, ior, glass.thin, sampler.branch(r.hero, r.depth));
+        let next = scatter_dielectric(r.dir, p, outward, face, sampler.branch(r.hero, r.depth));
         let ray = ViewRay { origin: next.origin, dir: next.direction, depth: r.depth + 1, ..*r };
         queue.push(if glass.thin && next.direction == r.dir { crossed(ray) } else { ray });
         return;
     }
-    let split = scatter::split_dielectric(r.dir, p, outward, ior, glass.thin);
+    let split = scatter::split_dielectric(r.dir, p, outward, face);
     let f = split.reflectance;
     if f * r.weight > MIN_VIEW_WEIGHT {
         let (origin, dir) = (split.reflected.origin, split.reflected.direction);

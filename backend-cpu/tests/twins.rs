@@ -80,7 +80,7 @@ proptest! {
     /// `scatter_dielectric`, `split_dielectric` (and its branch choice) and
     /// `offset_origin` on eight lanes are the core's, bit for bit.
     #[test]
-    fn packet_scattering_is_the_cores_bit_for_bit(cases in prop::array::uniform8(scatter_case())) {
+    fn packet_scattering_is_the_cores_bit_for_bit(cases in prop::array::uniform8(scatter_case(false))) {
         for (case, (one, chosen, r, refracted)) in cases.iter().zip(packet_scatter(&cases)) {
             let want = case.scattered();
             prop_assert!(bits(one) == bits(want), "scatter_dielectric: {:?}, the core says {:?}, for {:?}", one, want, case);

@@ -186,8 +186,9 @@ pub struct GpuSurface {
     pub uv_first: u32,
     /// Radiance its front faces emit (an area light's glow).
     pub emission: [f32; 3],
-    /// Padding.
-    pub _pad: u32,
+    /// Index of the film's relative index and thickness (nm) in the tables
+    /// buffer (see `SURFACE_HAS_FILM`).
+    pub film_first: u32,
 }
 const _: () = assert!(core::mem::size_of::<GpuSurface>() == 112);
 

@@ -258,6 +258,11 @@ impl EncodedScene {
                 if g.thin {
                     s.flags |= SURFACE_THIN;
                 }
+                if let Some(film) = &g.film {
+                    s.flags |= SURFACE_HAS_FILM;
+                    s.film_first = self.tables.len() as u32;
+                    self.tables.extend_from_slice(&[film.ior, film.thickness_nm]);
+                }
                 if let Some(a) = &g.absorption {
                     s.flags |= SURFACE_ABSORBS;
                     s.absorption = v3(a.rgb);

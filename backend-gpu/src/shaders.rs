@@ -61,6 +61,8 @@ pub mod kind {
     pub const TEXTURE_WRAP_U_SHIFT: u32 = 8;
     /// Where the texture's wrap along v sits in the flags (two bits, `WRAP_*`).
     pub const TEXTURE_WRAP_V_SHIFT: u32 = 10;
+    /// The dielectric has a thin film (its index and thickness in the tables at `film_first`).
+    pub const SURFACE_HAS_FILM: u32 = 4096;
     /// `Wrap::Repeat`.
     pub const WRAP_REPEAT: u32 = 0;
     /// `Wrap::ClampToEdge`.
@@ -195,6 +197,7 @@ fn prelude(stack: u32) -> String {
     u("SURFACE_HAS_TEXTURE", kind::SURFACE_HAS_TEXTURE);
     u("SURFACE_TEXTURE_NEAREST", kind::SURFACE_TEXTURE_NEAREST);
     u("SURFACE_THIN", kind::SURFACE_THIN);
+    u("SURFACE_HAS_FILM", kind::SURFACE_HAS_FILM);
     u("TEXTURE_WRAP_U_SHIFT", kind::TEXTURE_WRAP_U_SHIFT);
     u("TEXTURE_WRAP_V_SHIFT", kind::TEXTURE_WRAP_V_SHIFT);
     u("WRAP_CLAMP_TO_EDGE", kind::WRAP_CLAMP_TO_EDGE);

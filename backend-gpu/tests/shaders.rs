@@ -144,7 +144,7 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 texture_height,
                 uv_first,
                 emission,
-                _pad,
+                film_first,
             }),
         ),
         (

@@ -135,6 +135,10 @@ struct ScatterIn {
     u: f32,
     point: vec3<f32>,
     thin: f32,
+    film_ior: f32,
+    film_nm: f32,
+    lambda_nm: f32,
+    _pad: f32,
 }
 
 struct ScatterOut {
@@ -157,8 +161,9 @@ fn scatter(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let c = scatter_in[id.x];
-    let one = scatter_dielectric(c.d, c.point, c.outward, c.ior, c.thin != 0.0, c.u);
-    let both = split_dielectric(c.d, c.point, c.outward, c.ior, c.thin != 0.0);
+    let face = Face(c.ior, c.thin != 0.0, c.film_ior, c.film_nm, c.lambda_nm);
+    let one = scatter_dielectric(c.d, c.point, c.outward, face, c.u);
+    let both = split_dielectric(c.d, c.point, c.outward, face);
     scatter_out[id.x] = ScatterOut(
         one.origin, both.reflectance, one.dir, select(0.0, 1.0, both.tir),
         vec4<f32>(both.reflected.origin, 0.0), vec4<f32>(both.reflected.dir, 0.0),
@@ -211,6 +216,11 @@ struct ScatterIn {
     point: [f32; 3],
     /// 1 at a thin sheet.
     thin: f32,
+    /// The film's relative index, thickness (0: none) and wavelength.
+    film_ior: f32,
+    film_nm: f32,
+    lambda_nm: f32,
+    _pad: f32,
 }
 
 #[repr(C)]
@@ -483,6 +493,10 @@ fn wgsl_scatter(twins: &Twins, cases: &[ScatterCase]) -> Vec<ScatterOut> {
             u: c.u,
             point: c.point.to_array(),
             thin: f32::from(u8::from(c.thin)),
+            film_ior: c.film.map_or(1.0, |(f, _)| f.ior),
+            film_nm: c.film.map_or(0.0, |(f, _)| f.thickness_nm),
+            lambda_nm: c.film.map_or(0.0, |(_, l)| l),
+            _pad: 0.0,
         })
         .collect();
     twins.run("scatter", &inputs)
@@ -544,7 +558,7 @@ proptest! {
     /// `scatter_dielectric` and `split_dielectric` (common.wgsl, which the
     /// photon trace and the view pass both call) against the core's.
     #[test]
-    fn wgsl_scattering_is_the_cores(cases in prop::collection::vec(scatter_case(), 1024)) {
+    fn wgsl_scattering_is_the_cores(cases in prop::collection::vec(scatter_case(true), 1024)) {
         let Some(twins) = twins() else { return Ok(()) };
         for (case, got) in cases.iter().zip(wgsl_scatter(twins, &cases)) {
             if let Err(e) = check_scatter(case, &got) {
@@ -598,6 +612,7 @@ fn the_h200s_answers_at_knife_edges_pass() {
         point: Vec3::new(6.4109807, 29.737373, -7.070403),
         u: 0.19186382,
         thin: true,
+        film: None,
     };
     let sheet_answer = ScatterOut {
         origin: [6.409711, 29.737946, -7.0692253],
@@ -618,6 +633,7 @@ fn the_h200s_answers_at_knife_edges_pass() {
         point: Vec3::new(-5.527382, -224.38121, -3.659088),
         u: 0.15974164,
         thin: false,
+        film: None,
     };
     let graze_answer = ScatterOut {
         origin: [-5.5237465, -224.37242, -3.6492302],
@@ -657,6 +673,7 @@ fn a_drifted_scatter_is_caught() {
         point: Vec3::ONE,
         u: 0.9,
         thin: false,
+        film: None,
     };
     for case in [case, ScatterCase { thin: true, ..case }] {
         let mut got = wgsl_scatter(twins, &[case])[0];

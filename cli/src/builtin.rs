@@ -13,7 +13,7 @@ pub struct BuiltinScene {
 }
 
 /// Every built-in scene file.
-pub const BUILTIN_SCENES: [BuiltinScene; 9] = [
+pub const BUILTIN_SCENES: [BuiltinScene; 10] = [
     BuiltinScene {
         name: "spectrum",
         description: "a prism's spectrum on a wall behind the paper's glass sphere and its caustic (the default)",
@@ -58,6 +58,11 @@ pub const BUILTIN_SCENES: [BuiltinScene; 9] = [
         name: "rainbow",
         description: "a beam through a hole in a screen onto a water sphere: primary and secondary bows",
         source: include_str!("../../scenes/rainbow.toml"),
+    },
+    BuiltinScene {
+        name: "coated",
+        description: "a glass ball under a thin-film coating: reflections and rings in thin-film colours, a tinted caustic",
+        source: include_str!("../../scenes/coated.toml"),
     },
 ];
 

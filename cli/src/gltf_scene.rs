@@ -23,7 +23,7 @@ use prismatic_core::geometry::texture::srgb_to_linear;
 use prismatic_core::model::mesh::open_edge;
 use prismatic_core::model::scene::{
     Attenuation, Camera, EnvironmentMap, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, Object, RenderSettings,
-    Sampler, Scene, Shape, Texture, Wrap, default_ambient,
+    Sampler, Scene, Shape, Texture, ThinFilm, Wrap, default_ambient,
 };
 use prismatic_core::model::spectrum::Spectrum;
 use prismatic_core::sampling::spot_cone::SpotCone;
@@ -429,6 +429,9 @@ fn material(
         emission *= images.mean_colour(&info)?;
         unused.push("emissiveTexture's pattern (the mesh emits the texture's mean colour evenly)");
     }
+    if transmission <= 0.0 && m.extensions().is_some_and(|e| e.contains_key("KHR_materials_iridescence")) {
+        unused.push("KHR_materials_iridescence of an opaque material (films are drawn on glass)");
+    }
     let mut uv_transform = None;
     let kind = if transmission > 0.0 {
         if pbr.roughness_factor() > 0.0 {
@@ -448,7 +451,14 @@ fn material(
             true => (tint != Vec3::ONE).then_some(Attenuation { color: tint, distance: 1.0 }),
             false => volume,
         };
-        MaterialKind::Dielectric { dispersion: dispersion(m), outside: Dispersion::Constant(1.0), attenuation, thin }
+        let film = film(m, &mut unused);
+        MaterialKind::Dielectric {
+            dispersion: dispersion(m),
+            outside: Dispersion::Constant(1.0),
+            attenuation,
+            thin,
+            film,
+        }
     } else if pbr.metallic_factor() >= MIRROR_METALLIC && pbr.roughness_factor() <= MIRROR_ROUGHNESS {
         if pbr.base_color_texture().is_some() {
             unused.push("baseColorTexture of a mirror");
@@ -515,14 +525,14 @@ fn attenuation(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option
     Some(Attenuation { color, distance })
 }
 
-/// n(λ) of a transmissive material: `KHR_materials_ior` (default 1.5) and
-/// `KHR_materials_dispersion`, whose `dispersion` is 20/V_d (0: none).
 /// The radiance a material emits: `emissiveFactor` × `KHR_materials_emissive_strength`
 /// (the texture is named as left out above).
 fn emission(m: &gltf::Material<'_>) -> Vec3 {
     Vec3::from(m.emissive_factor()) * m.emissive_strength().unwrap_or(1.0)
 }
 
+/// n(λ) of a transmissive material: `KHR_materials_ior` (default 1.5) and
+/// `KHR_materials_dispersion`, whose `dispersion` is 20/V_d (0: none).
 fn dispersion(m: &gltf::Material<'_>) -> Dispersion {
     let ior = m.ior().unwrap_or(1.5);
     let spread = m
@@ -532,6 +542,32 @@ fn dispersion(m: &gltf::Material<'_>) -> Dispersion {
         .and_then(serde_json::Value::as_f64)
         .unwrap_or(0.0) as f32;
     if spread > 0.0 { Dispersion::Abbe { nd: ior, vd: 20.0 / spread } } else { Dispersion::Constant(ior) }
+}
+
+/// The film of `KHR_materials_iridescence` on glass: `iridescenceIor`
+/// (default 1.3) and, without a thickness texture, the film is
+/// `iridescenceThicknessMaximum` thick (default 400 nm), as the extension
+/// reads a missing texture. A factor of 0 (the default) is no film. What
+/// it leaves out goes to `unused`: the textures (glass has no texture
+/// coordinates here) and a factor between 0 and 1, the extension's blend of
+/// the bare and the filmed reflectance, drawn as a whole film.
+fn film(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option<ThinFilm> {
+    let ext = m.extensions().and_then(|e| e.get("KHR_materials_iridescence"))?;
+    let number = |key: &str, default: f64| ext.get(key).and_then(serde_json::Value::as_f64).unwrap_or(default) as f32;
+    let factor = number("iridescenceFactor", 0.0);
+    if factor <= 0.0 {
+        return None;
+    }
+    if factor < 1.0 {
+        unused.push("iridescenceFactor below 1 (drawn as a whole film)");
+    }
+    if ext.get("iridescenceTexture").is_some() {
+        unused.push("iridescenceTexture");
+    }
+    if ext.get("iridescenceThicknessTexture").is_some() {
+        unused.push("iridescenceThicknessTexture (the film is iridescenceThicknessMaximum thick)");
+    }
+    Some(ThinFilm { ior: number("iridescenceIor", 1.3), thickness_nm: number("iridescenceThicknessMaximum", 400.0) })
 }
 
 /// A whole scene from a glTF file: its parts, its camera or one framing

@@ -5,7 +5,7 @@
 
 use prismatic_cli::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, prism};
 use prismatic_core::PreparedScene;
-use prismatic_core::model::scene::{Light, MaterialKind, Shape};
+use prismatic_core::model::scene::{Light, MaterialKind, Shape, ThinFilm};
 use prismatic_core::photons::trace;
 use std::path::Path;
 use std::process::Command;
@@ -368,6 +368,60 @@ fn glass_without_a_volume_or_on_an_open_mesh_is_a_thin_sheet() {
         "{:?}",
         scene.warnings
     );
+}
+
+/// `KHR_materials_iridescence` on glass is a film of its index and maximum
+/// thickness; what the film cannot carry yet is named, and on an opaque
+/// material the whole extension is.
+#[test]
+fn iridescence_on_glass_is_a_thin_film() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut json: serde_json::Value = serde_json::from_str(&prism_document().to_json()).unwrap();
+    let load = |json: &serde_json::Value| {
+        let path = dir.path().join("film.gltf");
+        std::fs::write(&path, json.to_string()).unwrap();
+        let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+        scene.validate().unwrap();
+        scene
+    };
+    let film = |scene: &prismatic_cli::scene_file::SceneDocument| match &scene.scene.materials[1].kind {
+        MaterialKind::Dielectric { film, .. } => *film,
+        other => panic!("glass expected, got {other:?}"),
+    };
+    let mut glass = json["materials"][1]["extensions"].as_object().cloned().unwrap();
+    glass.insert("KHR_materials_iridescence".into(), serde_json::json!({ "iridescenceFactor": 1.0 }));
+    json["materials"][1]["extensions"] = serde_json::Value::Object(glass.clone());
+    let scene = load(&json);
+    assert_eq!(film(&scene), Some(ThinFilm { ior: 1.3, thickness_nm: 400.0 }), "the extension's defaults");
+    assert!(!scene.warnings.join("\n").contains("iridescence"), "{:?}", scene.warnings);
+    glass.insert(
+        "KHR_materials_iridescence".into(),
+        serde_json::json!({
+            "iridescenceFactor": 0.5,
+            "iridescenceIor": 1.8,
+            "iridescenceThicknessMinimum": 200,
+            "iridescenceThicknessMaximum": 650,
+            "iridescenceThicknessTexture": { "index": 0 }
+        }),
+    );
+    json["materials"][1]["extensions"] = serde_json::Value::Object(glass.clone());
+    let scene = load(&json);
+    assert_eq!(film(&scene), Some(ThinFilm { ior: 1.8, thickness_nm: 650.0 }));
+    let warnings = scene.warnings.join("\n");
+    assert!(
+        warnings.contains("iridescenceThicknessTexture") && warnings.contains("iridescenceFactor below 1"),
+        "{warnings}"
+    );
+    // A factor of 0 is no film.
+    glass.insert("KHR_materials_iridescence".into(), serde_json::json!({ "iridescenceFactor": 0.0 }));
+    json["materials"][1]["extensions"] = serde_json::Value::Object(glass);
+    assert_eq!(film(&load(&json)), None);
+    // On the opaque floor: named as left out.
+    let mut floor = json["materials"][0]["extensions"].as_object().cloned().unwrap_or_default();
+    floor.insert("KHR_materials_iridescence".into(), serde_json::json!({ "iridescenceFactor": 1.0 }));
+    json["materials"][0]["extensions"] = serde_json::Value::Object(floor);
+    let warnings = load(&json).warnings.join("\n");
+    assert!(warnings.contains("KHR_materials_iridescence of an opaque material"), "{warnings}");
 }
 
 #[test]

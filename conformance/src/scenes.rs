@@ -14,7 +14,7 @@ use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::environment::EnvironmentMap;
 use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, Filter, Light, Material, MaterialKind, Object, PhotonSequence, RenderSettings,
-    Sampler, Shape, Texture, Wrap,
+    Sampler, Shape, Texture, ThinFilm, Wrap,
 };
 use prismatic_core::{BandSpec, Estimator, PreparedScene, Scene};
 
@@ -45,7 +45,13 @@ fn diffuse(name: &str, albedo: f32) -> Material {
 fn glass(name: &str, dispersion: Dispersion) -> Material {
     material(
         name,
-        MaterialKind::Dielectric { dispersion, outside: Dispersion::Constant(1.0), attenuation: None, thin: false },
+        MaterialKind::Dielectric {
+            dispersion,
+            outside: Dispersion::Constant(1.0),
+            attenuation: None,
+            thin: false,
+            film: None,
+        },
     )
 }
 
@@ -178,9 +184,15 @@ pub fn coloured_glass_sphere() -> PreparedScene {
 
 /// The paper's sphere over a textured floor mesh (a coloured 8×8 image,
 /// bilinear, tiled three times with mirrored rows): the texture reaches
-/// the caustic through the visible points' weights.
+/// the caustic through the visible points' weights. The sphere wears a
+/// film (a 300 nm coating of index 2.4), so every suite also compares the
+/// film's reflectance at each path's wavelength.
 pub fn textured_floor() -> PreparedScene {
     let mut scene = glass_sphere().scene;
+    let MaterialKind::Dielectric { film, .. } = &mut scene.materials[1].kind else {
+        unreachable!("the sphere is glass")
+    };
+    *film = Some(ThinFilm { ior: 2.4, thickness_nm: 300.0 });
     let texels: Vec<u32> =
         (0..64u32).map(|i| (40 + 25 * (i % 8)) | (230 - 25 * (i / 8)) << 8 | ((i * 37) % 256) << 16).collect();
     let sampler = Sampler { filter: Filter::Linear, wrap_u: Wrap::Repeat, wrap_v: Wrap::MirroredRepeat };

@@ -12,8 +12,9 @@
 
 use glam::{DVec3, Vec3};
 use prismatic_core::Estimator;
+use prismatic_core::model::scene::ThinFilm;
 use prismatic_core::optics::fresnel::{cos2_transmitted, fresnel, interface, reflect, refract};
-use prismatic_core::optics::scatter::{DielectricBranches, scatter_dielectric, split_dielectric};
+use prismatic_core::optics::scatter::{DielectricBranches, Face, scatter_dielectric, split_dielectric};
 use prismatic_core::photons::gather::{GatherSums, finish};
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
@@ -300,46 +301,76 @@ pub struct ScatterCase {
     pub u: f32,
     /// At a thin sheet (straight on, the sheet's reflectance).
     pub thin: bool,
+    /// A film on the surface (its index relative to the outside) and the
+    /// wavelength it is seen at.
+    pub film: Option<(ThinFilm, f32)>,
 }
 
 impl ScatterCase {
+    /// What the path meets (`optics::scatter::Face`).
+    pub fn face(&self) -> Face {
+        match self.film {
+            None => Face::bare(self.surface.ior, self.thin),
+            Some((film, lambda_nm)) => Face { film: Some(film), lambda_nm, ..Face::bare(self.surface.ior, self.thin) },
+        }
+    }
+
     /// The core's one branch (`optics::scatter::scatter_dielectric`): (origin, direction).
     pub fn scattered(&self) -> (Vec3, Vec3) {
         let s = &self.surface;
-        let ray = scatter_dielectric(s.d, self.point, s.outward, s.ior, self.thin, self.u);
+        let ray = scatter_dielectric(s.d, self.point, s.outward, self.face(), self.u);
         (ray.origin, ray.direction)
     }
 
     /// How far a copy's reflectance may stray beyond the agreed bound: the
     /// surface's [`SurfaceCase::reflectance_slack`], or for a sheet twice
     /// its faces' (air into glass from either side; the sheet's
-    /// 2R/(1 + R) moves by at most twice R's).
+    /// 2R/(1 + R) moves by at most twice R's). With a film: what
+    /// [`COS_ROUNDING`] of cos θ moves the film's reflectance, twice, and
+    /// [`FILM_PHASE_SLACK`] for the rounding of its phase.
     pub fn reflectance_slack(&self) -> f32 {
         let s = &self.surface;
+        if self.film.is_some() {
+            let (normal, n1, n2) = interface(s.d, s.outward, s.ior);
+            let face = self.face();
+            let at = |c: f32| face.reflectance(c.clamp(0.0, 1.0), n1, n2);
+            let cos_i = -s.d.dot(normal);
+            return (at(cos_i + COS_ROUNDING) - at(cos_i - COS_ROUNDING)).abs() + FILM_PHASE_SLACK;
+        }
         if self.thin { 2.0 * fresnel_slack(s.d.dot(s.outward).abs(), 1.0, s.ior) } else { s.reflectance_slack() }
     }
 
     /// The core's two branches (`optics::scatter::split_dielectric`).
     pub fn branches(&self) -> DielectricBranches {
         let s = &self.surface;
-        split_dielectric(s.d, self.point, s.outward, s.ior, self.thin)
+        split_dielectric(s.d, self.point, s.outward, self.face())
     }
 }
 
-/// Paths leaving glass (a fifth of them at thin sheets): any
-/// [`surface_case`], at points from 1e-3 to 1e4 from the origin, with
-/// branch numbers anywhere in [0, 1) and right at the Fresnel reflectance
-/// (where the choice flips).
-pub fn scatter_case() -> impl Strategy<Value = ScatterCase> {
+/// How far a copy's film reflectance may stray for the rounding of its
+/// phase δ = 4π n d cos θ / λ (up to ~200 rad at 2 µm: f32 keeps it to
+/// ~1e-5 rad, which moves R by less than that).
+pub const FILM_PHASE_SLACK: f32 = 1e-4;
+
+/// Paths leaving glass (a fifth of them at thin sheets; with `films`, a
+/// third under a film of index 1.1 to 2.5, 0 to 2000 nm thick, seen at 380
+/// to 780 nm): any [`surface_case`], at points from 1e-3 to 1e4 from the
+/// origin, with branch numbers anywhere in [0, 1) and right at the
+/// reflectance (where the choice flips).
+pub fn scatter_case(films: bool) -> impl Strategy<Value = ScatterCase> {
+    let film = (1.1f32..2.5, 0.0f32..2000.0, 380.0f32..780.0)
+        .prop_map(|(ior, thickness_nm, lambda)| Some((ThinFilm { ior, thickness_nm }, lambda)));
+    let film = if films { prop_oneof![2 => Just(None), 1 => film].boxed() } else { Just(None).boxed() };
     let coordinate = prop_oneof![3 => -10.0f32..10.0, 1 => (-3.0f32..4.0, any::<bool>()).prop_map(|(e, neg)| if neg { -10f32.powf(e) } else { 10f32.powf(e) })];
     (
         surface_case(),
         [coordinate.clone(), coordinate.clone(), coordinate],
         prop_oneof![4 => 0.0f32..1.0, 1 => Just(-1.0f32)],
         prop_oneof![4 => Just(false), 1 => Just(true)],
+        film,
     )
-        .prop_map(|(surface, point, u, thin)| {
-            let mut case = ScatterCase { surface, point: Vec3::from(point), u, thin };
+        .prop_map(|(surface, point, u, thin, film)| {
+            let mut case = ScatterCase { surface, point: Vec3::from(point), u, thin, film };
             // u = -1 stands for "exactly R": the smallest number that refracts.
             if u < 0.0 {
                 case.u = case.branches().reflectance;

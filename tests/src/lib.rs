@@ -40,6 +40,7 @@ pub fn glass(name: &str, dispersion: Dispersion) -> Material {
             outside: Dispersion::Constant(1.0),
             attenuation: None,
             thin: false,
+            film: None,
         },
     }
 }
@@ -202,6 +203,64 @@ pub fn sphere_in_a_catcher(dispersion: Dispersion, render: RenderSettings, beam_
             Object { shape: Shape::Sphere { center: Vec3::ZERO, radius: 50.0 }, material: 1 },
         ],
     }
+}
+
+/// A beam of radius 0.2 along +x from x = −1 through `glass` (material 0,
+/// the object `shape`) onto a white wall at x = 3 (`photons` a pass, paper7).
+pub fn beam_onto_a_wall(photons: u32, glass: Material, shape: Shape) -> PreparedScene {
+    prepare(Scene {
+        render: settings(photons, BandSpec::Paper7),
+        camera: camera(),
+        lights: vec![Light::Beam {
+            position: Vec3::new(-1.0, 0.0, 0.0),
+            direction: Vec3::X,
+            radius: 0.2,
+            power: 1.0,
+            spectrum: Default::default(),
+        }],
+        materials: vec![glass, white("wall")],
+        objects: vec![
+            Object { shape, material: 0 },
+            Object { shape: Shape::Plane { point: Vec3::new(3.0, 0.0, 0.0), normal: Vec3::NEG_X }, material: 1 },
+        ],
+    })
+}
+
+/// A camera on the x axis looking head on through `sheet` (an open mesh:
+/// one square in the plane x = 0) at a background of radiance 1; behind
+/// the camera a black wall, which is what the sheet's reflection shows
+/// (3×3 pixels: the middle one looks straight through).
+pub fn view_through_a_sheet(sheet: Material) -> PreparedScene {
+    let mut render = settings(1000, BandSpec::Paper7);
+    (render.width, render.height, render.background, render.ambient) = (3, 3, Vec3::ONE, 0.0);
+    let black = Material {
+        name: "black".into(),
+        kind: MaterialKind::Diffuse { albedo: Vec3::ZERO, checker: None, texture: None, emission: Vec3::ZERO },
+    };
+    let square =
+        [Vec3::new(0.0, -2.0, -2.0), Vec3::new(0.0, 2.0, -2.0), Vec3::new(0.0, 2.0, 2.0), Vec3::new(0.0, -2.0, 2.0)];
+    prepare(Scene {
+        render,
+        camera: Camera { position: Vec3::new(-5.0, 0.0, 0.0), look_at: Vec3::ZERO, up: Vec3::Z, fov_deg: 10.0 },
+        lights: vec![Light::Point {
+            position: Vec3::new(-5.0, 0.0, 5.0),
+            power: 1.0,
+            spectrum: Default::default(),
+            range: None,
+        }],
+        materials: vec![sheet, black],
+        objects: vec![
+            Object {
+                shape: Shape::Mesh {
+                    positions: square.to_vec(),
+                    triangles: vec![[0, 1, 2], [0, 2, 3]],
+                    uvs: Vec::new(),
+                },
+                material: 0,
+            },
+            Object { shape: Shape::Plane { point: Vec3::new(-6.0, 0.0, 0.0), normal: Vec3::X }, material: 1 },
+        ],
+    })
 }
 
 /// Descartes: the k-reflection bow's angle from the antisolar point, degrees.

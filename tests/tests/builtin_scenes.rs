@@ -29,6 +29,7 @@ fn every_built_in_scene_renders_finite_and_its_caustic_adds_light() {
         ("recombine", 4_000),
         ("rainbow", 100_000),
         ("lamps", 4_000),
+        ("coated", 20_000),
     ];
     for (name, photons) in scenes {
         let scene = builtin(name, photons, 64);

@@ -10,7 +10,7 @@ use prismatic_core::model::scene::{Attenuation, Light, Material, MaterialKind, O
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::{PreparedScene, Scene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
-use prismatic_tests::{camera, prepare, settings, white};
+use prismatic_tests::{beam_onto_a_wall, prepare, settings};
 
 /// Slab thickness (along x, from x = 0).
 const THICKNESS: f32 = 1.0;
@@ -28,6 +28,7 @@ fn slab(ior: Dispersion) -> (Material, Object) {
             outside: Dispersion::Constant(1.0),
             attenuation: Some(Attenuation { color: COLOR, distance: DISTANCE }),
             thin: false,
+            film: None,
         },
     };
     let vertices = [Vec3::new(0.0, -3.0, -2.0), Vec3::new(0.0, 3.0, -2.0), Vec3::new(0.0, 0.0, 3.0)];
@@ -53,22 +54,7 @@ fn slab_view(n: f64, tau: f64) -> f64 {
 /// A beam along +x through the slab onto a white wall at x = 3.
 fn photon_scene(photons: u32) -> PreparedScene {
     let (amber, object) = slab(Dispersion::Constant(1.5));
-    prepare(Scene {
-        render: settings(photons, BandSpec::Paper7),
-        camera: camera(),
-        lights: vec![Light::Beam {
-            position: Vec3::new(-1.0, 0.0, 0.0),
-            direction: Vec3::X,
-            radius: 0.2,
-            power: 1.0,
-            spectrum: Default::default(),
-        }],
-        materials: vec![amber, white("wall")],
-        objects: vec![
-            object,
-            Object { shape: Shape::Plane { point: Vec3::new(3.0, 0.0, 0.0), normal: Vec3::NEG_X }, material: 1 },
-        ],
-    })
+    beam_onto_a_wall(photons, amber, object.shape)
 }
 
 #[test]

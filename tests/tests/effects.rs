@@ -4,7 +4,7 @@
 
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
-use prismatic_core::model::scene::{Light, Object, Shape};
+use prismatic_core::model::scene::{Light, MaterialKind, Object, Shape, ThinFilm};
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::{Image, NoProgress, PreparedScene, ReferenceBackend, Scene, Vec3};
 use prismatic_tests::backends::{assert_same_caustic, every_backend, frame, trace};
@@ -91,6 +91,19 @@ fn constant_index_glass_traces_white_photons_only_with_a_seventh_of_the_segments
         let (a, b) = (sum(&white_image), sum(&split_image));
         assert!((a - b).abs() < 0.02 * a, "{name}: image energy {a} vs {b}");
     }
+}
+
+#[test]
+fn a_film_on_glass_of_one_index_splits_photons_and_view_rays() {
+    let mut scene = sphere_scene(Dispersion::Constant(1.5), 9.0, -Vec3::Y);
+    let MaterialKind::Dielectric { film, .. } = &mut scene.materials[0].kind else { unreachable!() };
+    *film = Some(ThinFilm { ior: 1.38, thickness_nm: 250.0 });
+    let scene = prepare(scene);
+    let plan = &scene.plan;
+    assert!(plan.band_splitting.on && plan.band_splitting.reason.contains("coated glass"), "{}", plan.summary());
+    assert_eq!(plan.view_dispersion.reason, "coated glass in view", "{}", plan.summary());
+    let Surface::Dielectric(g) = &scene.surfaces[0] else { unreachable!() };
+    assert!(g.splits_photons && g.splits_view_rays && !g.is_dispersive(), "{g:?}");
 }
 
 #[test]

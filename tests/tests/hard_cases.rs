@@ -423,8 +423,13 @@ fn glass_inside_water_refracts_with_the_relative_index() {
     let incidence_deg = (PrismExperiment::min_deviation_deg(60.0, relative(2)) + 60.0) / 2.0;
     let exp = PrismExperiment { apex_deg: 60.0, incidence_deg, beam_radius: 0.05, screen_x: 4.0 };
     let mut scene = exp.scene(bk7.clone(), settings(3000, bands));
-    scene.materials[0].kind =
-        MaterialKind::Dielectric { dispersion: bk7.clone(), outside: water.clone(), attenuation: None, thin: false };
+    scene.materials[0].kind = MaterialKind::Dielectric {
+        dispersion: bk7.clone(),
+        outside: water.clone(),
+        attenuation: None,
+        thin: false,
+        film: None,
+    };
     scene.materials.push(glass("water", water.clone()));
     scene.objects.push(Object { shape: Shape::Sphere { center: Vec3::ZERO, radius: 20.0 }, material: 2 });
     let scene = prepare(scene);

@@ -27,6 +27,7 @@ mod spectral_truth;
 mod spectrum;
 mod sun;
 mod textures;
+mod thin_film;
 mod thin_glass;
 mod view_paths;
 mod wavelengths;

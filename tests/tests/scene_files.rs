@@ -5,7 +5,7 @@ use prismatic_cli::builtin::BUILTIN_SCENES;
 use prismatic_cli::scene_file::{SceneFileError, parse};
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
-use prismatic_core::model::scene::{Estimator, MaterialKind, PhotonSequence, Shape, WavelengthSampling};
+use prismatic_core::model::scene::{Estimator, MaterialKind, PhotonSequence, Shape, ThinFilm, WavelengthSampling};
 
 const MINIMAL: &str = r#"
 [camera]
@@ -101,7 +101,8 @@ fn every_ior_form_parses() {
                 dispersion: expected,
                 outside: Dispersion::Constant(1.0),
                 attenuation: None,
-                thin: false
+                thin: false,
+                film: None,
             },
             "{text}"
         );
@@ -308,6 +309,34 @@ fn coloured_glass_parses_and_bad_attenuation_is_rejected_with_its_line() {
         "material.amber.attenuation_distance",
         Some("attenuation_distance"),
         "greater than 0",
+    );
+}
+
+#[test]
+fn a_films_keys_parse_and_bad_films_are_rejected_with_their_line() {
+    let film_of = |keys: &str| {
+        let doc = parse(&coloured_glass(keys), "test.toml", None).expect("parses");
+        doc.validate().expect("valid");
+        let amber = doc.scene.materials.iter().find(|m| m.name == "amber").expect("the amber material");
+        let MaterialKind::Dielectric { film, .. } = amber.kind else { panic!("glass expected, got {:?}", amber.kind) };
+        film
+    };
+    assert_eq!(film_of("film_thickness_nm = 300\nfilm_ior = 2.4"), Some(ThinFilm { ior: 2.4, thickness_nm: 300.0 }));
+    // The index defaults to glTF's iridescenceIor.
+    assert_eq!(film_of("film_thickness_nm = 300"), Some(ThinFilm { ior: 1.3, thickness_nm: 300.0 }));
+    assert_eq!(film_of(""), None);
+    assert_error(&coloured_glass("film_ior = 2.4"), "material.amber.film_ior", Some("film_ior"), "film_thickness_nm");
+    assert_error(
+        &coloured_glass("film_thickness_nm = -5"),
+        "material.amber.film_thickness_nm",
+        Some("film_thickness_nm"),
+        "0 to 20000 nm",
+    );
+    assert_error(
+        &coloured_glass("film_thickness_nm = 300\nfilm_ior = 0.5"),
+        "material.amber.film_ior",
+        Some("film_ior"),
+        "between 1 and 5",
     );
 }
 

@@ -4,13 +4,12 @@
 //! straight on, with no offset, whatever its shape; a tinted sheet keeps
 //! its colour of what crosses it.
 
-use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::Dispersion;
-use prismatic_core::model::scene::{Attenuation, Camera, Light, Material, MaterialKind, Object, Shape};
+use prismatic_core::model::scene::{Attenuation, Material, MaterialKind, Shape};
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::{PreparedScene, Scene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
-use prismatic_tests::{camera, prepare, settings, white};
+use prismatic_tests::{beam_onto_a_wall, prepare, view_through_a_sheet};
 
 /// The sheet's index.
 const IOR: f64 = 1.5;
@@ -23,6 +22,7 @@ fn sheet(ior: f32) -> Material {
             outside: Dispersion::Constant(1.0),
             attenuation: None,
             thin: true,
+            film: None,
         },
     }
 }
@@ -48,30 +48,12 @@ const BEAM: f32 = 0.2;
 /// x = 0 onto a white wall at x = 3.
 fn photon_scene(photons: u32) -> PreparedScene {
     let tilt = 30f32.to_radians();
-    prepare(Scene {
-        render: settings(photons, BandSpec::Paper7),
-        camera: camera(),
-        lights: vec![Light::Beam {
-            position: Vec3::new(-1.0, 0.0, 0.0),
-            direction: Vec3::X,
-            radius: BEAM,
-            power: 1.0,
-            spectrum: Default::default(),
-        }],
-        materials: vec![sheet(IOR as f32), white("wall")],
-        objects: vec![
-            Object {
-                shape: Shape::Disk {
-                    center: Vec3::ZERO,
-                    normal: Vec3::new(tilt.cos(), tilt.sin(), 0.0),
-                    radius: 1.0,
-                    inner_radius: 0.0,
-                },
-                material: 0,
-            },
-            Object { shape: Shape::Plane { point: Vec3::new(3.0, 0.0, 0.0), normal: Vec3::NEG_X }, material: 1 },
-        ],
-    })
+    let normal = Vec3::new(tilt.cos(), tilt.sin(), 0.0);
+    beam_onto_a_wall(
+        photons,
+        sheet(IOR as f32),
+        Shape::Disk { center: Vec3::ZERO, normal, radius: 1.0, inner_radius: 0.0 },
+    )
 }
 
 #[test]
@@ -99,41 +81,9 @@ fn a_sheet_passes_its_closed_form_fraction_of_photons_straight_on() {
     }
 }
 
-/// A camera on the x axis looking through a sheet (an open mesh: one
-/// square) at a background of radiance 1; behind the camera a black wall,
-/// which is what the sheet's reflection shows (3×3 pixels: the middle one
-/// looks straight through).
+/// [`view_through_a_sheet`] of the clear sheet.
 fn view_scene() -> PreparedScene {
-    let mut render = settings(1000, BandSpec::Paper7);
-    (render.width, render.height, render.background, render.ambient) = (3, 3, Vec3::ONE, 0.0);
-    let black = Material {
-        name: "black".into(),
-        kind: MaterialKind::Diffuse { albedo: Vec3::ZERO, checker: None, texture: None, emission: Vec3::ZERO },
-    };
-    let square =
-        [Vec3::new(0.0, -2.0, -2.0), Vec3::new(0.0, 2.0, -2.0), Vec3::new(0.0, 2.0, 2.0), Vec3::new(0.0, -2.0, 2.0)];
-    prepare(Scene {
-        render,
-        camera: Camera { position: Vec3::new(-5.0, 0.0, 0.0), look_at: Vec3::ZERO, up: Vec3::Z, fov_deg: 10.0 },
-        lights: vec![Light::Point {
-            position: Vec3::new(-5.0, 0.0, 5.0),
-            power: 1.0,
-            spectrum: Default::default(),
-            range: None,
-        }],
-        materials: vec![sheet(IOR as f32), black],
-        objects: vec![
-            Object {
-                shape: Shape::Mesh {
-                    positions: square.to_vec(),
-                    triangles: vec![[0, 1, 2], [0, 2, 3]],
-                    uvs: Vec::new(),
-                },
-                material: 0,
-            },
-            Object { shape: Shape::Plane { point: Vec3::new(-6.0, 0.0, 0.0), normal: Vec3::X }, material: 1 },
-        ],
-    })
+    view_through_a_sheet(sheet(IOR as f32))
 }
 
 #[test]

@@ -41,6 +41,7 @@ pub fn scene(render: RenderSettings, light: Light, with_ball: bool) -> PreparedS
         outside: Dispersion::Constant(1.0),
         attenuation: None,
         thin: false,
+        film: None,
     };
     PreparedScene::new(Scene {
         render,

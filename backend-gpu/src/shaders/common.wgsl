@@ -102,7 +102,7 @@ struct GpuSurface {
     texture_height: u32,
     uv_first: u32,
     emission: vec3<f32>,
-    _pad: u32,
+    film_first: u32,
 }
 
 // Twin of prismatic_gpu::layout::GpuLight.
@@ -471,21 +471,106 @@ fn sheet_reflectance(r: f32) -> f32 {
     return 2.0 * r / (1.0 + r);
 }
 
+// ---- optics/thin_film.rs: complex numbers as vec2 (re, im) ----
+
+fn c_mul(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(a.x * b.x - a.y * b.y, a.x * b.y + a.y * b.x);
+}
+
+fn c_div(a: vec2<f32>, b: vec2<f32>) -> vec2<f32> {
+    let d = b.x * b.x + b.y * b.y;
+    return vec2<f32>((a.x * b.x + a.y * b.y) / d, (a.y * b.x - a.x * b.y) / d);
+}
+
+// Complex::sqrt_of: √x of a real x, or i√−x (the root whose wave decays).
+fn c_sqrt_of(x: f32) -> vec2<f32> {
+    if x >= 0.0 {
+        return vec2<f32>(sqrt(x), 0.0);
+    }
+    return vec2<f32>(0.0, sqrt(-x));
+}
+
+// Complex::exp_i: e^{i z}.
+fn c_exp_i(z: vec2<f32>) -> vec2<f32> {
+    let sc = sin_cos_turns(z.x * (0.5 / PI));
+    let decay = exp(-z.y);
+    return vec2<f32>(decay * sc.y, decay * sc.x);
+}
+
+// The s and p Fresnel amplitudes between media (na, cos a) and (nb, cos b).
+fn amplitude_s(na: f32, ca: vec2<f32>, nb: f32, cb: vec2<f32>) -> vec2<f32> {
+    return c_div(ca * na - cb * nb, ca * na + cb * nb);
+}
+
+fn amplitude_p(na: f32, ca: vec2<f32>, nb: f32, cb: vec2<f32>) -> vec2<f32> {
+    return c_div(ca * nb - cb * na, ca * nb + cb * na);
+}
+
+// The Airy sum |(r01 + r12 e^{iδ}) / (1 + r01 r12 e^{iδ})|².
+fn airy(r01: vec2<f32>, r12: vec2<f32>, phase: vec2<f32>) -> f32 {
+    let r = c_div(r01 + c_mul(r12, phase), vec2<f32>(1.0, 0.0) + c_mul(c_mul(r01, r12), phase));
+    return r.x * r.x + r.y * r.y;
+}
+
+// ThinFilm::reflectance: a film of index n1 and thickness d_nm between n0
+// and a base n2, at wavelength lambda_nm.
+fn thin_film_reflectance(cos_in: f32, n0: f32, n1: f32, n2: f32, d_nm: f32, lambda_nm: f32) -> f32 {
+    let cos0 = clamp(cos_in, 0.0, 1.0);
+    let sin2 = 1.0 - cos0 * cos0;
+    let c0 = vec2<f32>(cos0, 0.0);
+    let c1 = c_sqrt_of(1.0 - (n0 / n1) * (n0 / n1) * sin2);
+    let c2 = c_sqrt_of(1.0 - (n0 / n2) * (n0 / n2) * sin2);
+    let phase = c_exp_i(c1 * (4.0 * PI * n1 * d_nm / lambda_nm));
+    let rs = airy(amplitude_s(n0, c0, n1, c1), amplitude_s(n1, c1, n2, c2), phase);
+    let rp = airy(amplitude_p(n0, c0, n1, c1), amplitude_p(n1, c1, n2, c2), phase);
+    return clamp(0.5 * (rs + rp), 0.0, 1.0);
+}
+
+// optics::scatter::Face: what a path meets at glass (film_nm = 0: no film).
+struct Face {
+    ior: f32,
+    thin: bool,
+    film_ior: f32,
+    film_nm: f32,
+    lambda_nm: f32,
+}
+
+// Face::bare.
+fn bare_face(ior: f32, thin: bool) -> Face {
+    return Face(ior, thin, 1.0, 0.0, 0.0);
+}
+
+// Face::interface_reflectance: Fresnel's, or the film's Airy sum.
+fn interface_reflectance(f: Face, cos_i: f32, n1: f32, n2: f32) -> f32 {
+    if f.film_nm > 0.0 {
+        return thin_film_reflectance(cos_i, n1, f.film_ior, n2, f.film_nm, f.lambda_nm);
+    }
+    return fresnel(cos_i, n1, n2);
+}
+
+// Face::reflectance (a sheet: both faces).
+fn face_reflectance(f: Face, cos_i: f32, n1: f32, n2: f32) -> f32 {
+    if f.thin {
+        return sheet_reflectance(interface_reflectance(f, cos_i, 1.0, f.ior));
+    }
+    return interface_reflectance(f, cos_i, n1, n2);
+}
+
 // optics::scatter::scatter_dielectric: reflected where u < R or under total
 // internal reflection, refracted otherwise (a thin sheet: straight on);
 // photons and sampled view paths.
-fn scatter_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, ior: f32, thin: bool, u: f32) -> Scattered {
-    let f = facing_interface(d, outward, ior);
+fn scatter_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, face: Face, u: f32) -> Scattered {
+    let f = facing_interface(d, outward, face.ior);
     let cos_i = -dot(d, f.n);
     var out = reflect_dir(d, f.n);
-    if thin {
-        if !(u < sheet_reflectance(fresnel(cos_i, 1.0, ior))) {
+    if !(u < face_reflectance(face, cos_i, f.n1, f.n2)) {
+        if face.thin {
             out = d;
-        }
-    } else if !(u < fresnel(cos_i, f.n1, f.n2)) {
-        let r = refract_dir(d, f.n, f.n1, f.n2);
-        if r.w != 0.0 {
-            out = r.xyz;
+        } else {
+            let r = refract_dir(d, f.n, f.n1, f.n2);
+            if r.w != 0.0 {
+                out = r.xyz;
+            }
         }
     }
     return Scattered(offset_origin(point, f.n, out), out);
@@ -509,13 +594,12 @@ struct DielectricBranches {
     tir: bool,
 }
 
-fn split_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, ior: f32, thin: bool) -> DielectricBranches {
-    let f = facing_interface(d, outward, ior);
+fn split_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, face: Face) -> DielectricBranches {
+    let f = facing_interface(d, outward, face.ior);
     let cos_i = -dot(d, f.n);
-    var reflectance = fresnel(cos_i, f.n1, f.n2);
+    let reflectance = face_reflectance(face, cos_i, f.n1, f.n2);
     var t = refract_dir(d, f.n, f.n1, f.n2);
-    if thin {
-        reflectance = sheet_reflectance(fresnel(cos_i, 1.0, ior));
+    if face.thin {
         t = vec4<f32>(d, 1.0);
     }
     let r = reflect_dir(d, f.n);

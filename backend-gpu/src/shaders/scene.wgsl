@@ -485,6 +485,24 @@ fn path_ior(s: GpuSurface, band: u32, lambda_nm: f32) -> f32 {
     return n + (curve_at(s, lambda_nm) - curve_at(s, bands[band].lambda_nm));
 }
 
+// DielectricOptics::face: the path's index, and the film seen at its own
+// wavelength, else its band's centre, else (white) the middle band's.
+fn path_face(s: GpuSurface, band: u32, lambda_nm: f32) -> Face {
+    let ior = path_ior(s, band, lambda_nm);
+    if (s.flags & SURFACE_HAS_FILM) == 0u {
+        return bare_face(ior, is_sheet(s));
+    }
+    var lambda = lambda_nm;
+    if lambda < 0.0 {
+        var b = band;
+        if band == WHITE_BAND {
+            b = params.band_count / 2u;
+        }
+        lambda = bands[b].lambda_nm;
+    }
+    return Face(ior, is_sheet(s), tables[s.film_first], tables[s.film_first + 1u], lambda);
+}
+
 struct SpectrumSample {
     band: u32,
     // < 0 for none (the band's own index).

@@ -49,8 +49,8 @@ fn absorbed_crossing(s: GpuSurface, before: vec3<f32>, p: Path, seed: u32, index
 }
 
 // optics::scatter::scatter_dielectric on a photon's path.
-fn scatter_path(p: ptr<function, Path>, point: vec3<f32>, outward: vec3<f32>, ior: f32, thin: bool, u: f32) {
-    let s = scatter_dielectric((*p).dir, point, outward, ior, thin, u);
+fn scatter_path(p: ptr<function, Path>, point: vec3<f32>, outward: vec3<f32>, face: Face, u: f32) {
+    let s = scatter_dielectric((*p).dir, point, outward, face, u);
     (*p).origin = s.origin;
     (*p).dir = s.dir;
 }
@@ -133,7 +133,7 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             (*p).lambda_nm = b.lambda_nm;
             let u = random_f32(seed, index, scatter_dim(b.band, (*p).bounces));
             let before = (*p).dir;
-            scatter_path(p, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), is_sheet(s), u);
+            scatter_path(p, hit.point, hit.normal, path_face(s, b.band, b.lambda_nm), u);
             if absorbed_crossing(s, before, *p, seed, index) {
                 return FOLLOW_END;
             }
@@ -175,7 +175,7 @@ fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -
     }
     let u = random_f32(params.seed, index, scatter_dim((*p).band, (*p).bounces));
     let before = (*p).dir;
-    scatter_path(p, hit.point, hit.normal, path_ior(s, (*p).band, (*p).lambda_nm), is_sheet(s), u);
+    scatter_path(p, hit.point, hit.normal, path_face(s, (*p).band, (*p).lambda_nm), u);
     return !absorbed_crossing(s, before, *p, params.seed, index);
 }
 
@@ -427,7 +427,7 @@ fn trace_emitted(index: u32) {
         let b = split_band(u, path);
         var child = Path(p.origin, p.dir, p.flux / f32(n), b.band, b.lambda_nm, p.bounces + 1u);
         let u = random_f32(params.seed, index, scatter_dim(b.band, p.bounces));
-        scatter_path(&child, hit.point, hit.normal, path_ior(s, b.band, b.lambda_nm), is_sheet(s), u);
+        scatter_path(&child, hit.point, hit.normal, path_face(s, b.band, b.lambda_nm), u);
         if absorbed_crossing(s, p.dir, child, params.seed, index) {
             continue;
         }

@@ -84,12 +84,13 @@ fn spawn_ray(e: Pending, origin: vec3<f32>, dir: vec3<f32>, band: u32, weight: f
 
 // ViewContext::through_dielectric: the Fresnel-weighted reflection and
 // refraction (a jittered path: the one branch its number chooses).
-fn through_dielectric(e: Pending, ior: f32, thin: bool, band: u32, weight: f32, tint: vec3<f32>) {
+fn through_dielectric(e: Pending, face: Face, band: u32, weight: f32, tint: vec3<f32>) {
+    let thin = face.thin;
     // What crossing a tinted sheet keeps (1 elsewhere).
     let crossing = sheet_crossing_rgb(surfaces[e.object], band);
     let kept = max(crossing.x, max(crossing.y, crossing.z));
     if jittered() {
-        let s = scatter_dielectric(e.dir, e.origin, e.normal, ior, thin, pixel_branch(scramble, params.view_pass, e.hero, e.depth));
+        let s = scatter_dielectric(e.dir, e.origin, e.normal, face, pixel_branch(scramble, params.view_pass, e.hero, e.depth));
         if thin && all(s.dir == e.dir) {
             spawn_ray(e, s.origin, s.dir, band, weight * kept, tint * crossing);
         } else {
@@ -97,7 +98,7 @@ fn through_dielectric(e: Pending, ior: f32, thin: bool, band: u32, weight: f32, 
         }
         return;
     }
-    let split = split_dielectric(e.dir, e.origin, e.normal, ior, thin);
+    let split = split_dielectric(e.dir, e.origin, e.normal, face);
     let r = split.reflectance;
     let t = 1.0 - r;
     if t * weight > MIN_VIEW_WEIGHT && !split.tir {
@@ -324,8 +325,8 @@ fn visit(e: Pending) -> vec3<f32> {
         var hero = e;
         hero.hero = i;
         hero.lambda_nm = s.lambda_nm;
-        let ior = path_ior(surfaces[e.object], s.band, s.lambda_nm);
-        through_dielectric(hero, ior, is_sheet(surfaces[e.object]), s.band, e.weight * max_abs(w), e.tint * w);
+        let face = path_face(surfaces[e.object], s.band, s.lambda_nm);
+        through_dielectric(hero, face, s.band, e.weight * max_abs(w), e.tint * w);
         return vec3<f32>(0.0);
     }
     if e.next_band != NO_SPLIT {
@@ -338,8 +339,8 @@ fn visit(e: Pending) -> vec3<f32> {
             spawn(rest);
         }
         let band = bands[b];
-        let ior = band_ior(surfaces[e.object], b);
-        through_dielectric(e, ior, is_sheet(surfaces[e.object]), b, e.weight * band.max_weight, e.tint * band.weight);
+        let face = path_face(surfaces[e.object], b, -1.0);
+        through_dielectric(e, face, b, e.weight * band.max_weight, e.tint * band.weight);
         return vec3<f32>(0.0);
     }
     let hit = intersect_scene(e.origin, e.dir, BIG);
@@ -366,7 +367,7 @@ fn visit(e: Pending) -> vec3<f32> {
         at.next_band = 0u;
         spawn(at);
     } else {
-        through_dielectric(at, path_ior(s, e.band, e.lambda_nm), is_sheet(s), e.band, at.weight, at.tint);
+        through_dielectric(at, path_face(s, e.band, e.lambda_nm), e.band, at.weight, at.tint);
     }
     return vec3<f32>(0.0);
 }

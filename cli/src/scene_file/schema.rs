@@ -21,8 +21,8 @@ use prismatic_core::model::color::ToneMap;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, EnvironmentMap, Estimator, Filter, Light, Material, MaterialKind, Object,
-    PhotonSequence, RadiusMode, RenderSettings, Sampler, Shape, Texture, ViewPaths, WavelengthSampling, WhitePoint,
-    Wrap, default_ambient,
+    PhotonSequence, RadiusMode, RenderSettings, Sampler, Shape, Texture, ThinFilm, ViewPaths, WavelengthSampling,
+    WhitePoint, Wrap, default_ambient,
 };
 use prismatic_core::model::spectrum::Spectrum;
 use prismatic_core::{Scene, Vec3};
@@ -329,7 +329,16 @@ impl Reader<'_> {
             "dielectric" => {
                 self.check_keys(
                     t,
-                    &["kind", "ior", "outside_ior", "attenuation_color", "attenuation_distance", "thin"],
+                    &[
+                        "kind",
+                        "ior",
+                        "outside_ior",
+                        "attenuation_color",
+                        "attenuation_distance",
+                        "thin",
+                        "film_thickness_nm",
+                        "film_ior",
+                    ],
                 )?;
                 let dispersion = self.req(t, "ior", |p, k, v| p.ior(k, v))?;
                 let outside = self.opt(t, "outside_ior", |p, k, v| p.ior(k, v))?.unwrap_or(Dispersion::Constant(1.0));
@@ -344,7 +353,18 @@ impl Reader<'_> {
                     None
                 };
                 let thin = self.opt(t, "thin", Self::boolean)?.unwrap_or(false);
-                MaterialKind::Dielectric { dispersion, outside, attenuation, thin }
+                // A film is its thickness; its index defaults to glTF's iridescenceIor.
+                let film = match self.opt(t, "film_thickness_nm", Self::float)? {
+                    Some(thickness_nm) => {
+                        Some(ThinFilm { ior: self.opt(t, "film_ior", Self::float)?.unwrap_or(1.3), thickness_nm })
+                    }
+                    None if let Some(v) = self.get(t, "film_ior") => {
+                        let reason = "a film needs film_thickness_nm (its thickness in nanometres)";
+                        return Err(self.err(&join(&t.key, "film_ior"), &v.span(), reason));
+                    }
+                    None => None,
+                };
+                MaterialKind::Dielectric { dispersion, outside, attenuation, thin, film }
             }
             "mirror" => {
                 self.check_keys(t, &["kind"])?;

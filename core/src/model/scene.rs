@@ -32,6 +32,9 @@ pub const MAX_IMAGE_SIDE: u32 = 16_384;
 /// The largest texture side: 4096² texels of 4 bytes are 64 MiB, half of
 /// what a GPU storage binding holds by default (128 MiB).
 pub const MAX_TEXTURE_SIDE: u32 = 4_096;
+/// The thickest thin film a scene may state, in nanometres: beyond tens of
+/// micrometres its fringes are finer than any band resolves.
+pub const MAX_FILM_NM: f32 = 20_000.0;
 
 /// A problem found in a scene: the key it belongs to and why it is wrong.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
@@ -724,6 +727,12 @@ pub enum MaterialKind {
         /// it: a crossing keeps `color` (glTF's base colour of thin-walled
         /// glass; `distance` is not used).
         thin: bool,
+        /// A thin film on its surface (glTF's `KHR_materials_iridescence`,
+        /// a coated lens, a soap film): its reflectance is the film's Airy
+        /// sum at each path's wavelength instead of the bare Fresnel
+        /// ([`crate::optics::thin_film`]), so even glass of one index
+        /// reflects and passes light in colours. `None`: bare glass.
+        film: Option<ThinFilm>,
     },
     /// Perfect mirror.
     Mirror,
@@ -737,6 +746,17 @@ impl MaterialKind {
             MaterialKind::Dielectric { .. } | MaterialKind::Mirror => Vec3::ZERO,
         }
     }
+}
+
+/// A non-absorbing film on a dielectric's surface, thinner than the
+/// coherence length of light, so its reflections interfere: its index (an
+/// absolute one, as the scene's indices are) and its thickness.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ThinFilm {
+    /// The film's index of refraction.
+    pub ior: f32,
+    /// Its thickness in nanometres (0: no film).
+    pub thickness_nm: f32,
 }
 
 /// Beer–Lambert absorption inside a dielectric, stated as glTF's

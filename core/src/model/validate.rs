@@ -7,8 +7,9 @@ use crate::model::bands::{BandSpec, MAX_BANDS, VISIBLE_NM};
 use crate::model::dispersion::{Dispersion, MAX_SELLMEIER_TERMS};
 use crate::model::environment::MAX_ENVIRONMENT_SIDE;
 use crate::model::scene::{
-    Attenuation, Light, MAX_AREA_LIGHTS, MAX_DEPTH, MAX_ENVIRONMENT_LIGHTS, MAX_IMAGE_SIDE, MAX_MESH_TRIANGLES,
-    MAX_PHOTONS, MAX_TEXTURE_SIDE, Material, MaterialKind, Scene, SceneError, Shape, Texture,
+    Attenuation, Light, MAX_AREA_LIGHTS, MAX_DEPTH, MAX_ENVIRONMENT_LIGHTS, MAX_FILM_NM, MAX_IMAGE_SIDE,
+    MAX_MESH_TRIANGLES, MAX_PHOTONS, MAX_TEXTURE_SIDE, Material, MaterialKind, Scene, SceneError, Shape, Texture,
+    ThinFilm,
 };
 use crate::model::spectrum::Spectrum;
 use alloc::format;
@@ -373,9 +374,12 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             }
         }
         MaterialKind::Mirror => Ok(()),
-        MaterialKind::Dielectric { dispersion, outside, attenuation, .. } => {
+        MaterialKind::Dielectric { dispersion, outside, attenuation, film, .. } => {
             validate_dispersion(c, "ior", dispersion, bands)?;
             validate_dispersion(c, "outside_ior", outside, bands)?;
+            if let Some(f) = film {
+                validate_film(c, f)?;
+            }
             match attenuation {
                 Some(a) => validate_attenuation(c, a),
                 None => Ok(()),
@@ -396,6 +400,19 @@ fn validate_texture(c: &Check<'_>, t: &Texture) -> Result<(), SceneError> {
         Some(i) => Err(c.err("texture", format!("{}: texel {i} is not three 8-bit channels", t.name))),
         None => Ok(()),
     }
+}
+
+fn validate_film(c: &Check<'_>, f: &ThinFilm) -> Result<(), SceneError> {
+    if !(f.ior.is_finite() && (1.0..=5.0).contains(&f.ior)) {
+        return Err(c.err("film_ior", format!("a film's index of refraction must be between 1 and 5, got {}", f.ior)));
+    }
+    if !(f.thickness_nm.is_finite() && (0.0..=MAX_FILM_NM).contains(&f.thickness_nm)) {
+        return Err(c.err(
+            "film_thickness_nm",
+            format!("a film's thickness must be 0 to {MAX_FILM_NM} nm, got {}", f.thickness_nm),
+        ));
+    }
+    Ok(())
 }
 
 fn validate_attenuation(c: &Check<'_>, a: &Attenuation) -> Result<(), SceneError> {

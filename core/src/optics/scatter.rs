@@ -1,6 +1,7 @@
 //! Scattering, written once: the ray a path takes when it leaves a
-//! dielectric surface (one branch chosen with its Fresnel probability, or
-//! both branches with their Fresnel weights) or bounces off a diffuse one
+//! dielectric surface (one branch chosen with its reflectance as
+//! probability, or both branches with their weights; the reflectance is
+//! Fresnel's, or a thin film's at the path's wavelength) or bounces off a diffuse one
 //! (Lambert's law, indirect light's photons), and where a ray leaving a
 //! surface starts. A thin sheet (`thin`, glTF's thin-walled transmission)
 //! reflects with [`sheet_reflectance`] and passes the rest straight on:
@@ -9,6 +10,7 @@
 
 use crate::geometry::primitive::cone_direction;
 use crate::geometry::ray::Ray;
+use crate::model::scene::ThinFilm;
 use crate::optics::fresnel::{fresnel, interface, reflect, refract, sheet_reflectance};
 use crate::util::math::sqrt;
 use crate::util::tolerance;
@@ -22,18 +24,62 @@ pub fn offset_origin(p: Vec3, n: Vec3, dir: Vec3) -> Vec3 {
     if dir.dot(n) >= 0.0 { p + n * eps } else { p - n * eps }
 }
 
+/// What one path meets at a dielectric's surface: the relative index at
+/// its wavelength, whether the glass is a thin sheet, and the surface's
+/// film (if any) with the wavelength the path sees it at.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Face {
+    /// The relative index of refraction (inside over outside).
+    pub ior: f32,
+    /// A thin sheet: rays pass straight on.
+    pub thin: bool,
+    /// A film on the surface, its index relative to the outside.
+    pub film: Option<ThinFilm>,
+    /// The wavelength the film is seen at (nm; unused without a film).
+    pub lambda_nm: f32,
+}
+
+impl Face {
+    /// Bare glass of index `ior` (a sheet: `thin`).
+    pub fn bare(ior: f32, thin: bool) -> Self {
+        Face { ior, thin, film: None, lambda_nm: 0.0 }
+    }
+
+    /// The reflectance of one interface from index `n1` into `n2` at
+    /// incidence cosine `cos_i`: Fresnel's, or the film's Airy sum.
+    #[inline]
+    fn interface_reflectance(&self, cos_i: f32, n1: f32, n2: f32) -> f32 {
+        match self.film {
+            None => fresnel(cos_i, n1, n2),
+            Some(film) => film.reflectance(cos_i, n1, n2, self.lambda_nm),
+        }
+    }
+
+    /// The share of light reflected here for a ray at incidence cosine
+    /// `cos_i` going from `n1` into `n2` (a sheet: both of its faces and
+    /// what bounces between them, [`sheet_reflectance`]).
+    #[inline]
+    pub fn reflectance(&self, cos_i: f32, n1: f32, n2: f32) -> f32 {
+        if self.thin {
+            sheet_reflectance(self.interface_reflectance(cos_i, 1.0, self.ior))
+        } else {
+            self.interface_reflectance(cos_i, n1, n2)
+        }
+    }
+}
+
 /// The ray leaving a dielectric surface at `point` (outward normal
 /// `outward`) for one arriving along `direction`: reflected with
-/// probability equal to the Fresnel reflectance (`u < R`), refracted
-/// otherwise; total internal reflection always reflects. Photons and
-/// sampled view paths choose their branch with it.
-pub fn scatter_dielectric(direction: Vec3, point: Vec3, outward: Vec3, ior: f32, thin: bool, u: f32) -> Ray {
-    let (n, n1, n2) = interface(direction, outward, ior);
+/// probability equal to the reflectance (`u < R`, [`Face::reflectance`]),
+/// refracted otherwise; total internal reflection always reflects. Photons
+/// and sampled view paths choose their branch with it.
+pub fn scatter_dielectric(direction: Vec3, point: Vec3, outward: Vec3, face: Face, u: f32) -> Ray {
+    let (n, n1, n2) = interface(direction, outward, face.ior);
     let cos_i = -direction.dot(n);
-    let d = if thin {
-        if u < sheet_reflectance(fresnel(cos_i, 1.0, ior)) { reflect(direction, n) } else { direction }
-    } else if u < fresnel(cos_i, n1, n2) {
+    let d = if u < face.reflectance(cos_i, n1, n2) {
         reflect(direction, n)
+    } else if face.thin {
+        direction
     } else {
         refract(direction, n, n1, n2).unwrap_or_else(|| reflect(direction, n))
     };
@@ -65,14 +111,14 @@ pub struct DielectricBranches {
 }
 
 /// [`DielectricBranches`] of a ray arriving along `direction` at `point`
-/// (outward normal `outward`) on glass of index `ior` (a sheet: `thin`).
-pub fn split_dielectric(direction: Vec3, point: Vec3, outward: Vec3, ior: f32, thin: bool) -> DielectricBranches {
-    let (n, n1, n2) = interface(direction, outward, ior);
+/// (outward normal `outward`) on the glass `face`.
+pub fn split_dielectric(direction: Vec3, point: Vec3, outward: Vec3, face: Face) -> DielectricBranches {
+    let (n, n1, n2) = interface(direction, outward, face.ior);
     let cos_i = -direction.dot(n);
-    let reflectance = if thin { sheet_reflectance(fresnel(cos_i, 1.0, ior)) } else { fresnel(cos_i, n1, n2) };
+    let reflectance = face.reflectance(cos_i, n1, n2);
     let d = reflect(direction, n);
     let reflected = Ray { origin: offset_origin(point, n, d), direction: d };
-    let through = if thin { Some(direction) } else { refract(direction, n, n1, n2) };
+    let through = if face.thin { Some(direction) } else { refract(direction, n, n1, n2) };
     let refracted = through.map(|d| Ray { origin: offset_origin(point, n, d), direction: d });
     DielectricBranches { reflected, reflectance, refracted }
 }

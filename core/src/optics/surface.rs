@@ -1,12 +1,14 @@
 //! How each object's surface scatters light, ready for tracing: diffuse
 //! albedo (with its checker), mirror, or a dielectric's relative indices of
-//! refraction per band and as a function of wavelength, and its absorption.
+//! refraction per band and as a function of wavelength, its absorption and
+//! the film on its surface.
 
 use crate::model::bands::{BandTable, VISIBLE_NM};
 use crate::model::dispersion::Dispersion;
 use crate::model::photon::WHITE_BAND;
-use crate::model::scene::{Attenuation, Checker, MaterialKind, Texture};
+use crate::model::scene::{Attenuation, Checker, MaterialKind, Texture, ThinFilm};
 use crate::optics::absorption::Absorption;
+use crate::optics::scatter::Face;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
 
@@ -55,6 +57,9 @@ pub struct DielectricOptics {
     /// A thin sheet ([`MaterialKind::Dielectric`]'s `thin`): rays pass
     /// straight through ([`crate::optics::scatter`]).
     pub thin: bool,
+    /// The film on its surface, its index relative to the outside
+    /// (`None`: bare glass, or a film of no thickness).
+    pub film: Option<ThinFilm>,
 }
 
 /// A relative index of refraction sampled every nanometre over the visible
@@ -120,6 +125,22 @@ impl DielectricOptics {
         }
     }
 
+    /// What a path of `band` (at its own wavelength `lambda_nm` when it has
+    /// one) meets at this glass's surface: its index there, and the film
+    /// seen at its wavelength: its own, else its band's centre, else (a
+    /// white path, which the plan splits wherever a film shows) the middle
+    /// band's, the band whose index white light takes.
+    #[inline]
+    pub fn face(&self, band: u16, lambda_nm: Option<f32>, bands: &BandTable) -> Face {
+        let ior = self.path_ior(band, lambda_nm, bands);
+        let Some(film) = self.film else { return Face::bare(ior, self.thin) };
+        let lambda_nm = lambda_nm.unwrap_or_else(|| {
+            let b = if band == WHITE_BAND { bands.len() / 2 } else { usize::from(band) };
+            bands.band(b).lambda_nm
+        });
+        Face { ior, thin: self.thin, film: Some(film), lambda_nm }
+    }
+
     /// What a crossing of this thin sheet keeps of a `band` path (white:
     /// the channels' mean): its tint, 1 for clear sheets and solid glass.
     #[inline]
@@ -146,11 +167,21 @@ impl DielectricOptics {
         self.dispersive
     }
 
-    /// True when the bands leave the glass differently, by their index or
-    /// by their absorption: white photons split into bands here.
+    /// True when the bands leave the glass differently, by their index, by
+    /// their absorption or by a film's reflectance: white photons split
+    /// into bands here.
     #[inline]
     pub fn is_chromatic(&self) -> bool {
-        self.dispersive || self.absorption.is_some()
+        self.dispersive || self.absorption.is_some() || self.film.is_some()
+    }
+
+    /// True when view rays of different wavelengths leave the glass
+    /// differently, by direction (dispersion) or by weight (a film's
+    /// colours): white view rays split into bands here. Coloured glass
+    /// tints a white view ray per RGB channel instead.
+    #[inline]
+    pub fn colours_view_rays(&self) -> bool {
+        self.dispersive || self.film.is_some()
     }
 }
 
@@ -167,7 +198,7 @@ impl Surface {
                 emission: *emission,
             },
             MaterialKind::Mirror => Surface::Mirror,
-            MaterialKind::Dielectric { dispersion, outside, attenuation, thin } => {
+            MaterialKind::Dielectric { dispersion, outside, attenuation, thin, film } => {
                 // Snell's law and Fresnel depend only on the ratio of the
                 // indices, so the optics carry the relative index n/n_outside.
                 let per_band =
@@ -178,7 +209,8 @@ impl Surface {
                 // A sheet sends every band on in the one direction it came:
                 // only Fresnel differs, so white light does not split there.
                 let dispersive = !constant && !thin && band_ior.iter().any(|&n| n != band_ior[0]);
-                let white_ior = white_index(dispersion, &inside_ior) / white_index(outside, &outside_ior);
+                let outside_white = white_index(outside, &outside_ior);
+                let white_ior = white_index(dispersion, &inside_ior) / outside_white;
                 Surface::Dielectric(DielectricOptics {
                     band_ior,
                     white_ior,
@@ -193,6 +225,7 @@ impl Surface {
                         .map(|a| if *thin { Attenuation { distance: 1.0, ..*a } } else { *a })
                         .and_then(|a| Absorption::new(&a, bands)),
                     thin: *thin,
+                    film: film.filter(|f| f.thickness_nm > 0.0).map(|f| ThinFilm { ior: f.ior / outside_white, ..f }),
                 })
             }
         }
@@ -238,5 +271,44 @@ fn white_index(dispersion: &Dispersion, band_ior: &[f32]) -> f32 {
     match dispersion {
         Dispersion::Constant(n) => *n,
         _ => band_ior[band_ior.len() / 2],
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::bands::BandSpec;
+
+    fn glass(film: Option<ThinFilm>, outside: f32) -> DielectricOptics {
+        let material = MaterialKind::Dielectric {
+            dispersion: Dispersion::Constant(1.5),
+            outside: Dispersion::Constant(outside),
+            attenuation: None,
+            thin: false,
+            film,
+        };
+        let Surface::Dielectric(g) = Surface::new(&material, &BandTable::new(BandSpec::Paper7)) else { unreachable!() };
+        g
+    }
+
+    #[test]
+    fn a_film_is_seen_at_the_paths_wavelength_its_bands_or_the_middle_bands() {
+        let bands = BandTable::new(BandSpec::Paper7);
+        let g = glass(Some(ThinFilm { ior: 1.38, thickness_nm: 120.0 }), 1.0);
+        assert!(g.is_chromatic() && g.colours_view_rays(), "one index, but the film colours the light");
+        assert_eq!(g.face(2, Some(432.5), &bands).lambda_nm, 432.5);
+        assert_eq!(g.face(2, None, &bands).lambda_nm, bands.band(2).lambda_nm);
+        assert_eq!(g.face(WHITE_BAND, None, &bands).lambda_nm, bands.band(3).lambda_nm);
+        assert_eq!(g.face(WHITE_BAND, None, &bands).ior, g.white_ior);
+        // In water the film's index, like the glass's, is relative to the outside.
+        let film = glass(Some(ThinFilm { ior: 1.38, thickness_nm: 120.0 }), 1.33).film.unwrap();
+        assert!((film.ior - 1.38 / 1.33).abs() < 1e-6, "{film:?}");
+    }
+
+    #[test]
+    fn a_film_of_no_thickness_is_bare_glass() {
+        let g = glass(Some(ThinFilm { ior: 2.0, thickness_nm: 0.0 }), 1.0);
+        assert_eq!(g, glass(None, 1.0));
+        assert!(!g.is_chromatic() && !g.colours_view_rays());
     }
 }

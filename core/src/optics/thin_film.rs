@@ -7,6 +7,7 @@
 //! the critical angle into the film cos θ₁ is imaginary and the film's wave
 //! decays (frustrated total reflection), which the same sum carries.
 
+use crate::model::scene::ThinFilm;
 use crate::util::math::{exp, sin_cos_turns, sqrt};
 use core::ops::{Add, Div, Mul, Sub};
 
@@ -68,15 +69,6 @@ impl Div for Complex {
         let d = o.norm2();
         Complex { re: (self.re * o.re + self.im * o.im) / d, im: (self.im * o.re - self.re * o.im) / d }
     }
-}
-
-/// A film on a surface: its index and thickness.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct ThinFilm {
-    /// The film's index of refraction.
-    pub ior: f32,
-    /// Its thickness in nanometres.
-    pub thickness_nm: f32,
 }
 
 impl ThinFilm {

@@ -101,9 +101,9 @@ pub(crate) fn cross_specular(
         }
         Surface::Dielectric(glass) => {
             let u = random_f32(seed, index, dim::scatter(p.band, p.bounces));
-            let ior = glass.path_ior(p.band, p.lambda_nm, &scene.bands);
+            let face = glass.face(p.band, p.lambda_nm, &scene.bands);
             let before = p.ray.direction;
-            p.ray = scatter_dielectric(before, hit.point, hit.normal, ior, glass.thin, u);
+            p.ray = scatter_dielectric(before, hit.point, hit.normal, face, u);
             let absorbed = absorbed_crossing(glass, before, p.ray.direction, p.band, || {
                 random_f32(seed, index, dim::absorb(p.band, p.bounces))
             });

@@ -156,8 +156,8 @@ fn trace_path(
                     p.band = band;
                     p.lambda_nm = lambda_nm;
                     let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
-                    let ior = glass.path_ior(band, lambda_nm, &scene.bands);
-                    p.ray = scatter_dielectric(before, hit.point, hit.normal, ior, glass.thin, u);
+                    let face = glass.face(band, lambda_nm, &scene.bands);
+                    p.ray = scatter_dielectric(before, hit.point, hit.normal, face, u);
                     if tinted(band, p.ray.direction, p.bounces) {
                         stats.flux_absorbed += f64::from(p.flux);
                         return;
@@ -168,8 +168,8 @@ fn trace_path(
                 stats.paths += u64::from(paths) - 1;
                 for (band, lambda_nm) in split_bands(scene, index) {
                     let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
-                    let ior = glass.path_ior(band, lambda_nm, &scene.bands);
-                    let ray = scatter_dielectric(before, hit.point, hit.normal, ior, glass.thin, u);
+                    let face = glass.face(band, lambda_nm, &scene.bands);
+                    let ray = scatter_dielectric(before, hit.point, hit.normal, face, u);
                     let child = Path { ray, flux: p.flux / paths as f32, band, lambda_nm, bounces: p.bounces + 1 };
                     if tinted(band, ray.direction, p.bounces) {
                         stats.flux_absorbed += f64::from(child.flux);

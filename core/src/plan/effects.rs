@@ -40,9 +40,9 @@ pub struct EffectPlan {
     /// Indirect light: photons that bounce off diffuse surfaces
     /// ([`crate::photons::indirect`]).
     pub indirect: Effect,
-    /// Splitting white photons into bands at dispersive glass.
+    /// Splitting white photons into bands at dispersive, coloured or coated glass.
     pub band_splitting: Effect,
-    /// Splitting view rays into bands at dispersive glass.
+    /// Splitting view rays into bands at dispersive or coated glass.
     pub view_dispersion: Effect,
     /// Shadow rays, per light.
     pub shadows: Vec<Effect>,
@@ -65,6 +65,7 @@ impl EffectPlan {
             (0..surfaces.len()).filter(|&k| !matches!(surfaces[k], Surface::Diffuse { .. })).collect();
         let dispersive = |k: usize| matches!(&surfaces[k], Surface::Dielectric(g) if g.is_dispersive());
         let chromatic = |k: usize| matches!(&surfaces[k], Surface::Dielectric(g) if g.is_chromatic());
+        let coated = |k: usize| matches!(&surfaces[k], Surface::Dielectric(g) if g.film.is_some());
         let lit: Vec<usize> = specular
             .iter()
             .copied()
@@ -99,7 +100,13 @@ impl EffectPlan {
         let band_splitting = if !caustics.on {
             Effect::off("no photon pass")
         } else if specular.iter().any(|&k| chromatic(k)) {
-            let glass = if specular.iter().any(|&k| dispersive(k)) { "dispersive" } else { "coloured" };
+            let glass = if specular.iter().any(|&k| dispersive(k)) {
+                "dispersive"
+            } else if specular.iter().any(|&k| coated(k)) {
+                "coated"
+            } else {
+                "coloured"
+            };
             match scene.render.wavelengths {
                 WavelengthSampling::Split => Effect::on(format!("{n_bands} bands at {glass} glass")),
                 WavelengthSampling::Hero => Effect::on(format!(
@@ -113,15 +120,22 @@ impl EffectPlan {
         };
         let aspect = scene.render.width as f32 / scene.render.height as f32;
         let seen = |k: usize| camera_sees(&scene.camera, aspect, bounds[k].0, bounds[k].1);
-        let dispersive_objects: Vec<usize> = specular.iter().copied().filter(|&k| dispersive(k)).collect();
-        let view_dispersion = if dispersive_objects.is_empty() {
+        // Glass that sends view rays of each wavelength its own way (by
+        // dispersion) or with its own weight (by a film's colours).
+        let colouring: Vec<usize> = specular.iter().copied().filter(|&k| dispersive(k) || coated(k)).collect();
+        let glass = match (colouring.iter().any(|&k| dispersive(k)), colouring.iter().any(|&k| coated(k))) {
+            (true, true) => "dispersive or coated glass",
+            (false, true) => "coated glass",
+            _ => "dispersive glass",
+        };
+        let view_dispersion = if colouring.is_empty() {
             Effect::off("no dispersive glass")
-        } else if dispersive_objects.iter().any(|&k| seen(k)) {
-            Effect::on("dispersive glass in view")
+        } else if colouring.iter().any(|&k| seen(k)) {
+            Effect::on(format!("{glass} in view"))
         } else if specular.iter().any(|&k| seen(k)) {
-            Effect::on("dispersive glass may be seen through a mirror or glass in view")
+            Effect::on(format!("{glass} may be seen through a mirror or glass in view"))
         } else {
-            Effect::off("no dispersive glass visible")
+            Effect::off(format!("no {glass} visible"))
         };
         // One per light that shines (an environment's suns each), as the emitters are.
         let indirect = if scene.render.indirect_photons == 0 {
@@ -211,7 +225,7 @@ impl EffectPlan {
         self.max_depth = max_depth;
         for s in surfaces {
             if let Surface::Dielectric(g) = s {
-                (g.splits_photons, g.splits_view_rays) = (g.is_chromatic(), g.dispersive);
+                (g.splits_photons, g.splits_view_rays) = (g.is_chromatic(), g.colours_view_rays());
             }
         }
     }

@@ -206,7 +206,7 @@ impl PreparedScene {
         for s in &mut surfaces {
             if let Surface::Dielectric(g) = s {
                 g.splits_photons = g.is_chromatic() && plan.band_splitting.on;
-                g.splits_view_rays = g.dispersive && plan.view_dispersion.on;
+                g.splits_view_rays = g.colours_view_rays() && plan.view_dispersion.on;
             }
         }
         let aimed_at: Vec<(Vec3, f32)> = bounds

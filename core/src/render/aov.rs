@@ -7,6 +7,7 @@
 use crate::geometry::camera::PinholeCamera;
 use crate::geometry::primitive::Ray;
 use crate::model::image::Image;
+use crate::model::photon::WHITE_BAND;
 use crate::optics::fresnel::reflect;
 use crate::optics::scatter::{offset_origin, split_dielectric};
 use crate::optics::surface::Surface;
@@ -77,7 +78,8 @@ fn first_diffuse(scene: &PreparedScene, ray: &Ray, weight: f32, depth: u32) -> (
             )
         }
         Surface::Dielectric(glass) => {
-            let split = split_dielectric(ray.direction, hit.point, hit.normal, glass.white_ior, glass.thin);
+            let face = glass.face(WHITE_BAND, None, &scene.bands);
+            let split = split_dielectric(ray.direction, hit.point, hit.normal, face);
             let (r, t) = (split.reflectance, 1.0 - split.reflectance);
             let mut sum = (Vec3::ZERO, Vec3::ZERO);
             for (branch, share) in [(Some(split.reflected), r), (split.refracted, t)] {

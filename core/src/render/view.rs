@@ -46,7 +46,7 @@ use crate::model::light_range::range_window;
 use crate::model::photon::WHITE_BAND;
 use crate::model::scene::{Light, WavelengthSampling};
 use crate::optics::fresnel::reflect;
-use crate::optics::scatter::{offset_origin, scatter_dielectric, split_dielectric};
+use crate::optics::scatter::{Face, offset_origin, scatter_dielectric, split_dielectric};
 use crate::optics::surface::{DielectricOptics, Surface};
 use crate::photons::wavelengths::spectrum_share;
 use crate::plan::area::area;
@@ -149,7 +149,7 @@ impl<'a> ViewContext<'a> {
                     .map(|HeroViewPath { hero, band, lambda_nm, weight: w }| {
                         let share = weight * w.abs().max_element();
                         let p = ViewPath { band, hero, lambda_nm, weight: share, tint: tint * w, ..path };
-                        w * self.through_dielectric(ray, &hit, (self.ior(glass, &p), glass), p, points)
+                        w * self.through_dielectric(ray, &hit, (self.face(glass, &p), glass), p, points)
                     })
                     .sum(),
                 None => self
@@ -162,20 +162,21 @@ impl<'a> ViewContext<'a> {
                         // The band's share of the pixel bounds what its branches can add.
                         let share = weight * info.weight.abs().max_element();
                         let band_path = ViewPath { band: b as u16, weight: share, tint: tint * info.weight, ..path };
-                        info.weight
-                            * self.through_dielectric(ray, &hit, (glass.ior(b as u16), glass), band_path, points)
+                        let face = glass.face(b as u16, None, &self.scene.bands);
+                        info.weight * self.through_dielectric(ray, &hit, (face, glass), band_path, points)
                     })
                     .sum(),
             },
             Surface::Dielectric(glass) => {
-                self.through_dielectric(ray, &hit, (self.ior(glass, &path), glass), path, points)
+                self.through_dielectric(ray, &hit, (self.face(glass, &path), glass), path, points)
             }
         }
     }
 
-    /// The index `path` sees at `glass`: its band's, or at its own wavelength.
-    fn ior(&self, glass: &DielectricOptics, path: &ViewPath) -> f32 {
-        glass.path_ior(path.band, path.lambda_nm, &self.scene.bands)
+    /// What `path` meets at `glass`: its band's index, or at its own
+    /// wavelength, and the film at that wavelength.
+    fn face(&self, glass: &DielectricOptics, path: &ViewPath) -> Face {
+        glass.face(path.band, path.lambda_nm, &self.scene.bands)
     }
 
     /// Fresnel-weighted reflection plus refraction at a dielectric hit
@@ -185,7 +186,7 @@ impl<'a> ViewContext<'a> {
         &self,
         ray: &Ray,
         hit: &Hit,
-        (ior, glass): (f32, &DielectricOptics),
+        (face, glass): (Face, &DielectricOptics),
         path: ViewPath,
         points: &mut Vec<VisiblePoint>,
     ) -> Vec3 {
@@ -197,13 +198,13 @@ impl<'a> ViewContext<'a> {
             // One branch, chosen with its Fresnel probability, as photons choose theirs.
             let next = ViewPath { depth: path.depth + 1, ..path };
             let u = sampler.branch(path.hero, path.depth);
-            let out = scatter_dielectric(ray.direction, hit.point, hit.normal, ior, thin, u);
+            let out = scatter_dielectric(ray.direction, hit.point, hit.normal, face, u);
             if thin && out.direction == ray.direction {
                 return crossing * self.radiance(&out, crossed(next), points);
             }
             return self.radiance(&out, next, points);
         }
-        let split = split_dielectric(ray.direction, hit.point, hit.normal, ior, thin);
+        let split = split_dielectric(ray.direction, hit.point, hit.normal, face);
         let r = split.reflectance;
         let mut sum = Vec3::ZERO;
         let branch = |f: f32| ViewPath { depth: path.depth + 1, weight: path.weight * f, tint: path.tint * f, ..path };

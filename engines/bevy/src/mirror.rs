@@ -13,7 +13,7 @@ use bevy::mesh::{Indices, VertexAttributeValues};
 use bevy::prelude::*;
 use prismatic_core::model::dispersion::Dispersion;
 use prismatic_core::model::scene::{
-    Camera, Checker, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape,
+    Camera, Checker, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape, ThinFilm,
 };
 use prismatic_core::{PreparedScene, Vec3 as CoreVec3};
 use std::collections::HashMap;
@@ -56,6 +56,9 @@ pub struct CausticShape(pub Shape);
 pub struct Glass {
     /// Its index of refraction n(λ).
     pub dispersion: Dispersion,
+    /// A thin film on its surface (a coated lens, a soap film): reflects
+    /// in the film's colours. `None`: bare glass.
+    pub film: Option<ThinFilm>,
 }
 
 /// The object is a diffuse surface that catches caustics.
@@ -219,6 +222,7 @@ fn build_scene(
                 outside: Dispersion::Constant(1.0),
                 attenuation: None,
                 thin: false,
+                film: g.film,
             },
             (None, Some(r)) => MaterialKind::Diffuse {
                 albedo: r.albedo,
@@ -240,6 +244,7 @@ fn build_scene(
             outside: Dispersion::Constant(1.0),
             attenuation: None,
             thin: false,
+            film: glass.film,
         };
         scene_objects.push(Object { shape: mesh(handle, at, "a Glass mesh")?, material: scene_materials.len() });
         scene_materials.push(Material { name: format!("glass mesh {i}"), kind });

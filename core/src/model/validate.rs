@@ -378,7 +378,7 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             validate_dispersion(c, "ior", dispersion, bands)?;
             validate_dispersion(c, "outside_ior", outside, bands)?;
             if let Some(f) = film {
-                validate_film(c, f)?;
+                validate_film(c, f, bands)?;
             }
             match attenuation {
                 Some(a) => validate_attenuation(c, a),
@@ -402,10 +402,8 @@ fn validate_texture(c: &Check<'_>, t: &Texture) -> Result<(), SceneError> {
     }
 }
 
-fn validate_film(c: &Check<'_>, f: &ThinFilm) -> Result<(), SceneError> {
-    if !(f.ior.is_finite() && (1.0..=5.0).contains(&f.ior)) {
-        return Err(c.err("film_ior", format!("a film's index of refraction must be between 1 and 5, got {}", f.ior)));
-    }
+fn validate_film(c: &Check<'_>, f: &ThinFilm, bands: BandSpec) -> Result<(), SceneError> {
+    validate_dispersion(c, "film_ior", &Dispersion::Constant(f.ior), bands)?;
     if !(f.thickness_nm.is_finite() && (0.0..=MAX_FILM_NM).contains(&f.thickness_nm)) {
         return Err(c.err(
             "film_thickness_nm",

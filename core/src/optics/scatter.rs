@@ -1,11 +1,12 @@
 //! Scattering, written once: the ray a path takes when it leaves a
 //! dielectric surface (one branch chosen with its reflectance as
 //! probability, or both branches with their weights; the reflectance is
-//! Fresnel's, or a thin film's at the path's wavelength) or bounces off a diffuse one
-//! (Lambert's law, indirect light's photons), and where a ray leaving a
-//! surface starts. A thin sheet (`thin`, glTF's thin-walled transmission)
-//! reflects with [`sheet_reflectance`] and passes the rest straight on:
-//! its two faces bend a ray back to where it was going, no distance apart. Photons, the view rays and the sampled view paths all
+//! Fresnel's, or a thin film's at the path's wavelength) or bounces off a
+//! diffuse one (Lambert's law, indirect light's photons), and where a ray
+//! leaving a surface starts. A thin sheet (`thin`, glTF's thin-walled
+//! transmission) reflects with [`sheet_reflectance`] and passes the rest
+//! straight on: its two faces bend a ray back to where it was going, no
+//! distance apart. Photons, the view rays and the sampled view paths all
 //! scatter here; the CPU's packets and the WGSL twin mirror these functions.
 
 use crate::geometry::primitive::cone_direction;

@@ -9,6 +9,7 @@ use crate::pass::PassGrids;
 use crate::{TRACE_CHUNK, indirect, trace, view};
 use prismatic_core::model::photon::{Photon, TraceStats};
 use prismatic_core::photons::light_tracing::{CameraConnection, Splat};
+use prismatic_core::photons::trace::trace_range;
 use prismatic_core::render::host::{HostKernels, PassGather};
 use prismatic_core::render::visible::{VisiblePoint, VisiblePoints};
 use prismatic_core::{PhotonMap, PreparedScene, Progress, Stage, StageTimes};
@@ -131,6 +132,14 @@ fn trace_chunks(scene: &PreparedScene, chunks: &mut Vec<ChunkBuffer>, map: &mut 
     chunks[..n_chunks].par_iter_mut().enumerate().for_each(|(c, buf)| {
         // Caustic photons in packets, then indirect light's.
         let r = range(c);
+        if ctx.metals {
+            // A metal's facets and Fresnel are the core's scalar rule: a
+            // scene with metals traces its photons one by one with it.
+            buf.photons.clear();
+            buf.stats = TraceStats::default();
+            trace_range(scene, r, &mut buf.photons, &mut buf.stats);
+            return;
+        }
         buf.stats = trace::trace_chunk(&ctx, r.start..r.end.min(caustic), &mut buf.photons);
         indirect::trace_indirect_packets(&ctx, r.start.max(caustic)..r.end, &mut buf.photons, &mut buf.stats);
     });

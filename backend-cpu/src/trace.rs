@@ -66,6 +66,9 @@ pub struct TraceContext<'a> {
     /// Some light has a range, which windows its photons' first segment
     /// ([`TraceContext::reach`]).
     pub(crate) ranged_lights: bool,
+    /// Some object is a metal: the core's scalar tracer takes every photon
+    /// (`kernels::trace_chunks`).
+    pub(crate) metals: bool,
 }
 
 impl<'a> TraceContext<'a> {
@@ -110,6 +113,7 @@ impl<'a> TraceContext<'a> {
             flux: prismatic_core::photons::trace::photon_flux(scene),
             coloured_lights: scene.light_spectra.iter().any(|s| !s.is_uniform()),
             ranged_lights: scene.emitters.iter().any(|l| l.range().is_some()),
+            metals: scene.surfaces.iter().any(|s| matches!(s, Surface::Metal(_))),
         }
     }
 

@@ -2,7 +2,7 @@
 //! rays per packet, threads over tiles.
 //!
 //! A tile's primary rays go eight pixels to a packet. Where the reference
-//! recurses (mirrors, the two Fresnel branches at glass, one ray per band at
+//! recurses (mirrors, metals, the two Fresnel branches at glass, one ray per band at
 //! the first dispersive glass) this tracer queues the next rays with the
 //! weight and RGB tint they carry and the pixel they belong to, and traces
 //! the queue in packets of eight too, until it is empty: the same sum over
@@ -28,12 +28,13 @@ use prismatic_core::model::light_range::range_window;
 use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::model::scene::Light;
 use prismatic_core::optics::fresnel::reflect;
-use prismatic_core::optics::scatter::{self, Face, scatter_dielectric};
+use prismatic_core::optics::scatter::{self, Face, scatter_dielectric, scatter_metal};
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
+use prismatic_core::photons::path::stored_wavelength;
 use prismatic_core::plan::area::area;
 use prismatic_core::plan::area_aims::on_triangle;
 use prismatic_core::plan::prepared::PreparedScene;
-use prismatic_core::render::view::{HeroViewPath, gathers_at, glass_transmittance, hero_view_paths};
+use prismatic_core::render::view::{HeroViewPath, ViewContext, gathers_at, glass_transmittance, hero_view_paths};
 use prismatic_core::render::visible::{VisiblePoint, VisiblePoints};
 use prismatic_core::sampling::pixel_sample::PixelSampler;
 use prismatic_core::sampling::spot_cone::SpotCone;
@@ -63,6 +64,8 @@ struct ViewRay {
     /// A sampled path's numbers, and its hero path (0 before the split).
     sampler: Option<PixelSampler>,
     hero: u32,
+    /// The numbers of its rough metals' facets (pass 0's for centre rays).
+    facets: PixelSampler,
 }
 
 /// Traces the view rays (pass `pass`'s own paths when
@@ -86,6 +89,7 @@ pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
             for (k, _) in pixels.iter().enumerate().rev() {
                 let (x, y) = ((k % row) as u32, y0 + (k / row) as u32);
                 let sampler = sampled.then(|| PixelSampler::new(r.seed, y * r.width + x, pass));
+                let facets = sampler.unwrap_or_else(|| PixelSampler::new(r.seed, y * r.width + x, 0));
                 let ray = match sampler {
                     Some(s) if jittered => camera.ray_through(x, y, s.jitter()),
                     _ => camera.ray(x, y),
@@ -101,9 +105,11 @@ pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
                     pixel: k as u32,
                     sampler,
                     hero: 0,
+                    facets,
                 });
             }
-            let mut shader = Shader { scene, points: Vec::new(), first_pixel: (tile * tile_pixels) as u32 };
+            let view = ViewContext::new(scene);
+            let mut shader = Shader { scene, view, points: Vec::new(), first_pixel: (tile * tile_pixels) as u32 };
             let mut sum = vec![Vec3::ZERO; pixels.len()];
             while !queue.is_empty() {
                 let take = queue.len().min(8);
@@ -123,6 +129,8 @@ pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
 
 struct Shader<'a> {
     scene: &'a PreparedScene,
+    /// The core's view pass, for what this tracer takes ray by ray from it.
+    view: ViewContext<'a>,
     /// The tile's visible points.
     points: Vec<VisiblePoint>,
     /// The tile's first pixel (ray pixels are relative to it).
@@ -186,6 +194,26 @@ impl Shader<'_> {
                     let d = reflect(r.dir, n);
                     let origin = scatter::offset_origin(p, n, d);
                     queue.push(ViewRay { origin, dir: d, depth: r.depth + 1, ..*r });
+                }
+                // A metal's highlights, facet and Fresnel: the core's scalar rules, ray by ray.
+                Surface::Metal(metal) => {
+                    let lambda_nm = stored_wavelength(&self.scene.bands, r.band, r.lambda_nm);
+                    sum[r.pixel as usize] +=
+                        r.tint * self.view.metal_highlights(r.dir, (p, n), metal, r.band, lambda_nm);
+                    let (u1, u2) = if metal.ggx.is_some() { r.facets.facet(r.hero, r.depth) } else { (0.0, 0.0) };
+                    let Some(b) = scatter_metal(r.dir, p, n, metal.ggx, u1, u2) else { continue };
+                    let f = metal.tint(b.cos_facet, r.band, lambda_nm, &self.scene.bands) * b.unshadowed;
+                    let next = ViewRay {
+                        origin: b.ray.origin,
+                        dir: b.ray.direction,
+                        weight: r.weight * f.max_element(),
+                        tint: r.tint * f,
+                        depth: r.depth + 1,
+                        ..*r
+                    };
+                    if next.weight > MIN_VIEW_WEIGHT {
+                        queue.push(next);
+                    }
                 }
                 Surface::Dielectric(glass) if r.band == WHITE_BAND && glass.splits_view_rays => match r.sampler {
                     Some(sampler) => {

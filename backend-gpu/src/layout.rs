@@ -159,9 +159,9 @@ pub struct GpuSurface {
     pub ior_first: u32,
     /// Index of the n(λ) curve in the tables buffer.
     pub curve_first: u32,
-    /// Diffuse albedo.
+    /// Diffuse albedo; a metal's reflectance at normal incidence.
     pub albedo: [f32; 3],
-    /// Index for white light.
+    /// Index for white light; a metal's GGX α (0: polished).
     pub white_ior: f32,
     /// Albedo of the checker's odd cells.
     pub checker_albedo: [f32; 3],

@@ -241,6 +241,12 @@ impl EncodedScene {
                 s
             }
             Surface::Mirror => GpuSurface { kind: SURFACE_MIRROR, ..GpuSurface::default() },
+            Surface::Metal(m) => GpuSurface {
+                kind: SURFACE_METAL,
+                albedo: v3(m.f0),
+                white_ior: m.ggx.map_or(0.0, |g| g.alpha),
+                ..GpuSurface::default()
+            },
             Surface::Dielectric(g) => {
                 let mut s = GpuSurface {
                     kind: SURFACE_DIELECTRIC,

@@ -41,6 +41,8 @@ pub mod kind {
     pub const SURFACE_MIRROR: u32 = 1;
     /// Dielectric.
     pub const SURFACE_DIELECTRIC: u32 = 2;
+    /// Metal: F0 in `albedo`, its GGX α in `white_ior` (0: polished).
+    pub const SURFACE_METAL: u32 = 3;
     /// White photons split into bands here.
     pub const SURFACE_SPLITS_PHOTONS: u32 = 1;
     /// White view rays split into bands here.
@@ -179,6 +181,7 @@ fn prelude(stack: u32) -> String {
     u("PIXEL_SCRAMBLE", pixel_sample::PIXEL_SCRAMBLE);
     u("VIEW_BRANCH", pixel_sample::BRANCH);
     u("VIEW_PER_PATH", pixel_sample::PER_PATH);
+    u("VIEW_FACET", pixel_sample::FACET);
     u("ESTIMATOR_PAPER", code::estimator(Estimator::Paper));
     u("ESTIMATOR_DENSITY", code::estimator(Estimator::Density));
     u("OBJECT_SPHERE", kind::OBJECT_SPHERE);
@@ -189,6 +192,7 @@ fn prelude(stack: u32) -> String {
     u("SURFACE_DIFFUSE", kind::SURFACE_DIFFUSE);
     u("SURFACE_MIRROR", kind::SURFACE_MIRROR);
     u("SURFACE_DIELECTRIC", kind::SURFACE_DIELECTRIC);
+    u("SURFACE_METAL", kind::SURFACE_METAL);
     u("SURFACE_SPLITS_PHOTONS", kind::SURFACE_SPLITS_PHOTONS);
     u("SURFACE_SPLITS_VIEW_RAYS", kind::SURFACE_SPLITS_VIEW_RAYS);
     u("SURFACE_HAS_CHECKER", kind::SURFACE_HAS_CHECKER);

@@ -28,9 +28,14 @@ pub fn slots_per_emission(scene: &PreparedScene) -> u32 {
 }
 
 /// The most photons a caustic emission stores: one per path a white photon
-/// splits into (every band, or the hero wavelengths), else one.
+/// splits into (every band, or the hero wavelengths) where it splits (at
+/// glass that splits photons or a coloured metal), else one.
 fn caustic_slots(scene: &PreparedScene) -> u32 {
-    let splits = scene.surfaces.iter().any(|s| matches!(s, Surface::Dielectric(g) if g.splits_photons));
+    let splits = scene.surfaces.iter().any(|s| match s {
+        Surface::Dielectric(g) => g.splits_photons,
+        Surface::Metal(m) => m.is_chromatic(),
+        _ => false,
+    });
     if splits { scene.scene.render.wavelengths.paths(scene.bands.len()) } else { 1 }
 }
 

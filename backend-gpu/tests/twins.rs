@@ -14,6 +14,9 @@ use prismatic_conformance::twins::{
     Agreement, FinishCase, ScatterCase, SurfaceAnswer, SurfaceCase, branch_case, check_finish, check_surface, config,
     finish_case, fixed_answer, fixed_input, scatter_case, surface_case,
 };
+use prismatic_core::optics::metal::MetalOptics;
+use prismatic_core::optics::microfacet::Ggx;
+use prismatic_core::optics::scatter::scatter_metal;
 use prismatic_core::photons::grid;
 use prismatic_core::sampling::pixel_sample::PixelSampler;
 use prismatic_core::sampling::sobol;
@@ -206,6 +209,80 @@ fn sampling(@builtin(global_invocation_id) id: vec3<u32>) {
 }
 "#;
 
+const METAL: &str = r#"
+struct MetalIn {
+    d: vec3<f32>,
+    alpha: f32,
+    normal: vec3<f32>,
+    u1: f32,
+    point: vec3<f32>,
+    u2: f32,
+    f0: vec3<f32>,
+    scramble: u32,
+    pass_index: u32,
+    path: u32,
+    depth: u32,
+    _pad: u32,
+}
+
+struct MetalOut {
+    origin: vec3<f32>,
+    ok: u32,
+    dir: vec3<f32>,
+    cos_facet: f32,
+    fresnel: vec3<f32>,
+    unshadowed: f32,
+    facet: vec2<f32>,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+@group(0) @binding(0) var<storage, read> metal_in: array<MetalIn>;
+@group(0) @binding(1) var<storage, read_write> metal_out: array<MetalOut>;
+
+@compute @workgroup_size(64)
+fn metal(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&metal_in) {
+        return;
+    }
+    let c = metal_in[id.x];
+    let b = scatter_metal(c.d, c.point, c.normal, c.alpha, c.u1, c.u2);
+    let facet = pixel_facet(c.scramble, c.pass_index, c.path, c.depth);
+    let fresnel = metal_fresnel(c.f0, b.cos_facet);
+    metal_out[id.x] = MetalOut(b.origin, select(0u, 1u, b.ok), b.dir, b.cos_facet, fresnel, b.unshadowed, facet, 0u, 0u);
+}
+"#;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+struct MetalIn {
+    d: [f32; 3],
+    alpha: f32,
+    normal: [f32; 3],
+    u1: f32,
+    point: [f32; 3],
+    u2: f32,
+    f0: [f32; 3],
+    scramble: u32,
+    pass_index: u32,
+    path: u32,
+    depth: u32,
+    _pad: u32,
+}
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+struct MetalOut {
+    origin: [f32; 3],
+    ok: u32,
+    dir: [f32; 3],
+    cos_facet: f32,
+    fresnel: [f32; 3],
+    unshadowed: f32,
+    facet: [f32; 2],
+    _pad: [u32; 2],
+}
+
 #[repr(C)]
 #[derive(Clone, Copy, Pod, Zeroable)]
 struct ScatterIn {
@@ -301,7 +378,7 @@ struct FixedIn {
 /// The device and one pipeline per entry point, made once for every test.
 struct Twins {
     ctx: GpuContext,
-    pipelines: [(&'static str, wgpu::ComputePipeline); 6],
+    pipelines: [(&'static str, wgpu::ComputePipeline); 7],
 }
 
 fn twins() -> Option<&'static Twins> {
@@ -331,6 +408,7 @@ fn twins() -> Option<&'static Twins> {
                 pipeline("sobol", SOBOL),
                 pipeline("scatter", SCATTER),
                 pipeline("sampling", SAMPLING),
+                pipeline("metal", METAL),
             ];
             Some(Twins { ctx, pipelines })
         })
@@ -592,6 +670,94 @@ proptest! {
             let cell = grid::cell_of(Vec3::from(p), inv_cell);
             prop_assert_eq!(got.cell, cell.to_array(), "cell_of({:?}, {})", p, inv_cell);
             prop_assert_eq!(got.bucket, grid::bucket_of(cell, 0xfffff), "bucket_of({})", cell);
+        }
+    }
+}
+
+/// A metal's case: the ray, the surface's normal (either side) and point,
+/// its GGX α (a quarter of the cases polished, α = 0), the facet's numbers,
+/// its colour, and a pixel's facet numbers to draw.
+fn metal_case() -> impl Strategy<Value = (MetalIn, PixelSampler)> {
+    let unit =
+        || [-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0].prop_filter_map("a direction", |v| Vec3::from(v).try_normalize());
+    let alpha = prop_oneof![1 => Just(0.0f32), 3 => (-3.0f32..0.0).prop_map(|e| 10f32.powf(e))];
+    (
+        unit(),
+        unit(),
+        [-30.0f32..30.0, -30.0f32..30.0, -30.0f32..30.0],
+        alpha,
+        0.0f32..1.0,
+        0.0f32..1.0,
+        [0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0],
+        branch_case(),
+    )
+        .prop_map(|(d, normal, point, alpha, u1, u2, f0, (seed, pixel, pass, path, depth))| {
+            let sampler = PixelSampler::new(seed, pixel, pass);
+            let case = MetalIn {
+                d: d.to_array(),
+                alpha,
+                normal: normal.to_array(),
+                u1,
+                point,
+                u2,
+                f0,
+                scramble: sampler.scramble(),
+                pass_index: pass,
+                path,
+                depth,
+                _pad: 0,
+            };
+            (case, sampler)
+        })
+}
+
+/// The WGSL answer to `c` against the core's `scatter_metal` and Schlick:
+/// the facet numbers bit for bit; the rest within f32 roundings, but for
+/// reflections that graze the surface (either side of ending the path).
+fn check_metal((c, sampler): &(MetalIn, PixelSampler), got: &MetalOut) -> Result<(), String> {
+    let (f1, f2) = sampler.facet(c.path, c.depth);
+    if got.facet != [f1, f2] {
+        return Err(format!("PixelSampler::facet: {:?}, the core's {:?}", got.facet, [f1, f2]));
+    }
+    let (d, n) = (Vec3::from(c.d), Vec3::from(c.normal));
+    let ggx = (c.alpha > 0.0).then_some(Ggx { alpha: c.alpha });
+    let want = scatter_metal(d, Vec3::from(c.point), n, ggx, c.u1, c.u2);
+    let grazing = |dir: Vec3| dir.dot(n).abs() < 1e-3;
+    let Some(b) = want else {
+        return if got.ok == 0 || grazing(d) || grazing(Vec3::from(got.dir)) {
+            Ok(())
+        } else {
+            Err(format!("{got:?}: the core ends the path"))
+        };
+    };
+    if got.ok == 0 {
+        return if grazing(d) || grazing(b.ray.direction) { Ok(()) } else { Err(format!("ended; the core's {b:?}")) };
+    }
+    let close = |a: Vec3, b: Vec3, tol: f32| (a - b).abs().max_element() <= tol;
+    let scale = Vec3::from(c.point).abs().max_element().max(1.0);
+    let metal = MetalOptics { f0: Vec3::from(c.f0), ggx };
+    let ok = close(Vec3::from(got.dir), b.ray.direction, 1e-3)
+        && close(Vec3::from(got.origin), b.ray.origin, 1e-4 * scale)
+        && (got.cos_facet - b.cos_facet).abs() <= 1e-3
+        && (got.unshadowed - b.unshadowed).abs() <= 1e-3
+        && close(Vec3::from(got.fresnel), metal.fresnel(got.cos_facet), 1e-5);
+    if ok { Ok(()) } else { Err(format!("{got:?}; the core's {b:?}")) }
+}
+
+proptest! {
+    #![proptest_config(config(8, 0x6d74))]
+
+    /// `scatter_metal`, `metal_fresnel` and `pixel_facet` (common.wgsl, which
+    /// the photon trace and the view pass both call) against the core's.
+    #[test]
+    fn wgsl_metals_are_the_cores(cases in prop::collection::vec(metal_case(), 1024)) {
+        let Some(twins) = twins() else { return Ok(()) };
+        let inputs: Vec<MetalIn> = cases.iter().map(|(c, _)| *c).collect();
+        let answers: Vec<MetalOut> = twins.run("metal", &inputs);
+        for (case, got) in cases.iter().zip(answers) {
+            if let Err(e) = check_metal(case, &got) {
+                return Err(TestCaseError::fail(e));
+            }
         }
     }
 }

@@ -24,6 +24,9 @@
 //!   environment (32 suns of its median cut, projection maps on): the CPU's
 //!   photon pass (throughput in photons) and its view pass (direct light,
 //!   one shadow ray per light per point);
+//! - `metals/{rough,polished,mirrors}/{trace,view}`: the built-in `ring`
+//!   (100,000 photons) with its metals as they are, all polished and as
+//!   mirrors: the CPU's photon pass and its view pass;
 //! - `scene/{new,update-camera,update-mesh}/<triangles>`: `sphere` with its
 //!   sphere as a closed mesh, prepared from scratch (every hierarchy
 //!   built) and updated from the last frame's preparation after the camera
@@ -225,9 +228,21 @@ fn progressive_group(c: &mut Criterion) {
 
 /// A pass's photons and the view pass under the spot, the studio environment and a light panel.
 fn lights_group(c: &mut Criterion) {
-    let mut g = c.benchmark_group("lights");
+    trace_and_view_group(c, "lights", prismatic_benches::lit_by_each_light(100_000));
+}
+
+/// A pass of the `ring` scene's photons (100,000) and its view pass on the
+/// CPU, with its metals rough, polished and as mirrors.
+fn metals_group(c: &mut Criterion) {
+    trace_and_view_group(c, "metals", prismatic_benches::ring_metals(100_000));
+}
+
+/// Group `group`: each named scene's photon pass (throughput in photons)
+/// and its view pass (in pixels) on the CPU.
+fn trace_and_view_group<const N: usize>(c: &mut Criterion, group: &str, scenes: [(&str, PreparedScene); N]) {
+    let mut g = c.benchmark_group(group);
     g.sample_size(10);
-    for (name, scene) in prismatic_benches::lit_by_each_light(100_000) {
+    for (name, scene) in scenes {
         let mut render = CpuBackend::new().prepare(&scene).unwrap();
         g.throughput(Throughput::Elements(u64::from(scene.scene.render.photons)));
         g.bench_function(BenchmarkId::new(name, "trace"), |b| {
@@ -318,6 +333,7 @@ criterion_group!(
     effects_group,
     progressive_group,
     lights_group,
+    metals_group,
     indirect_group,
     scene_group
 );

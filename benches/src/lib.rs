@@ -4,7 +4,7 @@
 
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::environment::EnvironmentMap;
-use prismatic_core::model::scene::{Object, RadiusMode};
+use prismatic_core::model::scene::{MaterialKind, Object, RadiusMode};
 use prismatic_core::{Backend, Image, Light, NoProgress, PreparedScene, RenderSettings, Vec3};
 
 /// The paper's configuration (Table 5): 400×400, 20,000 white photons, 7 bands,
@@ -65,4 +65,27 @@ pub fn frame(backend: &mut dyn Backend, scene: &PreparedScene) -> Image {
     let mut render = backend.prepare(scene).expect("prepare");
     render.run_pass(0, &mut NoProgress).expect("pass");
     render.image().expect("image")
+}
+
+/// The built-in `ring` with `photons` a pass: its metals as they are (a
+/// gold ring of roughness 0.03, a copper ball of 0.3, a polished silver
+/// ball; `"rough"`), all polished (`"polished"`) and as mirrors
+/// (`"mirrors"`, which the CPU traces in packets): what metals cost.
+pub fn ring_metals(photons: u32) -> [(&'static str, PreparedScene); 3] {
+    let mut rough = prismatic_cli::load_scene("ring").expect("built-in ring").scene;
+    rough.render.photons = photons;
+    let mut polished = rough.clone();
+    let mut mirrors = rough.clone();
+    for m in &mut polished.materials {
+        if let MaterialKind::Metal { roughness, .. } = &mut m.kind {
+            *roughness = 0.0;
+        }
+    }
+    for m in &mut mirrors.materials {
+        if let MaterialKind::Metal { .. } = m.kind {
+            m.kind = MaterialKind::Mirror;
+        }
+    }
+    let [rough, polished, mirrors] = [rough, polished, mirrors].map(|s| PreparedScene::new(s).expect("valid"));
+    [("rough", rough), ("polished", polished), ("mirrors", mirrors)]
 }

@@ -88,7 +88,7 @@ pub struct GeneratedScene {
 }
 
 /// The generated built-in scenes.
-pub const GENERATED_SCENES: [GeneratedScene; 2] = [
+pub const GENERATED_SCENES: [GeneratedScene; 3] = [
     GeneratedScene {
         name: "dispersion-test",
         description: "glTF: a grid of prisms, index 1.0 to 2.42 by row, KHR_materials_dispersion 0 to 5 by column",
@@ -100,6 +100,12 @@ pub const GENERATED_SCENES: [GeneratedScene; 2] = [
         description: "glTF: amber and green glass and a flint prism in the sun on a tiled floor before a wall",
         document: crate::sunlit_glass::document,
         settings: crate::sunlit_glass::settings,
+    },
+    GeneratedScene {
+        name: "ring",
+        description: "glTF: a gold ring in low sun with the cusped caustic of its inner wall, a rough copper and a polished silver ball",
+        document: crate::ring::document,
+        settings: crate::ring::settings,
     },
 ];
 

@@ -1,6 +1,8 @@
 //! glTF 2.0 scenes (`.gltf`, `.glb`): triangle meshes placed by their node
-//! transforms, materials from `pbrMetallicRoughness` (with the base-colour
-//! texture on `TEXCOORD_0`, its sampler and its `KHR_texture_transform`) and the transmission, IOR,
+//! transforms, materials from `pbrMetallicRoughness` (diffuse with the
+//! base-colour texture on `TEXCOORD_0`, its sampler and its
+//! `KHR_texture_transform`, or a metal of the base colour and roughness)
+//! and the transmission, IOR,
 //! volume and dispersion extensions, `KHR_lights_punctual` lights, and the
 //! first camera (else one that frames the scene).
 //!
@@ -30,10 +32,11 @@ use prismatic_core::sampling::spot_cone::SpotCone;
 use std::collections::HashMap;
 use std::path::Path;
 
-/// A material counts as a mirror at this metalness or more...
-const MIRROR_METALLIC: f32 = 0.9;
-/// ...and this roughness or less.
-const MIRROR_ROUGHNESS: f32 = 0.1;
+/// A material is drawn as a metal at this `metallicFactor` or more, else
+/// as a diffuse surface: glTF blends the two by the factor, which
+/// prismatic cannot yet (a factor strictly between 0 and 1 is named as
+/// left out).
+const METAL_METALLIC: f32 = 0.5;
 
 /// A spot whose `innerConeAngle` is at least this fraction of its
 /// `outerConeAngle` is read as a hard edge (glTF cannot write an equal
@@ -419,11 +422,11 @@ fn material(
         }
     }
     let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor());
-    let glass_or_mirror =
-        transmission > 0.0 || (pbr.metallic_factor() >= MIRROR_METALLIC && pbr.roughness_factor() <= MIRROR_ROUGHNESS);
+    let metallic = pbr.metallic_factor();
+    let glass_or_metal = transmission > 0.0 || metallic >= METAL_METALLIC;
     let mut emission = emission(m);
-    if glass_or_mirror && emission != Vec3::ZERO {
-        unused.push("emission of glass or a mirror (only diffuse surfaces emit)");
+    if glass_or_metal && emission != Vec3::ZERO {
+        unused.push("emission of glass or a metal (only diffuse surfaces emit)");
     } else if let Some(info) = m.emissive_texture().filter(|_| emission != Vec3::ZERO) {
         // Emission is per mesh: the texture's mean keeps its flux, not its pattern.
         emission *= images.mean_colour(&info)?;
@@ -459,14 +462,22 @@ fn material(
             thin,
             film,
         }
-    } else if pbr.metallic_factor() >= MIRROR_METALLIC && pbr.roughness_factor() <= MIRROR_ROUGHNESS {
-        if pbr.base_color_texture().is_some() {
-            unused.push("baseColorTexture of a mirror");
+    } else if metallic >= METAL_METALLIC {
+        if metallic < 1.0 {
+            unused.push("metallicFactor between 0 and 1 (drawn as a whole metal)");
         }
-        MaterialKind::Mirror
+        if pbr.base_color_texture().is_some() {
+            unused.push("baseColorTexture of a metal (its colour is baseColorFactor)");
+        }
+        // A metal's base colour is its reflectance at normal incidence.
+        let [r, g, b, _] = pbr.base_color_factor();
+        MaterialKind::Metal {
+            color: Vec3::new(r, g, b).clamp(Vec3::ZERO, Vec3::ONE),
+            roughness: pbr.roughness_factor(),
+        }
     } else {
-        if pbr.metallic_factor() >= MIRROR_METALLIC {
-            unused.push("rough metal (rendered diffuse)");
+        if metallic > 0.0 {
+            unused.push("metallicFactor between 0 and 1 (drawn diffuse)");
         }
         let [r, g, b, _] = pbr.base_color_factor();
         let texture = match pbr.base_color_texture() {

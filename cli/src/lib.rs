@@ -15,6 +15,7 @@ pub mod partial;
 pub mod patterns;
 pub mod progress_bar;
 pub mod render_job;
+pub mod ring;
 pub mod scene_file;
 pub mod settings;
 pub mod study;

@@ -19,7 +19,7 @@ const SUN_IRRADIANCE: f32 = 3.0;
 
 /// A closed sphere of `rings` × 2·`rings` quads, wound outward (the poles'
 /// triangles have no area and are dropped when the scene is prepared).
-fn sphere(radius: f32, rings: u32) -> (Vec<[f32; 3]>, Vec<u32>) {
+pub(crate) fn sphere(radius: f32, rings: u32) -> (Vec<[f32; 3]>, Vec<u32>) {
     let segments = 2 * rings;
     let mut positions = Vec::new();
     for r in 0..=rings {

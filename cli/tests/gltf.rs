@@ -695,3 +695,31 @@ fn an_emissive_texture_gives_its_mean_colour() {
     let warnings = scene.warnings.join("\n");
     assert!(warnings.contains("materials[0] (floor): left out: emissiveTexture's pattern"), "{warnings}");
 }
+
+/// glTF's metals are metals: a `metallicFactor` of 1 gives a metal of the
+/// base colour and roughness; between 0 and 1 the material is drawn as the
+/// nearer of metal and diffuse and the blend is named as left out.
+#[test]
+fn metallic_materials_are_metals_of_their_base_colour_and_roughness() {
+    let dir = tempfile::tempdir().unwrap();
+    let load = |metallic: f32| {
+        let mut doc = prism_document();
+        doc.materials[0] =
+            GltfMaterial { metallic, roughness: 0.3, ..GltfMaterial::diffuse("ring", [1.0, 0.766, 0.336]) };
+        let path = dir.path().join("metal.gltf");
+        std::fs::write(&path, doc.to_json()).unwrap();
+        let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+        scene.validate().unwrap();
+        (scene.scene.materials[0].kind.clone(), scene.warnings.join("\n"))
+    };
+    let gold = prismatic_core::Vec3::new(1.0, 0.766, 0.336);
+    let (kind, warnings) = load(1.0);
+    assert_eq!(kind, MaterialKind::Metal { color: gold, roughness: 0.3 });
+    assert!(!warnings.contains("metal"), "{warnings}");
+    let (kind, warnings) = load(0.7);
+    assert_eq!(kind, MaterialKind::Metal { color: gold, roughness: 0.3 });
+    assert!(warnings.contains("metallicFactor between 0 and 1 (drawn as a whole metal)"), "{warnings}");
+    let (kind, warnings) = load(0.2);
+    assert!(matches!(kind, MaterialKind::Diffuse { .. }), "{kind:?}");
+    assert!(warnings.contains("metallicFactor between 0 and 1 (drawn diffuse)"), "{warnings}");
+}

@@ -281,6 +281,21 @@ pub fn mirror() -> PreparedScene {
     })
 }
 
+/// The mirror's beam folded by a rough gold disc instead onto a round
+/// floor, beside a polished copper ball, with indirect light: metals'
+/// facets and coloured Fresnel in caustic and indirect photons and in view.
+pub fn metals() -> PreparedScene {
+    let mut scene = mirror().scene;
+    let metal = |name: &str, color: Vec3, roughness: f32| material(name, MaterialKind::Metal { color, roughness });
+    scene.materials[1] = metal("gold", Vec3::new(1.0, 0.766, 0.336), 0.3);
+    scene.materials.push(metal("copper", Vec3::new(0.955, 0.637, 0.538), 0.0));
+    scene.objects[0].shape = Shape::Disk { center: Vec3::ZERO, normal: Vec3::Y, radius: 4.0, inner_radius: 0.0 };
+    scene.objects.push(Object { shape: Shape::Sphere { center: Vec3::new(1.2, 0.5, 1.0), radius: 0.5 }, material: 2 });
+    scene.render.indirect_photons = 2_000;
+    scene.render.max_depth = 4;
+    prepared(scene)
+}
+
 /// A floor and a diffuse ball under a point light: nothing specular, so no
 /// caustic photon is traced and the image is its view pass's.
 pub fn no_caustics() -> PreparedScene {
@@ -386,6 +401,7 @@ pub fn with_caustics() -> Vec<(&'static str, PreparedScene)> {
         ("textured floor", textured_floor()),
         ("prism", prism()),
         ("mirror", mirror()),
+        ("metals", metals()),
         ("panel-lit sphere", panel_lit_sphere()),
         ("sphere with indirect light", sphere_with_indirect_light()),
         ("sky-lit sphere", sky_lit_sphere()),

@@ -107,6 +107,20 @@ fn a_film_on_glass_of_one_index_splits_photons_and_view_rays() {
 }
 
 #[test]
+fn a_coloured_metal_gives_photons_bands_and_a_grey_one_keeps_them_white() {
+    let metal = |color: Vec3| {
+        let mut scene = sphere_scene(Dispersion::Constant(1.5), 9.0, -Vec3::Y);
+        scene.materials[0].kind = MaterialKind::Metal { color, roughness: 0.2 };
+        prepare(scene).plan
+    };
+    let gold = metal(Vec3::new(1.0, 0.766, 0.336));
+    assert!(gold.caustics.on, "{}", gold.summary());
+    assert!(gold.band_splitting.on && gold.band_splitting.reason.contains("at coloured metal"), "{}", gold.summary());
+    let grey = metal(Vec3::splat(0.9));
+    assert!(grey.caustics.on && !grey.band_splitting.on, "{}", grey.summary());
+}
+
+#[test]
 fn glass_outside_every_light_cone_skips_the_photon_pass_and_says_why() {
     // The spot points away from the sphere.
     let scene = prepare(sphere_scene(Glass::Bk7.dispersion(), 10.0, Vec3::new(1.0, -0.2, 0.0)));

@@ -16,6 +16,7 @@ mod light_range;
 mod light_spectra;
 mod light_tracing;
 mod meshes;
+mod metals;
 mod optics;
 mod parity_cpu;
 mod parity_gpu;

@@ -3,6 +3,7 @@
 
 use prismatic_cli::builtin::BUILTIN_SCENES;
 use prismatic_cli::scene_file::{SceneFileError, parse};
+use prismatic_core::Vec3;
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::scene::{Estimator, MaterialKind, PhotonSequence, Shape, ThinFilm, WavelengthSampling};
@@ -338,6 +339,45 @@ fn a_films_keys_parse_and_bad_films_are_rejected_with_their_line() {
         Some("film_ior"),
         "between 1 and 5",
     );
+}
+
+fn with_metal(keys: &str) -> String {
+    format!(
+        "{MINIMAL}\n[material.ring]\nkind = \"metal\"\n{keys}\n\n[[object]]\nshape = \"sphere\"\nmaterial = \"ring\"\ncenter = [0, 1, 0]\nradius = 0.5\n"
+    )
+}
+
+#[test]
+fn a_metals_keys_parse_named_metals_too_and_bad_metals_are_rejected_with_their_line() {
+    let metal_of = |keys: &str| {
+        let doc = parse(&with_metal(keys), "test.toml", None).expect("parses");
+        doc.validate().expect("valid");
+        doc.scene.materials.iter().find(|m| m.name == "ring").expect("the ring material").kind.clone()
+    };
+    assert_eq!(
+        metal_of("color = [0.9, 0.6, 0.5]\nroughness = 0.3"),
+        MaterialKind::Metal { color: Vec3::new(0.9, 0.6, 0.5), roughness: 0.3 }
+    );
+    // A named metal; polished unless a roughness is given.
+    assert_eq!(
+        metal_of("color = \"gold\""),
+        MaterialKind::Metal { color: Vec3::new(1.0, 0.766, 0.336), roughness: 0.0 }
+    );
+    assert_error(&with_metal("roughness = 0.3"), "material.ring.color", Some("[material.ring]"), "missing");
+    assert_error(
+        &with_metal("color = \"brass\""),
+        "material.ring.color",
+        Some("color"),
+        "silver, aluminium, gold, copper",
+    );
+    assert_error(&with_metal("color = [0.9, 1.2, 0.5]"), "material.ring.color", Some("color"), "at most all light");
+    assert_error(
+        &with_metal("color = \"gold\"\nroughness = 1.5"),
+        "material.ring.roughness",
+        Some("roughness"),
+        "between 0 and 1",
+    );
+    assert_error(&with_metal("color = \"gold\"\nior = 1.5"), "material.ring.ior", Some("ior"), "unknown key");
 }
 
 #[test]

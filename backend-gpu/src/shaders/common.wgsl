@@ -608,6 +608,13 @@ fn split_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, face: Fa
     return DielectricBranches(reflected, reflectance, refracted, t.w == 0.0);
 }
 
+// PixelSampler::facet: the two numbers of the rough metal's facet that
+// hero path `path` reflects off at specular bounce `depth`.
+fn pixel_facet(scramble: u32, pass_index: u32, path: u32, depth: u32) -> vec2<f32> {
+    let d = VIEW_FACET + 2u * (path * VIEW_PER_PATH + depth);
+    return vec2<f32>(random_f32(scramble, pass_index, d), random_f32(scramble, pass_index, d + 1u));
+}
+
 // PixelSampler::branch: the number that chooses the Fresnel branch of hero
 // path `path` (0 before the split) at specular bounce `depth`.
 fn pixel_branch(scramble: u32, pass_index: u32, path: u32, depth: u32) -> f32 {
@@ -628,4 +635,105 @@ fn bucket_of(c: vec3<i32>, mask: u32) -> u32 {
 // into y) into one invocation index.
 fn flat_index(wid: vec3<u32>, nwg: vec3<u32>, lid: u32) -> u32 {
     return (wid.y * nwg.x + wid.x) * WORKGROUP_SIZE + lid;
+}
+
+// ---- metal.rs and microfacet.rs ----
+
+// MetalOptics::fresnel: Schlick's per RGB channel at facet cosine `c`.
+fn metal_fresnel(f0: vec3<f32>, c: f32) -> vec3<f32> {
+    let x = 1.0 - clamp(c, 0.0, 1.0);
+    let x2 = x * x;
+    return f0 + (vec3<f32>(1.0) - f0) * (x2 * x2 * x);
+}
+
+// Ggx::lambda: Smith's Λ for GGX of width `alpha` of a direction at
+// cosine `c` to the normal (a huge number for the core's infinity below
+// the horizon).
+fn ggx_lambda(alpha: f32, c: f32) -> f32 {
+    let c2 = c * c;
+    if c2 <= 0.0 {
+        return 3.0e38;
+    }
+    let a2_tan2 = alpha * alpha * max(1.0 - c2, 0.0) / c2;
+    return 0.5 * a2_tan2 / (1.0 + sqrt(1.0 + a2_tan2));
+}
+
+// Ggx::sample_visible_normal (Heitz 2018): a normal among those `wo` sees.
+fn ggx_visible_normal(alpha: f32, wo: vec3<f32>, u1: f32, u2: f32) -> vec3<f32> {
+    let vh = nrm(vec3<f32>(alpha * wo.x, alpha * wo.y, wo.z));
+    let len2 = vh.x * vh.x + vh.y * vh.y;
+    var t1 = vec3<f32>(1.0, 0.0, 0.0);
+    if len2 > 0.0 {
+        t1 = vec3<f32>(-vh.y, vh.x, 0.0) / sqrt(len2);
+    }
+    let t2 = cross(vh, t1);
+    let r = sqrt(u1);
+    let sc = sin_cos_turns(u2);
+    let p1 = r * sc.y;
+    let s = 0.5 * (1.0 + vh.z);
+    let p2 = (1.0 - s) * sqrt(max(1.0 - p1 * p1, 0.0)) + s * r * sc.x;
+    let nh = t1 * p1 + t2 * p2 + vh * sqrt(max(1.0 - p1 * p1 - p2 * p2, 0.0));
+    return nrm(vec3<f32>(alpha * nh.x, alpha * nh.y, max(nh.z, 0.0)));
+}
+
+// scatter::MetalBounce (`ok` false: the path ends).
+struct MetalBounce {
+    ok: bool,
+    origin: vec3<f32>,
+    dir: vec3<f32>,
+    cos_facet: f32,
+    unshadowed: f32,
+}
+
+// scatter::scatter_metal: the reflection off a metal of GGX width `alpha`
+// (0: polished, the mirror direction) at `point` for a ray along `d`.
+fn scatter_metal(d: vec3<f32>, point: vec3<f32>, normal: vec3<f32>, alpha: f32, u1: f32, u2: f32) -> MetalBounce {
+    let n = select(-normal, normal, dot(d, normal) < 0.0);
+    let none = MetalBounce(false, point, d, 0.0, 0.0);
+    if alpha <= 0.0 {
+        let r = reflect_dir(d, n);
+        return MetalBounce(true, offset_origin(point, n, r), r, -dot(d, n), 1.0);
+    }
+    let f = basis(n);
+    let local = vec3<f32>(dot(-d, f.t), dot(-d, f.b), dot(-d, n));
+    if local.z <= 0.0 {
+        return none;
+    }
+    let m = ggx_visible_normal(alpha, local, u1, u2);
+    let wi = m * (2.0 * dot(local, m)) - local;
+    if wi.z <= 0.0 {
+        return none;
+    }
+    // Ggx::sample_reflection's weight G2/G1 (both directions above the surface).
+    let lo = ggx_lambda(alpha, local.z);
+    let unshadowed = (1.0 + lo) / (1.0 + lo + ggx_lambda(alpha, wi.z));
+    let dir = nrm(f.t * wi.x + f.b * wi.y + n * wi.z);
+    return MetalBounce(true, offset_origin(point, n, dir), dir, dot(local, nrm(local + wi)), unshadowed);
+}
+
+// Ggx::d: the density of facet normals at cosine `c` to the normal.
+fn ggx_d(alpha: f32, c: f32) -> f32 {
+    if c <= 0.0 {
+        return 0.0;
+    }
+    let a2 = alpha * alpha;
+    let t = c * c * (a2 - 1.0) + 1.0;
+    return a2 / (PI * t * t);
+}
+
+// Ggx::reflection for facets that reflect 1, from `wi` toward `wo` about
+// the normal `n`: D G2 / (4 cos θo cos θi), zero unless both are above it.
+fn ggx_reflection(alpha: f32, wo: vec3<f32>, wi: vec3<f32>, n: vec3<f32>) -> f32 {
+    let co = dot(wo, n);
+    let ci = dot(wi, n);
+    if co <= 0.0 || ci <= 0.0 {
+        return 0.0;
+    }
+    let g2 = 1.0 / (1.0 + ggx_lambda(alpha, co) + ggx_lambda(alpha, ci));
+    return ggx_d(alpha, dot(nrm(wo + wi), n)) * g2 / (4.0 * co * ci);
+}
+
+// MetalOptics::is_chromatic: F0 is not grey.
+fn metal_is_chromatic(f0: vec3<f32>) -> bool {
+    return f0.x != f0.y || f0.y != f0.z;
 }

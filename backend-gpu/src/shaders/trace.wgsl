@@ -93,8 +93,8 @@ fn reach(p: ptr<function, Path>, t: f32) -> bool {
 }
 
 // Follows a path until it is stored, escapes, is absorbed or hits the
-// depth limit (FOLLOW_END), or reaches glass where a white photon splits
-// into bands (FOLLOW_SPLIT, with the hit in `split_at`).
+// depth limit (FOLLOW_END), or reaches glass or a coloured metal where a
+// white photon splits into bands (FOLLOW_SPLIT, with the hit in `split_at`).
 fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u32 {
     let seed = params.seed;
     loop {
@@ -121,6 +121,17 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
         }
         if (*p).bounces == 0u {
             tally_counts[3] += 1u;
+        }
+        if s.kind == SURFACE_METAL && (*p).band == WHITE_BAND && metal_is_chromatic(s.albedo) {
+            // trace_path: a coloured metal splits white light as glass
+            // does, or it goes on as one random band with the whole flux.
+            if split_paths() > 1u {
+                *split_at = hit;
+                return FOLLOW_SPLIT;
+            }
+            let b = spectrum_share(photon_f32(seed, index, DIM_SPECTRUM), 0u, 1u);
+            (*p).band = b.band;
+            (*p).lambda_nm = b.lambda_nm;
         }
         if s.kind != SURFACE_MIRROR && (*p).band == WHITE_BAND && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u {
             if split_paths() > 1u {
@@ -167,6 +178,28 @@ fn arrives_at_specular(p: Path, hit: Hit, s: GpuSurface, index: u32) -> bool {
 // trace::cross_specular: path `p` (one that does not split here) across
 // mirror or glass `s` at `hit`; false when a tinted sheet absorbed it.
 fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -> bool {
+    if s.kind == SURFACE_METAL {
+        // A facet of the metal (α in white_ior), and its Fresnel times the
+        // unshadowed share as the path's survival probability.
+        let alpha = s.white_ior;
+        var u = vec2<f32>(0.0);
+        if alpha > 0.0 {
+            let d = bounce_dim((*p).band, (*p).bounces);
+            u = vec2<f32>(random_f32(params.seed, index, d), random_f32(params.seed, index, d + DIM_ABSORB));
+        }
+        let b = scatter_metal((*p).dir, hit.point, hit.normal, alpha, u.x, u.y);
+        if b.ok {
+            let lambda = stored_wavelength((*p).band, (*p).lambda_nm);
+            let share = b.unshadowed * bounce_reflectance(metal_fresnel(s.albedo, b.cos_facet), (*p).band, lambda);
+            if random_f32(params.seed, index, scatter_dim((*p).band, (*p).bounces)) < share {
+                (*p).origin = b.origin;
+                (*p).dir = b.dir;
+                return true;
+            }
+        }
+        tally_flux[5] += (*p).flux;
+        return false;
+    }
     if s.kind == SURFACE_MIRROR {
         let d = reflect_dir((*p).dir, hit.normal);
         (*p).origin = offset_origin(hit.point, hit.normal, d);
@@ -231,7 +264,9 @@ fn trace_indirect(index: u32) {
             p.dir = out.dir;
             bounced = true;
         } else {
-            if c.count > 1u && s.kind != SURFACE_MIRROR && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u {
+            let glass_splits = s.kind == SURFACE_DIELECTRIC && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u;
+            let coloured_metal = s.kind == SURFACE_METAL && metal_is_chromatic(s.albedo);
+            if c.count > 1u && (glass_splits || coloured_metal) {
                 carried_choose(&c, random_f32(seed, index, choose_dim(p.bounces)));
                 p.band = carried_band(&c);
                 p.lambda_nm = carried_lambda(&c);
@@ -425,12 +460,20 @@ fn trace_emitted(index: u32) {
     }
     for (var path = 0u; path < n; path++) {
         let b = split_band(u, path);
-        var child = Path(p.origin, p.dir, p.flux / f32(n), b.band, b.lambda_nm, p.bounces + 1u);
-        let u = random_f32(params.seed, index, scatter_dim(b.band, p.bounces));
-        scatter_path(&child, hit.point, hit.normal, path_face(s, b.band, b.lambda_nm), u);
-        if absorbed_crossing(s, p.dir, child, params.seed, index) {
-            continue;
+        // The child's bounces are the split's until it has crossed.
+        var child = Path(p.origin, p.dir, p.flux / f32(n), b.band, b.lambda_nm, p.bounces);
+        if s.kind == SURFACE_METAL {
+            if !cross_specular(&child, hit, s, index) {
+                continue;
+            }
+        } else {
+            let u = random_f32(params.seed, index, scatter_dim(b.band, p.bounces));
+            scatter_path(&child, hit.point, hit.normal, path_face(s, b.band, b.lambda_nm), u);
+            if absorbed_crossing(s, p.dir, child, params.seed, index) {
+                continue;
+            }
         }
+        child.bounces += 1u;
         var unused: Hit;
         follow(&child, index, &unused);
     }

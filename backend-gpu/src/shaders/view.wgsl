@@ -282,21 +282,59 @@ fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>, alb
     }
 }
 
-// ViewContext::shade_diffuse, less the caustic (see add_visible_point;
-// with light tracing only behind a specular bounce, view::gathers_at);
-// `tint` and `depth` are the view ray's.
-fn shade_diffuse(dir: vec3<f32>, hit: Hit, tint: vec3<f32>, depth: u32) -> vec3<f32> {
+// Light::hidden_direction: toward a light no ray can meet (a spot, a point,
+// a beam or a sun of its own; not an area light or a drawn sun), else 0.
+fn hidden_direction(l: GpuLight, p: vec3<f32>) -> vec3<f32> {
+    if l.kind == LIGHT_AREA || (l.sun != 0u && any(l.mean_toward != vec3<f32>(0.0))) {
+        return vec3<f32>(0.0);
+    }
+    if l.kind == LIGHT_BEAM {
+        return -l.axis;
+    }
+    return nrm(l.position - p);
+}
+
+// What the surface `s` at `hit` sends back along `e`'s ray of the lights'
+// direct light, its one call of direct_irradiance (lavapipe counts each
+// inlined copy's loop iterations): ViewContext::shade_diffuse less the
+// caustic (see add_visible_point; with light tracing only behind a
+// specular bounce, view::gathers_at) for a diffuse surface, and
+// ViewContext::metal_highlights for a rough metal.
+fn surface_light(e: Pending, hit: Hit, s: GpuSurface) -> vec3<f32> {
+    let dir = e.dir;
     let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
-    let albedo = albedo_at(hit, n);
+    let metal = s.kind == SURFACE_METAL;
+    var albedo = vec3<f32>(0.0);
+    var lambda = e.lambda_nm;
+    if metal {
+        if lambda < 0.0 && e.band < params.band_count {
+            lambda = bands[e.band].lambda_nm;
+        }
+    } else {
+        albedo = albedo_at(hit, n);
+    }
     // Each light's irradiance, in the colour the surface reflects of its spectrum.
     var reflected = vec3<f32>(0.0);
     for (var i = 0u; i < params.light_count; i++) {
         let l = lights[i];
+        var factor = albedo;
+        if metal {
+            let wi = hidden_direction(l, hit.point);
+            let density = ggx_reflection(s.white_ior, -dir, wi, n);
+            if density == 0.0 {
+                continue;
+            }
+            let h = nrm(wi - dir);
+            factor = reflectance(metal_fresnel(s.albedo, dot(-dir, h)), e.band, lambda) * density;
+        }
         let m = mat3x3<f32>(l.reflected_r, l.reflected_g, l.reflected_b);
-        reflected += m * albedo * direct_irradiance(l, hit.point, n);
+        reflected += m * factor * direct_irradiance(l, hit.point, n);
     }
-    if params.stored > 0u && (depth > 0u || params.light_tracing == 0u) {
-        add_visible_point(hit.point, n, tint * params.white_balance * (params.exposure / PI), albedo);
+    if metal {
+        return reflected;
+    }
+    if params.stored > 0u && (e.depth > 0u || params.light_tracing == 0u) {
+        add_visible_point(hit.point, n, e.tint * params.white_balance * (params.exposure / PI), albedo);
     }
     var emitted = vec3<f32>(0.0);
     if dot(dir, hit.normal) < 0.0 {
@@ -348,11 +386,38 @@ fn visit(e: Pending) -> vec3<f32> {
         return e.tint * background(e.dir);
     }
     let s = surfaces[hit.object];
+    let rough_metal = s.kind == SURFACE_METAL && s.white_ior > 0.0 && e.depth < params.max_depth;
+    var lit = vec3<f32>(0.0);
+    if s.kind == SURFACE_DIFFUSE || rough_metal {
+        lit = e.tint * surface_light(e, hit, s);
+    }
     if s.kind == SURFACE_DIFFUSE {
-        return e.tint * shade_diffuse(e.dir, hit, e.tint, e.depth);
+        return lit;
     }
     if e.depth >= params.max_depth {
         return vec3<f32>(0.0);
+    }
+    if s.kind == SURFACE_METAL {
+        // ViewContext::radiance at a metal: one facet (α in white_ior), the
+        // path weighted by its Fresnel at the path's wavelength times G2/G1.
+        let alpha = s.white_ior;
+        var u = vec2<f32>(0.0);
+        if alpha > 0.0 {
+            u = pixel_facet(scramble, select(0u, params.view_pass, per_pass()), e.hero, e.depth);
+        }
+        let b = scatter_metal(e.dir, hit.point, hit.normal, alpha, u.x, u.y);
+        if b.ok {
+            var lambda = e.lambda_nm;
+            if lambda < 0.0 && e.band < params.band_count {
+                lambda = bands[e.band].lambda_nm;
+            }
+            let f = reflectance(metal_fresnel(s.albedo, b.cos_facet), e.band, lambda) * b.unshadowed;
+            let weight = e.weight * max(f.x, max(f.y, f.z));
+            if weight > MIN_VIEW_WEIGHT {
+                spawn_ray(e, b.origin, b.dir, e.band, weight, e.tint * f);
+            }
+        }
+        return lit;
     }
     if s.kind == SURFACE_MIRROR {
         let d = reflect_dir(e.dir, hit.normal);
@@ -376,9 +441,8 @@ fn visit(e: Pending) -> vec3<f32> {
 // jittered point), exposure applied, but for the caustics of its visible points.
 fn pixel(x: u32, y: u32) -> vec3<f32> {
     var jitter = vec2<f32>(0.5);
-    if per_pass() {
-        scramble = random_u32(params.view_seed, y * params.width + x, PIXEL_SCRAMBLE);
-    }
+    // Every path's numbers (a centre ray's: pass 0's, for rough metals).
+    scramble = random_u32(params.view_seed, y * params.width + x, PIXEL_SCRAMBLE);
     if jittered() {
         jitter = vec2<f32>(sobol_f32(scramble, params.view_pass, 0u), sobol_f32(scramble, params.view_pass, 1u));
     }

@@ -5,8 +5,8 @@
 //! CSV files, placed glTF files through the glTF importer.
 
 use super::names::{
-    parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_tone_map, parse_view_paths,
-    parse_wavelengths, parse_white_point,
+    NAMED_METALS, parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_tone_map,
+    parse_view_paths, parse_wavelengths, parse_white_point,
 };
 use super::reader::{LOCAL_FRAME_RADIUS, Reader, Result, Table, join};
 use crate::environment_file;
@@ -370,14 +370,31 @@ impl Reader<'_> {
                 self.check_keys(t, &["kind"])?;
                 MaterialKind::Mirror
             }
+            "metal" => {
+                self.check_keys(t, &["kind", "color", "roughness"])?;
+                MaterialKind::Metal {
+                    color: self.req(t, "color", |p, k, v| p.metal_color(k, v))?,
+                    roughness: self.opt(t, "roughness", Self::float)?.unwrap_or(0.0),
+                }
+            }
             other => {
                 let v = self.required(t, "kind")?;
                 return Err(self.err(
                     &join(&t.key, "kind"),
                     &v.span(),
-                    format!("unknown material kind \"{other}\"; expected diffuse, dielectric or mirror"),
+                    format!("unknown material kind \"{other}\"; expected diffuse, dielectric, mirror or metal"),
                 ));
             }
+        })
+    }
+
+    /// A metal's `color`: its reflectance at normal incidence as `[r, g,
+    /// b]`, or the name of a metal in [`NAMED_METALS`].
+    fn metal_color(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Vec3> {
+        let DeValue::String(name) = v.get_ref() else { return Self::vec3(self, key, v) };
+        NAMED_METALS.iter().find(|(n, _)| n == name).map(|&(_, c)| Vec3::from_array(c)).ok_or_else(|| {
+            let names: Vec<&str> = NAMED_METALS.iter().map(|(n, _)| *n).collect();
+            self.err(key, &v.span(), format!("unknown metal \"{name}\"; named metals are {}", names.join(", ")))
         })
     }
 

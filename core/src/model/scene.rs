@@ -580,6 +580,21 @@ pub enum Light {
 }
 
 impl Light {
+    /// The direction from `p` toward a light that no ray can meet, whose
+    /// light reaches a glossy surface only by a ray sent toward it: a
+    /// spot's, a point's, a beam's and a sun's of its own. `None` for the
+    /// lights that rays see: area lights, and environments with the suns
+    /// they are drawn as.
+    pub fn hidden_direction(&self, p: Vec3) -> Option<Vec3> {
+        match self {
+            Light::Spot { position, .. } | Light::Point { position, .. } => (*position - p).try_normalize(),
+            Light::Beam { direction, .. } | Light::Sun { direction, mean_toward: None, .. } => {
+                Some(-direction.normalize())
+            }
+            _ => None,
+        }
+    }
+
     /// The light's flux in W; a sun's (and an environment's) depends on
     /// how much of the scene it covers and is its beam's
     /// ([`crate::plan::prepared::PreparedScene::emitters`]), so 0 here.
@@ -736,6 +751,19 @@ pub enum MaterialKind {
     },
     /// Perfect mirror.
     Mirror,
+    /// A metal (a conductor, glTF's metallic material): its microfacets
+    /// reflect with Schlick's Fresnel from the reflectance at normal
+    /// incidence `color` (glTF's base colour of a metal), each wavelength
+    /// by that colour's reflectance spectrum, and their normals spread by
+    /// a GGX distribution of width roughness² ([`crate::optics::metal`]).
+    /// Roughness 0 is a polished metal: a coloured mirror. Light goes on
+    /// from a metal as from a mirror; no photon is stored on it.
+    Metal {
+        /// Reflectance at normal incidence per linear RGB channel, each in [0, 1].
+        color: Vec3,
+        /// glTF's perceptual roughness, in [0, 1].
+        roughness: f32,
+    },
 }
 
 impl MaterialKind {
@@ -743,7 +771,7 @@ impl MaterialKind {
     pub fn emission(&self) -> Vec3 {
         match self {
             MaterialKind::Diffuse { emission, .. } => *emission,
-            MaterialKind::Dielectric { .. } | MaterialKind::Mirror => Vec3::ZERO,
+            MaterialKind::Dielectric { .. } | MaterialKind::Mirror | MaterialKind::Metal { .. } => Vec3::ZERO,
         }
     }
 }

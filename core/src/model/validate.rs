@@ -374,6 +374,19 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             }
         }
         MaterialKind::Mirror => Ok(()),
+        MaterialKind::Metal { color, roughness } => {
+            c.colour("color", *color)?;
+            if color.max_element() > 1.0 {
+                let reason = format!("a metal reflects at most all light, got [{}, {}, {}]", color.x, color.y, color.z);
+                return Err(c.err("color", reason));
+            }
+            c.finite("roughness", *roughness)?;
+            if (0.0..=1.0).contains(roughness) {
+                Ok(())
+            } else {
+                Err(c.err("roughness", format!("must be between 0 and 1, got {roughness}")))
+            }
+        }
         MaterialKind::Dielectric { dispersion, outside, attenuation, film, .. } => {
             validate_dispersion(c, "ior", dispersion, bands)?;
             validate_dispersion(c, "outside_ior", outside, bands)?;

@@ -4,6 +4,7 @@
 
 pub mod absorption;
 pub mod fresnel;
+pub mod metal;
 pub mod microfacet;
 pub mod scatter;
 pub mod surface;

@@ -3,16 +3,18 @@
 //! probability, or both branches with their weights; the reflectance is
 //! Fresnel's, or a thin film's at the path's wavelength) or bounces off a
 //! diffuse one (Lambert's law, indirect light's photons), and where a ray
-//! leaving a surface starts. A thin sheet (`thin`, glTF's thin-walled
+//! leaving a surface starts, and a metal's reflection off one facet of
+//! its GGX microsurface. A thin sheet (`thin`, glTF's thin-walled
 //! transmission) reflects with [`sheet_reflectance`] and passes the rest
 //! straight on: its two faces bend a ray back to where it was going, no
 //! distance apart. Photons, the view rays and the sampled view paths all
 //! scatter here; the CPU's packets and the WGSL twin mirror these functions.
 
-use crate::geometry::primitive::cone_direction;
+use crate::geometry::primitive::{basis, cone_direction};
 use crate::geometry::ray::Ray;
 use crate::model::scene::ThinFilm;
 use crate::optics::fresnel::{fresnel, interface, reflect, refract, sheet_reflectance};
+use crate::optics::microfacet::Ggx;
 use crate::util::math::sqrt;
 use crate::util::tolerance;
 use glam::Vec3;
@@ -96,6 +98,56 @@ pub fn scatter_diffuse(direction: Vec3, point: Vec3, normal: Vec3, u1: f32, u2: 
     let n = if direction.dot(normal) < 0.0 { normal } else { -normal };
     let d = cone_direction(n, sqrt(1.0 - u1), u2);
     Ray { origin: offset_origin(point, n, d), direction: d }
+}
+
+/// A ray reflected off a metal ([`scatter_metal`]): where it goes, the
+/// cosine at the facet it reflected off (Fresnel's there), and the share
+/// G2/G1 of such reflections the microsurface does not shadow (1 when
+/// polished). A path's weight is that share times the facet's Fresnel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct MetalBounce {
+    /// The reflected ray.
+    pub ray: Ray,
+    /// The cosine between the incoming ray and the facet's normal.
+    pub cos_facet: f32,
+    /// G2/G1: the reflection's share that leaves unshadowed.
+    pub unshadowed: f32,
+}
+
+/// The ray arriving along `direction` reflects off a metal at `point`
+/// (normal `normal`, either side; the ray comes from the side it faces):
+/// about the normal when polished (`ggx` `None`), else about a facet
+/// normal drawn from the GGX normals that `direction` sees (Heitz 2018,
+/// [`Ggx::sample_visible_normal`], from `u1`, `u2`). `None` where the
+/// reflection would leave below the surface: the path ends there.
+pub fn scatter_metal(
+    direction: Vec3,
+    point: Vec3,
+    normal: Vec3,
+    ggx: Option<Ggx>,
+    u1: f32,
+    u2: f32,
+) -> Option<MetalBounce> {
+    let n = if direction.dot(normal) < 0.0 { normal } else { -normal };
+    let Some(ggx) = ggx else {
+        let d = reflect(direction, n);
+        let cos_facet = -direction.dot(n);
+        return Some(MetalBounce {
+            ray: Ray { origin: offset_origin(point, n, d), direction: d },
+            cos_facet,
+            unshadowed: 1.0,
+        });
+    };
+    let (t, b) = basis(n);
+    let wo = -direction;
+    let local = Vec3::new(wo.dot(t), wo.dot(b), wo.dot(n));
+    if local.z <= 0.0 {
+        return None;
+    }
+    let (wi, unshadowed) = ggx.sample_reflection(local, u1, u2)?;
+    let cos_facet = local.dot((local + wi).normalize());
+    let d = (t * wi.x + b * wi.y + n * wi.z).normalize();
+    Some(MetalBounce { ray: Ray { origin: offset_origin(point, n, d), direction: d }, cos_facet, unshadowed })
 }
 
 /// Both branches at a dielectric surface, for a path that follows both:

@@ -1,5 +1,5 @@
 //! How each object's surface scatters light, ready for tracing: diffuse
-//! albedo (with its checker), mirror, or a dielectric's relative indices of
+//! albedo (with its checker), mirror, metal, or a dielectric's relative indices of
 //! refraction per band and as a function of wavelength, its absorption and
 //! the film on its surface.
 
@@ -8,6 +8,7 @@ use crate::model::dispersion::Dispersion;
 use crate::model::photon::WHITE_BAND;
 use crate::model::scene::{Attenuation, Checker, MaterialKind, Texture, ThinFilm};
 use crate::optics::absorption::Absorption;
+use crate::optics::metal::MetalOptics;
 use crate::optics::scatter::Face;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
@@ -29,6 +30,8 @@ pub enum Surface {
     },
     /// Perfect mirror.
     Mirror,
+    /// Metal: coloured Fresnel, polished or rough.
+    Metal(MetalOptics),
     /// Dielectric with its indices per band.
     Dielectric(DielectricOptics),
 }
@@ -198,6 +201,7 @@ impl Surface {
                 emission: *emission,
             },
             MaterialKind::Mirror => Surface::Mirror,
+            MaterialKind::Metal { color, roughness } => Surface::Metal(MetalOptics::new(*color, *roughness)),
             MaterialKind::Dielectric { dispersion, outside, attenuation, thin, film } => {
                 // Snell's law and Fresnel depend only on the ratio of the
                 // indices, so the optics carry the relative index n/n_outside.

@@ -9,8 +9,9 @@
 //! wavelengths with their fractions of its flux ([`IndirectWavelengths`]:
 //! a diffuse bounce sends them all one way, and a hit stores a photon for
 //! each, so bounced light is not speckled with colour). Through mirrors and
-//! clear glass they go together; at glass that disperses or tints light the
-//! path goes on as one of them, as a band photon does. At a diffuse surface
+//! clear glass they go together; at glass that disperses or tints light,
+//! and at a coloured metal, the path goes on as one of them, as a band
+//! photon does. At a diffuse surface
 //! it is stored if it has bounced off a diffuse surface before, then
 //! survives with the probability Σ fⱼ ρ(λⱼ) that the surface reflects
 //! ([`crate::model::bands::BandTable::bounce_reflectance`]; Russian
@@ -102,7 +103,12 @@ pub fn trace_indirect(scene: &PreparedScene, index: u32, out: &mut Vec<Photon>, 
             p.ray = scatter_diffuse(p.ray.direction, hit.point, hit.normal, u1, u2);
             bounced_diffusely = true;
         } else {
-            if lanes.several() && matches!(surface, Surface::Dielectric(glass) if glass.splits_photons) {
+            let colours = match surface {
+                Surface::Dielectric(glass) => glass.splits_photons,
+                Surface::Metal(metal) => metal.is_chromatic(),
+                _ => false,
+            };
+            if lanes.several() && colours {
                 lanes = lanes.choose(random_f32(seed, index, dim::choose(p.bounces)));
                 (p.band, p.lambda_nm) = (lanes.path_band(), lanes.path_lambda());
             }

@@ -1,6 +1,7 @@
 //! One photon path in flight and what every photon does on its way: the
-//! steps at mirrors and glass (depth limit, absorption in coloured glass,
-//! reflection or Fresnel's choice), shared by caustic and indirect light's
+//! steps at mirrors, metals and glass (depth limit, absorption in coloured
+//! glass, reflection, a metal's facet and Fresnel, or a dielectric's
+//! Fresnel choice), shared by caustic and indirect light's
 //! photons, and what a path stores.
 
 use crate::geometry::primitive::Ray;
@@ -8,7 +9,7 @@ use crate::model::bands::BandTable;
 use crate::model::light_range::range_window;
 use crate::model::photon::{Photon, TraceStats, oct_pack};
 use crate::optics::fresnel::reflect;
-use crate::optics::scatter::{offset_origin, scatter_dielectric};
+use crate::optics::scatter::{offset_origin, scatter_dielectric, scatter_metal};
 use crate::optics::surface::{DielectricOptics, Surface};
 use crate::plan::prepared::{Hit, PreparedScene};
 use crate::util::rng::{dim, random_f32};
@@ -80,11 +81,17 @@ pub(crate) fn arrives_at_specular(
     true
 }
 
-/// Takes path `p` (one that does not split here) across the mirror or
-/// glass at `hit`: reflected, or Fresnel's choice between reflection and
-/// refraction at the path's own index; false when a tinted sheet absorbed
-/// it on the way ([`absorbed_crossing`], its flux tallied). The bounce is
-/// the caller's to count.
+/// Takes path `p` (one that does not split here) across the mirror, metal
+/// or glass at `hit`: reflected; off a metal's facet ([`scatter_metal`],
+/// its two numbers [`dim::bounce`]'s) with the facet's Fresnel at the
+/// path's wavelength times the unshadowed share as its survival
+/// probability ([`dim::scatter`]; Russian roulette, so survivors keep their
+/// flux); or Fresnel's choice between reflection and refraction at the
+/// path's own index. False when the path ended here: absorbed by a metal
+/// or a tinted sheet ([`absorbed_crossing`]), its flux tallied. A white
+/// path meets only grey metals: at a coloured one a white photon splits
+/// or takes one band first, and indirect light's goes on as one of its
+/// wavelengths. The bounce is the caller's to count.
 pub(crate) fn cross_specular(
     scene: &PreparedScene,
     index: u32,
@@ -98,6 +105,25 @@ pub(crate) fn cross_specular(
             let d = reflect(p.ray.direction, hit.normal);
             p.ray = Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d };
             true
+        }
+        Surface::Metal(metal) => {
+            let (u1, u2) = match metal.ggx {
+                Some(_) => {
+                    let [d1, d2] = dim::bounce(p.band, p.bounces);
+                    (random_f32(seed, index, d1), random_f32(seed, index, d2))
+                }
+                None => (0.0, 0.0),
+            };
+            let lambda_nm = stored_wavelength(&scene.bands, p.band, p.lambda_nm);
+            let reflected = scatter_metal(p.ray.direction, hit.point, hit.normal, metal.ggx, u1, u2).filter(|b| {
+                let share = b.unshadowed * metal.reflectance(b.cos_facet, p.band, lambda_nm, &scene.bands);
+                random_f32(seed, index, dim::scatter(p.band, p.bounces)) < share
+            });
+            match reflected {
+                Some(b) => p.ray = b.ray,
+                None => stats.flux_absorbed += f64::from(p.flux),
+            }
+            reflected.is_some()
         }
         Surface::Dielectric(glass) => {
             let u = random_f32(seed, index, dim::scatter(p.band, p.bounces));

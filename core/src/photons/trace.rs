@@ -142,6 +142,24 @@ fn trace_path(
         if p.bounces == 0 {
             stats.specular_paths += 1;
         }
+        if p.band == WHITE_BAND && matches!(surface, Surface::Metal(m) if m.is_chromatic()) {
+            // A coloured metal reflects each wavelength its own share: the
+            // white photon splits as at glass, or goes on as one band.
+            let paths = settings.wavelengths.paths(scene.bands.len());
+            if paths == 1 {
+                (p.band, p.lambda_nm) = sample_band(scene, index);
+            } else {
+                stats.paths += u64::from(paths) - 1;
+                for (band, lambda_nm) in split_bands(scene, index) {
+                    let mut child = Path { band, lambda_nm, flux: p.flux / paths as f32, ..p };
+                    if cross_specular(scene, index, &mut child, &hit, stats) {
+                        child.bounces += 1;
+                        trace_path(scene, index, child, None, out, stats);
+                    }
+                }
+                return;
+            }
+        }
         match surface {
             Surface::Dielectric(glass) if p.band == WHITE_BAND && glass.splits_photons => {
                 let paths = settings.wavelengths.paths(scene.bands.len());

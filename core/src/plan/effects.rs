@@ -64,7 +64,11 @@ impl EffectPlan {
         let specular: Vec<usize> =
             (0..surfaces.len()).filter(|&k| !matches!(surfaces[k], Surface::Diffuse { .. })).collect();
         let dispersive = |k: usize| matches!(&surfaces[k], Surface::Dielectric(g) if g.is_dispersive());
-        let chromatic = |k: usize| matches!(&surfaces[k], Surface::Dielectric(g) if g.is_chromatic());
+        let chromatic = |k: usize| match &surfaces[k] {
+            Surface::Dielectric(g) => g.is_chromatic(),
+            Surface::Metal(m) => m.is_chromatic(),
+            _ => false,
+        };
         let coated = |k: usize| matches!(&surfaces[k], Surface::Dielectric(g) if g.film.is_some());
         let lit: Vec<usize> = specular
             .iter()
@@ -101,19 +105,21 @@ impl EffectPlan {
             Effect::off("no photon pass")
         } else if specular.iter().any(|&k| chromatic(k)) {
             let glass = if specular.iter().any(|&k| dispersive(k)) {
-                "dispersive"
+                "dispersive glass"
             } else if specular.iter().any(|&k| coated(k)) {
-                "coated"
+                "coated glass"
+            } else if specular.iter().any(|&k| matches!(&surfaces[k], Surface::Dielectric(g) if g.is_chromatic())) {
+                "coloured glass"
             } else {
-                "coloured"
+                "coloured metal"
             };
             match scene.render.wavelengths {
-                WavelengthSampling::Split => Effect::on(format!("{n_bands} bands at {glass} glass")),
+                WavelengthSampling::Split => Effect::on(format!("{n_bands} bands at {glass}")),
                 WavelengthSampling::Hero => Effect::on(format!(
-                    "{} hero wavelengths of {n_bands} bands per photon at {glass} glass",
+                    "{} hero wavelengths of {n_bands} bands per photon at {glass}",
                     WavelengthSampling::Hero.paths(n_bands)
                 )),
-                w => Effect::on(format!("one of {n_bands} bands per photon at {glass} glass ({})", w.name())),
+                w => Effect::on(format!("one of {n_bands} bands per photon at {glass} ({})", w.name())),
             }
         } else {
             Effect::off("no glass disperses or absorbs (constant index, clear): photons stay white")

@@ -68,7 +68,9 @@ fn first_diffuse(scene: &PreparedScene, ray: &Ray, weight: f32, depth: u32) -> (
         Surface::Diffuse { .. } => {
             (scene.albedo_at(hit.object, hit.triangle, hit.point, facing) * weight, facing * weight)
         }
-        Surface::Mirror => {
+        // A rough metal is a surface of its own to a denoiser: its colour is F0.
+        Surface::Metal(metal) if metal.ggx.is_some() => (metal.f0 * weight, facing * weight),
+        Surface::Mirror | Surface::Metal(_) => {
             let d = reflect(ray.direction, hit.normal);
             first_diffuse(
                 scene,

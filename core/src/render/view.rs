@@ -15,8 +15,13 @@
 //! the pixel, and every photon pass gathers there (with light tracing,
 //! only the hits behind a mirror or glass: see [`gathers_at`]).
 //!
-//! Mirrors reflect; dielectrics trace both the Fresnel-weighted reflection
-//! and the refraction, to `max_depth`, dropping branches whose share of the
+//! Mirrors reflect. Metals reflect off one facet of their GGX
+//! microsurface ([`scatter_metal`]; the mirror direction when polished),
+//! the path weighted by the facet's Fresnel at its wavelength times the
+//! unshadowed share G2/G1, its numbers [`PixelSampler::facet`]'s, and a
+//! rough metal adds the highlights of the lights no ray meets
+//! ([`ViewContext::metal_highlights`]). Dielectrics trace both the
+//! Fresnel-weighted reflection and the refraction, to `max_depth`, dropping branches whose share of the
 //! pixel (Fresnel factors times, after a split, the band's largest RGB
 //! weight) falls below [`MIN_VIEW_WEIGHT`]. At the first dispersive glass a
 //! view ray splits into one ray per band, each weighted by the band's RGB
@@ -46,8 +51,10 @@ use crate::model::light_range::range_window;
 use crate::model::photon::WHITE_BAND;
 use crate::model::scene::{Light, WavelengthSampling};
 use crate::optics::fresnel::reflect;
-use crate::optics::scatter::{Face, offset_origin, scatter_dielectric, split_dielectric};
+use crate::optics::metal::MetalOptics;
+use crate::optics::scatter::{Face, offset_origin, scatter_dielectric, scatter_metal, split_dielectric};
 use crate::optics::surface::{DielectricOptics, Surface};
+use crate::photons::path::stored_wavelength;
 use crate::photons::wavelengths::spectrum_share;
 use crate::plan::area::area;
 use crate::plan::area_aims::shadow_sample;
@@ -64,7 +71,8 @@ use glam::Vec3;
 /// Where a view ray is on its way from the camera: its band (or white) and
 /// wavelength (`None`: the band's own index), specular depth, share of the
 /// pixel (for pruning), RGB factor, and a sampled path's numbers and hero
-/// path (0 before the split).
+/// path (0 before the split), and the numbers its rough metals' facets
+/// take: the pass's own, or pass 0's for centre rays, which are traced once.
 #[derive(Clone, Copy, Debug)]
 struct ViewPath {
     band: u16,
@@ -74,6 +82,7 @@ struct ViewPath {
     weight: f32,
     tint: Vec3,
     sampler: Option<PixelSampler>,
+    facets: PixelSampler,
 }
 
 /// Everything a pixel's view rays need: the scene and the camera.
@@ -106,8 +115,18 @@ impl<'a> ViewContext<'a> {
 
     fn trace_pixel(&self, x: u32, y: u32, sampler: Option<PixelSampler>, points: &mut Vec<VisiblePoint>) -> Vec3 {
         let response = self.scene.camera_response();
-        let path =
-            ViewPath { band: WHITE_BAND, hero: 0, lambda_nm: None, depth: 0, weight: 1.0, tint: response, sampler };
+        let r = &self.scene.scene.render;
+        let facets = sampler.unwrap_or_else(|| PixelSampler::new(r.seed, y * r.width + x, 0));
+        let path = ViewPath {
+            band: WHITE_BAND,
+            hero: 0,
+            lambda_nm: None,
+            depth: 0,
+            weight: 1.0,
+            tint: response,
+            sampler,
+            facets,
+        };
         let first = points.len();
         let ray = match sampler {
             Some(s) if self.scene.scene.render.view_paths.jittered() => self.camera.ray_through(x, y, s.jitter()),
@@ -143,6 +162,17 @@ impl<'a> ViewContext<'a> {
                 let d = reflect(ray.direction, hit.normal);
                 let next = ViewPath { depth: depth + 1, ..path };
                 self.radiance(&Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d }, next, points)
+            }
+            Surface::Metal(metal) => {
+                let lambda_nm = stored_wavelength(&self.scene.bands, band, path.lambda_nm);
+                let lit = self.metal_highlights(ray.direction, (hit.point, hit.normal), metal, band, lambda_nm);
+                let (u1, u2) = if metal.ggx.is_some() { path.facets.facet(path.hero, depth) } else { (0.0, 0.0) };
+                let Some(b) = scatter_metal(ray.direction, hit.point, hit.normal, metal.ggx, u1, u2) else {
+                    return lit;
+                };
+                let f = metal.tint(b.cos_facet, band, lambda_nm, &self.scene.bands) * b.unshadowed;
+                let next = ViewPath { depth: depth + 1, weight: weight * f.max_element(), tint: tint * f, ..path };
+                lit + if next.weight > MIN_VIEW_WEIGHT { f * self.radiance(&b.ray, next, points) } else { Vec3::ZERO }
             }
             Surface::Dielectric(glass) if band == WHITE_BAND && glass.splits_view_rays => match path.sampler {
                 Some(sampler) => hero_view_paths(self.scene, sampler.spectrum())
@@ -237,6 +267,35 @@ impl<'a> ViewContext<'a> {
         }
         let emitted = self.scene.surfaces[hit.object].emitted(ray.direction, hit.normal);
         reflected * (1.0 / PI) + albedo * settings.ambient + emitted
+    }
+
+    /// What a rough metal at `point` (normal `normal`, either side)
+    /// reflects back along `direction` of the lights no ray can meet
+    /// ([`Light::hidden_direction`]: spot, point and beam lights, suns of
+    /// their own): its BRDF toward each, in the colour of the light's
+    /// spectrum, times the light's irradiance there (with its shadow). The light of what rays can meet (environments, area
+    /// lights, everything lit) comes by the reflected path, so nothing is
+    /// counted twice. Zero on a polished metal, whose highlights are points.
+    pub fn metal_highlights(
+        &self,
+        direction: Vec3,
+        (point, normal): (Vec3, Vec3),
+        metal: &MetalOptics,
+        band: u16,
+        lambda_nm: f32,
+    ) -> Vec3 {
+        if metal.ggx.is_none() {
+            return Vec3::ZERO;
+        }
+        let n = if direction.dot(normal) < 0.0 { normal } else { -normal };
+        (0..self.scene.lights.len())
+            .filter_map(|i| {
+                let wi = self.scene.lights[i].hidden_direction(point)?;
+                let brdf = metal.reflection(-direction, wi, n, band, lambda_nm, &self.scene.bands);
+                (brdf != Vec3::ZERO)
+                    .then(|| self.scene.light_spectra[i].reflected * brdf * self.direct_irradiance(i, point, n))
+            })
+            .sum()
     }
 
     /// Irradiance from light `index` at `p` (unit normal `n`), zero when in

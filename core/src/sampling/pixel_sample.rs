@@ -23,6 +23,10 @@ pub const BRANCH: u32 = 3;
 /// Fresnel choices reserved per hero path (one per bounce).
 pub const PER_PATH: u32 = 64;
 
+/// The first dimension of a path's metal facets (two per bounce, per hero
+/// path), above every Fresnel choice.
+pub const FACET: u32 = 0x1000;
+
 /// Pass `pass`'s numbers for one pixel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PixelSampler {
@@ -61,6 +65,14 @@ impl PixelSampler {
     #[inline]
     pub fn branch(&self, path: u32, depth: u32) -> f32 {
         random_f32(self.scramble, self.pass, BRANCH + path * PER_PATH + depth)
+    }
+
+    /// The two numbers that draw the facet of a rough metal that hero path
+    /// `path` (0 before the split) reflects off at specular bounce `depth`.
+    #[inline]
+    pub fn facet(&self, path: u32, depth: u32) -> (f32, f32) {
+        let d = FACET + 2 * (path * PER_PATH + depth);
+        (random_f32(self.scramble, self.pass, d), random_f32(self.scramble, self.pass, d + 1))
     }
 }
 

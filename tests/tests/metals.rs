@@ -1,0 +1,221 @@
+//! Metals (glTF's metallic materials) against closed forms on every
+//! backend: Schlick's Fresnel of the base colour, per wavelength by its
+//! reflectance spectrum, and the spread of a rough metal's GGX facets.
+//!
+//! At normal incidence the visible facet normals are distributed as
+//! D(m) cos θm, under which tan²θm has the distribution x/(α² + x): half of
+//! the facets lie within tan θm < α, and their reflections within 2·atan α
+//! of the normal. Near the normal the masking a reflection survives
+//! (G2/G1 = 1/(1 + Λ(ωi))) differs from 1 by at most α⁴, so half the light
+//! lands within that cone.
+
+use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::scene::{Camera, Light, Material, MaterialKind, Object, Shape, WavelengthSampling};
+use prismatic_core::{PreparedScene, Scene, Vec3};
+use prismatic_tests::backends::{every_backend, frame, trace};
+use prismatic_tests::{beam_onto_a_wall, prepare, settings, white};
+
+/// glTF's usual gold, in linear RGB.
+const GOLD: Vec3 = Vec3::new(1.0, 0.766, 0.336);
+
+fn metal(color: Vec3, roughness: f32) -> Material {
+    Material { name: "metal".into(), kind: MaterialKind::Metal { color, roughness } }
+}
+
+/// Schlick's Fresnel of `f0` at incidence cosine `cos`, in f64.
+fn schlick(f0: f64, cos: f64) -> f64 {
+    f0 + (1.0 - f0) * (1.0 - cos).powi(5)
+}
+
+/// A beam of radius 0.2 along +x folded by `metal` (a disc at the origin
+/// tilted 45°) onto a white wall at y = 3.
+fn folded_beam(metal: Material, photons: u32, bands: BandSpec) -> Scene {
+    let normal = Vec3::new(-1.0, 1.0, 0.0).normalize();
+    let disc = Shape::Disk { center: Vec3::ZERO, normal, radius: 1.0, inner_radius: 0.0 };
+    let mut scene = beam_onto_a_wall(photons, metal, disc).scene;
+    scene.render.bands = bands;
+    scene.objects[1].shape = Shape::Plane { point: Vec3::new(0.0, 3.0, 0.0), normal: Vec3::NEG_Y };
+    scene
+}
+
+#[test]
+fn a_grey_metal_reflects_schlicks_share_of_the_light() {
+    const PHOTONS: u32 = 20_000;
+    let scene = prepare(folded_beam(metal(Vec3::splat(0.6), 0.0), PHOTONS, BandSpec::Paper7));
+    let want = schlick(0.6, std::f64::consts::FRAC_1_SQRT_2);
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let map = trace(backend.as_mut(), &scene);
+        let got = map.photons.len() as f64 / f64::from(PHOTONS);
+        let sd = (want * (1.0 - want) / f64::from(PHOTONS)).sqrt();
+        assert!((got - want).abs() < 5.0 * sd, "{name}: {got:.4} reflected, Schlick's {want:.4}");
+        // A grey metal keeps white light white.
+        assert!(map.photons.iter().all(|p| p.band == prismatic_core::model::photon::WHITE_BAND), "{name}");
+        let s = &map.stats;
+        let balance = s.flux_stored + s.flux_absorbed + s.flux_escaped - s.flux_emitted;
+        assert!(balance.abs() < 1e-4 * s.flux_emitted, "{name}: {s:?}");
+    }
+}
+
+#[test]
+fn gold_reflects_the_colour_of_its_fresnel_wavelength_by_wavelength() {
+    const PHOTONS: u32 = 40_000;
+    let mut scene = folded_beam(metal(GOLD, 0.0), PHOTONS, BandSpec::Physical(16));
+    scene.render.wavelengths = WavelengthSampling::Continuous;
+    let scene = prepare(scene);
+    let cos = std::f64::consts::FRAC_1_SQRT_2;
+    let want = [GOLD.x, GOLD.y, GOLD.z].map(|f0| schlick(f64::from(f0), cos));
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let map = trace(backend.as_mut(), &scene);
+        assert!(map.photons.iter().all(|p| p.band != prismatic_core::model::photon::WHITE_BAND), "{name}");
+        // Each photon's colour by its own wavelength: their mean is the
+        // light's colour after the metal, white light's being (1, 1, 1).
+        let n = f64::from(PHOTONS);
+        let per_photon = map.stats.flux_emitted / n;
+        let (mut sum, mut sum2) = ([0.0f64; 3], [0.0f64; 3]);
+        for p in &map.photons {
+            let rgb = scene.bands.rgb_of_flux(p.band, p.lambda_nm, p.flux).to_array();
+            for c in 0..3 {
+                let x = f64::from(rgb[c]) / per_photon;
+                (sum[c], sum2[c]) = (sum[c] + x, sum2[c] + x * x);
+            }
+        }
+        for c in 0..3 {
+            let mean = sum[c] / n;
+            let sd = ((sum2[c] / n - mean * mean) / n).sqrt();
+            assert!((mean - want[c]).abs() < 5.0 * sd + 1e-3, "{name}, channel {c}: {mean:.4} ± {sd:.4}, {want:?}");
+        }
+        // Gold's blue is its weakest: far below its red.
+        assert!(sum[2] < 0.5 * sum[0], "{name}: {sum:?}");
+    }
+}
+
+/// A thin beam along +x from x = −1 meets a metal head on at x = 0 that
+/// reflects every facet's light (F0 = 1); what it reflects lands on a
+/// white wall at x = −3.
+fn beam_at_a_rough_metal(roughness: f32, photons: u32) -> PreparedScene {
+    let mut scene = folded_beam(metal(Vec3::ONE, roughness), photons, BandSpec::Paper7);
+    scene.lights = vec![Light::Beam {
+        position: Vec3::new(-1.0, 0.0, 0.0),
+        direction: Vec3::X,
+        radius: 1e-3,
+        power: 1.0,
+        spectrum: Default::default(),
+    }];
+    scene.objects = vec![
+        Object {
+            shape: Shape::Disk { center: Vec3::ZERO, normal: Vec3::NEG_X, radius: 1.0, inner_radius: 0.0 },
+            material: 0,
+        },
+        Object { shape: Shape::Plane { point: Vec3::new(-3.0, 0.0, 0.0), normal: Vec3::X }, material: 1 },
+    ];
+    prepare(scene)
+}
+
+#[test]
+fn half_of_a_rough_metals_light_lands_within_twice_the_arctangent_of_alpha() {
+    const PHOTONS: u32 = 20_000;
+    for roughness in [0.2f32, 0.4] {
+        let alpha = f64::from(roughness * roughness);
+        let radius = 3.0 * (2.0 * alpha.atan()).tan();
+        let scene = beam_at_a_rough_metal(roughness, PHOTONS);
+        for mut backend in every_backend() {
+            let name = backend.name();
+            let map = trace(backend.as_mut(), &scene);
+            let inside = map
+                .photons
+                .iter()
+                .filter(|p| f64::from(p.position[1]).hypot(f64::from(p.position[2])) < radius)
+                .count() as f64
+                / f64::from(PHOTONS);
+            let sd = (0.25 / f64::from(PHOTONS)).sqrt();
+            assert!((inside - 0.5).abs() < 5.0 * sd, "{name}, roughness {roughness}: {inside:.4} within {radius:.4}");
+        }
+    }
+}
+
+/// A camera on the x axis looking head on at `metal` (a disc at the origin
+/// tilted 45°, normal (−1, 0, 1)/√2), which shows the background of
+/// radiance 1 above it (3×3 pixels: the middle one sees the disc's centre).
+fn metal_in_view(metal: Material) -> Scene {
+    let mut render = settings(1000, BandSpec::Paper7);
+    (render.width, render.height, render.background, render.ambient) = (3, 3, Vec3::ONE, 0.0);
+    Scene {
+        render,
+        camera: Camera { position: Vec3::new(-5.0, 0.0, 0.0), look_at: Vec3::ZERO, up: Vec3::Z, fov_deg: 10.0 },
+        lights: vec![Light::Point {
+            position: Vec3::new(-5.0, 0.0, 5.0),
+            power: 1.0,
+            spectrum: Default::default(),
+            range: None,
+        }],
+        materials: vec![metal, white("floor")],
+        objects: vec![
+            Object {
+                shape: Shape::Disk {
+                    center: Vec3::ZERO,
+                    normal: Vec3::new(-1.0, 0.0, 1.0).normalize(),
+                    radius: 2.0,
+                    inner_radius: 0.0,
+                },
+                material: 0,
+            },
+            Object { shape: Shape::Plane { point: Vec3::new(0.0, 0.0, -3.0), normal: Vec3::Z }, material: 1 },
+        ],
+    }
+}
+
+#[test]
+fn a_metal_in_view_shows_its_fresnel_colour_and_a_slightly_rough_one_nearly_so() {
+    let cos = std::f64::consts::FRAC_1_SQRT_2;
+    let want = Vec3::from_array([GOLD.x, GOLD.y, GOLD.z].map(|f0| schlick(f64::from(f0), cos) as f32));
+    for (roughness, tolerance) in [(0.0f32, 1e-4f32), (0.05, 1e-2)] {
+        let scene = prepare(metal_in_view(metal(GOLD, roughness)));
+        for mut backend in every_backend() {
+            let name = backend.name();
+            let (_, image) = frame(backend.as_mut(), &scene);
+            let got = image.pixels[4];
+            assert!((got - want).abs().max_element() < tolerance, "{name}, roughness {roughness}: {got}, {want}");
+        }
+    }
+}
+
+/// GGX's D and Smith's height-correlated G2 for width `alpha`, in f64 from
+/// their textbook forms (Walter et al. 2007; Heitz 2014), at the cosines
+/// of the half vector, the view and the light to the normal.
+fn ggx_d_g2(alpha: f64, cos_h: f64, cos_o: f64, cos_i: f64) -> (f64, f64) {
+    let a2 = alpha * alpha;
+    let d = a2 / (std::f64::consts::PI * (cos_h * cos_h * (a2 - 1.0) + 1.0).powi(2));
+    let lambda = |c: f64| (-1.0 + (1.0 + a2 * (1.0 - c * c) / (c * c)).sqrt()) / 2.0;
+    (d, 1.0 / (1.0 + lambda(cos_o) + lambda(cos_i)))
+}
+
+/// The disc of [`metal_in_view`] alone under a black sky, its normal
+/// pointing at the point light: the pixel is the light's highlight, the
+/// BRDF D G2 F / (4 cos θo cos θi) times the irradiance P/(4π d²).
+#[test]
+fn a_rough_metal_shows_a_point_lights_highlight_by_the_ggx_closed_form() {
+    let roughness = 0.5f64;
+    let mut scene = metal_in_view(metal(GOLD, roughness as f32));
+    scene.render.background = Vec3::ZERO;
+    scene.objects.truncate(1);
+    let Light::Point { power, .. } = &mut scene.lights[0] else { unreachable!() };
+    *power = 1000.0;
+    let scene = prepare(scene);
+    let (n, wo) = (glam::DVec3::new(-1.0, 0.0, 1.0).normalize(), glam::DVec3::NEG_X);
+    let h = (wo + n).normalize();
+    let (d, g2) = ggx_d_g2(roughness * roughness, h.dot(n), wo.dot(n), 1.0);
+    let irradiance = 1000.0 / (4.0 * std::f64::consts::PI * 50.0);
+    let brdf = d * g2 / (4.0 * wo.dot(n));
+    let want = Vec3::from_array(
+        [GOLD.x, GOLD.y, GOLD.z].map(|f0| (schlick(f64::from(f0), wo.dot(h)) * brdf * irradiance) as f32),
+    );
+    assert!(want.x > 0.1, "a visible highlight: {want}");
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let (_, image) = frame(backend.as_mut(), &scene);
+        let got = image.pixels[4];
+        assert!(((got - want) / want).abs().max_element() < 1e-3, "{name}: {got}, the closed form {want}");
+    }
+}

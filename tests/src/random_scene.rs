@@ -1,5 +1,6 @@
 //! Random but valid scenes for parity tests: glass spheres and prisms,
-//! mirror spheres, random glasses and band tables, a spot, point or beam
+//! mirror and metal spheres and prisms (metals of random colour,
+//! polished or rough), random glasses and band tables, a spot, point or beam
 //! light aimed at the first object, over a floor and in front of a wall.
 //! A pure function of the seed.
 
@@ -66,11 +67,19 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
             emission: Vec3::ZERO,
         },
     };
+    // The metal's own dice, so that the draws above and below are those
+    // the scenes had before metals came.
+    let mut m = Dice { seed, n: 1 << 20 };
+    let metal = MaterialKind::Metal {
+        color: m.v(Vec3::splat(0.3), Vec3::ONE),
+        roughness: if m.pick(3) == 0 { 0.0 } else { m.f(0.02, 0.6) },
+    };
     let materials = vec![
         glass("glass", dispersion),
         white("wall"),
         floor,
         Material { name: "mirror".into(), kind: MaterialKind::Mirror },
+        Material { name: "metal".into(), kind: metal },
     ];
     let mut objects = vec![
         Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 2 },
@@ -93,7 +102,14 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
                 extrude: Vec3::new(d.f(-0.3, 0.3), 0.0, 1.2),
             }
         };
-        let material = if k > 0 && d.pick(3) == 0 { 3 } else { 0 };
+        // Objects after the first: a third mirrors or metals, and a third
+        // of the rest metals.
+        let material = match k {
+            0 => 0,
+            _ if d.pick(3) == 0 => 3 + m.pick(2),
+            _ if m.pick(3) == 0 => 4,
+            _ => 0,
+        };
         objects.push(Object { shape, material });
     }
     let from = d.v(Vec3::new(-4.0, 3.0, -1.0), Vec3::new(4.0, 6.0, 3.0));
@@ -130,4 +146,28 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
         *range = Some((first_center - from).length() * d.f(0.8, 2.0));
     }
     Scene { render, camera: cam, lights: vec![light], materials, objects }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The seeds the parity tests take (1 to 16) place mirrors, polished
+    /// metals and rough metals, so those tests hold every backend to them.
+    #[test]
+    fn the_parity_seeds_place_mirrors_and_polished_and_rough_metals() {
+        let (mut mirrors, mut roughness) = (0, Vec::new());
+        for seed in 1..=16 {
+            let scene = random_scene(seed, 1, 8);
+            for o in &scene.objects {
+                match &scene.materials[o.material].kind {
+                    MaterialKind::Mirror => mirrors += 1,
+                    MaterialKind::Metal { roughness: r, .. } => roughness.push(*r),
+                    _ => {}
+                }
+            }
+        }
+        assert!(mirrors > 0, "no mirror");
+        assert!(roughness.contains(&0.0) && roughness.iter().any(|&r| r > 0.0), "metals' roughness: {roughness:?}");
+    }
 }

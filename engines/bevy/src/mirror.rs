@@ -3,7 +3,8 @@
 //! their global transforms) into a validated `PreparedScene` when they
 //! change. Objects are prismatic shapes ([`CausticShape`]) or Bevy's own
 //! meshes (`Mesh3d`): a [`Glass`] mesh, or a mesh drawn with a
-//! [`CausticMaterial`] (a diffuse receiver of its base colour).
+//! [`CausticMaterial`] (a diffuse receiver of its base colour, or a metal
+//! of that colour and its roughness where its `metallic` is 0.5 or more).
 
 use crate::layer::{CausticLayer, CausticLayerView, CausticMaterial};
 use crate::{CausticScene, CausticSettings, CausticStats};
@@ -252,8 +253,18 @@ fn build_scene(
     for (i, (material, handle, at)) in receiver_meshes.iter().enumerate() {
         let Some(m) = materials.get(&material.0) else { continue };
         let c = m.base.base_color.to_linear();
-        let albedo = CoreVec3::new(c.red, c.green, c.blue) * (1.0 - m.base.metallic);
-        let kind = MaterialKind::Diffuse { albedo, checker: None, texture: None, emission: CoreVec3::ZERO };
+        let color = CoreVec3::new(c.red, c.green, c.blue);
+        // A metallic surface reflects the photons on, as glTF's metals do
+        // (`gltf_scene`'s rule); any other is a receiver of its diffuse share.
+        let kind = if m.base.metallic >= 0.5 {
+            MaterialKind::Metal {
+                color: color.clamp(CoreVec3::ZERO, CoreVec3::ONE),
+                roughness: m.base.perceptual_roughness.clamp(0.0, 1.0),
+            }
+        } else {
+            let albedo = color * (1.0 - m.base.metallic);
+            MaterialKind::Diffuse { albedo, checker: None, texture: None, emission: CoreVec3::ZERO }
+        };
         scene_objects
             .push(Object { shape: mesh(handle, at, "a CausticMaterial mesh")?, material: scene_materials.len() });
         scene_materials.push(Material { name: format!("receiver mesh {i}"), kind });

@@ -217,6 +217,22 @@ fn spawn_layer_scene(
         Visibility::Hidden,
         Transform::from_xyz(0.0, 1.0, 0.0),
     ));
+    // A metallic `CausticMaterial` (behind the camera, outside the spot):
+    // mirrored as a metal of its colour and roughness.
+    let brass = CausticMaterial {
+        base: StandardMaterial {
+            base_color: Color::linear_rgb(0.9, 0.7, 0.3),
+            metallic: 1.0,
+            perceptual_roughness: 0.3,
+            ..default()
+        },
+        extension: CausticReceiver::default(),
+    };
+    commands.spawn((
+        Mesh3d(meshes.add(Cuboid::new(0.5, 0.5, 0.5).mesh())),
+        MeshMaterial3d(materials.add(brass)),
+        Transform::from_xyz(8.0, 0.5, 8.0),
+    ));
 }
 
 /// The layer camera's target: Bevy's final frame.
@@ -241,6 +257,8 @@ fn the_layer_in_bevys_frame_is_the_references_and_lights_the_floor() {
     // The reference's layer of the mirrored scene in the frame its camera
     // sees without the glass (what Bevy's prepass holds), four passes.
     let scene = apps.main.world().resource::<CausticScene>().scene.clone();
+    let brass = MaterialKind::Metal { color: prismatic_core::Vec3::new(0.9, 0.7, 0.3), roughness: 0.3 };
+    assert!(scene.scene.materials.iter().any(|m| m.kind == brass), "the metallic receiver mirrored as a metal");
     let reference = {
         let mut frame_scene = scene.scene.clone();
         frame_scene

@@ -36,7 +36,8 @@ impl MetalOptics {
     }
 
     /// True when its wavelengths reflect differently (F0 is not grey): a
-    /// white photon goes on from here as one band ([`crate::photons`]).
+    /// white photon splits here into its bands or hero wavelengths, or
+    /// goes on as one band ([`crate::photons::trace`]).
     #[inline]
     pub fn is_chromatic(&self) -> bool {
         self.f0.x != self.f0.y || self.f0.y != self.f0.z

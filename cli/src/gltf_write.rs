@@ -49,6 +49,19 @@ pub struct GltfTexture {
     pub wrap: [u32; 2],
 }
 
+impl GltfMesh {
+    /// A mesh without texture coordinates: `name`, its positions and
+    /// indices, its material and its node's translation.
+    pub fn new(
+        name: &str,
+        (positions, indices): (Vec<[f32; 3]>, Vec<u32>),
+        material: usize,
+        translation: [f32; 3],
+    ) -> Self {
+        GltfMesh { name: name.into(), positions, indices, uvs: Vec::new(), material, translation }
+    }
+}
+
 impl GltfMaterial {
     /// An opaque diffuse material.
     pub fn diffuse(name: &str, base_color: [f32; 3]) -> Self {

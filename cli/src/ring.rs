@@ -43,14 +43,7 @@ pub fn document() -> GltfDocument {
         metal("copper", [0.955, 0.637, 0.538], 0.3),
         metal("silver", [0.972, 0.960, 0.915], 0.0),
     ];
-    let mesh = |name: &str, (positions, indices): (Vec<[f32; 3]>, Vec<u32>), material, translation| GltfMesh {
-        name: name.into(),
-        positions,
-        indices,
-        uvs: Vec::new(),
-        material,
-        translation,
-    };
+    let mesh = GltfMesh::new;
     let floor = (vec![[-8.0, 0.0, -8.0], [8.0, 0.0, -8.0], [8.0, 0.0, 8.0], [-8.0, 0.0, 8.0]], vec![0, 2, 1, 0, 3, 2]);
     let meshes = vec![
         mesh("floor", floor, 0, [0.0; 3]),

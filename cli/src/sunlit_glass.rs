@@ -60,14 +60,7 @@ pub fn document() -> GltfDocument {
         coloured("green flint", 1.62, 1.0, [0.35, 0.85, 0.4], 0.5),
         GltfMaterial::glass("dense flint", 1.78, 1.2),
     ];
-    let mesh = |name: &str, (positions, indices): (Vec<[f32; 3]>, Vec<u32>), material, translation| GltfMesh {
-        name: name.into(),
-        positions,
-        indices,
-        uvs: Vec::new(),
-        material,
-        translation,
-    };
+    let mesh = GltfMesh::new;
     // Both prisms lie along z, apex up, held above the floor so that what
     // they refract has room to fan out.
     let prism_shape = || prism([[-0.35, 0.0, -0.45], [0.35, 0.0, -0.45], [0.0, 0.6, -0.45]], [0.0, 0.0, 0.9]);

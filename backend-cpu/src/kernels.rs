@@ -132,9 +132,9 @@ fn trace_chunks(scene: &PreparedScene, chunks: &mut Vec<ChunkBuffer>, map: &mut 
     chunks[..n_chunks].par_iter_mut().enumerate().for_each(|(c, buf)| {
         // Caustic photons in packets, then indirect light's.
         let r = range(c);
-        if ctx.metals {
-            // A metal's facets and Fresnel are the core's scalar rule: a
-            // scene with metals traces its photons one by one with it.
+        if ctx.facets {
+            // A metal's or rough glass's facets are the core's scalar rule:
+            // a scene with either traces its photons one by one with it.
             buf.photons.clear();
             buf.stats = TraceStats::default();
             trace_range(scene, r, &mut buf.photons, &mut buf.stats);

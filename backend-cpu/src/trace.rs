@@ -66,9 +66,9 @@ pub struct TraceContext<'a> {
     /// Some light has a range, which windows its photons' first segment
     /// ([`TraceContext::reach`]).
     pub(crate) ranged_lights: bool,
-    /// Some object is a metal: the core's scalar tracer takes every photon
-    /// (`kernels::trace_chunks`).
-    pub(crate) metals: bool,
+    /// Some object is a metal or rough glass: the core's scalar tracer
+    /// takes every photon (`kernels::trace_chunks`).
+    pub(crate) facets: bool,
 }
 
 impl<'a> TraceContext<'a> {
@@ -113,7 +113,11 @@ impl<'a> TraceContext<'a> {
             flux: prismatic_core::photons::trace::photon_flux(scene),
             coloured_lights: scene.light_spectra.iter().any(|s| !s.is_uniform()),
             ranged_lights: scene.emitters.iter().any(|l| l.range().is_some()),
-            metals: scene.surfaces.iter().any(|s| matches!(s, Surface::Metal(_))),
+            facets: scene.surfaces.iter().any(|s| match s {
+                Surface::Metal(_) => true,
+                Surface::Dielectric(g) => g.ggx.is_some(),
+                _ => false,
+            }),
         }
     }
 
@@ -555,7 +559,7 @@ pub(crate) fn absorb_crossing_lanes(
     ids: [u32x8; 3],
 ) -> f32x8 {
     roulette_lanes(ctx, sink, at_sheet, hit.object, flux, ids, |i, glass, band, u| {
-        absorbed_crossing(glass, before.lane(i), after.lane(i), band, u)
+        absorbed_crossing(glass, before.lane(i) == after.lane(i), band, u)
     })
 }
 

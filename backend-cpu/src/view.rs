@@ -2,7 +2,7 @@
 //! rays per packet, threads over tiles.
 //!
 //! A tile's primary rays go eight pixels to a packet. Where the reference
-//! recurses (mirrors, metals, the two Fresnel branches at glass, one ray per band at
+//! recurses (mirrors, metals, the two Fresnel branches at glass, rough or not, one ray per band at
 //! the first dispersive glass) this tracer queues the next rays with the
 //! weight and RGB tint they carry and the pixel they belong to, and traces
 //! the queue in packets of eight too, until it is empty: the same sum over
@@ -24,11 +24,14 @@ use crate::simd::{Vec3x8, ge, gt, lt};
 use glam::Vec3;
 use prismatic_core::Image;
 use prismatic_core::geometry::camera::PinholeCamera;
+use prismatic_core::geometry::primitive::Ray;
 use prismatic_core::model::light_range::range_window;
 use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::model::scene::Light;
 use prismatic_core::optics::fresnel::reflect;
-use prismatic_core::optics::scatter::{self, Face, scatter_dielectric, scatter_metal};
+use prismatic_core::optics::scatter::{
+    self, Face, scatter_dielectric, scatter_metal, scatter_rough_dielectric, split_rough_dielectric,
+};
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
 use prismatic_core::photons::path::stored_wavelength;
 use prismatic_core::plan::area::area;
@@ -223,7 +226,7 @@ impl Shader<'_> {
                             let share = r.weight * w.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * w, weight: share, band, lambda_nm, hero, ..*r };
                             let face = glass.face(band, lambda_nm, &self.scene.bands);
-                            spawn_at_glass(&tinted, p, n, (face, glass), one_branch, queue);
+                            self.at_glass(&tinted, (p, n), (face, glass), one_branch, (queue, sum));
                         }
                     }
                     None => {
@@ -231,14 +234,15 @@ impl Shader<'_> {
                             let share = r.weight * info.weight.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * info.weight, weight: share, band: b as u16, ..*r };
                             let face = glass.face(b as u16, None, &self.scene.bands);
-                            spawn_at_glass(&tinted, p, n, (face, glass), one_branch, queue);
+                            self.at_glass(&tinted, (p, n), (face, glass), one_branch, (queue, sum));
                         }
                     }
                 },
-                // A film's reflectance is a complex sum per ray: the scalar rule.
-                Surface::Dielectric(glass) if glass.film.is_some() => {
+                // A film's reflectance is a complex sum per ray, and rough
+                // glass's facets and highlights are per ray: the scalar rules.
+                Surface::Dielectric(glass) if glass.film.is_some() || glass.ggx.is_some() => {
                     let face = glass.face(r.band, r.lambda_nm, &self.scene.bands);
-                    spawn_at_glass(r, p, n, (face, glass), one_branch, queue);
+                    self.at_glass(r, (p, n), (face, glass), one_branch, (queue, sum));
                 }
                 Surface::Dielectric(glass) => {
                     glass_ior[i] = glass.path_ior(r.band, r.lambda_nm, &self.scene.bands);
@@ -253,6 +257,23 @@ impl Shader<'_> {
             let glass = (f32x8::new(glass_ior), f32x8::new(glass_thin), crossing);
             spawn_packet_at_glass(&arrived[..rays.len()], at_glass, point, hit.normal, glass, one_branch, queue);
         }
+    }
+
+    /// [`spawn_at_glass`] for one ray at `p` (outward normal `n`), with
+    /// rough glass's highlights added to its pixel's `sum`.
+    fn at_glass(
+        &self,
+        r: &ViewRay,
+        (p, n): (Vec3, Vec3),
+        (face, glass): (Face, &DielectricOptics),
+        one_branch: bool,
+        (queue, sum): (&mut Vec<ViewRay>, &mut [Vec3]),
+    ) {
+        if let Some(ggx) = glass.ggx {
+            let crossing = glass.sheet_crossing_rgb(r.band);
+            sum[r.pixel as usize] += r.tint * self.view.rough_glass_highlights(r.dir, (p, n), (face, ggx), crossing);
+        }
+        spawn_at_glass(r, p, n, (face, glass), one_branch, queue);
     }
 
     /// Radiance toward the viewer at diffuse hits (lanes in `mask`), less
@@ -412,7 +433,8 @@ impl Shader<'_> {
 /// Queues the Fresnel-weighted reflection and refraction of `r` at a glass
 /// surface point `p` (outward normal `outward`; the path's index and the
 /// glass), as the reference recurses (with `one_branch`, a sampled path:
-/// the one branch its number chooses, as photons choose).
+/// the one branch its number chooses, as photons choose; on rough glass,
+/// off the facet the ray's numbers draw).
 fn spawn_at_glass(
     r: &ViewRay,
     p: Vec3,
@@ -421,6 +443,32 @@ fn spawn_at_glass(
     one_branch: bool,
     queue: &mut Vec<ViewRay>,
 ) {
+    if let Some(ggx) = glass.ggx {
+        let crossing = glass.sheet_crossing_rgb(r.band);
+        let mut follow = |out: Ray, weight: f32, crossed: bool| {
+            let f = if crossed { crossing * weight } else { Vec3::splat(weight) };
+            let (weight, tint, depth) = (r.weight * f.max_element(), r.tint * f, r.depth + 1);
+            if weight > MIN_VIEW_WEIGHT {
+                queue.push(ViewRay { origin: out.origin, dir: out.direction, weight, tint, depth, ..*r });
+            }
+        };
+        let facet = r.facets.facet(r.hero, r.depth);
+        if let Some(sampler) = r.sampler.filter(|_| one_branch) {
+            let u = sampler.branch(r.hero, r.depth);
+            if let Some(b) = scatter_rough_dielectric(r.dir, (p, outward), face, ggx, facet, u) {
+                follow(b.ray, b.unshadowed, b.crossed);
+            }
+            return;
+        }
+        let split = split_rough_dielectric(r.dir, (p, outward), face, ggx, facet);
+        if let Some((ray, w)) = split.reflected {
+            follow(ray, w, false);
+        }
+        if let Some((ray, w)) = split.crossed {
+            follow(ray, w, true);
+        }
+        return;
+    }
     let crossed = crossed_sheet(glass.sheet_crossing_rgb(r.band));
     if let Some(sampler) = r.sampler.filter(|_| one_branch) {
         let next = scatter_dielectric(r.dir, p, outward, face, sampler.branch(r.hero, r.depth));

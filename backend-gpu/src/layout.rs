@@ -159,7 +159,8 @@ pub struct GpuSurface {
     pub ior_first: u32,
     /// Index of the n(λ) curve in the tables buffer.
     pub curve_first: u32,
-    /// Diffuse albedo; a metal's reflectance at normal incidence.
+    /// Diffuse albedo; a metal's reflectance at normal incidence; rough
+    /// glass's GGX α in x (0: polished glass).
     pub albedo: [f32; 3],
     /// Index for white light; a metal's GGX α (0: polished).
     pub white_ior: f32,

@@ -252,6 +252,7 @@ impl EncodedScene {
                     kind: SURFACE_DIELECTRIC,
                     ior_first: self.tables.len() as u32,
                     white_ior: g.white_ior,
+                    albedo: [g.ggx.map_or(0.0, |g| g.alpha), 0.0, 0.0],
                     ..GpuSurface::default()
                 };
                 self.tables.extend_from_slice(&g.band_ior);

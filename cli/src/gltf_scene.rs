@@ -2,14 +2,14 @@
 //! transforms, materials from `pbrMetallicRoughness` (diffuse with the
 //! base-colour texture on `TEXCOORD_0`, its sampler and its
 //! `KHR_texture_transform`, or a metal of the base colour and roughness)
-//! and the transmission, IOR,
+//! and the transmission (rough or polished), IOR,
 //! volume and dispersion extensions, `KHR_lights_punctual` lights, and the
 //! first camera (else one that frames the scene).
 //!
 //! Emissive materials (`emissiveFactor` × `KHR_materials_emissive_strength`)
 //! make their meshes area lights.
 //!
-//! What prismatic cannot represent (other textures, rough transmission,
+//! What prismatic cannot represent (other textures,
 //! skins, morph targets, lines and points) is reported once per
 //! element as a warning and left out; what makes no sense (a missing
 //! buffer, an unreadable image, an index out of range, a NaN) is an error
@@ -437,9 +437,6 @@ fn material(
     }
     let mut uv_transform = None;
     let kind = if transmission > 0.0 {
-        if pbr.roughness_factor() > 0.0 {
-            unused.push("roughness of the transmission (glass is smooth)");
-        }
         if pbr.base_color_texture().is_some() {
             unused.push("baseColorTexture of glass (its colour is the volume's attenuation)");
         }
@@ -461,6 +458,8 @@ fn material(
             attenuation,
             thin,
             film,
+            // Frosted glass: its transmission and reflection spread by GGX.
+            roughness: pbr.roughness_factor(),
         }
     } else if metallic >= METAL_METALLIC {
         if metallic < 1.0 {

@@ -107,13 +107,18 @@ fn a_gltf_prism_traces_the_photons_of_the_same_scene_in_toml() {
 fn what_prismatic_cannot_represent_is_a_warning_not_a_failure() {
     let dir = tempfile::tempdir().unwrap();
     let mut doc = prism_document();
+    doc.materials[0].metallic = 0.2;
     doc.materials[1].roughness = 0.3;
     doc.lights.clear();
     let path = write(dir.path(), "rough.gltf", &doc);
     let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
     scene.validate().unwrap();
     let warnings = scene.warnings.join("\n");
-    assert!(warnings.contains("materials[1] (glass): left out: roughness of the transmission"), "{warnings}");
+    assert!(warnings.contains("left out: metallicFactor between 0 and 1 (drawn diffuse)"), "{warnings}");
+    // Rough transmission is frosted glass, drawn as such: no warning.
+    assert!(!warnings.contains("materials[1]"), "{warnings}");
+    let glass = &scene.scene.materials.iter().find(|m| m.name == "glass").unwrap().kind;
+    assert!(matches!(glass, MaterialKind::Dielectric { roughness, .. } if *roughness == 0.3), "{glass:?}");
     assert!(warnings.contains("no light: lit by the built-in studio environment"), "{warnings}");
     assert!(matches!(scene.scene.lights.as_slice(), [Light::Environment { .. }]), "{:?}", scene.scene.lights);
     // Lit as viewers light it: with its indirect light, no ambient.
@@ -145,7 +150,7 @@ fn what_prismatic_cannot_represent_is_a_warning_not_a_failure() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{stderr}");
-    assert!(stderr.contains("warning: ") && stderr.contains("roughness of the transmission"), "{stderr}");
+    assert!(stderr.contains("warning: ") && stderr.contains("metallicFactor between 0 and 1"), "{stderr}");
     assert!(out.is_file());
 }
 

@@ -51,6 +51,7 @@ fn glass(name: &str, dispersion: Dispersion) -> Material {
             attenuation: None,
             thin: false,
             film: None,
+            roughness: 0.0,
         },
     )
 }
@@ -296,6 +297,33 @@ pub fn metals() -> PreparedScene {
     prepared(scene)
 }
 
+/// The paper's sphere frosted (roughness 0.3), beside a frosted blue
+/// sheet (roughness 0.5) standing in the spot's cone: rough glass's facets
+/// and Fresnel per band in photons and view rays, its highlights of the
+/// spot on both sides, and a tinted sheet's crossings off its facets.
+pub fn frosted_glass() -> PreparedScene {
+    let mut scene = glass_sphere().scene;
+    let MaterialKind::Dielectric { roughness, .. } = &mut scene.materials[1].kind else {
+        unreachable!("the sphere is glass")
+    };
+    *roughness = 0.3;
+    let sheet = MaterialKind::Dielectric {
+        dispersion: Dispersion::Constant(1.5),
+        outside: Dispersion::Constant(1.0),
+        attenuation: Some(Attenuation { color: Vec3::new(0.5, 0.7, 0.95), distance: 1.0 }),
+        thin: true,
+        film: None,
+        roughness: 0.5,
+    };
+    scene.materials.push(material("frosted sheet", sheet));
+    let (x, y, z) = (-0.9, [0.0, 2.2], [-1.6, 1.2]);
+    let positions =
+        vec![Vec3::new(x, y[0], z[0]), Vec3::new(x, y[0], z[1]), Vec3::new(x, y[1], z[1]), Vec3::new(x, y[1], z[0])];
+    let square = Shape::Mesh { positions, triangles: vec![[0, 1, 2], [0, 2, 3]], uvs: Vec::new() };
+    scene.objects.push(Object { shape: square, material: 2 });
+    prepared(scene)
+}
+
 /// A floor and a diffuse ball under a point light: nothing specular, so no
 /// caustic photon is traced and the image is its view pass's.
 pub fn no_caustics() -> PreparedScene {
@@ -402,6 +430,7 @@ pub fn with_caustics() -> Vec<(&'static str, PreparedScene)> {
         ("prism", prism()),
         ("mirror", mirror()),
         ("metals", metals()),
+        ("frosted glass", frosted_glass()),
         ("panel-lit sphere", panel_lit_sphere()),
         ("sphere with indirect light", sphere_with_indirect_light()),
         ("sky-lit sphere", sky_lit_sphere()),

@@ -18,7 +18,7 @@
 //! | 7 | [`render`] | `visible`, `view`, `layer`, `aov`, `accumulation`, `protocol`, `host`, `reference` | the camera's side (or an engine's frame), the exact sums, the render protocol and the scalar reference backend |
 //! | 6 | [`photons`] | `emit`, `wavelengths`, `path`, `trace`, `indirect`, `grid`, `gather`, `light_tracing` | the light's side: photons from emission to the gather and to the camera, caustic and indirect |
 //! | 5 | [`plan`] | `area`, `area_aims`, `reach`, `projection`, `effects`, `prepared`, `drawn_suns`, `drawn_triangles`, `schedule` | what a render of this scene will do |
-//! | 4 | [`optics`] | `fresnel`, `microfacet`, `metal`, `thin_film`, `absorption`, `surface`, `scatter` | every scattering function, and the one branch choice at glass |
+//! | 4 | [`optics`] | `fresnel`, `microfacet`, `metal`, `rough_glass`, `thin_film`, `absorption`, `surface`, `scatter` | every scattering function, and the one branch choice at glass |
 //! | 3 | [`geometry`] | `ray`, `triangle`, `primitive`, `bvh`, `bvh_build`, `camera`, `texture`, `form_factor` | rays, intersections, hierarchies, the camera, textures, form factors |
 //! | 2 | [`sampling`] | `sobol`, `pixel_sample`, `light_spectrum`, `environment`, `spot_cone` | the low-discrepancy numbers paths draw, the wavelengths lights emit, what an environment sends each way, a spot's cone |
 //! | 1 | [`model`] | `scene`, `validate`, `mesh`, `environment`, `light_range`, `bands`, `cie`, `color`, `dispersion`, `image`, `photon`, `wavelength_rgb`, `reflectance`, `spectrum`, `rgb_spectrum` | what the user described and what backends exchange |

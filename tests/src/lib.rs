@@ -41,6 +41,7 @@ pub fn glass(name: &str, dispersion: Dispersion) -> Material {
             attenuation: None,
             thin: false,
             film: None,
+            roughness: 0.0,
         },
     }
 }

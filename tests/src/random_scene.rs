@@ -1,6 +1,7 @@
-//! Random but valid scenes for parity tests: glass spheres and prisms,
-//! mirror and metal spheres and prisms (metals of random colour,
-//! polished or rough), random glasses and band tables, a spot, point or beam
+//! Random but valid scenes for parity tests: glass spheres and prisms (the
+//! glass frosted a third of the time), mirror and metal spheres and prisms
+//! (metals of random colour, polished or rough), random glasses and band
+//! tables, a spot, point or beam
 //! light aimed at the first object, over a floor and in front of a wall.
 //! A pure function of the seed.
 
@@ -74,8 +75,16 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
         color: m.v(Vec3::splat(0.3), Vec3::ONE),
         roughness: if m.pick(3) == 0 { 0.0 } else { m.f(0.02, 0.6) },
     };
+    // A third of the scenes' glass frosted, from its own dice too.
+    let mut g = Dice { seed, n: 1 << 21 };
+    let mut glass = glass("glass", dispersion);
+    if let MaterialKind::Dielectric { roughness, .. } = &mut glass.kind
+        && g.pick(3) == 0
+    {
+        *roughness = g.f(0.05, 0.6);
+    }
     let materials = vec![
-        glass("glass", dispersion),
+        glass,
         white("wall"),
         floor,
         Material { name: "mirror".into(), kind: MaterialKind::Mirror },
@@ -153,21 +162,25 @@ mod tests {
     use super::*;
 
     /// The seeds the parity tests take (1 to 16) place mirrors, polished
-    /// metals and rough metals, so those tests hold every backend to them.
+    /// and rough metals, and polished and frosted glass, so those tests
+    /// hold every backend to them.
     #[test]
-    fn the_parity_seeds_place_mirrors_and_polished_and_rough_metals() {
-        let (mut mirrors, mut roughness) = (0, Vec::new());
+    fn the_parity_seeds_place_mirrors_metals_and_glass_polished_and_rough() {
+        let (mut mirrors, mut metals, mut glass) = (0, Vec::new(), Vec::new());
         for seed in 1..=16 {
             let scene = random_scene(seed, 1, 8);
             for o in &scene.objects {
                 match &scene.materials[o.material].kind {
                     MaterialKind::Mirror => mirrors += 1,
-                    MaterialKind::Metal { roughness: r, .. } => roughness.push(*r),
+                    MaterialKind::Metal { roughness: r, .. } => metals.push(*r),
+                    MaterialKind::Dielectric { roughness: r, .. } => glass.push(*r),
                     _ => {}
                 }
             }
         }
         assert!(mirrors > 0, "no mirror");
-        assert!(roughness.contains(&0.0) && roughness.iter().any(|&r| r > 0.0), "metals' roughness: {roughness:?}");
+        for (what, roughness) in [("metals'", metals), ("glass's", glass)] {
+            assert!(roughness.contains(&0.0) && roughness.iter().any(|&r| r > 0.0), "{what} roughness: {roughness:?}");
+        }
     }
 }

@@ -29,6 +29,7 @@ fn slab(ior: Dispersion) -> (Material, Object) {
             attenuation: Some(Attenuation { color: COLOR, distance: DISTANCE }),
             thin: false,
             film: None,
+            roughness: 0.0,
         },
     };
     let vertices = [Vec3::new(0.0, -3.0, -2.0), Vec3::new(0.0, 3.0, -2.0), Vec3::new(0.0, 0.0, 3.0)];

@@ -429,6 +429,7 @@ fn glass_inside_water_refracts_with_the_relative_index() {
         attenuation: None,
         thin: false,
         film: None,
+        roughness: 0.0,
     };
     scene.materials.push(glass("water", water.clone()));
     scene.objects.push(Object { shape: Shape::Sphere { center: Vec3::ZERO, radius: 20.0 }, material: 2 });

@@ -23,6 +23,7 @@ mod parity_gpu;
 mod photon_map;
 mod physics;
 mod progressive;
+mod rough_glass;
 mod scene_files;
 mod spectral_truth;
 mod spectrum;

@@ -104,6 +104,7 @@ fn every_ior_form_parses() {
                 attenuation: None,
                 thin: false,
                 film: None,
+                roughness: 0.0,
             },
             "{text}"
         );
@@ -378,6 +379,22 @@ fn a_metals_keys_parse_named_metals_too_and_bad_metals_are_rejected_with_their_l
         "between 0 and 1",
     );
     assert_error(&with_metal("color = \"gold\"\nior = 1.5"), "material.ring.ior", Some("ior"), "unknown key");
+}
+
+#[test]
+fn frosted_glass_parses_and_a_roughness_out_of_range_is_rejected_with_its_line() {
+    let glass = |keys: &str| {
+        format!(
+            "{MINIMAL}\n[material.frosted]\nkind = \"dielectric\"\nior = 1.5\n{keys}\n\n[[object]]\nshape = \"sphere\"\nmaterial = \"frosted\"\ncenter = [0, 1, 0]\nradius = 0.5\n"
+        )
+    };
+    let doc = parse(&glass("roughness = 0.4"), "test.toml", None).expect("parses");
+    doc.validate().expect("valid");
+    let kind = &doc.scene.materials.iter().find(|m| m.name == "frosted").expect("the glass").kind;
+    assert!(matches!(kind, MaterialKind::Dielectric { roughness, .. } if *roughness == 0.4), "{kind:?}");
+    for bad in ["roughness = 1.5", "roughness = -0.1"] {
+        assert_error(&glass(bad), "material.frosted.roughness", Some("roughness"), "between 0 and 1");
+    }
 }
 
 #[test]

@@ -29,6 +29,7 @@ fn coated_sheet() -> Material {
             attenuation: None,
             thin: true,
             film: Some(FILM),
+            roughness: 0.0,
         },
     }
 }

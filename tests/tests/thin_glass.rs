@@ -23,6 +23,7 @@ fn sheet(ior: f32) -> Material {
             attenuation: None,
             thin: true,
             film: None,
+            roughness: 0.0,
         },
     }
 }

@@ -42,6 +42,7 @@ pub fn scene(render: RenderSettings, light: Light, with_ball: bool) -> PreparedS
         attenuation: None,
         thin: false,
         film: None,
+        roughness: 0.0,
     };
     PreparedScene::new(Scene {
         render,

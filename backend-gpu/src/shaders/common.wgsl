@@ -737,3 +737,151 @@ fn ggx_reflection(alpha: f32, wo: vec3<f32>, wi: vec3<f32>, n: vec3<f32>) -> f32
 fn metal_is_chromatic(f0: vec3<f32>) -> bool {
     return f0.x != f0.y || f0.y != f0.z;
 }
+
+// ---- rough glass (scatter.rs, rough_glass.rs) ----
+
+// The largest f32 below 1 (scatter::ONE_BELOW).
+const ONE_BELOW: f32 = 0.99999994;
+
+// scatter::Facet: where a ray meets one facet of rough glass (`through.w`
+// 0: totally internally reflected).
+struct GlassFacet {
+    n: vec3<f32>,
+    reflectance: f32,
+    reflected: vec3<f32>,
+    through: vec4<f32>,
+}
+
+// scatter::Facet::draw: the facet a ray along `d` meets, drawn from the
+// visible normals of GGX width `alpha` by `u`.
+fn glass_facet(d: vec3<f32>, outward: vec3<f32>, face: Face, alpha: f32, u: vec2<f32>) -> GlassFacet {
+    let f = facing_interface(d, outward, face.ior);
+    let bs = basis(f.n);
+    let wo = vec3<f32>(-dot(d, bs.t), -dot(d, bs.b), -dot(d, f.n));
+    let ml = ggx_visible_normal(alpha, wo, u.x, u.y);
+    let m = nrm(bs.t * ml.x + bs.b * ml.y + f.n * ml.z);
+    let reflectance = face_reflectance(face, clamp(-dot(d, m), 0.0, 1.0), f.n1, f.n2);
+    let reflected = reflect_dir(d, m);
+    var through = refract_dir(d, m, f.n1, f.n2);
+    if face.thin {
+        // A sheet: the facet's reflection mirrored through the surface.
+        through = vec4<f32>(reflected - f.n * (2.0 * dot(reflected, f.n)), 1.0);
+    }
+    return GlassFacet(f.n, reflectance, reflected, through);
+}
+
+// scatter::Facet::unshadowed: G2/G1 of a ray leaving along `out`, or -1
+// where it leaves on the wrong side (the path ends).
+fn glass_unshadowed(alpha: f32, n: vec3<f32>, d: vec3<f32>, out: vec3<f32>, crossed: bool) -> f32 {
+    let cos_o = -dot(d, n);
+    let cos_i = dot(out, n);
+    if cos_o <= 0.0 || cos_i == 0.0 || (cos_i < 0.0) != crossed {
+        return -1.0;
+    }
+    let lo = ggx_lambda(alpha, cos_o);
+    return (1.0 + lo) / (1.0 + lo + ggx_lambda(alpha, cos_i));
+}
+
+// scatter::GlassBounce (`ok` false: the path ends).
+struct GlassBounce {
+    ok: bool,
+    origin: vec3<f32>,
+    dir: vec3<f32>,
+    unshadowed: f32,
+    crossed: bool,
+    leftover: f32,
+}
+
+// scatter::scatter_rough_dielectric: Fresnel's choice (`u`) off the facet
+// `facet` draws, at the path's own index.
+fn scatter_rough_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, face: Face, alpha: f32, facet: vec2<f32>, u: f32) -> GlassBounce {
+    let f = glass_facet(d, outward, face, alpha, facet);
+    let r = f.reflectance;
+    var out = f.reflected;
+    var crossed = false;
+    var leftover = 0.0;
+    if f.through.w != 0.0 && u >= r {
+        out = f.through.xyz;
+        crossed = true;
+        leftover = (u - r) / (1.0 - r);
+    } else {
+        leftover = u / r;
+    }
+    let unshadowed = glass_unshadowed(alpha, f.n, d, out, crossed);
+    if unshadowed < 0.0 {
+        return GlassBounce(false, point, d, 0.0, false, 0.0);
+    }
+    return GlassBounce(true, offset_origin(point, f.n, out), out, unshadowed, crossed, min(leftover, ONE_BELOW));
+}
+
+// scatter::RoughBranches: each branch's ray and weight (< 0: none).
+struct RoughBranches {
+    reflected: Scattered,
+    reflected_weight: f32,
+    crossed: Scattered,
+    crossed_weight: f32,
+}
+
+// scatter::split_rough_dielectric: both branches off the facet `facet` draws.
+fn split_rough_dielectric(d: vec3<f32>, point: vec3<f32>, outward: vec3<f32>, face: Face, alpha: f32, facet: vec2<f32>) -> RoughBranches {
+    let f = glass_facet(d, outward, face, alpha, facet);
+    var r = 1.0;
+    if f.through.w != 0.0 {
+        r = f.reflectance;
+    }
+    var reflected_weight = -1.0;
+    let ur = glass_unshadowed(alpha, f.n, d, f.reflected, false);
+    if ur >= 0.0 {
+        reflected_weight = r * ur;
+    }
+    var crossed_weight = -1.0;
+    if f.through.w != 0.0 {
+        let uc = glass_unshadowed(alpha, f.n, d, f.through.xyz, true);
+        if uc >= 0.0 {
+            crossed_weight = (1.0 - r) * uc;
+        }
+    }
+    let reflected = Scattered(offset_origin(point, f.n, f.reflected), f.reflected);
+    let crossed = Scattered(offset_origin(point, f.n, f.through.xyz), f.through.xyz);
+    return RoughBranches(reflected, reflected_weight, crossed, crossed_weight);
+}
+
+// rough_glass::rough_glass_bsdf: what rough glass (GGX width `alpha`)
+// sends toward `wo` of light from `wi`: reflection off its facets, or
+// transmission through them (Walter et al. 2007; a sheet: the reflection
+// mirrored through the surface).
+fn rough_glass_bsdf(wo: vec3<f32>, wi: vec3<f32>, outward: vec3<f32>, face: Face, alpha: f32) -> f32 {
+    let f = facing_interface(-wo, outward, face.ior);
+    let bs = basis(f.n);
+    let o = vec3<f32>(dot(wo, bs.t), dot(wo, bs.b), dot(wo, f.n));
+    let i = vec3<f32>(dot(wi, bs.t), dot(wi, bs.b), dot(wi, f.n));
+    if o.z <= 0.0 || i.z == 0.0 {
+        return 0.0;
+    }
+    let z = vec3<f32>(0.0, 0.0, 1.0);
+    if i.z > 0.0 {
+        let m = nrm(o + i);
+        return ggx_reflection(alpha, o, i, z) * face_reflectance(face, clamp(dot(o, m), 0.0, 1.0), f.n1, f.n2);
+    }
+    if face.thin {
+        let mirrored = vec3<f32>(i.x, i.y, -i.z);
+        let m = nrm(o + mirrored);
+        return ggx_reflection(alpha, o, mirrored, z) * (1.0 - face_reflectance(face, clamp(dot(o, m), 0.0, 1.0), f.n1, f.n2));
+    }
+    // Ggx::refraction_normal and Ggx::transmission.
+    let eta = f.n2 / f.n1;
+    let h = o + i * eta;
+    if dot(h, h) == 0.0 {
+        return 0.0;
+    }
+    let m = nrm(select(h, -h, h.z < 0.0));
+    let om = dot(o, m);
+    let im = dot(i, m);
+    if !(om > 0.0 && im < 0.0) {
+        return 0.0;
+    }
+    let t = 1.0 - face_reflectance(face, clamp(om, 0.0, 1.0), f.n1, f.n2);
+    let den = om + eta * im;
+    let g2 = 1.0 / (1.0 + ggx_lambda(alpha, o.z) + ggx_lambda(alpha, i.z));
+    return om * abs(im) / (o.z * abs(i.z)) * eta * eta * t * ggx_d(alpha, m.z) * g2 / (den * den);
+}

@@ -34,10 +34,10 @@ const FOLLOW_END: u32 = 0u;
 const FOLLOW_SPLIT: u32 = 1u;
 
 // trace::absorbed_crossing: whether a tinted thin sheet absorbs path `p`,
-// which has just crossed it (it leaves along the direction it came,
-// `before`), tallying its flux; its bounces are still the crossing's.
-fn absorbed_crossing(s: GpuSurface, before: vec3<f32>, p: Path, seed: u32, index: u32) -> bool {
-    if !is_sheet(s) || (s.flags & SURFACE_ABSORBS) == 0u || any(before != p.dir) {
+// which has just `crossed` it, tallying its flux; its bounces are still
+// the crossing's.
+fn absorbed_crossing(s: GpuSurface, crossed: bool, p: Path, seed: u32, index: u32) -> bool {
+    if !is_sheet(s) || (s.flags & SURFACE_ABSORBS) == 0u || !crossed {
         return false;
     }
     let u = random_f32(seed, index, absorb_dim(p.band, p.bounces));
@@ -48,12 +48,6 @@ fn absorbed_crossing(s: GpuSurface, before: vec3<f32>, p: Path, seed: u32, index
     return false;
 }
 
-// optics::scatter::scatter_dielectric on a photon's path.
-fn scatter_path(p: ptr<function, Path>, point: vec3<f32>, outward: vec3<f32>, face: Face, u: f32) {
-    let s = scatter_dielectric((*p).dir, point, outward, face, u);
-    (*p).origin = s.origin;
-    (*p).dir = s.dir;
-}
 
 // trace::stored_wavelength: the path's own, its band's, or 0 for white light.
 fn stored_wavelength(band: u32, lambda_nm: f32) -> f32 {
@@ -133,7 +127,7 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             (*p).band = b.band;
             (*p).lambda_nm = b.lambda_nm;
         }
-        if s.kind != SURFACE_MIRROR && (*p).band == WHITE_BAND && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u {
+        if s.kind == SURFACE_DIELECTRIC && (*p).band == WHITE_BAND && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u {
             if split_paths() > 1u {
                 *split_at = hit;
                 return FOLLOW_SPLIT;
@@ -142,13 +136,8 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             let b = spectrum_share(photon_f32(seed, index, DIM_SPECTRUM), 0u, 1u);
             (*p).band = b.band;
             (*p).lambda_nm = b.lambda_nm;
-            let u = random_f32(seed, index, scatter_dim(b.band, (*p).bounces));
-            let before = (*p).dir;
-            scatter_path(p, hit.point, hit.normal, path_face(s, b.band, b.lambda_nm), u);
-            if absorbed_crossing(s, before, *p, seed, index) {
-                return FOLLOW_END;
-            }
-        } else if !cross_specular(p, hit, s, index) {
+        }
+        if !cross_specular(p, hit, s, index) {
             return FOLLOW_END;
         }
         (*p).bounces += 1u;
@@ -176,7 +165,8 @@ fn arrives_at_specular(p: Path, hit: Hit, s: GpuSurface, index: u32) -> bool {
 }
 
 // trace::cross_specular: path `p` (one that does not split here) across
-// mirror or glass `s` at `hit`; false when a tinted sheet absorbed it.
+// the mirror, metal or glass `s` at `hit`; false when the metal, rough
+// glass's microsurface or a tinted sheet absorbed it.
 fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -> bool {
     if s.kind == SURFACE_METAL {
         // A facet of the metal (α in white_ior), and its Fresnel times the
@@ -207,9 +197,30 @@ fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -
         return true;
     }
     let u = random_f32(params.seed, index, scatter_dim((*p).band, (*p).bounces));
+    let face = path_face(s, (*p).band, (*p).lambda_nm);
     let before = (*p).dir;
-    scatter_path(p, hit.point, hit.normal, path_face(s, (*p).band, (*p).lambda_nm), u);
-    return !absorbed_crossing(s, before, *p, params.seed, index);
+    // Rough glass: α in albedo.x (0: polished).
+    let alpha = s.albedo.x;
+    var crossed = false;
+    if alpha > 0.0 {
+        // A facet, Fresnel's choice at it, and survival with the unshadowed share.
+        let d = bounce_dim((*p).band, (*p).bounces);
+        let facet = vec2<f32>(random_f32(params.seed, index, d), random_f32(params.seed, index, d + DIM_ABSORB));
+        let b = scatter_rough_dielectric(before, hit.point, hit.normal, face, alpha, facet, u);
+        if !b.ok || !(b.leftover < b.unshadowed) {
+            tally_flux[5] += (*p).flux;
+            return false;
+        }
+        (*p).origin = b.origin;
+        (*p).dir = b.dir;
+        crossed = b.crossed;
+    } else {
+        let out = scatter_dielectric(before, hit.point, hit.normal, face, u);
+        (*p).origin = out.origin;
+        (*p).dir = out.dir;
+        crossed = all(out.dir == before);
+    }
+    return !absorbed_crossing(s, crossed, *p, params.seed, index);
 }
 
 // indirect::trace_indirect: photon `index` of indirect light, unaimed,
@@ -462,16 +473,8 @@ fn trace_emitted(index: u32) {
         let b = split_band(u, path);
         // The child's bounces are the split's until it has crossed.
         var child = Path(p.origin, p.dir, p.flux / f32(n), b.band, b.lambda_nm, p.bounces);
-        if s.kind == SURFACE_METAL {
-            if !cross_specular(&child, hit, s, index) {
-                continue;
-            }
-        } else {
-            let u = random_f32(params.seed, index, scatter_dim(b.band, p.bounces));
-            scatter_path(&child, hit.point, hit.normal, path_face(s, b.band, b.lambda_nm), u);
-            if absorbed_crossing(s, p.dir, child, params.seed, index) {
-                continue;
-            }
+        if !cross_specular(&child, hit, s, index) {
+            continue;
         }
         child.bounces += 1u;
         var unused: Hit;

@@ -63,6 +63,16 @@ var<private> kid_count: u32;
 // A sampled path's pixel scramble (PixelSampler).
 var<private> scramble: u32;
 
+// The surface whose light a visit adds (ViewContext's shade_diffuse and
+// highlights): the path as it met it, where, and rough glass's face.
+struct LightQuery {
+    on: bool,
+    e: Pending,
+    hit: Hit,
+    face: Face,
+}
+var<private> light_query: LightQuery;
+
 // Whether each pass traces its own paths (ViewPaths::per_pass).
 fn per_pass() -> bool {
     return params.view_paths != VIEW_PATHS_CENTRE;
@@ -82,13 +92,50 @@ fn spawn_ray(e: Pending, origin: vec3<f32>, dir: vec3<f32>, band: u32, weight: f
     spawn(Pending(origin, weight, dir, band, tint, e.depth + 1u, vec3<f32>(0.0), NO_SPLIT, 0u, e.lambda_nm, e.hero));
 }
 
+// One branch off rough glass: its weight times, where it `crossed` a
+// tinted sheet, the crossing's colour.
+fn follow_rough(e: Pending, s: Scattered, w: f32, crossed: bool, crossing: vec3<f32>, band: u32, weight: f32, tint: vec3<f32>) {
+    var f = vec3<f32>(w);
+    if crossed {
+        f = crossing * w;
+    }
+    let next = weight * max(f.x, max(f.y, f.z));
+    if next > MIN_VIEW_WEIGHT {
+        spawn_ray(e, s.origin, s.dir, band, next, tint * f);
+    }
+}
+
 // ViewContext::through_dielectric: the Fresnel-weighted reflection and
-// refraction (a jittered path: the one branch its number chooses).
+// refraction (a jittered path: the one branch its number chooses); rough
+// glass (α in albedo.x): off one facet (through_rough_dielectric), its
+// highlights left to `light_query`.
 fn through_dielectric(e: Pending, face: Face, band: u32, weight: f32, tint: vec3<f32>) {
     let thin = face.thin;
     // What crossing a tinted sheet keeps (1 elsewhere).
     let crossing = sheet_crossing_rgb(surfaces[e.object], band);
     let kept = max(crossing.x, max(crossing.y, crossing.z));
+    let alpha = surfaces[e.object].albedo.x;
+    if alpha > 0.0 {
+        let at = Pending(e.origin, weight, e.dir, band, tint, e.depth, e.normal, NO_SPLIT, e.object, e.lambda_nm, e.hero);
+        light_query = LightQuery(true, at, Hit(true, 0.0, e.origin, e.normal, e.object, 0u), face);
+        let facet = pixel_facet(scramble, select(0u, params.view_pass, per_pass()), e.hero, e.depth);
+        if jittered() {
+            let u = pixel_branch(scramble, params.view_pass, e.hero, e.depth);
+            let b = scatter_rough_dielectric(e.dir, e.origin, e.normal, face, alpha, facet, u);
+            if b.ok {
+                follow_rough(e, Scattered(b.origin, b.dir), b.unshadowed, b.crossed, crossing, band, weight, tint);
+            }
+            return;
+        }
+        let split = split_rough_dielectric(e.dir, e.origin, e.normal, face, alpha, facet);
+        if split.crossed_weight >= 0.0 {
+            follow_rough(e, split.crossed, split.crossed_weight, true, crossing, band, weight, tint);
+        }
+        if split.reflected_weight >= 0.0 {
+            follow_rough(e, split.reflected, split.reflected_weight, false, crossing, band, weight, tint);
+        }
+        return;
+    }
     if jittered() {
         let s = scatter_dielectric(e.dir, e.origin, e.normal, face, pixel_branch(scramble, params.view_pass, e.hero, e.depth));
         if thin && all(s.dir == e.dir) {
@@ -298,19 +345,22 @@ fn hidden_direction(l: GpuLight, p: vec3<f32>) -> vec3<f32> {
 // direct light, its one call of direct_irradiance (lavapipe counts each
 // inlined copy's loop iterations): ViewContext::shade_diffuse less the
 // caustic (see add_visible_point; with light tracing only behind a
-// specular bounce, view::gathers_at) for a diffuse surface, and
-// ViewContext::metal_highlights for a rough metal.
-fn surface_light(e: Pending, hit: Hit, s: GpuSurface) -> vec3<f32> {
+// specular bounce, view::gathers_at) for a diffuse surface,
+// ViewContext::metal_highlights for a rough metal and
+// ViewContext::rough_glass_highlights for rough glass (its `face`).
+fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
     let dir = e.dir;
     let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
     let metal = s.kind == SURFACE_METAL;
+    let glass = s.kind == SURFACE_DIELECTRIC;
+    let crossing = sheet_crossing_rgb(s, e.band);
     var albedo = vec3<f32>(0.0);
     var lambda = e.lambda_nm;
     if metal {
         if lambda < 0.0 && e.band < params.band_count {
             lambda = bands[e.band].lambda_nm;
         }
-    } else {
+    } else if !glass {
         albedo = albedo_at(hit, n);
     }
     // Each light's irradiance, in the colour the surface reflects of its spectrum.
@@ -318,6 +368,20 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface) -> vec3<f32> {
     for (var i = 0u; i < params.light_count; i++) {
         let l = lights[i];
         var factor = albedo;
+        var lit_side = n;
+        if glass {
+            // Either side: a light behind the glass shines through it.
+            let wi = hidden_direction(l, hit.point);
+            let f = rough_glass_bsdf(-dir, wi, hit.normal, face, s.albedo.x);
+            if f == 0.0 {
+                continue;
+            }
+            factor = vec3<f32>(f);
+            if dot(wi, hit.normal) * dot(dir, hit.normal) > 0.0 {
+                factor = crossing * f;
+            }
+            lit_side = select(-hit.normal, hit.normal, dot(wi, hit.normal) > 0.0);
+        }
         if metal {
             let wi = hidden_direction(l, hit.point);
             let density = ggx_reflection(s.white_ior, -dir, wi, n);
@@ -328,9 +392,9 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface) -> vec3<f32> {
             factor = reflectance(metal_fresnel(s.albedo, dot(-dir, h)), e.band, lambda) * density;
         }
         let m = mat3x3<f32>(l.reflected_r, l.reflected_g, l.reflected_b);
-        reflected += m * factor * direct_irradiance(l, hit.point, n);
+        reflected += m * factor * direct_irradiance(l, hit.point, lit_side);
     }
-    if metal {
+    if metal || glass {
         return reflected;
     }
     if params.stored > 0u && (e.depth > 0u || params.light_tracing == 0u) {
@@ -343,8 +407,21 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface) -> vec3<f32> {
     return reflected * (1.0 / PI) + albedo * params.ambient + emitted;
 }
 
-// One pending entry: what it adds to the pixel; what it spawns goes to `kids`.
+// One pending entry: what it adds to the pixel (with the light of the
+// surface it met: the one call of surface_light); what it spawns goes to `kids`.
 fn visit(e: Pending) -> vec3<f32> {
+    light_query.on = false;
+    let sum = visit_path(e);
+    if !light_query.on {
+        return sum;
+    }
+    let q = light_query;
+    return sum + q.e.tint * surface_light(q.e, q.hit, surfaces[q.hit.object], q.face);
+}
+
+// What entry `e` adds to the pixel, less the light of the surface it met
+// (left to `light_query`).
+fn visit_path(e: Pending) -> vec3<f32> {
     if e.next_band != NO_SPLIT && per_pass() {
         // Hero path i of a per-pass split: band ⌊v·N⌋ at v = (i + u)/M,
         // (N/M)·C_b or the colour of its wavelength over M.
@@ -387,12 +464,11 @@ fn visit(e: Pending) -> vec3<f32> {
     }
     let s = surfaces[hit.object];
     let rough_metal = s.kind == SURFACE_METAL && s.white_ior > 0.0 && e.depth < params.max_depth;
-    var lit = vec3<f32>(0.0);
     if s.kind == SURFACE_DIFFUSE || rough_metal {
-        lit = e.tint * surface_light(e, hit, s);
+        light_query = LightQuery(true, e, hit, bare_face(1.0, false));
     }
     if s.kind == SURFACE_DIFFUSE {
-        return lit;
+        return vec3<f32>(0.0);
     }
     if e.depth >= params.max_depth {
         return vec3<f32>(0.0);
@@ -417,7 +493,7 @@ fn visit(e: Pending) -> vec3<f32> {
                 spawn_ray(e, b.origin, b.dir, e.band, weight, e.tint * f);
             }
         }
-        return lit;
+        return vec3<f32>(0.0);
     }
     if s.kind == SURFACE_MIRROR {
         let d = reflect_dir(e.dir, hit.normal);

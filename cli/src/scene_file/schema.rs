@@ -338,6 +338,7 @@ impl Reader<'_> {
                         "thin",
                         "film_thickness_nm",
                         "film_ior",
+                        "roughness",
                     ],
                 )?;
                 let dispersion = self.req(t, "ior", |p, k, v| p.ior(k, v))?;
@@ -364,7 +365,8 @@ impl Reader<'_> {
                     }
                     None => None,
                 };
-                MaterialKind::Dielectric { dispersion, outside, attenuation, thin, film }
+                let roughness = self.opt(t, "roughness", Self::float)?.unwrap_or(0.0);
+                MaterialKind::Dielectric { dispersion, outside, attenuation, thin, film, roughness }
             }
             "mirror" => {
                 self.check_keys(t, &["kind"])?;

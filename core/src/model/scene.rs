@@ -724,7 +724,8 @@ pub enum MaterialKind {
         /// ([`crate::plan::area::area_lights`]), and the camera sees it glow.
         emission: Vec3,
     },
-    /// Smooth dielectric with a dispersion model, clear or coloured.
+    /// A dielectric with a dispersion model, clear or coloured, smooth or
+    /// rough (frosted: its facets' normals spread by GGX, Walter et al. 2007).
     Dielectric {
         /// n(λ).
         dispersion: Dispersion,
@@ -748,6 +749,12 @@ pub enum MaterialKind {
         /// ([`crate::optics::thin_film`]), so even glass of one index
         /// reflects and passes light in colours. `None`: bare glass.
         film: Option<ThinFilm>,
+        /// glTF's perceptual roughness in [0, 1]: the surface's microfacet
+        /// normals spread by a GGX distribution of width roughness², and
+        /// each path reflects or refracts at its own wavelength off one
+        /// facet ([`crate::optics::scatter::scatter_rough_dielectric`]).
+        /// 0 is polished glass.
+        roughness: f32,
     },
     /// Perfect mirror.
     Mirror,

@@ -380,14 +380,10 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
                 let reason = format!("a metal reflects at most all light, got [{}, {}, {}]", color.x, color.y, color.z);
                 return Err(c.err("color", reason));
             }
-            c.finite("roughness", *roughness)?;
-            if (0.0..=1.0).contains(roughness) {
-                Ok(())
-            } else {
-                Err(c.err("roughness", format!("must be between 0 and 1, got {roughness}")))
-            }
+            validate_roughness(c, *roughness)
         }
-        MaterialKind::Dielectric { dispersion, outside, attenuation, film, .. } => {
+        MaterialKind::Dielectric { dispersion, outside, attenuation, film, roughness, .. } => {
+            validate_roughness(c, *roughness)?;
             validate_dispersion(c, "ior", dispersion, bands)?;
             validate_dispersion(c, "outside_ior", outside, bands)?;
             if let Some(f) = film {
@@ -398,6 +394,15 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
                 None => Ok(()),
             }
         }
+    }
+}
+
+fn validate_roughness(c: &Check<'_>, roughness: f32) -> Result<(), SceneError> {
+    c.finite("roughness", roughness)?;
+    if (0.0..=1.0).contains(&roughness) {
+        Ok(())
+    } else {
+        Err(c.err("roughness", format!("must be between 0 and 1, got {roughness}")))
     }
 }
 

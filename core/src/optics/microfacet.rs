@@ -1,8 +1,9 @@
 //! The GGX (Trowbridge–Reitz) microfacet model, the scalar reference for
 //! rough metals and rough glass: the normal distribution D, Smith's
 //! height-correlated masking-shadowing, the visible normals' sampling
-//! (Heitz 2018) and density, and a conductor's reflectance. Directions are
-//! in the shading frame, whose normal is +z; α is glTF's roughness squared.
+//! (Heitz 2018) and density, refraction through a facet (Walter et al.
+//! 2007) and a conductor's reflectance. Directions are in the shading
+//! frame, whose normal is +z; α is glTF's roughness squared.
 
 use crate::util::math::{sin_cos_turns, sqrt};
 use core::f32::consts::PI;
@@ -62,6 +63,17 @@ impl Ggx {
         1.0 / (1.0 + self.lambda(wo) + self.lambda(wi))
     }
 
+    /// G2(ωo, ωi) = 1/(1 + Λ(ωo) + Λ(ωi)) for a pair on either side of the
+    /// surface (Λ depends on the cosine's size only): refraction's masking
+    /// and shadowing, in the height-correlated form pbrt-v4 takes for both
+    /// reflection and transmission. Zero when either grazes.
+    pub fn g2_through(&self, wo: Vec3, wi: Vec3) -> f32 {
+        if wo.z == 0.0 || wi.z == 0.0 {
+            return 0.0;
+        }
+        1.0 / (1.0 + self.lambda(wo) + self.lambda(wi))
+    }
+
     /// D_ωo(m) = G1(ωo) max(0, ωo·m) D(m) / ωo_z: the density of the normals
     /// that `wo` sees, which [`Ggx::sample_visible_normal`] draws.
     pub fn visible_normal_pdf(&self, wo: Vec3, m: Vec3) -> f32 {
@@ -108,6 +120,40 @@ impl Ggx {
         self.d(m) * self.g2(wo, wi) * f / (4.0 * wo.z * wi.z)
     }
 
+    /// The facet normal (z ≥ 0) that refracts `wo` (above) into `wi`
+    /// (below) for the index ratio `eta` = n_below/n_above: the generalised
+    /// half vector ±(ωo + η ωi) (Walter et al. 2007, eq. 16). `None` when
+    /// no facet does (the two are not on its opposite sides).
+    pub fn refraction_normal(wo: Vec3, wi: Vec3, eta: f32) -> Option<Vec3> {
+        let h = wo + wi * eta;
+        let m = if h.z < 0.0 { -h } else { h }.normalize_or_zero();
+        (m != Vec3::ZERO && wo.dot(m) > 0.0 && wi.dot(m) < 0.0 && wo.z > 0.0 && wi.z < 0.0).then_some(m)
+    }
+
+    /// The density per solid angle of `wi` (below) refracted through a
+    /// visible normal drawn for `wo` (above), index ratio `eta` =
+    /// n_below/n_above, before Fresnel's choice: D_ωo(m) η² |ωi·m| /
+    /// (ωo·m + η ωi·m)² (the Jacobian of the half vector).
+    pub fn refraction_pdf(&self, wo: Vec3, wi: Vec3, eta: f32) -> f32 {
+        let Some(m) = Self::refraction_normal(wo, wi, eta) else { return 0.0 };
+        let den = wo.dot(m) + eta * wi.dot(m);
+        self.visible_normal_pdf(wo, m) * eta * eta * wi.dot(m).abs() / (den * den)
+    }
+
+    /// The transmission BTDF of facets that pass `t` of the light, seen
+    /// from `wo` (above, index ratio `eta` = n_below/n_above) for light
+    /// from `wi` (below): |ωo·m||ωi·m| / (ωo_z |ωi_z|) η² t D G2 / (ωo·m +
+    /// η ωi·m)² (Walter et al. 2007, eq. 21, without the η² that radiance
+    /// gains on entering a denser medium: the renderer's glass carries
+    /// radiance across unscaled, as its photons carry flux, so the path
+    /// weight of [`Ggx::refraction_pdf`]'s draw is t G2/G1).
+    pub fn transmission(&self, wo: Vec3, wi: Vec3, eta: f32, t: f32) -> f32 {
+        let Some(m) = Self::refraction_normal(wo, wi, eta) else { return 0.0 };
+        let den = wo.dot(m) + eta * wi.dot(m);
+        let jacobian = wo.dot(m) * wi.dot(m).abs() / (wo.z * wi.z.abs());
+        jacobian * eta * eta * t * self.d(m) * self.g2_through(wo, wi) / (den * den)
+    }
+
     /// A reflected direction for `wo` from two uniform numbers, and its
     /// weight BRDF·cos θi / pdf for facets that reflect 1: G2/G1(ωo) (`None`
     /// where the reflection leaves below the surface: the path ends).
@@ -132,22 +178,21 @@ pub fn conductor_fresnel(cos_i: f32, eta: f32, k: f32) -> f32 {
     (0.5 * (rs + rp)).clamp(0.0, 1.0)
 }
 
+/// Quadrature over directions for the scattering tests.
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::optics::fresnel::fresnel;
-    use crate::util::rng::random_f32;
+pub(crate) mod quadrature {
+    use glam::Vec3;
 
-    const ALPHAS: [f32; 5] = [0.05, 0.1, 0.3, 0.6, 1.0];
-
-    fn direction(theta: f64, phi: f64) -> Vec3 {
+    /// The unit direction at polar angle `theta` and azimuth `phi` (radians).
+    pub(crate) fn direction(theta: f64, phi: f64) -> Vec3 {
         Vec3::new((theta.sin() * phi.cos()) as f32, (theta.sin() * phi.sin()) as f32, theta.cos() as f32)
     }
 
-    /// ∫ f(ω) dω over the upper hemisphere by the midpoint rule in
-    /// (cos θ, φ), with `n` steps in each.
-    fn hemisphere(n: usize, f: impl Fn(Vec3) -> f64) -> f64 {
-        let (dc, dp) = (1.0 / n as f64, 2.0 * core::f64::consts::PI / n as f64);
+    /// ∫ f(ω) dω over the directions whose cos θ is above `lowest` (0: the
+    /// upper hemisphere, −1: the sphere) by the midpoint rule in (cos θ,
+    /// φ), with `n` steps in each.
+    pub(crate) fn integrate(n: usize, lowest: f64, f: impl Fn(Vec3) -> f64) -> f64 {
+        let (dc, dp) = ((1.0 - lowest) / n as f64, 2.0 * core::f64::consts::PI / n as f64);
         let mut sum = 0.0;
         for i in 0..n {
             let theta = (1.0 - (i as f64 + 0.5) * dc).acos();
@@ -156,6 +201,21 @@ mod tests {
             }
         }
         sum * dc * dp
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::quadrature::{direction, integrate};
+    use super::*;
+    use crate::optics::fresnel::fresnel;
+    use crate::util::rng::random_f32;
+
+    const ALPHAS: [f32; 5] = [0.05, 0.1, 0.3, 0.6, 1.0];
+
+    /// ∫ f(ω) dω over the upper hemisphere.
+    fn hemisphere(n: usize, f: impl Fn(Vec3) -> f64) -> f64 {
+        integrate(n, 0.0, f)
     }
 
     #[test]
@@ -254,6 +314,31 @@ mod tests {
                     // χ² of `dof` degrees has mean dof and deviation √(2 dof): 5 deviations is p < 1e-6.
                     let limit = dof as f64 + 5.0 * (2.0 * dof as f64).sqrt();
                     assert!(chi2 < limit, "α {alpha}, θo {theta}, {what}: χ² {chi2:.0} over {dof} degrees");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn the_sampled_refractions_follow_their_density() {
+        // Refracted about a visible normal (Walter et al. 2007), binned
+        // mirrored into the upper hemisphere, against Ggx::refraction_pdf;
+        // into glass (η 1.5) and out of it (η 1/1.5, with total internal
+        // reflection: those draws are dropped, and the density has none).
+        let samples = 200_000;
+        for alpha in [0.1, 0.3, 1.0] {
+            let ggx = Ggx { alpha };
+            for eta in [1.5f32, 1.0 / 1.5] {
+                for theta in [0.2f64, 1.0, 1.45] {
+                    let wo = direction(theta, 1.1);
+                    let mirror = |w: Vec3| Vec3::new(w.x, w.y, -w.z);
+                    let draw = |i: u32| {
+                        let m = ggx.sample_visible_normal(wo, random_f32(9, i, 0), random_f32(9, i, 1));
+                        crate::optics::fresnel::refract(-wo, m, 1.0, eta).map_or(Vec3::NEG_Z, mirror)
+                    };
+                    let (chi2, dof) = chi_square(samples, draw, |w| f64::from(ggx.refraction_pdf(wo, mirror(w), eta)));
+                    let limit = dof as f64 + 5.0 * (2.0 * dof as f64).sqrt();
+                    assert!(chi2 < limit, "α {alpha}, η {eta}, θo {theta}: χ² {chi2:.0} over {dof} degrees");
                 }
             }
         }

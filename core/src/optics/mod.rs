@@ -6,6 +6,7 @@ pub mod absorption;
 pub mod fresnel;
 pub mod metal;
 pub mod microfacet;
+pub mod rough_glass;
 pub mod scatter;
 pub mod surface;
 pub mod thin_film;

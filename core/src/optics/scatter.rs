@@ -7,8 +7,11 @@
 //! its GGX microsurface. A thin sheet (`thin`, glTF's thin-walled
 //! transmission) reflects with [`sheet_reflectance`] and passes the rest
 //! straight on: its two faces bend a ray back to where it was going, no
-//! distance apart. Photons, the view rays and the sampled view paths all
-//! scatter here; the CPU's packets and the WGSL twin mirror these functions.
+//! distance apart. Rough glass does all of this about one facet normal
+//! drawn from its GGX microsurface ([`scatter_rough_dielectric`]; a rough
+//! sheet passes light on as its reflection mirrored through the surface).
+//! Photons, the view rays and the sampled view paths all scatter here; the
+//! CPU's packets and the WGSL twin mirror these functions.
 
 use crate::geometry::primitive::{basis, cone_direction};
 use crate::geometry::ray::Ray;
@@ -148,6 +151,130 @@ pub fn scatter_metal(
     let cos_facet = local.dot((local + wi).normalize());
     let d = (t * wi.x + b * wi.y + n * wi.z).normalize();
     Some(MetalBounce { ray: Ray { origin: offset_origin(point, n, d), direction: d }, cos_facet, unshadowed })
+}
+
+/// A ray leaving rough glass off one facet ([`scatter_rough_dielectric`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GlassBounce {
+    /// The reflected or transmitted ray.
+    pub ray: Ray,
+    /// G2/G1: the share of such rays the microsurface lets out unshadowed.
+    pub unshadowed: f32,
+    /// The ray passed through the surface (refracted, or crossed a sheet).
+    pub crossed: bool,
+    /// The branch number rescaled within the branch it chose: uniform on
+    /// [0, 1) and independent of the choice, so a photon spends it on its
+    /// survival (`leftover < unshadowed`) without a number of its own.
+    pub leftover: f32,
+}
+
+/// Where a ray meets one facet of rough glass: the normal facing it, the
+/// facet's Fresnel reflectance, the ray reflected off the facet and the
+/// one passed through it (`None` under total internal reflection).
+struct Facet {
+    n: Vec3,
+    reflectance: f32,
+    reflected: Vec3,
+    through: Option<Vec3>,
+}
+
+impl Facet {
+    /// The facet a ray along `direction` meets on the glass `face` (outward
+    /// normal `outward`), drawn from the visible normals of `ggx` by the
+    /// two numbers `u1`, `u2`.
+    fn draw(direction: Vec3, outward: Vec3, face: Face, ggx: Ggx, (u1, u2): (f32, f32)) -> Facet {
+        let (n, n1, n2) = interface(direction, outward, face.ior);
+        let (t, b) = basis(n);
+        let wo = Vec3::new(-direction.dot(t), -direction.dot(b), -direction.dot(n));
+        let ml = ggx.sample_visible_normal(wo, u1, u2);
+        let m = (t * ml.x + b * ml.y + n * ml.z).normalize();
+        let reflectance = face.reflectance((-direction.dot(m)).clamp(0.0, 1.0), n1, n2);
+        let reflected = reflect(direction, m);
+        let through = match face.thin {
+            // A sheet's two faces: the facet's reflection mirrored through
+            // the surface (straight on when the facet is the normal).
+            true => Some(reflected - n * (2.0 * reflected.dot(n))),
+            false => refract(direction, m, n1, n2),
+        };
+        Facet { n, reflectance, reflected, through }
+    }
+
+    /// G2/G1 of a ray leaving along `d` (its side checked: a reflection
+    /// stays on the incoming side, a transmission crosses), else `None`:
+    /// the microsurface sends it the wrong way and the path ends there
+    /// (the light single scattering drops).
+    fn unshadowed(&self, ggx: Ggx, direction: Vec3, d: Vec3, crossed: bool) -> Option<f32> {
+        let (cos_o, cos_i) = (-direction.dot(self.n), d.dot(self.n));
+        if cos_o <= 0.0 || cos_i == 0.0 || (cos_i < 0.0) != crossed {
+            return None;
+        }
+        // G2/G1 = (1 + Λo)/(1 + Λo + Λi); Λ reads a direction's cosine only.
+        let (lo, li) = (ggx.lambda(Vec3::Z * cos_o), ggx.lambda(Vec3::Z * cos_i));
+        Some((1.0 + lo) / (1.0 + lo + li))
+    }
+}
+
+/// The ray arriving along `direction` at rough glass (`face`, outward
+/// normal `outward`, its facets' normals `ggx`) at `point`: a facet normal
+/// drawn from those `direction` sees (Heitz 2018, from the two numbers `facet`), then
+/// Fresnel's choice at that facet (`u < R`: reflected off it, else
+/// refracted through it at the path's own index, Walter et al. 2007).
+/// `None` where the ray would leave on the wrong side of the surface: the
+/// path ends there. Its weight is G2/G1 ([`GlassBounce::unshadowed`]).
+pub fn scatter_rough_dielectric(
+    direction: Vec3,
+    (point, outward): (Vec3, Vec3),
+    face: Face,
+    ggx: Ggx,
+    facet: (f32, f32),
+    u: f32,
+) -> Option<GlassBounce> {
+    let f = Facet::draw(direction, outward, face, ggx, facet);
+    let r = f.reflectance;
+    let (d, crossed, leftover) = match f.through {
+        Some(d) if u >= r => (d, true, (u - r) / (1.0 - r)),
+        _ => (f.reflected, false, u / r),
+    };
+    let unshadowed = f.unshadowed(ggx, direction, d, crossed)?;
+    let ray = Ray { origin: offset_origin(point, f.n, d), direction: d };
+    Some(GlassBounce { ray, unshadowed, crossed, leftover: leftover.min(ONE_BELOW) })
+}
+
+/// The largest f32 below 1.
+const ONE_BELOW: f32 = 1.0 - f32::EPSILON / 2.0;
+
+/// Both branches at rough glass off one facet, for a path that follows
+/// both: each ray with its weight (Fresnel's share at the facet times
+/// G2/G1), `None` where the branch leaves on the wrong side or the ray is
+/// totally internally reflected.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoughBranches {
+    /// The ray reflected off the facet, and its weight R G2/G1.
+    pub reflected: Option<(Ray, f32)>,
+    /// The ray passed through it, and its weight (1 − R) G2/G1.
+    pub crossed: Option<(Ray, f32)>,
+}
+
+/// [`RoughBranches`] of a ray arriving along `direction` at rough glass
+/// (`face`, outward normal `outward`, facets `ggx`) at `point`, off the
+/// facet the numbers `facet` draw ([`scatter_rough_dielectric`]'s facet).
+pub fn split_rough_dielectric(
+    direction: Vec3,
+    (point, outward): (Vec3, Vec3),
+    face: Face,
+    ggx: Ggx,
+    facet: (f32, f32),
+) -> RoughBranches {
+    let f = Facet::draw(direction, outward, face, ggx, facet);
+    let branch = |d: Vec3, crossed: bool, share: f32| {
+        let unshadowed = f.unshadowed(ggx, direction, d, crossed)?;
+        Some((Ray { origin: offset_origin(point, f.n, d), direction: d }, share * unshadowed))
+    };
+    let r = if f.through.is_some() { f.reflectance } else { 1.0 };
+    RoughBranches {
+        reflected: branch(f.reflected, false, r),
+        crossed: f.through.and_then(|d| branch(d, true, 1.0 - r)),
+    }
 }
 
 /// Both branches at a dielectric surface, for a path that follows both:

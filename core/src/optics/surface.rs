@@ -9,6 +9,7 @@ use crate::model::photon::WHITE_BAND;
 use crate::model::scene::{Attenuation, Checker, MaterialKind, Texture, ThinFilm};
 use crate::optics::absorption::Absorption;
 use crate::optics::metal::MetalOptics;
+use crate::optics::microfacet::Ggx;
 use crate::optics::scatter::Face;
 use alloc::vec::Vec;
 use glam::{Vec2, Vec3};
@@ -63,6 +64,8 @@ pub struct DielectricOptics {
     /// The film on its surface, its index relative to the outside
     /// (`None`: bare glass, or a film of no thickness).
     pub film: Option<ThinFilm>,
+    /// Its facets' normal distribution; `None`: polished (roughness 0).
+    pub ggx: Option<Ggx>,
 }
 
 /// A relative index of refraction sampled every nanometre over the visible
@@ -202,7 +205,7 @@ impl Surface {
             },
             MaterialKind::Mirror => Surface::Mirror,
             MaterialKind::Metal { color, roughness } => Surface::Metal(MetalOptics::new(*color, *roughness)),
-            MaterialKind::Dielectric { dispersion, outside, attenuation, thin, film } => {
+            MaterialKind::Dielectric { dispersion, outside, attenuation, thin, film, roughness } => {
                 // Snell's law and Fresnel depend only on the ratio of the
                 // indices, so the optics carry the relative index n/n_outside.
                 let per_band =
@@ -230,6 +233,7 @@ impl Surface {
                         .and_then(|a| Absorption::new(&a, bands)),
                     thin: *thin,
                     film: film.filter(|f| f.thickness_nm > 0.0).map(|f| ThinFilm { ior: f.ior / outside_white, ..f }),
+                    ggx: (*roughness > 0.0).then(|| Ggx::from_roughness(*roughness)),
                 })
             }
         }
@@ -290,6 +294,7 @@ mod tests {
             attenuation: None,
             thin: false,
             film,
+            roughness: 0.0,
         };
         let Surface::Dielectric(g) = Surface::new(&material, &BandTable::new(BandSpec::Paper7)) else { unreachable!() };
         g

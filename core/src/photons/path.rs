@@ -9,7 +9,7 @@ use crate::model::bands::BandTable;
 use crate::model::light_range::range_window;
 use crate::model::photon::{Photon, TraceStats, oct_pack};
 use crate::optics::fresnel::reflect;
-use crate::optics::scatter::{offset_origin, scatter_dielectric, scatter_metal};
+use crate::optics::scatter::{offset_origin, scatter_dielectric, scatter_metal, scatter_rough_dielectric};
 use crate::optics::surface::{DielectricOptics, Surface};
 use crate::plan::prepared::{Hit, PreparedScene};
 use crate::util::rng::{dim, random_f32};
@@ -87,8 +87,12 @@ pub(crate) fn arrives_at_specular(
 /// path's wavelength times the unshadowed share as its survival
 /// probability ([`dim::scatter`]; Russian roulette, so survivors keep their
 /// flux); or Fresnel's choice between reflection and refraction at the
-/// path's own index. False when the path ended here: absorbed by a metal
-/// or a tinted sheet ([`absorbed_crossing`]), its flux tallied. A white
+/// path's own index ([`dim::scatter`]), about the normal or, on rough
+/// glass, about a facet's ([`scatter_rough_dielectric`], its numbers
+/// [`dim::bounce`]'s), surviving with the unshadowed share (the branch
+/// number's leftover). False when the path ended here: absorbed by a metal,
+/// by rough glass's microsurface or by a tinted sheet ([`absorbed_crossing`]),
+/// its flux tallied. A white
 /// path meets only grey metals: at a coloured one a white photon splits
 /// or takes one band first, and indirect light's goes on as one of its
 /// wavelengths. The bounce is the caller's to count.
@@ -129,10 +133,29 @@ pub(crate) fn cross_specular(
             let u = random_f32(seed, index, dim::scatter(p.band, p.bounces));
             let face = glass.face(p.band, p.lambda_nm, &scene.bands);
             let before = p.ray.direction;
-            p.ray = scatter_dielectric(before, hit.point, hit.normal, face, u);
-            let absorbed = absorbed_crossing(glass, before, p.ray.direction, p.band, || {
-                random_f32(seed, index, dim::absorb(p.band, p.bounces))
-            });
+            let crossed = match glass.ggx {
+                None => {
+                    p.ray = scatter_dielectric(before, hit.point, hit.normal, face, u);
+                    p.ray.direction == before
+                }
+                Some(ggx) => {
+                    let [d1, d2] = dim::bounce(p.band, p.bounces);
+                    let facet = (random_f32(seed, index, d1), random_f32(seed, index, d2));
+                    let bounce = scatter_rough_dielectric(before, (hit.point, hit.normal), face, ggx, facet, u);
+                    match bounce.filter(|b| b.leftover < b.unshadowed) {
+                        Some(b) => {
+                            p.ray = b.ray;
+                            b.crossed
+                        }
+                        None => {
+                            stats.flux_absorbed += f64::from(p.flux);
+                            return false;
+                        }
+                    }
+                }
+            };
+            let absorbed =
+                absorbed_crossing(glass, crossed, p.band, || random_f32(seed, index, dim::absorb(p.band, p.bounces)));
             if absorbed {
                 stats.flux_absorbed += f64::from(p.flux);
             }
@@ -164,16 +187,10 @@ pub fn absorbed(glass: &DielectricOptics, dir: Vec3, normal: Vec3, t: f32, band:
 }
 
 /// Whether a tinted thin sheet absorbs the photon path of `band` that
-/// crossed it (it left along `after` as it came along `before`): with
-/// probability 1 − its crossing's transmittance
+/// `crossed` it (a polished sheet's crossing leaves along the direction it
+/// came): with probability 1 − its crossing's transmittance
 /// ([`DielectricOptics::sheet_crossing`]) against the uniform number `u`
 /// ([`dim::absorb`], unused at a sheet by [`absorbed`]), as Russian roulette.
-pub fn absorbed_crossing(
-    glass: &DielectricOptics,
-    before: Vec3,
-    after: Vec3,
-    band: u16,
-    u: impl FnOnce() -> f32,
-) -> bool {
-    glass.thin && glass.absorption.is_some() && before == after && u() >= glass.sheet_crossing(band)
+pub fn absorbed_crossing(glass: &DielectricOptics, crossed: bool, band: u16, u: impl FnOnce() -> f32) -> bool {
+    glass.thin && glass.absorption.is_some() && crossed && u() >= glass.sheet_crossing(band)
 }

@@ -24,17 +24,14 @@
 
 use crate::geometry::primitive::Ray;
 use crate::model::photon::{Photon, PhotonMap, TraceStats, WHITE_BAND};
-use crate::optics::scatter::scatter_dielectric;
 use crate::optics::surface::Surface;
 use crate::photons::emit::emit;
 use crate::photons::indirect;
-use crate::photons::path::{Path, absorbed_crossing, arrives_at_specular, cross_specular};
+use crate::photons::path::{Path, arrives_at_specular, cross_specular};
 use crate::photons::wavelengths::{emission_paths, sample_band, split_bands};
 use crate::plan::prepared::PreparedScene;
 use crate::util::progress::{Progress, Stage};
-use crate::util::rng::{dim, random_f32};
 use alloc::vec::Vec;
-use glam::Vec3;
 
 /// Traces every white photon of the scene's render settings, reporting
 /// progress about a hundred times.
@@ -142,9 +139,15 @@ fn trace_path(
         if p.bounces == 0 {
             stats.specular_paths += 1;
         }
-        if p.band == WHITE_BAND && matches!(surface, Surface::Metal(m) if m.is_chromatic()) {
-            // A coloured metal reflects each wavelength its own share: the
-            // white photon splits as at glass, or goes on as one band.
+        let splits = match surface {
+            Surface::Dielectric(glass) => glass.splits_photons,
+            Surface::Metal(metal) => metal.is_chromatic(),
+            _ => false,
+        };
+        if p.band == WHITE_BAND && splits {
+            // The bands leave here differently (dispersive, coloured or
+            // coated glass, a coloured metal): the white photon splits
+            // into its bands or hero wavelengths, or goes on as one band.
             let paths = settings.wavelengths.paths(scene.bands.len());
             if paths == 1 {
                 (p.band, p.lambda_nm) = sample_band(scene, index);
@@ -160,48 +163,8 @@ fn trace_path(
                 return;
             }
         }
-        match surface {
-            Surface::Dielectric(glass) if p.band == WHITE_BAND && glass.splits_photons => {
-                let paths = settings.wavelengths.paths(scene.bands.len());
-                let before = p.ray.direction;
-                let tinted = |band: u16, after: Vec3, bounces: u32| {
-                    absorbed_crossing(glass, before, after, band, || {
-                        random_f32(settings.seed, index, dim::absorb(band, bounces))
-                    })
-                };
-                if paths == 1 {
-                    let (band, lambda_nm) = sample_band(scene, index);
-                    p.band = band;
-                    p.lambda_nm = lambda_nm;
-                    let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
-                    let face = glass.face(band, lambda_nm, &scene.bands);
-                    p.ray = scatter_dielectric(before, hit.point, hit.normal, face, u);
-                    if tinted(band, p.ray.direction, p.bounces) {
-                        stats.flux_absorbed += f64::from(p.flux);
-                        return;
-                    }
-                    p.bounces += 1;
-                    continue;
-                }
-                stats.paths += u64::from(paths) - 1;
-                for (band, lambda_nm) in split_bands(scene, index) {
-                    let u = random_f32(settings.seed, index, dim::scatter(band, p.bounces));
-                    let face = glass.face(band, lambda_nm, &scene.bands);
-                    let ray = scatter_dielectric(before, hit.point, hit.normal, face, u);
-                    let child = Path { ray, flux: p.flux / paths as f32, band, lambda_nm, bounces: p.bounces + 1 };
-                    if tinted(band, ray.direction, p.bounces) {
-                        stats.flux_absorbed += f64::from(child.flux);
-                        continue;
-                    }
-                    trace_path(scene, index, child, None, out, stats);
-                }
-                return;
-            }
-            _ => {
-                if !cross_specular(scene, index, &mut p, &hit, stats) {
-                    return;
-                }
-            }
+        if !cross_specular(scene, index, &mut p, &hit, stats) {
+            return;
         }
         p.bounces += 1;
     }

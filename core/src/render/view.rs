@@ -21,7 +21,9 @@
 //! unshadowed share G2/G1, its numbers [`PixelSampler::facet`]'s, and a
 //! rough metal adds the highlights of the lights no ray meets
 //! ([`ViewContext::metal_highlights`]). Dielectrics trace both the
-//! Fresnel-weighted reflection and the refraction, to `max_depth`, dropping branches whose share of the
+//! Fresnel-weighted reflection and the refraction, to `max_depth` (rough
+//! glass: off one facet, each branch weighted by G2/G1, plus the
+//! highlights of hidden lights on both sides), dropping branches whose share of the
 //! pixel (Fresnel factors times, after a split, the band's largest RGB
 //! weight) falls below [`MIN_VIEW_WEIGHT`]. At the first dispersive glass a
 //! view ray splits into one ray per band, each weighted by the band's RGB
@@ -52,7 +54,12 @@ use crate::model::photon::WHITE_BAND;
 use crate::model::scene::{Light, WavelengthSampling};
 use crate::optics::fresnel::reflect;
 use crate::optics::metal::MetalOptics;
-use crate::optics::scatter::{Face, offset_origin, scatter_dielectric, scatter_metal, split_dielectric};
+use crate::optics::microfacet::Ggx;
+use crate::optics::rough_glass::rough_glass_bsdf;
+use crate::optics::scatter::{
+    Face, offset_origin, scatter_dielectric, scatter_metal, scatter_rough_dielectric, split_dielectric,
+    split_rough_dielectric,
+};
 use crate::optics::surface::{DielectricOptics, Surface};
 use crate::photons::path::stored_wavelength;
 use crate::photons::wavelengths::spectrum_share;
@@ -220,6 +227,9 @@ impl<'a> ViewContext<'a> {
         path: ViewPath,
         points: &mut Vec<VisiblePoint>,
     ) -> Vec3 {
+        if let Some(ggx) = glass.ggx {
+            return self.through_rough_dielectric(ray, hit, (face, glass, ggx), path, points);
+        }
         let thin = glass.thin;
         let crossing = glass.sheet_crossing_rgb(path.band);
         let crossed =
@@ -250,6 +260,42 @@ impl<'a> ViewContext<'a> {
         sum
     }
 
+    /// Reflection and refraction off one facet of rough glass (drawn with
+    /// the path's [`PixelSampler::facet`] numbers): Fresnel's choice for a
+    /// sampled path, both branches for a centre or hero path, each weighted
+    /// by G2/G1 ([`scatter_rough_dielectric`], [`split_rough_dielectric`]),
+    /// plus the highlights of the lights no ray meets, on either side
+    /// ([`rough_glass_bsdf`]). A tinted sheet keeps its crossing's colour
+    /// of what passes it.
+    fn through_rough_dielectric(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        (face, glass, ggx): (Face, &DielectricOptics, Ggx),
+        path: ViewPath,
+        points: &mut Vec<VisiblePoint>,
+    ) -> Vec3 {
+        let crossing = glass.sheet_crossing_rgb(path.band);
+        let at = (hit.point, hit.normal);
+        let lit = self.rough_glass_highlights(ray.direction, at, (face, ggx), crossing);
+        let mut follow = |out: &Ray, weight: f32, crossed: bool| {
+            let f = if crossed { crossing * weight } else { Vec3::splat(weight) };
+            let next =
+                ViewPath { depth: path.depth + 1, weight: path.weight * f.max_element(), tint: path.tint * f, ..path };
+            if next.weight > MIN_VIEW_WEIGHT { f * self.radiance(out, next, points) } else { Vec3::ZERO }
+        };
+        let facet = path.facets.facet(path.hero, path.depth);
+        if let Some(sampler) = path.sampler.filter(|_| self.scene.scene.render.view_paths.jittered()) {
+            let u = sampler.branch(path.hero, path.depth);
+            return lit
+                + scatter_rough_dielectric(ray.direction, at, face, ggx, facet, u)
+                    .map_or(Vec3::ZERO, |b| follow(&b.ray, b.unshadowed, b.crossed));
+        }
+        let split = split_rough_dielectric(ray.direction, at, face, ggx, facet);
+        let reflected = split.reflected.map_or(Vec3::ZERO, |(r, w)| follow(&r, w, false));
+        lit + reflected + split.crossed.map_or(Vec3::ZERO, |(r, w)| follow(&r, w, true))
+    }
+
     /// Radiance leaving a diffuse hit toward the viewer (an emissive
     /// surface's own glow included), less its caustic,
     /// which is left to a visible point (when the plan traces caustics and
@@ -269,13 +315,33 @@ impl<'a> ViewContext<'a> {
         reflected * (1.0 / PI) + albedo * settings.ambient + emitted
     }
 
-    /// What a rough metal at `point` (normal `normal`, either side)
-    /// reflects back along `direction` of the lights no ray can meet
+    /// What a rough surface at `point` (normal `normal`, either side) sends
+    /// toward the viewer of the lights no ray can meet
     /// ([`Light::hidden_direction`]: spot, point and beam lights, suns of
-    /// their own): its BRDF toward each, in the colour of the light's
-    /// spectrum, times the light's irradiance there (with its shadow). The light of what rays can meet (environments, area
-    /// lights, everything lit) comes by the reflected path, so nothing is
-    /// counted twice. Zero on a polished metal, whose highlights are points.
+    /// their own): its BSDF `bsdf` toward each (the light's direction in,
+    /// per RGB channel out), in the colour of the light's spectrum, times
+    /// the light's irradiance on the side it shines on (with its shadow).
+    /// The light of what rays can meet (environments, area lights,
+    /// everything lit) comes by the scattered path, so nothing is counted
+    /// twice. Polished surfaces have none: their highlights are points.
+    fn highlights(&self, (point, normal): (Vec3, Vec3), bsdf: impl Fn(Vec3) -> Vec3) -> Vec3 {
+        (0..self.scene.lights.len())
+            .filter_map(|i| {
+                let wi = self.scene.lights[i].hidden_direction(point)?;
+                let f = bsdf(wi);
+                let n = if wi.dot(normal) > 0.0 { normal } else { -normal };
+                (f != Vec3::ZERO)
+                    .then(|| self.scene.light_spectra[i].reflected * f * self.direct_irradiance(i, point, n))
+            })
+            .sum()
+    }
+
+    /// What a rough metal seen along `direction` by a path of band `band`
+    /// at `lambda_nm` reflects of the lights no ray can meet
+    /// ([`Light::hidden_direction`]): its BRDF toward each times the
+    /// light's irradiance, in the colour of its spectrum, with its shadow
+    /// (zero when polished, whose highlights are points). What rays can
+    /// meet comes by the reflected path, so nothing is counted twice.
     pub fn metal_highlights(
         &self,
         direction: Vec3,
@@ -288,14 +354,26 @@ impl<'a> ViewContext<'a> {
             return Vec3::ZERO;
         }
         let n = if direction.dot(normal) < 0.0 { normal } else { -normal };
-        (0..self.scene.lights.len())
-            .filter_map(|i| {
-                let wi = self.scene.lights[i].hidden_direction(point)?;
-                let brdf = metal.reflection(-direction, wi, n, band, lambda_nm, &self.scene.bands);
-                (brdf != Vec3::ZERO)
-                    .then(|| self.scene.light_spectra[i].reflected * brdf * self.direct_irradiance(i, point, n))
-            })
-            .sum()
+        self.highlights((point, normal), |wi| metal.reflection(-direction, wi, n, band, lambda_nm, &self.scene.bands))
+    }
+
+    /// What rough glass (`face`, facets `ggx`) seen along `direction`
+    /// sends toward the viewer of the lights no ray can meet, on both
+    /// sides: its BSDF ([`rough_glass_bsdf`]) toward each times the light's
+    /// irradiance on the side it shines on, with its shadow; what passes a
+    /// tinted sheet keeps its crossing's colour `crossing`.
+    pub fn rough_glass_highlights(
+        &self,
+        direction: Vec3,
+        (point, normal): (Vec3, Vec3),
+        (face, ggx): (Face, Ggx),
+        crossing: Vec3,
+    ) -> Vec3 {
+        self.highlights((point, normal), |wi| {
+            let f = rough_glass_bsdf(-direction, wi, normal, face, ggx);
+            let behind = wi.dot(normal) * direction.dot(normal) > 0.0;
+            if behind { crossing * f } else { Vec3::splat(f) }
+        })
     }
 
     /// Irradiance from light `index` at `p` (unit normal `n`), zero when in

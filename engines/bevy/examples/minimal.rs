@@ -25,7 +25,11 @@ fn scene(mut commands: Commands) {
     let floor = CausticShape(Shape::Plane { point: V::ZERO, normal: V::Y });
     commands.spawn((floor, Receiver { albedo: V::splat(0.85), checker: None }, Transform::IDENTITY));
     let ball = CausticShape(Shape::Sphere { center: V::ZERO, radius: 1.0 });
-    commands.spawn((ball, Glass { dispersion: Dispersion::Paper, film: None }, Transform::from_xyz(0.0, 1.0, 0.0)));
+    commands.spawn((
+        ball,
+        Glass { dispersion: Dispersion::Paper, film: None, roughness: 0.0 },
+        Transform::from_xyz(0.0, 1.0, 0.0),
+    ));
 }
 
 /// Shows the caustic image (the plugin makes it on its first frame).

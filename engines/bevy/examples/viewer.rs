@@ -95,7 +95,7 @@ fn setup(mut commands: Commands) {
     ));
     commands.spawn((
         CausticShape(Shape::Sphere { center: CoreVec3::ZERO, radius: 1.0 }),
-        Glass { dispersion: Dispersion::Paper, film: None },
+        Glass { dispersion: Dispersion::Paper, film: None, roughness: 0.0 },
         Transform::from_xyz(0.0, 1.0, 0.0),
     ));
     // A 60° prism standing on the floor beside the sphere.
@@ -105,7 +105,7 @@ fn setup(mut commands: Commands) {
             vertices: [CoreVec3::new(-s, 0.0, 0.0), CoreVec3::new(s, 0.0, 0.0), CoreVec3::new(0.0, 0.0, -s * 1.732)],
             extrude: CoreVec3::new(0.0, 1.2, 0.0),
         }),
-        Glass { dispersion: Dispersion::Paper, film: None },
+        Glass { dispersion: Dispersion::Paper, film: None, roughness: 0.0 },
         Transform::from_xyz(1.6, 0.0, -1.4),
     ));
 }

@@ -60,6 +60,9 @@ pub struct Glass {
     /// A thin film on its surface (a coated lens, a soap film): reflects
     /// in the film's colours. `None`: bare glass.
     pub film: Option<ThinFilm>,
+    /// glTF's perceptual roughness, 0 (polished) to 1: frosted glass
+    /// spreads its caustic into a glow.
+    pub roughness: f32,
 }
 
 /// The object is a diffuse surface that catches caustics.
@@ -224,6 +227,7 @@ fn build_scene(
                 attenuation: None,
                 thin: false,
                 film: g.film,
+                roughness: g.roughness,
             },
             (None, Some(r)) => MaterialKind::Diffuse {
                 albedo: r.albedo,
@@ -246,6 +250,7 @@ fn build_scene(
             attenuation: None,
             thin: false,
             film: glass.film,
+            roughness: glass.roughness,
         };
         scene_objects.push(Object { shape: mesh(handle, at, "a Glass mesh")?, material: scene_materials.len() });
         scene_materials.push(Material { name: format!("glass mesh {i}"), kind });

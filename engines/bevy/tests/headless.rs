@@ -49,7 +49,7 @@ fn spawn_scene(mut commands: Commands) {
     ));
     commands.spawn((
         CausticShape(Shape::Sphere { center: CoreVec3::ZERO, radius: 1.0 }),
-        Glass { dispersion: Dispersion::Paper, film: None },
+        Glass { dispersion: Dispersion::Paper, film: None, roughness: 0.0 },
         Transform::from_xyz(0.0, 1.0, 0.0),
     ));
 }
@@ -213,7 +213,7 @@ fn spawn_layer_scene(
         .spawn((Mesh3d(meshes.add(Plane3d::default().mesh().size(20.0, 20.0))), MeshMaterial3d(materials.add(floor))));
     commands.spawn((
         Mesh3d(meshes.add(Sphere::new(1.0).mesh().ico(3).expect("an icosphere"))),
-        Glass { dispersion: Dispersion::Paper, film: None },
+        Glass { dispersion: Dispersion::Paper, film: None, roughness: 0.0 },
         Visibility::Hidden,
         Transform::from_xyz(0.0, 1.0, 0.0),
     ));

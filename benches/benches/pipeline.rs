@@ -27,6 +27,8 @@
 //! - `metals/{rough,polished,mirrors}/{trace,view}`: the built-in `ring`
 //!   (100,000 photons) with its metals as they are, all polished and as
 //!   mirrors: the CPU's photon pass and its view pass;
+//! - `rough_glass/{frosted,polished}/{trace,view}`: the built-in `sphere`
+//!   (100,000 photons) with its glass frosted (roughness 0.3) and polished;
 //! - `scene/{new,update-camera,update-mesh}/<triangles>`: `sphere` with its
 //!   sphere as a closed mesh, prepared from scratch (every hierarchy
 //!   built) and updated from the last frame's preparation after the camera
@@ -237,6 +239,12 @@ fn metals_group(c: &mut Criterion) {
     trace_and_view_group(c, "metals", prismatic_benches::ring_metals(100_000));
 }
 
+/// The built-in `sphere` (100,000 photons) with its glass frosted and
+/// polished, on the CPU.
+fn rough_glass_group(c: &mut Criterion) {
+    trace_and_view_group(c, "rough_glass", prismatic_benches::sphere_frosted(100_000));
+}
+
 /// Group `group`: each named scene's photon pass (throughput in photons)
 /// and its view pass (in pixels) on the CPU.
 fn trace_and_view_group<const N: usize>(c: &mut Criterion, group: &str, scenes: [(&str, PreparedScene); N]) {
@@ -334,6 +342,7 @@ criterion_group!(
     progressive_group,
     lights_group,
     metals_group,
+    rough_glass_group,
     indirect_group,
     scene_group
 );

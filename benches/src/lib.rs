@@ -67,6 +67,22 @@ pub fn frame(backend: &mut dyn Backend, scene: &PreparedScene) -> Image {
     render.image().expect("image")
 }
 
+/// The built-in `sphere` with `photons` a pass: its dispersive glass
+/// frosted (roughness 0.3, `"frosted"`) and polished as built
+/// (`"polished"`, which the CPU traces in packets): what rough glass costs.
+pub fn sphere_frosted(photons: u32) -> [(&'static str, PreparedScene); 2] {
+    let mut polished = prismatic_cli::load_scene("sphere").expect("built-in sphere").scene;
+    polished.render.photons = photons;
+    let mut frosted = polished.clone();
+    for m in &mut frosted.materials {
+        if let MaterialKind::Dielectric { roughness, .. } = &mut m.kind {
+            *roughness = 0.3;
+        }
+    }
+    let [frosted, polished] = [frosted, polished].map(|s| PreparedScene::new(s).expect("valid"));
+    [("frosted", frosted), ("polished", polished)]
+}
+
 /// The built-in `ring` with `photons` a pass: its metals as they are (a
 /// gold ring of roughness 0.03, a copper ball of 0.3, a polished silver
 /// ball; `"rough"`), all polished (`"polished"`) and as mirrors

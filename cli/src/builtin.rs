@@ -13,7 +13,7 @@ pub struct BuiltinScene {
 }
 
 /// Every built-in scene file.
-pub const BUILTIN_SCENES: [BuiltinScene; 10] = [
+pub const BUILTIN_SCENES: [BuiltinScene; 11] = [
     BuiltinScene {
         name: "spectrum",
         description: "a prism's spectrum on a wall behind the paper's glass sphere and its caustic (the default)",
@@ -63,6 +63,11 @@ pub const BUILTIN_SCENES: [BuiltinScene; 10] = [
         name: "coated",
         description: "a glass ball under a thin-film coating: reflections and rings in thin-film colours, a tinted caustic",
         source: include_str!("../../scenes/coated.toml"),
+    },
+    BuiltinScene {
+        name: "frosted",
+        description: "a polished and a frosted flint ball: a sharp caustic beside a soft glow with coloured rims",
+        source: include_str!("../../scenes/frosted.toml"),
     },
 ];
 

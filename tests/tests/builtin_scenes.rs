@@ -30,6 +30,7 @@ fn every_built_in_scene_renders_finite_and_its_caustic_adds_light() {
         ("rainbow", 100_000),
         ("lamps", 4_000),
         ("coated", 20_000),
+        ("frosted", 20_000),
     ];
     for (name, photons) in scenes {
         let scene = builtin(name, photons, 64);
@@ -43,6 +44,44 @@ fn every_built_in_scene_renders_finite_and_its_caustic_adds_light() {
             with.pixels.iter().zip(&without.pixels).filter(|(a, b)| a.element_sum() > b.element_sum() + 1e-3).count();
         assert!(brighter >= 4, "{name}: the caustic lit only {brighter} pixels");
     }
+}
+
+#[test]
+fn the_frosted_balls_caustic_spreads_as_its_roughness_grows() {
+    // `frosted`: a polished ball at x = −1.3, a frosted one at x = 1.3.
+    // The spread (median distance from their median point) of the photons each sends
+    // through itself onto the floor (two bounces: in and out): the frosted
+    // ball's grows with its roughness, and even slightly frosted it is
+    // wider than the polished ball's (at roughness 0.1 it is not yet: a
+    // sphere's caustic is already as wide by its spherical aberration).
+    let median = |mut x: Vec<f32>| {
+        x.sort_by(f32::total_cmp);
+        x[x.len() / 2]
+    };
+    let spread = |photons: &[&prismatic_core::model::photon::Photon]| {
+        let centre = Vec3::from_array([0, 1, 2].map(|k| median(photons.iter().map(|p| p.position[k]).collect())));
+        median(photons.iter().map(|p| (Vec3::from(p.position) - centre).length()).collect())
+    };
+    let mut spreads = Vec::new();
+    for roughness in [0.2f32, 0.35, 0.6] {
+        let mut doc = prismatic_cli::load_scene("frosted").unwrap_or_else(|e| panic!("{e}"));
+        doc.scene.render.photons = 20_000;
+        let frosted = doc.scene.materials.iter_mut().find(|m| m.name == "frosted").expect("the frosted glass");
+        let prismatic_core::model::scene::MaterialKind::Dielectric { roughness: r, .. } = &mut frosted.kind else {
+            unreachable!("glass")
+        };
+        *r = roughness;
+        let map = trace_photons(&prismatic_tests::prepare(doc.scene));
+        let side = |frosted: bool| {
+            map.photons.iter().filter(|p| p.bounces == 2 && (p.position[0] > 0.0) == frosted).collect::<Vec<_>>()
+        };
+        let (polished, frosted) = (spread(&side(false)), spread(&side(true)));
+        // Measured: 0.156, 0.210 and 0.381 against the polished ball's 0.144.
+        let wider = if roughness < 0.3 { 1.04 } else { 1.3 };
+        assert!(frosted > wider * polished, "roughness {roughness}: spread {frosted}, polished {polished}");
+        spreads.push(frosted);
+    }
+    assert!(spreads.windows(2).all(|w| w[1] > w[0]), "spreads {spreads:?}");
 }
 
 /// Per band that reached the wall: mean height and mean direction of its photons.

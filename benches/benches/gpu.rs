@@ -9,14 +9,17 @@
 //! (a pass's photons under the `sphere`'s spot and under the studio
 //! environment, and each one's view pass), `indirect/{indirect,caustic}/gpu`
 //! (a pass of 100,000 indirect photons in the `sphere`, beside its spot's
-//! caustic pass of as many, as the CPU's `indirect` group). Every measurement ends
-//! with a device sync. On lavapipe they only show that the stages run;
+//! caustic pass of as many, as the CPU's `indirect` group),
+//! `metals/{rough,polished,mirrors}` and `rough_glass/{frosted,polished}`
+//! (the CPU's groups of the same names at 1,000,000 photons: a pass's
+//! photons, and a whole pass of a live render, photons to sums, at the
+//! scene's size). Every measurement ends with a device sync. On lavapipe they only show that the stages run;
 //! real figures need a GPU.
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use prismatic_benches::{frame, lit_by_each_light, paper_config};
 use prismatic_core::model::scene::RadiusMode;
-use prismatic_core::{Backend, NoProgress, Render};
+use prismatic_core::{Backend, NoProgress, PreparedScene, Render};
 use prismatic_gpu::{AdapterChoice, GpuBackend};
 
 fn gpu_groups(c: &mut Criterion) {
@@ -82,6 +85,37 @@ fn gpu_groups(c: &mut Criterion) {
             b.iter(|| render.photon_map(0, &mut NoProgress).unwrap())
         });
     }
+    group.finish();
+    trace_and_pass_group(c, &mut gpu, "metals", prismatic_benches::ring_metals(1_000_000));
+    trace_and_pass_group(c, &mut gpu, "rough_glass", prismatic_benches::sphere_frosted(1_000_000));
+}
+
+/// Group `group`: each named scene's photons (throughput in photons) and
+/// one pass of its live render after the first (in pixels) on the GPU.
+fn trace_and_pass_group<const N: usize>(
+    c: &mut Criterion,
+    gpu: &mut GpuBackend,
+    group: &str,
+    scenes: [(&str, PreparedScene); N],
+) {
+    let mut g = c.benchmark_group(group);
+    for (name, scene) in scenes {
+        let mut render = gpu.prepare(&scene).expect("prepare");
+        g.throughput(Throughput::Elements(u64::from(scene.scene.render.photons)));
+        g.bench_function(BenchmarkId::new(name, "trace"), |b| {
+            b.iter(|| render.photon_map(0, &mut NoProgress).unwrap())
+        });
+        let mut session = gpu.session(&scene).expect("session");
+        session.next_pass(&mut NoProgress).expect("first pass");
+        g.throughput(Throughput::Elements(u64::from(scene.scene.render.width * scene.scene.render.height)));
+        g.bench_function(BenchmarkId::new(name, "pass"), |b| {
+            b.iter(|| {
+                session.next_pass(&mut NoProgress).unwrap();
+                session.context().wait().unwrap();
+            })
+        });
+    }
+    g.finish();
 }
 
 criterion_group! {

@@ -157,7 +157,8 @@ pub struct GpuSurface {
     pub flags: u32,
     /// Index of the per-band indices in the tables buffer.
     pub ior_first: u32,
-    /// Index of the n(λ) curve in the tables buffer.
+    /// Index of the n(λ) curve in the tables buffer; a measured metal's
+    /// optical constants (see `SURFACE_MEASURED`).
     pub curve_first: u32,
     /// Diffuse albedo; a metal's reflectance at normal incidence; rough
     /// glass's GGX α in x (0: polished glass).

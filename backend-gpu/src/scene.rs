@@ -241,12 +241,20 @@ impl EncodedScene {
                 s
             }
             Surface::Mirror => GpuSurface { kind: SURFACE_MIRROR, ..GpuSurface::default() },
-            Surface::Metal(m) => GpuSurface {
-                kind: SURFACE_METAL,
-                albedo: v3(m.f0),
-                white_ior: m.ggx.map_or(0.0, |g| g.alpha),
-                ..GpuSurface::default()
-            },
+            Surface::Metal(m) => {
+                let mut s = GpuSurface {
+                    kind: SURFACE_METAL,
+                    albedo: v3(m.f0),
+                    white_ior: m.ggx.map_or(0.0, |g| g.alpha),
+                    ..GpuSurface::default()
+                };
+                if let Some(metal) = m.measured {
+                    s.flags |= SURFACE_MEASURED;
+                    s.curve_first = self.tables.len() as u32;
+                    self.tables.extend(metal.rows().iter().flatten());
+                }
+                s
+            }
             Surface::Dielectric(g) => {
                 let mut s = GpuSurface {
                     kind: SURFACE_DIELECTRIC,

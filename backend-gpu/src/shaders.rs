@@ -9,7 +9,7 @@ use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::model::scene::{
     Estimator, HERO_WAVELENGTHS, MAX_DEPTH, PhotonSequence, ViewPaths, WavelengthSampling,
 };
-use prismatic_core::model::wavelength_rgb;
+use prismatic_core::model::{metals, wavelength_rgb};
 use prismatic_core::sampling::pixel_sample;
 use prismatic_core::util::math::{COS_COEFFS, SIN_COEFFS};
 use prismatic_core::util::rng::dim;
@@ -65,6 +65,8 @@ pub mod kind {
     pub const TEXTURE_WRAP_V_SHIFT: u32 = 10;
     /// The dielectric has a thin film (its index and thickness in the tables at `film_first`).
     pub const SURFACE_HAS_FILM: u32 = 4096;
+    /// The metal is measured: its n and k per row of `model::metals` in the tables at `curve_first`.
+    pub const SURFACE_MEASURED: u32 = 8192;
     /// `Wrap::Repeat`.
     pub const WRAP_REPEAT: u32 = 0;
     /// `Wrap::ClampToEdge`.
@@ -202,6 +204,8 @@ fn prelude(stack: u32) -> String {
     u("SURFACE_TEXTURE_NEAREST", kind::SURFACE_TEXTURE_NEAREST);
     u("SURFACE_THIN", kind::SURFACE_THIN);
     u("SURFACE_HAS_FILM", kind::SURFACE_HAS_FILM);
+    u("SURFACE_MEASURED", kind::SURFACE_MEASURED);
+    u("METAL_ROWS", metals::ROWS as u32);
     u("TEXTURE_WRAP_U_SHIFT", kind::TEXTURE_WRAP_U_SHIFT);
     u("TEXTURE_WRAP_V_SHIFT", kind::TEXTURE_WRAP_V_SHIFT);
     u("WRAP_CLAMP_TO_EDGE", kind::WRAP_CLAMP_TO_EDGE);
@@ -232,6 +236,8 @@ fn prelude(stack: u32) -> String {
     f("VISIBLE_NM_LO", VISIBLE_NM.0);
     f("WAVELENGTH_RGB_FIRST_NM", wavelength_rgb::FIRST_NM);
     f("WAVELENGTH_RGB_STEP_NM", wavelength_rgb::STEP_NM);
+    f("METAL_FIRST_NM", metals::FIRST_NM);
+    f("METAL_STEP_NM", metals::STEP_NM);
     f("MIN_RADIUS_FRACTION", prismatic_core::plan::schedule::MIN_RADIUS_FRACTION);
     for (i, c) in SIN_COEFFS.iter().enumerate() {
         f(&format!("SIN_C{i}"), *c);
@@ -282,6 +288,7 @@ const ALBEDO: &str = include_str!("shaders/albedo.wgsl");
 const SUMS: &str = include_str!("shaders/sums.wgsl");
 const COLOUR: &str = include_str!("shaders/colour.wgsl");
 const CONNECT: &str = include_str!("shaders/connect.wgsl");
+const METAL: &str = include_str!("shaders/metal.wgsl");
 
 /// The functions every pipeline shares (RNG, optics, the estimator's last
 /// step, fixed-point sums) behind the prelude, with no bindings and no
@@ -292,7 +299,7 @@ pub fn library() -> String {
 
 /// Emit + trace (entry `main`).
 pub fn trace() -> String {
-    [emission(), COLOUR.into(), ALBEDO.into(), include_str!("shaders/trace.wgsl").into()].concat()
+    [emission(), COLOUR.into(), ALBEDO.into(), METAL.into(), include_str!("shaders/trace.wgsl").into()].concat()
 }
 
 /// The scene's bindings (group 0) and photon emission (`emit`): the first
@@ -333,6 +340,7 @@ pub fn view(stack: u32) -> String {
         SCENE.into(),
         COLOUR.into(),
         ALBEDO.into(),
+        METAL.into(),
         include_str!("shaders/view.wgsl").into(),
     ]
     .concat()

@@ -15,7 +15,7 @@ use prismatic_conformance::twins::{
     finish_case, fixed_answer, fixed_input, scatter_case, surface_case,
 };
 use prismatic_core::optics::metal::MetalOptics;
-use prismatic_core::optics::microfacet::Ggx;
+use prismatic_core::optics::microfacet::{Ggx, conductor_fresnel};
 use prismatic_core::optics::rough_glass::rough_glass_bsdf;
 use prismatic_core::optics::scatter::{Face, scatter_metal, scatter_rough_dielectric, split_rough_dielectric};
 use prismatic_core::photons::grid;
@@ -223,7 +223,11 @@ struct MetalIn {
     pass_index: u32,
     path: u32,
     depth: u32,
-    _pad: u32,
+    eta: f32,
+    k: f32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
 }
 
 struct MetalOut {
@@ -234,8 +238,8 @@ struct MetalOut {
     fresnel: vec3<f32>,
     unshadowed: f32,
     facet: vec2<f32>,
-    _pad0: u32,
-    _pad1: u32,
+    conductor: f32,
+    _pad: u32,
 }
 
 @group(0) @binding(0) var<storage, read> metal_in: array<MetalIn>;
@@ -250,7 +254,9 @@ fn metal(@builtin(global_invocation_id) id: vec3<u32>) {
     let b = scatter_metal(c.d, c.point, c.normal, c.alpha, c.u1, c.u2);
     let facet = pixel_facet(c.scramble, c.pass_index, c.path, c.depth);
     let fresnel = metal_fresnel(c.f0, b.cos_facet);
-    metal_out[id.x] = MetalOut(b.origin, select(0u, 1u, b.ok), b.dir, b.cos_facet, fresnel, b.unshadowed, facet, 0u, 0u);
+    let conductor = conductor_fresnel(b.cos_facet, c.eta, c.k);
+    metal_out[id.x] =
+        MetalOut(b.origin, select(0u, 1u, b.ok), b.dir, b.cos_facet, fresnel, b.unshadowed, facet, conductor, 0u);
 }
 "#;
 
@@ -268,7 +274,9 @@ struct MetalIn {
     pass_index: u32,
     path: u32,
     depth: u32,
-    _pad: u32,
+    eta: f32,
+    k: f32,
+    _pad: [u32; 3],
 }
 
 #[repr(C)]
@@ -281,7 +289,8 @@ struct MetalOut {
     fresnel: [f32; 3],
     unshadowed: f32,
     facet: [f32; 2],
-    _pad: [u32; 2],
+    conductor: f32,
+    _pad: u32,
 }
 
 const ROUGH_GLASS: &str = r#"
@@ -771,8 +780,10 @@ fn metal_case() -> impl Strategy<Value = (MetalIn, PixelSampler)> {
         0.0f32..1.0,
         [0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0],
         branch_case(),
+        // A conductor's complex index, as metals' span the visible range.
+        (0.05f32..3.0, 0.0f32..9.0),
     )
-        .prop_map(|(d, normal, point, alpha, u1, u2, f0, (seed, pixel, pass, path, depth))| {
+        .prop_map(|(d, normal, point, alpha, u1, u2, f0, (seed, pixel, pass, path, depth), (eta, k))| {
             let sampler = PixelSampler::new(seed, pixel, pass);
             let case = MetalIn {
                 d: d.to_array(),
@@ -786,7 +797,9 @@ fn metal_case() -> impl Strategy<Value = (MetalIn, PixelSampler)> {
                 pass_index: pass,
                 path,
                 depth,
-                _pad: 0,
+                eta,
+                k,
+                _pad: [0; 3],
             };
             (case, sampler)
         })
@@ -816,20 +829,22 @@ fn check_metal((c, sampler): &(MetalIn, PixelSampler), got: &MetalOut) -> Result
     }
     let close = |a: Vec3, b: Vec3, tol: f32| (a - b).abs().max_element() <= tol;
     let scale = Vec3::from(c.point).abs().max_element().max(1.0);
-    let metal = MetalOptics { f0: Vec3::from(c.f0), ggx };
+    let metal = MetalOptics { f0: Vec3::from(c.f0), measured: None, ggx };
     let ok = close(Vec3::from(got.dir), b.ray.direction, 1e-3)
         && close(Vec3::from(got.origin), b.ray.origin, 1e-4 * scale)
         && (got.cos_facet - b.cos_facet).abs() <= 1e-3
         && (got.unshadowed - b.unshadowed).abs() <= 1e-3
-        && close(Vec3::from(got.fresnel), metal.fresnel(got.cos_facet), 1e-5);
+        && close(Vec3::from(got.fresnel), metal.fresnel(got.cos_facet), 1e-5)
+        && (got.conductor - conductor_fresnel(got.cos_facet, c.eta, c.k)).abs() <= 1e-5;
     if ok { Ok(()) } else { Err(format!("{got:?}; the core's {b:?}")) }
 }
 
 proptest! {
     #![proptest_config(config(8, 0x6d74))]
 
-    /// `scatter_metal`, `metal_fresnel` and `pixel_facet` (common.wgsl, which
-    /// the photon trace and the view pass both call) against the core's.
+    /// `scatter_metal`, `metal_fresnel`, `conductor_fresnel` and
+    /// `pixel_facet` (common.wgsl, which the photon trace and the view pass
+    /// both call) against the core's.
     #[test]
     fn wgsl_metals_are_the_cores(cases in prop::collection::vec(metal_case(), 1024)) {
         let Some(twins) = twins() else { return Ok(()) };

@@ -20,7 +20,6 @@ use crate::texture_file;
 use glam::{Affine2, Mat4, Vec2, Vec3};
 use gltf::khr_lights_punctual::Kind;
 use gltf::texture::{MagFilter, WrappingMode};
-use prismatic_core::Dispersion;
 use prismatic_core::geometry::texture::srgb_to_linear;
 use prismatic_core::model::mesh::open_edge;
 use prismatic_core::model::scene::{
@@ -29,6 +28,7 @@ use prismatic_core::model::scene::{
 };
 use prismatic_core::model::spectrum::Spectrum;
 use prismatic_core::sampling::spot_cone::SpotCone;
+use prismatic_core::{Dispersion, MetalColor};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -471,7 +471,7 @@ fn material(
         // A metal's base colour is its reflectance at normal incidence.
         let [r, g, b, _] = pbr.base_color_factor();
         MaterialKind::Metal {
-            color: Vec3::new(r, g, b).clamp(Vec3::ZERO, Vec3::ONE),
+            color: MetalColor::Rgb(Vec3::new(r, g, b).clamp(Vec3::ZERO, Vec3::ONE)),
             roughness: pbr.roughness_factor(),
         }
     } else {

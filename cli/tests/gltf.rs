@@ -717,7 +717,7 @@ fn metallic_materials_are_metals_of_their_base_colour_and_roughness() {
         scene.validate().unwrap();
         (scene.scene.materials[0].kind.clone(), scene.warnings.join("\n"))
     };
-    let gold = prismatic_core::Vec3::new(1.0, 0.766, 0.336);
+    let gold = prismatic_core::MetalColor::Rgb(prismatic_core::Vec3::new(1.0, 0.766, 0.336));
     let (kind, warnings) = load(1.0);
     assert_eq!(kind, MaterialKind::Metal { color: gold, roughness: 0.3 });
     assert!(!warnings.contains("metal"), "{warnings}");

@@ -16,7 +16,7 @@ use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, Filter, Light, Material, MaterialKind, Object, PhotonSequence, RenderSettings,
     Sampler, Shape, Texture, ThinFilm, Wrap,
 };
-use prismatic_core::{BandSpec, Estimator, PreparedScene, Scene};
+use prismatic_core::{BandSpec, Estimator, MetalColor, NamedMetal, PreparedScene, Scene};
 
 /// A small render: `side`² pixels, `photons` photons a pass, paper7, `density`.
 fn settings(side: u32, photons: u32, radius: f32) -> RenderSettings {
@@ -283,13 +283,14 @@ pub fn mirror() -> PreparedScene {
 }
 
 /// The mirror's beam folded by a rough gold disc instead onto a round
-/// floor, beside a polished copper ball, with indirect light: metals'
+/// floor, beside a polished ball of measured copper, with indirect light: metals'
 /// facets and coloured Fresnel in caustic and indirect photons and in view.
 pub fn metals() -> PreparedScene {
     let mut scene = mirror().scene;
-    let metal = |name: &str, color: Vec3, roughness: f32| material(name, MaterialKind::Metal { color, roughness });
-    scene.materials[1] = metal("gold", Vec3::new(1.0, 0.766, 0.336), 0.3);
-    scene.materials.push(metal("copper", Vec3::new(0.955, 0.637, 0.538), 0.0));
+    let metal =
+        |name: &str, color: MetalColor, roughness: f32| material(name, MaterialKind::Metal { color, roughness });
+    scene.materials[1] = metal("gold", MetalColor::Rgb(Vec3::new(1.0, 0.766, 0.336)), 0.3);
+    scene.materials.push(metal("copper", MetalColor::Measured(NamedMetal::Copper), 0.0));
     scene.objects[0].shape = Shape::Disk { center: Vec3::ZERO, normal: Vec3::Y, radius: 4.0, inner_radius: 0.0 };
     scene.objects.push(Object { shape: Shape::Sphere { center: Vec3::new(1.2, 0.5, 1.0), radius: 0.5 }, material: 2 });
     scene.render.indirect_photons = 2_000;

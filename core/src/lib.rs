@@ -21,7 +21,7 @@
 //! | 4 | [`optics`] | `fresnel`, `microfacet`, `metal`, `rough_glass`, `thin_film`, `absorption`, `surface`, `scatter` | every scattering function, and the one branch choice at glass |
 //! | 3 | [`geometry`] | `ray`, `triangle`, `primitive`, `bvh`, `bvh_build`, `camera`, `texture`, `form_factor` | rays, intersections, hierarchies, the camera, textures, form factors |
 //! | 2 | [`sampling`] | `sobol`, `pixel_sample`, `light_spectrum`, `environment`, `spot_cone` | the low-discrepancy numbers paths draw, the wavelengths lights emit, what an environment sends each way, a spot's cone |
-//! | 1 | [`model`] | `scene`, `validate`, `mesh`, `environment`, `light_range`, `bands`, `cie`, `color`, `dispersion`, `image`, `photon`, `wavelength_rgb`, `reflectance`, `spectrum`, `rgb_spectrum` | what the user described and what backends exchange |
+//! | 1 | [`model`] | `scene`, `validate`, `mesh`, `environment`, `light_range`, `bands`, `cie`, `color`, `dispersion`, `image`, `photon`, `wavelength_rgb`, `reflectance`, `metals`, `spectrum`, `rgb_spectrum` | what the user described and what backends exchange |
 //! | 0 | [`util`] | `math`, `rng`, `tolerance`, `progress` | float math with and without `std`, random numbers, tolerances, progress |
 //!
 //! Layers 0–4 are pure functions that the CPU's packets and the WGSL
@@ -47,6 +47,7 @@ pub mod util;
 pub use model::bands::{Band, BandSpec, BandTable};
 pub use model::dispersion::{Dispersion, Glass};
 pub use model::image::Image;
+pub use model::metals::{MetalColor, NamedMetal};
 pub use model::photon::{Photon, PhotonMap, TraceStats};
 pub use model::scene::{
     Camera, Checker, Estimator, Light, Material, Object, PhotonSequence, RadiusMode, RenderSettings, Scene, SceneError,

@@ -10,7 +10,7 @@ use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::scene::{Checker, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape};
 use prismatic_core::util::rng::random_f32;
-use prismatic_core::{Scene, Vec3};
+use prismatic_core::{MetalColor, NamedMetal, Scene, Vec3};
 
 struct Dice {
     seed: u32,
@@ -71,10 +71,14 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
     // The metal's own dice, so that the draws above and below are those
     // the scenes had before metals came.
     let mut m = Dice { seed, n: 1 << 20 };
-    let metal = MaterialKind::Metal {
-        color: m.v(Vec3::splat(0.3), Vec3::ONE),
-        roughness: if m.pick(3) == 0 { 0.0 } else { m.f(0.02, 0.6) },
-    };
+    let mut color = MetalColor::Rgb(m.v(Vec3::splat(0.3), Vec3::ONE));
+    let roughness = if m.pick(3) == 0 { 0.0 } else { m.f(0.02, 0.6) };
+    // A third of the metals measured, from their own dice.
+    let mut named = Dice { seed, n: 1 << 22 };
+    if named.pick(3) == 0 {
+        color = MetalColor::Measured(NamedMetal::ALL[named.pick(4)]);
+    }
+    let metal = MaterialKind::Metal { color, roughness };
     // A third of the scenes' glass frosted, from its own dice too.
     let mut g = Dice { seed, n: 1 << 21 };
     let mut glass = glass("glass", dispersion);

@@ -11,7 +11,7 @@
 
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::scene::{Camera, Light, Material, MaterialKind, Object, Shape, WavelengthSampling};
-use prismatic_core::{PreparedScene, Scene, Vec3};
+use prismatic_core::{MetalColor, NamedMetal, PreparedScene, Scene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
 use prismatic_tests::{beam_onto_a_wall, prepare, settings, white};
 
@@ -19,7 +19,7 @@ use prismatic_tests::{beam_onto_a_wall, prepare, settings, white};
 const GOLD: Vec3 = Vec3::new(1.0, 0.766, 0.336);
 
 fn metal(color: Vec3, roughness: f32) -> Material {
-    Material { name: "metal".into(), kind: MaterialKind::Metal { color, roughness } }
+    Material { name: "metal".into(), kind: MaterialKind::Metal { color: MetalColor::Rgb(color), roughness } }
 }
 
 /// Schlick's Fresnel of `f0` at incidence cosine `cos`, in f64.
@@ -88,6 +88,74 @@ fn gold_reflects_the_colour_of_its_fresnel_wavelength_by_wavelength() {
         }
         // Gold's blue is its weakest: far below its red.
         assert!(sum[2] < 0.5 * sum[0], "{name}: {sum:?}");
+    }
+}
+
+/// The exact Fresnel reflectance of a conductor of complex index n + ik
+/// at incidence cosine `cos`, from the complex amplitudes r_s and r_p
+/// (f64; the core's closed form is written differently).
+fn conductor_fresnel(cos: f64, n: f64, k: f64) -> f64 {
+    let sin2 = 1.0 - cos * cos;
+    // η̃² = (n + ik)² and √(η̃² − sin²θ), as (re, im) pairs.
+    let eta2 = (n * n - k * k, 2.0 * n * k);
+    let (a, b) = (eta2.0 - sin2, eta2.1);
+    let m = a.hypot(b);
+    let root = (((m + a) / 2.0).sqrt(), b.signum() * ((m - a) / 2.0).sqrt());
+    let norm2 = |(re, im): (f64, f64)| re * re + im * im;
+    let div = |(a, b): (f64, f64), (c, d): (f64, f64)| (a * c + b * d, b * c - a * d);
+    let rs = norm2(div((cos - root.0, -root.1), (cos + root.0, root.1))) / norm2((cos + root.0, root.1)).powi(2);
+    let e = (eta2.0 * cos, eta2.1 * cos);
+    let rp = norm2(div((e.0 - root.0, e.1 - root.1), (e.0 + root.0, e.1 + root.1)))
+        / norm2((e.0 + root.0, e.1 + root.1)).powi(2);
+    0.5 * (rs + rp)
+}
+
+#[test]
+fn measured_gold_reflects_each_wavelength_by_its_complex_index() {
+    const PHOTONS: u32 = 40_000;
+    let gold = Material {
+        name: "gold".into(),
+        kind: MaterialKind::Metal { color: MetalColor::Measured(NamedMetal::Gold), roughness: 0.0 },
+    };
+    let mut scene = folded_beam(gold, PHOTONS, BandSpec::Physical(16));
+    scene.render.wavelengths = WavelengthSampling::Continuous;
+    let scene = prepare(scene);
+    let colours = prismatic_core::model::wavelength_rgb::WavelengthRgb::new();
+    let cos = std::f64::consts::FRAC_1_SQRT_2;
+    // The light's colour after the metal: the mean over 380–780 nm of each
+    // wavelength's colour times its reflectance (midpoints of 1/4 nm).
+    let mut want = [0.0f64; 3];
+    for i in 0..1600 {
+        let lambda = 380.0 + (i as f32 + 0.5) / 4.0;
+        let (n, k) = NamedMetal::Gold.optical_constants(lambda);
+        let f = conductor_fresnel(cos, f64::from(n), f64::from(k)) / 1600.0;
+        let rgb = colours.at(lambda).as_dvec3().to_array();
+        (0..3).for_each(|c| want[c] += rgb[c] * f);
+    }
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let map = trace(backend.as_mut(), &scene);
+        let n = f64::from(PHOTONS);
+        let per_photon = map.stats.flux_emitted / n;
+        let (mut sum, mut sum2) = ([0.0f64; 3], [0.0f64; 3]);
+        for p in &map.photons {
+            let rgb = scene.bands.rgb_of_flux(p.band, p.lambda_nm, p.flux).to_array();
+            for c in 0..3 {
+                let x = f64::from(rgb[c]) / per_photon;
+                (sum[c], sum2[c]) = (sum[c] + x, sum2[c] + x * x);
+            }
+        }
+        for c in 0..3 {
+            let mean = sum[c] / n;
+            let sd = ((sum2[c] / n - mean * mean) / n).sqrt();
+            assert!((mean - want[c]).abs() < 5.0 * sd + 1e-3, "{name}, channel {c}: {mean:.4} ± {sd:.4}, {want:?}");
+        }
+    }
+    // The closed form itself: head on, ((n − 1)² + k²)/((n + 1)² + k²) at ten wavelengths.
+    for lambda in (0..10).map(|i| 400.0 + 35.0 * i as f32) {
+        let (n, k) = NamedMetal::Gold.optical_constants(lambda);
+        let head_on = f64::from(NamedMetal::Gold.normal_reflectance(lambda));
+        assert!((conductor_fresnel(1.0, f64::from(n), f64::from(k)) - head_on).abs() < 1e-6, "{lambda}");
     }
 }
 

@@ -3,10 +3,10 @@
 
 use prismatic_cli::builtin::BUILTIN_SCENES;
 use prismatic_cli::scene_file::{SceneFileError, parse};
-use prismatic_core::Vec3;
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::scene::{Estimator, MaterialKind, PhotonSequence, Shape, ThinFilm, WavelengthSampling};
+use prismatic_core::{MetalColor, NamedMetal, Vec3};
 
 const MINIMAL: &str = r#"
 [camera]
@@ -357,12 +357,12 @@ fn a_metals_keys_parse_named_metals_too_and_bad_metals_are_rejected_with_their_l
     };
     assert_eq!(
         metal_of("color = [0.9, 0.6, 0.5]\nroughness = 0.3"),
-        MaterialKind::Metal { color: Vec3::new(0.9, 0.6, 0.5), roughness: 0.3 }
+        MaterialKind::Metal { color: MetalColor::Rgb(Vec3::new(0.9, 0.6, 0.5)), roughness: 0.3 }
     );
-    // A named metal; polished unless a roughness is given.
+    // A measured metal; polished unless a roughness is given.
     assert_eq!(
         metal_of("color = \"gold\""),
-        MaterialKind::Metal { color: Vec3::new(1.0, 0.766, 0.336), roughness: 0.0 }
+        MaterialKind::Metal { color: MetalColor::Measured(NamedMetal::Gold), roughness: 0.0 }
     );
     assert_error(&with_metal("roughness = 0.3"), "material.ring.color", Some("[material.ring]"), "missing");
     assert_error(

@@ -646,6 +646,20 @@ fn metal_fresnel(f0: vec3<f32>, c: f32) -> vec3<f32> {
     return f0 + (vec3<f32>(1.0) - f0) * (x2 * x2 * x);
 }
 
+// microfacet::conductor_fresnel: the unpolarised reflectance of a
+// conductor of complex index `eta` + i`k` at incidence cosine `cos_i`.
+fn conductor_fresnel(cos_i: f32, eta: f32, k: f32) -> f32 {
+    let c = clamp(cos_i, 0.0, 1.0);
+    let c2 = c * c;
+    let s2 = 1.0 - c * c;
+    let t0 = eta * eta - k * k - s2;
+    let a2b2 = sqrt(t0 * t0 + 4.0 * eta * eta * k * k);
+    let a = sqrt(max(0.5 * (a2b2 + t0), 0.0));
+    let rs = (a2b2 + c2 - 2.0 * a * c) / (a2b2 + c2 + 2.0 * a * c);
+    let rp = rs * (c2 * a2b2 + s2 * s2 - 2.0 * a * c * s2) / (c2 * a2b2 + s2 * s2 + 2.0 * a * c * s2);
+    return clamp(0.5 * (rs + rp), 0.0, 1.0);
+}
+
 // Ggx::lambda: Smith's Λ for GGX of width `alpha` of a direction at
 // cosine `c` to the normal (a huge number for the core's infinity below
 // the horizon).
@@ -733,10 +747,6 @@ fn ggx_reflection(alpha: f32, wo: vec3<f32>, wi: vec3<f32>, n: vec3<f32>) -> f32
     return ggx_d(alpha, dot(nrm(wo + wi), n)) * g2 / (4.0 * co * ci);
 }
 
-// MetalOptics::is_chromatic: F0 is not grey.
-fn metal_is_chromatic(f0: vec3<f32>) -> bool {
-    return f0.x != f0.y || f0.y != f0.z;
-}
 
 // ---- rough glass (scatter.rs, rough_glass.rs) ----
 

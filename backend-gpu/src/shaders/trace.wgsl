@@ -116,7 +116,7 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
         if (*p).bounces == 0u {
             tally_counts[3] += 1u;
         }
-        if s.kind == SURFACE_METAL && (*p).band == WHITE_BAND && metal_is_chromatic(s.albedo) {
+        if s.kind == SURFACE_METAL && (*p).band == WHITE_BAND && metal_is_chromatic(s) {
             // trace_path: a coloured metal splits white light as glass
             // does, or it goes on as one random band with the whole flux.
             if split_paths() > 1u {
@@ -180,7 +180,7 @@ fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -
         let b = scatter_metal((*p).dir, hit.point, hit.normal, alpha, u.x, u.y);
         if b.ok {
             let lambda = stored_wavelength((*p).band, (*p).lambda_nm);
-            let share = b.unshadowed * bounce_reflectance(metal_fresnel(s.albedo, b.cos_facet), (*p).band, lambda);
+            let share = b.unshadowed * metal_reflectance(s, b.cos_facet, (*p).band, lambda);
             if random_f32(params.seed, index, scatter_dim((*p).band, (*p).bounces)) < share {
                 (*p).origin = b.origin;
                 (*p).dir = b.dir;
@@ -276,7 +276,7 @@ fn trace_indirect(index: u32) {
             bounced = true;
         } else {
             let glass_splits = s.kind == SURFACE_DIELECTRIC && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u;
-            let coloured_metal = s.kind == SURFACE_METAL && metal_is_chromatic(s.albedo);
+            let coloured_metal = s.kind == SURFACE_METAL && metal_is_chromatic(s);
             if c.count > 1u && (glass_splits || coloured_metal) {
                 carried_choose(&c, random_f32(seed, index, choose_dim(p.bounces)));
                 p.band = carried_band(&c);

@@ -389,7 +389,7 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
                 continue;
             }
             let h = nrm(wi - dir);
-            factor = reflectance(metal_fresnel(s.albedo, dot(-dir, h)), e.band, lambda) * density;
+            factor = metal_tint(s, dot(-dir, h), e.band, lambda) * density;
         }
         let m = mat3x3<f32>(l.reflected_r, l.reflected_g, l.reflected_b);
         reflected += m * factor * direct_irradiance(l, hit.point, lit_side);
@@ -487,7 +487,7 @@ fn visit_path(e: Pending) -> vec3<f32> {
             if lambda < 0.0 && e.band < params.band_count {
                 lambda = bands[e.band].lambda_nm;
             }
-            let f = reflectance(metal_fresnel(s.albedo, b.cos_facet), e.band, lambda) * b.unshadowed;
+            let f = metal_tint(s, b.cos_facet, e.band, lambda) * b.unshadowed;
             let weight = e.weight * max(f.x, max(f.y, f.z));
             if weight > MIN_VIEW_WEIGHT {
                 spawn_ray(e, b.origin, b.dir, e.band, weight, e.tint * f);

@@ -58,14 +58,3 @@ pub fn parse_view_paths(s: &str) -> Result<ViewPaths, String> {
 pub fn parse_radius_mode(s: &str) -> Result<RadiusMode, String> {
     RadiusMode::from_name(s).ok_or_else(|| format!("unknown radius mode \"{s}\"; expected progressive or fixed"))
 }
-
-/// Named metals for a metal material's `color`: their reflectance at
-/// normal incidence in linear RGB, typical values as real-time PBR
-/// material tables give them (measured complex indices per wavelength
-/// are not used yet).
-pub const NAMED_METALS: [(&str, [f32; 3]); 4] = [
-    ("silver", [0.972, 0.960, 0.915]),
-    ("aluminium", [0.913, 0.922, 0.924]),
-    ("gold", [1.0, 0.766, 0.336]),
-    ("copper", [0.955, 0.637, 0.538]),
-];

@@ -5,8 +5,8 @@
 //! CSV files, placed glTF files through the glTF importer.
 
 use super::names::{
-    NAMED_METALS, parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_tone_map,
-    parse_view_paths, parse_wavelengths, parse_white_point,
+    parse_bands, parse_estimator, parse_photon_sequence, parse_radius_mode, parse_tone_map, parse_view_paths,
+    parse_wavelengths, parse_white_point,
 };
 use super::reader::{LOCAL_FRAME_RADIUS, Reader, Result, Table, join};
 use crate::environment_file;
@@ -19,6 +19,7 @@ use glam::Vec2;
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::color::ToneMap;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::metals::{MetalColor, NamedMetal};
 use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, EnvironmentMap, Estimator, Filter, Light, Material, MaterialKind, Object,
     PhotonSequence, RadiusMode, RenderSettings, Sampler, Shape, Texture, ThinFilm, ViewPaths, WavelengthSampling,
@@ -391,11 +392,11 @@ impl Reader<'_> {
     }
 
     /// A metal's `color`: its reflectance at normal incidence as `[r, g,
-    /// b]`, or the name of a metal in [`NAMED_METALS`].
-    fn metal_color(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<Vec3> {
-        let DeValue::String(name) = v.get_ref() else { return Self::vec3(self, key, v) };
-        NAMED_METALS.iter().find(|(n, _)| n == name).map(|&(_, c)| Vec3::from_array(c)).ok_or_else(|| {
-            let names: Vec<&str> = NAMED_METALS.iter().map(|(n, _)| *n).collect();
+    /// b]`, or the name of a measured metal ([`NamedMetal`]).
+    fn metal_color(&self, key: &str, v: &Spanned<DeValue<'_>>) -> Result<MetalColor> {
+        let DeValue::String(name) = v.get_ref() else { return Self::vec3(self, key, v).map(MetalColor::Rgb) };
+        NamedMetal::from_name(name).map(MetalColor::Measured).ok_or_else(|| {
+            let names: Vec<&str> = NamedMetal::ALL.iter().map(|m| m.name()).collect();
             self.err(key, &v.span(), format!("unknown metal \"{name}\"; named metals are {}", names.join(", ")))
         })
     }

@@ -6,6 +6,7 @@ use crate::model::bands::BandSpec;
 use crate::model::color::{Display, ToneMap};
 use crate::model::dispersion::Dispersion;
 pub use crate::model::environment::EnvironmentMap;
+use crate::model::metals::MetalColor;
 use crate::model::spectrum::Illuminant;
 pub use crate::model::spectrum::Spectrum;
 use alloc::string::String;
@@ -760,14 +761,15 @@ pub enum MaterialKind {
     Mirror,
     /// A metal (a conductor, glTF's metallic material): its microfacets
     /// reflect with Schlick's Fresnel from the reflectance at normal
-    /// incidence `color` (glTF's base colour of a metal), each wavelength
-    /// by that colour's reflectance spectrum, and their normals spread by
-    /// a GGX distribution of width roughness² ([`crate::optics::metal`]).
+    /// incidence of an RGB `color` (glTF's base colour of a metal), each
+    /// wavelength by that colour's reflectance spectrum, or a measured
+    /// metal's exact Fresnel at each wavelength, and their normals spread
+    /// by a GGX distribution of width roughness² ([`crate::optics::metal`]).
     /// Roughness 0 is a polished metal: a coloured mirror. Light goes on
     /// from a metal as from a mirror; no photon is stored on it.
     Metal {
-        /// Reflectance at normal incidence per linear RGB channel, each in [0, 1].
-        color: Vec3,
+        /// Its colour: RGB reflectance at normal incidence, or a measured metal.
+        color: MetalColor,
         /// glTF's perceptual roughness, in [0, 1].
         roughness: f32,
     },

@@ -6,6 +6,7 @@
 use crate::model::bands::{BandSpec, MAX_BANDS, VISIBLE_NM};
 use crate::model::dispersion::{Dispersion, MAX_SELLMEIER_TERMS};
 use crate::model::environment::MAX_ENVIRONMENT_SIDE;
+use crate::model::metals::MetalColor;
 use crate::model::scene::{
     Attenuation, Light, MAX_AREA_LIGHTS, MAX_DEPTH, MAX_ENVIRONMENT_LIGHTS, MAX_FILM_NM, MAX_IMAGE_SIDE,
     MAX_MESH_TRIANGLES, MAX_PHOTONS, MAX_TEXTURE_SIDE, Material, MaterialKind, Scene, SceneError, Shape, Texture,
@@ -374,7 +375,8 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             }
         }
         MaterialKind::Mirror => Ok(()),
-        MaterialKind::Metal { color, roughness } => {
+        MaterialKind::Metal { color: MetalColor::Measured(_), roughness } => validate_roughness(c, *roughness),
+        MaterialKind::Metal { color: MetalColor::Rgb(color), roughness } => {
             c.colour("color", *color)?;
             if color.max_element() > 1.0 {
                 let reason = format!("a metal reflects at most all light, got [{}, {}, {}]", color.x, color.y, color.z);

@@ -1,28 +1,42 @@
-//! A metal's reflection, ready for tracing: Schlick's Fresnel from the
-//! reflectance at normal incidence per RGB channel (glTF's metal), taken
-//! per wavelength by that colour's reflectance spectrum as a diffuse
-//! albedo is ([`crate::model::bands::BandTable::reflectance`]), and the
-//! GGX distribution of its facets ([`crate::optics::microfacet`]; none on
-//! a polished metal). Where the ray goes is [`crate::optics::scatter::scatter_metal`]'s.
+//! A metal's reflection, ready for tracing: its Fresnel and the GGX
+//! distribution of its facets ([`crate::optics::microfacet`]; none on a
+//! polished metal). An RGB metal (glTF's) reflects with Schlick's Fresnel
+//! from its reflectance at normal incidence per RGB channel, taken per
+//! wavelength by that colour's reflectance spectrum as a diffuse albedo
+//! is ([`crate::model::bands::BandTable::reflectance`]); a measured metal
+//! with the exact Fresnel of its complex index at the path's wavelength
+//! ([`conductor_fresnel`], [`crate::model::metals`]), and a white view path
+//! sees the bands' mean. Where the ray goes is
+//! [`crate::optics::scatter::scatter_metal`]'s.
 
 use crate::geometry::primitive::basis;
 use crate::model::bands::BandTable;
-use crate::optics::microfacet::Ggx;
+use crate::model::metals::{MetalColor, NamedMetal};
+use crate::model::photon::WHITE_BAND;
+use crate::optics::microfacet::{Ggx, conductor_fresnel};
 use glam::Vec3;
 
 /// A metal's optics.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MetalOptics {
-    /// Reflectance at normal incidence per linear RGB channel.
+    /// Reflectance at normal incidence per linear RGB channel (a measured
+    /// metal's: the colour of its spectrum, [`NamedMetal::color`]).
     pub f0: Vec3,
+    /// The measured metal whose optical constants give its Fresnel; `None`:
+    /// Schlick's from `f0`.
+    pub measured: Option<NamedMetal>,
     /// The facets' normal distribution; `None`: polished (roughness 0).
     pub ggx: Option<Ggx>,
 }
 
 impl MetalOptics {
     /// The optics of a metal of colour `color` and glTF roughness `roughness`.
-    pub fn new(color: Vec3, roughness: f32) -> Self {
-        MetalOptics { f0: color, ggx: (roughness > 0.0).then(|| Ggx::from_roughness(roughness)) }
+    pub fn new(color: MetalColor, roughness: f32) -> Self {
+        let measured = match color {
+            MetalColor::Measured(m) => Some(m),
+            MetalColor::Rgb(_) => None,
+        };
+        MetalOptics { f0: color.rgb(), measured, ggx: (roughness > 0.0).then(|| Ggx::from_roughness(roughness)) }
     }
 
     /// Schlick's Fresnel per RGB channel for light meeting a facet at
@@ -40,21 +54,33 @@ impl MetalOptics {
     /// goes on as one band ([`crate::photons::trace`]).
     #[inline]
     pub fn is_chromatic(&self) -> bool {
-        self.f0.x != self.f0.y || self.f0.y != self.f0.z
+        self.measured.is_some() || self.f0.x != self.f0.y || self.f0.y != self.f0.z
     }
 
     /// The share of a photon path's flux (band `band` at `lambda_nm`)
     /// that a facet met at cosine `cos` reflects: its survival probability.
     #[inline]
     pub fn reflectance(&self, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> f32 {
-        bands.bounce_reflectance(self.fresnel(cos), band, lambda_nm)
+        match self.measured {
+            None => bands.bounce_reflectance(self.fresnel(cos), band, lambda_nm),
+            Some(metal) if band != WHITE_BAND => measured_fresnel(metal, cos, lambda_nm),
+            Some(_) => bands.bounce_reflectance(self.tint(cos, band, lambda_nm, bands), band, lambda_nm),
+        }
     }
 
     /// What a facet met at cosine `cos` keeps of each RGB channel of a
-    /// view path of band `band` at `lambda_nm` (a white path: Fresnel per channel).
+    /// view path of band `band` at `lambda_nm` (a white path: Fresnel per
+    /// channel; of a measured metal, Σ C_b F(λ_b) over the bands, whose
+    /// weights C_b sum to white).
     #[inline]
     pub fn tint(&self, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> Vec3 {
-        bands.reflectance(self.fresnel(cos), band, lambda_nm)
+        match self.measured {
+            None => bands.reflectance(self.fresnel(cos), band, lambda_nm),
+            Some(metal) if band == WHITE_BAND => {
+                bands.bands().iter().map(|b| b.weight * measured_fresnel(metal, cos, b.lambda_nm)).sum()
+            }
+            Some(metal) => Vec3::splat(measured_fresnel(metal, cos, lambda_nm)),
+        }
     }
 
     /// The BRDF D G2 F / (4 cos θo cos θi) per RGB channel of a view path
@@ -74,17 +100,46 @@ impl MetalOptics {
     }
 }
 
+/// The Fresnel reflectance of measured `metal` at `lambda_nm` for light
+/// meeting a facet at cosine `cos`.
+#[inline]
+pub fn measured_fresnel(metal: NamedMetal, cos: f32, lambda_nm: f32) -> f32 {
+    let (n, k) = metal.optical_constants(lambda_nm);
+    conductor_fresnel(cos, n, k)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn schlicks_fresnel_is_f0_head_on_and_one_at_grazing() {
-        let gold = MetalOptics::new(Vec3::new(1.0, 0.78, 0.34), 0.0);
+        let gold = MetalOptics::new(MetalColor::Rgb(Vec3::new(1.0, 0.78, 0.34)), 0.0);
         assert_eq!(gold.fresnel(1.0), gold.f0);
         assert_eq!(gold.fresnel(0.0), Vec3::ONE);
         assert!(gold.ggx.is_none() && gold.is_chromatic());
-        assert!(!MetalOptics::new(Vec3::splat(0.9), 0.5).is_chromatic());
-        assert_eq!(MetalOptics::new(Vec3::splat(0.9), 0.5).ggx, Some(Ggx { alpha: 0.25 }));
+        let grey = MetalOptics::new(MetalColor::Rgb(Vec3::splat(0.9)), 0.5);
+        assert!(!grey.is_chromatic());
+        assert_eq!(grey.ggx, Some(Ggx { alpha: 0.25 }));
+    }
+
+    #[test]
+    fn a_measured_metal_reflects_each_wavelength_by_its_own_index() {
+        let bands = BandTable::new(crate::model::bands::BandSpec::Physical(16));
+        let gold = MetalOptics::new(MetalColor::Measured(NamedMetal::Gold), 0.0);
+        assert!(gold.is_chromatic() && gold.f0 == NamedMetal::Gold.color());
+        for lambda in [400.0f32, 450.0, 500.0, 550.0, 600.0, 650.0, 700.0] {
+            // Head on, the closed form ((n − 1)² + k²)/((n + 1)² + k²).
+            let head_on = gold.reflectance(1.0, 3, lambda, &bands);
+            assert!((head_on - NamedMetal::Gold.normal_reflectance(lambda)).abs() < 1e-5, "{lambda}: {head_on}");
+            // Grazing, everything; and a band path's tint is its one number.
+            assert!((gold.reflectance(0.0, 3, lambda, &bands) - 1.0).abs() < 1e-6);
+            assert_eq!(gold.tint(0.5, 3, lambda, &bands), Vec3::splat(gold.reflectance(0.5, 3, lambda, &bands)));
+        }
+        // Gold reflects red far better than blue.
+        assert!(gold.reflectance(1.0, 0, 650.0, &bands) > 2.0 * gold.reflectance(1.0, 0, 450.0, &bands));
+        // A white path sees the bands' mean: gold's colour head on.
+        let white = gold.tint(1.0, WHITE_BAND, 0.0, &bands);
+        assert!((white - gold.f0).abs().max_element() < 0.02, "{white} vs {}", gold.f0);
     }
 }

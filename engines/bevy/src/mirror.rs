@@ -16,7 +16,7 @@ use prismatic_core::model::dispersion::Dispersion;
 use prismatic_core::model::scene::{
     Camera, Checker, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape, ThinFilm,
 };
-use prismatic_core::{PreparedScene, Vec3 as CoreVec3};
+use prismatic_core::{MetalColor, PreparedScene, Vec3 as CoreVec3};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -263,7 +263,7 @@ fn build_scene(
         // (`gltf_scene`'s rule); any other is a receiver of its diffuse share.
         let kind = if m.base.metallic >= 0.5 {
             MaterialKind::Metal {
-                color: color.clamp(CoreVec3::ZERO, CoreVec3::ONE),
+                color: MetalColor::Rgb(color.clamp(CoreVec3::ZERO, CoreVec3::ONE)),
                 roughness: m.base.perceptual_roughness.clamp(0.0, 1.0),
             }
         } else {

@@ -257,7 +257,10 @@ fn the_layer_in_bevys_frame_is_the_references_and_lights_the_floor() {
     // The reference's layer of the mirrored scene in the frame its camera
     // sees without the glass (what Bevy's prepass holds), four passes.
     let scene = apps.main.world().resource::<CausticScene>().scene.clone();
-    let brass = MaterialKind::Metal { color: prismatic_core::Vec3::new(0.9, 0.7, 0.3), roughness: 0.3 };
+    let brass = MaterialKind::Metal {
+        color: prismatic_core::MetalColor::Rgb(prismatic_core::Vec3::new(0.9, 0.7, 0.3)),
+        roughness: 0.3,
+    };
     assert!(scene.scene.materials.iter().any(|m| m.kind == brass), "the metallic receiver mirrored as a metal");
     let reference = {
         let mut frame_scene = scene.scene.clone();

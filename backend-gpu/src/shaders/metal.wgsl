@@ -1,0 +1,57 @@
+// A metal's Fresnel for a path: twin of prismatic_core::optics::metal's
+// MetalOptics::{tint, reflectance} over the scene's bindings. A measured
+// metal (SURFACE_MEASURED) keeps its optical constants in the tables
+// buffer from `curve_first`: n and k at each row of model::metals
+// (METAL_FIRST_NM, every METAL_STEP_NM).
+
+// NamedMetal::optical_constants: (n, k) at `lambda_nm`, read linearly
+// between rows (the end rows outside them).
+fn metal_constants(s: GpuSurface, lambda_nm: f32) -> vec2<f32> {
+    let x = clamp((lambda_nm - METAL_FIRST_NM) / METAL_STEP_NM, 0.0, f32(METAL_ROWS - 1u));
+    let i = min(u32(x), METAL_ROWS - 2u);
+    let f = x - f32(i);
+    let at = s.curve_first + 2u * i;
+    let a = vec2<f32>(tables[at], tables[at + 1u]);
+    let b = vec2<f32>(tables[at + 2u], tables[at + 3u]);
+    return a + (b - a) * f;
+}
+
+// metal::measured_fresnel
+fn measured_fresnel(s: GpuSurface, c: f32, lambda_nm: f32) -> f32 {
+    let nk = metal_constants(s, lambda_nm);
+    return conductor_fresnel(c, nk.x, nk.y);
+}
+
+// MetalOptics::tint: what a facet met at cosine `c` keeps of each RGB
+// channel of a view path (a measured metal's white path: Σ C_b F(λ_b)).
+fn metal_tint(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> vec3<f32> {
+    if (s.flags & SURFACE_MEASURED) == 0u {
+        return reflectance(metal_fresnel(s.albedo, c), band, lambda_nm);
+    }
+    if band == WHITE_BAND {
+        var sum = vec3<f32>(0.0);
+        for (var b = 0u; b < params.band_count; b++) {
+            sum += bands[b].weight * measured_fresnel(s, c, bands[b].lambda_nm);
+        }
+        return sum;
+    }
+    return vec3<f32>(measured_fresnel(s, c, lambda_nm));
+}
+
+// MetalOptics::reflectance: the share of a photon path's flux a facet
+// met at cosine `c` reflects.
+fn metal_reflectance(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> f32 {
+    if (s.flags & SURFACE_MEASURED) == 0u {
+        return bounce_reflectance(metal_fresnel(s.albedo, c), band, lambda_nm);
+    }
+    if band != WHITE_BAND {
+        return measured_fresnel(s, c, lambda_nm);
+    }
+    return bounce_reflectance(metal_tint(s, c, band, lambda_nm), band, lambda_nm);
+}
+
+// MetalOptics::is_chromatic: a measured metal, or F0 not grey.
+fn metal_is_chromatic(s: GpuSurface) -> bool {
+    let f0 = s.albedo;
+    return (s.flags & SURFACE_MEASURED) != 0u || f0.x != f0.y || f0.y != f0.z;
+}

@@ -546,11 +546,13 @@ fn beam_into_one_pixel(estimator: Estimator, photons: u32, power: f32, radius: f
 /// GPU whose storage bindings cannot hold that many photons (lavapipe: 4 ×
 /// 2^22) must say so and name the CPU backend; it is then held to the
 /// closed form at 2^22 + 3 photons, where a plain f32 sum already drifts by
-/// 1 to 4 %.
+/// 1 to 4 %. The scalar reference is left out: its gather adds up in the
+/// core's `GatherSums` (f64 sums, integer counts), as the CPU's does, and
+/// tracing 2^24 photons one at a time was the slowest part of the test.
 #[test]
 fn more_than_two_to_the_24_photons_in_one_gather() {
     for estimator in [Estimator::Paper, Estimator::Density] {
-        for mut backend in every_backend() {
+        for mut backend in every_backend().into_iter().filter(|b| b.name() != "reference") {
             let name = backend.name();
             match one_dense_gather(backend.as_mut(), estimator, (1 << 24) + 3) {
                 Ok(()) => {}

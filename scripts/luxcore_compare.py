@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """prismatic and LuxCore at equal error, on one machine in one run.
 
-Four scenes, each a diffuse floor (albedo 0.8) with glass of
+Five scenes, each a diffuse floor (albedo 0.8) with glass of
 n(λ) = 1.5 + 0.02/λ² (λ in µm), a 400×400 camera, depth 10, 2 threads:
 
 - `prism` (z up): issue 26's scene, a glass prism along y under a 1° spot,
@@ -16,6 +16,10 @@ n(λ) = 1.5 + 0.02/λ² (λ in µm), a 400×400 camera, depth 10, 2 threads:
   Radiance .hdr file that both renderers read (LuxCore's `infinite` light;
   prismatic's environment light, which shines as the suns of its median
   cut);
+- `frosted` (z up): the `sphere` scene with its glass frosted, roughness
+  0.3 (prismatic's GGX facets of width 0.09; LuxCore's `roughglass` with
+  u and v roughness 0.3, its own microfacet distribution), its caustic
+  blurred into a glow;
 - `panel` (y up): the ball resting on the floor under a light panel (an
   emissive square, 1.2 m a side, radiance 10, 4 m up and 1.5 m to the
   side, facing down): an area light's soft shadow and blurred caustic
@@ -23,7 +27,9 @@ n(λ) = 1.5 + 0.02/λ² (λ in µm), a 400×400 camera, depth 10, 2 threads:
   unblocked and shadowed per piece).
 
 LuxCore 2.11 (pyluxcore from PyPI) renders the spot scenes with LIGHTCPU
-(light tracing with camera connections) and the sky with BIDIRCPU and
+(light tracing with camera connections), the frosted ball with LIGHTCPU,
+BIDIRCPU and PATHCPU too (behind rough glass the caustic is a glossy path,
+which camera paths can find), and the sky with BIDIRCPU and
 PATHCPU (the sky's and the panel's direct light wants paths from the
 camera, their caustics light paths), each with its Sobol sampler; prismatic renders
 through its Python package on the CPU backend in each configuration
@@ -45,7 +51,7 @@ log-log between measured points.
     python3 -m venv target/compare
     target/compare/bin/pip install ./python pyluxcore numpy
     target/compare/bin/python scripts/luxcore_compare.py [--reference-s 180] [--shortest-s 0.125] [--longest-s 32]
-        [--scenes prism sphere sky panel]
+        [--scenes prism sphere frosted sky panel]
 """
 
 from __future__ import annotations
@@ -87,6 +93,9 @@ class Setup:
     # Settings whose own reference shows how far prismatic's default
     # approximation of the lights is from converged (printed, not tabled).
     bias_check: Dict[str, object] = None
+    # The glass's roughness (0: polished): prismatic's GGX of width r², and
+    # LuxCore's `roughglass` with u and v roughness r.
+    roughness: float = 0.0
 
 
 def spot_lights(position: Tuple[float, float, float], direction: Tuple[float, float, float],
@@ -143,6 +152,7 @@ albedo = [0.8, 0.8, 0.8]
 [material.glass]
 kind = "dielectric"
 ior = {{ cauchy = [1.5, 0.02] }}
+roughness = {setup.roughness}
 
 [[object]]
 shape = "plane"
@@ -268,6 +278,17 @@ extrude = [0.0, 2.0, 0.0]
         luxcore_meshes=ball_meshes((0.0, 0.0, 1.0)),
         configs=CONFIGS,
     ),
+    "frosted": Setup(
+        name="frosted",
+        camera={"position": (4.5, -3.5, 3.5), "look_at": (0.5, 0.0, 0.4), "fov_deg": 30.0},
+        prismatic_lights=SPOTS["sphere"][0],
+        luxcore_lights=SPOTS["sphere"][1],
+        prismatic_objects=ball_object((0.0, 0.0, 1.0)),
+        luxcore_meshes=ball_meshes((0.0, 0.0, 1.0)),
+        engines=("LIGHTCPU", "BIDIRCPU", "PATHCPU"),
+        configs=CONFIGS[:2],
+        roughness=0.3,
+    ),
     "sky": Setup(
         name="sky",
         camera={"position": (5.0, 4.0, 5.0), "look_at": (0.0, 0.6, 0.0), "fov_deg": 40.0},
@@ -379,6 +400,9 @@ def luxcore_scene(setup: Setup) -> "pyluxcore.Scene":
     tx, ty, tz = setup.camera["look_at"]
     ux, uy, uz = setup.up
     objects = "\n".join(f'scene.objects.{m}.shape = "{m}"\nscene.objects.{m}.material = "glass"' for m in glass)
+    r = setup.roughness
+    glass_type = f'"roughglass"\nscene.materials.glass.uroughness = {r}\nscene.materials.glass.vroughness = {r}' \
+        if r > 0 else '"glass"'
     props = pyluxcore.Properties()
     props.SetFromString(f"""
         scene.camera.type = "perspective"
@@ -388,7 +412,7 @@ def luxcore_scene(setup: Setup) -> "pyluxcore.Scene":
         scene.camera.fieldofview = {setup.camera["fov_deg"]}
         scene.materials.matte.type = "matte"
         scene.materials.matte.kd = 0.8 0.8 0.8
-        scene.materials.glass.type = "glass"
+        scene.materials.glass.type = {glass_type}
         scene.materials.glass.kr = 1 1 1
         scene.materials.glass.kt = 1 1 1
         scene.materials.glass.interiorior = 1.5
@@ -515,7 +539,7 @@ def main() -> None:
     parser.add_argument("--reference-s", type=float, default=180.0, help="seconds of each reference render")
     parser.add_argument("--shortest-s", type=float, default=0.125, help="the shortest measured render (seconds)")
     parser.add_argument("--longest-s", type=float, default=32.0, help="the longest measured render (seconds)")
-    parser.add_argument("--scenes", nargs="+", choices=sorted(SETUPS), default=["prism", "sphere", "sky", "panel"])
+    parser.add_argument("--scenes", nargs="+", choices=sorted(SETUPS), default=["prism", "sphere", "frosted", "sky", "panel"])
     args = parser.parse_args()
     pyluxcore.Init(lambda _: None)
     if "sky" in args.scenes:

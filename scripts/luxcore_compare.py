@@ -62,7 +62,7 @@ import os
 import platform
 import sys
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Callable, Dict, List, Sequence, Tuple
 
 import numpy as np
@@ -278,17 +278,6 @@ extrude = [0.0, 2.0, 0.0]
         luxcore_meshes=ball_meshes((0.0, 0.0, 1.0)),
         configs=CONFIGS,
     ),
-    "frosted": Setup(
-        name="frosted",
-        camera={"position": (4.5, -3.5, 3.5), "look_at": (0.5, 0.0, 0.4), "fov_deg": 30.0},
-        prismatic_lights=SPOTS["sphere"][0],
-        luxcore_lights=SPOTS["sphere"][1],
-        prismatic_objects=ball_object((0.0, 0.0, 1.0)),
-        luxcore_meshes=ball_meshes((0.0, 0.0, 1.0)),
-        engines=("LIGHTCPU", "BIDIRCPU", "PATHCPU"),
-        configs=CONFIGS[:2],
-        roughness=0.3,
-    ),
     "sky": Setup(
         name="sky",
         camera={"position": (5.0, 4.0, 5.0), "look_at": (0.0, 0.6, 0.0), "fov_deg": 40.0},
@@ -312,6 +301,10 @@ map = "{SKY_FILE}"
         whole_image=True,
     ),
 }
+
+# The sphere's ball frosted: the same scene but for the glass's roughness.
+SETUPS["frosted"] = replace(SETUPS["sphere"], name="frosted", engines=("LIGHTCPU", "BIDIRCPU", "PATHCPU"),
+                            configs=CONFIGS[:2], roughness=0.3)
 
 
 # The panel: a square of radiance PANEL_RADIANCE facing down (wound so

@@ -11,7 +11,7 @@
 
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::scene::{Camera, Light, Material, MaterialKind, Object, Shape, WavelengthSampling};
-use prismatic_core::{MetalColor, NamedMetal, PreparedScene, Scene, Vec3};
+use prismatic_core::{Backend, MetalColor, NamedMetal, PreparedScene, Scene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
 use prismatic_tests::{beam_onto_a_wall, prepare, settings, white};
 
@@ -66,29 +66,37 @@ fn gold_reflects_the_colour_of_its_fresnel_wavelength_by_wavelength() {
     let cos = std::f64::consts::FRAC_1_SQRT_2;
     let want = [GOLD.x, GOLD.y, GOLD.z].map(|f0| schlick(f64::from(f0), cos));
     for mut backend in every_backend() {
-        let name = backend.name();
-        let map = trace(backend.as_mut(), &scene);
-        assert!(map.photons.iter().all(|p| p.band != prismatic_core::model::photon::WHITE_BAND), "{name}");
-        // Each photon's colour by its own wavelength: their mean is the
-        // light's colour after the metal, white light's being (1, 1, 1).
-        let n = f64::from(PHOTONS);
-        let per_photon = map.stats.flux_emitted / n;
-        let (mut sum, mut sum2) = ([0.0f64; 3], [0.0f64; 3]);
-        for p in &map.photons {
-            let rgb = scene.bands.rgb_of_flux(p.band, p.lambda_nm, p.flux).to_array();
-            for c in 0..3 {
-                let x = f64::from(rgb[c]) / per_photon;
-                (sum[c], sum2[c]) = (sum[c] + x, sum2[c] + x * x);
-            }
-        }
-        for c in 0..3 {
-            let mean = sum[c] / n;
-            let sd = ((sum2[c] / n - mean * mean) / n).sqrt();
-            assert!((mean - want[c]).abs() < 5.0 * sd + 1e-3, "{name}, channel {c}: {mean:.4} ± {sd:.4}, {want:?}");
-        }
+        let mean = assert_reflected_colour(backend.as_mut(), &scene, PHOTONS, want);
         // Gold's blue is its weakest: far below its red.
-        assert!(sum[2] < 0.5 * sum[0], "{name}: {sum:?}");
+        assert!(mean[2] < 0.5 * mean[0], "{}: {mean:?}", backend.name());
     }
+}
+
+/// On `backend`, the photons a chromatic metal in `scene` reflected of
+/// `photons` white ones (each split into wavelengths there), each by its
+/// own wavelength's colour: their mean per photon emitted is the light's
+/// colour after the metal (white light's being (1, 1, 1)), `want` within
+/// 5σ. Returns the mean.
+fn assert_reflected_colour(backend: &mut dyn Backend, scene: &PreparedScene, photons: u32, want: [f64; 3]) -> [f64; 3] {
+    let name = backend.name();
+    let map = trace(backend, scene);
+    assert!(map.photons.iter().all(|p| p.band != prismatic_core::model::photon::WHITE_BAND), "{name}");
+    let n = f64::from(photons);
+    let per_photon = map.stats.flux_emitted / n;
+    let (mut sum, mut sum2) = ([0.0f64; 3], [0.0f64; 3]);
+    for p in &map.photons {
+        let rgb = scene.bands.rgb_of_flux(p.band, p.lambda_nm, p.flux).to_array();
+        for c in 0..3 {
+            let x = f64::from(rgb[c]) / per_photon;
+            (sum[c], sum2[c]) = (sum[c] + x, sum2[c] + x * x);
+        }
+    }
+    let mean = sum.map(|s| s / n);
+    for c in 0..3 {
+        let sd = ((sum2[c] / n - mean[c] * mean[c]) / n).sqrt();
+        assert!((mean[c] - want[c]).abs() < 5.0 * sd + 1e-3, "{name}, channel {c}: {:.4} ± {sd:.4}, {want:?}", mean[c]);
+    }
+    mean
 }
 
 /// The exact Fresnel reflectance of a conductor of complex index n + ik
@@ -133,23 +141,7 @@ fn measured_gold_reflects_each_wavelength_by_its_complex_index() {
         (0..3).for_each(|c| want[c] += rgb[c] * f);
     }
     for mut backend in every_backend() {
-        let name = backend.name();
-        let map = trace(backend.as_mut(), &scene);
-        let n = f64::from(PHOTONS);
-        let per_photon = map.stats.flux_emitted / n;
-        let (mut sum, mut sum2) = ([0.0f64; 3], [0.0f64; 3]);
-        for p in &map.photons {
-            let rgb = scene.bands.rgb_of_flux(p.band, p.lambda_nm, p.flux).to_array();
-            for c in 0..3 {
-                let x = f64::from(rgb[c]) / per_photon;
-                (sum[c], sum2[c]) = (sum[c] + x, sum2[c] + x * x);
-            }
-        }
-        for c in 0..3 {
-            let mean = sum[c] / n;
-            let sd = ((sum2[c] / n - mean * mean) / n).sqrt();
-            assert!((mean - want[c]).abs() < 5.0 * sd + 1e-3, "{name}, channel {c}: {mean:.4} ± {sd:.4}, {want:?}");
-        }
+        assert_reflected_colour(backend.as_mut(), &scene, PHOTONS, want);
     }
     // The closed form itself: head on, ((n − 1)² + k²)/((n + 1)² + k²) at ten wavelengths.
     for lambda in (0..10).map(|i| 400.0 + 35.0 * i as f32) {

@@ -122,7 +122,12 @@ impl NamedMetal {
 
     /// Its column pair in [`CONSTANTS`].
     fn column(self) -> usize {
-        2 * Self::ALL.iter().position(|&m| m == self).unwrap_or(0)
+        match self {
+            NamedMetal::Silver => 0,
+            NamedMetal::Aluminium => 2,
+            NamedMetal::Gold => 4,
+            NamedMetal::Copper => 6,
+        }
     }
 
     /// Its (n, k) in each row of [`CONSTANTS`] (what backends upload).

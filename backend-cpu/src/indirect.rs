@@ -13,7 +13,7 @@
 //! photon; a lane's photons leave in path order, which the chunk's sort
 //! puts into canonical order.
 
-use crate::intersect::intersect_scene;
+use crate::intersect::{intersect_scene, scattering_normals};
 use crate::optics::scatter_diffuse;
 use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, random_f32};
@@ -129,7 +129,8 @@ fn trace_packets(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, sink: &mu
         let u = random_f32(seed, emission, scatter_dims(band, bounces));
         let before = dir;
         let ids = LaneIds { object: hit.object, band, lambda: &lambda };
-        let (so, sd) = scatter(ctx, ids, point, dir, hit.normal, &s, u, origin, crossing, dir);
+        let normal = scattering_normals(ctx.scene, &hit, point, dir, crossing);
+        let (so, sd) = scatter(ctx, ids, point, dir, normal, &s, u, origin, crossing, dir);
         let sheets = crossing & s.thin & s.absorbing;
         crossing &= !absorb_crossing_lanes(ctx, sink, sheets, &hit, (before, sd), flux, [emission, band, bounces]);
         origin = Vec3x8::select(survives, o, so);

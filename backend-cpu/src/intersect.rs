@@ -4,6 +4,7 @@
 use crate::bvh::{intersect_mesh, mesh_hits_any};
 use crate::ray::{RayX8, in_range, surface_skin};
 use crate::simd::{Vec3x8, ge, gt, lt};
+use prismatic_core::Vec3;
 use prismatic_core::geometry::primitive::{HalfSpace, Primitive};
 use prismatic_core::plan::prepared::PreparedScene;
 use wide::f32x8;
@@ -35,6 +36,28 @@ pub fn intersect_scene(scene: &PreparedScene, ray: &RayX8, t_max: f32x8) -> HitX
         }
     }
     hit
+}
+
+/// The normals that the rays of `mask`, arriving along `dir` at `point`,
+/// scatter about at `hit`'s mirrors, metals and glass: the core's
+/// `PreparedScene::scattering_normal_at` for the lanes on meshes with
+/// vertex normals, the hit's normal elsewhere.
+pub fn scattering_normals(scene: &PreparedScene, hit: &HitX8, point: Vec3x8, dir: Vec3x8, mask: f32x8) -> Vec3x8 {
+    let (objects, bits) = (hit.object.to_array(), mask.to_bitmask());
+    let smooth =
+        |i: usize| bits & (1 << i) != 0 && objects[i] >= 0.0 && !scene.vertex_normals[objects[i] as usize].is_empty();
+    if !(0..8).any(smooth) {
+        return hit.normal;
+    }
+    let triangles = hit.triangle.to_array();
+    let normals: [Vec3; 8] = core::array::from_fn(|i| {
+        let n = hit.normal.lane(i);
+        if !smooth(i) {
+            return n;
+        }
+        scene.scattering_normal_at(objects[i] as usize, triangles[i] as u32, point.lane(i), n, dir.lane(i))
+    });
+    Vec3x8::from_lanes(&normals)
 }
 
 /// Lanes with something on the segment from `origin` along `dir` before `dist`.

@@ -12,7 +12,7 @@
 //! operation, so the photon map is the reference's bit for bit.
 
 use crate::emit::Emitters;
-use crate::intersect::{HitX8, intersect_scene};
+use crate::intersect::{HitX8, intersect_scene, scattering_normals};
 use crate::optics::{offset_origin, reflect, scatter_dielectric};
 use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, lt, random_f32};
@@ -375,7 +375,8 @@ pub fn trace_chunk(ctx: &TraceContext<'_>, range: core::ops::Range<u32>, out: &m
         let u = random_f32(settings.seed, emission, scatter_dims(band, bounces));
         let before = dir;
         let ids = LaneIds { object: hit.object, band, lambda: &lambda };
-        (origin, dir) = scatter(ctx, ids, point, dir, hit.normal, &s, u, origin, go_on, dir);
+        let normal = scattering_normals(ctx.scene, &hit, point, dir, go_on);
+        (origin, dir) = scatter(ctx, ids, point, dir, normal, &s, u, origin, go_on, dir);
         let sheets = go_on & s.thin & s.absorbing;
         go_on &= !absorb_crossing_lanes(ctx, &mut sink, sheets, &hit, (before, dir), flux, [emission, band, bounces]);
         bounces += bytemuck::cast::<f32x8, u32x8>(go_on) & u32x8::ONE;
@@ -406,8 +407,10 @@ fn trace_bands(
     let flux = f32x8::splat(white_flux / paths as f32);
     let emission_v = u32x8::splat(emission);
     let object = hit.object.as_array()[lane] as usize;
-    let (p0, d0, n0) =
-        (Vec3x8::splat(point.lane(lane)), Vec3x8::splat(dir.lane(lane)), Vec3x8::splat(hit.normal.lane(lane)));
+    let (p, d) = (point.lane(lane), dir.lane(lane));
+    let triangle = hit.triangle.as_array()[lane] as u32;
+    let n = ctx.scene.scattering_normal_at(object, triangle, p, hit.normal.lane(lane), d);
+    let (p0, d0, n0) = (Vec3x8::splat(p), Vec3x8::splat(d), Vec3x8::splat(n));
     let mut bands = split_bands(ctx.scene, emission);
     for chunk in 0..paths.div_ceil(8) {
         let children: [(u16, Option<f32>); 8] = core::array::from_fn(|_| bands.next().unwrap_or((WHITE_BAND, None)));
@@ -473,7 +476,8 @@ fn trace_bands(
             let u = random_f32(seed, emission_v, scatter_dims(band, bounces));
             let before = dir;
             let ids = LaneIds { object: hit.object, band, lambda: &lambda };
-            (origin, dir) = scatter(ctx, ids, point, dir, hit.normal, &s, u, origin, active, dir);
+            let normal = scattering_normals(ctx.scene, &hit, point, dir, active);
+            (origin, dir) = scatter(ctx, ids, point, dir, normal, &s, u, origin, active, dir);
             let sheets = active & s.thin & s.absorbing;
             active &= !absorb_crossing_lanes(ctx, sink, sheets, &hit, (before, dir), flux, [emission_v, band, bounces]);
             bounces += bytemuck::cast::<f32x8, u32x8>(active) & u32x8::ONE;

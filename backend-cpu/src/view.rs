@@ -17,7 +17,7 @@
 //! choices and hero bands, from the same [`PixelSampler`] numbers.
 
 use crate::form_factor::triangle_view;
-use crate::intersect::{HitX8, intersect_scene, occluded};
+use crate::intersect::{HitX8, intersect_scene, occluded, scattering_normals};
 use crate::optics::{offset_origin, split_dielectric};
 use crate::ray::{RayX8, limit_where};
 use crate::simd::{Vec3x8, ge, gt, lt};
@@ -171,6 +171,8 @@ impl Shader<'_> {
                 sum[rays[i].pixel as usize] += rays[i].tint * radiance[i];
             }
         }
+        // Mirrors, metals and glass scatter about the shading normal.
+        let normal = scattering_normals(self.scene, &hit, point, ray.dir, !diffuse);
         let mut at_glass = 0u32;
         let mut glass_ior = [1.0f32; 8];
         let mut glass_thin = [0.0f32; 8];
@@ -183,10 +185,10 @@ impl Shader<'_> {
             if object[i] < 0.0 || diffuse.to_bitmask() & (1 << i) != 0 || r.depth >= self.scene.plan.max_depth {
                 continue;
             }
-            let (p, n) = (point.lane(i), hit.normal.lane(i));
+            let (p, n) = (point.lane(i), normal.lane(i));
             let surface = &self.scene.surfaces[object[i] as usize];
             if let Surface::Dielectric(glass) = surface {
-                let kept = glass_transmittance(glass, r.dir, n, t[i], r.band);
+                let kept = glass_transmittance(glass, r.dir, hit.normal.lane(i), t[i], r.band);
                 r.tint *= kept;
                 r.weight *= kept.max_element();
             }
@@ -255,7 +257,7 @@ impl Shader<'_> {
         }
         if at_glass != 0 {
             let glass = (f32x8::new(glass_ior), f32x8::new(glass_thin), crossing);
-            spawn_packet_at_glass(&arrived[..rays.len()], at_glass, point, hit.normal, glass, one_branch, queue);
+            spawn_packet_at_glass(&arrived[..rays.len()], at_glass, point, normal, glass, one_branch, queue);
         }
     }
 
@@ -294,11 +296,14 @@ impl Shader<'_> {
                 self.points.push(VisiblePoint { point: pi, normal: ni, weight, albedo: albedo[i], pixel });
             }
         }
-        // Each light's irradiance, in the colour the surface reflects of its spectrum.
+        // Each light's irradiance, in the colour the surface reflects of its
+        // spectrum, with the cosine of the smooth normal.
+        let smooth = scattering_normals(self.scene, hit, p, ray.dir, mask);
+        let shading = Vec3x8::select(facing, smooth, -smooth);
         let mut reflected = [Vec3::ZERO; 8];
         let lights = self.scene.lights.iter().zip(&self.scene.plan.shadows).zip(&self.scene.light_spectra);
         for ((light, plan), spectrum) in lights {
-            let e = self.direct_irradiance(light, plan.on, p, n, mask).to_array();
+            let e = self.direct_irradiance(light, plan.on, p, shading, mask).to_array();
             for i in lanes(mask) {
                 reflected[i] += spectrum.reflected * albedo[i] * e[i];
             }

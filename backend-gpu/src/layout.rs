@@ -142,7 +142,8 @@ pub struct GpuObject {
     pub ra: f32,
     /// Normal.
     pub n: [f32; 3],
-    /// Second radius-like value.
+    /// Second radius-like value; a mesh's first vertex-normal record as
+    /// bits (`NO_VERTEX_NORMALS`: flat triangles).
     pub rb: f32,
 }
 const _: () = assert!(core::mem::size_of::<GpuObject>() == 48);

@@ -90,8 +90,12 @@ impl EncodedScene {
     /// Encodes `scene`.
     pub fn new(scene: &PreparedScene) -> Self {
         let mut e = EncodedScene::default();
-        for prim in &scene.primitives {
-            let o = e.object(prim);
+        for (prim, normals) in scene.primitives.iter().zip(&scene.vertex_normals) {
+            let mut o = e.object(prim);
+            if o.kind == OBJECT_MESH && !normals.is_empty() {
+                o.rb = f32::from_bits(e.geometry.len() as u32);
+                e.geometry.extend(normals.iter().flat_map(|n| [v4(n.n0, 0.0), v4(n.d1, 0.0), v4(n.d2, 0.0)]));
+            }
             e.objects.push(o);
         }
         // Each image once, however many objects show it (keyed by its shared texels).
@@ -218,7 +222,8 @@ impl EncodedScene {
                 for t in &bvh.triangles {
                     self.geometry.extend([v4(t.v0, 0.0), v4(t.e1, 0.0), v4(t.e2, 0.0), v4(t.normal, 0.0)]);
                 }
-                GpuObject { kind: OBJECT_MESH, count: bvh.triangles.len() as u32, second, ..o }
+                let flat = f32::from_bits(NO_VERTEX_NORMALS);
+                GpuObject { kind: OBJECT_MESH, count: bvh.triangles.len() as u32, second, rb: flat, ..o }
             }
         }
     }

@@ -83,6 +83,9 @@ pub mod kind {
     pub const OBJECT_CONVEX: u32 = 3;
     /// Triangle mesh in its hierarchy.
     pub const OBJECT_MESH: u32 = 4;
+    /// A mesh's `rb` bits when it has no vertex normals (flat triangles):
+    /// its normal records follow its triangles', so never start at 0.
+    pub const NO_VERTEX_NORMALS: u32 = 0;
     /// Spot light.
     pub const LIGHT_SPOT: u32 = 0;
     /// Point light.
@@ -191,6 +194,7 @@ fn prelude(stack: u32) -> String {
     u("OBJECT_DISK", kind::OBJECT_DISK);
     u("OBJECT_CONVEX", kind::OBJECT_CONVEX);
     u("OBJECT_MESH", kind::OBJECT_MESH);
+    u("NO_VERTEX_NORMALS", kind::NO_VERTEX_NORMALS);
     u("SURFACE_DIFFUSE", kind::SURFACE_DIFFUSE);
     u("SURFACE_MIRROR", kind::SURFACE_MIRROR);
     u("SURFACE_DIELECTRIC", kind::SURFACE_DIELECTRIC);
@@ -229,6 +233,7 @@ fn prelude(stack: u32) -> String {
     f("SURFACE_SKIN_FACTOR", SURFACE_SKIN_FACTOR);
     f("TEXEL_LIMIT", TEXEL_LIMIT);
     f("BARYCENTRIC_EPS", BARYCENTRIC_EPS);
+    f("MIN_REFLECTED_LIFT", prismatic_core::geometry::shading::MIN_REFLECTED_LIFT);
     f("BOX_MARGIN", prismatic_core::geometry::bvh::BOX_MARGIN);
     f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);
     f("CONNECTION_REL", CONNECTION_REL);

@@ -14,6 +14,7 @@ use prismatic_conformance::twins::{
     Agreement, FinishCase, ScatterCase, SurfaceAnswer, SurfaceCase, branch_case, check_finish, check_surface, config,
     finish_case, fixed_answer, fixed_input, scatter_case, surface_case,
 };
+use prismatic_core::geometry::shading::shading_normal;
 use prismatic_core::optics::metal::MetalOptics;
 use prismatic_core::optics::microfacet::{Ggx, conductor_fresnel};
 use prismatic_core::optics::rough_glass::rough_glass_bsdf;
@@ -293,6 +294,40 @@ struct MetalOut {
     _pad: u32,
 }
 
+const SHADING: &str = r#"
+struct ShadingIn {
+    d: vec3<f32>,
+    _pad0: f32,
+    geometric: vec3<f32>,
+    _pad1: f32,
+    interpolated: vec3<f32>,
+    _pad2: f32,
+}
+
+@group(0) @binding(0) var<storage, read> shading_in: array<ShadingIn>;
+@group(0) @binding(1) var<storage, read_write> shading_out: array<vec4<f32>>;
+
+@compute @workgroup_size(64)
+fn shading(@builtin(global_invocation_id) id: vec3<u32>) {
+    if id.x >= arrayLength(&shading_in) {
+        return;
+    }
+    let c = shading_in[id.x];
+    shading_out[id.x] = vec4<f32>(shading_normal(c.d, c.geometric, c.interpolated), 0.0);
+}
+"#;
+
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable)]
+struct ShadingIn {
+    d: [f32; 3],
+    _pad0: f32,
+    geometric: [f32; 3],
+    _pad1: f32,
+    interpolated: [f32; 3],
+    _pad2: f32,
+}
+
 const ROUGH_GLASS: &str = r#"
 struct RoughIn {
     d: vec3<f32>,
@@ -467,7 +502,7 @@ struct FixedIn {
 /// The device and one pipeline per entry point, made once for every test.
 struct Twins {
     ctx: GpuContext,
-    pipelines: [(&'static str, wgpu::ComputePipeline); 8],
+    pipelines: [(&'static str, wgpu::ComputePipeline); 9],
 }
 
 fn twins() -> Option<&'static Twins> {
@@ -499,6 +534,7 @@ fn twins() -> Option<&'static Twins> {
                 pipeline("sampling", SAMPLING),
                 pipeline("metal", METAL),
                 pipeline("rough_glass", ROUGH_GLASS),
+                pipeline("shading", SHADING),
             ];
             Some(Twins { ctx, pipelines })
         })
@@ -1061,4 +1097,38 @@ fn a_drifted_copy_is_caught() {
     assert!(check_surface(&case, &got, Agreement::Within(OPTICS_ABS)).is_ok(), "{got:?}");
     got.refracted = got.refracted.map(|t| t + Vec3::new(1e-5, 0.0, 0.0));
     assert!(check_surface(&case, &got, Agreement::Within(OPTICS_ABS)).is_err());
+}
+
+/// A shading-normal case: a ray, a triangle's normal and an interpolated
+/// normal of any length, a sixth of them on the triangle's other side;
+/// none within rounding of a side's boundary, where the rule switches.
+fn shading_case() -> impl Strategy<Value = ShadingIn> {
+    let unit =
+        || [-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0].prop_filter_map("a direction", |v| Vec3::from(v).try_normalize());
+    (unit(), unit(), unit(), 0.5f32..2.0)
+        .prop_filter("off the boundaries", |(d, g, s, _)| d.dot(*g).abs() > 1e-3 && s.dot(*g).abs() > 1e-3)
+        .prop_map(|(d, geometric, s, length)| ShadingIn {
+            d: d.to_array(),
+            geometric: geometric.to_array(),
+            interpolated: (s * length).to_array(),
+            ..Zeroable::zeroed()
+        })
+}
+
+proptest! {
+    #![proptest_config(config(8, 0x5368))]
+
+    /// `shading_normal` (common.wgsl: the trace and the view pass scatter
+    /// about it on smooth meshes) against the core's.
+    #[test]
+    fn wgsl_shading_normals_are_the_cores(cases in prop::collection::vec(shading_case(), 1024)) {
+        let Some(twins) = twins() else { return Ok(()) };
+        let answers: Vec<[f32; 4]> = twins.run("shading", &cases);
+        for (c, got) in cases.iter().zip(answers) {
+            let [d, g, s] = [c.d, c.geometric, c.interpolated].map(Vec3::from);
+            let want = shading_normal(d, g, s);
+            let got = Vec3::from_slice(&got[..3]);
+            prop_assert!((got - want).abs().max_element() <= 1e-5, "d {d} g {g} s {s}: {got}, the core's {want}");
+        }
+    }
 }

@@ -5,12 +5,13 @@
 //! scene's own settings (prepared, then PASSES passes, 16 unless given, at
 //! 400×400; the CPU's best of three runs, lavapipe's one), photon paths per
 //! second (one pass's photon map) and the image's correlation with the
-//! analytic sphere's.
+//! analytic sphere's. Each mesh is rendered flat and smooth (with the
+//! sphere's normals at its vertices).
 //!
 //! `cargo run --release -p prismatic-benches --example mesh_scaling -- [PASSES] [--cpu-only]`
 
 use prismatic_conformance::compare::image_correlation;
-use prismatic_conformance::scenes::sphere_mesh;
+use prismatic_conformance::scenes::{smooth_sphere_mesh, sphere_mesh};
 use prismatic_core::geometry::primitive::Primitive;
 use prismatic_core::model::scene::Shape;
 use prismatic_core::{Backend, Image, NoProgress, PreparedScene};
@@ -21,11 +22,13 @@ use std::time::Instant;
 /// Rings of the sphere meshes: 4 · rings² triangles (less the poles').
 const RINGS: [u32; 4] = [16, 50, 158, 500];
 
-fn scene(rings: Option<u32>) -> PreparedScene {
+/// The built-in sphere, or with its sphere a mesh of `rings` rings (smooth or flat).
+fn scene(mesh: Option<(u32, bool)>) -> PreparedScene {
     let mut doc = prismatic_cli::load_scene("sphere").expect("built-in sphere");
-    if let Some(rings) = rings {
+    if let Some((rings, smooth)) = mesh {
         let Shape::Sphere { center, radius } = doc.scene.objects[1].shape else { panic!("object 1 is the sphere") };
-        doc.scene.objects[1].shape = sphere_mesh(center, radius, rings);
+        let shape = if smooth { smooth_sphere_mesh } else { sphere_mesh };
+        doc.scene.objects[1].shape = shape(center, radius, rings);
     }
     PreparedScene::new(doc.scene).expect("valid")
 }
@@ -70,9 +73,10 @@ fn main() {
         let (base_s, base_rate, base_image) = render(backend.as_mut(), &analytic, passes, runs);
         let name = backend.name();
         println!("| {name} | analytic | – | – | – | {base_s:.2} | 1.0 | {base_rate:.3e} | 1 |");
-        for rings in RINGS {
+        for (rings, smooth) in RINGS.into_iter().flat_map(|r| [(r, false), (r, true)]) {
             let start = Instant::now();
-            let mesh = scene(Some(rings));
+            let mesh = scene(Some((rings, smooth)));
+            let kind = if smooth { "smooth mesh" } else { "flat mesh" };
             let build_ms = start.elapsed().as_secs_f64() * 1e3;
             let Primitive::Mesh(bvh) = &mesh.primitives[1] else { unreachable!() };
             let triangles = bvh.triangles.len();
@@ -80,7 +84,7 @@ fn main() {
             let (s, rate, image) = render(backend.as_mut(), &mesh, passes, runs);
             let r = image_correlation(&base_image, &image);
             println!(
-                "| {name} | mesh | {triangles} | {build_ms:.0} | {per_triangle:.0} | {s:.2} | {:.2} | {rate:.3e} | {r:.4} |",
+                "| {name} | {kind} | {triangles} | {build_ms:.0} | {per_triangle:.0} | {s:.2} | {:.2} | {rate:.3e} | {r:.4} |",
                 s / base_s
             );
         }

@@ -39,6 +39,7 @@ pub fn document() -> GltfDocument {
         positions: vec![[-7.0, 0.0, -7.0], [7.0, 0.0, -7.0], [7.0, 0.0, 7.0], [-7.0, 0.0, 7.0]],
         indices: vec![0, 2, 1, 0, 3, 2],
         uvs: vec![[0.0, 0.0], [3.5, 0.0], [3.5, 3.5], [0.0, 3.5]],
+        normals: Vec::new(),
         material: 0,
         translation: [0.0; 3],
     }];
@@ -52,6 +53,7 @@ pub fn document() -> GltfDocument {
         positions: vec![[-7.0, 0.0, -7.0], [7.0, 0.0, -7.0], [7.0, 5.0, -7.0], [-7.0, 5.0, -7.0]],
         indices: vec![0, 1, 2, 0, 2, 3],
         uvs: vec![[0.0, 1.25], [3.5, 1.25], [3.5, 0.0], [0.0, 0.0]],
+        normals: Vec::new(),
         material: 1,
         translation: [0.0; 3],
     });
@@ -68,6 +70,7 @@ pub fn document() -> GltfDocument {
                 positions,
                 indices,
                 uvs: Vec::new(),
+                normals: Vec::new(),
                 material: materials.len() - 1,
                 translation: [x, 0.0, z],
             });

@@ -17,7 +17,7 @@
 
 use crate::scene_file::document::{SceneDocument, SceneFileError};
 use crate::texture_file;
-use glam::{Affine2, Mat4, Vec2, Vec3};
+use glam::{Affine2, Mat3, Mat4, Vec2, Vec3};
 use gltf::khr_lights_punctual::Kind;
 use gltf::texture::{MagFilter, WrappingMode};
 use prismatic_core::geometry::texture::srgb_to_linear;
@@ -278,7 +278,21 @@ fn mesh_shape(
             format!("{} coordinates for {} vertices", uvs.len(), positions.len()),
         ));
     }
-    Ok(Shape::Mesh { positions, triangles, uvs })
+    let normal_matrix = Mat3::from_mat4(world).inverse().transpose();
+    let normals: Vec<Vec3> = match reader.read_normals() {
+        Some(n) => n.map(|n| (normal_matrix * Vec3::from(n)).normalize_or_zero()).collect(),
+        None => Vec::new(),
+    };
+    if !normals.is_empty() && normals.len() != positions.len() {
+        return Err(GltfError::new(
+            format!("{path}.attributes.NORMAL"),
+            format!("{} normals for {} vertices", normals.len(), positions.len()),
+        ));
+    }
+    if let Some(i) = normals.iter().position(|n| *n == Vec3::ZERO) {
+        return Err(GltfError::new(format!("{path}.attributes.NORMAL"), format!("normal {i} is not a unit vector")));
+    }
+    Ok(Shape::Mesh { positions, triangles, uvs, normals })
 }
 
 /// The file's images, decoded once each, and where to find them.

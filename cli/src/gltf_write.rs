@@ -7,6 +7,7 @@
 use crate::gltf_scene::HARD_EDGE;
 use glam::{Mat3, Quat, Vec3};
 use serde_json::{Value, json};
+use std::f32::consts::{PI, TAU};
 
 /// A material: base colour, metal/roughness, and for glass the
 /// transmission, index and `KHR_materials_dispersion` value (20/V_d).
@@ -50,15 +51,23 @@ pub struct GltfTexture {
 }
 
 impl GltfMesh {
-    /// A mesh without texture coordinates: `name`, its positions and
-    /// indices, its material and its node's translation.
+    /// A mesh without texture coordinates or normals: `name`, its
+    /// positions and indices, its material and its node's translation.
     pub fn new(
         name: &str,
         (positions, indices): (Vec<[f32; 3]>, Vec<u32>),
         material: usize,
         translation: [f32; 3],
     ) -> Self {
-        GltfMesh { name: name.into(), positions, indices, uvs: Vec::new(), material, translation }
+        GltfMesh { name: name.into(), positions, indices, uvs: Vec::new(), normals: Vec::new(), material, translation }
+    }
+
+    /// A ball of `radius` centred on its node (`rings` × 2·`rings` quads,
+    /// [`sphere`]) with the sphere's normals at its vertices: smooth.
+    pub fn ball(name: &str, (radius, rings): (f32, u32), material: usize, translation: [f32; 3]) -> Self {
+        let (positions, indices) = sphere(radius, rings);
+        let normals = positions.iter().map(|p| p.map(|x| x / radius)).collect();
+        GltfMesh { normals, ..GltfMesh::new(name, (positions, indices), material, translation) }
     }
 }
 
@@ -105,10 +114,41 @@ pub struct GltfMesh {
     pub indices: Vec<u32>,
     /// Texture coordinates per vertex (`TEXCOORD_0`), or empty.
     pub uvs: Vec<[f32; 2]>,
+    /// Unit normals per vertex (`NORMAL`), or empty: flat triangles.
+    pub normals: Vec<[f32; 3]>,
     /// Index into the document's materials.
     pub material: usize,
     /// The node's translation.
     pub translation: [f32; 3],
+}
+
+/// A closed sphere of `rings` × 2·`rings` quads, wound outward (the poles'
+/// triangles have no area and are dropped when the scene is prepared).
+pub fn sphere(radius: f32, rings: u32) -> (Vec<[f32; 3]>, Vec<u32>) {
+    let segments = 2 * rings;
+    let mut positions = Vec::new();
+    for r in 0..=rings {
+        let theta = PI * r as f32 / rings as f32;
+        // The poles exactly (sin π in f32 is not 0).
+        let (sin, cos) = match r {
+            0 => (0.0, 1.0),
+            _ if r == rings => (0.0, -1.0),
+            _ => theta.sin_cos(),
+        };
+        for s in 0..segments {
+            let phi = TAU * s as f32 / segments as f32;
+            positions.push([radius * sin * phi.cos(), radius * cos, radius * sin * phi.sin()]);
+        }
+    }
+    let mut indices = Vec::new();
+    for r in 0..rings {
+        for s in 0..segments {
+            let (a, b) = (r * segments + s, r * segments + (s + 1) % segments);
+            let (c, d) = (a + segments, b + segments);
+            indices.extend([a, b, c, b, d, c]);
+        }
+    }
+    (positions, indices)
 }
 
 /// A `KHR_lights_punctual` light.
@@ -195,6 +235,13 @@ impl GltfDocument {
                     json!({ "bufferView": uv_view, "componentType": 5126, "count": m.uvs.len(), "type": "VEC2" }),
                 );
                 attributes["TEXCOORD_0"] = json!(accessors.len() - 1);
+            }
+            if !m.normals.is_empty() {
+                let normal_view = push_view(&mut bin, &mut views, floats(m.normals.as_flattened()), Some(34962));
+                accessors.push(
+                    json!({ "bufferView": normal_view, "componentType": 5126, "count": m.normals.len(), "type": "VEC3" }),
+                );
+                attributes["NORMAL"] = json!(accessors.len() - 1);
             }
             meshes.push(json!({
                 "name": m.name,

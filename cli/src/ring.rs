@@ -7,7 +7,6 @@
 //! and read back through the importer, like `sunlit-glass`.
 
 use crate::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh};
-use crate::sunlit_glass::sphere;
 use prismatic_core::model::scene::{RenderSettings, WavelengthSampling};
 use std::f32::consts::TAU;
 
@@ -15,19 +14,21 @@ use std::f32::consts::TAU;
 const SUN_IRRADIANCE: f32 = 3.0;
 
 /// An open cylinder about the y axis of `radius` and `height`, standing on
-/// y = 0, of `segments` quads: one sheet, which a metal reflects on both sides.
-fn ring(radius: f32, height: f32, segments: u32) -> (Vec<[f32; 3]>, Vec<u32>) {
-    let mut positions = Vec::new();
+/// y = 0, of `segments` quads: one sheet, which a metal reflects on both
+/// sides, smooth (its normals point out from the axis, as its quads wind).
+fn ring(name: &str, (radius, height, segments): (f32, f32, u32), material: usize) -> GltfMesh {
+    let (mut positions, mut normals) = (Vec::new(), Vec::new());
     for s in 0..segments {
         let (sin, cos) = (TAU * s as f32 / segments as f32).sin_cos();
         positions.extend([[radius * cos, 0.0, radius * sin], [radius * cos, height, radius * sin]]);
+        normals.extend([[cos, 0.0, sin]; 2]);
     }
     let mut indices = Vec::new();
     for s in 0..segments {
         let (a, b) = (2 * s, 2 * ((s + 1) % segments));
         indices.extend([a, a + 1, b, b, a + 1, b + 1]);
     }
-    (positions, indices)
+    GltfMesh { normals, ..GltfMesh::new(name, (positions, indices), material, [0.0; 3]) }
 }
 
 /// A metal of linear colour `color` and `roughness`, as glTF writes one.
@@ -47,9 +48,9 @@ pub fn document() -> GltfDocument {
     let floor = (vec![[-8.0, 0.0, -8.0], [8.0, 0.0, -8.0], [8.0, 0.0, 8.0], [-8.0, 0.0, 8.0]], vec![0, 2, 1, 0, 3, 2]);
     let meshes = vec![
         mesh("floor", floor, 0, [0.0; 3]),
-        mesh("gold ring", ring(1.0, 0.6, 720), 1, [0.0; 3]),
-        mesh("copper ball", sphere(0.45, 48), 2, [1.9, 0.45, -0.9]),
-        mesh("silver ball", sphere(0.35, 48), 3, [-1.8, 0.35, -1.1]),
+        ring("gold ring", (1.0, 0.6, 720), 1),
+        GltfMesh::ball("copper ball", (0.45, 48), 2, [1.9, 0.45, -0.9]),
+        GltfMesh::ball("silver ball", (0.35, 48), 3, [-1.8, 0.35, -1.1]),
     ];
     // The sun low (14° up) from behind the ring, a little to the right:
     // the far half of the inner wall is lit and focuses toward the camera.

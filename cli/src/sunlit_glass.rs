@@ -12,39 +12,9 @@ use crate::patterns::{graph_paper, tiles};
 use prismatic_core::model::color::ToneMap;
 use prismatic_core::model::scene::{RenderSettings, WavelengthSampling};
 use prismatic_core::{BandSpec, Estimator};
-use std::f32::consts::{PI, TAU};
 
 /// The sun's irradiance on a surface facing it (W/m²).
 const SUN_IRRADIANCE: f32 = 3.0;
-
-/// A closed sphere of `rings` × 2·`rings` quads, wound outward (the poles'
-/// triangles have no area and are dropped when the scene is prepared).
-pub(crate) fn sphere(radius: f32, rings: u32) -> (Vec<[f32; 3]>, Vec<u32>) {
-    let segments = 2 * rings;
-    let mut positions = Vec::new();
-    for r in 0..=rings {
-        let theta = PI * r as f32 / rings as f32;
-        // The poles exactly (sin π in f32 is not 0).
-        let (sin, cos) = match r {
-            0 => (0.0, 1.0),
-            _ if r == rings => (0.0, -1.0),
-            _ => theta.sin_cos(),
-        };
-        for s in 0..segments {
-            let phi = TAU * s as f32 / segments as f32;
-            positions.push([radius * sin * phi.cos(), radius * cos, radius * sin * phi.sin()]);
-        }
-    }
-    let mut indices = Vec::new();
-    for r in 0..rings {
-        for s in 0..segments {
-            let (a, b) = (r * segments + s, r * segments + (s + 1) % segments);
-            let (c, d) = (a + segments, b + segments);
-            indices.extend([a, b, c, b, d, c]);
-        }
-    }
-    (positions, indices)
-}
 
 /// Coloured glass: `attenuation` is the colour left after `distance`.
 fn coloured(name: &str, ior: f32, dispersion: f32, attenuation: [f32; 3], distance: f32) -> GltfMaterial {
@@ -86,7 +56,7 @@ pub fn document() -> GltfDocument {
                 [0.0; 3],
             )
         },
-        mesh("amber ball", sphere(0.75, 24), 2, [-1.7, 0.75, 0.2]),
+        GltfMesh::ball("amber ball", (0.75, 24), 2, [-1.7, 0.75, 0.2]),
         mesh("green prism", prism_shape(), 3, [0.1, 0.7, 0.6]),
         mesh("clear prism", prism_shape(), 4, [1.6, 0.9, -0.8]),
     ];

@@ -29,10 +29,11 @@ fn prism_document() -> GltfDocument {
                 positions: FLOOR.to_vec(),
                 indices: FLOOR_TRIANGLES.to_vec(),
                 uvs: Vec::new(),
+                normals: Vec::new(),
                 material: 0,
                 translation: [0.0; 3],
             },
-            GltfMesh { name: "prism".into(), positions, indices, uvs: Vec::new(), material: 1, translation: [0.0; 3] },
+            GltfMesh::new("prism", (positions, indices), 1, [0.0; 3]),
         ],
         lights: vec![GltfLight::Spot {
             position: [0.0, 3.0, 0.0],
@@ -164,6 +165,9 @@ fn broken_gltf_files_name_the_element_exit_2_and_write_nothing() {
     let mut dark = prism_document();
     let GltfLight::Spot { intensity, .. } = &mut dark.lights[0] else { panic!() };
     *intensity = -1.0;
+    let mut no_normal = prism_document();
+    no_normal.meshes[1].normals = vec![[0.0, 0.0, 1.0]; 6];
+    no_normal.meshes[1].normals[3] = [0.0; 3];
     let missing_buffer = prism_document().to_json().replace("data:application/octet-stream;base64,", "missing.bin#");
     let cases: Vec<(&str, String, &str)> = vec![
         (
@@ -173,12 +177,37 @@ fn broken_gltf_files_name_the_element_exit_2_and_write_nothing() {
         ),
         ("nan.gltf", nan.to_json(), "meshes[1].primitives[0].attributes.POSITION: vertex 2 is not finite"),
         ("dark.gltf", dark.to_json(), "nodes[2].extensions.KHR_lights_punctual.power: "),
+        (
+            "no-normal.gltf",
+            no_normal.to_json(),
+            "meshes[1].primitives[0].attributes.NORMAL: normal 3 is not a unit vector",
+        ),
         ("missing-buffer.gltf", missing_buffer, "buffers: "),
         ("not-json.gltf", "{ this is not json".into(), "not-json.gltf: "),
     ];
     for (name, text, expected) in cases {
         assert_render_refused(dir.path(), name, &text, expected);
     }
+}
+
+/// A mesh's NORMAL attribute becomes its vertex normals, turned with its
+/// node (here a translation: unchanged) and named in no warning.
+#[test]
+fn vertex_normals_are_read_with_their_mesh() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    doc.meshes.push(GltfMesh::ball("ball", (0.5, 8), 1, [2.0, 0.5, 0.0]));
+    let loaded = prismatic_cli::load_scene(write(dir.path(), "ball.gltf", &doc).to_str().unwrap()).unwrap();
+    assert!(loaded.warnings.is_empty(), "{:?}", loaded.warnings);
+    let Shape::Mesh { positions, normals, .. } = &loaded.scene.objects[2].shape else { panic!("a mesh") };
+    assert_eq!(normals.len(), positions.len());
+    let centre = glam::Vec3::new(2.0, 0.5, 0.0);
+    for (p, n) in positions.iter().zip(normals) {
+        assert!((*n - (*p - centre).normalize()).length() < 1e-5, "{p}: {n}");
+    }
+    let Shape::Mesh { normals, .. } = &loaded.scene.objects[1].shape else { panic!("a mesh") };
+    assert!(normals.is_empty(), "the prism has flat faces");
+    PreparedScene::new(loaded.scene).unwrap();
 }
 
 /// `prismatic render` of glTF `text`, written to `dir/name`, exits 2 with

@@ -110,7 +110,7 @@ pub fn light_panel(center: Vec3, emission: Vec3) -> (Material, Shape) {
         center + Vec3::new(-h, 0.0, h),
     ];
     // Wound so that (b − a) × (c − a) points down, toward the scene.
-    let shape = Shape::Mesh { positions, triangles: vec![[0, 1, 2], [0, 2, 3]], uvs: Vec::new() };
+    let shape = Shape::Mesh { positions, triangles: vec![[0, 1, 2], [0, 2, 3]], uvs: Vec::new(), normals: Vec::new() };
     let kind = MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: None, texture: None, emission };
     (material("panel", kind), shape)
 }
@@ -205,6 +205,7 @@ pub fn textured_floor() -> PreparedScene {
         positions: corners.iter().map(|&(x, z)| Vec3::new(x, 0.0, z)).collect(),
         triangles: vec![[0, 2, 1], [0, 3, 2]],
         uvs: corners.iter().map(|&(x, z)| glam::Vec2::new(x + 4.0, z + 4.0) * (3.0 / 8.0)).collect(),
+        normals: Vec::new(),
     };
     prepared(scene)
 }
@@ -320,7 +321,7 @@ pub fn frosted_glass() -> PreparedScene {
     let (x, y, z) = (-0.9, [0.0, 2.2], [-1.6, 1.2]);
     let positions =
         vec![Vec3::new(x, y[0], z[0]), Vec3::new(x, y[0], z[1]), Vec3::new(x, y[1], z[1]), Vec3::new(x, y[1], z[0])];
-    let square = Shape::Mesh { positions, triangles: vec![[0, 1, 2], [0, 2, 3]], uvs: Vec::new() };
+    let square = Shape::Mesh { positions, triangles: vec![[0, 1, 2], [0, 2, 3]], uvs: Vec::new(), normals: Vec::new() };
     scene.objects.push(Object { shape: square, material: 2 });
     prepared(scene)
 }
@@ -346,11 +347,21 @@ pub fn no_caustics() -> PreparedScene {
 }
 
 /// The paper's sphere as a closed mesh of `4 · rings²` triangles: every
-/// backend's hierarchy traversal.
+/// backend's hierarchy traversal (flat facets).
 pub fn glass_mesh_sphere(rings: u32) -> PreparedScene {
     let mut scene = glass_sphere().scene;
     scene.objects[1].shape = sphere_mesh(Vec3::new(0.0, 1.0, 0.0), 0.8, rings);
     prepared(scene)
+}
+
+/// [`sphere_mesh`] with the sphere's normals at its vertices: it scatters
+/// light as the round sphere does, less the rims of its flat facets.
+pub fn smooth_sphere_mesh(center: Vec3, radius: f32, rings: u32) -> Shape {
+    let Shape::Mesh { positions, triangles, uvs, .. } = sphere_mesh(center, radius, rings) else {
+        unreachable!("sphere_mesh is a mesh")
+    };
+    let normals = positions.iter().map(|p| (*p - center).normalize()).collect();
+    Shape::Mesh { positions, triangles, uvs, normals }
 }
 
 /// A closed sphere mesh, wound outward: `rings` rings of `2 · rings`
@@ -379,7 +390,15 @@ pub fn sphere_mesh(center: Vec3, radius: f32, rings: u32) -> Shape {
             triangles.extend([[a, b, c], [b, d, c]]);
         }
     }
-    Shape::Mesh { positions, triangles, uvs: Vec::new() }
+    Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() }
+}
+
+/// [`glass_mesh_sphere`] with the sphere's normals at its vertices: every
+/// backend's smooth shading.
+pub fn smooth_glass_mesh_sphere(rings: u32) -> PreparedScene {
+    let mut scene = glass_sphere().scene;
+    scene.objects[1].shape = smooth_sphere_mesh(Vec3::new(0.0, 1.0, 0.0), 0.8, rings);
+    prepared(scene)
 }
 
 /// [`glass_sphere`] lit by every kind of light at once (powers that differ,
@@ -425,7 +444,7 @@ pub fn lit_by_every_light_kind(projection_maps: bool, sequence: PhotonSequence) 
 pub fn with_caustics() -> Vec<(&'static str, PreparedScene)> {
     vec![
         ("glass sphere", glass_sphere()),
-        ("glass mesh sphere", glass_mesh_sphere(12)),
+        ("smooth glass mesh sphere", smooth_glass_mesh_sphere(12)),
         ("coloured glass sphere", coloured_glass_sphere()),
         ("textured floor", textured_floor()),
         ("prism", prism()),

@@ -19,7 +19,7 @@
 //! | 6 | [`photons`] | `emit`, `wavelengths`, `path`, `trace`, `indirect`, `grid`, `gather`, `light_tracing` | the light's side: photons from emission to the gather and to the camera, caustic and indirect |
 //! | 5 | [`plan`] | `area`, `area_aims`, `reach`, `projection`, `effects`, `prepared`, `drawn_suns`, `drawn_triangles`, `schedule` | what a render of this scene will do |
 //! | 4 | [`optics`] | `fresnel`, `microfacet`, `metal`, `rough_glass`, `thin_film`, `absorption`, `surface`, `scatter` | every scattering function, and the one branch choice at glass |
-//! | 3 | [`geometry`] | `ray`, `triangle`, `primitive`, `bvh`, `bvh_build`, `camera`, `texture`, `form_factor` | rays, intersections, hierarchies, the camera, textures, form factors |
+//! | 3 | [`geometry`] | `ray`, `triangle`, `primitive`, `bvh`, `bvh_build`, `camera`, `texture`, `shading`, `form_factor` | rays, intersections, hierarchies, the camera, textures, shading normals, form factors |
 //! | 2 | [`sampling`] | `sobol`, `pixel_sample`, `light_spectrum`, `environment`, `spot_cone` | the low-discrepancy numbers paths draw, the wavelengths lights emit, what an environment sends each way, a spot's cone |
 //! | 1 | [`model`] | `scene`, `validate`, `mesh`, `environment`, `light_range`, `bands`, `cie`, `color`, `dispersion`, `image`, `photon`, `wavelength_rgb`, `reflectance`, `metals`, `spectrum`, `rgb_spectrum` | what the user described and what backends exchange |
 //! | 0 | [`util`] | `math`, `rng`, `tolerance`, `progress` | float math with and without `std`, random numbers, tolerances, progress |

@@ -256,6 +256,7 @@ pub fn view_through_a_sheet(sheet: Material) -> PreparedScene {
                     positions: square.to_vec(),
                     triangles: vec![[0, 1, 2], [0, 2, 3]],
                     uvs: Vec::new(),
+                    normals: Vec::new(),
                 },
                 material: 0,
             },

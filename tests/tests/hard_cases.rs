@@ -472,7 +472,7 @@ fn degenerate_triangles_change_nothing() {
             positions.push((positions[0] + positions[2]) * 0.5); // on the edge 0–2
             triangles.extend([[0, 0, 1], [0, 6, 2], [4, 4, 4], [2, 6, 0]]);
         }
-        scene.objects[0].shape = Shape::Mesh { positions, triangles, uvs: Vec::new() };
+        scene.objects[0].shape = Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() };
         prepare(scene)
     };
     let (clean, dirty) = (with_mesh(false), with_mesh(true));
@@ -673,7 +673,8 @@ fn beams_through_mesh_vertices_and_edges_match_the_reference() {
     let Shape::Prism { vertices, extrude } = scene.objects[0].shape else { unreachable!("a prism") };
     let positions: Vec<Vec3> = vertices.iter().copied().chain(vertices.iter().map(|&p| p + extrude)).collect();
     let triangles = vec![[0, 2, 1], [3, 4, 5], [0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4], [2, 0, 3], [2, 3, 5]];
-    scene.objects[0].shape = Shape::Mesh { positions: positions.clone(), triangles, uvs: Vec::new() };
+    scene.objects[0].shape =
+        Shape::Mesh { positions: positions.clone(), triangles, uvs: Vec::new(), normals: Vec::new() };
     // The apex's front vertex, the middle of the apex edge, the middle of the left face's diagonal.
     for target in [positions[2], (positions[2] + positions[5]) * 0.5, (positions[0] + positions[5]) * 0.5] {
         let mut scene = scene.clone();

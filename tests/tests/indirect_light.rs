@@ -32,7 +32,7 @@ fn inward_cube() -> Shape {
             triangles.push(if inward { t } else { [t[0], t[2], t[1]] });
         }
     }
-    Shape::Mesh { positions, triangles, uvs: Vec::new() }
+    Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() }
 }
 
 /// The camera at the box's centre, looking at a wall.
@@ -143,8 +143,12 @@ fn a_red_wall_bleeds_red_onto_a_white_floor() {
     let panel = diffuse("panel", Vec3::splat(0.5), Vec3::splat(8.0));
     let corners = [(-0.5, -0.5), (0.5, -0.5), (0.5, 0.5), (-0.5, 0.5)].map(|(x, z)| Vec3::new(x, 2.0, z));
     // Wound to face down.
-    let panel_shape =
-        Shape::Mesh { positions: corners.to_vec(), triangles: vec![[0, 1, 2], [0, 2, 3]], uvs: Vec::new() };
+    let panel_shape = Shape::Mesh {
+        positions: corners.to_vec(),
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+        uvs: Vec::new(),
+        normals: Vec::new(),
+    };
     let scene = |indirect: u32, x: f32| {
         let render = RenderSettings {
             width: SIDE,

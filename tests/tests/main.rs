@@ -25,6 +25,7 @@ mod physics;
 mod progressive;
 mod rough_glass;
 mod scene_files;
+mod smooth_shading;
 mod spectral_truth;
 mod spectrum;
 mod sun;

@@ -25,7 +25,7 @@ fn experiment() -> PrismExperiment {
 fn as_mesh(mut scene: Scene) -> Scene {
     let Shape::Prism { vertices, extrude } = scene.objects[0].shape else { unreachable!("object 0 is the prism") };
     let (positions, triangles) = prism_mesh(vertices, extrude);
-    scene.objects[0].shape = Shape::Mesh { positions, triangles, uvs: Vec::new() };
+    scene.objects[0].shape = Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() };
     scene
 }
 
@@ -54,7 +54,7 @@ fn obj_meshes_load_relative_to_the_scene_file() {
     for p in &positions {
         obj += &format!("v {} {} {}\n", p.x, p.y, p.z);
     }
-    obj += "vt 0 0\n";
+    obj += "vt 0 0\nvn 0 0 1\nvn 0 1 0\n";
     for tri in &triangles {
         obj += &format!("f {} {}/1 {}//2\n", tri[0] + 1, tri[1] + 1, tri[2] + 1);
     }

@@ -54,6 +54,7 @@ fn scene(texture: Texture, albedo: Vec3, lo: f32, hi: f32) -> PreparedScene {
         positions: corners.iter().map(|&(x, z)| Vec3::new(x, 0.0, z)).collect(),
         triangles: vec![[0, 2, 1], [0, 3, 2]],
         uvs: corners.iter().map(|&(x, z)| uv_at(x, z, lo, hi).into()).collect(),
+        normals: Vec::new(),
     };
     let material = MaterialKind::Diffuse { albedo, checker: None, texture: Some(texture), emission: Vec3::ZERO };
     PreparedScene::new(Scene {
@@ -167,13 +168,18 @@ fn a_texture_needs_a_mesh_with_texture_coordinates() {
     let err = PreparedScene::new(scene.clone()).unwrap_err();
     assert_eq!(err.key, "object[0].material");
     assert!(err.reason.contains("'floor' has the texture test.png") && err.reason.contains("plane"), "{err}");
-    scene.objects[0].shape =
-        Shape::Mesh { positions: vec![Vec3::ZERO, Vec3::X, Vec3::Z], triangles: vec![[0, 1, 2]], uvs: Vec::new() };
+    scene.objects[0].shape = Shape::Mesh {
+        positions: vec![Vec3::ZERO, Vec3::X, Vec3::Z],
+        triangles: vec![[0, 1, 2]],
+        uvs: Vec::new(),
+        normals: Vec::new(),
+    };
     assert!(PreparedScene::new(scene.clone()).unwrap_err().reason.contains("mesh has none"));
     scene.objects[0].shape = Shape::Mesh {
         positions: vec![Vec3::ZERO, Vec3::X, Vec3::Z],
         triangles: vec![[0, 1, 2]],
         uvs: vec![[0.0, 0.0].into(); 2],
+        normals: Vec::new(),
     };
     assert_eq!(PreparedScene::new(scene).unwrap_err().key, "object[0].uvs");
 }

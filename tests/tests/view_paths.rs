@@ -33,7 +33,7 @@ fn edge_scene(view_paths: ViewPaths) -> Scene {
         }],
         materials: vec![white("floor")],
         objects: vec![Object {
-            shape: Shape::Mesh { positions, triangles: vec![[0, 1, 2]], uvs: vec![] },
+            shape: Shape::Mesh { positions, triangles: vec![[0, 1, 2]], uvs: vec![], normals: vec![] },
             material: 0,
         }],
     }

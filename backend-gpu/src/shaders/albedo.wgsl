@@ -20,24 +20,12 @@ fn albedo_at(hit: Hit, n: vec3<f32>) -> vec3<f32> {
     return base * sample_texture(s, texture_coordinates(objects[hit.object], s, hit.triangle, hit.point));
 }
 
-// TriangleUv::at: barycentrics by least squares.
+// TriangleUv::at
 fn texture_coordinates(obj: GpuObject, s: GpuSurface, tri: u32, p: vec3<f32>) -> vec2<f32> {
-    let r = obj.second + 4u * tri;
-    let v0 = geometry[r].xyz;
-    let e1 = geometry[r + 1u].xyz;
-    let e2 = geometry[r + 2u].xyz;
     let a = geometry[s.uv_first + 2u * tri];
     let du2 = geometry[s.uv_first + 2u * tri + 1u].xy;
-    let d = p - v0;
-    let d11 = dot(e1, e1);
-    let d12 = dot(e1, e2);
-    let d22 = dot(e2, e2);
-    let d1 = dot(d, e1);
-    let d2 = dot(d, e2);
-    let inv = 1.0 / (d11 * d22 - d12 * d12);
-    let b1 = (d22 * d1 - d12 * d2) * inv;
-    let b2 = (d11 * d2 - d12 * d1) * inv;
-    return a.xy + a.zw * b1 + du2 * b2;
+    let b = triangle_barycentrics(obj, tri, p);
+    return a.xy + a.zw * b.x + du2 * b.y;
 }
 
 // texture::wrap_texel (wrap: 0 repeat, 1 clamp to edge, 2 mirrored repeat).

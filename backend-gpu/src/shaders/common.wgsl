@@ -383,6 +383,43 @@ fn reflect_dir(d: vec3<f32>, n: vec3<f32>) -> vec3<f32> {
     return d - n * (2.0 * dot(d, n));
 }
 
+// ---- geometry/shading.rs ----
+
+// Triangle::barycentrics: the weights of the second and third corners at
+// p, by least squares.
+fn barycentrics(v0: vec3<f32>, e1: vec3<f32>, e2: vec3<f32>, p: vec3<f32>) -> vec2<f32> {
+    let d = p - v0;
+    let d11 = dot(e1, e1);
+    let d12 = dot(e1, e2);
+    let d22 = dot(e2, e2);
+    let d1 = dot(d, e1);
+    let d2 = dot(d, e2);
+    let inv = 1.0 / (d11 * d22 - d12 * d12);
+    return vec2<f32>((d22 * d1 - d12 * d2) * inv, (d11 * d2 - d12 * d1) * inv);
+}
+
+// shading_normal: the interpolated normal, bent where the ray mirrored
+// about it would rise less than MIN_REFLECTED_LIFT above the triangle.
+fn shading_normal(d: vec3<f32>, geometric: vec3<f32>, interpolated: vec3<f32>) -> vec3<f32> {
+    if !(dot(interpolated, geometric) > 0.0) {
+        return geometric;
+    }
+    let len = length(interpolated);
+    let side = select(-1.0, 1.0, dot(d, geometric) < 0.0);
+    let facing = geometric * side;
+    let interpolated_unit = interpolated * (side / len);
+    let mirrored = d - interpolated_unit * (2.0 * dot(d, interpolated_unit));
+    let lift = dot(mirrored, facing);
+    if lift >= MIN_REFLECTED_LIFT {
+        return interpolated_unit * side;
+    }
+    let flat = mirrored - facing * lift;
+    let rcp = 1.0 / length(flat);
+    let along = select(facing, flat * rcp, rcp > 0.0 && rcp <= BIG);
+    let lifted = along * sqrt(1.0 - MIN_REFLECTED_LIFT * MIN_REFLECTED_LIFT) + facing * MIN_REFLECTED_LIFT;
+    return nrm(lifted - d) * side;
+}
+
 fn cos2_transmitted(cos_i: f32, n1: f32, n2: f32) -> f32 {
     let eta = n1 / n2;
     return (n2 - n1) * (n2 + n1) / (n2 * n2) + eta * eta * cos_i * cos_i;

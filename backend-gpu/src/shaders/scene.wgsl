@@ -344,6 +344,29 @@ fn intersect_scene(o: vec3<f32>, d: vec3<f32>, t_max: f32) -> Hit {
     return best;
 }
 
+// Triangle::barycentrics of p on mesh `obj`'s triangle `tri`.
+fn triangle_barycentrics(obj: GpuObject, tri: u32, p: vec3<f32>) -> vec2<f32> {
+    let r = obj.second + 4u * tri;
+    return barycentrics(geometry[r].xyz, geometry[r + 1u].xyz, geometry[r + 2u].xyz, p);
+}
+
+// PreparedScene::scattering_normal: what a ray arriving along `d` at `hit`
+// scatters about off a mirror, metal or glass (a mesh's vertex normals
+// interpolated and bent, TriangleNormals::at and shading_normal; the
+// geometric normal elsewhere). A smooth mesh's `rb` holds the first of
+// its triangles' normal records (n0, d1, d2) as bits.
+fn scattering_normal(hit: Hit, d: vec3<f32>) -> vec3<f32> {
+    let obj = objects[hit.object];
+    let first = bitcast<u32>(obj.rb);
+    if obj.kind != OBJECT_MESH || first == NO_VERTEX_NORMALS {
+        return hit.normal;
+    }
+    let b = triangle_barycentrics(obj, hit.triangle, hit.point);
+    let k = first + 3u * hit.triangle;
+    let interpolated = geometry[k].xyz + geometry[k + 1u].xyz * b.x + geometry[k + 2u].xyz * b.y;
+    return shading_normal(d, hit.normal, interpolated);
+}
+
 // PreparedScene::occluded (Primitive::hits)
 fn occluded(o: vec3<f32>, d: vec3<f32>, dist: f32) -> bool {
     for (var i = 0u; i < params.object_count; i++) {

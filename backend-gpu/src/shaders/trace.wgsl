@@ -168,6 +168,7 @@ fn arrives_at_specular(p: Path, hit: Hit, s: GpuSurface, index: u32) -> bool {
 // the mirror, metal or glass `s` at `hit`; false when the metal, rough
 // glass's microsurface or a tinted sheet absorbed it.
 fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -> bool {
+    let n = scattering_normal(hit, (*p).dir);
     if s.kind == SURFACE_METAL {
         // A facet of the metal (α in white_ior), and its Fresnel times the
         // unshadowed share as the path's survival probability.
@@ -177,7 +178,7 @@ fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -
             let d = bounce_dim((*p).band, (*p).bounces);
             u = vec2<f32>(random_f32(params.seed, index, d), random_f32(params.seed, index, d + DIM_ABSORB));
         }
-        let b = scatter_metal((*p).dir, hit.point, hit.normal, alpha, u.x, u.y);
+        let b = scatter_metal((*p).dir, hit.point, n, alpha, u.x, u.y);
         if b.ok {
             let lambda = stored_wavelength((*p).band, (*p).lambda_nm);
             let share = b.unshadowed * metal_reflectance(s, b.cos_facet, (*p).band, lambda);
@@ -191,8 +192,8 @@ fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -
         return false;
     }
     if s.kind == SURFACE_MIRROR {
-        let d = reflect_dir((*p).dir, hit.normal);
-        (*p).origin = offset_origin(hit.point, hit.normal, d);
+        let d = reflect_dir((*p).dir, n);
+        (*p).origin = offset_origin(hit.point, n, d);
         (*p).dir = d;
         return true;
     }
@@ -206,7 +207,7 @@ fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -
         // A facet, Fresnel's choice at it, and survival with the unshadowed share.
         let d = bounce_dim((*p).band, (*p).bounces);
         let facet = vec2<f32>(random_f32(params.seed, index, d), random_f32(params.seed, index, d + DIM_ABSORB));
-        let b = scatter_rough_dielectric(before, hit.point, hit.normal, face, alpha, facet, u);
+        let b = scatter_rough_dielectric(before, hit.point, n, face, alpha, facet, u);
         if !b.ok || !(b.leftover < b.unshadowed) {
             tally_flux[5] += (*p).flux;
             return false;
@@ -215,7 +216,7 @@ fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -
         (*p).dir = b.dir;
         crossed = b.crossed;
     } else {
-        let out = scatter_dielectric(before, hit.point, hit.normal, face, u);
+        let out = scatter_dielectric(before, hit.point, n, face, u);
         (*p).origin = out.origin;
         (*p).dir = out.dir;
         crossed = all(out.dir == before);

@@ -363,12 +363,18 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
     } else if !glass {
         albedo = albedo_at(hit, n);
     }
+    // A diffuse surface takes its lights' cosines with the smooth normal.
+    var shading = n;
+    if !metal && !glass {
+        shading = scattering_normal(hit, dir);
+        shading = select(-shading, shading, dot(dir, hit.normal) < 0.0);
+    }
     // Each light's irradiance, in the colour the surface reflects of its spectrum.
     var reflected = vec3<f32>(0.0);
     for (var i = 0u; i < params.light_count; i++) {
         let l = lights[i];
         var factor = albedo;
-        var lit_side = n;
+        var lit_side = shading;
         if glass {
             // Either side: a light behind the glass shines through it.
             let wi = hidden_direction(l, hit.point);
@@ -463,12 +469,15 @@ fn visit_path(e: Pending) -> vec3<f32> {
         return e.tint * background(e.dir);
     }
     let s = surfaces[hit.object];
-    let rough_metal = s.kind == SURFACE_METAL && s.white_ior > 0.0 && e.depth < params.max_depth;
-    if s.kind == SURFACE_DIFFUSE || rough_metal {
-        light_query = LightQuery(true, e, hit, bare_face(1.0, false));
-    }
     if s.kind == SURFACE_DIFFUSE {
+        light_query = LightQuery(true, e, hit, bare_face(1.0, false));
         return vec3<f32>(0.0);
+    }
+    // Mirrors, metals and glass scatter about the shading normal.
+    var bent = hit;
+    bent.normal = scattering_normal(hit, e.dir);
+    if s.kind == SURFACE_METAL && s.white_ior > 0.0 && e.depth < params.max_depth {
+        light_query = LightQuery(true, e, bent, bare_face(1.0, false));
     }
     if e.depth >= params.max_depth {
         return vec3<f32>(0.0);
@@ -481,7 +490,7 @@ fn visit_path(e: Pending) -> vec3<f32> {
         if alpha > 0.0 {
             u = pixel_facet(scramble, select(0u, params.view_pass, per_pass()), e.hero, e.depth);
         }
-        let b = scatter_metal(e.dir, hit.point, hit.normal, alpha, u.x, u.y);
+        let b = scatter_metal(e.dir, hit.point, bent.normal, alpha, u.x, u.y);
         if b.ok {
             var lambda = e.lambda_nm;
             if lambda < 0.0 && e.band < params.band_count {
@@ -496,14 +505,14 @@ fn visit_path(e: Pending) -> vec3<f32> {
         return vec3<f32>(0.0);
     }
     if s.kind == SURFACE_MIRROR {
-        let d = reflect_dir(e.dir, hit.normal);
-        spawn_ray(e, offset_origin(hit.point, hit.normal, d), d, e.band, e.weight, e.tint);
+        let d = reflect_dir(e.dir, bent.normal);
+        spawn_ray(e, offset_origin(hit.point, bent.normal, d), d, e.band, e.weight, e.tint);
         return vec3<f32>(0.0);
     }
     // What coloured glass left of a ray that crossed it.
     let kept = glass_transmittance(s, e.dir, hit.normal, hit.t, e.band);
     let weight = e.weight * max(kept.x, max(kept.y, kept.z));
-    var at = Pending(hit.point, weight, e.dir, e.band, e.tint * kept, e.depth, hit.normal, NO_SPLIT, hit.object, e.lambda_nm, e.hero);
+    var at = Pending(hit.point, weight, e.dir, e.band, e.tint * kept, e.depth, bent.normal, NO_SPLIT, hit.object, e.lambda_nm, e.hero);
     if e.band == WHITE_BAND && (s.flags & SURFACE_SPLITS_VIEW_RAYS) != 0u {
         at.next_band = 0u;
         spawn(at);

@@ -584,7 +584,7 @@ impl Reader<'_> {
                 Shape::Prism { vertices, extrude: self.req(t, "extrude", Self::vec3)? }
             }
             "mesh" => {
-                self.check_keys(t, &["shape", "material", "positions", "triangles", "uvs", "path"])?;
+                self.check_keys(t, &["shape", "material", "positions", "triangles", "uvs", "normals", "path"])?;
                 self.mesh(t)?
             }
             other => {
@@ -639,7 +639,7 @@ impl Reader<'_> {
         let first = materials.len();
         materials.extend(model.materials.into_iter().map(|m| Material { name: format!("{stem}/{}", m.name), ..m }));
         for object in model.objects {
-            let Shape::Mesh { positions, triangles, uvs } = object.shape else { continue };
+            let Shape::Mesh { positions, triangles, uvs, normals } = object.shape else { continue };
             let positions = positions
                 .into_iter()
                 .map(|p| {
@@ -648,8 +648,10 @@ impl Reader<'_> {
                         .ok_or_else(|| self.err(&key, &v.span(), format!("vertex {world} is out of range")))
                 })
                 .collect::<Result<Vec<_>>>()?;
-            objects
-                .push(Object { shape: Shape::Mesh { positions, triangles, uvs }, material: first + object.material });
+            objects.push(Object {
+                shape: Shape::Mesh { positions, triangles, uvs, normals },
+                material: first + object.material,
+            });
         }
         let left_out = model.warnings.into_iter().chain(
             (!model.lights.is_empty() || model.camera.is_some())
@@ -662,8 +664,12 @@ impl Reader<'_> {
     fn mesh(&self, t: &Table<'_, '_>) -> Result<Shape> {
         if let Some(v) = self.get(t, "path") {
             let key = join(&t.key, "path");
-            if ["positions", "triangles", "uvs"].iter().any(|k| self.get(t, k).is_some()) {
-                return Err(self.err(&key, &v.span(), "give either path or positions + triangles (+ uvs), not both"));
+            if ["positions", "triangles", "uvs", "normals"].iter().any(|k| self.get(t, k).is_some()) {
+                return Err(self.err(
+                    &key,
+                    &v.span(),
+                    "give either path or positions + triangles (+ uvs, normals), not both",
+                ));
             }
             let rel = self.string(&key, v)?;
             let path = self.beside(rel);
@@ -673,7 +679,7 @@ impl Reader<'_> {
                 .into_iter()
                 .map(|p| self.local(p).ok_or_else(|| self.err(&key, &v.span(), format!("vertex {p} is out of range"))))
                 .collect::<Result<Vec<_>>>()?;
-            return Ok(Shape::Mesh { positions, triangles: mesh.triangles, uvs: mesh.uvs });
+            return Ok(Shape::Mesh { positions, triangles: mesh.triangles, uvs: mesh.uvs, normals: mesh.normals });
         }
         let positions = {
             let key = join(&t.key, "positions");
@@ -720,6 +726,16 @@ impl Reader<'_> {
             }
             None => Vec::new(),
         };
-        Ok(Shape::Mesh { positions, triangles, uvs })
+        let normals = match self.get(t, "normals") {
+            Some(v) => {
+                let key = join(&t.key, "normals");
+                let normals = self.array(&key, v)?.iter().enumerate();
+                normals
+                    .map(|(i, n)| Ok(self.dvec3(&format!("{key}[{i}]"), n)?.as_vec3()))
+                    .collect::<Result<Vec<_>>>()?
+            }
+            None => Vec::new(),
+        };
+        Ok(Shape::Mesh { positions, triangles, uvs, normals })
     }
 }

@@ -1,5 +1,5 @@
 //! Layer 3, geometry: rays, triangles, the primitives and their intersections,
-//! bounding volume hierarchies, the camera, texture lookup and what a point
+//! bounding volume hierarchies, the camera, texture lookup, smooth shading normals and what a point
 //! sees of a triangle (form factors).
 
 pub mod bvh;
@@ -8,5 +8,6 @@ pub mod camera;
 pub mod form_factor;
 pub mod primitive;
 pub mod ray;
+pub mod shading;
 pub mod texture;
 pub mod triangle;

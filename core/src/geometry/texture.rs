@@ -31,17 +31,10 @@ impl TriangleUv {
         TriangleUv { uv0: corners[0], du1: corners[1] - corners[0], du2: corners[2] - corners[0] }
     }
 
-    /// The coordinates at `p`, a point on `tri` (barycentrics by least
-    /// squares, so a point a rounding error off the plane still reads the
-    /// nearest point's coordinates).
+    /// The coordinates at `p`, a point on `tri` ([`Triangle::barycentrics`]).
     #[inline]
     pub fn at(&self, tri: &Triangle, p: Vec3) -> Vec2 {
-        let d = p - tri.v0;
-        let (d11, d12, d22) = (tri.e1.dot(tri.e1), tri.e1.dot(tri.e2), tri.e2.dot(tri.e2));
-        let (d1, d2) = (d.dot(tri.e1), d.dot(tri.e2));
-        let inv = 1.0 / (d11 * d22 - d12 * d12);
-        let b1 = (d22 * d1 - d12 * d2) * inv;
-        let b2 = (d11 * d2 - d12 * d1) * inv;
+        let (b1, b2) = tri.barycentrics(p);
         self.uv0 + self.du1 * b1 + self.du2 * b2
     }
 }

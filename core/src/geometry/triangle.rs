@@ -33,6 +33,19 @@ impl Triangle {
         let pad = 8.0 * BARYCENTRIC_EPS * size + 4e-6 * magnitude + 1e-30;
         (lo - Vec3::splat(pad), hi + Vec3::splat(pad))
     }
+
+    /// The weights (b1, b2) of the second and third corners at `p`, a point
+    /// on the triangle, by least squares (so a point a rounding error off
+    /// the plane reads as the nearest point in it). Texture coordinates and
+    /// vertex normals interpolate with them.
+    #[inline]
+    pub fn barycentrics(&self, p: Vec3) -> (f32, f32) {
+        let d = p - self.v0;
+        let (d11, d12, d22) = (self.e1.dot(self.e1), self.e1.dot(self.e2), self.e2.dot(self.e2));
+        let (d1, d2) = (d.dot(self.e1), d.dot(self.e2));
+        let inv = 1.0 / (d11 * d22 - d12 * d12);
+        ((d22 * d1 - d12 * d2) * inv, (d11 * d2 - d12 * d1) * inv)
+    }
 }
 
 /// Mesh triangles without the degenerate (zero-area) ones.

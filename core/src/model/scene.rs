@@ -862,6 +862,10 @@ pub enum Shape {
         /// Texture coordinates per vertex (glTF's `TEXCOORD_0`: v down the
         /// image), or empty when the mesh has none.
         uvs: Vec<Vec2>,
+        /// Normals per vertex (glTF's `NORMAL`), which mirrors, metals and
+        /// glass scatter about smoothly across each triangle
+        /// ([`crate::geometry::shading`]), or empty: flat triangles.
+        normals: Vec<Vec3>,
     },
 }
 

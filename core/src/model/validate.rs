@@ -576,7 +576,7 @@ fn validate_shape(c: &Check<'_>, shape: &Shape) -> Result<(), SceneError> {
             }
             Ok(())
         }
-        Shape::Mesh { positions, triangles, uvs } => {
+        Shape::Mesh { positions, triangles, uvs, normals } => {
             if triangles.is_empty() {
                 return Err(c.err("triangles", "the mesh has no triangles"));
             }
@@ -607,8 +607,19 @@ fn validate_shape(c: &Check<'_>, shape: &Shape) -> Result<(), SceneError> {
                     ),
                 ));
             }
-            match uvs.iter().position(|uv| !uv.is_finite()) {
-                Some(i) => Err(c.err(&format!("uvs[{i}]"), format!("must be finite, got {}", uvs[i]))),
+            if let Some(i) = uvs.iter().position(|uv| !uv.is_finite()) {
+                return Err(c.err(&format!("uvs[{i}]"), format!("must be finite, got {}", uvs[i])));
+            }
+            if !normals.is_empty() && normals.len() != positions.len() {
+                return Err(c.err(
+                    "normals",
+                    format!("{} normals for {} positions: give one per position", normals.len(), positions.len()),
+                ));
+            }
+            match normals.iter().position(|n| !n.is_finite() || n.length_squared() == 0.0) {
+                Some(i) => {
+                    Err(c.err(&format!("normals[{i}]"), format!("must be finite and not zero, got {}", normals[i])))
+                }
                 None => Ok(()),
             }
         }

@@ -104,10 +104,11 @@ pub(crate) fn cross_specular(
     stats: &mut TraceStats,
 ) -> bool {
     let seed = scene.scene.render.seed;
+    let normal = scene.scattering_normal(hit, p.ray.direction);
     match &scene.surfaces[hit.object] {
         Surface::Mirror => {
-            let d = reflect(p.ray.direction, hit.normal);
-            p.ray = Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d };
+            let d = reflect(p.ray.direction, normal);
+            p.ray = Ray { origin: offset_origin(hit.point, normal, d), direction: d };
             true
         }
         Surface::Metal(metal) => {
@@ -119,7 +120,7 @@ pub(crate) fn cross_specular(
                 None => (0.0, 0.0),
             };
             let lambda_nm = stored_wavelength(&scene.bands, p.band, p.lambda_nm);
-            let reflected = scatter_metal(p.ray.direction, hit.point, hit.normal, metal.ggx, u1, u2).filter(|b| {
+            let reflected = scatter_metal(p.ray.direction, hit.point, normal, metal.ggx, u1, u2).filter(|b| {
                 let share = b.unshadowed * metal.reflectance(b.cos_facet, p.band, lambda_nm, &scene.bands);
                 random_f32(seed, index, dim::scatter(p.band, p.bounces)) < share
             });
@@ -135,13 +136,13 @@ pub(crate) fn cross_specular(
             let before = p.ray.direction;
             let crossed = match glass.ggx {
                 None => {
-                    p.ray = scatter_dielectric(before, hit.point, hit.normal, face, u);
+                    p.ray = scatter_dielectric(before, hit.point, normal, face, u);
                     p.ray.direction == before
                 }
                 Some(ggx) => {
                     let [d1, d2] = dim::bounce(p.band, p.bounces);
                     let facet = (random_f32(seed, index, d1), random_f32(seed, index, d2));
-                    let bounce = scatter_rough_dielectric(before, (hit.point, hit.normal), face, ggx, facet, u);
+                    let bounce = scatter_rough_dielectric(before, (hit.point, normal), face, ggx, facet, u);
                     match bounce.filter(|b| b.leftover < b.unshadowed) {
                         Some(b) => {
                             p.ray = b.ray;

@@ -3,6 +3,7 @@
 //! refraction), the light-selection distribution and the effect plan.
 
 use crate::geometry::primitive::{Primitive, Ray, prism_faces};
+use crate::geometry::shading::{TriangleNormals, shading_normal};
 use crate::geometry::texture::TriangleUv;
 use crate::model::bands::BandTable;
 use crate::model::scene::{Light, Scene, SceneError, Shape};
@@ -49,6 +50,9 @@ pub struct PreparedScene {
     /// Per object, the texture coordinates of its mesh's triangles in the
     /// hierarchy's order; empty unless its surface has a texture.
     pub texture_uvs: Vec<Vec<TriangleUv>>,
+    /// Per object, the vertex normals of its mesh's triangles in the
+    /// hierarchy's order; empty for flat triangles (a mesh without normals).
+    pub vertex_normals: Vec<Vec<TriangleNormals>>,
     /// The lights that shine: the scene's, each environment replaced by
     /// the suns of its median cut ([`EnvironmentLookup::cut`], as
     /// many as `render.environment_lights`), then the emissive meshes'
@@ -131,6 +135,18 @@ impl PreparedScene {
                     .iter()
                     .map(|&k| TriangleUv::new(triangles[k as usize].map(|i| uvs[i as usize])))
                     .collect(),
+                _ => Vec::new(),
+            })
+            .collect();
+        let vertex_normals = scene
+            .objects
+            .iter()
+            .zip(&primitives)
+            .map(|(o, p)| match (&o.shape, p) {
+                (Shape::Mesh { triangles, normals, .. }, Primitive::Mesh(bvh)) if !normals.is_empty() => {
+                    let corners = |k: u32| triangles[k as usize].map(|i| normals[i as usize]);
+                    bvh.sources.iter().map(|&k| TriangleNormals::new(corners(k))).collect()
+                }
                 _ => Vec::new(),
             })
             .collect();
@@ -234,6 +250,7 @@ impl PreparedScene {
             primitives,
             surfaces,
             texture_uvs,
+            vertex_normals,
             lights,
             environment,
             emitters,
@@ -365,6 +382,38 @@ impl PreparedScene {
             _ => Vec2::ZERO,
         };
         self.surfaces[object].albedo_at(point, normal, uv)
+    }
+
+    /// The normal a ray arriving along unit `direction` at `hit` scatters
+    /// about off a mirror, metal or glass, and that a diffuse surface takes
+    /// its lights' cosines with: the mesh's vertex normals interpolated
+    /// there and bent where they must be ([`shading_normal`]), or the
+    /// geometric normal of flat triangles and other shapes. Which side of
+    /// the surface a ray is on stays the geometric normal's (coloured
+    /// glass's absorption, where photons are stored and gathered, the
+    /// bounces of indirect light's photons).
+    #[inline]
+    pub fn scattering_normal(&self, hit: &Hit, direction: Vec3) -> Vec3 {
+        self.scattering_normal_at(hit.object, hit.triangle, hit.point, hit.normal, direction)
+    }
+
+    /// [`PreparedScene::scattering_normal`] at `point` on `object`'s mesh
+    /// triangle `triangle` (geometric normal `geometric`).
+    #[inline]
+    pub fn scattering_normal_at(
+        &self,
+        object: usize,
+        triangle: u32,
+        point: Vec3,
+        geometric: Vec3,
+        direction: Vec3,
+    ) -> Vec3 {
+        match (&self.primitives[object], self.vertex_normals[object].get(triangle as usize)) {
+            (Primitive::Mesh(bvh), Some(normals)) => {
+                shading_normal(direction, geometric, normals.at(&bvh.triangles[triangle as usize], point))
+            }
+            _ => geometric,
+        }
     }
 
     /// Radiance that a ray leaving the scene along unit `direction` sees:

@@ -64,6 +64,8 @@ fn first_diffuse(scene: &PreparedScene, ray: &Ray, weight: f32, depth: u32) -> (
     if depth >= scene.plan.max_depth.max(1) {
         return (Vec3::ZERO, facing * weight);
     }
+    // Mirrors, metals and glass scatter about the shading normal.
+    let normal = scene.scattering_normal(&hit, ray.direction);
     match &scene.surfaces[hit.object] {
         Surface::Diffuse { .. } => {
             (scene.albedo_at(hit.object, hit.triangle, hit.point, facing) * weight, facing * weight)
@@ -71,17 +73,12 @@ fn first_diffuse(scene: &PreparedScene, ray: &Ray, weight: f32, depth: u32) -> (
         // A rough metal is a surface of its own to a denoiser: its colour is F0.
         Surface::Metal(metal) if metal.ggx.is_some() => (metal.f0 * weight, facing * weight),
         Surface::Mirror | Surface::Metal(_) => {
-            let d = reflect(ray.direction, hit.normal);
-            first_diffuse(
-                scene,
-                &Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d },
-                weight,
-                depth + 1,
-            )
+            let d = reflect(ray.direction, normal);
+            first_diffuse(scene, &Ray { origin: offset_origin(hit.point, normal, d), direction: d }, weight, depth + 1)
         }
         Surface::Dielectric(glass) => {
             let face = glass.face(WHITE_BAND, None, &scene.bands);
-            let split = split_dielectric(ray.direction, hit.point, hit.normal, face);
+            let split = split_dielectric(ray.direction, hit.point, normal, face);
             let (r, t) = (split.reflectance, 1.0 - split.reflectance);
             let mut sum = (Vec3::ZERO, Vec3::ZERO);
             for (branch, share) in [(Some(split.reflected), r), (split.refracted, t)] {

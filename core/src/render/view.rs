@@ -162,8 +162,12 @@ impl<'a> ViewContext<'a> {
         };
         let path = ViewPath { weight: path.weight * kept.max_element(), tint: path.tint * kept, ..path };
         let ViewPath { band, depth, weight, tint, .. } = path;
+        if let Surface::Diffuse { .. } = surface {
+            return kept * self.shade_diffuse(ray, &hit, path, points);
+        }
+        // Mirrors, metals and glass scatter about the shading normal.
+        let hit = Hit { normal: self.scene.scattering_normal(&hit, ray.direction), ..hit };
         kept * match surface {
-            Surface::Diffuse { .. } => self.shade_diffuse(ray, &hit, path, points),
             _ if depth >= self.scene.plan.max_depth => Vec3::ZERO,
             Surface::Mirror => {
                 let d = reflect(ray.direction, hit.normal);
@@ -207,6 +211,7 @@ impl<'a> ViewContext<'a> {
             Surface::Dielectric(glass) => {
                 self.through_dielectric(ray, &hit, (self.face(glass, &path), glass), path, points)
             }
+            Surface::Diffuse { .. } => unreachable!("shaded above"),
         }
     }
 
@@ -301,12 +306,15 @@ impl<'a> ViewContext<'a> {
     /// which is left to a visible point (when the plan traces caustics and
     /// light tracing does not bring it: see [`gathers_at`]).
     fn shade_diffuse(&self, ray: &Ray, hit: &Hit, path: ViewPath, points: &mut Vec<VisiblePoint>) -> Vec3 {
-        let n = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
+        let side = if ray.direction.dot(hit.normal) < 0.0 { 1.0 } else { -1.0 };
+        let n = hit.normal * side;
         let albedo = self.scene.albedo_at(hit.object, hit.triangle, hit.point, n);
         let settings = &self.scene.scene.render;
-        // Each light's irradiance, in the colour the surface reflects of its spectrum.
+        // Each light's irradiance, in the colour the surface reflects of its
+        // spectrum, with the cosine of the smooth normal.
+        let shading = self.scene.scattering_normal(hit, ray.direction) * side;
         let reflected: Vec3 = (0..self.scene.lights.len())
-            .map(|i| self.scene.light_spectra[i].reflected * albedo * self.direct_irradiance(i, hit.point, n))
+            .map(|i| self.scene.light_spectra[i].reflected * albedo * self.direct_irradiance(i, hit.point, shading))
             .sum();
         if gathers_at(self.scene, path.depth) {
             points.push(VisiblePoint { point: hit.point, normal: n, weight: path.tint / PI, albedo, pixel: 0 });

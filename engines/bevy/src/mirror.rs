@@ -51,8 +51,8 @@ pub enum CausticLight {
 pub struct CausticShape(pub Shape);
 
 /// The object is a smooth dispersive dielectric: its [`CausticShape`], or
-/// else its `Mesh3d` (Bevy's mesh, its vertices welded where they repeat
-/// along UV seams: a glass must be closed).
+/// else its `Mesh3d` (Bevy's mesh with its vertex normals, its vertices
+/// welded where they repeat along UV seams).
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct Glass {
     /// Its index of refraction n(λ).
@@ -94,16 +94,23 @@ fn placed(shape: &Shape, t: &GlobalTransform) -> Shape {
             inner_radius: inner_radius * scale,
         },
         Shape::Prism { vertices, extrude } => Shape::Prism { vertices: vertices.map(point), extrude: vector(*extrude) },
-        Shape::Mesh { positions, triangles, uvs } => Shape::Mesh {
+        Shape::Mesh { positions, triangles, uvs, normals: n } => Shape::Mesh {
             positions: positions.iter().copied().map(point).collect(),
             triangles: triangles.clone(),
             uvs: uvs.clone(),
+            normals: {
+                // Normals go by the inverse transpose, which keeps them across a non-uniform scale.
+                let to_world = t.affine().matrix3.inverse().transpose();
+                n.iter().map(|n| core((to_world * Vec3A::new(n.x, n.y, n.z)).normalize().into())).collect()
+            },
         },
     }
 }
 
-/// `mesh`'s triangles placed by `t`, its vertices welded by position;
-/// `None` when it has no positions or no longer has its data in the main world.
+/// `mesh`'s triangles placed by `t`, with its vertex normals where it has
+/// them (turned by the inverse transpose), its vertices welded where
+/// position and normal repeat (along UV seams); `None` when it has no
+/// positions or no longer has its data in the main world.
 fn mesh_shape(mesh: &Mesh, t: &GlobalTransform) -> Option<Shape> {
     let Ok(Some(VertexAttributeValues::Float32x3(positions))) = mesh.try_attribute_option(Mesh::ATTRIBUTE_POSITION)
     else {
@@ -115,16 +122,28 @@ fn mesh_shape(mesh: &Mesh, t: &GlobalTransform) -> Option<Shape> {
         Ok(None) => (0..positions.len()).collect(),
         Err(_) => return None,
     };
-    let (mut welded, mut index_of) = (Vec::new(), HashMap::new());
+    let normals = match mesh.try_attribute_option(Mesh::ATTRIBUTE_NORMAL) {
+        Ok(Some(VertexAttributeValues::Float32x3(n))) if n.len() == positions.len() => Some(n),
+        _ => None,
+    };
+    let to_world = t.affine().matrix3.inverse().transpose();
+    let (mut welded, mut welded_normals, mut index_of) = (Vec::new(), Vec::new(), HashMap::new());
     let remap: Vec<u32> = positions
         .iter()
-        .map(|p| {
-            *index_of.entry(p.map(f32::to_bits)).or_insert_with(|| {
+        .enumerate()
+        .map(|(i, p)| {
+            let normal = normals.map_or([0.0; 3], |n| n[i]);
+            *index_of.entry((p.map(f32::to_bits), normal.map(f32::to_bits))).or_insert_with(|| {
                 welded.push(core(t.transform_point(Vec3::from_array(*p))));
+                welded_normals.push(core((to_world * Vec3A::from_array(normal)).normalize_or_zero().into()));
                 welded.len() as u32 - 1
             })
         })
         .collect();
+    // Without normals, or with a zero one (which no surface has), the mesh is flat.
+    if normals.is_none() || welded_normals.contains(&CoreVec3::ZERO) {
+        welded_normals.clear();
+    }
     let triangles = indices
         .chunks_exact(3)
         .filter_map(|c| {
@@ -132,7 +151,7 @@ fn mesh_shape(mesh: &Mesh, t: &GlobalTransform) -> Option<Shape> {
             (tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2]).then_some(tri)
         })
         .collect();
-    Some(Shape::Mesh { positions: welded, triangles, uvs: Vec::new() })
+    Some(Shape::Mesh { positions: welded, triangles, uvs: Vec::new(), normals: welded_normals })
 }
 
 /// A mesh drawn with a [`CausticMaterial`]: a diffuse receiver.

@@ -1,14 +1,16 @@
 //! Smooth shading on every backend: a tessellated glass ball with its
-//! vertex normals bends each photon as the round ball does; without them
-//! each flat facet bends its photons as a little prism would.
+//! vertex normals bends each photon as the round ball does, and a diffuse
+//! one is lit as the round ball is; without them each flat facet bends
+//! its photons as a little prism would, and takes one cosine of the light.
 
 use prismatic_conformance::scenes::{smooth_sphere_mesh, sphere_mesh};
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::Glass;
-use prismatic_core::model::scene::Shape;
-use prismatic_core::{PhotonMap, Vec3};
-use prismatic_tests::backends::{every_backend, trace};
-use prismatic_tests::{prepare, settings, sphere_in_a_catcher};
+use prismatic_core::model::scene::{Camera, Light, Object, Shape};
+use prismatic_core::render::aov::features;
+use prismatic_core::{Image, PhotonMap, Vec3};
+use prismatic_tests::backends::{every_backend, frame, trace};
+use prismatic_tests::{prepare, settings, sphere_in_a_catcher, white};
 use std::collections::HashMap;
 
 const PHOTONS: u32 = 4000;
@@ -79,4 +81,53 @@ fn scene_files_give_meshes_normals_and_bad_ones_are_refused() {
     assert!(e.reason.contains("2 normals for 3 positions"), "{e}");
     let e = check("normals = [[0, 1, 0], [0, 0, 0], [0, 1, 0]]").unwrap_err();
     assert_eq!(e.key, "object[0].normals[1]", "{e}");
+}
+
+/// A white ball (`ball`) lit by a sun from the upper left, filling a
+/// 48×48 image head on (camera at z = 4, 40°).
+fn sunlit_ball(ball: Shape) -> prismatic_core::PreparedScene {
+    let mut render = settings(1000, BandSpec::Paper3);
+    (render.width, render.height) = (48, 48);
+    prepare(prismatic_core::Scene {
+        render,
+        camera: Camera { position: Vec3::new(0.0, 0.0, 4.0), look_at: Vec3::ZERO, up: Vec3::Y, fov_deg: 40.0 },
+        lights: vec![Light::Sun {
+            direction: Vec3::new(1.0, -1.0, -1.0).normalize(),
+            irradiance: 2.0,
+            spectrum: Default::default(),
+            mean_toward: None,
+        }],
+        materials: vec![white("ball")],
+        objects: vec![Object { shape: ball, material: 0 }],
+    })
+}
+
+/// Mean absolute difference of two images' pixels (every channel).
+fn mean_difference(a: &Image, b: &Image) -> f32 {
+    let sum: f32 = a.pixels.iter().zip(&b.pixels).map(|(p, q)| (*p - *q).abs().element_sum()).sum();
+    sum / (3 * a.pixels.len()) as f32
+}
+
+/// A diffuse ball mesh with its normals takes the sun's cosine as the
+/// round ball does (on every backend), and gives a denoiser the round
+/// ball's normals: far closer than the same mesh flat, whose facets each
+/// take one cosine. (The silhouette's polygon differs alike in both.)
+#[test]
+fn a_smooth_diffuse_ball_is_shaded_as_the_round_ball_on_every_backend() {
+    let round = sunlit_ball(Shape::Sphere { center: Vec3::ZERO, radius: 1.0 });
+    let smooth = sunlit_ball(smooth_sphere_mesh(Vec3::ZERO, 1.0, 16));
+    let flat = sunlit_ball(sphere_mesh(Vec3::ZERO, 1.0, 16));
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let (_, want) = frame(backend.as_mut(), &round);
+        let (from_smooth, from_flat) = (
+            mean_difference(&frame(backend.as_mut(), &smooth).1, &want),
+            mean_difference(&frame(backend.as_mut(), &flat).1, &want),
+        );
+        assert!(from_smooth < 0.3 * from_flat, "{name}: smooth {from_smooth:.5}, flat {from_flat:.5} off");
+    }
+    let normals = |scene: &prismatic_core::PreparedScene| features(scene).normal;
+    let want = normals(&round);
+    let (from_smooth, from_flat) = (mean_difference(&normals(&smooth), &want), mean_difference(&normals(&flat), &want));
+    assert!(from_smooth < 0.3 * from_flat, "normals: smooth {from_smooth:.5}, flat {from_flat:.5} off");
 }

@@ -1,8 +1,9 @@
 //! What denoisers and compositors take besides the image (OpenImageDenoise's
 //! auxiliary images, a compositor's depth): per pixel, through its centre,
-//! the albedo and the normal at the first non-specular hit, and the depth of
-//! the first hit. Through smooth glass both branches count with their
-//! Fresnel weights, as OIDN's documentation asks; mirrors are followed.
+//! the albedo and the (shading) normal at the first non-specular hit, and
+//! the depth of the first hit. Through smooth glass both branches count
+//! with their Fresnel weights, as OIDN's documentation asks; mirrors are
+//! followed.
 
 use crate::geometry::camera::PinholeCamera;
 use crate::geometry::primitive::Ray;
@@ -60,15 +61,18 @@ fn first_diffuse(scene: &PreparedScene, ray: &Ray, weight: f32, depth: u32) -> (
     let Some(hit) = scene.intersect(ray, f32::INFINITY) else {
         return (scene.background(ray.direction).clamp(Vec3::ZERO, Vec3::ONE) * weight, Vec3::ZERO);
     };
-    let facing = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
+    // Mirrors, metals and glass scatter about the shading normal, and it
+    // is the normal a denoiser takes (smooth across a mesh's triangles).
+    let normal = scene.scattering_normal(&hit, ray.direction);
+    let side = if ray.direction.dot(hit.normal) < 0.0 { 1.0 } else { -1.0 };
+    let facing = normal * side;
     if depth >= scene.plan.max_depth.max(1) {
         return (Vec3::ZERO, facing * weight);
     }
-    // Mirrors, metals and glass scatter about the shading normal.
-    let normal = scene.scattering_normal(&hit, ray.direction);
     match &scene.surfaces[hit.object] {
         Surface::Diffuse { .. } => {
-            (scene.albedo_at(hit.object, hit.triangle, hit.point, facing) * weight, facing * weight)
+            let albedo = scene.albedo_at(hit.object, hit.triangle, hit.point, hit.normal * side);
+            (albedo * weight, facing * weight)
         }
         // A rough metal is a surface of its own to a denoiser: its colour is F0.
         Surface::Metal(metal) if metal.ggx.is_some() => (metal.f0 * weight, facing * weight),

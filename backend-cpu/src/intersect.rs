@@ -39,7 +39,8 @@ pub fn intersect_scene(scene: &PreparedScene, ray: &RayX8, t_max: f32x8) -> HitX
 }
 
 /// The normals that the rays of `mask`, arriving along `dir` at `point`,
-/// scatter about at `hit`'s mirrors, metals and glass: the core's
+/// scatter about at `hit`'s mirrors, metals and glass (and that diffuse
+/// surfaces take their lights' cosines with): the core's
 /// `PreparedScene::scattering_normal_at` for the lanes on meshes with
 /// vertex normals, the hit's normal elsewhere.
 pub fn scattering_normals(scene: &PreparedScene, hit: &HitX8, point: Vec3x8, dir: Vec3x8, mask: f32x8) -> Vec3x8 {

@@ -351,9 +351,10 @@ fn triangle_barycentrics(obj: GpuObject, tri: u32, p: vec3<f32>) -> vec2<f32> {
 }
 
 // PreparedScene::scattering_normal: what a ray arriving along `d` at `hit`
-// scatters about off a mirror, metal or glass (a mesh's vertex normals
-// interpolated and bent, TriangleNormals::at and shading_normal; the
-// geometric normal elsewhere). A smooth mesh's `rb` holds the first of
+// scatters about off a mirror, metal or glass, and what a diffuse surface
+// takes its lights' cosines with (a mesh's vertex normals interpolated and
+// bent, TriangleNormals::at and shading_normal; the geometric normal
+// elsewhere). A smooth mesh's `rb` holds the first of
 // its triangles' normal records (n0, d1, d2) as bits.
 fn scattering_normal(hit: Hit, d: vec3<f32>) -> vec3<f32> {
     let obj = objects[hit.object];

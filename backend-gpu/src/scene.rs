@@ -92,6 +92,8 @@ impl EncodedScene {
         let mut e = EncodedScene::default();
         for (prim, normals) in scene.primitives.iter().zip(&scene.vertex_normals) {
             let mut o = e.object(prim);
+            // A smooth mesh's normal records follow its own (so `rb` is
+            // never NO_VERTEX_NORMALS, the default 0, for one).
             if o.kind == OBJECT_MESH && !normals.is_empty() {
                 o.rb = f32::from_bits(e.geometry.len() as u32);
                 e.geometry.extend(normals.iter().flat_map(|n| [v4(n.n0, 0.0), v4(n.d1, 0.0), v4(n.d2, 0.0)]));
@@ -222,8 +224,7 @@ impl EncodedScene {
                 for t in &bvh.triangles {
                     self.geometry.extend([v4(t.v0, 0.0), v4(t.e1, 0.0), v4(t.e2, 0.0), v4(t.normal, 0.0)]);
                 }
-                let flat = f32::from_bits(NO_VERTEX_NORMALS);
-                GpuObject { kind: OBJECT_MESH, count: bvh.triangles.len() as u32, second, rb: flat, ..o }
+                GpuObject { kind: OBJECT_MESH, count: bvh.triangles.len() as u32, second, ..o }
             }
         }
     }

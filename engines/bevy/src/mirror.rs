@@ -78,11 +78,19 @@ fn core(v: Vec3) -> CoreVec3 {
     CoreVec3::new(v.x, v.y, v.z)
 }
 
+/// Turns a unit normal by `t` as normals turn: by the inverse transpose,
+/// which keeps them normal across a non-uniform scale (zero stays zero).
+fn normal_to_world(t: &GlobalTransform) -> impl Fn([f32; 3]) -> CoreVec3 {
+    let to_world = t.affine().matrix3.inverse().transpose();
+    move |n| core((to_world * Vec3A::from_array(n)).normalize_or_zero().into())
+}
+
 /// `shape` placed by `t`.
 fn placed(shape: &Shape, t: &GlobalTransform) -> Shape {
     let point = |p: CoreVec3| core(t.transform_point(Vec3::new(p.x, p.y, p.z)));
     let vector = |v: CoreVec3| core(t.affine().transform_vector3(Vec3::new(v.x, v.y, v.z)));
-    let normal = |n: CoreVec3| core(t.rotation() * Vec3::new(n.x, n.y, n.z));
+    let to_world = normal_to_world(t);
+    let normal = |n: CoreVec3| to_world(n.to_array());
     let scale = t.scale().max_element();
     match shape {
         Shape::Sphere { center, radius } => Shape::Sphere { center: point(*center), radius: radius * scale },
@@ -98,11 +106,7 @@ fn placed(shape: &Shape, t: &GlobalTransform) -> Shape {
             positions: positions.iter().copied().map(point).collect(),
             triangles: triangles.clone(),
             uvs: uvs.clone(),
-            normals: {
-                // Normals go by the inverse transpose, which keeps them across a non-uniform scale.
-                let to_world = t.affine().matrix3.inverse().transpose();
-                n.iter().map(|n| core((to_world * Vec3A::new(n.x, n.y, n.z)).normalize().into())).collect()
-            },
+            normals: n.iter().copied().map(normal).collect(),
         },
     }
 }
@@ -126,7 +130,7 @@ fn mesh_shape(mesh: &Mesh, t: &GlobalTransform) -> Option<Shape> {
         Ok(Some(VertexAttributeValues::Float32x3(n))) if n.len() == positions.len() => Some(n),
         _ => None,
     };
-    let to_world = t.affine().matrix3.inverse().transpose();
+    let normal_to_world = normal_to_world(t);
     let (mut welded, mut welded_normals, mut index_of) = (Vec::new(), Vec::new(), HashMap::new());
     let remap: Vec<u32> = positions
         .iter()
@@ -135,7 +139,7 @@ fn mesh_shape(mesh: &Mesh, t: &GlobalTransform) -> Option<Shape> {
             let normal = normals.map_or([0.0; 3], |n| n[i]);
             *index_of.entry((p.map(f32::to_bits), normal.map(f32::to_bits))).or_insert_with(|| {
                 welded.push(core(t.transform_point(Vec3::from_array(*p))));
-                welded_normals.push(core((to_world * Vec3A::from_array(normal)).normalize_or_zero().into()));
+                welded_normals.push(normal_to_world(normal));
                 welded.len() as u32 - 1
             })
         })

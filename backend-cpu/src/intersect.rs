@@ -42,11 +42,10 @@ pub fn intersect_scene(scene: &PreparedScene, ray: &RayX8, t_max: f32x8) -> HitX
 /// scatter about at `hit`'s mirrors, metals and glass (and that diffuse
 /// surfaces take their lights' cosines with): the core's
 /// `PreparedScene::scattering_normal_at` for the lanes on meshes with
-/// vertex normals, the hit's normal elsewhere.
+/// vertex normals or a normal map, the hit's normal elsewhere.
 pub fn scattering_normals(scene: &PreparedScene, hit: &HitX8, point: Vec3x8, dir: Vec3x8, mask: f32x8) -> Vec3x8 {
     let (objects, bits) = (hit.object.to_array(), mask.to_bitmask());
-    let smooth =
-        |i: usize| bits & (1 << i) != 0 && objects[i] >= 0.0 && !scene.vertex_normals[objects[i] as usize].is_empty();
+    let smooth = |i: usize| bits & (1 << i) != 0 && objects[i] >= 0.0 && scene.bends_normals(objects[i] as usize);
     if !(0..8).any(smooth) {
         return hit.normal;
     }

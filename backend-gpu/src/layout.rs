@@ -138,7 +138,8 @@ pub struct GpuObject {
     pub second: u32,
     /// Centre or point.
     pub a: [f32; 3],
-    /// First radius-like value.
+    /// First radius-like value; a mesh's first normal-map record as bits
+    /// (`NO_NORMAL_MAP`: none).
     pub ra: f32,
     /// Normal.
     pub n: [f32; 3],

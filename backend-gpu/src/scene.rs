@@ -12,7 +12,7 @@ use bytemuck::Pod;
 use glam::Vec3;
 use prismatic_core::geometry::camera::PinholeCamera;
 use prismatic_core::geometry::primitive::{Primitive, basis};
-use prismatic_core::geometry::texture::srgb_to_linear;
+use prismatic_core::geometry::texture::{linear_channel, srgb_to_linear};
 use prismatic_core::model::scene::{Filter, Light, Sampler, Texture, Wrap};
 use prismatic_core::model::wavelength_rgb;
 use prismatic_core::optics::surface::Surface;
@@ -90,7 +90,10 @@ impl EncodedScene {
     /// Encodes `scene`.
     pub fn new(scene: &PreparedScene) -> Self {
         let mut e = EncodedScene::default();
-        for (prim, normals) in scene.primitives.iter().zip(&scene.vertex_normals) {
+        // Each image once, however many objects show it (keyed by its
+        // shared texels and whether they are read as sRGB).
+        let mut textures: HashMap<(*const u32, bool), u32> = HashMap::new();
+        for (i, (prim, normals)) in scene.primitives.iter().zip(&scene.vertex_normals).enumerate() {
             let mut o = e.object(prim);
             // A smooth mesh's normal records follow its own (so `rb` is
             // never NO_VERTEX_NORMALS, the default 0, for one).
@@ -98,17 +101,35 @@ impl EncodedScene {
                 o.rb = f32::from_bits(e.geometry.len() as u32);
                 e.geometry.extend(normals.iter().flat_map(|n| [v4(n.n0, 0.0), v4(n.d1, 0.0), v4(n.d2, 0.0)]));
             }
+            // A normal-mapped mesh's map records follow too (so `ra` is
+            // never NO_NORMAL_MAP): the image, the scale, then per triangle
+            // its texture coordinates and tangents (scattering_normal).
+            let map = &scene.scene.materials[scene.scene.objects[i].material].normal_map;
+            if let (Some(map), OBJECT_MESH) = (map, o.kind) {
+                let t = &map.texture;
+                let first = *textures.entry((t.texels.as_ptr(), false)).or_insert_with(|| e.texture(t, false));
+                o.ra = f32::from_bits(e.geometry.len() as u32);
+                let bits = [first, t.width, t.height, texture_flags(t.sampler)].map(f32::from_bits);
+                e.geometry.extend([bits, [map.scale, 0.0, 0.0, 0.0]]);
+                for (uv, k) in scene.texture_uvs[i].iter().zip(&scene.normal_tangents[i]) {
+                    e.geometry.extend([
+                        [uv.uv0.x, uv.uv0.y, uv.du1.x, uv.du1.y],
+                        [uv.du2.x, uv.du2.y, 0.0, 0.0],
+                        v4(k.t0, k.sign),
+                        v4(k.d1, 0.0),
+                        v4(k.d2, 0.0),
+                    ]);
+                }
+            }
             e.objects.push(o);
         }
-        // Each image once, however many objects show it (keyed by its shared texels).
-        let mut textures: HashMap<*const u32, u32> = HashMap::new();
         for (surface, uvs) in scene.surfaces.iter().zip(&scene.texture_uvs) {
             let mut s = e.surface(surface);
             if let Surface::Diffuse { texture: Some(t), .. } = surface {
                 s.flags |= SURFACE_HAS_TEXTURE | texture_flags(t.sampler);
                 s.texture_width = t.width;
                 s.texture_height = t.height;
-                s.texture_first = *textures.entry(t.texels.as_ptr()).or_insert_with(|| e.texture(t));
+                s.texture_first = *textures.entry((t.texels.as_ptr(), true)).or_insert_with(|| e.texture(t, true));
                 s.uv_first = e.geometry.len() as u32;
                 for uv in uvs {
                     e.geometry.extend([[uv.uv0.x, uv.uv0.y, uv.du1.x, uv.du1.y], [uv.du2.x, uv.du2.y, 0.0, 0.0]]);
@@ -301,11 +322,12 @@ impl EncodedScene {
         }
     }
 
-    /// Appends the sRGB decoding table and the texels (exact integers
-    /// r + 256 g + 65536 b) to the tables; returns where they start.
-    fn texture(&mut self, t: &Texture) -> u32 {
+    /// Appends the decoding table (from sRGB, or linear: a normal map's)
+    /// and the texels (exact integers r + 256 g + 65536 b) to the tables;
+    /// returns where they start.
+    fn texture(&mut self, t: &Texture, srgb: bool) -> u32 {
         let first = self.tables.len() as u32;
-        self.tables.extend((0..256).map(srgb_to_linear));
+        self.tables.extend((0..256).map(if srgb { srgb_to_linear } else { linear_channel }));
         self.tables.extend(t.texels.iter().map(|&x| x as f32));
         first
     }

@@ -86,6 +86,9 @@ pub mod kind {
     /// A mesh's `rb` bits when it has no vertex normals (flat triangles):
     /// its normal records follow its triangles', so never start at 0.
     pub const NO_VERTEX_NORMALS: u32 = 0;
+    /// A mesh's `ra` bits when it has no normal map: its map's records
+    /// follow its triangles', so never start at 0.
+    pub const NO_NORMAL_MAP: u32 = 0;
     /// Spot light.
     pub const LIGHT_SPOT: u32 = 0;
     /// Point light.
@@ -195,6 +198,7 @@ fn prelude(stack: u32) -> String {
     u("OBJECT_CONVEX", kind::OBJECT_CONVEX);
     u("OBJECT_MESH", kind::OBJECT_MESH);
     u("NO_VERTEX_NORMALS", kind::NO_VERTEX_NORMALS);
+    u("NO_NORMAL_MAP", kind::NO_NORMAL_MAP);
     u("SURFACE_DIFFUSE", kind::SURFACE_DIFFUSE);
     u("SURFACE_MIRROR", kind::SURFACE_MIRROR);
     u("SURFACE_DIELECTRIC", kind::SURFACE_DIELECTRIC);
@@ -234,6 +238,8 @@ fn prelude(stack: u32) -> String {
     f("TEXEL_LIMIT", TEXEL_LIMIT);
     f("BARYCENTRIC_EPS", BARYCENTRIC_EPS);
     f("MIN_REFLECTED_LIFT", prismatic_core::geometry::shading::MIN_REFLECTED_LIFT);
+    f("MIN_TANGENT_SHARE", prismatic_core::geometry::normal_map::MIN_TANGENT_SHARE);
+    f("MIN_MAPPED_LENGTH", prismatic_core::geometry::normal_map::MIN_MAPPED_LENGTH);
     f("BOX_MARGIN", prismatic_core::geometry::bvh::BOX_MARGIN);
     f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);
     f("CONNECTION_REL", CONNECTION_REL);
@@ -288,7 +294,8 @@ fn photon_windows(name: &str, group: u32, first: u32, writable: bool) -> String 
 
 const COMMON: &str = include_str!("shaders/common.wgsl");
 const FIXED: &str = include_str!("shaders/fixed.wgsl");
-const SCENE: &str = include_str!("shaders/scene.wgsl");
+/// The scene's bindings and what reads them: intersection, shading normals, textures.
+const SCENE: &str = concat!(include_str!("shaders/scene.wgsl"), include_str!("shaders/texture.wgsl"));
 const ALBEDO: &str = include_str!("shaders/albedo.wgsl");
 const SUMS: &str = include_str!("shaders/sums.wgsl");
 const COLOUR: &str = include_str!("shaders/colour.wgsl");

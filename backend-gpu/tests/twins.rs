@@ -14,6 +14,7 @@ use prismatic_conformance::twins::{
     Agreement, FinishCase, ScatterCase, SurfaceAnswer, SurfaceCase, branch_case, check_finish, check_surface, config,
     finish_case, fixed_answer, fixed_input, scatter_case, surface_case,
 };
+use prismatic_core::geometry::normal_map::mapped_normal;
 use prismatic_core::geometry::shading::shading_normal;
 use prismatic_core::optics::metal::MetalOptics;
 use prismatic_core::optics::microfacet::{Ggx, conductor_fresnel};
@@ -302,10 +303,14 @@ struct ShadingIn {
     _pad1: f32,
     interpolated: vec3<f32>,
     _pad2: f32,
+    tangent: vec3<f32>,
+    sign: f32,
+    texel: vec3<f32>,
+    scale: f32,
 }
 
 @group(0) @binding(0) var<storage, read> shading_in: array<ShadingIn>;
-@group(0) @binding(1) var<storage, read_write> shading_out: array<vec4<f32>>;
+@group(0) @binding(1) var<storage, read_write> shading_out: array<array<vec4<f32>, 2>>;
 
 @compute @workgroup_size(64)
 fn shading(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -313,7 +318,8 @@ fn shading(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let c = shading_in[id.x];
-    shading_out[id.x] = vec4<f32>(shading_normal(c.d, c.geometric, c.interpolated), 0.0);
+    shading_out[id.x][0] = vec4<f32>(shading_normal(c.d, c.geometric, c.interpolated), 0.0);
+    shading_out[id.x][1] = vec4<f32>(mapped_normal(c.geometric, c.tangent, c.sign, c.texel, c.scale), 0.0);
 }
 "#;
 
@@ -326,6 +332,10 @@ struct ShadingIn {
     _pad1: f32,
     interpolated: [f32; 3],
     _pad2: f32,
+    tangent: [f32; 3],
+    sign: f32,
+    texel: [f32; 3],
+    scale: f32,
 }
 
 const ROUGH_GLASS: &str = r#"
@@ -1101,16 +1111,26 @@ fn a_drifted_copy_is_caught() {
 
 /// A shading-normal case: a ray, a triangle's normal and an interpolated
 /// normal of any length, a sixth of them on the triangle's other side;
-/// none within rounding of a side's boundary, where the rule switches.
+/// and a normal map's tangent (any length), handedness, texel and scale
+/// about the triangle's normal. None within rounding of a boundary where
+/// a rule switches.
 fn shading_case() -> impl Strategy<Value = ShadingIn> {
     let unit =
         || [-1.0f32..1.0, -1.0f32..1.0, -1.0f32..1.0].prop_filter_map("a direction", |v| Vec3::from(v).try_normalize());
-    (unit(), unit(), unit(), 0.5f32..2.0)
-        .prop_filter("off the boundaries", |(d, g, s, _)| d.dot(*g).abs() > 1e-3 && s.dot(*g).abs() > 1e-3)
-        .prop_map(|(d, geometric, s, length)| ShadingIn {
+    let map = (unit(), 0.1f32..3.0, prop::bool::ANY, [0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0], 0.0f32..2.0);
+    (unit(), unit(), unit(), 0.5f32..2.0, map)
+        .prop_filter("off the boundaries", |(d, g, s, _, (t, _, _, texel, scale))| {
+            let m = (Vec3::from(*texel) * 2.0 - Vec3::ONE) * Vec3::new(*scale, *scale, 1.0);
+            d.dot(*g).abs() > 1e-3 && s.dot(*g).abs() > 1e-3 && t.dot(*g).abs() < 0.99 && m.length() > 0.01
+        })
+        .prop_map(|(d, geometric, s, length, (t, t_length, left, texel, scale))| ShadingIn {
             d: d.to_array(),
             geometric: geometric.to_array(),
             interpolated: (s * length).to_array(),
+            tangent: (t * t_length).to_array(),
+            sign: if left { -1.0 } else { 1.0 },
+            texel,
+            scale,
             ..Zeroable::zeroed()
         })
 }
@@ -1118,17 +1138,24 @@ fn shading_case() -> impl Strategy<Value = ShadingIn> {
 proptest! {
     #![proptest_config(config(8, 0x5368))]
 
-    /// `shading_normal` (common.wgsl: the trace and the view pass scatter
-    /// about it on smooth meshes) against the core's.
+    /// `shading_normal` and `mapped_normal` (common.wgsl: the trace and
+    /// the view pass scatter about them on smooth and normal-mapped
+    /// meshes) against the core's.
     #[test]
     fn wgsl_shading_normals_are_the_cores(cases in prop::collection::vec(shading_case(), 1024)) {
         let Some(twins) = twins() else { return Ok(()) };
-        let answers: Vec<[f32; 4]> = twins.run("shading", &cases);
-        for (c, got) in cases.iter().zip(answers) {
-            let [d, g, s] = [c.d, c.geometric, c.interpolated].map(Vec3::from);
+        let answers: Vec<[[f32; 4]; 2]> = twins.run("shading", &cases);
+        for (c, [bent, mapped]) in cases.iter().zip(answers) {
+            let [d, g, s, t, texel] = [c.d, c.geometric, c.interpolated, c.tangent, c.texel].map(Vec3::from);
             let want = shading_normal(d, g, s);
-            let got = Vec3::from_slice(&got[..3]);
+            let got = Vec3::from_slice(&bent[..3]);
             prop_assert!((got - want).abs().max_element() <= 1e-5, "d {d} g {g} s {s}: {got}, the core's {want}");
+            let want = mapped_normal(g, t, c.sign, texel, c.scale);
+            let got = Vec3::from_slice(&mapped[..3]);
+            prop_assert!(
+                (got - want).abs().max_element() <= 1e-5,
+                "n {g} t {t} sign {} texel {texel} scale {}: {got}, the core's {want}", c.sign, c.scale
+            );
         }
     }
 }

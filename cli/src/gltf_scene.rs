@@ -292,7 +292,7 @@ fn mesh_shape(
     if let Some(i) = normals.iter().position(|n| *n == Vec3::ZERO) {
         return Err(GltfError::new(format!("{path}.attributes.NORMAL"), format!("normal {i} is not a unit vector")));
     }
-    Ok(Shape::Mesh { positions, triangles, uvs, normals })
+    Ok(Shape::Mesh { positions, triangles, uvs, normals, tangents: Vec::new() })
 }
 
 /// The file's images, decoded once each, and where to find them.
@@ -504,7 +504,7 @@ fn material(
     if !unused.is_empty() {
         warnings.push(format!("{path} ({name}): left out: {}", unused.join(", ")));
     }
-    Ok((Material { name, kind }, uv_transform))
+    Ok((Material { name, kind, normal_map: None }, uv_transform))
 }
 
 /// The thin-walled twin of solid glass `material` (made once, named after
@@ -514,7 +514,7 @@ fn thin_twin(out: &mut GltfScene, material: usize) -> usize {
     if let Some(i) = out.materials.iter().position(|m| m.name == name) {
         return i;
     }
-    let mut twin = Material { name, kind: out.materials[material].kind.clone() };
+    let mut twin = Material { name, kind: out.materials[material].kind.clone(), normal_map: None };
     if let MaterialKind::Dielectric { thin, attenuation, .. } = &mut twin.kind {
         (*thin, *attenuation) = (true, None);
     }

@@ -4,7 +4,8 @@
 //! seen through glass; once more as a closed triangle mesh, once more in
 //! amber glass that absorbs, once more on a textured floor), a prism
 //! fanning a beam onto a wall (split bands),
-//! a mirror folding a beam onto a floor (no dispersion), the sphere under a
+//! a mirror folding a beam onto a floor (no dispersion; once more rippled
+//! by a normal map), the sphere under a
 //! light panel (an area light), once more with indirect light, once more
 //! under a sky (an environment light, whose suns per-pass view paths draw
 //! anew each pass), and a room with no mirror or glass (no caustics at all).
@@ -13,8 +14,8 @@ use glam::Vec3;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::environment::EnvironmentMap;
 use prismatic_core::model::scene::{
-    Attenuation, Camera, Checker, Filter, Light, Material, MaterialKind, Object, PhotonSequence, RenderSettings,
-    Sampler, Shape, Texture, ThinFilm, Wrap,
+    Attenuation, Camera, Checker, Filter, Light, Material, MaterialKind, NormalMap, Object, PhotonSequence,
+    RenderSettings, Sampler, Shape, Texture, ThinFilm, Wrap,
 };
 use prismatic_core::{BandSpec, Estimator, MetalColor, NamedMetal, PreparedScene, Scene};
 
@@ -32,7 +33,7 @@ fn settings(side: u32, photons: u32, radius: f32) -> RenderSettings {
 }
 
 fn material(name: &str, kind: MaterialKind) -> Material {
-    Material { name: name.into(), kind }
+    Material::new(name, kind)
 }
 
 fn diffuse(name: &str, albedo: f32) -> Material {
@@ -110,7 +111,13 @@ pub fn light_panel(center: Vec3, emission: Vec3) -> (Material, Shape) {
         center + Vec3::new(-h, 0.0, h),
     ];
     // Wound so that (b − a) × (c − a) points down, toward the scene.
-    let shape = Shape::Mesh { positions, triangles: vec![[0, 1, 2], [0, 2, 3]], uvs: Vec::new(), normals: Vec::new() };
+    let shape = Shape::Mesh {
+        positions,
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+        uvs: Vec::new(),
+        normals: Vec::new(),
+        tangents: Vec::new(),
+    };
     let kind = MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: None, texture: None, emission };
     (material("panel", kind), shape)
 }
@@ -206,6 +213,7 @@ pub fn textured_floor() -> PreparedScene {
         triangles: vec![[0, 2, 1], [0, 3, 2]],
         uvs: corners.iter().map(|&(x, z)| glam::Vec2::new(x + 4.0, z + 4.0) * (3.0 / 8.0)).collect(),
         normals: Vec::new(),
+        tangents: Vec::new(),
     };
     prepared(scene)
 }
@@ -283,6 +291,35 @@ pub fn mirror() -> PreparedScene {
     })
 }
 
+/// The mirror's beam folded instead by a square mirror whose normal map
+/// ripples (16×16 texels of sine slopes, read bilinearly and repeated
+/// twice across): a normal map's tilts in caustic photons and in view.
+pub fn rippled_mirror() -> PreparedScene {
+    let mut scene = mirror().scene;
+    let slope = |k: u32, waves: f32| 0.3 * (std::f32::consts::TAU * waves * (k as f32 + 0.5) / 16.0).sin();
+    let byte = |x: f32| ((x + 1.0) * 0.5 * 255.0).round() as u32;
+    let texels = (0..16 * 16)
+        .map(|k| {
+            let n = Vec3::new(-slope(k % 16, 2.0), -slope(k / 16, 3.0), 1.0).normalize();
+            byte(n.x) | byte(n.y) << 8 | byte(n.z) << 16
+        })
+        .collect();
+    let sampler = Sampler { filter: Filter::Linear, wrap_u: Wrap::Repeat, wrap_v: Wrap::Repeat };
+    let texture = Texture { name: "ripples".into(), width: 16, height: 16, texels, sampler };
+    scene.materials[1].normal_map = Some(NormalMap { texture, scale: 1.0 });
+    // Facing (−1, −1, 0) at (0, 2, 0), where the disc was: u along `a`, v along `b`.
+    let (center, a, b) = (Vec3::new(0.0, 2.0, 0.0), Vec3::new(-1.0, 1.0, 0.0).normalize(), Vec3::Z);
+    let corners = [(-1.0, -1.0), (-1.0, 1.0), (1.0, 1.0), (1.0, -1.0)];
+    scene.objects[1].shape = Shape::Mesh {
+        positions: corners.iter().map(|&(s, t)| center + (a * s + b * t) * 0.8).collect(),
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+        uvs: corners.iter().map(|&(s, t)| glam::Vec2::new(s + 1.0, t + 1.0)).collect(),
+        normals: Vec::new(),
+        tangents: Vec::new(),
+    };
+    prepared(scene)
+}
+
 /// The mirror's beam folded by a rough gold disc instead onto a round
 /// floor, beside a polished ball of measured copper, with indirect light: metals'
 /// facets and coloured Fresnel in caustic and indirect photons and in view.
@@ -321,7 +358,13 @@ pub fn frosted_glass() -> PreparedScene {
     let (x, y, z) = (-0.9, [0.0, 2.2], [-1.6, 1.2]);
     let positions =
         vec![Vec3::new(x, y[0], z[0]), Vec3::new(x, y[0], z[1]), Vec3::new(x, y[1], z[1]), Vec3::new(x, y[1], z[0])];
-    let square = Shape::Mesh { positions, triangles: vec![[0, 1, 2], [0, 2, 3]], uvs: Vec::new(), normals: Vec::new() };
+    let square = Shape::Mesh {
+        positions,
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+        uvs: Vec::new(),
+        normals: Vec::new(),
+        tangents: Vec::new(),
+    };
     scene.objects.push(Object { shape: square, material: 2 });
     prepared(scene)
 }
@@ -361,7 +404,7 @@ pub fn smooth_sphere_mesh(center: Vec3, radius: f32, rings: u32) -> Shape {
         unreachable!("sphere_mesh is a mesh")
     };
     let normals = positions.iter().map(|p| (*p - center).normalize()).collect();
-    Shape::Mesh { positions, triangles, uvs, normals }
+    Shape::Mesh { positions, triangles, uvs, normals, tangents: Vec::new() }
 }
 
 /// A closed sphere mesh, wound outward: `rings` rings of `2 · rings`
@@ -390,7 +433,7 @@ pub fn sphere_mesh(center: Vec3, radius: f32, rings: u32) -> Shape {
             triangles.extend([[a, b, c], [b, d, c]]);
         }
     }
-    Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() }
+    Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new(), tangents: Vec::new() }
 }
 
 /// [`glass_mesh_sphere`] with the sphere's normals at its vertices: every
@@ -449,6 +492,7 @@ pub fn with_caustics() -> Vec<(&'static str, PreparedScene)> {
         ("textured floor", textured_floor()),
         ("prism", prism()),
         ("mirror", mirror()),
+        ("rippled mirror", rippled_mirror()),
         ("metals", metals()),
         ("frosted glass", frosted_glass()),
         ("panel-lit sphere", panel_lit_sphere()),

@@ -19,7 +19,7 @@
 //! | 6 | [`photons`] | `emit`, `wavelengths`, `path`, `trace`, `indirect`, `grid`, `gather`, `light_tracing` | the light's side: photons from emission to the gather and to the camera, caustic and indirect |
 //! | 5 | [`plan`] | `area`, `area_aims`, `reach`, `projection`, `effects`, `prepared`, `drawn_suns`, `drawn_triangles`, `schedule` | what a render of this scene will do |
 //! | 4 | [`optics`] | `fresnel`, `microfacet`, `metal`, `rough_glass`, `thin_film`, `absorption`, `surface`, `scatter` | every scattering function, and the one branch choice at glass |
-//! | 3 | [`geometry`] | `ray`, `triangle`, `primitive`, `bvh`, `bvh_build`, `camera`, `texture`, `shading`, `form_factor` | rays, intersections, hierarchies, the camera, textures, shading normals, form factors |
+//! | 3 | [`geometry`] | `ray`, `triangle`, `primitive`, `bvh`, `bvh_build`, `camera`, `texture`, `shading`, `normal_map`, `form_factor` | rays, intersections, hierarchies, the camera, textures, shading normals, normal maps, form factors |
 //! | 2 | [`sampling`] | `sobol`, `pixel_sample`, `light_spectrum`, `environment`, `spot_cone` | the low-discrepancy numbers paths draw, the wavelengths lights emit, what an environment sends each way, a spot's cone |
 //! | 1 | [`model`] | `scene`, `validate`, `mesh`, `environment`, `light_range`, `bands`, `cie`, `color`, `dispersion`, `image`, `photon`, `wavelength_rgb`, `reflectance`, `metals`, `spectrum`, `rgb_spectrum` | what the user described and what backends exchange |
 //! | 0 | [`util`] | `math`, `rng`, `tolerance`, `progress` | float math with and without `std`, random numbers, tolerances, progress |
@@ -50,8 +50,8 @@ pub use model::image::Image;
 pub use model::metals::{MetalColor, NamedMetal};
 pub use model::photon::{Photon, PhotonMap, TraceStats};
 pub use model::scene::{
-    Camera, Checker, Estimator, Light, Material, Object, PhotonSequence, RadiusMode, RenderSettings, Scene, SceneError,
-    Shape, Texture, ViewPaths, WavelengthSampling,
+    Camera, Checker, Estimator, Light, Material, NormalMap, Object, PhotonSequence, RadiusMode, RenderSettings, Scene,
+    SceneError, Shape, Texture, ViewPaths, WavelengthSampling,
 };
 pub use plan::effects::{Effect, EffectPlan};
 pub use plan::prepared::PreparedScene;
@@ -62,4 +62,4 @@ pub use render::reference::ReferenceBackend;
 pub use util::progress::{NoProgress, Progress, Stage, StageTimes};
 
 /// Re-exported so that users of the scene model need not depend on glam themselves.
-pub use glam::Vec3;
+pub use glam::{Vec3, Vec4};

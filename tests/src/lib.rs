@@ -28,6 +28,7 @@ pub fn white(name: &str) -> Material {
     Material {
         name: name.into(),
         kind: MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: None, texture: None, emission: Vec3::ZERO },
+        normal_map: None,
     }
 }
 
@@ -43,6 +44,7 @@ pub fn glass(name: &str, dispersion: Dispersion) -> Material {
             film: None,
             roughness: 0.0,
         },
+        normal_map: None,
     }
 }
 
@@ -237,6 +239,7 @@ pub fn view_through_a_sheet(sheet: Material) -> PreparedScene {
     let black = Material {
         name: "black".into(),
         kind: MaterialKind::Diffuse { albedo: Vec3::ZERO, checker: None, texture: None, emission: Vec3::ZERO },
+        normal_map: None,
     };
     let square =
         [Vec3::new(0.0, -2.0, -2.0), Vec3::new(0.0, 2.0, -2.0), Vec3::new(0.0, 2.0, 2.0), Vec3::new(0.0, -2.0, 2.0)];
@@ -257,6 +260,7 @@ pub fn view_through_a_sheet(sheet: Material) -> PreparedScene {
                     triangles: vec![[0, 1, 2], [0, 2, 3]],
                     uvs: Vec::new(),
                     normals: Vec::new(),
+                    tangents: Vec::new(),
                 },
                 material: 0,
             },

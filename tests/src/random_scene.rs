@@ -67,6 +67,7 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
             texture: None,
             emission: Vec3::ZERO,
         },
+        normal_map: None,
     };
     // The metal's own dice, so that the draws above and below are those
     // the scenes had before metals came.
@@ -87,13 +88,8 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
     {
         *roughness = g.f(0.05, 0.6);
     }
-    let materials = vec![
-        glass,
-        white("wall"),
-        floor,
-        Material { name: "mirror".into(), kind: MaterialKind::Mirror },
-        Material { name: "metal".into(), kind: metal },
-    ];
+    let materials =
+        vec![glass, white("wall"), floor, Material::new("mirror", MaterialKind::Mirror), Material::new("metal", metal)];
     let mut objects = vec![
         Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 2 },
         Object { shape: Shape::Plane { point: Vec3::new(0.0, 0.0, -4.0), normal: Vec3::Z }, material: 1 },

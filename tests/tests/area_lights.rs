@@ -31,7 +31,7 @@ const SIDE: u32 = 33;
 
 fn diffuse(name: &str, albedo: f32, emission: Vec3) -> Material {
     let kind = MaterialKind::Diffuse { albedo: Vec3::splat(albedo), checker: None, texture: None, emission };
-    Material { name: name.into(), kind }
+    Material::new(name, kind)
 }
 
 /// The panel over the origin, facing down (`down`) or up.
@@ -43,7 +43,7 @@ fn panel(down: bool) -> Shape {
         Vec3::new(-HALF_X, HEIGHT, HALF_Z),
     ];
     let triangles = if down { vec![[0, 1, 2], [0, 2, 3]] } else { vec![[0, 2, 1], [0, 3, 2]] };
-    Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() }
+    Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new(), tangents: Vec::new() }
 }
 
 /// A floor under the panel, seen by `camera`, lit by nothing else.
@@ -232,7 +232,13 @@ fn half_hidden_panel(view_paths: ViewPaths) -> PreparedScene {
         Vec3::new(0.0, BLOCKER, z),
         Vec3::new(x0, BLOCKER, z),
     ];
-    let sheet = Shape::Mesh { positions, triangles: vec![[0, 1, 2], [0, 2, 3]], uvs: Vec::new(), normals: Vec::new() };
+    let sheet = Shape::Mesh {
+        positions,
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+        uvs: Vec::new(),
+        normals: Vec::new(),
+        tangents: Vec::new(),
+    };
     scene.objects.push(Object { shape: sheet, material: 0 });
     prepare(scene)
 }
@@ -329,7 +335,8 @@ fn panel_of_many_triangles(view_paths: ViewPaths) -> PreparedScene {
             [[a, b, c], [a, c, d]]
         })
         .collect();
-    scene.objects[1].shape = Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() };
+    scene.objects[1].shape =
+        Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new(), tangents: Vec::new() };
     prepare(scene)
 }
 

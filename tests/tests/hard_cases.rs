@@ -472,7 +472,8 @@ fn degenerate_triangles_change_nothing() {
             positions.push((positions[0] + positions[2]) * 0.5); // on the edge 0–2
             triangles.extend([[0, 0, 1], [0, 6, 2], [4, 4, 4], [2, 6, 0]]);
         }
-        scene.objects[0].shape = Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() };
+        scene.objects[0].shape =
+            Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new(), tangents: Vec::new() };
         prepare(scene)
     };
     let (clean, dirty) = (with_mesh(false), with_mesh(true));
@@ -512,7 +513,7 @@ fn beam_into_one_pixel(estimator: Estimator, photons: u32, power: f32, radius: f
     (render.width, render.height, render.estimator, render.radius, render.ambient) = (1, 1, estimator, radius, 0.0);
     let mut cam = camera();
     (cam.position, cam.look_at, cam.up, cam.fov_deg) = (Vec3::new(3.0, 3.0, 0.0), Vec3::ZERO, Vec3::Z, 1e-3);
-    let mirror = prismatic_core::Material { name: "mirror".into(), kind: MaterialKind::Mirror };
+    let mirror = prismatic_core::Material::new("mirror", MaterialKind::Mirror);
     prepare(Scene {
         render,
         camera: cam,
@@ -673,8 +674,13 @@ fn beams_through_mesh_vertices_and_edges_match_the_reference() {
     let Shape::Prism { vertices, extrude } = scene.objects[0].shape else { unreachable!("a prism") };
     let positions: Vec<Vec3> = vertices.iter().copied().chain(vertices.iter().map(|&p| p + extrude)).collect();
     let triangles = vec![[0, 2, 1], [3, 4, 5], [0, 1, 4], [0, 4, 3], [1, 2, 5], [1, 5, 4], [2, 0, 3], [2, 3, 5]];
-    scene.objects[0].shape =
-        Shape::Mesh { positions: positions.clone(), triangles, uvs: Vec::new(), normals: Vec::new() };
+    scene.objects[0].shape = Shape::Mesh {
+        positions: positions.clone(),
+        triangles,
+        uvs: Vec::new(),
+        normals: Vec::new(),
+        tangents: Vec::new(),
+    };
     // The apex's front vertex, the middle of the apex edge, the middle of the left face's diagonal.
     for target in [positions[2], (positions[2] + positions[5]) * 0.5, (positions[0] + positions[5]) * 0.5] {
         let mut scene = scene.clone();

@@ -15,7 +15,11 @@ const GLOW: f32 = 1.0;
 const SIDE: u32 = 24;
 
 fn diffuse(name: &str, albedo: Vec3, emission: Vec3) -> Material {
-    Material { name: name.into(), kind: MaterialKind::Diffuse { albedo, checker: None, texture: None, emission } }
+    Material {
+        name: name.into(),
+        kind: MaterialKind::Diffuse { albedo, checker: None, texture: None, emission },
+        normal_map: None,
+    }
 }
 
 /// The twelve triangles of the cube [−1, 1]³, wound to face inward.
@@ -32,7 +36,7 @@ fn inward_cube() -> Shape {
             triangles.push(if inward { t } else { [t[0], t[2], t[1]] });
         }
     }
-    Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() }
+    Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new(), tangents: Vec::new() }
 }
 
 /// The camera at the box's centre, looking at a wall.
@@ -148,6 +152,7 @@ fn a_red_wall_bleeds_red_onto_a_white_floor() {
         triangles: vec![[0, 1, 2], [0, 2, 3]],
         uvs: Vec::new(),
         normals: Vec::new(),
+        tangents: Vec::new(),
     };
     let scene = |indirect: u32, x: f32| {
         let render = RenderSettings {

@@ -70,7 +70,7 @@ fn a_ranged_lights_photons_reach_the_floor_with_the_windows_share() {
     // it reflects lands on the floor as a caustic, not first.
     let mut render = settings(40_000, BandSpec::Paper7);
     (render.width, render.height, render.projection_maps) = (8, 8, false);
-    let mirror = Material { name: "mirror".into(), kind: MaterialKind::Mirror };
+    let mirror = Material::new("mirror", MaterialKind::Mirror);
     let scene = prepare(Scene {
         render,
         camera: prismatic_tests::camera(),

@@ -185,6 +185,7 @@ fn sodium_on_green(backend: &mut dyn prismatic_core::Backend, render: RenderSett
             texture: None,
             emission: Vec3::ZERO,
         },
+        normal_map: None,
     };
     let scene = Scene {
         render,

@@ -17,6 +17,7 @@ mod light_spectra;
 mod light_tracing;
 mod meshes;
 mod metals;
+mod normal_maps;
 mod optics;
 mod parity_cpu;
 mod parity_gpu;

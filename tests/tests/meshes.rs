@@ -25,7 +25,8 @@ fn experiment() -> PrismExperiment {
 fn as_mesh(mut scene: Scene) -> Scene {
     let Shape::Prism { vertices, extrude } = scene.objects[0].shape else { unreachable!("object 0 is the prism") };
     let (positions, triangles) = prism_mesh(vertices, extrude);
-    scene.objects[0].shape = Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() };
+    scene.objects[0].shape =
+        Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new(), tangents: Vec::new() };
     scene
 }
 

@@ -19,7 +19,11 @@ use prismatic_tests::{beam_onto_a_wall, prepare, settings, white};
 const GOLD: Vec3 = Vec3::new(1.0, 0.766, 0.336);
 
 fn metal(color: Vec3, roughness: f32) -> Material {
-    Material { name: "metal".into(), kind: MaterialKind::Metal { color: MetalColor::Rgb(color), roughness } }
+    Material {
+        name: "metal".into(),
+        kind: MaterialKind::Metal { color: MetalColor::Rgb(color), roughness },
+        normal_map: None,
+    }
 }
 
 /// Schlick's Fresnel of `f0` at incidence cosine `cos`, in f64.
@@ -124,6 +128,7 @@ fn measured_gold_reflects_each_wavelength_by_its_complex_index() {
     let gold = Material {
         name: "gold".into(),
         kind: MaterialKind::Metal { color: MetalColor::Measured(NamedMetal::Gold), roughness: 0.0 },
+        normal_map: None,
     };
     let mut scene = folded_beam(gold, PHOTONS, BandSpec::Physical(16));
     scene.render.wavelengths = WavelengthSampling::Continuous;

@@ -72,7 +72,7 @@ fn a_per_band_table_with_one_index_does_not_split_either() {
 #[test]
 fn mirrors_reflect_white_light_without_splitting() {
     let mut scene = sphere_scene(Glass::Bk7.dispersion(), BandSpec::Paper7, 1000, 1);
-    scene.materials[0] = Material { name: "mirror".into(), kind: MaterialKind::Mirror };
+    scene.materials[0] = Material::new("mirror", MaterialKind::Mirror);
     // Tilt the light so reflections reach the floor.
     scene.lights[0] = Light::Spot {
         position: Vec3::new(-3.0, 3.0, 0.0),

@@ -33,6 +33,7 @@ fn rough(dispersion: Dispersion, thin: bool, roughness: f32) -> Material {
             film: None,
             roughness,
         },
+        normal_map: None,
     }
 }
 
@@ -67,7 +68,10 @@ fn beam_into_a_block(glass: Material, photons: u32, floor: f32) -> PreparedScene
         }],
         materials: vec![glass, white("floor")],
         objects: vec![
-            Object { shape: Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() }, material: 0 },
+            Object {
+                shape: Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new(), tangents: Vec::new() },
+                material: 0,
+            },
             Object {
                 shape: Shape::Disk {
                     center: Vec3::new(0.0, 0.0, -floor),

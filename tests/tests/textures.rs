@@ -55,6 +55,7 @@ fn scene(texture: Texture, albedo: Vec3, lo: f32, hi: f32) -> PreparedScene {
         triangles: vec![[0, 2, 1], [0, 3, 2]],
         uvs: corners.iter().map(|&(x, z)| uv_at(x, z, lo, hi).into()).collect(),
         normals: Vec::new(),
+        tangents: Vec::new(),
     };
     let material = MaterialKind::Diffuse { albedo, checker: None, texture: Some(texture), emission: Vec3::ZERO };
     PreparedScene::new(Scene {
@@ -67,7 +68,7 @@ fn scene(texture: Texture, albedo: Vec3, lo: f32, hi: f32) -> PreparedScene {
             spectrum: Default::default(),
             mean_toward: None,
         }],
-        materials: vec![Material { name: "floor".into(), kind: material }],
+        materials: vec![Material::new("floor", material)],
         objects: vec![Object { shape: floor, material: 0 }],
     })
     .expect("a valid scene")
@@ -173,6 +174,7 @@ fn a_texture_needs_a_mesh_with_texture_coordinates() {
         triangles: vec![[0, 1, 2]],
         uvs: Vec::new(),
         normals: Vec::new(),
+        tangents: Vec::new(),
     };
     assert!(PreparedScene::new(scene.clone()).unwrap_err().reason.contains("mesh has none"));
     scene.objects[0].shape = Shape::Mesh {
@@ -180,6 +182,7 @@ fn a_texture_needs_a_mesh_with_texture_coordinates() {
         triangles: vec![[0, 1, 2]],
         uvs: vec![[0.0, 0.0].into(); 2],
         normals: Vec::new(),
+        tangents: Vec::new(),
     };
     assert_eq!(PreparedScene::new(scene).unwrap_err().key, "object[0].uvs");
 }

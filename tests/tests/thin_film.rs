@@ -31,6 +31,7 @@ fn coated_sheet() -> Material {
             film: Some(FILM),
             roughness: 0.0,
         },
+        normal_map: None,
     }
 }
 

@@ -25,6 +25,7 @@ fn sheet(ior: f32) -> Material {
             film: None,
             roughness: 0.0,
         },
+        normal_map: None,
     }
 }
 

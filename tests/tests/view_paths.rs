@@ -33,7 +33,13 @@ fn edge_scene(view_paths: ViewPaths) -> Scene {
         }],
         materials: vec![white("floor")],
         objects: vec![Object {
-            shape: Shape::Mesh { positions, triangles: vec![[0, 1, 2]], uvs: vec![], normals: vec![] },
+            shape: Shape::Mesh {
+                positions,
+                triangles: vec![[0, 1, 2]],
+                uvs: vec![],
+                normals: vec![],
+                tangents: Vec::new(),
+            },
             material: 0,
         }],
     }

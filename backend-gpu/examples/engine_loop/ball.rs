@@ -31,7 +31,7 @@ pub fn spot(position: Vec3, cone_deg: f32) -> Light {
 /// without the ball, the frame an engine's prepass draws (glass is
 /// transparent to it).
 pub fn scene(render: RenderSettings, light: Light, with_ball: bool) -> PreparedScene {
-    let material = |name: &str, kind| Material { name: name.into(), kind };
+    let material = |name: &str, kind| Material::new(name, kind);
     let mut objects = vec![Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 }];
     if with_ball {
         objects.push(Object { shape: Shape::Sphere { center: CENTRE, radius: 1.0 }, material: 1 });

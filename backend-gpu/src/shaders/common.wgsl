@@ -420,6 +420,25 @@ fn shading_normal(d: vec3<f32>, geometric: vec3<f32>, interpolated: vec3<f32>) -
     return nrm(lifted - d) * side;
 }
 
+// normal_map::mapped_normal: the texel's tangent-space normal in the frame
+// of unit normal `n` and tangent `tangent` (made perpendicular to it).
+fn mapped_normal(n: vec3<f32>, tangent: vec3<f32>, sign: f32, texel: vec3<f32>, scale: f32) -> vec3<f32> {
+    let across = tangent - n * dot(n, tangent);
+    let across_len = length(across);
+    if !(across_len > MIN_TANGENT_SHARE * length(tangent)) {
+        return n;
+    }
+    let t = across / across_len;
+    let b = cross(n, t) * sign;
+    let m = texel * 2.0 - vec3<f32>(1.0);
+    let mapped = t * (m.x * scale) + b * (m.y * scale) + n * m.z;
+    let mapped_len = length(mapped);
+    if !(mapped_len > MIN_MAPPED_LENGTH) {
+        return n;
+    }
+    return mapped / mapped_len;
+}
+
 fn cos2_transmitted(cos_i: f32, n1: f32, n2: f32) -> f32 {
     let eta = n1 / n2;
     return (n2 - n1) * (n2 + n1) / (n2 * n2) + eta * eta * cos_i * cos_i;

@@ -352,20 +352,44 @@ fn triangle_barycentrics(obj: GpuObject, tri: u32, p: vec3<f32>) -> vec2<f32> {
 
 // PreparedScene::scattering_normal: what a ray arriving along `d` at `hit`
 // scatters about off a mirror, metal or glass, and what a diffuse surface
-// takes its lights' cosines with (a mesh's vertex normals interpolated and
-// bent, TriangleNormals::at and shading_normal; the geometric normal
-// elsewhere). A smooth mesh's `rb` holds the first of
-// its triangles' normal records (n0, d1, d2) as bits.
+// takes its lights' cosines with (a mesh's vertex normals interpolated,
+// TriangleNormals::at, tilted by its normal map, then bent by
+// shading_normal; the geometric normal elsewhere). A smooth mesh's `rb`
+// holds the first of its triangles' normal records (n0, d1, d2) as bits;
+// a normal-mapped mesh's `ra` its map's first record (normal_map_texel).
 fn scattering_normal(hit: Hit, d: vec3<f32>) -> vec3<f32> {
     let obj = objects[hit.object];
     let first = bitcast<u32>(obj.rb);
-    if obj.kind != OBJECT_MESH || first == NO_VERTEX_NORMALS {
+    let map = bitcast<u32>(obj.ra);
+    if obj.kind != OBJECT_MESH || (first == NO_VERTEX_NORMALS && map == NO_NORMAL_MAP) {
         return hit.normal;
     }
     let b = triangle_barycentrics(obj, hit.triangle, hit.point);
-    let k = first + 3u * hit.triangle;
-    let interpolated = geometry[k].xyz + geometry[k + 1u].xyz * b.x + geometry[k + 2u].xyz * b.y;
-    return shading_normal(d, hit.normal, interpolated);
+    var n = hit.normal;
+    if first != NO_VERTEX_NORMALS {
+        let k = first + 3u * hit.triangle;
+        n = geometry[k].xyz + geometry[k + 1u].xyz * b.x + geometry[k + 2u].xyz * b.y;
+    }
+    if map != NO_NORMAL_MAP {
+        // Vec3::normalize_or(geometric)
+        let length = length(n);
+        if length > 0.0 {
+            n = n * (1.0 / length);
+        } else {
+            n = hit.normal;
+        }
+        // The triangle's records follow the map's two: its texture
+        // coordinates (uv0, du1; du2) and tangents (t0 with the sign; d1; d2).
+        let k = map + 2u + 5u * hit.triangle;
+        let a = geometry[k];
+        let uv = a.xy + a.zw * b.x + geometry[k + 1u].xy * b.y;
+        let t = geometry[k + 2u];
+        let tangent = t.xyz + geometry[k + 3u].xyz * b.x + geometry[k + 4u].xyz * b.y;
+        let m = geometry[map];
+        let image = TextureRef(bitcast<u32>(m.x), bitcast<u32>(m.y), bitcast<u32>(m.z), bitcast<u32>(m.w));
+        n = mapped_normal(n, tangent, t.w, sample_texture(image, uv), geometry[map + 1u].x);
+    }
+    return shading_normal(d, hit.normal, n);
 }
 
 // PreparedScene::occluded (Primitive::hits)

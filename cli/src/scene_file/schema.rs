@@ -71,7 +71,11 @@ impl Reader<'_> {
             for (name, m) in t.entries.iter() {
                 let key = format!("material.{}", name.get_ref());
                 let mt = self.table(&key, m)?;
-                materials.push(Material { name: name.get_ref().to_string(), kind: self.material(&mt)? });
+                materials.push(Material {
+                    name: name.get_ref().to_string(),
+                    kind: self.material(&mt)?,
+                    normal_map: None,
+                });
             }
         }
         let mut objects = Vec::new();
@@ -639,7 +643,7 @@ impl Reader<'_> {
         let first = materials.len();
         materials.extend(model.materials.into_iter().map(|m| Material { name: format!("{stem}/{}", m.name), ..m }));
         for object in model.objects {
-            let Shape::Mesh { positions, triangles, uvs, normals } = object.shape else { continue };
+            let Shape::Mesh { positions, triangles, uvs, normals, tangents } = object.shape else { continue };
             let positions = positions
                 .into_iter()
                 .map(|p| {
@@ -649,7 +653,7 @@ impl Reader<'_> {
                 })
                 .collect::<Result<Vec<_>>>()?;
             objects.push(Object {
-                shape: Shape::Mesh { positions, triangles, uvs, normals },
+                shape: Shape::Mesh { positions, triangles, uvs, normals, tangents },
                 material: first + object.material,
             });
         }
@@ -679,7 +683,13 @@ impl Reader<'_> {
                 .into_iter()
                 .map(|p| self.local(p).ok_or_else(|| self.err(&key, &v.span(), format!("vertex {p} is out of range"))))
                 .collect::<Result<Vec<_>>>()?;
-            return Ok(Shape::Mesh { positions, triangles: mesh.triangles, uvs: mesh.uvs, normals: mesh.normals });
+            return Ok(Shape::Mesh {
+                positions,
+                triangles: mesh.triangles,
+                uvs: mesh.uvs,
+                normals: mesh.normals,
+                tangents: Vec::new(),
+            });
         }
         let positions = {
             let key = join(&t.key, "positions");
@@ -736,6 +746,6 @@ impl Reader<'_> {
             }
             None => Vec::new(),
         };
-        Ok(Shape::Mesh { positions, triangles, uvs, normals })
+        Ok(Shape::Mesh { positions, triangles, uvs, normals, tangents: Vec::new() })
     }
 }

@@ -6,6 +6,7 @@ pub mod bvh;
 pub mod bvh_build;
 pub mod camera;
 pub mod form_factor;
+pub mod normal_map;
 pub mod primitive;
 pub mod ray;
 pub mod shading;

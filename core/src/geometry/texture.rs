@@ -1,7 +1,8 @@
-//! Reading a base-colour texture at a hit: the point's texture coordinates
-//! from its triangle's corners, and the sampler's wrap and filter over
-//! 8-bit sRGB texels decoded to linear light. The CPU backend calls these
-//! functions; `view.wgsl` mirrors them operation for operation.
+//! Reading a texture at a hit: the point's texture coordinates from its
+//! triangle's corners, and the sampler's wrap and filter over 8-bit texels,
+//! a base colour's decoded from sRGB to linear light, a normal map's read
+//! as linear values. The CPU backend calls these functions; `albedo.wgsl`
+//! mirrors them operation for operation.
 
 use crate::geometry::triangle::Triangle;
 use crate::model::scene::{Filter, Texture, Wrap};
@@ -46,6 +47,12 @@ pub fn srgb_to_linear(byte: u32) -> f32 {
     if c <= 0.04045 { c / 12.92 } else { powf((c + 0.055) / 1.055, 2.4) }
 }
 
+/// The value of an 8-bit linear channel (a normal map's): 0..255 as 0..1.
+#[inline]
+pub fn linear_channel(byte: u32) -> f32 {
+    byte as f32 / 255.0
+}
+
 /// The texel index along one axis of `size` texels for integer coordinate `i`.
 #[inline]
 pub fn wrap_texel(i: i32, size: u32, wrap: Wrap) -> u32 {
@@ -61,8 +68,20 @@ pub fn wrap_texel(i: i32, size: u32, wrap: Wrap) -> u32 {
 }
 
 /// The texture's linear RGB at texture coordinates `uv` (u to the right,
-/// v down the image; texel centres at half-integers times the texel size).
+/// v down the image; texel centres at half-integers times the texel size),
+/// its texels sRGB-encoded (a base colour).
 pub fn sample(texture: &Texture, uv: Vec2) -> Vec3 {
+    sample_decoded(texture, uv, srgb_to_linear)
+}
+
+/// [`sample`] of a texture whose texels hold linear values (a normal map).
+pub fn sample_linear(texture: &Texture, uv: Vec2) -> Vec3 {
+    sample_decoded(texture, uv, linear_channel)
+}
+
+/// The texture at `uv`, each 8-bit channel decoded by `decode` before the
+/// filter blends texels.
+fn sample_decoded(texture: &Texture, uv: Vec2, decode: fn(u32) -> f32) -> Vec3 {
     let (w, h) = (texture.width, texture.height);
     let s = texture.sampler;
     // Texel space, bounded (a NaN coordinate reads texel 0).
@@ -74,7 +93,7 @@ pub fn sample(texture: &Texture, uv: Vec2) -> Vec3 {
     let fetch = |i: i32, j: i32| -> Vec3 {
         let (col, row) = (wrap_texel(i, w, s.wrap_u), wrap_texel(j, h, s.wrap_v));
         let t = texture.texels[(row * w + col) as usize];
-        Vec3::new(srgb_to_linear(t & 255), srgb_to_linear((t >> 8) & 255), srgb_to_linear(t >> 16))
+        Vec3::new(decode(t & 255), decode((t >> 8) & 255), decode(t >> 16))
     };
     match s.filter {
         Filter::Nearest => fetch(floor(x) as i32, floor(y) as i32),
@@ -142,6 +161,9 @@ mod tests {
         // Channels are packed r | g << 8 | b << 16.
         let red = texture(1, 1, Vec::from([255]), Filter::Linear, Wrap::Repeat);
         assert_eq!(sample(&red, Vec2::new(f32::NAN, 1e30)), Vec3::X);
+        // A linear texture (a normal map's) reads its bytes as they are: 188 is not mid grey.
+        let grey = texture(1, 1, Vec::from([188 | 188 << 8 | 188 << 16]), Filter::Linear, Wrap::Repeat);
+        assert_eq!(sample_linear(&grey, Vec2::splat(0.5)), Vec3::splat(188.0 / 255.0));
     }
 
     #[test]

@@ -13,7 +13,7 @@ use alloc::string::String;
 use alloc::sync::Arc;
 use alloc::vec::Vec;
 use core::fmt;
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 /// Most triangles one mesh may have: the CPU backend carries a hit's
 /// triangle index in f32 lanes (the tie rule of
@@ -673,6 +673,21 @@ pub struct Texture {
     pub sampler: Sampler,
 }
 
+/// A tangent-space normal map (glTF's `normalTexture`), read at a mesh's
+/// texture coordinates: each texel's channels, linear (not sRGB), encode a
+/// normal's X, Y and Z in the surface's tangent frame, 0..255 for −1..1
+/// (+X along the tangent, +Y along the bitangent, up the image; +Z the
+/// surface's normal). The surface scatters light about the normal it gives
+/// ([`crate::geometry::normal_map`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct NormalMap {
+    /// The image (its `texels` hold the linear channels).
+    pub texture: Texture,
+    /// glTF's `scale`: multiplies X and Y, so 0 is the plain surface and
+    /// larger values tilt its normals further.
+    pub scale: f32,
+}
+
 /// How a texture is read between and beyond its texels (glTF's sampler).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Sampler {
@@ -815,6 +830,15 @@ pub struct Material {
     pub name: String,
     /// The scattering model.
     pub kind: MaterialKind,
+    /// Tilts its normals by texel (a mesh's with texture coordinates); `None`: none.
+    pub normal_map: Option<NormalMap>,
+}
+
+impl Material {
+    /// A material of `kind` named `name`, without a normal map.
+    pub fn new(name: impl Into<String>, kind: MaterialKind) -> Self {
+        Material { name: name.into(), kind, normal_map: None }
+    }
 }
 
 /// The geometry of an object.
@@ -866,6 +890,12 @@ pub enum Shape {
         /// glass scatter about smoothly across each triangle
         /// ([`crate::geometry::shading`]), or empty: flat triangles.
         normals: Vec<Vec3>,
+        /// Tangents per vertex (glTF's `TANGENT`): the direction of growing
+        /// u in `xyz`, and in `w` (±1) which way the bitangent
+        /// `cross(normal, tangent) · w` points. A normal map's tangent frame;
+        /// empty: derived from each triangle's texture coordinates
+        /// ([`crate::geometry::normal_map::TriangleTangents::from_uvs`]).
+        tangents: Vec<Vec4>,
     },
 }
 

@@ -15,7 +15,7 @@ use crate::model::scene::{
 use crate::model::spectrum::Spectrum;
 use alloc::format;
 use alloc::string::{String, ToString};
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 /// Collects checks for one key prefix.
 struct Check<'a> {
@@ -125,19 +125,21 @@ impl Scene {
                     ),
                 ));
             }
-            if let MaterialKind::Diffuse { texture: Some(texture), .. } = &material.kind {
-                let has_uvs = matches!(&object.shape, Shape::Mesh { uvs, .. } if !uvs.is_empty());
-                if !has_uvs {
-                    return Err(c.err(
-                        "material",
-                        format!(
-                            "'{}' has the texture {}, which needs a mesh with texture coordinates (uvs); this {} has none",
-                            material.name,
-                            texture.name,
-                            object.shape.name()
-                        ),
-                    ));
-                }
+            let image = match &material.kind {
+                MaterialKind::Diffuse { texture: Some(texture), .. } => Some(("texture", texture)),
+                _ => material.normal_map.as_ref().map(|map| ("normal map", &map.texture)),
+            };
+            let has_uvs = matches!(&object.shape, Shape::Mesh { uvs, .. } if !uvs.is_empty());
+            if let (Some((what, texture)), false) = (image, has_uvs) {
+                return Err(c.err(
+                    "material",
+                    format!(
+                        "'{}' has the {what} {}, which needs a mesh with texture coordinates (uvs); this {} has none",
+                        material.name,
+                        texture.name,
+                        object.shape.name()
+                    ),
+                ));
             }
             let checked_before = previous.is_some_and(|p| {
                 p.objects.get(i).is_some_and(|o| {
@@ -361,6 +363,10 @@ fn validate_spectrum(
 }
 
 fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(), SceneError> {
+    if let Some(map) = &m.normal_map {
+        validate_texture(c, "normal_map", &map.texture)?;
+        c.finite("normal_scale", map.scale)?;
+    }
     match &m.kind {
         MaterialKind::Diffuse { albedo, checker, texture, emission } => {
             c.colour("albedo", *albedo)?;
@@ -370,7 +376,7 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
                 c.colour("checker.albedo", ch.albedo)?;
             }
             match texture {
-                Some(t) => validate_texture(c, t),
+                Some(t) => validate_texture(c, "texture", t),
                 None => Ok(()),
             }
         }
@@ -408,16 +414,17 @@ fn validate_roughness(c: &Check<'_>, roughness: f32) -> Result<(), SceneError> {
     }
 }
 
-fn validate_texture(c: &Check<'_>, t: &Texture) -> Result<(), SceneError> {
+/// An image (`key`: the material's key that names it) has the texels its size says.
+fn validate_texture(c: &Check<'_>, key: &str, t: &Texture) -> Result<(), SceneError> {
     let (w, h) = (t.width, t.height);
     if w == 0 || h == 0 || w > MAX_TEXTURE_SIDE || h > MAX_TEXTURE_SIDE {
-        return Err(c.err("texture", format!("{}: {w}×{h} texels; each side must be 1 to {MAX_TEXTURE_SIDE}", t.name)));
+        return Err(c.err(key, format!("{}: {w}×{h} texels; each side must be 1 to {MAX_TEXTURE_SIDE}", t.name)));
     }
     if t.texels.len() != w as usize * h as usize {
-        return Err(c.err("texture", format!("{}: {} texels for a {w}×{h} image", t.name, t.texels.len())));
+        return Err(c.err(key, format!("{}: {} texels for a {w}×{h} image", t.name, t.texels.len())));
     }
     match t.texels.iter().position(|&x| x >= 1 << 24) {
-        Some(i) => Err(c.err("texture", format!("{}: texel {i} is not three 8-bit channels", t.name))),
+        Some(i) => Err(c.err(key, format!("{}: texel {i} is not three 8-bit channels", t.name))),
         None => Ok(()),
     }
 }
@@ -576,7 +583,7 @@ fn validate_shape(c: &Check<'_>, shape: &Shape) -> Result<(), SceneError> {
             }
             Ok(())
         }
-        Shape::Mesh { positions, triangles, uvs, normals } => {
+        Shape::Mesh { positions, triangles, uvs, normals, tangents } => {
             if triangles.is_empty() {
                 return Err(c.err("triangles", "the mesh has no triangles"));
             }
@@ -616,10 +623,21 @@ fn validate_shape(c: &Check<'_>, shape: &Shape) -> Result<(), SceneError> {
                     format!("{} normals for {} positions: give one per position", normals.len(), positions.len()),
                 ));
             }
-            match normals.iter().position(|n| !n.is_finite() || n.length_squared() == 0.0) {
-                Some(i) => {
-                    Err(c.err(&format!("normals[{i}]"), format!("must be finite and not zero, got {}", normals[i])))
-                }
+            if let Some(i) = normals.iter().position(|n| !n.is_finite() || n.length_squared() == 0.0) {
+                return Err(c.err(&format!("normals[{i}]"), format!("must be finite and not zero, got {}", normals[i])));
+            }
+            if !tangents.is_empty() && tangents.len() != positions.len() {
+                return Err(c.err(
+                    "tangents",
+                    format!("{} tangents for {} positions: give one per position", tangents.len(), positions.len()),
+                ));
+            }
+            let bad = |t: &Vec4| !t.is_finite() || t.truncate().length_squared() == 0.0 || t.w == 0.0;
+            match tangents.iter().position(bad) {
+                Some(i) => Err(c.err(
+                    &format!("tangents[{i}]"),
+                    format!("must be finite with a non-zero direction and a handedness w of ±1, got {}", tangents[i]),
+                )),
                 None => Ok(()),
             }
         }

@@ -99,11 +99,12 @@ mod tests {
                 texture: None,
                 emission: Vec3::splat(2.0),
             },
+            normal_map: None,
         }]);
         let positions = Vec::from([Vec3::ZERO, Vec3::X, Vec3::new(1.0, 0.0, 2.0), Vec3::new(0.0, 0.0, 2.0)]);
         let triangles = Vec::from([[0, 1, 2], [0, 2, 3]]);
         let objects = Vec::from([Object {
-            shape: Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() },
+            shape: Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new(), tangents: Vec::new() },
             material: 0,
         }]);
         Scene { render, camera, lights: Vec::new(), materials, objects }
@@ -121,7 +122,8 @@ mod tests {
             .collect();
         let triangles: Vec<[u32; 3]> = (0..40u32).map(|i| [2 * i, 2 * i + 1, 2 * i + 2]).collect();
         let total: f32 = triangles.iter().map(|t| area(&t.map(|i| positions[i as usize]))).sum::<f32>() * PI * 2.0;
-        scene.objects[0].shape = Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new() };
+        scene.objects[0].shape =
+            Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new(), tangents: Vec::new() };
         let AreaLights::Chosen(choice) = area_lights(&scene) else { panic!("40 triangles, a budget of 8") };
         assert_eq!(choice.triangles.len(), 40);
         for xi in [0.0, 0.5, 0.99] {

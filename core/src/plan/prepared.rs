@@ -2,9 +2,10 @@
 //! the band table, each object's primitive and surface (per-band indices of
 //! refraction), the light-selection distribution and the effect plan.
 
+use crate::geometry::normal_map::{TriangleTangents, mapped_normal};
 use crate::geometry::primitive::{Primitive, Ray, prism_faces};
 use crate::geometry::shading::{TriangleNormals, shading_normal};
-use crate::geometry::texture::TriangleUv;
+use crate::geometry::texture::{TriangleUv, sample_linear};
 use crate::model::bands::BandTable;
 use crate::model::scene::{Light, Scene, SceneError, Shape};
 use crate::model::spectrum::Spectrum;
@@ -48,11 +49,16 @@ pub struct PreparedScene {
     /// One surface per object.
     pub surfaces: Vec<Surface>,
     /// Per object, the texture coordinates of its mesh's triangles in the
-    /// hierarchy's order; empty unless its surface has a texture.
+    /// hierarchy's order; empty unless its surface has a texture or its
+    /// material a normal map.
     pub texture_uvs: Vec<Vec<TriangleUv>>,
     /// Per object, the vertex normals of its mesh's triangles in the
     /// hierarchy's order; empty for flat triangles (a mesh without normals).
     pub vertex_normals: Vec<Vec<TriangleNormals>>,
+    /// Per object, the tangent frames of its mesh's triangles in the
+    /// hierarchy's order (its vertex tangents, or each triangle's from its
+    /// texture coordinates); empty unless its material has a normal map.
+    pub normal_tangents: Vec<Vec<TriangleTangents>>,
     /// The lights that shine: the scene's, each environment replaced by
     /// the suns of its median cut ([`EnvironmentLookup::cut`], as
     /// many as `render.environment_lights`), then the emissive meshes'
@@ -120,21 +126,39 @@ impl PreparedScene {
             .collect();
         let surfaces: Vec<Surface> =
             scene.objects.iter().map(|o| Surface::new(&scene.materials[o.material].kind, &bands)).collect();
-        let texture_uvs = scene
+        let texture_uvs: Vec<Vec<TriangleUv>> = scene
             .objects
             .iter()
             .zip(&primitives)
             .zip(&surfaces)
-            .map(|((o, p), s)| match (&o.shape, p, s) {
-                (
-                    Shape::Mesh { triangles, uvs, .. },
-                    Primitive::Mesh(bvh),
-                    Surface::Diffuse { texture: Some(_), .. },
-                ) => bvh
-                    .sources
-                    .iter()
-                    .map(|&k| TriangleUv::new(triangles[k as usize].map(|i| uvs[i as usize])))
-                    .collect(),
+            .map(|((o, p), s)| match (&o.shape, p) {
+                (Shape::Mesh { triangles, uvs, .. }, Primitive::Mesh(bvh))
+                    if matches!(s, Surface::Diffuse { texture: Some(_), .. })
+                        || scene.materials[o.material].normal_map.is_some() =>
+                {
+                    bvh.sources
+                        .iter()
+                        .map(|&k| TriangleUv::new(triangles[k as usize].map(|i| uvs[i as usize])))
+                        .collect()
+                }
+                _ => Vec::new(),
+            })
+            .collect();
+        let normal_tangents = scene
+            .objects
+            .iter()
+            .zip(&primitives)
+            .zip(&texture_uvs)
+            .map(|((o, p), uvs)| match (&o.shape, p) {
+                (Shape::Mesh { triangles, tangents, .. }, Primitive::Mesh(bvh))
+                    if scene.materials[o.material].normal_map.is_some() =>
+                {
+                    let frame = |(j, &k): (usize, &u32)| match tangents.is_empty() {
+                        true => TriangleTangents::from_uvs(&bvh.triangles[j], &uvs[j]),
+                        false => TriangleTangents::from_vertices(triangles[k as usize].map(|i| tangents[i as usize])),
+                    };
+                    bvh.sources.iter().enumerate().map(frame).collect()
+                }
                 _ => Vec::new(),
             })
             .collect();
@@ -251,6 +275,7 @@ impl PreparedScene {
             surfaces,
             texture_uvs,
             vertex_normals,
+            normal_tangents,
             lights,
             environment,
             emitters,
@@ -387,8 +412,9 @@ impl PreparedScene {
     /// The normal a ray arriving along unit `direction` at `hit` scatters
     /// about off a mirror, metal or glass, and that a diffuse surface takes
     /// its lights' cosines with: the mesh's vertex normals interpolated
-    /// there and bent where they must be ([`shading_normal`]), or the
-    /// geometric normal of flat triangles and other shapes. Which side of
+    /// there (else its triangle's), tilted by its material's normal map
+    /// ([`mapped_normal`]), and bent where they must be ([`shading_normal`]);
+    /// the geometric normal of flat triangles without a map and of other shapes. Which side of
     /// the surface a ray is on stays the geometric normal's (coloured
     /// glass's absorption, where photons are stored and gathered, the
     /// bounces of indirect light's photons).
@@ -408,12 +434,34 @@ impl PreparedScene {
         geometric: Vec3,
         direction: Vec3,
     ) -> Vec3 {
-        match (&self.primitives[object], self.vertex_normals[object].get(triangle as usize)) {
-            (Primitive::Mesh(bvh), Some(normals)) => {
-                shading_normal(direction, geometric, normals.at(&bvh.triangles[triangle as usize], point))
-            }
-            _ => geometric,
+        let Primitive::Mesh(bvh) = &self.primitives[object] else {
+            return geometric;
+        };
+        let tri = &bvh.triangles[triangle as usize];
+        let (normals, tangents) =
+            (self.vertex_normals[object].get(triangle as usize), self.normal_tangents[object].get(triangle as usize));
+        if normals.is_none() && tangents.is_none() {
+            return geometric;
         }
+        let interpolated = normals.map_or(geometric, |n| n.at(tri, point));
+        let tilted = match (tangents, &self.scene.materials[self.scene.objects[object].material].normal_map) {
+            (Some(frame), Some(map)) => {
+                // The map tilts the side the triangle faces; a normal that
+                // disagrees with the winding is left for shading_normal to drop.
+                let uv = self.texture_uvs[object][triangle as usize].at(tri, point);
+                let texel = sample_linear(&map.texture, uv);
+                mapped_normal(interpolated.normalize_or(geometric), frame.at(tri, point), frame.sign, texel, map.scale)
+            }
+            _ => interpolated,
+        };
+        shading_normal(direction, geometric, tilted)
+    }
+
+    /// Does `object` scatter about other normals than its triangles' (a
+    /// mesh with vertex normals or a normal map)?
+    #[inline]
+    pub fn bends_normals(&self, object: usize) -> bool {
+        !self.vertex_normals[object].is_empty() || !self.normal_tangents[object].is_empty()
     }
 
     /// Radiance that a ray leaving the scene along unit `direction` sees:

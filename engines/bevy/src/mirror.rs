@@ -102,12 +102,17 @@ fn placed(shape: &Shape, t: &GlobalTransform) -> Shape {
             inner_radius: inner_radius * scale,
         },
         Shape::Prism { vertices, extrude } => Shape::Prism { vertices: vertices.map(point), extrude: vector(*extrude) },
-        Shape::Mesh { positions, triangles, uvs, normals: n } => Shape::Mesh {
-            positions: positions.iter().copied().map(point).collect(),
-            triangles: triangles.clone(),
-            uvs: uvs.clone(),
-            normals: n.iter().copied().map(normal).collect(),
-        },
+        Shape::Mesh { positions, triangles, uvs, normals: n, tangents } => {
+            // Tangents turn as directions; a mirroring transform turns their handedness.
+            let handedness = t.affine().matrix3.determinant().signum();
+            Shape::Mesh {
+                positions: positions.iter().copied().map(point).collect(),
+                triangles: triangles.clone(),
+                uvs: uvs.clone(),
+                normals: n.iter().copied().map(normal).collect(),
+                tangents: tangents.iter().map(|k| vector(k.truncate()).extend(k.w * handedness)).collect(),
+            }
+        }
     }
 }
 
@@ -155,7 +160,7 @@ fn mesh_shape(mesh: &Mesh, t: &GlobalTransform) -> Option<Shape> {
             (tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2]).then_some(tri)
         })
         .collect();
-    Some(Shape::Mesh { positions: welded, triangles, uvs: Vec::new(), normals: welded_normals })
+    Some(Shape::Mesh { positions: welded, triangles, uvs: Vec::new(), normals: welded_normals, tangents: Vec::new() })
 }
 
 /// A mesh drawn with a [`CausticMaterial`]: a diffuse receiver.
@@ -261,7 +266,7 @@ fn build_scene(
             _ => return Err(format!("object {i} needs exactly one of Glass and Receiver")),
         };
         scene_objects.push(Object { shape: placed(&shape.0, at), material: scene_materials.len() });
-        scene_materials.push(Material { name: format!("object{i}"), kind });
+        scene_materials.push(Material { name: format!("object{i}"), kind, normal_map: None });
     }
     let mesh = |handle: &Mesh3d, at, what: &str| {
         meshes.get(&handle.0).and_then(|m| mesh_shape(m, at)).ok_or(format!("{what}'s mesh has no positions here"))
@@ -276,7 +281,7 @@ fn build_scene(
             roughness: glass.roughness,
         };
         scene_objects.push(Object { shape: mesh(handle, at, "a Glass mesh")?, material: scene_materials.len() });
-        scene_materials.push(Material { name: format!("glass mesh {i}"), kind });
+        scene_materials.push(Material { name: format!("glass mesh {i}"), kind, normal_map: None });
     }
     for (i, (material, handle, at)) in receiver_meshes.iter().enumerate() {
         let Some(m) = materials.get(&material.0) else { continue };
@@ -295,7 +300,7 @@ fn build_scene(
         };
         scene_objects
             .push(Object { shape: mesh(handle, at, "a CausticMaterial mesh")?, material: scene_materials.len() });
-        scene_materials.push(Material { name: format!("receiver mesh {i}"), kind });
+        scene_materials.push(Material { name: format!("receiver mesh {i}"), kind, normal_map: None });
     }
     // A layer's irradiance is in Bevy's photometric units; an image's pixels in the settings' exposure.
     let exposure = layer.map_or(settings.0.exposure, |l| l.lux_per_watt);

@@ -42,6 +42,7 @@ pub fn document() -> GltfDocument {
         normals: Vec::new(),
         material: 0,
         translation: [0.0; 3],
+        tangents: Vec::new(),
     }];
     // The backdrop: a wall along the far edge of the floor, facing the grid,
     // its lines a unit apart.
@@ -56,6 +57,7 @@ pub fn document() -> GltfDocument {
         normals: Vec::new(),
         material: 1,
         translation: [0.0; 3],
+        tangents: Vec::new(),
     });
     for (row, &ior) in IORS.iter().enumerate() {
         for (column, &dispersion) in DISPERSIONS.iter().enumerate() {
@@ -73,6 +75,7 @@ pub fn document() -> GltfDocument {
                 normals: Vec::new(),
                 material: materials.len() - 1,
                 translation: [x, 0.0, z],
+                tangents: Vec::new(),
             });
         }
     }

@@ -1,7 +1,8 @@
 //! glTF 2.0 scenes (`.gltf`, `.glb`): triangle meshes placed by their node
 //! transforms, materials from `pbrMetallicRoughness` (diffuse with the
 //! base-colour texture on `TEXCOORD_0`, its sampler and its
-//! `KHR_texture_transform`, or a metal of the base colour and roughness)
+//! `KHR_texture_transform`, or a metal of the base colour and roughness),
+//! their normal maps (the mesh's `TANGENT`, else MikkTSpace's tangents)
 //! and the transmission (rough or polished), IOR,
 //! volume and dispersion extensions, `KHR_lights_punctual` lights, and the
 //! first camera (else one that frames the scene).
@@ -16,15 +17,16 @@
 //! naming the element's glTF path.
 
 use crate::scene_file::document::{SceneDocument, SceneFileError};
+use crate::tangents::add_mikktspace_tangents;
 use crate::texture_file;
-use glam::{Affine2, Mat3, Mat4, Vec2, Vec3};
+use glam::{Affine2, Mat3, Mat4, Vec2, Vec3, Vec4};
 use gltf::khr_lights_punctual::Kind;
 use gltf::texture::{MagFilter, WrappingMode};
 use prismatic_core::geometry::texture::srgb_to_linear;
 use prismatic_core::model::mesh::open_edge;
 use prismatic_core::model::scene::{
-    Attenuation, Camera, EnvironmentMap, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, Object, RenderSettings,
-    Sampler, Scene, Shape, Texture, ThinFilm, Wrap, default_ambient,
+    Attenuation, Camera, EnvironmentMap, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, NormalMap, Object,
+    RenderSettings, Sampler, Scene, Shape, Texture, ThinFilm, Wrap, default_ambient,
 };
 use prismatic_core::model::spectrum::Spectrum;
 use prismatic_core::sampling::spot_cone::SpotCone;
@@ -149,6 +151,9 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
                 };
                 if let (Some(t), Shape::Mesh { uvs, .. }) = (uv_transform, &mut shape) {
                     uvs.iter_mut().for_each(|uv| *uv = t.transform_point2(*uv));
+                }
+                if out.materials[material].normal_map.is_some() {
+                    add_mikktspace_tangents(&mut shape);
                 }
                 // The scene's checks (closed glass, …) name the primitive.
                 let object = format!("object[{}]", out.objects.len());
@@ -292,7 +297,24 @@ fn mesh_shape(
     if let Some(i) = normals.iter().position(|n| *n == Vec3::ZERO) {
         return Err(GltfError::new(format!("{path}.attributes.NORMAL"), format!("normal {i} is not a unit vector")));
     }
-    Ok(Shape::Mesh { positions, triangles, uvs, normals, tangents: Vec::new() })
+    // Tangents turn as directions; a mirroring transform turns their handedness.
+    let linear = Mat3::from_mat4(world);
+    let handedness = if flip { -1.0 } else { 1.0 };
+    let tangents: Vec<Vec4> = match reader.read_tangents() {
+        Some(t) => t.map(|[x, y, z, w]| (linear * Vec3::new(x, y, z)).extend(w * handedness)).collect(),
+        None => Vec::new(),
+    };
+    if !tangents.is_empty() && tangents.len() != positions.len() {
+        return Err(GltfError::new(
+            format!("{path}.attributes.TANGENT"),
+            format!("{} tangents for {} vertices", tangents.len(), positions.len()),
+        ));
+    }
+    if let Some(i) = tangents.iter().position(|t| !t.is_finite() || t.truncate() == Vec3::ZERO || t.w == 0.0) {
+        let reason = format!("tangent {i} is not a unit vector with a handedness w of ±1");
+        return Err(GltfError::new(format!("{path}.attributes.TANGENT"), reason));
+    }
+    Ok(Shape::Mesh { positions, triangles, uvs, normals, tangents })
 }
 
 /// The file's images, decoded once each, and where to find them.
@@ -320,7 +342,42 @@ impl Images<'_> {
             return Ok(None);
         }
         let transform = transform.map(|t| uv_transform(t.offset(), t.rotation(), t.scale()));
-        let texture = info.texture();
+        Ok(Some((self.texture(&info.texture())?, transform)))
+    }
+
+    /// The normal map `info` names, with the `KHR_texture_transform` of its
+    /// coordinates; `None` (and a line in `unused`) when it reads a texture
+    /// coordinate set other than 0. Its texels are its image's bytes (a
+    /// normal map is linear, so they are not decoded from sRGB).
+    fn normal_map(
+        &mut self,
+        info: &gltf::material::NormalTexture<'_>,
+        unused: &mut Vec<&'static str>,
+    ) -> Result<Option<(NormalMap, Option<Affine2>)>, GltfError> {
+        let transform = info.extension_value("KHR_texture_transform");
+        let number = |key: &str| transform.and_then(|t| t.get(key)).and_then(serde_json::Value::as_f64);
+        let pair = |key: &str, default: [f32; 2]| {
+            let values = transform.and_then(|t| t.get(key)).and_then(serde_json::Value::as_array);
+            let at = |i: usize| values.and_then(|v| v.get(i)).and_then(serde_json::Value::as_f64);
+            [at(0).map_or(default[0], |x| x as f32), at(1).map_or(default[1], |x| x as f32)]
+        };
+        if number("texCoord").map_or(info.tex_coord(), |c| c as u32) != 0 {
+            unused.push("normalTexture on a texture coordinate set other than 0");
+            return Ok(None);
+        }
+        let transform = transform.map(|_| {
+            uv_transform(
+                pair("offset", [0.0, 0.0]),
+                number("rotation").unwrap_or(0.0) as f32,
+                pair("scale", [1.0, 1.0]),
+            )
+        });
+        let map = NormalMap { texture: self.texture(&info.texture())?, scale: info.scale() };
+        Ok(Some((map, transform)))
+    }
+
+    /// The image `texture` shows (decoded once) with its sampler.
+    fn texture(&mut self, texture: &gltf::Texture<'_>) -> Result<Texture, GltfError> {
         let image = texture.source();
         let decoded = match self.decoded.get(&image.index()) {
             Some(t) => t.clone(),
@@ -340,11 +397,10 @@ impl Images<'_> {
             Some(MagFilter::Nearest) => Filter::Nearest,
             _ => Filter::Linear,
         };
-        let texture = Texture {
+        Ok(Texture {
             sampler: Sampler { filter, wrap_u: wrap(sampler.wrap_s()), wrap_v: wrap(sampler.wrap_t()) },
             ..decoded
-        };
-        Ok(Some((texture, transform)))
+        })
     }
 
     /// The mean linear colour of a texture's image (what an emissive
@@ -415,7 +471,8 @@ fn uv_transform(offset: [f32; 2], rotation: f32, scale: [f32; 2]) -> Affine2 {
 }
 
 /// The prismatic material of a glTF material, with the transform of its
-/// base-colour texture's coordinates; what it leaves out goes to `warnings`.
+/// textures' coordinates (its base colour's, else its normal map's); what
+/// it leaves out goes to `warnings`.
 fn material(
     m: &gltf::Material<'_>,
     images: &mut Images<'_>,
@@ -425,16 +482,11 @@ fn material(
     let name = m.name().map_or_else(|| path.clone(), str::to_string);
     let pbr = m.pbr_metallic_roughness();
     let mut unused = Vec::new();
-    for (texture, what) in [
-        (pbr.metallic_roughness_texture().is_some(), "metallicRoughnessTexture"),
-        (m.normal_texture().is_some(), "normalTexture"),
-        // occlusionTexture is not left out but not needed: it bakes for
-        // rasterisers the shadowing that traced rays find themselves.
-    ] {
-        if texture {
-            unused.push(what);
-        }
+    if pbr.metallic_roughness_texture().is_some() {
+        unused.push("metallicRoughnessTexture");
     }
+    // occlusionTexture is not left out but not needed: it bakes for
+    // rasterisers the shadowing that traced rays find themselves.
     let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor());
     let metallic = pbr.metallic_factor();
     let glass_or_metal = transmission > 0.0 || metallic >= METAL_METALLIC;
@@ -501,10 +553,31 @@ fn material(
         uv_transform = transform.flatten();
         MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission }
     };
+    // The mesh has one set of coordinates: its textures must agree on their transform.
+    let normal_map = match m.normal_texture() {
+        Some(info) => match images.normal_map(&info, &mut unused)? {
+            Some((map, transform)) if !has_base_colour_texture(&kind) => {
+                uv_transform = transform;
+                Some(map)
+            }
+            Some((map, transform)) if transform == uv_transform => Some(map),
+            Some(_) => {
+                unused.push("normalTexture with another KHR_texture_transform than the baseColorTexture's");
+                None
+            }
+            None => None,
+        },
+        None => None,
+    };
     if !unused.is_empty() {
         warnings.push(format!("{path} ({name}): left out: {}", unused.join(", ")));
     }
-    Ok((Material { name, kind, normal_map: None }, uv_transform))
+    Ok((Material { normal_map, ..Material::new(name, kind) }, uv_transform))
+}
+
+/// Does a material of `kind` read its base colour from a texture?
+fn has_base_colour_texture(kind: &MaterialKind) -> bool {
+    matches!(kind, MaterialKind::Diffuse { texture: Some(_), .. })
 }
 
 /// The thin-walled twin of solid glass `material` (made once, named after
@@ -514,7 +587,7 @@ fn thin_twin(out: &mut GltfScene, material: usize) -> usize {
     if let Some(i) = out.materials.iter().position(|m| m.name == name) {
         return i;
     }
-    let mut twin = Material { name, kind: out.materials[material].kind.clone(), normal_map: None };
+    let mut twin = Material { name, ..out.materials[material].clone() };
     if let MaterialKind::Dielectric { thin, attenuation, .. } = &mut twin.kind {
         (*thin, *attenuation) = (true, None);
     }

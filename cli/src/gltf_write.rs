@@ -1,5 +1,6 @@
 //! Writes small glTF 2.0 documents: triangle meshes (with texture
-//! coordinates), materials with a base-colour texture or the transmission,
+//! coordinates, normals, tangents), materials with a base-colour texture
+//! or a normal map or the transmission,
 //! IOR, dispersion and volume extensions, punctual lights and a camera,
 //! with the binary data and PNG images in the file (a base64 data URI).
 //! The project writes its own glTF scenes and test files with it.
@@ -32,6 +33,8 @@ pub struct GltfMaterial {
     pub attenuation: Option<([f32; 3], f32)>,
     /// `baseColorTexture` on `TEXCOORD_0`.
     pub base_color_texture: Option<GltfTexture>,
+    /// `normalTexture` on `TEXCOORD_0` (its pixels linear) and its `scale`.
+    pub normal_texture: Option<(GltfTexture, f32)>,
 }
 
 /// An image (stored as PNG) with its sampler.
@@ -59,7 +62,8 @@ impl GltfMesh {
         material: usize,
         translation: [f32; 3],
     ) -> Self {
-        GltfMesh { name: name.into(), positions, indices, uvs: Vec::new(), normals: Vec::new(), material, translation }
+        let (uvs, normals, tangents) = (Vec::new(), Vec::new(), Vec::new());
+        GltfMesh { name: name.into(), positions, indices, uvs, normals, tangents, material, translation }
     }
 
     /// A ball of `radius` centred on its node (`rings` × 2·`rings` quads,
@@ -84,6 +88,7 @@ impl GltfMaterial {
             dispersion: 0.0,
             attenuation: None,
             base_color_texture: None,
+            normal_texture: None,
         }
     }
 
@@ -99,6 +104,7 @@ impl GltfMaterial {
             dispersion,
             attenuation: None,
             base_color_texture: None,
+            normal_texture: None,
         }
     }
 }
@@ -116,6 +122,8 @@ pub struct GltfMesh {
     pub uvs: Vec<[f32; 2]>,
     /// Unit normals per vertex (`NORMAL`), or empty: flat triangles.
     pub normals: Vec<[f32; 3]>,
+    /// Tangents with their handedness per vertex (`TANGENT`), or empty.
+    pub tangents: Vec<[f32; 4]>,
     /// Index into the document's materials.
     pub material: usize,
     /// The node's translation.
@@ -243,6 +251,13 @@ impl GltfDocument {
                 );
                 attributes["NORMAL"] = json!(accessors.len() - 1);
             }
+            if !m.tangents.is_empty() {
+                let tangent_view = push_view(&mut bin, &mut views, floats(m.tangents.as_flattened()), Some(34962));
+                accessors.push(
+                    json!({ "bufferView": tangent_view, "componentType": 5126, "count": m.tangents.len(), "type": "VEC4" }),
+                );
+                attributes["TANGENT"] = json!(accessors.len() - 1);
+            }
             meshes.push(json!({
                 "name": m.name,
                 "primitives": [{ "attributes": attributes, "indices": indices, "material": m.material }]
@@ -285,19 +300,24 @@ impl GltfDocument {
                 json!({ "name": "camera", "camera": 0, "translation": c.position, "rotation": rotation.to_array() }),
             );
         }
-        // Each material's texture: a PNG in the buffer, a sampler, an image and a texture of its own.
+        // Each material's textures: a PNG in the buffer, a sampler, an image and a texture of their own.
         let (mut images, mut samplers, mut textures) = (Vec::new(), Vec::new(), Vec::new());
+        let mut texture = |t: &GltfTexture| {
+            let view = push_view(&mut bin, &mut views, encode_png(t), None);
+            images.push(json!({ "bufferView": view, "mimeType": "image/png" }));
+            let mag = if t.nearest { 9728 } else { 9729 };
+            samplers.push(json!({ "magFilter": mag, "wrapS": t.wrap[0], "wrapT": t.wrap[1] }));
+            textures.push(json!({ "source": images.len() - 1, "sampler": samplers.len() - 1 }));
+            textures.len() - 1
+        };
         let mut materials: Vec<Value> = Vec::new();
         for m in &self.materials {
             let mut json = material_json(m);
             if let Some(t) = &m.base_color_texture {
-                let png = encode_png(t);
-                let view = push_view(&mut bin, &mut views, png, None);
-                images.push(json!({ "bufferView": view, "mimeType": "image/png" }));
-                let mag = if t.nearest { 9728 } else { 9729 };
-                samplers.push(json!({ "magFilter": mag, "wrapS": t.wrap[0], "wrapT": t.wrap[1] }));
-                textures.push(json!({ "source": images.len() - 1, "sampler": samplers.len() - 1 }));
-                json["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": textures.len() - 1 });
+                json["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": texture(t) });
+            }
+            if let Some((t, scale)) = &m.normal_texture {
+                json["normalTexture"] = json!({ "index": texture(t), "scale": scale });
             }
             materials.push(json);
         }

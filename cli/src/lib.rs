@@ -20,6 +20,7 @@ pub mod scene_file;
 pub mod settings;
 pub mod study;
 pub mod sunlit_glass;
+pub mod tangents;
 pub mod texture_file;
 
 use scene_file::{SceneDocument, SceneFileError};

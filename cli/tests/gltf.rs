@@ -32,6 +32,7 @@ fn prism_document() -> GltfDocument {
                 normals: Vec::new(),
                 material: 0,
                 translation: [0.0; 3],
+                tangents: Vec::new(),
             },
             GltfMesh::new("prism", (positions, indices), 1, [0.0; 3]),
         ],
@@ -756,4 +757,66 @@ fn metallic_materials_are_metals_of_their_base_colour_and_roughness() {
     let (kind, warnings) = load(0.2);
     assert!(matches!(kind, MaterialKind::Diffuse { .. }), "{kind:?}");
     assert!(warnings.contains("metallicFactor between 0 and 1 (drawn diffuse)"), "{warnings}");
+}
+
+/// A `normalTexture` becomes the material's normal map (its bytes as they
+/// are: a normal map is linear) with its `scale`, on any kind of material;
+/// the mesh's `TANGENT` is read (turned by the node, w kept), and a mesh
+/// with normals but no tangents gets MikkTSpace's. Coordinate set 1 or a
+/// transform other than the base colour's leave it out with a warning.
+#[test]
+fn a_normal_texture_is_read_with_its_scale_and_tangents() {
+    use prismatic_cli::gltf_write::GltfTexture;
+    use prismatic_core::Vec4;
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    let bumps = GltfTexture { width: 1, height: 1, pixels: vec![[160, 120, 240]], nearest: false, wrap: [10497; 2] };
+    doc.materials[0].normal_texture = Some((bumps.clone(), 0.7));
+    doc.materials[0].metallic = 1.0;
+    doc.meshes[0].uvs = vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+    doc.meshes[0].normals = vec![[0.0, 1.0, 0.0]; 4];
+    let load = |name: &str, doc: &GltfDocument| {
+        let scene = prismatic_cli::load_scene(write(dir.path(), name, doc).to_str().unwrap()).unwrap();
+        scene.validate().unwrap_or_else(|e| panic!("{e}"));
+        scene
+    };
+    let scene = load("bumpy_metal.gltf", &doc);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let floor = &scene.scene.materials[0];
+    assert!(matches!(floor.kind, MaterialKind::Metal { .. }), "{:?}", floor.kind);
+    let map = floor.normal_map.as_ref().expect("the floor's normal map");
+    assert_eq!((map.scale, map.texture.texels[0]), (0.7, 160 | 120 << 8 | 240 << 16));
+    // The floor lies in y = 0, u along +x and v along −z, so up the image is +z: MikkTSpace's
+    // tangent is +x and, as cross(+y, +x) is −z, its handedness w is −1.
+    let Shape::Mesh { tangents, .. } = &scene.scene.objects[0].shape else { panic!("a mesh") };
+    assert_eq!(tangents.len(), 4);
+    for t in tangents {
+        assert!((*t - Vec4::new(1.0, 0.0, 0.0, -1.0)).abs().max_element() < 1e-6, "{t}");
+    }
+    // The file's own tangents win.
+    doc.meshes[0].tangents = vec![[0.0, 0.0, 1.0, 1.0]; 4];
+    doc.meshes[0].translation = [0.0, 2.0, 0.0];
+    let scene = load("with_tangents.gltf", &doc);
+    let Shape::Mesh { tangents, .. } = &scene.scene.objects[0].shape else { panic!("a mesh") };
+    assert_eq!(tangents, &vec![Vec4::new(0.0, 0.0, 1.0, 1.0); 4]);
+    // Another coordinate set: left out, named.
+    let mut json: serde_json::Value = serde_json::from_str(&doc.to_json()).unwrap();
+    json["materials"][0]["normalTexture"]["texCoord"] = 1.into();
+    let path = dir.path().join("set1.gltf");
+    std::fs::write(&path, json.to_string()).unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    assert!(scene.scene.materials[0].normal_map.is_none());
+    let warnings = scene.warnings.join("\n");
+    assert!(warnings.contains("normalTexture on a texture coordinate set other than 0"), "{warnings}");
+    // A diffuse floor whose base colour and normal map are moved differently.
+    doc.materials[0].metallic = 0.0;
+    doc.materials[0].base_color_texture = Some(bumps);
+    let mut json: serde_json::Value = serde_json::from_str(&doc.to_json()).unwrap();
+    json["materials"][0]["normalTexture"]["extensions"] =
+        serde_json::json!({ "KHR_texture_transform": { "scale": [2.0, 2.0] } });
+    std::fs::write(&path, json.to_string()).unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    assert!(scene.scene.materials[0].normal_map.is_none());
+    let warnings = scene.warnings.join("\n");
+    assert!(warnings.contains("normalTexture with another KHR_texture_transform"), "{warnings}");
 }

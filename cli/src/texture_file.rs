@@ -1,5 +1,6 @@
-//! Base-colour textures from image files (PNG, JPEG) and from glTF's
-//! decoded images, as the core's packed 8-bit sRGB texels.
+//! Textures from image files (PNG, JPEG) and from glTF's decoded images,
+//! as the core's packed 8-bit texels: a base colour's sRGB-encoded, a
+//! normal map's linear (the bytes as the file holds them either way).
 
 use prismatic_core::model::scene::{Sampler, Texture};
 use std::path::Path;
@@ -17,7 +18,7 @@ pub fn load(path: &Path, sampler: Sampler) -> Result<Texture, String> {
     Ok(from_rgb8(path.display().to_string(), width, height, image.pixels().map(|p| p.0), sampler))
 }
 
-/// A texture from 8-bit sRGB pixels, row by row from the top.
+/// A texture from 8-bit pixels, row by row from the top.
 pub fn from_rgb8(
     name: String,
     width: u32,

@@ -131,3 +131,45 @@ fn scale_zero_leaves_the_mirror_plain_and_the_plain_texel_tilts_by_its_rounding(
         assert!(angle < 0.05, "{backend}: photons up to {angle:.3}° off {want}");
     }
 }
+
+/// A scene file gives any material a `normal_map` (a PNG beside it, read
+/// as linear bytes) and `normal_scale`, and a mesh its `tangents`; what
+/// makes no sense is refused with its key.
+#[test]
+fn scene_files_give_materials_normal_maps_and_meshes_tangents() {
+    let dir = tempfile::tempdir().unwrap();
+    image::RgbImage::from_raw(1, 1, vec![160, 120, 240]).unwrap().save(dir.path().join("bumps.png")).unwrap();
+    let scene = |material: &str, shape: &str| {
+        format!(
+            "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 0, 0]\n\n\
+             [[light]]\nkind = \"point\"\nposition = [0, 4, 0]\npower = 10\n\n\
+             [material.gold]\nkind = \"metal\"\ncolor = \"gold\"\n{material}\n\n\
+             [[object]]\nmaterial = \"gold\"\n{shape}\n"
+        )
+    };
+    let quad = "shape = \"mesh\"\npositions = [[0, 0, 0], [1, 0, 0], [0, 0, -1]]\ntriangles = [[0, 1, 2]]\n\
+                uvs = [[0, 1], [1, 1], [0, 0]]";
+    let check = |material: &str, shape: &str| {
+        let doc = prismatic_cli::scene_file::parse(&scene(material, shape), "test.toml", Some(dir.path()))?;
+        doc.validate().map(|_| doc)
+    };
+    let map = "normal_map = \"bumps.png\"\nnormal_scale = 0.5";
+    let given = "tangents = [[1, 0, 0, 1], [1, 0, 0, 1], [1, 0, 0, -1]]";
+    let doc = check(map, &format!("{quad}\n{given}")).unwrap_or_else(|e| panic!("{e}"));
+    let gold = &doc.scene.materials[0];
+    let normal_map = gold.normal_map.as_ref().expect("gold's normal map");
+    assert_eq!((normal_map.scale, normal_map.texture.texels[0]), (0.5, 160 | 120 << 8 | 240 << 16));
+    let Shape::Mesh { tangents, .. } = &doc.scene.objects[0].shape else { panic!("a mesh") };
+    assert_eq!(tangents[2], Vec4::new(1.0, 0.0, 0.0, -1.0));
+    for (material, shape, key, reason) in [
+        ("normal_scale = 2", quad, "material.gold.normal_scale", "the material names none"),
+        ("normal_map = \"missing.png\"", quad, "material.gold.normal_map", "cannot read texture"),
+        (map, "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1", "object[0].material", "normal map"),
+        (map, &format!("{quad}\ntangents = [[1, 0, 0, 1]]"), "object[0].tangents", "1 tangents for 3 positions"),
+        (map, &format!("{quad}\ntangents = [[1, 0, 0]]"), "object[0].tangents[0]", "must be [x, y, z, w]"),
+        (map, &format!("{quad}\n{}", given.replace("-1]", "0]")), "object[0].tangents[2]", "handedness"),
+    ] {
+        let e = check(material, shape).map(|_| ()).unwrap_err();
+        assert!(e.key == key && e.reason.contains(reason), "{material} / {shape}: {e}");
+    }
+}

@@ -15,13 +15,13 @@ use crate::ior_table;
 use crate::obj;
 use crate::texture_file;
 use glam::DVec3;
-use glam::Vec2;
+use glam::{Vec2, Vec4};
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::color::ToneMap;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::metals::{MetalColor, NamedMetal};
 use prismatic_core::model::scene::{
-    Attenuation, Camera, Checker, EnvironmentMap, Estimator, Filter, Light, Material, MaterialKind, Object,
+    Attenuation, Camera, Checker, EnvironmentMap, Estimator, Filter, Light, Material, MaterialKind, NormalMap, Object,
     PhotonSequence, RadiusMode, RenderSettings, Sampler, Shape, Texture, ThinFilm, ViewPaths, WavelengthSampling,
     WhitePoint, Wrap, default_ambient,
 };
@@ -74,7 +74,7 @@ impl Reader<'_> {
                 materials.push(Material {
                     name: name.get_ref().to_string(),
                     kind: self.material(&mt)?,
-                    normal_map: None,
+                    normal_map: self.normal_map(&mt)?,
                 });
             }
         }
@@ -305,7 +305,17 @@ impl Reader<'_> {
             "diffuse" => {
                 self.check_keys(
                     t,
-                    &["kind", "albedo", "checker", "texture", "texture_filter", "texture_wrap", "emission"],
+                    &[
+                        "kind",
+                        "albedo",
+                        "checker",
+                        "texture",
+                        "texture_filter",
+                        "texture_wrap",
+                        "emission",
+                        "normal_map",
+                        "normal_scale",
+                    ],
                 )?;
                 let checker = match self.get(t, "checker") {
                     Some(v) => {
@@ -344,6 +354,8 @@ impl Reader<'_> {
                         "film_thickness_nm",
                         "film_ior",
                         "roughness",
+                        "normal_map",
+                        "normal_scale",
                     ],
                 )?;
                 let dispersion = self.req(t, "ior", |p, k, v| p.ior(k, v))?;
@@ -374,11 +386,11 @@ impl Reader<'_> {
                 MaterialKind::Dielectric { dispersion, outside, attenuation, thin, film, roughness }
             }
             "mirror" => {
-                self.check_keys(t, &["kind"])?;
+                self.check_keys(t, &["kind", "normal_map", "normal_scale"])?;
                 MaterialKind::Mirror
             }
             "metal" => {
-                self.check_keys(t, &["kind", "color", "roughness"])?;
+                self.check_keys(t, &["kind", "color", "roughness", "normal_map", "normal_scale"])?;
                 MaterialKind::Metal {
                     color: self.req(t, "color", |p, k, v| p.metal_color(k, v))?,
                     roughness: self.opt(t, "roughness", Self::float)?.unwrap_or(0.0),
@@ -435,6 +447,24 @@ impl Reader<'_> {
         let wrap = wrap.unwrap_or_default();
         let sampler = Sampler { filter: filter.unwrap_or_default(), wrap_u: wrap, wrap_v: wrap };
         texture_file::load(&path, sampler).map(Some).map_err(|e| self.err(&key, &v.span(), e))
+    }
+
+    /// A material's `normal_map` (an image file beside the scene, its
+    /// channels linear, read bilinearly and repeated) with its
+    /// `normal_scale` (default 1).
+    fn normal_map(&self, t: &Table<'_, '_>) -> Result<Option<NormalMap>> {
+        let scale = self.opt(t, "normal_scale", Self::float)?;
+        let Some(v) = self.get(t, "normal_map") else {
+            if let Some(v) = self.get(t, "normal_scale") {
+                let reason = "applies to a normal map; the material names none";
+                return Err(self.err(&join(&t.key, "normal_scale"), &v.span(), reason));
+            }
+            return Ok(None);
+        };
+        let key = join(&t.key, "normal_map");
+        let path = self.beside(self.string(&key, v)?);
+        let texture = texture_file::load(&path, Sampler::default()).map_err(|e| self.err(&key, &v.span(), e))?;
+        Ok(Some(NormalMap { texture, scale: scale.unwrap_or(1.0) }))
     }
 
     /// A light's `spectrum`: a name (`"D65"`, `"mercury"`, …), `{ blackbody = K }`,
@@ -588,7 +618,8 @@ impl Reader<'_> {
                 Shape::Prism { vertices, extrude: self.req(t, "extrude", Self::vec3)? }
             }
             "mesh" => {
-                self.check_keys(t, &["shape", "material", "positions", "triangles", "uvs", "normals", "path"])?;
+                let keys = ["shape", "material", "positions", "triangles", "uvs", "normals", "tangents", "path"];
+                self.check_keys(t, &keys)?;
                 self.mesh(t)?
             }
             other => {
@@ -668,11 +699,11 @@ impl Reader<'_> {
     fn mesh(&self, t: &Table<'_, '_>) -> Result<Shape> {
         if let Some(v) = self.get(t, "path") {
             let key = join(&t.key, "path");
-            if ["positions", "triangles", "uvs", "normals"].iter().any(|k| self.get(t, k).is_some()) {
+            if ["positions", "triangles", "uvs", "normals", "tangents"].iter().any(|k| self.get(t, k).is_some()) {
                 return Err(self.err(
                     &key,
                     &v.span(),
-                    "give either path or positions + triangles (+ uvs, normals), not both",
+                    "give either path or positions + triangles (+ uvs, normals, tangents), not both",
                 ));
             }
             let rel = self.string(&key, v)?;
@@ -746,6 +777,27 @@ impl Reader<'_> {
             }
             None => Vec::new(),
         };
-        Ok(Shape::Mesh { positions, triangles, uvs, normals, tangents: Vec::new() })
+        let tangents = match self.get(t, "tangents") {
+            Some(v) => {
+                let key = join(&t.key, "tangents");
+                self.array(&key, v)?
+                    .iter()
+                    .enumerate()
+                    .map(|(i, tangent)| {
+                        let k = format!("{key}[{i}]");
+                        match self.floats(&k, tangent)?[..] {
+                            [x, y, z, w] => Ok(Vec4::new(x as f32, y as f32, z as f32, w as f32)),
+                            ref x => {
+                                let reason =
+                                    format!("must be [x, y, z, w] (w: ±1, the handedness), got {} numbers", x.len());
+                                Err(self.err(&k, &tangent.span(), reason))
+                            }
+                        }
+                    })
+                    .collect::<Result<Vec<_>>>()?
+            }
+            None => Vec::new(),
+        };
+        Ok(Shape::Mesh { positions, triangles, uvs, normals, tangents })
     }
 }

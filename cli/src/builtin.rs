@@ -93,7 +93,7 @@ pub struct GeneratedScene {
 }
 
 /// The generated built-in scenes.
-pub const GENERATED_SCENES: [GeneratedScene; 3] = [
+pub const GENERATED_SCENES: [GeneratedScene; 4] = [
     GeneratedScene {
         name: "dispersion-test",
         description: "glTF: a grid of prisms, index 1.0 to 2.42 by row, KHR_materials_dispersion 0 to 5 by column",
@@ -111,6 +111,12 @@ pub const GENERATED_SCENES: [GeneratedScene; 3] = [
         description: "glTF: a gold ring in low sun with the cusped caustic of its inner wall, a rough copper and a polished silver ball",
         document: crate::ring::document,
         settings: crate::ring::settings,
+    },
+    GeneratedScene {
+        name: "pool",
+        description: "glTF: the sun through rippled water (a normal map) draws a net of bright lines on a tiled floor",
+        document: crate::pool::document,
+        settings: crate::pool::settings,
     },
 ];
 

@@ -13,6 +13,7 @@ pub mod obj;
 pub mod output;
 pub mod partial;
 pub mod patterns;
+pub mod pool;
 pub mod progress_bar;
 pub mod render_job;
 pub mod ring;

@@ -155,7 +155,7 @@ fn unknown_scenes_and_bad_flags_exit_2() {
     let o = prismatic(&["render", "teapot"], dir.path());
     assert_eq!(o.status.code(), Some(2));
     assert!(text(&o).1.contains(
-        "built-in scenes are: spectrum, caustic, sphere, softbox, room, prism, lamps, recombine, rainbow, coated, frosted, dispersion-test, sunlit-glass, ring"
+        "built-in scenes are: spectrum, caustic, sphere, softbox, room, prism, lamps, recombine, rainbow, coated, frosted, dispersion-test, sunlit-glass, ring, pool"
     ));
     let o = prismatic(&["render", "sphere", "--bands", "0"], dir.path());
     assert_eq!(o.status.code(), Some(2));

@@ -378,15 +378,7 @@ impl Images<'_> {
 
     /// The image `texture` shows (decoded once) with its sampler.
     fn texture(&mut self, texture: &gltf::Texture<'_>) -> Result<Texture, GltfError> {
-        let image = texture.source();
-        let decoded = match self.decoded.get(&image.index()) {
-            Some(t) => t.clone(),
-            None => {
-                let t = self.decode(&image)?;
-                self.decoded.insert(image.index(), t.clone());
-                t
-            }
-        };
+        let decoded = self.decoded(&texture.source())?;
         let sampler = texture.sampler();
         let wrap = |w: WrappingMode| match w {
             WrappingMode::Repeat => Wrap::Repeat,
@@ -406,21 +398,23 @@ impl Images<'_> {
     /// The mean linear colour of a texture's image (what an emissive
     /// texture emits on average).
     fn mean_colour(&mut self, info: &gltf::texture::Info<'_>) -> Result<Vec3, GltfError> {
-        let image = info.texture().source();
-        let decoded = match self.decoded.get(&image.index()) {
-            Some(t) => t.clone(),
-            None => {
-                let t = self.decode(&image)?;
-                self.decoded.insert(image.index(), t.clone());
-                t
-            }
-        };
+        let decoded = self.decoded(&info.texture().source())?;
         let channel = |x: u32, shift: u32| srgb_to_linear((x >> shift) & 0xff);
         let sum: Vec3 = decoded.texels.iter().map(|&x| Vec3::new(channel(x, 0), channel(x, 8), channel(x, 16))).sum();
         Ok(sum / decoded.texels.len().max(1) as f32)
     }
 
-    /// An image's pixels as 8-bit sRGB texels (grey images as grey, alpha
+    /// `image` decoded, once however many textures show it.
+    fn decoded(&mut self, image: &gltf::Image<'_>) -> Result<Texture, GltfError> {
+        if let Some(t) = self.decoded.get(&image.index()) {
+            return Ok(t.clone());
+        }
+        let t = self.decode(image)?;
+        self.decoded.insert(image.index(), t.clone());
+        Ok(t)
+    }
+
+    /// An image's pixels as 8-bit texels (grey images as grey, alpha
     /// left out, 16-bit channels to their high byte).
     fn decode(&self, image: &gltf::Image<'_>) -> Result<Texture, GltfError> {
         use gltf::image::Format;
@@ -447,7 +441,7 @@ impl Images<'_> {
             Format::R16G16B16 => (3, 2),
             Format::R16G16B16A16 => (4, 2),
             other => {
-                return Err(GltfError::new(&path, format!("{other:?} images are not supported as base colour")));
+                return Err(GltfError::new(&path, format!("{other:?} images are not supported as textures")));
             }
         };
         // The most significant byte of each channel (16-bit channels are native-endian).

@@ -414,10 +414,10 @@ impl PreparedScene {
     /// its lights' cosines with: the mesh's vertex normals interpolated
     /// there (else its triangle's), tilted by its material's normal map
     /// ([`mapped_normal`]), and bent where they must be ([`shading_normal`]);
-    /// the geometric normal of flat triangles without a map and of other shapes. Which side of
-    /// the surface a ray is on stays the geometric normal's (coloured
-    /// glass's absorption, where photons are stored and gathered, the
-    /// bounces of indirect light's photons).
+    /// the geometric normal of flat triangles without a map and of other
+    /// shapes. Which side of the surface a ray is on stays the geometric
+    /// normal's (coloured glass's absorption, where photons are stored and
+    /// gathered, the bounces of indirect light's photons).
     #[inline]
     pub fn scattering_normal(&self, hit: &Hit, direction: Vec3) -> Vec3 {
         self.scattering_normal_at(hit.object, hit.triangle, hit.point, hit.normal, direction)
@@ -446,8 +446,9 @@ impl PreparedScene {
         let interpolated = normals.map_or(geometric, |n| n.at(tri, point));
         let tilted = match (tangents, &self.scene.materials[self.scene.objects[object].material].normal_map) {
             (Some(frame), Some(map)) => {
-                // The map tilts the side the triangle faces; a normal that
-                // disagrees with the winding is left for shading_normal to drop.
+                // The map tilts the outward normal; shading_normal turns the
+                // result to the ray's side (or drops it, where it disagrees
+                // with the winding).
                 let uv = self.texture_uvs[object][triangle as usize].at(tri, point);
                 let texel = sample_linear(&map.texture, uv);
                 mapped_normal(interpolated.normalize_or(geometric), frame.at(tri, point), frame.sign, texel, map.scale)

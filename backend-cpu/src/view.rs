@@ -29,6 +29,8 @@ use prismatic_core::model::light_range::range_window;
 use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::model::scene::Light;
 use prismatic_core::optics::fresnel::reflect;
+use prismatic_core::optics::metal::MetalOptics;
+use prismatic_core::optics::microfacet::Ggx;
 use prismatic_core::optics::scatter::{
     self, Face, scatter_dielectric, scatter_metal, scatter_rough_dielectric, split_rough_dielectric,
 };
@@ -180,13 +182,14 @@ impl Shader<'_> {
         // The rays as they arrive: what coloured glass left of those that crossed it.
         let mut arrived = [rays[0]; 8];
         arrived[..rays.len()].copy_from_slice(rays);
-        let t = hit.t.to_array();
+        let (t, triangle) = (hit.t.to_array(), hit.triangle.to_array());
         for (i, r) in arrived[..rays.len()].iter_mut().enumerate() {
             if object[i] < 0.0 || diffuse.to_bitmask() & (1 << i) != 0 || r.depth >= self.scene.plan.max_depth {
                 continue;
             }
             let (p, n) = (point.lane(i), normal.lane(i));
             let surface = &self.scene.surfaces[object[i] as usize];
+            let facets = self.scene.facets_at(object[i] as usize, triangle[i] as u32, p);
             if let Surface::Dielectric(glass) = surface {
                 let kept = glass_transmittance(glass, r.dir, hit.normal.lane(i), t[i], r.band);
                 r.tint *= kept;
@@ -202,6 +205,7 @@ impl Shader<'_> {
                 }
                 // A metal's highlights, facet and Fresnel: the core's scalar rules, ray by ray.
                 Surface::Metal(metal) => {
+                    let metal = &MetalOptics { ggx: facets, ..*metal };
                     let lambda_nm = stored_wavelength(&self.scene.bands, r.band, r.lambda_nm);
                     sum[r.pixel as usize] +=
                         r.tint * self.view.metal_highlights(r.dir, (p, n), metal, r.band, lambda_nm);
@@ -228,7 +232,7 @@ impl Shader<'_> {
                             let share = r.weight * w.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * w, weight: share, band, lambda_nm, hero, ..*r };
                             let face = glass.face(band, lambda_nm, &self.scene.bands);
-                            self.at_glass(&tinted, (p, n), (face, glass), one_branch, (queue, sum));
+                            self.at_glass(&tinted, (p, n), (face, glass, facets), one_branch, (queue, sum));
                         }
                     }
                     None => {
@@ -236,7 +240,7 @@ impl Shader<'_> {
                             let share = r.weight * info.weight.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * info.weight, weight: share, band: b as u16, ..*r };
                             let face = glass.face(b as u16, None, &self.scene.bands);
-                            self.at_glass(&tinted, (p, n), (face, glass), one_branch, (queue, sum));
+                            self.at_glass(&tinted, (p, n), (face, glass, facets), one_branch, (queue, sum));
                         }
                     }
                 },
@@ -244,7 +248,7 @@ impl Shader<'_> {
                 // glass's facets and highlights are per ray: the scalar rules.
                 Surface::Dielectric(glass) if glass.film.is_some() || glass.ggx.is_some() => {
                     let face = glass.face(r.band, r.lambda_nm, &self.scene.bands);
-                    self.at_glass(r, (p, n), (face, glass), one_branch, (queue, sum));
+                    self.at_glass(r, (p, n), (face, glass, facets), one_branch, (queue, sum));
                 }
                 Surface::Dielectric(glass) => {
                     glass_ior[i] = glass.path_ior(r.band, r.lambda_nm, &self.scene.bands);
@@ -261,21 +265,22 @@ impl Shader<'_> {
         }
     }
 
-    /// [`spawn_at_glass`] for one ray at `p` (outward normal `n`), with
-    /// rough glass's highlights added to its pixel's `sum`.
+    /// [`spawn_at_glass`] for one ray at `p` (outward normal `n`; the
+    /// glass's facets there, `None` where polished), with rough glass's
+    /// highlights added to its pixel's `sum`.
     fn at_glass(
         &self,
         r: &ViewRay,
         (p, n): (Vec3, Vec3),
-        (face, glass): (Face, &DielectricOptics),
+        (face, glass, facets): (Face, &DielectricOptics, Option<Ggx>),
         one_branch: bool,
         (queue, sum): (&mut Vec<ViewRay>, &mut [Vec3]),
     ) {
-        if let Some(ggx) = glass.ggx {
+        if let Some(ggx) = facets {
             let crossing = glass.sheet_crossing_rgb(r.band);
             sum[r.pixel as usize] += r.tint * self.view.rough_glass_highlights(r.dir, (p, n), (face, ggx), crossing);
         }
-        spawn_at_glass(r, p, n, (face, glass), one_branch, queue);
+        spawn_at_glass(r, p, n, (face, glass, facets), one_branch, queue);
     }
 
     /// Radiance toward the viewer at diffuse hits (lanes in `mask`), less
@@ -439,16 +444,16 @@ impl Shader<'_> {
 /// surface point `p` (outward normal `outward`; the path's index and the
 /// glass), as the reference recurses (with `one_branch`, a sampled path:
 /// the one branch its number chooses, as photons choose; on rough glass,
-/// off the facet the ray's numbers draw).
+/// whose `facets` are `Some`, off the facet the ray's numbers draw).
 fn spawn_at_glass(
     r: &ViewRay,
     p: Vec3,
     outward: Vec3,
-    (face, glass): (Face, &DielectricOptics),
+    (face, glass, facets): (Face, &DielectricOptics, Option<Ggx>),
     one_branch: bool,
     queue: &mut Vec<ViewRay>,
 ) {
-    if let Some(ggx) = glass.ggx {
+    if let Some(ggx) = facets {
         let crossing = glass.sheet_crossing_rgb(r.band);
         let mut follow = |out: Ray, weight: f32, crossed: bool| {
             let f = if crossed { crossing * weight } else { Vec3::splat(weight) };

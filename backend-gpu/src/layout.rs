@@ -179,8 +179,9 @@ pub struct GpuSurface {
     pub absorption: [f32; 3],
     /// Index of the per-band absorption coefficients in the tables buffer.
     pub absorption_first: u32,
-    /// Index of the texture in the tables buffer: 256 sRGB decoding
-    /// entries, then the texels (see `SURFACE_HAS_TEXTURE`).
+    /// Index of the texture in the tables buffer (a diffuse surface's base
+    /// colour, a metal's or rough glass's roughness map): 256 decoding
+    /// entries (sRGB, or linear), then the texels (see `SURFACE_HAS_TEXTURE`).
     pub texture_first: u32,
     /// Texels per row.
     pub texture_width: u32,

@@ -123,13 +123,21 @@ impl EncodedScene {
             }
             e.objects.push(o);
         }
-        for (surface, uvs) in scene.surfaces.iter().zip(&scene.texture_uvs) {
+        for (i, (surface, uvs)) in scene.surfaces.iter().zip(&scene.texture_uvs).enumerate() {
             let mut s = e.surface(surface);
-            if let Surface::Diffuse { texture: Some(t), .. } = surface {
+            // A base colour (sRGB), or a metal's or rough glass's roughness map (linear).
+            let texture = match surface {
+                Surface::Diffuse { texture: Some(t), .. } => Some((t, true)),
+                Surface::Metal(_) | Surface::Dielectric(_) => {
+                    scene.scene.materials[scene.scene.objects[i].material].roughness_map.as_ref().map(|t| (t, false))
+                }
+                _ => None,
+            };
+            if let Some((t, srgb)) = texture {
                 s.flags |= SURFACE_HAS_TEXTURE | texture_flags(t.sampler);
                 s.texture_width = t.width;
                 s.texture_height = t.height;
-                s.texture_first = *textures.entry((t.texels.as_ptr(), true)).or_insert_with(|| e.texture(t, true));
+                s.texture_first = *textures.entry((t.texels.as_ptr(), srgb)).or_insert_with(|| e.texture(t, srgb));
                 s.uv_first = e.geometry.len() as u32;
                 for uv in uvs {
                     e.geometry.extend([[uv.uv0.x, uv.uv0.y, uv.du1.x, uv.du1.y], [uv.du2.x, uv.du2.y, 0.0, 0.0]]);

@@ -239,6 +239,7 @@ fn prelude(stack: u32) -> String {
     f("BARYCENTRIC_EPS", BARYCENTRIC_EPS);
     f("MIN_REFLECTED_LIFT", prismatic_core::geometry::shading::MIN_REFLECTED_LIFT);
     f("MIN_TANGENT_SHARE", prismatic_core::geometry::normal_map::MIN_TANGENT_SHARE);
+    f("MIN_ALPHA", prismatic_core::optics::microfacet::MIN_ALPHA);
     f("MIN_MAPPED_LENGTH", prismatic_core::geometry::normal_map::MIN_MAPPED_LENGTH);
     f("BOX_MARGIN", prismatic_core::geometry::bvh::BOX_MARGIN);
     f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);

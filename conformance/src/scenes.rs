@@ -337,9 +337,11 @@ pub fn metals() -> PreparedScene {
 }
 
 /// The paper's sphere frosted (roughness 0.3), beside a frosted blue
-/// sheet (roughness 0.5) standing in the spot's cone: rough glass's facets
+/// sheet (roughness 0.5, scaled across it by a roughness map from
+/// polished to whole) standing in the spot's cone: rough glass's facets
 /// and Fresnel per band in photons and view rays, its highlights of the
-/// spot on both sides, and a tinted sheet's crossings off its facets.
+/// spot on both sides, a tinted sheet's crossings off its facets, and
+/// facets that change with the texel.
 pub fn frosted_glass() -> PreparedScene {
     let mut scene = glass_sphere().scene;
     let MaterialKind::Dielectric { roughness, .. } = &mut scene.materials[1].kind else {
@@ -354,14 +356,18 @@ pub fn frosted_glass() -> PreparedScene {
         film: None,
         roughness: 0.5,
     };
-    scene.materials.push(material("frosted sheet", sheet));
+    // Eight stripes along u, green 0 (polished) to 255, blended between.
+    let texels = (0..8u32).map(|k| (k * 255 / 7) << 8).collect();
+    let sampler = Sampler { filter: Filter::Linear, wrap_u: Wrap::ClampToEdge, wrap_v: Wrap::ClampToEdge };
+    let stripes = Texture { name: "stripes".into(), width: 8, height: 1, texels, sampler };
+    scene.materials.push(Material { roughness_map: Some(stripes), ..material("frosted sheet", sheet) });
     let (x, y, z) = (-0.9, [0.0, 2.2], [-1.6, 1.2]);
     let positions =
         vec![Vec3::new(x, y[0], z[0]), Vec3::new(x, y[0], z[1]), Vec3::new(x, y[1], z[1]), Vec3::new(x, y[1], z[0])];
     let square = Shape::Mesh {
         positions,
         triangles: vec![[0, 1, 2], [0, 2, 3]],
-        uvs: Vec::new(),
+        uvs: [[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]].map(glam::Vec2::from).to_vec(),
         normals: Vec::new(),
         tangents: Vec::new(),
     };

@@ -29,6 +29,7 @@ pub fn white(name: &str) -> Material {
         name: name.into(),
         kind: MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: None, texture: None, emission: Vec3::ZERO },
         normal_map: None,
+        roughness_map: None,
     }
 }
 
@@ -45,6 +46,7 @@ pub fn glass(name: &str, dispersion: Dispersion) -> Material {
             roughness: 0.0,
         },
         normal_map: None,
+        roughness_map: None,
     }
 }
 
@@ -230,7 +232,8 @@ pub fn beam_onto_a_wall(photons: u32, glass: Material, shape: Shape) -> Prepared
 }
 
 /// A camera on the x axis looking head on through `sheet` (an open mesh:
-/// one square in the plane x = 0) at a background of radiance 1; behind
+/// one square in the plane x = 0, its texture coordinates from 0 to 1
+/// across it) at a background of radiance 1; behind
 /// the camera a black wall, which is what the sheet's reflection shows
 /// (3×3 pixels: the middle one looks straight through).
 pub fn view_through_a_sheet(sheet: Material) -> PreparedScene {
@@ -240,6 +243,7 @@ pub fn view_through_a_sheet(sheet: Material) -> PreparedScene {
         name: "black".into(),
         kind: MaterialKind::Diffuse { albedo: Vec3::ZERO, checker: None, texture: None, emission: Vec3::ZERO },
         normal_map: None,
+        roughness_map: None,
     };
     let square =
         [Vec3::new(0.0, -2.0, -2.0), Vec3::new(0.0, 2.0, -2.0), Vec3::new(0.0, 2.0, 2.0), Vec3::new(0.0, -2.0, 2.0)];
@@ -258,7 +262,7 @@ pub fn view_through_a_sheet(sheet: Material) -> PreparedScene {
                 shape: Shape::Mesh {
                     positions: square.to_vec(),
                     triangles: vec![[0, 1, 2], [0, 2, 3]],
-                    uvs: Vec::new(),
+                    uvs: vec![[0.0, 0.0].into(), [1.0, 0.0].into(), [1.0, 1.0].into(), [0.0, 1.0].into()],
                     normals: Vec::new(),
                     tangents: Vec::new(),
                 },

@@ -23,6 +23,7 @@ fn floor() -> (Material, Object) {
         name: "floor".into(),
         kind: MaterialKind::Diffuse { albedo: Vec3::splat(ALBEDO), checker: None, texture: None, emission: Vec3::ZERO },
         normal_map: None,
+        roughness_map: None,
     };
     (m, Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 })
 }

@@ -19,6 +19,7 @@ fn diffuse(name: &str, albedo: Vec3, emission: Vec3) -> Material {
         name: name.into(),
         kind: MaterialKind::Diffuse { albedo, checker: None, texture: None, emission },
         normal_map: None,
+        roughness_map: None,
     }
 }
 

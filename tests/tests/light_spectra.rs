@@ -186,6 +186,7 @@ fn sodium_on_green(backend: &mut dyn prismatic_core::Backend, render: RenderSett
             emission: Vec3::ZERO,
         },
         normal_map: None,
+        roughness_map: None,
     };
     let scene = Scene {
         render,

@@ -25,6 +25,7 @@ mod photon_map;
 mod physics;
 mod progressive;
 mod rough_glass;
+mod roughness_maps;
 mod scene_files;
 mod smooth_shading;
 mod spectral_truth;

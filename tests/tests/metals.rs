@@ -23,6 +23,7 @@ fn metal(color: Vec3, roughness: f32) -> Material {
         name: "metal".into(),
         kind: MaterialKind::Metal { color: MetalColor::Rgb(color), roughness },
         normal_map: None,
+        roughness_map: None,
     }
 }
 
@@ -129,6 +130,7 @@ fn measured_gold_reflects_each_wavelength_by_its_complex_index() {
         name: "gold".into(),
         kind: MaterialKind::Metal { color: MetalColor::Measured(NamedMetal::Gold), roughness: 0.0 },
         normal_map: None,
+        roughness_map: None,
     };
     let mut scene = folded_beam(gold, PHOTONS, BandSpec::Physical(16));
     scene.render.wavelengths = WavelengthSampling::Continuous;

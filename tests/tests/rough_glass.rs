@@ -20,9 +20,9 @@ use prismatic_tests::backends::{every_backend, frame, trace};
 use prismatic_tests::{prepare, settings, view_through_a_sheet, white};
 
 /// Seven bands' indices, far apart so that their spreads differ clearly.
-const INDICES: [f32; 7] = [1.45, 1.48, 1.51, 1.54, 1.57, 1.60, 1.63];
+pub(crate) const INDICES: [f32; 7] = [1.45, 1.48, 1.51, 1.54, 1.57, 1.60, 1.63];
 
-fn rough(dispersion: Dispersion, thin: bool, roughness: f32) -> Material {
+pub(crate) fn rough(dispersion: Dispersion, thin: bool, roughness: f32) -> Material {
     Material {
         name: "frosted".into(),
         kind: MaterialKind::Dielectric {
@@ -34,13 +34,15 @@ fn rough(dispersion: Dispersion, thin: bool, roughness: f32) -> Material {
             roughness,
         },
         normal_map: None,
+        roughness_map: None,
     }
 }
 
-/// A closed box of `glass` from z = −depth to 0, ±width in x and y, lit
-/// straight down at its middle by a thin beam; inside it, `floor` below
-/// the top, a white disc catches what enters.
-fn beam_into_a_block(glass: Material, photons: u32, floor: f32) -> PreparedScene {
+/// A closed box of `glass` from z = −depth to 0, ±width in x and y (its
+/// texture coordinates (x, y) from 0 to 1 across it), lit straight down
+/// at its middle by a thin beam; inside it, `floor` below the top, a white
+/// disc catches what enters.
+pub(crate) fn beam_into_a_block(glass: Material, photons: u32, floor: f32) -> PreparedScene {
     let (w, d) = (6.0f32, 3.0f32);
     let positions: Vec<Vec3> = (0..8)
         .map(|i| {
@@ -52,6 +54,7 @@ fn beam_into_a_block(glass: Material, photons: u32, floor: f32) -> PreparedScene
         })
         .collect();
     // Outward winding: each face's corners counter-clockwise seen from outside.
+    let uvs = positions.iter().map(|p| [(p.x / w + 1.0) * 0.5, (p.y / w + 1.0) * 0.5].into()).collect();
     let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
     let triangles = quads.iter().flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]).collect();
     let mut render = settings(photons, BandSpec::Paper7);
@@ -69,7 +72,7 @@ fn beam_into_a_block(glass: Material, photons: u32, floor: f32) -> PreparedScene
         materials: vec![glass, white("floor")],
         objects: vec![
             Object {
-                shape: Shape::Mesh { positions, triangles, uvs: Vec::new(), normals: Vec::new(), tangents: Vec::new() },
+                shape: Shape::Mesh { positions, triangles, uvs, normals: Vec::new(), tangents: Vec::new() },
                 material: 0,
             },
             Object {
@@ -87,7 +90,7 @@ fn beam_into_a_block(glass: Material, photons: u32, floor: f32) -> PreparedScene
 
 /// How far from the axis the median facet's refraction of index `n`
 /// reaches at depth `floor` below the surface (GGX width `alpha`).
-fn median_radius(alpha: f64, n: f64, floor: f64) -> f64 {
+pub(crate) fn median_radius(alpha: f64, n: f64, floor: f64) -> f64 {
     let facet = alpha.atan();
     floor * (facet - (facet.sin() / n).asin()).tan()
 }

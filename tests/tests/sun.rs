@@ -29,6 +29,7 @@ fn scene(photons: u32) -> PreparedScene {
         name: "floor".into(),
         kind: MaterialKind::Diffuse { albedo: Vec3::splat(ALBEDO), checker: None, texture: None, emission: Vec3::ZERO },
         normal_map: None,
+        roughness_map: None,
     };
     prepare(Scene {
         render,

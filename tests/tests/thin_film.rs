@@ -32,6 +32,7 @@ fn coated_sheet() -> Material {
             roughness: 0.0,
         },
         normal_map: None,
+        roughness_map: None,
     }
 }
 

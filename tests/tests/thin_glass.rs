@@ -26,6 +26,7 @@ fn sheet(ior: f32) -> Material {
             roughness: 0.0,
         },
         normal_map: None,
+        roughness_map: None,
     }
 }
 

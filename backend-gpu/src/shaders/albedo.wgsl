@@ -1,6 +1,8 @@
-// A diffuse surface's albedo at a hit (checker, texture): twin of
-// prismatic_core::prepared::PreparedScene::albedo_at over the scene's
-// bindings (scene.wgsl), shared by the view rays and light tracing.
+// What a surface's textures make of it at a hit: a diffuse surface's
+// albedo (checker, texture) and a metal's or rough glass's facets (their
+// roughness map): twins of prismatic_core::prepared::PreparedScene's
+// albedo_at and facets over the scene's bindings (scene.wgsl), shared by
+// the photons, the view rays and light tracing.
 
 // PreparedScene::albedo_at: Surface::albedo_at (checker evaluated a hair
 // below the surface) times the texture at the hit's coordinates.
@@ -29,7 +31,23 @@ fn texture_coordinates(obj: GpuObject, s: GpuSurface, tri: u32, p: vec3<f32>) ->
     return a.xy + a.zw * b.x + du2 * b.y;
 }
 
-// A diffuse surface's base-colour texture (its flags hold the sampler's bits).
+// PreparedScene::facets: the GGX α of the metal (in white_ior) or rough
+// glass (in albedo.x) `s` at `hit`, its roughness scaled by its roughness
+// map's green channel there (Ggx::scaled, so α by its square); 0 where
+// polished.
+fn facets_alpha(hit: Hit, s: GpuSurface) -> f32 {
+    let alpha = select(s.albedo.x, s.white_ior, s.kind == SURFACE_METAL);
+    if alpha == 0.0 || (s.flags & SURFACE_HAS_TEXTURE) == 0u {
+        return alpha;
+    }
+    let uv = texture_coordinates(objects[hit.object], s, hit.triangle, hit.point);
+    let g = sample_texture(surface_texture(s), uv).y;
+    let scaled = alpha * (g * g);
+    return select(0.0, max(scaled, MIN_ALPHA), scaled > 0.0);
+}
+
+// A surface's texture: a diffuse surface's base colour, a metal's or
+// rough glass's roughness map (its flags hold the sampler's bits).
 fn surface_texture(s: GpuSurface) -> TextureRef {
     return TextureRef(s.texture_first, s.texture_width, s.texture_height, s.flags);
 }

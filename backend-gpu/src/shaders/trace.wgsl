@@ -170,9 +170,9 @@ fn arrives_at_specular(p: Path, hit: Hit, s: GpuSurface, index: u32) -> bool {
 fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -> bool {
     let n = scattering_normal(hit, (*p).dir);
     if s.kind == SURFACE_METAL {
-        // A facet of the metal (α in white_ior), and its Fresnel times the
-        // unshadowed share as the path's survival probability.
-        let alpha = s.white_ior;
+        // A facet of the metal, and its Fresnel times the unshadowed share
+        // as the path's survival probability.
+        let alpha = facets_alpha(hit, s);
         var u = vec2<f32>(0.0);
         if alpha > 0.0 {
             let d = bounce_dim((*p).band, (*p).bounces);
@@ -200,8 +200,8 @@ fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -
     let u = random_f32(params.seed, index, scatter_dim((*p).band, (*p).bounces));
     let face = path_face(s, (*p).band, (*p).lambda_nm);
     let before = (*p).dir;
-    // Rough glass: α in albedo.x (0: polished).
-    let alpha = s.albedo.x;
+    // Rough glass (α 0: polished).
+    let alpha = facets_alpha(hit, s);
     var crossed = false;
     if alpha > 0.0 {
         // A facet, Fresnel's choice at it, and survival with the unshadowed share.

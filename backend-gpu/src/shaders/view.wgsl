@@ -44,7 +44,9 @@ struct Pending {
     normal: vec3<f32>,
     // NO_SPLIT for a ray to trace, else the next band to hand out.
     next_band: u32,
+    // The glass at `origin` for a band split, and its mesh triangle.
     object: u32,
+    triangle: u32,
     // The path's wavelength (< 0: its band's own index).
     lambda_nm: f32,
     // A sampled path's hero path (0 before the split).
@@ -89,7 +91,7 @@ fn spawn(e: Pending) {
 }
 
 fn spawn_ray(e: Pending, origin: vec3<f32>, dir: vec3<f32>, band: u32, weight: f32, tint: vec3<f32>) {
-    spawn(Pending(origin, weight, dir, band, tint, e.depth + 1u, vec3<f32>(0.0), NO_SPLIT, 0u, e.lambda_nm, e.hero));
+    spawn(Pending(origin, weight, dir, band, tint, e.depth + 1u, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, e.lambda_nm, e.hero));
 }
 
 // One branch off rough glass: its weight times, where it `crossed` a
@@ -107,17 +109,18 @@ fn follow_rough(e: Pending, s: Scattered, w: f32, crossed: bool, crossing: vec3<
 
 // ViewContext::through_dielectric: the Fresnel-weighted reflection and
 // refraction (a jittered path: the one branch its number chooses); rough
-// glass (α in albedo.x): off one facet (through_rough_dielectric), its
-// highlights left to `light_query`.
+// glass: off one facet (through_rough_dielectric), its highlights left to
+// `light_query`.
 fn through_dielectric(e: Pending, face: Face, band: u32, weight: f32, tint: vec3<f32>) {
     let thin = face.thin;
     // What crossing a tinted sheet keeps (1 elsewhere).
     let crossing = sheet_crossing_rgb(surfaces[e.object], band);
     let kept = max(crossing.x, max(crossing.y, crossing.z));
-    let alpha = surfaces[e.object].albedo.x;
+    let hit = Hit(true, 0.0, e.origin, e.normal, e.object, e.triangle);
+    let alpha = facets_alpha(hit, surfaces[e.object]);
     if alpha > 0.0 {
-        let at = Pending(e.origin, weight, e.dir, band, tint, e.depth, e.normal, NO_SPLIT, e.object, e.lambda_nm, e.hero);
-        light_query = LightQuery(true, at, Hit(true, 0.0, e.origin, e.normal, e.object, 0u), face);
+        let at = Pending(e.origin, weight, e.dir, band, tint, e.depth, e.normal, NO_SPLIT, e.object, e.triangle, e.lambda_nm, e.hero);
+        light_query = LightQuery(true, at, hit, face);
         let facet = pixel_facet(scramble, select(0u, params.view_pass, per_pass()), e.hero, e.depth);
         if jittered() {
             let u = pixel_branch(scramble, params.view_pass, e.hero, e.depth);
@@ -355,7 +358,11 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
     let glass = s.kind == SURFACE_DIELECTRIC;
     let crossing = sheet_crossing_rgb(s, e.band);
     var albedo = vec3<f32>(0.0);
+    var alpha = 0.0;
     var lambda = e.lambda_nm;
+    if metal || glass {
+        alpha = facets_alpha(hit, s);
+    }
     if metal {
         if lambda < 0.0 && e.band < params.band_count {
             lambda = bands[e.band].lambda_nm;
@@ -378,7 +385,7 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
         if glass {
             // Either side: a light behind the glass shines through it.
             let wi = hidden_direction(l, hit.point);
-            let f = rough_glass_bsdf(-dir, wi, hit.normal, face, s.albedo.x);
+            let f = rough_glass_bsdf(-dir, wi, hit.normal, face, alpha);
             if f == 0.0 {
                 continue;
             }
@@ -390,7 +397,7 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
         }
         if metal {
             let wi = hidden_direction(l, hit.point);
-            let density = ggx_reflection(s.white_ior, -dir, wi, n);
+            let density = ggx_reflection(alpha, -dir, wi, n);
             if density == 0.0 {
                 continue;
             }
@@ -476,16 +483,16 @@ fn visit_path(e: Pending) -> vec3<f32> {
     // Mirrors, metals and glass scatter about the shading normal.
     var bent = hit;
     bent.normal = scattering_normal(hit, e.dir);
-    if s.kind == SURFACE_METAL && s.white_ior > 0.0 && e.depth < params.max_depth {
+    let alpha = facets_alpha(bent, s);
+    if s.kind == SURFACE_METAL && alpha > 0.0 && e.depth < params.max_depth {
         light_query = LightQuery(true, e, bent, bare_face(1.0, false));
     }
     if e.depth >= params.max_depth {
         return vec3<f32>(0.0);
     }
     if s.kind == SURFACE_METAL {
-        // ViewContext::radiance at a metal: one facet (α in white_ior), the
-        // path weighted by its Fresnel at the path's wavelength times G2/G1.
-        let alpha = s.white_ior;
+        // ViewContext::radiance at a metal: one facet, the path weighted by
+        // its Fresnel at the path's wavelength times G2/G1.
         var u = vec2<f32>(0.0);
         if alpha > 0.0 {
             u = pixel_facet(scramble, select(0u, params.view_pass, per_pass()), e.hero, e.depth);
@@ -512,7 +519,7 @@ fn visit_path(e: Pending) -> vec3<f32> {
     // What coloured glass left of a ray that crossed it.
     let kept = glass_transmittance(s, e.dir, hit.normal, hit.t, e.band);
     let weight = e.weight * max(kept.x, max(kept.y, kept.z));
-    var at = Pending(hit.point, weight, e.dir, e.band, e.tint * kept, e.depth, bent.normal, NO_SPLIT, hit.object, e.lambda_nm, e.hero);
+    var at = Pending(hit.point, weight, e.dir, e.band, e.tint * kept, e.depth, bent.normal, NO_SPLIT, hit.object, hit.triangle, e.lambda_nm, e.hero);
     if e.band == WHITE_BAND && (s.flags & SURFACE_SPLITS_VIEW_RAYS) != 0u {
         at.next_band = 0u;
         spawn(at);
@@ -533,7 +540,7 @@ fn pixel(x: u32, y: u32) -> vec3<f32> {
     }
     let d = params.cam_corner + params.cam_right * (f32(x) + jitter.x) + params.cam_down * (f32(y) + jitter.y);
     let white = vec3<f32>(1.0);
-    stack[0] = Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, white, 0u, vec3<f32>(0.0), NO_SPLIT, 0u, -1.0, 0u);
+    stack[0] = Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, white, 0u, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, -1.0, 0u);
     top = 1u;
     var sum = vec3<f32>(0.0);
     while top > 0u {

@@ -832,12 +832,17 @@ pub struct Material {
     pub kind: MaterialKind,
     /// Tilts its normals by texel (a mesh's with texture coordinates); `None`: none.
     pub normal_map: Option<NormalMap>,
+    /// Scales its roughness by texel (a mesh's with texture coordinates):
+    /// a metal's or rough glass's roughness times the image's green
+    /// channel, read as linear values (glTF's `metallicRoughnessTexture`);
+    /// `None`: its roughness everywhere.
+    pub roughness_map: Option<Texture>,
 }
 
 impl Material {
-    /// A material of `kind` named `name`, without a normal map.
+    /// A material of `kind` named `name`, without a normal or roughness map.
     pub fn new(name: impl Into<String>, kind: MaterialKind) -> Self {
-        Material { name: name.into(), kind, normal_map: None }
+        Material { name: name.into(), kind, normal_map: None, roughness_map: None }
     }
 }
 

@@ -128,7 +128,8 @@ impl Scene {
             let image = match &material.kind {
                 MaterialKind::Diffuse { texture: Some(texture), .. } => Some(("texture", texture)),
                 _ => material.normal_map.as_ref().map(|map| ("normal map", &map.texture)),
-            };
+            }
+            .or(material.roughness_map.as_ref().map(|t| ("roughness map", t)));
             let has_uvs = matches!(&object.shape, Shape::Mesh { uvs, .. } if !uvs.is_empty());
             if let (Some((what, texture)), false) = (image, has_uvs) {
                 return Err(c.err(
@@ -366,6 +367,13 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
     if let Some(map) = &m.normal_map {
         validate_texture(c, "normal_map", &map.texture)?;
         c.finite("normal_scale", map.scale)?;
+    }
+    if let Some(map) = &m.roughness_map {
+        validate_texture(c, "roughness_map", map)?;
+        if !matches!(m.kind, MaterialKind::Metal { .. } | MaterialKind::Dielectric { .. }) {
+            let reason = "scales a metal's or a dielectric's roughness; this material has none";
+            return Err(c.err("roughness_map", reason));
+        }
     }
     match &m.kind {
         MaterialKind::Diffuse { albedo, checker, texture, emission } => {

@@ -26,6 +26,15 @@ impl Ggx {
         Ggx { alpha: (roughness * roughness).max(MIN_ALPHA) }
     }
 
+    /// These facets where a roughness map's texel `scale` (in [0, 1])
+    /// scales the roughness, so α by its square; `None` where it is 0
+    /// (polished there).
+    #[inline]
+    pub fn scaled(self, scale: f32) -> Option<Self> {
+        let alpha = self.alpha * (scale * scale);
+        (alpha > 0.0).then(|| Ggx { alpha: alpha.max(MIN_ALPHA) })
+    }
+
     /// D(m): the density of microfacet normals `m` per solid angle, weighted
     /// so that ∫ D(m) m_z dω = 1. Zero below the horizon.
     pub fn d(&self, m: Vec3) -> f32 {

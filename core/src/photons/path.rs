@@ -112,7 +112,8 @@ pub(crate) fn cross_specular(
             true
         }
         Surface::Metal(metal) => {
-            let (u1, u2) = match metal.ggx {
+            let ggx = scene.facets(hit);
+            let (u1, u2) = match ggx {
                 Some(_) => {
                     let [d1, d2] = dim::bounce(p.band, p.bounces);
                     (random_f32(seed, index, d1), random_f32(seed, index, d2))
@@ -120,7 +121,7 @@ pub(crate) fn cross_specular(
                 None => (0.0, 0.0),
             };
             let lambda_nm = stored_wavelength(&scene.bands, p.band, p.lambda_nm);
-            let reflected = scatter_metal(p.ray.direction, hit.point, normal, metal.ggx, u1, u2).filter(|b| {
+            let reflected = scatter_metal(p.ray.direction, hit.point, normal, ggx, u1, u2).filter(|b| {
                 let share = b.unshadowed * metal.reflectance(b.cos_facet, p.band, lambda_nm, &scene.bands);
                 random_f32(seed, index, dim::scatter(p.band, p.bounces)) < share
             });
@@ -134,7 +135,7 @@ pub(crate) fn cross_specular(
             let u = random_f32(seed, index, dim::scatter(p.band, p.bounces));
             let face = glass.face(p.band, p.lambda_nm, &scene.bands);
             let before = p.ray.direction;
-            let crossed = match glass.ggx {
+            let crossed = match scene.facets(hit) {
                 None => {
                     p.ray = scatter_dielectric(before, hit.point, normal, face, u);
                     p.ray.direction == before

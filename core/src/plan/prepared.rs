@@ -9,6 +9,7 @@ use crate::geometry::texture::{TriangleUv, sample_linear};
 use crate::model::bands::BandTable;
 use crate::model::scene::{Light, Scene, SceneError, Shape};
 use crate::model::spectrum::Spectrum;
+use crate::optics::microfacet::Ggx;
 use crate::optics::surface::Surface;
 use crate::plan::area::AreaLights;
 use crate::plan::drawn_suns::DrawnSuns;
@@ -134,7 +135,8 @@ impl PreparedScene {
             .map(|((o, p), s)| match (&o.shape, p) {
                 (Shape::Mesh { triangles, uvs, .. }, Primitive::Mesh(bvh))
                     if matches!(s, Surface::Diffuse { texture: Some(_), .. })
-                        || scene.materials[o.material].normal_map.is_some() =>
+                        || scene.materials[o.material].normal_map.is_some()
+                        || scene.materials[o.material].roughness_map.is_some() =>
                 {
                     bvh.sources
                         .iter()
@@ -407,6 +409,32 @@ impl PreparedScene {
             _ => Vec2::ZERO,
         };
         self.surfaces[object].albedo_at(point, normal, uv)
+    }
+
+    /// The GGX facets of the metal or rough glass at `hit`: its surface's,
+    /// their roughness scaled by its roughness map's green channel there
+    /// ([`Ggx::scaled`]); `None` where it is polished (and on other
+    /// surfaces).
+    #[inline]
+    pub fn facets(&self, hit: &Hit) -> Option<Ggx> {
+        self.facets_at(hit.object, hit.triangle, hit.point)
+    }
+
+    /// [`PreparedScene::facets`] at `point` on `object`'s mesh triangle `triangle`.
+    #[inline]
+    pub fn facets_at(&self, object: usize, triangle: u32, point: Vec3) -> Option<Ggx> {
+        let ggx = match &self.surfaces[object] {
+            Surface::Metal(metal) => metal.ggx,
+            Surface::Dielectric(glass) => glass.ggx,
+            _ => None,
+        }?;
+        let map = &self.scene.materials[self.scene.objects[object].material].roughness_map;
+        match (map, &self.primitives[object], self.texture_uvs[object].get(triangle as usize)) {
+            (Some(map), Primitive::Mesh(bvh), Some(uv)) => {
+                ggx.scaled(sample_linear(map, uv.at(&bvh.triangles[triangle as usize], point)).y)
+            }
+            _ => Some(ggx),
+        }
     }
 
     /// The normal a ray arriving along unit `direction` at `hit` scatters

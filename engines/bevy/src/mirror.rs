@@ -266,7 +266,7 @@ fn build_scene(
             _ => return Err(format!("object {i} needs exactly one of Glass and Receiver")),
         };
         scene_objects.push(Object { shape: placed(&shape.0, at), material: scene_materials.len() });
-        scene_materials.push(Material { name: format!("object{i}"), kind, normal_map: None });
+        scene_materials.push(Material { name: format!("object{i}"), kind, normal_map: None, roughness_map: None });
     }
     let mesh = |handle: &Mesh3d, at, what: &str| {
         meshes.get(&handle.0).and_then(|m| mesh_shape(m, at)).ok_or(format!("{what}'s mesh has no positions here"))
@@ -281,7 +281,7 @@ fn build_scene(
             roughness: glass.roughness,
         };
         scene_objects.push(Object { shape: mesh(handle, at, "a Glass mesh")?, material: scene_materials.len() });
-        scene_materials.push(Material { name: format!("glass mesh {i}"), kind, normal_map: None });
+        scene_materials.push(Material { name: format!("glass mesh {i}"), kind, normal_map: None, roughness_map: None });
     }
     for (i, (material, handle, at)) in receiver_meshes.iter().enumerate() {
         let Some(m) = materials.get(&material.0) else { continue };
@@ -300,7 +300,12 @@ fn build_scene(
         };
         scene_objects
             .push(Object { shape: mesh(handle, at, "a CausticMaterial mesh")?, material: scene_materials.len() });
-        scene_materials.push(Material { name: format!("receiver mesh {i}"), kind, normal_map: None });
+        scene_materials.push(Material {
+            name: format!("receiver mesh {i}"),
+            kind,
+            normal_map: None,
+            roughness_map: None,
+        });
     }
     // A layer's irradiance is in Bevy's photometric units; an image's pixels in the settings' exposure.
     let exposure = layer.map_or(settings.0.exposure, |l| l.lux_per_watt);

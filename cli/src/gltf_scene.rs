@@ -22,7 +22,7 @@ use crate::texture_file;
 use glam::{Affine2, Mat3, Mat4, Vec2, Vec3, Vec4};
 use gltf::khr_lights_punctual::Kind;
 use gltf::texture::{MagFilter, WrappingMode};
-use prismatic_core::geometry::texture::srgb_to_linear;
+use prismatic_core::geometry::texture::{linear_channel, srgb_to_linear};
 use prismatic_core::model::mesh::open_edge;
 use prismatic_core::model::scene::{
     Attenuation, Camera, EnvironmentMap, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, NormalMap, Object,
@@ -328,17 +328,19 @@ struct Images<'a> {
 }
 
 impl Images<'_> {
-    /// The base-colour texture `info` names, with its sampler and the
-    /// `KHR_texture_transform` of its coordinates; `None` (and a line in
-    /// `unused`) when it reads a texture coordinate set other than 0.
-    fn base_color(
+    /// The base-colour or metallic-roughness texture `info` names, with
+    /// its sampler and the `KHR_texture_transform` of its coordinates;
+    /// `None` (and `other_set` in `unused`) when it reads a texture
+    /// coordinate set other than 0.
+    fn texture_info(
         &mut self,
         info: &gltf::texture::Info<'_>,
+        other_set: &'static str,
         unused: &mut Vec<&'static str>,
     ) -> Result<Option<(Texture, Option<Affine2>)>, GltfError> {
         let transform = info.texture_transform();
         if transform.as_ref().and_then(|t| t.tex_coord()).unwrap_or(info.tex_coord()) != 0 {
-            unused.push("baseColorTexture on a texture coordinate set other than 0");
+            unused.push(other_set);
             return Ok(None);
         }
         let transform = transform.map(|t| uv_transform(t.offset(), t.rotation(), t.scale()));
@@ -476,14 +478,20 @@ fn material(
     let name = m.name().map_or_else(|| path.clone(), str::to_string);
     let pbr = m.pbr_metallic_roughness();
     let mut unused = Vec::new();
-    if pbr.metallic_roughness_texture().is_some() {
-        unused.push("metallicRoughnessTexture");
-    }
     // occlusionTexture is not left out but not needed: it bakes for
     // rasterisers the shadowing that traced rays find themselves.
+    let metal_roughness = match pbr.metallic_roughness_texture() {
+        Some(info) => images.texture_info(
+            &info,
+            "metallicRoughnessTexture on a texture coordinate set other than 0",
+            &mut unused,
+        )?,
+        None => None,
+    };
     let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor());
-    let metallic = pbr.metallic_factor();
-    let glass_or_metal = transmission > 0.0 || metallic >= METAL_METALLIC;
+    let metal =
+        transmission <= 0.0 && is_metal(pbr.metallic_factor(), metal_roughness.as_ref().map(|(t, _)| t), &mut unused);
+    let glass_or_metal = transmission > 0.0 || metal;
     let mut emission = emission(m);
     if glass_or_metal && emission != Vec3::ZERO {
         unused.push("emission of glass or a metal (only diffuse surfaces emit)");
@@ -521,10 +529,7 @@ fn material(
             // Frosted glass: its transmission and reflection spread by GGX.
             roughness: pbr.roughness_factor(),
         }
-    } else if metallic >= METAL_METALLIC {
-        if metallic < 1.0 {
-            unused.push("metallicFactor between 0 and 1 (drawn as a whole metal)");
-        }
+    } else if metal {
         if pbr.base_color_texture().is_some() {
             unused.push("baseColorTexture of a metal (its colour is baseColorFactor)");
         }
@@ -535,28 +540,36 @@ fn material(
             roughness: pbr.roughness_factor(),
         }
     } else {
-        if metallic > 0.0 {
-            unused.push("metallicFactor between 0 and 1 (drawn diffuse)");
-        }
         let [r, g, b, _] = pbr.base_color_factor();
         let texture = match pbr.base_color_texture() {
-            Some(info) => images.base_color(&info, &mut unused)?,
+            Some(info) => {
+                images.texture_info(&info, "baseColorTexture on a texture coordinate set other than 0", &mut unused)?
+            }
             None => None,
         };
         let (texture, transform) = texture.unzip();
         uv_transform = transform.flatten();
         MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission }
     };
-    // The mesh has one set of coordinates: its textures must agree on their transform.
+    // The mesh has one set of coordinates: its textures must agree on their
+    // transform (the first texture's, the base colour's where it has one).
+    let mut transform = has_base_colour_texture(&kind).then_some(uv_transform);
+    let mut agrees = |t: Option<Affine2>| *transform.get_or_insert(t) == t;
+    // The green channel scales a metal's or glass's roughness (a diffuse
+    // surface has none to scale).
+    let roughness_map = match metal_roughness {
+        Some((texture, t)) if glass_or_metal && agrees(t) => Some(texture),
+        Some(_) if glass_or_metal => {
+            unused.push("metallicRoughnessTexture with another KHR_texture_transform than the baseColorTexture's");
+            None
+        }
+        _ => None,
+    };
     let normal_map = match m.normal_texture() {
         Some(info) => match images.normal_map(&info, &mut unused)? {
-            Some((map, transform)) if !has_base_colour_texture(&kind) => {
-                uv_transform = transform;
-                Some(map)
-            }
-            Some((map, transform)) if transform == uv_transform => Some(map),
+            Some((map, t)) if agrees(t) => Some(map),
             Some(_) => {
-                unused.push("normalTexture with another KHR_texture_transform than the baseColorTexture's");
+                unused.push("normalTexture with another KHR_texture_transform than the material's other textures");
                 None
             }
             None => None,
@@ -566,12 +579,43 @@ fn material(
     if !unused.is_empty() {
         warnings.push(format!("{path} ({name}): left out: {}", unused.join(", ")));
     }
-    Ok((Material { normal_map, ..Material::new(name, kind) }, uv_transform))
+    let material = Material { normal_map, roughness_map, ..Material::new(name, kind) };
+    Ok((material, transform.flatten()))
 }
 
 /// Does a material of `kind` read its base colour from a texture?
 fn has_base_colour_texture(kind: &MaterialKind) -> bool {
     matches!(kind, MaterialKind::Diffuse { texture: Some(_), .. })
+}
+
+/// Whether an opaque material is drawn as a metal: its metalness
+/// (`metallicFactor`, times its `metallicRoughnessTexture`'s blue channel
+/// texel by texel) is [`METAL_METALLIC`] or more over most of it. glTF
+/// blends a metal and a diffuse surface by the metalness, which prismatic
+/// cannot yet: a metalness that is not 0 or 1, or one that varies across
+/// the threshold, is named in `unused`.
+fn is_metal(factor: f32, texture: Option<&Texture>, unused: &mut Vec<&'static str>) -> bool {
+    let metalness: Vec<f32> = match texture {
+        Some(t) => t.texels.iter().map(|&x| factor * linear_channel((x >> 16) & 255)).collect(),
+        None => vec![factor],
+    };
+    let metal = 2 * metalness.iter().filter(|&&m| m >= METAL_METALLIC).count() >= metalness.len();
+    let varies = metalness.iter().any(|&m| (m >= METAL_METALLIC) != metal);
+    let partial = metalness.iter().any(|&m| m > 0.0 && m < 1.0);
+    unused.extend(match (varies, partial, metal, texture.is_some()) {
+        (true, _, true, _) => {
+            Some("metalness varying across metallicRoughnessTexture (drawn as a whole metal, as most of it is)")
+        }
+        (true, _, false, _) => {
+            Some("metalness varying across metallicRoughnessTexture (drawn diffuse, as most of it is)")
+        }
+        (false, true, true, true) => Some("metalness between 0 and 1 (drawn as a whole metal)"),
+        (false, true, false, true) => Some("metalness between 0 and 1 (drawn diffuse)"),
+        (false, true, true, false) => Some("metallicFactor between 0 and 1 (drawn as a whole metal)"),
+        (false, true, false, false) => Some("metallicFactor between 0 and 1 (drawn diffuse)"),
+        (false, false, ..) => None,
+    });
+    metal
 }
 
 /// The thin-walled twin of solid glass `material` (made once, named after

@@ -33,6 +33,9 @@ pub struct GltfMaterial {
     pub attenuation: Option<([f32; 3], f32)>,
     /// `baseColorTexture` on `TEXCOORD_0`.
     pub base_color_texture: Option<GltfTexture>,
+    /// `metallicRoughnessTexture` on `TEXCOORD_0` (its pixels linear:
+    /// roughness in green, metalness in blue).
+    pub metallic_roughness_texture: Option<GltfTexture>,
     /// `normalTexture` on `TEXCOORD_0` (its pixels linear) and its `scale`.
     pub normal_texture: Option<(GltfTexture, f32)>,
 }
@@ -88,6 +91,7 @@ impl GltfMaterial {
             dispersion: 0.0,
             attenuation: None,
             base_color_texture: None,
+            metallic_roughness_texture: None,
             normal_texture: None,
         }
     }
@@ -104,6 +108,7 @@ impl GltfMaterial {
             dispersion,
             attenuation: None,
             base_color_texture: None,
+            metallic_roughness_texture: None,
             normal_texture: None,
         }
     }
@@ -315,6 +320,9 @@ impl GltfDocument {
             let mut json = material_json(m);
             if let Some(t) = &m.base_color_texture {
                 json["pbrMetallicRoughness"]["baseColorTexture"] = json!({ "index": texture(t) });
+            }
+            if let Some(t) = &m.metallic_roughness_texture {
+                json["pbrMetallicRoughness"]["metallicRoughnessTexture"] = json!({ "index": texture(t) });
             }
             if let Some((t, scale)) = &m.normal_texture {
                 json["normalTexture"] = json!({ "index": texture(t), "scale": scale });

@@ -820,3 +820,70 @@ fn a_normal_texture_is_read_with_its_scale_and_tangents() {
     let warnings = scene.warnings.join("\n");
     assert!(warnings.contains("normalTexture with another KHR_texture_transform"), "{warnings}");
 }
+
+/// glTF's `metallicRoughnessTexture` (linear): its green channel scales a
+/// metal's or glass's roughness texel by texel (the material's roughness
+/// map), its blue channel times `metallicFactor` says whether the material
+/// is a metal. A metalness that varies across the texture, which prismatic
+/// cannot yet blend, is drawn as most of it is and named as left out; a
+/// diffuse surface has no roughness to scale.
+#[test]
+fn a_metallic_roughness_texture_scales_roughness_and_says_what_is_metal() {
+    use prismatic_cli::gltf_write::GltfTexture;
+    let dir = tempfile::tempdir().unwrap();
+    let texture = |pixels: Vec<[u8; 3]>| GltfTexture { width: 2, height: 1, pixels, nearest: true, wrap: [10497; 2] };
+    let mut doc = prism_document();
+    doc.materials[0].metallic = 1.0;
+    doc.materials[0].roughness = 0.8;
+    doc.materials[0].metallic_roughness_texture = Some(texture(vec![[0, 40, 255], [0, 200, 255]]));
+    doc.meshes[0].uvs = vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+    let load = |name: &str, doc: &GltfDocument| {
+        let scene = prismatic_cli::load_scene(write(dir.path(), name, doc).to_str().unwrap()).unwrap();
+        scene.validate().unwrap_or_else(|e| panic!("{e}"));
+        scene
+    };
+    let scene = load("scuffed_metal.gltf", &doc);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let metal = &scene.scene.materials[0];
+    assert!(matches!(metal.kind, MaterialKind::Metal { roughness: 0.8, .. }), "{:?}", metal.kind);
+    let map = metal.roughness_map.as_ref().expect("the metal's roughness map");
+    assert_eq!(map.texels[..], [40 << 8 | 255 << 16, 200 << 8 | 255 << 16]);
+    // Metal over three quarters of it: a metal, the rest named.
+    doc.materials[0].metallic_roughness_texture = Some(GltfTexture {
+        width: 4,
+        pixels: vec![[0, 90, 255], [0, 90, 255], [0, 90, 255], [0, 90, 0]],
+        ..texture(Vec::new())
+    });
+    let scene = load("chipped_metal.gltf", &doc);
+    assert!(matches!(scene.scene.materials[0].kind, MaterialKind::Metal { .. }));
+    let warnings = scene.warnings.join("\n");
+    assert!(
+        warnings.contains("metalness varying across metallicRoughnessTexture (drawn as a whole metal"),
+        "{warnings}"
+    );
+    // A metallicFactor of 0.4 over a blue of 255: a metalness of 0.4, diffuse, named.
+    doc.materials[0].metallic = 0.4;
+    doc.materials[0].metallic_roughness_texture = Some(texture(vec![[0, 90, 255]; 2]));
+    let scene = load("half_metal.gltf", &doc);
+    let diffuse = &scene.scene.materials[0];
+    assert!(matches!(diffuse.kind, MaterialKind::Diffuse { .. }) && diffuse.roughness_map.is_none());
+    let warnings = scene.warnings.join("\n");
+    assert!(warnings.contains("metalness between 0 and 1 (drawn diffuse)"), "{warnings}");
+    // A non-metal's texture (blue 0) leaves nothing out.
+    doc.materials[0].metallic = 1.0;
+    doc.materials[0].metallic_roughness_texture = Some(texture(vec![[0, 90, 0]; 2]));
+    let scene = load("plastic.gltf", &doc);
+    assert!(matches!(scene.scene.materials[0].kind, MaterialKind::Diffuse { .. }));
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    // Frosted glass takes the green channel too (on the open floor, a sheet).
+    doc.materials[0] = GltfMaterial {
+        roughness: 0.6,
+        metallic_roughness_texture: Some(texture(vec![[0, 128, 0]; 2])),
+        ..GltfMaterial::glass("frosted", 1.5, 0.0)
+    };
+    let scene = load("frosted.gltf", &doc);
+    let glass = &scene.scene.materials[scene.scene.objects[0].material];
+    assert!(matches!(glass.kind, MaterialKind::Dielectric { thin: true, roughness: 0.6, .. }), "{:?}", glass.kind);
+    assert!(glass.roughness_map.is_some());
+    assert!(!scene.warnings.join("\n").contains("metallicRoughnessTexture"), "{:?}", scene.warnings);
+}

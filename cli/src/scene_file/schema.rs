@@ -75,6 +75,7 @@ impl Reader<'_> {
                     name: name.get_ref().to_string(),
                     kind: self.material(&mt)?,
                     normal_map: self.normal_map(&mt)?,
+                    roughness_map: self.roughness_map(&mt)?,
                 });
             }
         }
@@ -354,6 +355,7 @@ impl Reader<'_> {
                         "film_thickness_nm",
                         "film_ior",
                         "roughness",
+                        "roughness_map",
                         "normal_map",
                         "normal_scale",
                     ],
@@ -390,7 +392,7 @@ impl Reader<'_> {
                 MaterialKind::Mirror
             }
             "metal" => {
-                self.check_keys(t, &["kind", "color", "roughness", "normal_map", "normal_scale"])?;
+                self.check_keys(t, &["kind", "color", "roughness", "roughness_map", "normal_map", "normal_scale"])?;
                 MaterialKind::Metal {
                     color: self.req(t, "color", |p, k, v| p.metal_color(k, v))?,
                     roughness: self.opt(t, "roughness", Self::float)?.unwrap_or(0.0),
@@ -465,6 +467,16 @@ impl Reader<'_> {
         let path = self.beside(self.string(&key, v)?);
         let texture = texture_file::load(&path, Sampler::default()).map_err(|e| self.err(&key, &v.span(), e))?;
         Ok(Some(NormalMap { texture, scale: scale.unwrap_or(1.0) }))
+    }
+
+    /// A metal's or dielectric's `roughness_map`: an image file beside the
+    /// scene whose green channel, read as linear values, scales its
+    /// `roughness` texel by texel (a grey image: its grey).
+    fn roughness_map(&self, t: &Table<'_, '_>) -> Result<Option<Texture>> {
+        let Some(v) = self.get(t, "roughness_map") else { return Ok(None) };
+        let key = join(&t.key, "roughness_map");
+        let path = self.beside(self.string(&key, v)?);
+        texture_file::load(&path, Sampler::default()).map(Some).map_err(|e| self.err(&key, &v.span(), e))
     }
 
     /// A light's `spectrum`: a name (`"D65"`, `"mercury"`, …), `{ blackbody = K }`,

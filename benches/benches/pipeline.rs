@@ -24,9 +24,10 @@
 //!   environment (32 suns of its median cut, projection maps on): the CPU's
 //!   photon pass (throughput in photons) and its view pass (direct light,
 //!   one shadow ray per light per point);
-//! - `metals/{rough,polished,mirrors}/{trace,view}`: the built-in `ring`
-//!   (100,000 photons) with its metals as they are, all polished and as
-//!   mirrors: the CPU's photon pass and its view pass;
+//! - `metals/{rough,mapped,polished,mirrors}/{trace,view}`: the built-in
+//!   `ring` (100,000 photons) with its metals as they are, as they are
+//!   read through white roughness maps, all polished and as mirrors: the
+//!   CPU's photon pass and its view pass;
 //! - `rough_glass/{frosted,polished}/{trace,view}`: the built-in `sphere`
 //!   (100,000 photons) with its glass frosted (roughness 0.3) and polished;
 //! - `scene/{new,update-camera,update-mesh}/<triangles>`: `sphere` with its

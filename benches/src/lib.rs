@@ -4,8 +4,9 @@
 
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::environment::EnvironmentMap;
-use prismatic_core::model::scene::{MaterialKind, Object, RadiusMode};
+use prismatic_core::model::scene::{MaterialKind, Object, RadiusMode, Shape, Texture};
 use prismatic_core::{Backend, Image, Light, NoProgress, PreparedScene, RenderSettings, Vec3};
+use std::f32::consts::TAU;
 
 /// The paper's configuration (Table 5): 400×400, 20,000 white photons, 7 bands,
 /// a fixed gather radius, applied to built-in scene `name`, with `photons`
@@ -85,11 +86,29 @@ pub fn sphere_frosted(photons: u32) -> [(&'static str, PreparedScene); 2] {
 
 /// The built-in `ring` with `photons` a pass: its metals as they are (a
 /// gold ring of roughness 0.03, a copper ball of 0.3, a polished silver
-/// ball; `"rough"`), all polished (`"polished"`) and as mirrors
-/// (`"mirrors"`, which the CPU traces in packets): what metals cost.
-pub fn ring_metals(photons: u32) -> [(&'static str, PreparedScene); 3] {
+/// ball; `"rough"`), as they are under roughness maps of white texels
+/// (`"mapped"`: the same facets, each read through its map), all polished
+/// (`"polished"`) and as mirrors (`"mirrors"`, which the CPU traces in
+/// packets): what metals and their maps cost.
+pub fn ring_metals(photons: u32) -> [(&'static str, PreparedScene); 4] {
     let mut rough = prismatic_cli::load_scene("ring").expect("built-in ring").scene;
     rough.render.photons = photons;
+    let mut mapped = rough.clone();
+    let white = Texture {
+        name: "white".into(),
+        width: 16,
+        height: 16,
+        texels: vec![0xffffff; 256].into(),
+        sampler: Default::default(),
+    };
+    for o in &mut mapped.objects {
+        let material = &mut mapped.materials[o.material];
+        if let (MaterialKind::Metal { .. }, Shape::Mesh { positions, uvs, .. }) = (&material.kind, &mut o.shape) {
+            // Around the y axis and up it.
+            *uvs = positions.iter().map(|p| [p.z.atan2(p.x) / TAU, p.y].into()).collect();
+            material.roughness_map = Some(white.clone());
+        }
+    }
     let mut polished = rough.clone();
     let mut mirrors = rough.clone();
     for m in &mut polished.materials {
@@ -102,6 +121,7 @@ pub fn ring_metals(photons: u32) -> [(&'static str, PreparedScene); 3] {
             m.kind = MaterialKind::Mirror;
         }
     }
-    let [rough, polished, mirrors] = [rough, polished, mirrors].map(|s| PreparedScene::new(s).expect("valid"));
-    [("rough", rough), ("polished", polished), ("mirrors", mirrors)]
+    let [rough, mapped, polished, mirrors] =
+        [rough, mapped, polished, mirrors].map(|s| PreparedScene::new(s).expect("valid"));
+    [("rough", rough), ("mapped", mapped), ("polished", polished), ("mirrors", mirrors)]
 }

@@ -554,17 +554,16 @@ fn material(
     // The mesh has one set of coordinates: its textures must agree on their
     // transform (the first texture's, the base colour's where it has one).
     let mut transform = has_base_colour_texture(&kind).then_some(uv_transform);
-    let mut agrees = |t: Option<Affine2>| *transform.get_or_insert(t) == t;
     // The green channel scales a metal's or glass's roughness (a diffuse
-    // surface has none to scale).
+    // surface has none to scale); it is their first texture.
     let roughness_map = match metal_roughness {
-        Some((texture, t)) if glass_or_metal && agrees(t) => Some(texture),
-        Some(_) if glass_or_metal => {
-            unused.push("metallicRoughnessTexture with another KHR_texture_transform than the baseColorTexture's");
-            None
+        Some((texture, t)) if glass_or_metal => {
+            transform = Some(t);
+            Some(texture)
         }
         _ => None,
     };
+    let mut agrees = |t: Option<Affine2>| *transform.get_or_insert(t) == t;
     let normal_map = match m.normal_texture() {
         Some(info) => match images.normal_map(&info, &mut unused)? {
             Some((map, t)) if agrees(t) => Some(map),
@@ -602,19 +601,22 @@ fn is_metal(factor: f32, texture: Option<&Texture>, unused: &mut Vec<&'static st
     let metal = 2 * metalness.iter().filter(|&&m| m >= METAL_METALLIC).count() >= metalness.len();
     let varies = metalness.iter().any(|&m| (m >= METAL_METALLIC) != metal);
     let partial = metalness.iter().any(|&m| m > 0.0 && m < 1.0);
-    unused.extend(match (varies, partial, metal, texture.is_some()) {
-        (true, _, true, _) => {
-            Some("metalness varying across metallicRoughnessTexture (drawn as a whole metal, as most of it is)")
+    // What is left out, drawn as a metal or drawn diffuse.
+    let [as_metal, as_diffuse] = match (varies, partial, texture.is_some()) {
+        (true, ..) => [
+            "metalness varying across metallicRoughnessTexture (drawn as a whole metal, as most of it is)",
+            "metalness varying across metallicRoughnessTexture (drawn diffuse, as most of it is)",
+        ],
+        (false, true, true) => {
+            ["metalness between 0 and 1 (drawn as a whole metal)", "metalness between 0 and 1 (drawn diffuse)"]
         }
-        (true, _, false, _) => {
-            Some("metalness varying across metallicRoughnessTexture (drawn diffuse, as most of it is)")
-        }
-        (false, true, true, true) => Some("metalness between 0 and 1 (drawn as a whole metal)"),
-        (false, true, false, true) => Some("metalness between 0 and 1 (drawn diffuse)"),
-        (false, true, true, false) => Some("metallicFactor between 0 and 1 (drawn as a whole metal)"),
-        (false, true, false, false) => Some("metallicFactor between 0 and 1 (drawn diffuse)"),
-        (false, false, ..) => None,
-    });
+        (false, true, false) => [
+            "metallicFactor between 0 and 1 (drawn as a whole metal)",
+            "metallicFactor between 0 and 1 (drawn diffuse)",
+        ],
+        (false, false, _) => return metal,
+    };
+    unused.push(if metal { as_metal } else { as_diffuse });
     metal
 }
 

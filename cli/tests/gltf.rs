@@ -46,6 +46,13 @@ fn prism_document() -> GltfDocument {
     }
 }
 
+/// `doc` written to `dir/name`, read back and validated.
+fn load_valid(dir: &Path, name: &str, doc: &GltfDocument) -> prismatic_cli::scene_file::SceneDocument {
+    let scene = prismatic_cli::load_scene(write(dir, name, doc).to_str().unwrap()).unwrap();
+    scene.validate().unwrap_or_else(|e| panic!("{e}"));
+    scene
+}
+
 fn write(dir: &Path, name: &str, doc: &GltfDocument) -> std::path::PathBuf {
     let path = dir.join(name);
     std::fs::write(&path, doc.to_json()).unwrap();
@@ -775,11 +782,7 @@ fn a_normal_texture_is_read_with_its_scale_and_tangents() {
     doc.materials[0].metallic = 1.0;
     doc.meshes[0].uvs = vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
     doc.meshes[0].normals = vec![[0.0, 1.0, 0.0]; 4];
-    let load = |name: &str, doc: &GltfDocument| {
-        let scene = prismatic_cli::load_scene(write(dir.path(), name, doc).to_str().unwrap()).unwrap();
-        scene.validate().unwrap_or_else(|e| panic!("{e}"));
-        scene
-    };
+    let load = |name: &str, doc: &GltfDocument| load_valid(dir.path(), name, doc);
     let scene = load("bumpy_metal.gltf", &doc);
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
     let floor = &scene.scene.materials[0];
@@ -837,11 +840,7 @@ fn a_metallic_roughness_texture_scales_roughness_and_says_what_is_metal() {
     doc.materials[0].roughness = 0.8;
     doc.materials[0].metallic_roughness_texture = Some(texture(vec![[0, 40, 255], [0, 200, 255]]));
     doc.meshes[0].uvs = vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
-    let load = |name: &str, doc: &GltfDocument| {
-        let scene = prismatic_cli::load_scene(write(dir.path(), name, doc).to_str().unwrap()).unwrap();
-        scene.validate().unwrap_or_else(|e| panic!("{e}"));
-        scene
-    };
+    let load = |name: &str, doc: &GltfDocument| load_valid(dir.path(), name, doc);
     let scene = load("scuffed_metal.gltf", &doc);
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
     let metal = &scene.scene.materials[0];

@@ -15,7 +15,7 @@ use prismatic_conformance::compare::caustic_rel_rmse;
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::Dispersion;
 use prismatic_core::model::scene::{Light, Material, MaterialKind, Object, Shape, WavelengthSampling};
-use prismatic_core::{PreparedScene, Vec3};
+use prismatic_core::{PhotonMap, PreparedScene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
 use prismatic_tests::{prepare, settings, view_through_a_sheet, white};
 
@@ -95,6 +95,12 @@ pub(crate) fn median_radius(alpha: f64, n: f64, floor: f64) -> f64 {
     floor * (facet - (facet.sin() / n).asin()).tan()
 }
 
+/// How far from the axis each photon of `band` in `map` landed.
+pub(crate) fn radii_of_band(map: &PhotonMap, band: usize) -> Vec<f64> {
+    let of_band = map.photons.iter().filter(|p| usize::from(p.band) == band);
+    of_band.map(|p| f64::from(p.position[0]).hypot(f64::from(p.position[1]))).collect()
+}
+
 #[test]
 fn frosted_glass_spreads_each_wavelength_by_its_own_index() {
     const PHOTONS: u32 = 14_000;
@@ -105,12 +111,7 @@ fn frosted_glass_spreads_each_wavelength_by_its_own_index() {
         let name = backend.name();
         let map = trace(backend.as_mut(), &scene);
         for (band, n) in INDICES.iter().enumerate() {
-            let radii: Vec<f64> = map
-                .photons
-                .iter()
-                .filter(|p| usize::from(p.band) == band)
-                .map(|p| f64::from(p.position[0]).hypot(f64::from(p.position[1])))
-                .collect();
+            let radii = radii_of_band(&map, band);
             let within = |r: f64| radii.iter().filter(|&&x| x < r).count() as f64 / radii.len() as f64;
             let share = within(median_radius(alpha, f64::from(*n), f64::from(floor)));
             let sd = (0.25 / radii.len() as f64).sqrt();

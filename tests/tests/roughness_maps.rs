@@ -6,7 +6,7 @@
 //! the mirror direction (head on), half of each band's refraction within
 //! its median facet's deviation.
 
-use crate::rough_glass::{INDICES, beam_into_a_block, median_radius, rough};
+use crate::rough_glass::{INDICES, beam_into_a_block, median_radius, radii_of_band, rough};
 use prismatic_core::model::dispersion::Dispersion;
 use prismatic_core::model::scene::{Filter, Light, Material, MaterialKind, Sampler, Shape, Texture};
 use prismatic_core::{MetalColor, PreparedScene, Scene, Vec3};
@@ -106,12 +106,7 @@ fn a_maps_green_scales_rough_glasss_roughness() {
         let name = backend.name();
         let map = trace(backend.as_mut(), &scene);
         for (band, n) in INDICES.iter().enumerate() {
-            let radii: Vec<f64> = map
-                .photons
-                .iter()
-                .filter(|p| usize::from(p.band) == band)
-                .map(|p| f64::from(p.position[0]).hypot(f64::from(p.position[1])))
-                .collect();
+            let radii = radii_of_band(&map, band);
             let median = median_radius(alpha, f64::from(*n), f64::from(floor));
             let share = radii.iter().filter(|&&r| r < median).count() as f64 / radii.len() as f64;
             let sd = (0.25 / radii.len() as f64).sqrt();

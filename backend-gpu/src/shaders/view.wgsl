@@ -483,7 +483,11 @@ fn visit_path(e: Pending) -> vec3<f32> {
     // Mirrors, metals and glass scatter about the shading normal.
     var bent = hit;
     bent.normal = scattering_normal(hit, e.dir);
-    let alpha = facets_alpha(bent, s);
+    // A metal's facets here (glass reads its own in through_dielectric).
+    var alpha = 0.0;
+    if s.kind == SURFACE_METAL {
+        alpha = facets_alpha(bent, s);
+    }
     if s.kind == SURFACE_METAL && alpha > 0.0 && e.depth < params.max_depth {
         light_query = LightQuery(true, e, bent, bare_face(1.0, false));
     }

@@ -22,8 +22,9 @@ use crate::texture_file;
 use glam::{Affine2, Mat3, Mat4, Vec2, Vec3, Vec4};
 use gltf::khr_lights_punctual::Kind;
 use gltf::texture::{MagFilter, WrappingMode};
-use prismatic_core::geometry::texture::{linear_channel, srgb_to_linear};
+use prismatic_core::geometry::texture::srgb_to_linear;
 use prismatic_core::model::mesh::open_edge;
+use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::{
     Attenuation, Camera, EnvironmentMap, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, NormalMap, Object,
     RenderSettings, Sampler, Scene, Shape, Texture, ThinFilm, Wrap, default_ambient,
@@ -33,12 +34,6 @@ use prismatic_core::sampling::spot_cone::SpotCone;
 use prismatic_core::{Dispersion, MetalColor};
 use std::collections::HashMap;
 use std::path::Path;
-
-/// A material is drawn as a metal at this `metallicFactor` or more, else
-/// as a diffuse surface: glTF blends the two by the factor, which
-/// prismatic cannot yet (a factor strictly between 0 and 1 is named as
-/// left out).
-const METAL_METALLIC: f32 = 0.5;
 
 /// A spot whose `innerConeAngle` is at least this fraction of its
 /// `outerConeAngle` is read as a hard edge (glTF cannot write an equal
@@ -587,20 +582,11 @@ fn has_base_colour_texture(kind: &MaterialKind) -> bool {
     matches!(kind, MaterialKind::Diffuse { texture: Some(_), .. })
 }
 
-/// Whether an opaque material is drawn as a metal: its metalness
-/// (`metallicFactor`, times its `metallicRoughnessTexture`'s blue channel
-/// texel by texel) is [`METAL_METALLIC`] or more over most of it. glTF
-/// blends a metal and a diffuse surface by the metalness, which prismatic
-/// cannot yet: a metalness that is not 0 or 1, or one that varies across
-/// the threshold, is named in `unused`.
+/// Whether an opaque material is drawn as a metal ([`Metalness`]: as most
+/// of its surface is); a metalness that is not 0 or 1, or one that varies
+/// across the threshold, is named in `unused`.
 fn is_metal(factor: f32, texture: Option<&Texture>, unused: &mut Vec<&'static str>) -> bool {
-    let metalness: Vec<f32> = match texture {
-        Some(t) => t.texels.iter().map(|&x| factor * linear_channel((x >> 16) & 255)).collect(),
-        None => vec![factor],
-    };
-    let metal = 2 * metalness.iter().filter(|&&m| m >= METAL_METALLIC).count() >= metalness.len();
-    let varies = metalness.iter().any(|&m| (m >= METAL_METALLIC) != metal);
-    let partial = metalness.iter().any(|&m| m > 0.0 && m < 1.0);
+    let Metalness { metal, varies, partial } = Metalness::of(factor, texture);
     // What is left out, drawn as a metal or drawn diffuse.
     let [as_metal, as_diffuse] = match (varies, partial, texture.is_some()) {
         (true, ..) => [

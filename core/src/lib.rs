@@ -21,7 +21,7 @@
 //! | 4 | [`optics`] | `fresnel`, `microfacet`, `metal`, `rough_glass`, `thin_film`, `absorption`, `surface`, `scatter` | every scattering function, and the one branch choice at glass |
 //! | 3 | [`geometry`] | `ray`, `triangle`, `primitive`, `bvh`, `bvh_build`, `camera`, `texture`, `shading`, `normal_map`, `form_factor` | rays, intersections, hierarchies, the camera, textures, shading normals, normal maps, form factors |
 //! | 2 | [`sampling`] | `sobol`, `pixel_sample`, `light_spectrum`, `environment`, `spot_cone` | the low-discrepancy numbers paths draw, the wavelengths lights emit, what an environment sends each way, a spot's cone |
-//! | 1 | [`model`] | `scene`, `validate`, `mesh`, `environment`, `light_range`, `bands`, `cie`, `color`, `dispersion`, `image`, `photon`, `wavelength_rgb`, `reflectance`, `metals`, `spectrum`, `rgb_spectrum` | what the user described and what backends exchange |
+//! | 1 | [`model`] | `scene`, `validate`, `mesh`, `environment`, `light_range`, `bands`, `cie`, `color`, `dispersion`, `image`, `photon`, `wavelength_rgb`, `reflectance`, `metals`, `metalness`, `spectrum`, `rgb_spectrum` | what the user described and what backends exchange |
 //! | 0 | [`util`] | `math`, `rng`, `tolerance`, `progress` | float math with and without `std`, random numbers, tolerances, progress |
 //!
 //! Layers 0–4 are pure functions that the CPU's packets and the WGSL

@@ -2,7 +2,8 @@
 //! environment maps)
 //! and what every backend exchanges (spectral bands and the CIE tables behind
 //! them, dispersion, colour, the colour of each wavelength and the reflectance
-//! of each albedo and of measured metals, images, the photon and its map).
+//! of each albedo and of measured metals, which materials are drawn as
+//! metals, images, the photon and its map).
 
 pub mod bands;
 pub mod cie;
@@ -12,6 +13,7 @@ pub mod environment;
 pub mod image;
 pub mod light_range;
 pub mod mesh;
+pub mod metalness;
 pub mod metals;
 pub mod photon;
 pub mod reflectance;

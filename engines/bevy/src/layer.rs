@@ -70,8 +70,8 @@ pub fn equal_energy_efficacy() -> f32 {
 /// every [`CausticMaterial`] that lacks it). The surfaces must also be in
 /// prismatic's scene for photons to land on them: a [`CausticMaterial`]
 /// entity with a `Mesh3d` is mirrored as a diffuse receiver of its base
-/// colour (a metal of that colour where its `metallic` is 0.5 or more,
-/// which reflects photons on instead).
+/// colour (a metal of that colour where most of it is metallic, which
+/// reflects photons on instead), with its maps (`standard`).
 #[derive(Asset, AsBindGroup, TypePath, Clone, Debug, Default)]
 pub struct CausticReceiver {
     /// The caustic irradiance in the layer camera's frame.

@@ -25,8 +25,10 @@
 //!   prismatic's own picture in [`CausticImage`], the refraction through
 //!   the glass included, for tools that show it as it is.
 
+mod images;
 mod layer;
 mod mirror;
+mod standard;
 
 pub use layer::{CausticLayer, CausticLayerView, CausticMaterial, CausticReceiver};
 pub use mirror::{CausticCamera, CausticLight, CausticShape, Glass, Receiver};
@@ -144,6 +146,10 @@ pub struct Stats {
     /// Why the scene or the session failed, if it did (the last good
     /// image stays on screen).
     pub error: Option<String>,
+    /// What the scene leaves out of the app's materials, one line each
+    /// (a texture the plugin cannot read, a metallic surface's base colour
+    /// texture, a metalness between 0 and 1): drawn without it.
+    pub left_out: Vec<String>,
 }
 
 impl CausticStats {
@@ -252,6 +258,8 @@ impl LiveSession {
                     gpu,
                     generation: scene.generation,
                     error: None,
+                    // The mirror's, set when the scene is built.
+                    left_out: std::mem::take(&mut s.left_out),
                 }
             }),
             Err(e) => {

@@ -4,19 +4,23 @@
 //! change. Objects are prismatic shapes ([`CausticShape`]) or Bevy's own
 //! meshes (`Mesh3d`): a [`Glass`] mesh, or a mesh drawn with a
 //! [`CausticMaterial`] (a diffuse receiver of its base colour, or a metal
-//! of that colour and its roughness where its `metallic` is 0.5 or more).
+//! of that colour and its roughness where it is metallic, with its maps:
+//! [`crate::standard`]).
 
+use crate::images::AppImages;
 use crate::layer::{CausticLayer, CausticLayerView, CausticMaterial};
+use crate::standard::drawn;
 use crate::{CausticScene, CausticSettings, CausticStats};
 use bevy::camera::{Camera as BevyCamera, Projection};
 use bevy::ecs::system::SystemParam;
+use bevy::math::Affine2;
 use bevy::mesh::{Indices, VertexAttributeValues};
 use bevy::prelude::*;
 use prismatic_core::model::dispersion::Dispersion;
 use prismatic_core::model::scene::{
     Camera, Checker, Light, Material, MaterialKind, Object, RenderSettings, Scene, Shape, ThinFilm,
 };
-use prismatic_core::{MetalColor, PreparedScene, Vec3 as CoreVec3};
+use prismatic_core::{PreparedScene, Vec3 as CoreVec3};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -119,8 +123,11 @@ fn placed(shape: &Shape, t: &GlobalTransform) -> Shape {
 /// `mesh`'s triangles placed by `t`, with its vertex normals where it has
 /// them (turned by the inverse transpose), its vertices welded where
 /// position and normal repeat (along UV seams); `None` when it has no
-/// positions or no longer has its data in the main world.
-fn mesh_shape(mesh: &Mesh, t: &GlobalTransform) -> Option<Shape> {
+/// positions or no longer has its data in the main world. With
+/// `uv_transform` (its material reads textures), its `UV_0` through that
+/// transform and its tangents come too, and welding keeps their seams;
+/// the shape has no texture coordinates when the mesh has none.
+fn mesh_shape(mesh: &Mesh, t: &GlobalTransform, uv_transform: Option<Affine2>) -> Option<Shape> {
     let Ok(Some(VertexAttributeValues::Float32x3(positions))) = mesh.try_attribute_option(Mesh::ATTRIBUTE_POSITION)
     else {
         return None;
@@ -135,20 +142,48 @@ fn mesh_shape(mesh: &Mesh, t: &GlobalTransform) -> Option<Shape> {
         Ok(Some(VertexAttributeValues::Float32x3(n))) if n.len() == positions.len() => Some(n),
         _ => None,
     };
+    let uvs = match (uv_transform, mesh.try_attribute_option(Mesh::ATTRIBUTE_UV_0)) {
+        (Some(to_texture), Ok(Some(VertexAttributeValues::Float32x2(uv)))) if uv.len() == positions.len() => {
+            Some(uv.iter().map(|&uv| to_texture.transform_point2(Vec2::from_array(uv)).to_array()).collect::<Vec<_>>())
+        }
+        _ => None,
+    };
+    let tangents = match mesh.try_attribute_option(Mesh::ATTRIBUTE_TANGENT) {
+        Ok(Some(VertexAttributeValues::Float32x4(k))) if uvs.is_some() && k.len() == positions.len() => Some(k),
+        _ => None,
+    };
     let normal_to_world = normal_to_world(t);
+    // Tangents turn as directions; a mirroring transform turns their handedness.
+    let handedness = t.affine().matrix3.determinant().signum();
+    let tangent_to_world = |k: [f32; 4]| {
+        let along = core(t.affine().transform_vector3(Vec3::new(k[0], k[1], k[2])));
+        glam::Vec4::new(along.x, along.y, along.z, k[3] * handedness)
+    };
     let (mut welded, mut welded_normals, mut index_of) = (Vec::new(), Vec::new(), HashMap::new());
+    let (mut welded_uvs, mut welded_tangents) = (Vec::new(), Vec::new());
     let remap: Vec<u32> = positions
         .iter()
         .enumerate()
         .map(|(i, p)| {
             let normal = normals.map_or([0.0; 3], |n| n[i]);
-            *index_of.entry((p.map(f32::to_bits), normal.map(f32::to_bits))).or_insert_with(|| {
+            let uv = uvs.as_ref().map_or([0.0; 2], |uv| uv[i]);
+            let tangent = tangents.map_or([0.0; 4], |k| k[i]);
+            let key = (p.map(f32::to_bits), normal.map(f32::to_bits), uv.map(f32::to_bits), tangent.map(f32::to_bits));
+            *index_of.entry(key).or_insert_with(|| {
                 welded.push(core(t.transform_point(Vec3::from_array(*p))));
                 welded_normals.push(normal_to_world(normal));
+                welded_uvs.push(glam::Vec2::from_array(uv));
+                welded_tangents.push(tangent_to_world(tangent));
                 welded.len() as u32 - 1
             })
         })
         .collect();
+    if uvs.is_none() {
+        welded_uvs.clear();
+    }
+    if tangents.is_none() {
+        welded_tangents.clear();
+    }
     // Without normals, or with a zero one (which no surface has), the mesh is flat.
     if normals.is_none() || welded_normals.contains(&CoreVec3::ZERO) {
         welded_normals.clear();
@@ -160,7 +195,13 @@ fn mesh_shape(mesh: &Mesh, t: &GlobalTransform) -> Option<Shape> {
             (tri[0] != tri[1] && tri[1] != tri[2] && tri[0] != tri[2]).then_some(tri)
         })
         .collect();
-    Some(Shape::Mesh { positions: welded, triangles, uvs: Vec::new(), normals: welded_normals, tangents: Vec::new() })
+    Some(Shape::Mesh {
+        positions: welded,
+        triangles,
+        uvs: welded_uvs,
+        normals: welded_normals,
+        tangents: welded_tangents,
+    })
 }
 
 /// A mesh drawn with a [`CausticMaterial`]: a diffuse receiver.
@@ -185,6 +226,7 @@ pub(crate) struct SceneEntities<'w, 's> {
     receiver_meshes: Query<'w, 's, ReceiverMesh, (Without<CausticShape>, Without<Glass>)>,
     meshes: Res<'w, Assets<Mesh>>,
     materials: Res<'w, Assets<CausticMaterial>>,
+    images: AppImages<'w, 's>,
 }
 
 /// The scene's view: its camera, image size and, for a layer, Bevy's view.
@@ -221,13 +263,14 @@ fn scene_view(settings: &CausticSettings, entities: &SceneEntities) -> Result<Sc
     Ok(SceneView { camera: view(at, camera.fov_deg), size: (settings.0.width, settings.0.height), layer: None })
 }
 
-/// The scene the entities make (and the layer's view, if any), or why it is not valid.
+/// The scene the entities make, the layer's view (if any) and what of the
+/// app's materials it leaves out, or why it is not valid.
 fn build_scene(
     settings: &CausticSettings,
-    entities: &SceneEntities,
-) -> Result<(Scene, Option<CausticLayerView>), String> {
+    entities: &mut SceneEntities,
+) -> Result<(Scene, Option<CausticLayerView>, Vec<String>), String> {
     let SceneView { camera, size: (width, height), layer } = scene_view(settings, entities)?;
-    let SceneEntities { lights, objects, glass_meshes, receiver_meshes, meshes, materials, .. } = entities;
+    let SceneEntities { lights, objects, glass_meshes, receiver_meshes, meshes, materials, images, .. } = entities;
     let lights = lights
         .iter()
         .map(|(light, at)| match *light {
@@ -268,8 +311,11 @@ fn build_scene(
         scene_objects.push(Object { shape: placed(&shape.0, at), material: scene_materials.len() });
         scene_materials.push(Material { name: format!("object{i}"), kind, normal_map: None, roughness_map: None });
     }
-    let mesh = |handle: &Mesh3d, at, what: &str| {
-        meshes.get(&handle.0).and_then(|m| mesh_shape(m, at)).ok_or(format!("{what}'s mesh has no positions here"))
+    let mesh = |handle: &Mesh3d, at, what: &str, uv_transform| {
+        meshes
+            .get(&handle.0)
+            .and_then(|m| mesh_shape(m, at, uv_transform))
+            .ok_or(format!("{what}'s mesh has no positions here"))
     };
     for (i, (glass, handle, at)) in glass_meshes.iter().enumerate() {
         let kind = MaterialKind::Dielectric {
@@ -280,37 +326,29 @@ fn build_scene(
             film: glass.film,
             roughness: glass.roughness,
         };
-        scene_objects.push(Object { shape: mesh(handle, at, "a Glass mesh")?, material: scene_materials.len() });
+        scene_objects.push(Object { shape: mesh(handle, at, "a Glass mesh", None)?, material: scene_materials.len() });
         scene_materials.push(Material { name: format!("glass mesh {i}"), kind, normal_map: None, roughness_map: None });
     }
+    let mut left_out = Vec::new();
     for (i, (material, handle, at)) in receiver_meshes.iter().enumerate() {
         let Some(m) = materials.get(&material.0) else { continue };
-        let c = m.base.base_color.to_linear();
-        let color = CoreVec3::new(c.red, c.green, c.blue);
-        // A metallic surface reflects the photons on, as glTF's metals do
-        // (`gltf_scene`'s rule); any other is a receiver of its diffuse share.
-        let kind = if m.base.metallic >= 0.5 {
-            MaterialKind::Metal {
-                color: MetalColor::Rgb(color.clamp(CoreVec3::ZERO, CoreVec3::ONE)),
-                roughness: m.base.perceptual_roughness.clamp(0.0, 1.0),
+        let name = format!("receiver mesh {i}");
+        let drawn = drawn(&m.base, name.clone(), images, &mut left_out);
+        let shape = mesh(handle, at, "a CausticMaterial mesh", drawn.uv_transform)?;
+        let material = match &shape {
+            Shape::Mesh { uvs, .. } if uvs.is_empty() && drawn.uv_transform.is_some() => {
+                left_out.push(format!("{name}: its textures (its mesh has no UV_0)"));
+                drawn.untextured()
             }
-        } else {
-            let albedo = color * (1.0 - m.base.metallic);
-            MaterialKind::Diffuse { albedo, checker: None, texture: None, emission: CoreVec3::ZERO }
+            _ => drawn.material,
         };
-        scene_objects
-            .push(Object { shape: mesh(handle, at, "a CausticMaterial mesh")?, material: scene_materials.len() });
-        scene_materials.push(Material {
-            name: format!("receiver mesh {i}"),
-            kind,
-            normal_map: None,
-            roughness_map: None,
-        });
+        scene_objects.push(Object { shape, material: scene_materials.len() });
+        scene_materials.push(material);
     }
     // A layer's irradiance is in Bevy's photometric units; an image's pixels in the settings' exposure.
     let exposure = layer.map_or(settings.0.exposure, |l| l.lux_per_watt);
     let render = RenderSettings { width, height, exposure, ..settings.0.clone() };
-    Ok((Scene { render, camera, lights, materials: scene_materials, objects: scene_objects }, layer))
+    Ok((Scene { render, camera, lights, materials: scene_materials, objects: scene_objects }, layer, left_out))
 }
 
 /// Mirrors the entities into [`CausticScene`] when the scene they make
@@ -323,12 +361,16 @@ pub(crate) fn mirror_scene(
     stats: Res<CausticStats>,
     current_layer: Option<Res<CausticLayerView>>,
     mut last: Local<Option<Scene>>,
-    entities: SceneEntities,
+    mut entities: SceneEntities,
 ) {
-    let (scene, layer) = match build_scene(&settings, &entities) {
+    entities.images.refresh();
+    let (scene, layer, left_out) = match build_scene(&settings, &mut entities) {
         Ok(built) => built,
         Err(e) => return stats.set(|s| s.error = Some(e)),
     };
+    if stats.get().left_out != left_out {
+        stats.set(|s| s.left_out = left_out);
+    }
     match layer {
         Some(layer) if current_layer.as_deref() != Some(&layer) => commands.insert_resource(layer),
         None if current_layer.is_some() => commands.remove_resource::<CausticLayerView>(),
@@ -350,5 +392,148 @@ pub(crate) fn mirror_scene(
             commands.insert_resource(CausticScene { scene: Arc::new(prepared), generation });
         }
         Err(e) => stats.set(|s| s.error = Some(format!("invalid scene: {e}"))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bevy::asset::RenderAssetUsages;
+    use bevy::ecs::message::Messages;
+    use bevy::ecs::system::RunSystemOnce;
+    use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
+
+    /// A 2×1 image of these texels.
+    fn image(format: TextureFormat, texels: [[u8; 4]; 2]) -> Image {
+        let size = Extent3d { width: 2, height: 1, depth_or_array_layers: 1 };
+        Image::new(size, TextureDimension::D2, texels.concat(), format, RenderAssetUsages::MAIN_WORLD)
+    }
+
+    /// The scene a camera, a light and one 2×2 floor drawn with `material` make
+    /// (the floor's mesh without texture coordinates where `uvs` is false).
+    fn mirrored(material: impl FnOnce(&mut Assets<Image>) -> StandardMaterial, uvs: bool) -> (Scene, Vec<String>) {
+        let mut world = World::new();
+        world.insert_resource(CausticSettings::default());
+        world.init_resource::<Messages<AssetEvent<Image>>>();
+        world.init_resource::<Assets<Mesh>>();
+        world.init_resource::<Assets<CausticMaterial>>();
+        let mut images = Assets::<Image>::default();
+        let base = material(&mut images);
+        world.insert_resource(images);
+        let mut floor = Mesh::from(Plane3d::default().mesh().size(2.0, 2.0));
+        if !uvs {
+            floor.remove_attribute(Mesh::ATTRIBUTE_UV_0);
+        }
+        let mesh = Mesh3d(world.resource_mut::<Assets<Mesh>>().add(floor));
+        let material = MeshMaterial3d(
+            world.resource_mut::<Assets<CausticMaterial>>().add(CausticMaterial { base, extension: default() }),
+        );
+        world.spawn((CausticCamera { fov_deg: 40.0 }, GlobalTransform::from_xyz(0.0, 2.0, 4.0)));
+        world.spawn((CausticLight::Point { power: 10.0 }, GlobalTransform::from_xyz(0.0, 3.0, 0.0)));
+        world.spawn((mesh, material, GlobalTransform::IDENTITY));
+        let built = world
+            .run_system_once(|settings: Res<CausticSettings>, mut entities: SceneEntities| {
+                build_scene(&settings, &mut entities)
+            })
+            .unwrap()
+            .unwrap();
+        (built.0, built.2)
+    }
+
+    /// Texels packed as prismatic's textures hold them.
+    fn packed(texels: &[[u8; 4]]) -> Vec<u32> {
+        texels.iter().map(|&[r, g, b, _]| u32::from(r) | u32::from(g) << 8 | u32::from(b) << 16).collect()
+    }
+
+    fn uvs_of(scene: &Scene) -> &[glam::Vec2] {
+        match &scene.objects[0].shape {
+            Shape::Mesh { uvs, .. } => uvs,
+            other => panic!("not a mesh: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn a_receiver_reads_its_base_colour_texture_through_its_uv_transform() {
+        let texels = [[200, 100, 50, 255], [0, 0, 0, 255]];
+        let (scene, left_out) = mirrored(
+            |images| StandardMaterial {
+                base_color_texture: Some(images.add(image(TextureFormat::Rgba8UnormSrgb, texels))),
+                uv_transform: Affine2::from_scale(Vec2::splat(2.0)),
+                metallic: 0.0,
+                ..default()
+            },
+            true,
+        );
+        assert!(left_out.is_empty(), "{left_out:?}");
+        let MaterialKind::Diffuse { texture: Some(texture), .. } = &scene.materials[0].kind else {
+            panic!("{:?}", scene.materials[0].kind)
+        };
+        assert_eq!(&*texture.texels, &packed(&texels));
+        let largest = uvs_of(&scene).iter().fold(0.0f32, |m, uv| m.max(uv.max_element()));
+        assert_eq!(largest, 2.0, "the plane's UV_0 spans 0..1, its transform doubles it");
+        PreparedScene::new(scene).expect("a valid scene");
+    }
+
+    #[test]
+    fn a_metallic_map_makes_a_rough_metal_and_what_is_left_out_is_named() {
+        let (roughness, normals) =
+            ([[0, 128, 255, 255], [0, 64, 255, 255]], [[128, 128, 255, 255], [128, 200, 255, 255]]);
+        let (scene, left_out) = mirrored(
+            |images| StandardMaterial {
+                metallic: 1.0,
+                perceptual_roughness: 0.8,
+                metallic_roughness_texture: Some(images.add(image(TextureFormat::Rgba8Unorm, roughness))),
+                normal_map_texture: Some(images.add(image(TextureFormat::Rgba8Unorm, normals))),
+                flip_normal_map_y: true,
+                base_color_texture: Some(images.add(image(TextureFormat::Rgba8UnormSrgb, [[255; 4]; 2]))),
+                ..default()
+            },
+            true,
+        );
+        let material = &scene.materials[0];
+        assert!(matches!(material.kind, MaterialKind::Metal { roughness: 0.8, .. }), "{:?}", material.kind);
+        assert_eq!(&*material.roughness_map.as_ref().unwrap().texels, &packed(&roughness));
+        let flipped = [[128, 127, 255, 255], [128, 55, 255, 255]];
+        assert_eq!(&*material.normal_map.as_ref().unwrap().texture.texels, &packed(&flipped));
+        assert_eq!(left_out, ["receiver mesh 0: base_color_texture on a metal (its base_color alone colours it)"]);
+        assert!(!uvs_of(&scene).is_empty());
+        PreparedScene::new(scene).expect("a valid scene");
+
+        // Half its texels metallic: a metal still (the rule of glTF files), and said.
+        let (scene, left_out) = mirrored(
+            |images| StandardMaterial {
+                metallic: 1.0,
+                metallic_roughness_texture: Some(
+                    images.add(image(TextureFormat::Rgba8Unorm, [[0, 255, 255, 255], [0, 255, 0, 255]])),
+                ),
+                ..default()
+            },
+            true,
+        );
+        assert!(matches!(scene.materials[0].kind, MaterialKind::Metal { .. }));
+        assert_eq!(left_out.len(), 1);
+        assert!(left_out[0].contains("drawn as a whole metal"), "{left_out:?}");
+    }
+
+    #[test]
+    fn textures_on_a_mesh_without_uvs_or_still_loading_are_left_out() {
+        let (scene, left_out) = mirrored(
+            |images| StandardMaterial {
+                base_color_texture: Some(images.add(image(TextureFormat::Rgba8UnormSrgb, [[9; 4]; 2]))),
+                metallic: 0.0,
+                ..default()
+            },
+            false,
+        );
+        assert!(matches!(scene.materials[0].kind, MaterialKind::Diffuse { texture: None, .. }));
+        assert_eq!(left_out, ["receiver mesh 0: its textures (its mesh has no UV_0)"]);
+        PreparedScene::new(scene).expect("a valid scene");
+        // An image not loaded yet: drawn without it until it is, nothing said.
+        let (scene, left_out) = mirrored(
+            |_| StandardMaterial { base_color_texture: Some(Handle::default()), metallic: 0.0, ..default() },
+            true,
+        );
+        assert!(matches!(scene.materials[0].kind, MaterialKind::Diffuse { texture: None, .. }));
+        assert!(left_out.is_empty() && uvs_of(&scene).is_empty(), "{left_out:?}");
     }
 }

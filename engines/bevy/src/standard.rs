@@ -1,0 +1,88 @@
+//! A `StandardMaterial` (a [`crate::CausticMaterial`]'s base) as a
+//! prismatic material: diffuse in its base colour and base colour texture,
+//! or a metal in its base colour where most of its surface is metallic
+//! ([`Metalness`]: by `metallic` times its metallic-roughness texture's
+//! blue channel), its roughness scaled by that texture's green channel,
+//! its normals tilted by its normal map. What prismatic cannot draw of it
+//! is named, as the glTF loader names what it leaves out.
+
+use crate::images::{AppImages, Channels};
+use bevy::math::Affine2;
+use bevy::mesh::UvChannel;
+use bevy::prelude::*;
+use prismatic_core::model::metalness::Metalness;
+use prismatic_core::model::scene::{Material, MaterialKind, NormalMap, Texture};
+use prismatic_core::{MetalColor, Vec3 as CoreVec3};
+
+/// A material as the mirror draws it.
+pub(crate) struct Drawn {
+    /// The prismatic material.
+    pub material: Material,
+    /// Where it reads a texture: the transform of the mesh's `UV_0` into
+    /// its textures' coordinates (`uv_transform`); `None`: it reads none.
+    pub uv_transform: Option<Affine2>,
+}
+
+impl Drawn {
+    /// The material without its textures (its mesh has no texture coordinates).
+    pub(crate) fn untextured(self) -> Material {
+        let mut material = self.material;
+        if let MaterialKind::Diffuse { texture, .. } = &mut material.kind {
+            *texture = None;
+        }
+        (material.normal_map, material.roughness_map) = (None, None);
+        material
+    }
+}
+
+/// `m` as a prismatic material named `name`; what of it is left out is
+/// added to `left_out`.
+pub(crate) fn drawn(m: &StandardMaterial, name: String, images: &mut AppImages, left_out: &mut Vec<String>) -> Drawn {
+    let mut map = |what: &str, handle: &Option<Handle<Image>>, uv: &UvChannel, channels| -> Option<Texture> {
+        let handle = handle.as_ref()?;
+        if *uv != UvChannel::Uv0 {
+            left_out.push(format!("{name}: {what} reads UV_1 (prismatic reads UV_0 only)"));
+            return None;
+        }
+        images.texture(handle, channels).unwrap_or_else(|e| {
+            left_out.push(format!("{name}: {what}: {e}"));
+            None
+        })
+    };
+    let normal_channels = if m.flip_normal_map_y { Channels::LinearGreenFlipped } else { Channels::Linear };
+    let normal_map = map("normal_map_texture", &m.normal_map_texture, &m.normal_map_channel, normal_channels)
+        .map(|texture| NormalMap { texture, scale: 1.0 });
+    let metallic_roughness = map(
+        "metallic_roughness_texture",
+        &m.metallic_roughness_texture,
+        &m.metallic_roughness_channel,
+        Channels::Linear,
+    );
+    let base_colour_texture = map("base_color_texture", &m.base_color_texture, &m.base_color_channel, Channels::Colour);
+    let c = m.base_color.to_linear();
+    let color = CoreVec3::new(c.red, c.green, c.blue);
+    let metalness = Metalness::of(m.metallic, metallic_roughness.as_ref());
+    if metalness.varies || metalness.partial {
+        let drawn_as = if metalness.metal { "a whole metal" } else { "diffuse" };
+        left_out.push(format!("{name}: metalness between 0 and 1 or varying (drawn as {drawn_as}, as most of it is)"));
+    }
+    let (kind, roughness_map) = if metalness.metal {
+        if base_colour_texture.is_some() {
+            left_out.push(format!("{name}: base_color_texture on a metal (its base_color alone colours it)"));
+        }
+        let kind = MaterialKind::Metal {
+            color: MetalColor::Rgb(color.clamp(CoreVec3::ZERO, CoreVec3::ONE)),
+            roughness: m.perceptual_roughness.clamp(0.0, 1.0),
+        };
+        (kind, metallic_roughness)
+    } else {
+        // A receiver of its diffuse share.
+        let albedo = color * (1.0 - m.metallic.clamp(0.0, 1.0));
+        (MaterialKind::Diffuse { albedo, checker: None, texture: base_colour_texture, emission: CoreVec3::ZERO }, None)
+    };
+    let material = Material { normal_map, roughness_map, ..Material::new(name, kind) };
+    let reads_texture = material.normal_map.is_some()
+        || material.roughness_map.is_some()
+        || matches!(material.kind, MaterialKind::Diffuse { texture: Some(_), .. });
+    Drawn { material, uv_transform: reads_texture.then_some(m.uv_transform) }
+}

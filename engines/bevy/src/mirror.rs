@@ -9,7 +9,7 @@
 
 use crate::images::AppImages;
 use crate::layer::{CausticLayer, CausticLayerView, CausticMaterial};
-use crate::standard::drawn;
+use crate::standard::{drawn, glass_normal_map};
 use crate::{CausticScene, CausticSettings, CausticStats};
 use bevy::camera::{Camera as BevyCamera, Projection};
 use bevy::ecs::system::SystemParam;
@@ -56,7 +56,9 @@ pub struct CausticShape(pub Shape);
 
 /// The object is a smooth dispersive dielectric: its [`CausticShape`], or
 /// else its `Mesh3d` (Bevy's mesh with its vertex normals, its vertices
-/// welded where they repeat along UV seams).
+/// welded where they repeat along UV seams; where Bevy draws it with a
+/// `StandardMaterial` that has a normal map, a water surface's ripples,
+/// the glass's normals tilt by that map).
 #[derive(Component, Clone, Debug, PartialEq)]
 pub struct Glass {
     /// Its index of refraction n(λ).
@@ -204,6 +206,10 @@ fn mesh_shape(mesh: &Mesh, t: &GlobalTransform, uv_transform: Option<Affine2>) -
     })
 }
 
+/// A [`Glass`] mesh, and the material Bevy draws it with, if any.
+type GlassMesh =
+    (&'static Glass, &'static Mesh3d, &'static GlobalTransform, Option<&'static MeshMaterial3d<StandardMaterial>>);
+
 /// A mesh drawn with a [`CausticMaterial`]: a diffuse receiver.
 type ReceiverMesh = (&'static MeshMaterial3d<CausticMaterial>, &'static Mesh3d, &'static GlobalTransform);
 
@@ -222,10 +228,11 @@ pub(crate) struct SceneEntities<'w, 's> {
         's,
         (&'static CausticShape, &'static GlobalTransform, Option<&'static Glass>, Option<&'static Receiver>),
     >,
-    glass_meshes: Query<'w, 's, (&'static Glass, &'static Mesh3d, &'static GlobalTransform), Without<CausticShape>>,
+    glass_meshes: Query<'w, 's, GlassMesh, Without<CausticShape>>,
     receiver_meshes: Query<'w, 's, ReceiverMesh, (Without<CausticShape>, Without<Glass>)>,
     meshes: Res<'w, Assets<Mesh>>,
     materials: Res<'w, Assets<CausticMaterial>>,
+    standard_materials: Option<Res<'w, Assets<StandardMaterial>>>,
     images: AppImages<'w, 's>,
 }
 
@@ -270,7 +277,17 @@ fn build_scene(
     entities: &mut SceneEntities,
 ) -> Result<(Scene, Option<CausticLayerView>, Vec<String>), String> {
     let SceneView { camera, size: (width, height), layer } = scene_view(settings, entities)?;
-    let SceneEntities { lights, objects, glass_meshes, receiver_meshes, meshes, materials, images, .. } = entities;
+    let SceneEntities {
+        lights,
+        objects,
+        glass_meshes,
+        receiver_meshes,
+        meshes,
+        materials,
+        standard_materials,
+        images,
+        ..
+    } = entities;
     let lights = lights
         .iter()
         .map(|(light, at)| match *light {
@@ -317,7 +334,19 @@ fn build_scene(
             .and_then(|m| mesh_shape(m, at, uv_transform))
             .ok_or(format!("{what}'s mesh has no positions here"))
     };
-    for (i, (glass, handle, at)) in glass_meshes.iter().enumerate() {
+    let mut left_out = Vec::new();
+    for (i, (glass, handle, at, drawn_with)) in glass_meshes.iter().enumerate() {
+        let name = format!("glass mesh {i}");
+        let drawn_with = drawn_with.zip(standard_materials.as_ref()).and_then(|(m, all)| all.get(&m.0));
+        let normal_map = drawn_with.and_then(|m| glass_normal_map(m, &name, images, &mut left_out));
+        let shape = mesh(handle, at, "a Glass mesh", normal_map.as_ref().map(|(_, to_texture)| *to_texture))?;
+        let normal_map = match (&shape, normal_map) {
+            (Shape::Mesh { uvs, .. }, Some(_)) if uvs.is_empty() => {
+                left_out.push(format!("{name}: its normal map (its mesh has no UV_0)"));
+                None
+            }
+            (_, map) => map.map(|(map, _)| map),
+        };
         let kind = MaterialKind::Dielectric {
             dispersion: glass.dispersion.clone(),
             outside: Dispersion::Constant(1.0),
@@ -326,10 +355,9 @@ fn build_scene(
             film: glass.film,
             roughness: glass.roughness,
         };
-        scene_objects.push(Object { shape: mesh(handle, at, "a Glass mesh", None)?, material: scene_materials.len() });
-        scene_materials.push(Material { name: format!("glass mesh {i}"), kind, normal_map: None, roughness_map: None });
+        scene_objects.push(Object { shape, material: scene_materials.len() });
+        scene_materials.push(Material { normal_map, ..Material::new(name, kind) });
     }
-    let mut left_out = Vec::new();
     for (i, (material, handle, at)) in receiver_meshes.iter().enumerate() {
         let Some(m) = materials.get(&material.0) else { continue };
         let name = format!("receiver mesh {i}");
@@ -409,9 +437,15 @@ mod tests {
         Image::new(size, TextureDimension::D2, texels.concat(), format, RenderAssetUsages::MAIN_WORLD)
     }
 
-    /// The scene a camera, a light and one 2×2 floor drawn with `material` make
-    /// (the floor's mesh without texture coordinates where `uvs` is false).
+    /// The scene a camera, a light and one 2×2 floor drawn with `material`
+    /// make (the floor's mesh without texture coordinates where `uvs` is
+    /// false), and what it leaves out.
     fn mirrored(material: impl FnOnce(&mut Assets<Image>) -> StandardMaterial, uvs: bool) -> (Scene, Vec<String>) {
+        built(&mut world_of(material, uvs))
+    }
+
+    /// The world of [`mirrored`]'s scene.
+    fn world_of(material: impl FnOnce(&mut Assets<Image>) -> StandardMaterial, uvs: bool) -> World {
         let mut world = World::new();
         world.insert_resource(CausticSettings::default());
         world.init_resource::<Messages<AssetEvent<Image>>>();
@@ -431,6 +465,11 @@ mod tests {
         world.spawn((CausticCamera { fov_deg: 40.0 }, GlobalTransform::from_xyz(0.0, 2.0, 4.0)));
         world.spawn((CausticLight::Point { power: 10.0 }, GlobalTransform::from_xyz(0.0, 3.0, 0.0)));
         world.spawn((mesh, material, GlobalTransform::IDENTITY));
+        world
+    }
+
+    /// The scene `world`'s entities make, and what it leaves out.
+    fn built(world: &mut World) -> (Scene, Vec<String>) {
         let built = world
             .run_system_once(|settings: Res<CausticSettings>, mut entities: SceneEntities| {
                 build_scene(&settings, &mut entities)
@@ -535,5 +574,32 @@ mod tests {
         );
         assert!(matches!(scene.materials[0].kind, MaterialKind::Diffuse { texture: None, .. }));
         assert!(left_out.is_empty() && uvs_of(&scene).is_empty(), "{left_out:?}");
+    }
+
+    #[test]
+    fn a_glass_mesh_takes_the_normal_map_bevy_draws_it_with() {
+        let ripples = [[128, 128, 255, 255], [200, 128, 230, 255]];
+        let mut world = world_of(|_| StandardMaterial::default(), true);
+        world.init_resource::<Assets<StandardMaterial>>();
+        let map = world.resource_mut::<Assets<Image>>().add(image(TextureFormat::Rgba8Unorm, ripples));
+        let water = StandardMaterial {
+            normal_map_texture: Some(map),
+            uv_transform: Affine2::from_translation(Vec2::new(0.25, 0.0)),
+            ..default()
+        };
+        let water = MeshMaterial3d(world.resource_mut::<Assets<StandardMaterial>>().add(water));
+        let cube = Mesh3d(world.resource_mut::<Assets<Mesh>>().add(Cuboid::new(1.0, 1.0, 1.0)));
+        let glass = Glass { dispersion: Dispersion::Paper, film: None, roughness: 0.0 };
+        world.spawn((glass, cube, water, GlobalTransform::from_xyz(0.0, 1.0, 0.0)));
+        let (scene, left_out) = built(&mut world);
+        assert!(left_out.is_empty(), "{left_out:?}");
+        let glass = scene.objects.iter().find(|o| scene.materials[o.material].name == "glass mesh 0").unwrap();
+        let map = scene.materials[glass.material].normal_map.as_ref().expect("the water's normal map");
+        assert_eq!(&*map.texture.texels, &packed(&ripples));
+        let Shape::Mesh { uvs, .. } = &glass.shape else { panic!("not a mesh") };
+        // The cube's UV_0 spans 0..1 on each face; the material moves it by 0.25 along u.
+        let (lo, hi) = uvs.iter().fold((f32::MAX, f32::MIN), |(lo, hi), uv| (lo.min(uv.x), hi.max(uv.x)));
+        assert_eq!((lo, hi), (0.25, 1.25));
+        PreparedScene::new(scene).expect("a valid scene: the glass is closed across its faces' seams");
     }
 }

@@ -35,30 +35,70 @@ impl Drawn {
     }
 }
 
+/// The textures a material named `name` reads; what of them is left out
+/// is added to `left_out`.
+struct Maps<'a, 'w, 's> {
+    name: &'a str,
+    images: &'a mut AppImages<'w, 's>,
+    left_out: &'a mut Vec<String>,
+}
+
+impl Maps<'_, '_, '_> {
+    /// The material's map `what` read as `channels` (`None`: it has none,
+    /// it is loading, or it is left out).
+    fn read(
+        &mut self,
+        what: &str,
+        handle: &Option<Handle<Image>>,
+        uv: &UvChannel,
+        channels: Channels,
+    ) -> Option<Texture> {
+        let handle = handle.as_ref()?;
+        if *uv != UvChannel::Uv0 {
+            self.left_out.push(format!("{}: {what} reads UV_1 (prismatic reads UV_0 only)", self.name));
+            return None;
+        }
+        self.images.texture(handle, channels).unwrap_or_else(|e| {
+            self.left_out.push(format!("{}: {what}: {e}", self.name));
+            None
+        })
+    }
+
+    /// `m`'s normal map (in glTF's convention, whichever `m` is in).
+    fn normal_map(&mut self, m: &StandardMaterial) -> Option<NormalMap> {
+        let channels = if m.flip_normal_map_y { Channels::LinearGreenFlipped } else { Channels::Linear };
+        let texture = self.read("normal_map_texture", &m.normal_map_texture, &m.normal_map_channel, channels)?;
+        Some(NormalMap { texture, scale: 1.0 })
+    }
+}
+
+/// The normal map of `m`, the material Bevy draws a [`crate::Glass`] mesh
+/// named `name` with (its ripples are the glass's), and the transform of
+/// the mesh's `UV_0` into it; what is left out is added to `left_out`.
+pub(crate) fn glass_normal_map(
+    m: &StandardMaterial,
+    name: &str,
+    images: &mut AppImages,
+    left_out: &mut Vec<String>,
+) -> Option<(NormalMap, Affine2)> {
+    let map = Maps { name, images, left_out }.normal_map(m)?;
+    Some((map, m.uv_transform))
+}
+
 /// `m` as a prismatic material named `name`; what of it is left out is
 /// added to `left_out`.
 pub(crate) fn drawn(m: &StandardMaterial, name: String, images: &mut AppImages, left_out: &mut Vec<String>) -> Drawn {
-    let mut map = |what: &str, handle: &Option<Handle<Image>>, uv: &UvChannel, channels| -> Option<Texture> {
-        let handle = handle.as_ref()?;
-        if *uv != UvChannel::Uv0 {
-            left_out.push(format!("{name}: {what} reads UV_1 (prismatic reads UV_0 only)"));
-            return None;
-        }
-        images.texture(handle, channels).unwrap_or_else(|e| {
-            left_out.push(format!("{name}: {what}: {e}"));
-            None
-        })
-    };
-    let normal_channels = if m.flip_normal_map_y { Channels::LinearGreenFlipped } else { Channels::Linear };
-    let normal_map = map("normal_map_texture", &m.normal_map_texture, &m.normal_map_channel, normal_channels)
-        .map(|texture| NormalMap { texture, scale: 1.0 });
-    let metallic_roughness = map(
+    let mut maps = Maps { name: &name, images, left_out };
+    let normal_map = maps.normal_map(m);
+    let metallic_roughness = maps.read(
         "metallic_roughness_texture",
         &m.metallic_roughness_texture,
         &m.metallic_roughness_channel,
         Channels::Linear,
     );
-    let base_colour_texture = map("base_color_texture", &m.base_color_texture, &m.base_color_channel, Channels::Colour);
+    let base_colour_texture =
+        maps.read("base_color_texture", &m.base_color_texture, &m.base_color_channel, Channels::Colour);
+    let left_out = maps.left_out;
     let c = m.base_color.to_linear();
     let color = CoreVec3::new(c.red, c.green, c.blue);
     let metalness = Metalness::of(m.metallic, metallic_roughness.as_ref());

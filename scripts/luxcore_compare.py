@@ -17,9 +17,10 @@ n(λ) = 1.5 + 0.02/λ² (λ in µm), a 400×400 camera, depth 10, 2 threads:
   prismatic's environment light, which shines as the suns of its median
   cut);
 - `frosted` (z up): the `sphere` scene with its glass frosted, roughness
-  0.3 (prismatic's GGX facets of width 0.09; LuxCore's `roughglass` with
-  u and v roughness 0.3, its own microfacet distribution), its caustic
-  blurred into a glow;
+  0.3 (prismatic's GGX facets of width α = 0.09; LuxCore's `roughglass`
+  with u and v roughness 0.09: its Schlick distribution of roughness u·v
+  is GGX's D with α² = u·v, so its u is GGX's α), its caustic blurred
+  into a glow;
 - `panel` (y up): the ball resting on the floor under a light panel (an
   emissive square, 1.2 m a side, radiance 10, 4 m up and 1.5 m to the
   side, facing down): an area light's soft shadow and blurred caustic
@@ -93,8 +94,9 @@ class Setup:
     # Settings whose own reference shows how far prismatic's default
     # approximation of the lights is from converged (printed, not tabled).
     bias_check: Dict[str, object] = None
-    # The glass's roughness (0: polished): prismatic's GGX of width r², and
-    # LuxCore's `roughglass` with u and v roughness r.
+    # The glass's roughness (0: polished): prismatic's GGX of width α = r²,
+    # and LuxCore's `roughglass` with u and v roughness α (its Schlick
+    # distribution D = u·v / (π (1 + (u·v − 1) cos²θ)²) is GGX's with α² = u·v).
     roughness: float = 0.0
 
 
@@ -393,9 +395,9 @@ def luxcore_scene(setup: Setup) -> "pyluxcore.Scene":
     tx, ty, tz = setup.camera["look_at"]
     ux, uy, uz = setup.up
     objects = "\n".join(f'scene.objects.{m}.shape = "{m}"\nscene.objects.{m}.material = "glass"' for m in glass)
-    r = setup.roughness
-    glass_type = f'"roughglass"\nscene.materials.glass.uroughness = {r}\nscene.materials.glass.vroughness = {r}' \
-        if r > 0 else '"glass"'
+    alpha = setup.roughness ** 2
+    glass_type = f'"roughglass"\nscene.materials.glass.uroughness = {alpha}\nscene.materials.glass.vroughness = {alpha}' \
+        if alpha > 0 else '"glass"'
     props = pyluxcore.Properties()
     props.SetFromString(f"""
         scene.camera.type = "perspective"

@@ -4,7 +4,6 @@
 //! material as one or the other, as most of its surface is.
 
 use crate::model::scene::Texture;
-use alloc::vec::Vec;
 
 /// The metalness from which a surface is drawn as a metal.
 pub const METAL_METALLIC: f32 = 0.5;
@@ -27,18 +26,20 @@ impl Metalness {
     /// The metalness `factor` (glTF's `metallicFactor`, Bevy's `metallic`)
     /// times the blue channel of `texture` (glTF's
     /// `metallicRoughnessTexture`, read as linear values) texel by texel;
-    /// the factor alone without one.
+    /// the factor alone without one. One pass over the texels.
     pub fn of(factor: f32, texture: Option<&Texture>) -> Metalness {
-        let metalness: Vec<f32> = match texture {
-            Some(t) => t.texels.iter().map(|&x| factor * ((x >> 16) & 255) as f32 / 255.0).collect(),
-            None => alloc::vec![factor],
+        let (mut count, mut metallic, mut partial) = (0usize, 0usize, false);
+        let mut add = |m: f32| {
+            count += 1;
+            metallic += usize::from(m >= METAL_METALLIC);
+            partial |= m > 0.0 && m < 1.0;
         };
-        let metal = 2 * metalness.iter().filter(|&&m| m >= METAL_METALLIC).count() >= metalness.len();
-        Metalness {
-            metal,
-            varies: metalness.iter().any(|&m| (m >= METAL_METALLIC) != metal),
-            partial: metalness.iter().any(|&m| m > 0.0 && m < 1.0),
+        match texture {
+            Some(t) => t.texels.iter().for_each(|&x| add(factor * ((x >> 16) & 255) as f32 / 255.0)),
+            None => add(factor),
         }
+        // Some texels on each side of the threshold: the minority is drawn as the rest.
+        Metalness { metal: 2 * metallic >= count, varies: metallic != 0 && metallic != count, partial }
     }
 }
 

@@ -6,6 +6,7 @@ use bevy::asset::{AssetEvent, AssetId};
 use bevy::ecs::system::SystemParam;
 use bevy::image::{Image, ImageAddressMode, ImageFilterMode, ImageSampler};
 use bevy::prelude::*;
+use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::{Filter, Sampler, Texture, Wrap};
 use std::collections::HashMap;
 
@@ -39,12 +40,19 @@ impl AppImages<'_, '_> {
     pub(crate) fn texture(&mut self, handle: &Handle<Image>, channels: Channels) -> Result<Option<Texture>, String> {
         self.converted.get(&self.images, handle, channels)
     }
+
+    /// [`Textures::metalness`].
+    pub(crate) fn metalness(&mut self, handle: &Handle<Image>, factor: f32, texture: &Texture) -> Metalness {
+        self.converted.metalness(handle, factor, texture)
+    }
 }
 
-/// The textures converted so far, by image and channels.
+/// The textures converted so far, by image and channels, and the
+/// metalness of metallic-roughness images, by image and factor.
 #[derive(Default)]
 pub(crate) struct Textures {
     converted: HashMap<(AssetId<Image>, Channels), Texture>,
+    metalness: HashMap<(AssetId<Image>, u32), Metalness>,
 }
 
 impl Textures {
@@ -53,8 +61,16 @@ impl Textures {
         for event in events {
             if let AssetEvent::Modified { id } | AssetEvent::Removed { id } | AssetEvent::Unused { id } = event {
                 self.converted.retain(|(image, _), _| image != id);
+                self.metalness.retain(|(image, _), _| image != id);
             }
         }
+    }
+
+    /// [`Metalness::of`] `factor` and `texture` (`handle`'s image read as
+    /// linear values), counted once per image and factor, not each frame:
+    /// a pass over every texel.
+    pub(crate) fn metalness(&mut self, handle: &Handle<Image>, factor: f32, texture: &Texture) -> Metalness {
+        *self.metalness.entry((handle.id(), factor.to_bits())).or_insert_with(|| Metalness::of(factor, Some(texture)))
     }
 
     /// The texture of `handle`'s image read as `channels`; `Ok(None)` while
@@ -173,6 +189,23 @@ mod tests {
         });
         let own = texture(&img, "a".into(), Channels::Linear).unwrap().sampler;
         assert_eq!(own, Sampler { filter: Filter::Nearest, wrap_u: Wrap::Repeat, wrap_v: Wrap::MirroredRepeat });
+    }
+
+    #[test]
+    fn an_image_is_read_once_and_again_when_bevy_changes_it() {
+        let mut images = Assets::<Image>::default();
+        let handle = images.add(image(TextureFormat::Rgba8Unorm, &[[1, 2, 255, 255]]));
+        let mut textures = Textures::default();
+        let first = textures.get(&images, &handle, Channels::Linear).unwrap().unwrap();
+        let metal = Metalness { metal: true, varies: false, partial: false };
+        assert_eq!(textures.metalness(&handle, 1.0, &first), metal);
+        images.get_mut(&handle).unwrap().data = Some(vec![9, 9, 0, 255]);
+        let cached = textures.get(&images, &handle, Channels::Linear).unwrap().unwrap();
+        assert_eq!(cached.texels, first.texels, "not read again before Bevy says it changed");
+        textures.forget([AssetEvent::Modified { id: handle.id() }].iter());
+        let again = textures.get(&images, &handle, Channels::Linear).unwrap().unwrap();
+        assert_eq!(&*again.texels, &[9 | 9 << 8]);
+        assert_eq!(textures.metalness(&handle, 1.0, &again), Metalness { metal: false, ..metal });
     }
 
     #[test]

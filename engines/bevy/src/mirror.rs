@@ -157,7 +157,7 @@ fn mesh_shape(mesh: &Mesh, t: &GlobalTransform, uv_transform: Option<Affine2>) -
     let normal_to_world = normal_to_world(t);
     // Tangents turn as directions; a mirroring transform turns their handedness.
     let handedness = t.affine().matrix3.determinant().signum();
-    let tangent_to_world = |k: [f32; 4]| {
+    let tangent_to_world = |k: &[f32; 4]| {
         let along = core(t.affine().transform_vector3(Vec3::new(k[0], k[1], k[2])));
         glam::Vec4::new(along.x, along.y, along.z, k[3] * handedness)
     };
@@ -168,24 +168,23 @@ fn mesh_shape(mesh: &Mesh, t: &GlobalTransform, uv_transform: Option<Affine2>) -
         .enumerate()
         .map(|(i, p)| {
             let normal = normals.map_or([0.0; 3], |n| n[i]);
-            let uv = uvs.as_ref().map_or([0.0; 2], |uv| uv[i]);
-            let tangent = tangents.map_or([0.0; 4], |k| k[i]);
-            let key = (p.map(f32::to_bits), normal.map(f32::to_bits), uv.map(f32::to_bits), tangent.map(f32::to_bits));
+            let uv = uvs.as_ref().map(|uv| uv[i]);
+            let tangent = tangents.map(|k| &k[i]);
+            let key = (
+                p.map(f32::to_bits),
+                normal.map(f32::to_bits),
+                uv.map(|uv| uv.map(f32::to_bits)),
+                tangent.map(|k| k.map(f32::to_bits)),
+            );
             *index_of.entry(key).or_insert_with(|| {
                 welded.push(core(t.transform_point(Vec3::from_array(*p))));
                 welded_normals.push(normal_to_world(normal));
-                welded_uvs.push(glam::Vec2::from_array(uv));
-                welded_tangents.push(tangent_to_world(tangent));
+                welded_uvs.extend(uv.map(glam::Vec2::from_array));
+                welded_tangents.extend(tangent.map(tangent_to_world));
                 welded.len() as u32 - 1
             })
         })
         .collect();
-    if uvs.is_none() {
-        welded_uvs.clear();
-    }
-    if tangents.is_none() {
-        welded_tangents.clear();
-    }
     // Without normals, or with a zero one (which no surface has), the mesh is flat.
     if normals.is_none() || welded_normals.contains(&CoreVec3::ZERO) {
         welded_normals.clear();
@@ -396,9 +395,7 @@ pub(crate) fn mirror_scene(
         Ok(built) => built,
         Err(e) => return stats.set(|s| s.error = Some(e)),
     };
-    if stats.get().left_out != left_out {
-        stats.set(|s| s.left_out = left_out);
-    }
+    stats.set(|s| s.left_out = left_out);
     match layer {
         Some(layer) if current_layer.as_deref() != Some(&layer) => commands.insert_resource(layer),
         None if current_layer.is_some() => commands.remove_resource::<CausticLayerView>(),

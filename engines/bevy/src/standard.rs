@@ -98,10 +98,13 @@ pub(crate) fn drawn(m: &StandardMaterial, name: String, images: &mut AppImages, 
     );
     let base_colour_texture =
         maps.read("base_color_texture", &m.base_color_texture, &m.base_color_channel, Channels::Colour);
+    let metalness = match (&m.metallic_roughness_texture, &metallic_roughness) {
+        (Some(handle), Some(texture)) => maps.images.metalness(handle, m.metallic, texture),
+        _ => Metalness::of(m.metallic, None),
+    };
     let left_out = maps.left_out;
     let c = m.base_color.to_linear();
     let color = CoreVec3::new(c.red, c.green, c.blue);
-    let metalness = Metalness::of(m.metallic, metallic_roughness.as_ref());
     if metalness.varies || metalness.partial {
         let drawn_as = if metalness.metal { "a whole metal" } else { "diffuse" };
         left_out.push(format!("{name}: metalness between 0 and 1 or varying (drawn as {drawn_as}, as most of it is)"));

@@ -29,7 +29,6 @@ use prismatic_core::model::light_range::range_window;
 use prismatic_core::model::photon::WHITE_BAND;
 use prismatic_core::model::scene::Light;
 use prismatic_core::optics::fresnel::reflect;
-use prismatic_core::optics::metal::MetalOptics;
 use prismatic_core::optics::microfacet::Ggx;
 use prismatic_core::optics::scatter::{
     self, Face, scatter_dielectric, scatter_metal, scatter_rough_dielectric, split_rough_dielectric,
@@ -38,6 +37,7 @@ use prismatic_core::optics::surface::{DielectricOptics, Surface};
 use prismatic_core::photons::path::stored_wavelength;
 use prismatic_core::plan::area::area;
 use prismatic_core::plan::area_aims::on_triangle;
+use prismatic_core::plan::prepared::Hit;
 use prismatic_core::plan::prepared::PreparedScene;
 use prismatic_core::render::view::{HeroViewPath, ViewContext, gathers_at, glass_transmittance, hero_view_paths};
 use prismatic_core::render::visible::{VisiblePoint, VisiblePoints};
@@ -205,7 +205,9 @@ impl Shader<'_> {
                 }
                 // A metal's highlights, facet and Fresnel: the core's scalar rules, ray by ray.
                 Surface::Metal(metal) => {
-                    let metal = &MetalOptics { ggx: facets, ..*metal };
+                    let at =
+                        Hit { t: t[i], point: p, normal: n, object: object[i] as usize, triangle: triangle[i] as u32 };
+                    let metal = &self.scene.metal_at(metal, &at);
                     let lambda_nm = stored_wavelength(&self.scene.bands, r.band, r.lambda_nm);
                     sum[r.pixel as usize] +=
                         r.tint * self.view.metal_highlights(r.dir, (p, n), metal, r.band, lambda_nm);

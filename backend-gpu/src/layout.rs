@@ -167,9 +167,10 @@ pub struct GpuSurface {
     pub albedo: [f32; 3],
     /// Index for white light; a metal's GGX α (0: polished).
     pub white_ior: f32,
-    /// Albedo of the checker's odd cells.
+    /// Albedo of the checker's odd cells; a metal's colour texture's
+    /// start, width and height, as bits (see `SURFACE_HAS_COLOUR_MAP`).
     pub checker_albedo: [f32; 3],
-    /// Checker cell size.
+    /// Checker cell size; a metal's colour texture's sampler flags, as bits.
     pub checker_size: f32,
     /// Checker offset.
     pub checker_offset: [f32; 3],
@@ -191,8 +192,8 @@ pub struct GpuSurface {
     pub uv_first: u32,
     /// Radiance its front faces emit (an area light's glow).
     pub emission: [f32; 3],
-    /// Index of the film's relative index and thickness (nm) in the tables
-    /// buffer (see `SURFACE_HAS_FILM`).
+    /// Index of a dielectric's or metal's film's index (relative to the
+    /// outside) and thickness (nm) in the tables buffer (see `SURFACE_HAS_FILM`).
     pub film_first: u32,
 }
 const _: () = assert!(core::mem::size_of::<GpuSurface>() == 112);

@@ -13,7 +13,7 @@ use glam::Vec3;
 use prismatic_core::geometry::camera::PinholeCamera;
 use prismatic_core::geometry::primitive::{Primitive, basis};
 use prismatic_core::geometry::texture::{linear_channel, srgb_to_linear};
-use prismatic_core::model::scene::{Filter, Light, Sampler, Texture, Wrap};
+use prismatic_core::model::scene::{Filter, Light, MaterialKind, Sampler, Texture, Wrap};
 use prismatic_core::model::wavelength_rgb;
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::photons::indirect::indirect_flux;
@@ -138,6 +138,17 @@ impl EncodedScene {
                 s.texture_width = t.width;
                 s.texture_height = t.height;
                 s.texture_first = *textures.entry((t.texels.as_ptr(), srgb)).or_insert_with(|| e.texture(t, srgb));
+            }
+            // A metal's colour texture, its reference in the checker's fields (a metal has no checker).
+            if let MaterialKind::Metal { texture: Some(t), .. } =
+                &scene.scene.materials[scene.scene.objects[i].material].kind
+            {
+                s.flags |= SURFACE_HAS_COLOUR_MAP;
+                let first = *textures.entry((t.texels.as_ptr(), true)).or_insert_with(|| e.texture(t, true));
+                s.checker_albedo = [first, t.width, t.height].map(f32::from_bits);
+                s.checker_size = f32::from_bits(texture_flags(t.sampler));
+            }
+            if !uvs.is_empty() && s.flags & (SURFACE_HAS_TEXTURE | SURFACE_HAS_COLOUR_MAP) != 0 {
                 s.uv_first = e.geometry.len() as u32;
                 for uv in uvs {
                     e.geometry.extend([[uv.uv0.x, uv.uv0.y, uv.du1.x, uv.du1.y], [uv.du2.x, uv.du2.y, 0.0, 0.0]]);
@@ -287,6 +298,11 @@ impl EncodedScene {
                     s.flags |= SURFACE_MEASURED;
                     s.curve_first = self.tables.len() as u32;
                     self.tables.extend(metal.rows().iter().flatten());
+                }
+                if let Some(film) = &m.film {
+                    s.flags |= SURFACE_HAS_FILM;
+                    s.film_first = self.tables.len() as u32;
+                    self.tables.extend_from_slice(&[film.ior, film.thickness_nm]);
                 }
                 s
             }

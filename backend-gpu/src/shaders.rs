@@ -63,10 +63,14 @@ pub mod kind {
     pub const TEXTURE_WRAP_U_SHIFT: u32 = 8;
     /// Where the texture's wrap along v sits in the flags (two bits, `WRAP_*`).
     pub const TEXTURE_WRAP_V_SHIFT: u32 = 10;
-    /// The dielectric has a thin film (its index and thickness in the tables at `film_first`).
+    /// The dielectric or metal has a thin film (its index and thickness in the tables at `film_first`).
     pub const SURFACE_HAS_FILM: u32 = 4096;
     /// The metal is measured: its n and k per row of `model::metals` in the tables at `curve_first`.
     pub const SURFACE_MEASURED: u32 = 8192;
+    /// The metal's F0 is scaled by its colour texture: the texture's start,
+    /// width and height in `checker_albedo`, its sampler's flags in
+    /// `checker_size` (all as bits).
+    pub const SURFACE_HAS_COLOUR_MAP: u32 = 16384;
     /// `Wrap::Repeat`.
     pub const WRAP_REPEAT: u32 = 0;
     /// `Wrap::ClampToEdge`.
@@ -213,6 +217,7 @@ fn prelude(stack: u32) -> String {
     u("SURFACE_THIN", kind::SURFACE_THIN);
     u("SURFACE_HAS_FILM", kind::SURFACE_HAS_FILM);
     u("SURFACE_MEASURED", kind::SURFACE_MEASURED);
+    u("SURFACE_HAS_COLOUR_MAP", kind::SURFACE_HAS_COLOUR_MAP);
     u("METAL_ROWS", metals::ROWS as u32);
     u("TEXTURE_WRAP_U_SHIFT", kind::TEXTURE_WRAP_U_SHIFT);
     u("TEXTURE_WRAP_V_SHIFT", kind::TEXTURE_WRAP_V_SHIFT);
@@ -232,6 +237,7 @@ fn prelude(stack: u32) -> String {
     let mut f = |name: &str, v: f32| writeln!(s, "const {name}: f32 = {v:e};").unwrap();
     f("PI", std::f32::consts::PI);
     f("BIG", f32::MAX);
+    f("MAX_FILMED_F0", prismatic_core::optics::metal::MAX_FILMED_F0);
     f("SURFACE_OFFSET_REL", SURFACE_OFFSET_REL);
     f("SURFACE_OFFSET_ABS", SURFACE_OFFSET_ABS);
     f("SURFACE_SKIN_FACTOR", SURFACE_SKIN_FACTOR);

@@ -16,6 +16,7 @@ use prismatic_conformance::twins::{
 };
 use prismatic_core::geometry::normal_map::mapped_normal;
 use prismatic_core::geometry::shading::shading_normal;
+use prismatic_core::model::scene::ThinFilm;
 use prismatic_core::optics::metal::MetalOptics;
 use prismatic_core::optics::microfacet::{Ggx, conductor_fresnel};
 use prismatic_core::optics::rough_glass::rough_glass_bsdf;
@@ -227,9 +228,9 @@ struct MetalIn {
     depth: u32,
     eta: f32,
     k: f32,
-    _pad0: u32,
-    _pad1: u32,
-    _pad2: u32,
+    film_ior: f32,
+    film_nm: f32,
+    lambda_nm: f32,
 }
 
 struct MetalOut {
@@ -241,7 +242,7 @@ struct MetalOut {
     unshadowed: f32,
     facet: vec2<f32>,
     conductor: f32,
-    _pad: u32,
+    filmed: f32,
 }
 
 @group(0) @binding(0) var<storage, read> metal_in: array<MetalIn>;
@@ -257,8 +258,9 @@ fn metal(@builtin(global_invocation_id) id: vec3<u32>) {
     let facet = pixel_facet(c.scramble, c.pass_index, c.path, c.depth);
     let fresnel = metal_fresnel(c.f0, b.cos_facet);
     let conductor = conductor_fresnel(b.cos_facet, c.eta, c.k);
+    let filmed = thin_film_on(b.cos_facet, 1.0, c.film_ior, vec2<f32>(c.eta, c.k), c.film_nm, c.lambda_nm);
     metal_out[id.x] =
-        MetalOut(b.origin, select(0u, 1u, b.ok), b.dir, b.cos_facet, fresnel, b.unshadowed, facet, conductor, 0u);
+        MetalOut(b.origin, select(0u, 1u, b.ok), b.dir, b.cos_facet, fresnel, b.unshadowed, facet, conductor, filmed);
 }
 "#;
 
@@ -278,7 +280,9 @@ struct MetalIn {
     depth: u32,
     eta: f32,
     k: f32,
-    _pad: [u32; 3],
+    film_ior: f32,
+    film_nm: f32,
+    lambda_nm: f32,
 }
 
 #[repr(C)]
@@ -292,7 +296,7 @@ struct MetalOut {
     unshadowed: f32,
     facet: [f32; 2],
     conductor: f32,
-    _pad: u32,
+    filmed: f32,
 }
 
 const SHADING: &str = r#"
@@ -826,10 +830,12 @@ fn metal_case() -> impl Strategy<Value = (MetalIn, PixelSampler)> {
         0.0f32..1.0,
         [0.0f32..1.0, 0.0f32..1.0, 0.0f32..1.0],
         branch_case(),
-        // A conductor's complex index, as metals' span the visible range.
+        // A conductor's complex index, as metals' span the visible range,
+        // and a film on it (index, thickness, wavelength).
         (0.05f32..3.0, 0.0f32..9.0),
+        (1.1f32..2.6, 0.0f32..1000.0, 380.0f32..780.0),
     )
-        .prop_map(|(d, normal, point, alpha, u1, u2, f0, (seed, pixel, pass, path, depth), (eta, k))| {
+        .prop_map(|(d, normal, point, alpha, u1, u2, f0, (seed, pixel, pass, path, depth), (eta, k), film)| {
             let sampler = PixelSampler::new(seed, pixel, pass);
             let case = MetalIn {
                 d: d.to_array(),
@@ -845,13 +851,15 @@ fn metal_case() -> impl Strategy<Value = (MetalIn, PixelSampler)> {
                 depth,
                 eta,
                 k,
-                _pad: [0; 3],
+                film_ior: film.0,
+                film_nm: film.1,
+                lambda_nm: film.2,
             };
             (case, sampler)
         })
 }
 
-/// The WGSL answer to `c` against the core's `scatter_metal` and Schlick:
+/// The WGSL answer to `c` against the core's `scatter_metal`, Schlick and a film's Airy sum over the conductor:
 /// the facet numbers bit for bit; the rest within f32 roundings, but for
 /// reflections that graze the surface (either side of ending the path).
 fn check_metal((c, sampler): &(MetalIn, PixelSampler), got: &MetalOut) -> Result<(), String> {
@@ -875,21 +883,23 @@ fn check_metal((c, sampler): &(MetalIn, PixelSampler), got: &MetalOut) -> Result
     }
     let close = |a: Vec3, b: Vec3, tol: f32| (a - b).abs().max_element() <= tol;
     let scale = Vec3::from(c.point).abs().max_element().max(1.0);
-    let metal = MetalOptics { f0: Vec3::from(c.f0), measured: None, ggx };
+    let metal = MetalOptics { f0: Vec3::from(c.f0), measured: None, ggx, textured: false, film: None };
+    let film = ThinFilm { ior: c.film_ior, thickness_nm: c.film_nm };
     let ok = close(Vec3::from(got.dir), b.ray.direction, 1e-3)
         && close(Vec3::from(got.origin), b.ray.origin, 1e-4 * scale)
         && (got.cos_facet - b.cos_facet).abs() <= 1e-3
         && (got.unshadowed - b.unshadowed).abs() <= 1e-3
         && close(Vec3::from(got.fresnel), metal.fresnel(got.cos_facet), 1e-5)
-        && (got.conductor - conductor_fresnel(got.cos_facet, c.eta, c.k)).abs() <= 1e-5;
+        && (got.conductor - conductor_fresnel(got.cos_facet, c.eta, c.k)).abs() <= 1e-5
+        && (got.filmed - film.reflectance_on(got.cos_facet, 1.0, (c.eta, c.k), c.lambda_nm)).abs() <= 1e-4;
     if ok { Ok(()) } else { Err(format!("{got:?}; the core's {b:?}")) }
 }
 
 proptest! {
     #![proptest_config(config(8, 0x6d74))]
 
-    /// `scatter_metal`, `metal_fresnel`, `conductor_fresnel` and
-    /// `pixel_facet` (common.wgsl, which the photon trace and the view pass
+    /// `scatter_metal`, `metal_fresnel`, `conductor_fresnel`,
+    /// `thin_film_on` and `pixel_facet` (common.wgsl, which the photon trace and the view pass
     /// both call) against the core's.
     #[test]
     fn wgsl_metals_are_the_cores(cases in prop::collection::vec(metal_case(), 1024)) {

@@ -10,7 +10,7 @@
 //! environment, and each one's view pass), `indirect/{indirect,caustic}/gpu`
 //! (a pass of 100,000 indirect photons in the `sphere`, beside its spot's
 //! caustic pass of as many, as the CPU's `indirect` group),
-//! `metals/{rough,mapped,polished,mirrors}` and `rough_glass/{frosted,polished}`
+//! `metals/{rough,mapped,coloured,filmed,polished,mirrors}` and `rough_glass/{frosted,polished}`
 //! (the CPU's groups of the same names at 1,000,000 photons: a pass's
 //! photons, and a whole pass of a live render, photons to sums, at the
 //! scene's size). Every measurement ends with a device sync. On lavapipe they only show that the stages run;

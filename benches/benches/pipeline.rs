@@ -24,10 +24,11 @@
 //!   environment (32 suns of its median cut, projection maps on): the CPU's
 //!   photon pass (throughput in photons) and its view pass (direct light,
 //!   one shadow ray per light per point);
-//! - `metals/{rough,mapped,polished,mirrors}/{trace,view}`: the built-in
-//!   `ring` (100,000 photons) with its metals as they are, as they are
-//!   read through white roughness maps, all polished and as mirrors: the
-//!   CPU's photon pass and its view pass;
+//! - `metals/{rough,mapped,coloured,filmed,polished,mirrors}/{trace,view}`:
+//!   the built-in `ring` (100,000 photons) with its metals as they are, as
+//!   they are read through white roughness maps and through white colour
+//!   textures, under a film, all polished and as mirrors: the CPU's photon
+//!   pass and its view pass;
 //! - `rough_glass/{frosted,polished}/{trace,view}`: the built-in `sphere`
 //!   (100,000 photons) with its glass frosted (roughness 0.3) and polished;
 //! - `scene/{new,update-camera,update-mesh}/<triangles>`: `sphere` with its
@@ -235,7 +236,7 @@ fn lights_group(c: &mut Criterion) {
 }
 
 /// A pass of the `ring` scene's photons (100,000) and its view pass on the
-/// CPU, with its metals rough, polished and as mirrors.
+/// CPU, with its metals as built, mapped, textured, filmed, polished and as mirrors.
 fn metals_group(c: &mut Criterion) {
     trace_and_view_group(c, "metals", prismatic_benches::ring_metals(100_000));
 }

@@ -4,7 +4,7 @@
 
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::environment::EnvironmentMap;
-use prismatic_core::model::scene::{MaterialKind, Object, RadiusMode, Shape, Texture};
+use prismatic_core::model::scene::{MaterialKind, Object, RadiusMode, Shape, Texture, ThinFilm};
 use prismatic_core::{Backend, Image, Light, NoProgress, PreparedScene, RenderSettings, Vec3};
 use std::f32::consts::TAU;
 
@@ -87,10 +87,12 @@ pub fn sphere_frosted(photons: u32) -> [(&'static str, PreparedScene); 2] {
 /// The built-in `ring` with `photons` a pass: its metals as they are (a
 /// gold ring of roughness 0.03, a copper ball of 0.3, a polished silver
 /// ball; `"rough"`), as they are under roughness maps of white texels
-/// (`"mapped"`: the same facets, each read through its map), all polished
-/// (`"polished"`) and as mirrors (`"mirrors"`, which the CPU traces in
-/// packets): what metals and their maps cost.
-pub fn ring_metals(photons: u32) -> [(&'static str, PreparedScene); 4] {
+/// (`"mapped"`: the same facets, each read through its map), under colour
+/// textures of white texels (`"coloured"`: the same F0, each read through
+/// its texture), under a 300 nm film of index 1.8 (`"filmed"`), all
+/// polished (`"polished"`) and as mirrors (`"mirrors"`, which the CPU
+/// traces in packets): what metals, their maps and their films cost.
+pub fn ring_metals(photons: u32) -> [(&'static str, PreparedScene); 6] {
     let mut rough = prismatic_cli::load_scene("ring").expect("built-in ring").scene;
     rough.render.photons = photons;
     let mut mapped = rough.clone();
@@ -101,12 +103,27 @@ pub fn ring_metals(photons: u32) -> [(&'static str, PreparedScene); 4] {
         texels: vec![0xffffff; 256].into(),
         sampler: Default::default(),
     };
-    for o in &mut mapped.objects {
-        let material = &mut mapped.materials[o.material];
-        if let (MaterialKind::Metal { .. }, Shape::Mesh { positions, uvs, .. }) = (&material.kind, &mut o.shape) {
-            // Around the y axis and up it.
-            *uvs = positions.iter().map(|p| [p.z.atan2(p.x) / TAU, p.y].into()).collect();
-            material.roughness_map = Some(white.clone());
+    let mut coloured = rough.clone();
+    for (scene, colour) in [(&mut mapped, false), (&mut coloured, true)] {
+        for o in &mut scene.objects {
+            let material = &mut scene.materials[o.material];
+            if let (MaterialKind::Metal { texture, .. }, Shape::Mesh { positions, uvs, .. }) =
+                (&mut material.kind, &mut o.shape)
+            {
+                // Around the y axis and up it.
+                *uvs = positions.iter().map(|p| [p.z.atan2(p.x) / TAU, p.y].into()).collect();
+                // The ring's metals are glTF's, RGB: each takes a colour texture.
+                match colour {
+                    true => *texture = Some(white.clone()),
+                    false => material.roughness_map = Some(white.clone()),
+                }
+            }
+        }
+    }
+    let mut filmed = rough.clone();
+    for m in &mut filmed.materials {
+        if let MaterialKind::Metal { film, .. } = &mut m.kind {
+            *film = Some(ThinFilm { ior: 1.8, thickness_nm: 300.0 });
         }
     }
     let mut polished = rough.clone();
@@ -121,7 +138,14 @@ pub fn ring_metals(photons: u32) -> [(&'static str, PreparedScene); 4] {
             m.kind = MaterialKind::Mirror;
         }
     }
-    let [rough, mapped, polished, mirrors] =
-        [rough, mapped, polished, mirrors].map(|s| PreparedScene::new(s).expect("valid"));
-    [("rough", rough), ("mapped", mapped), ("polished", polished), ("mirrors", mirrors)]
+    let [rough, mapped, coloured, filmed, polished, mirrors] =
+        [rough, mapped, coloured, filmed, polished, mirrors].map(|s| PreparedScene::new(s).expect("valid"));
+    [
+        ("rough", rough),
+        ("mapped", mapped),
+        ("coloured", coloured),
+        ("filmed", filmed),
+        ("polished", polished),
+        ("mirrors", mirrors),
+    ]
 }

@@ -495,8 +495,8 @@ fn material(
         emission *= images.mean_colour(&info)?;
         unused.push("emissiveTexture's pattern (the mesh emits the texture's mean colour evenly)");
     }
-    if transmission <= 0.0 && m.extensions().is_some_and(|e| e.contains_key("KHR_materials_iridescence")) {
-        unused.push("KHR_materials_iridescence of an opaque material (films are drawn on glass)");
+    if !glass_or_metal && m.extensions().is_some_and(|e| e.contains_key("KHR_materials_iridescence")) {
+        unused.push("KHR_materials_iridescence of a diffuse material (films are drawn on glass and metals)");
     }
     let mut uv_transform = None;
     let kind = if transmission > 0.0 {
@@ -524,16 +524,6 @@ fn material(
             // Frosted glass: its transmission and reflection spread by GGX.
             roughness: pbr.roughness_factor(),
         }
-    } else if metal {
-        if pbr.base_color_texture().is_some() {
-            unused.push("baseColorTexture of a metal (its colour is baseColorFactor)");
-        }
-        // A metal's base colour is its reflectance at normal incidence.
-        let [r, g, b, _] = pbr.base_color_factor();
-        MaterialKind::Metal {
-            color: MetalColor::Rgb(Vec3::new(r, g, b).clamp(Vec3::ZERO, Vec3::ONE)),
-            roughness: pbr.roughness_factor(),
-        }
     } else {
         let [r, g, b, _] = pbr.base_color_factor();
         let texture = match pbr.base_color_texture() {
@@ -544,21 +534,32 @@ fn material(
         };
         let (texture, transform) = texture.unzip();
         uv_transform = transform.flatten();
-        MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission }
+        match metal {
+            // A metal's base colour (times its texture) is its reflectance at normal incidence.
+            true => MaterialKind::Metal {
+                color: MetalColor::Rgb(Vec3::new(r, g, b).clamp(Vec3::ZERO, Vec3::ONE)),
+                roughness: pbr.roughness_factor(),
+                texture,
+                film: film(m, &mut unused),
+            },
+            false => MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission },
+        }
     };
     // The mesh has one set of coordinates: its textures must agree on their
     // transform (the first texture's, the base colour's where it has one).
     let mut transform = has_base_colour_texture(&kind).then_some(uv_transform);
+    let mut agrees = |t: Option<Affine2>| *transform.get_or_insert(t) == t;
     // The green channel scales a metal's or glass's roughness (a diffuse
-    // surface has none to scale); it is their first texture.
+    // surface has none to scale).
     let roughness_map = match metal_roughness {
-        Some((texture, t)) if glass_or_metal => {
-            transform = Some(t);
-            Some(texture)
+        Some((texture, t)) if glass_or_metal && agrees(t) => Some(texture),
+        Some(_) if glass_or_metal => {
+            unused
+                .push("metallicRoughnessTexture's roughness with another KHR_texture_transform than baseColorTexture");
+            None
         }
         _ => None,
     };
-    let mut agrees = |t: Option<Affine2>| *transform.get_or_insert(t) == t;
     let normal_map = match m.normal_texture() {
         Some(info) => match images.normal_map(&info, &mut unused)? {
             Some((map, t)) if agrees(t) => Some(map),
@@ -579,7 +580,7 @@ fn material(
 
 /// Does a material of `kind` read its base colour from a texture?
 fn has_base_colour_texture(kind: &MaterialKind) -> bool {
-    matches!(kind, MaterialKind::Diffuse { texture: Some(_), .. })
+    matches!(kind, MaterialKind::Diffuse { texture: Some(_), .. } | MaterialKind::Metal { texture: Some(_), .. })
 }
 
 /// Whether an opaque material is drawn as a metal ([`Metalness`]: as most
@@ -667,12 +668,12 @@ fn dispersion(m: &gltf::Material<'_>) -> Dispersion {
     if spread > 0.0 { Dispersion::Abbe { nd: ior, vd: 20.0 / spread } } else { Dispersion::Constant(ior) }
 }
 
-/// The film of `KHR_materials_iridescence` on glass: `iridescenceIor`
+/// The film of `KHR_materials_iridescence` on glass or a metal: `iridescenceIor`
 /// (default 1.3) and, without a thickness texture, the film is
 /// `iridescenceThicknessMaximum` thick (default 400 nm), as the extension
 /// reads a missing texture. A factor of 0 (the default) is no film. What
-/// it leaves out goes to `unused`: the textures (glass has no texture
-/// coordinates here) and a factor between 0 and 1, the extension's blend of
+/// it leaves out goes to `unused`: the textures (the film is as thick
+/// everywhere) and a factor between 0 and 1, the extension's blend of
 /// the bare and the filmed reflectance, drawn as a whole film.
 fn film(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option<ThinFilm> {
     let ext = m.extensions().and_then(|e| e.get("KHR_materials_iridescence"))?;

@@ -412,9 +412,9 @@ fn glass_without_a_volume_or_on_an_open_mesh_is_a_thin_sheet() {
     );
 }
 
-/// `KHR_materials_iridescence` on glass is a film of its index and maximum
-/// thickness; what the film cannot carry yet is named, and on an opaque
-/// material the whole extension is.
+/// `KHR_materials_iridescence` on glass or a metal is a film of its index
+/// and maximum thickness; what the film cannot carry yet is named, and on
+/// a diffuse material the whole extension is.
 #[test]
 fn iridescence_on_glass_is_a_thin_film() {
     let dir = tempfile::tempdir().unwrap();
@@ -458,12 +458,19 @@ fn iridescence_on_glass_is_a_thin_film() {
     glass.insert("KHR_materials_iridescence".into(), serde_json::json!({ "iridescenceFactor": 0.0 }));
     json["materials"][1]["extensions"] = serde_json::Value::Object(glass);
     assert_eq!(film(&load(&json)), None);
-    // On the opaque floor: named as left out.
+    // On the diffuse floor: named as left out.
     let mut floor = json["materials"][0]["extensions"].as_object().cloned().unwrap_or_default();
     floor.insert("KHR_materials_iridescence".into(), serde_json::json!({ "iridescenceFactor": 1.0 }));
     json["materials"][0]["extensions"] = serde_json::Value::Object(floor);
+    json["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 0.0.into();
     let warnings = load(&json).warnings.join("\n");
-    assert!(warnings.contains("KHR_materials_iridescence of an opaque material"), "{warnings}");
+    assert!(warnings.contains("KHR_materials_iridescence of a diffuse material"), "{warnings}");
+    // A metal floor: a film on the metal, nothing left out.
+    json["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 1.0.into();
+    let scene = load(&json);
+    let MaterialKind::Metal { film, .. } = &scene.scene.materials[0].kind else { panic!("a metal floor") };
+    assert_eq!(*film, Some(ThinFilm { ior: 1.3, thickness_nm: 400.0 }));
+    assert!(!scene.warnings.join("\n").contains("iridescence"), "{:?}", scene.warnings);
 }
 
 #[test]
@@ -756,14 +763,52 @@ fn metallic_materials_are_metals_of_their_base_colour_and_roughness() {
     };
     let gold = prismatic_core::MetalColor::Rgb(prismatic_core::Vec3::new(1.0, 0.766, 0.336));
     let (kind, warnings) = load(1.0);
-    assert_eq!(kind, MaterialKind::Metal { color: gold, roughness: 0.3 });
+    assert_eq!(kind, MaterialKind::Metal { color: gold, roughness: 0.3, texture: None, film: None });
     assert!(!warnings.contains("metal"), "{warnings}");
     let (kind, warnings) = load(0.7);
-    assert_eq!(kind, MaterialKind::Metal { color: gold, roughness: 0.3 });
+    assert_eq!(kind, MaterialKind::Metal { color: gold, roughness: 0.3, texture: None, film: None });
     assert!(warnings.contains("metallicFactor between 0 and 1 (drawn as a whole metal)"), "{warnings}");
     let (kind, warnings) = load(0.2);
     assert!(matches!(kind, MaterialKind::Diffuse { .. }), "{kind:?}");
     assert!(warnings.contains("metallicFactor between 0 and 1 (drawn diffuse)"), "{warnings}");
+}
+
+/// A metal's `baseColorTexture` colours it texel by texel (its reflectance
+/// at normal incidence is the base colour times the texture, sRGB), with
+/// nothing left out; a roughness map moved otherwise than the base colour
+/// (the mesh has one set of coordinates) is left out and named.
+#[test]
+fn a_metals_base_colour_texture_colours_its_reflectance() {
+    use prismatic_cli::gltf_write::GltfTexture;
+    let dir = tempfile::tempdir().unwrap();
+    let texture = |pixels: Vec<[u8; 3]>| GltfTexture { width: 2, height: 1, pixels, nearest: true, wrap: [10497; 2] };
+    let mut doc = prism_document();
+    doc.materials[0] = GltfMaterial {
+        metallic: 1.0,
+        roughness: 0.5,
+        base_color_texture: Some(texture(vec![[255, 200, 90], [180, 110, 60]])),
+        metallic_roughness_texture: Some(texture(vec![[0, 128, 255]; 2])),
+        ..GltfMaterial::diffuse("brass", [1.0, 0.9, 0.8])
+    };
+    doc.meshes[0].uvs = vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+    let scene = load_valid(dir.path(), "brass.gltf", &doc);
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let brass = &scene.scene.materials[0];
+    let MaterialKind::Metal { color, roughness: 0.5, texture: Some(colour), film: None } = &brass.kind else {
+        panic!("a textured metal: {:?}", brass.kind)
+    };
+    assert_eq!(*color, prismatic_core::MetalColor::Rgb(prismatic_core::Vec3::new(1.0, 0.9, 0.8)));
+    assert_eq!(colour.texels[..], [255 | 200 << 8 | 90 << 16, 180 | 110 << 8 | 60 << 16]);
+    assert!(brass.roughness_map.is_some());
+    let mut json: serde_json::Value = serde_json::from_str(&doc.to_json()).unwrap();
+    json["materials"][0]["pbrMetallicRoughness"]["metallicRoughnessTexture"]["extensions"] =
+        serde_json::json!({ "KHR_texture_transform": { "scale": [2.0, 2.0] } });
+    let path = dir.path().join("moved.gltf");
+    std::fs::write(&path, json.to_string()).unwrap();
+    let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
+    assert!(scene.scene.materials[0].roughness_map.is_none());
+    let warnings = scene.warnings.join("\n");
+    assert!(warnings.contains("roughness with another KHR_texture_transform than baseColorTexture"), "{warnings}");
 }
 
 /// A `normalTexture` becomes the material's normal map (its bytes as they

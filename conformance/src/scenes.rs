@@ -320,15 +320,39 @@ pub fn rippled_mirror() -> PreparedScene {
     prepared(scene)
 }
 
-/// The mirror's beam folded by a rough gold disc instead onto a round
-/// floor, beside a polished ball of measured copper, with indirect light: metals'
-/// facets and coloured Fresnel in caustic and indirect photons and in view.
+/// The mirror's beam folded by a rough gold square instead (its colour
+/// scaled by a texture of four tiles, gold, grey, rose and pale) onto a
+/// round floor, beside a polished ball of measured copper under a film of
+/// its oxide, with indirect light: metals' facets, coloured Fresnel texel
+/// by texel and a film's over a complex index, in caustic and indirect
+/// photons and in view.
 pub fn metals() -> PreparedScene {
     let mut scene = mirror().scene;
-    let metal =
-        |name: &str, color: MetalColor, roughness: f32| material(name, MaterialKind::Metal { color, roughness });
-    scene.materials[1] = metal("gold", MetalColor::Rgb(Vec3::new(1.0, 0.766, 0.336)), 0.3);
-    scene.materials.push(metal("copper", MetalColor::Measured(NamedMetal::Copper), 0.0));
+    let metal = |name: &str, color: MetalColor, roughness: f32, texture: Option<Texture>, film: Option<ThinFilm>| {
+        material(name, MaterialKind::Metal { color, roughness, texture, film })
+    };
+    let texels = [[255, 255, 255], [200, 200, 200], [255, 190, 200], [240, 250, 255]];
+    let tiles = Texture {
+        name: "tiles".into(),
+        width: 2,
+        height: 2,
+        texels: texels.iter().map(|&[r, g, b]| r | g << 8 | b << 16).collect::<Vec<u32>>().into(),
+        sampler: Sampler { filter: Filter::Nearest, wrap_u: Wrap::Repeat, wrap_v: Wrap::Repeat },
+    };
+    scene.materials[1] = metal("gold", MetalColor::Rgb(Vec3::new(1.0, 0.766, 0.336)), 0.3, Some(tiles), None);
+    // Copper under 90 nm of its oxide (index 2.5).
+    let tarnish = ThinFilm { ior: 2.5, thickness_nm: 90.0 };
+    scene.materials.push(metal("copper", MetalColor::Measured(NamedMetal::Copper), 0.0, None, Some(tarnish)));
+    // Facing (−1, −1, 0) at (0, 2, 0), where the mirror's disc was; its tiles meet at the beam's axis.
+    let (center, a, b) = (Vec3::new(0.0, 2.0, 0.0), Vec3::new(-1.0, 1.0, 0.0).normalize(), Vec3::Z);
+    let corners = [(-1.0, -1.0), (-1.0, 1.0), (1.0, 1.0), (1.0, -1.0)];
+    scene.objects[1].shape = Shape::Mesh {
+        positions: corners.iter().map(|&(s, t)| center + (a * s + b * t) * 0.8).collect(),
+        triangles: vec![[0, 1, 2], [0, 2, 3]],
+        uvs: corners.iter().map(|&(s, t)| glam::Vec2::new(s + 1.0, t + 1.0) * 0.5).collect(),
+        normals: Vec::new(),
+        tangents: Vec::new(),
+    };
     scene.objects[0].shape = Shape::Disk { center: Vec3::ZERO, normal: Vec3::Y, radius: 4.0, inner_radius: 0.0 };
     scene.objects.push(Object { shape: Shape::Sphere { center: Vec3::new(1.2, 0.5, 1.0), radius: 0.5 }, material: 2 });
     scene.render.indirect_photons = 2_000;

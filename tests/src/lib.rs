@@ -344,3 +344,27 @@ pub fn snell_path_2d(
         d = (eta * d.0 + k * facing.0, eta * d.1 + k * facing.1);
     }
 }
+
+/// A scene file's object keys: one triangle of a mesh with texture coordinates.
+pub const TRIANGLE_WITH_UVS: &str = "shape = \"mesh\"\npositions = [[0, 0, 0], [1, 0, 0], [0, 0, -1]]\n\
+                                     triangles = [[0, 1, 2]]\nuvs = [[0, 1], [1, 1], [0, 0]]";
+
+/// A scene file's object keys: a unit sphere (no texture coordinates).
+pub const UNIT_SPHERE: &str = "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1";
+
+/// A scene file of one material `m` (its keys: `material`) on one object
+/// (its keys: `shape`) under a point light, read from folder `dir` (where
+/// its images are) and validated.
+pub fn one_material_scene_file(
+    dir: &std::path::Path,
+    material: &str,
+    shape: &str,
+) -> Result<prismatic_cli::scene_file::SceneDocument, prismatic_cli::scene_file::SceneFileError> {
+    let text = format!(
+        "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 0, 0]\n\n\
+         [[light]]\nkind = \"point\"\nposition = [0, 4, 0]\npower = 10\n\n\
+         [material.m]\n{material}\n\n[[object]]\nmaterial = \"m\"\n{shape}\n"
+    );
+    let doc = prismatic_cli::scene_file::parse(&text, "test.toml", Some(dir))?;
+    doc.validate().map(|_| doc)
+}

@@ -80,7 +80,7 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
     if named.pick(3) == 0 {
         color = MetalColor::Measured(NamedMetal::ALL[named.pick(4)]);
     }
-    let metal = MaterialKind::Metal { color, roughness };
+    let metal = MaterialKind::Metal { color, roughness, texture: None, film: None };
     // A third of the scenes' glass frosted, from its own dice too.
     let mut g = Dice { seed, n: 1 << 21 };
     let mut glass = glass("glass", dispersion);

@@ -9,11 +9,21 @@
 //! (G2/G1 = 1/(1 + Λ(ωi))) differs from 1 by at most α⁴, so half the light
 //! lands within that cone.
 
+use crate::roughness_maps::{assert_the_same_images, beam_at_a_square, lit_beside_the_camera};
+use prismatic_core::geometry::texture::srgb_to_linear;
 use prismatic_core::model::bands::BandSpec;
-use prismatic_core::model::scene::{Camera, Light, Material, MaterialKind, Object, Shape, WavelengthSampling};
+use prismatic_core::model::photon::{Photon, WHITE_BAND};
+use prismatic_core::model::scene::{
+    Camera, Filter, Light, Material, MaterialKind, Object, Sampler, Shape, Texture, ThinFilm, WavelengthSampling,
+};
+use prismatic_core::optics::metal::MetalOptics;
+use prismatic_core::optics::surface::Surface;
 use prismatic_core::{Backend, MetalColor, NamedMetal, PreparedScene, Scene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
-use prismatic_tests::{beam_onto_a_wall, prepare, settings, white};
+use prismatic_tests::{
+    TRIANGLE_WITH_UVS, UNIT_SPHERE, beam_onto_a_wall, one_material_scene_file, prepare, settings, view_through_a_sheet,
+    white,
+};
 
 /// glTF's usual gold, in linear RGB.
 const GOLD: Vec3 = Vec3::new(1.0, 0.766, 0.336);
@@ -21,7 +31,7 @@ const GOLD: Vec3 = Vec3::new(1.0, 0.766, 0.336);
 fn metal(color: Vec3, roughness: f32) -> Material {
     Material {
         name: "metal".into(),
-        kind: MaterialKind::Metal { color: MetalColor::Rgb(color), roughness },
+        kind: MaterialKind::Metal { color: MetalColor::Rgb(color), roughness, texture: None, film: None },
         normal_map: None,
         roughness_map: None,
     }
@@ -128,7 +138,12 @@ fn measured_gold_reflects_each_wavelength_by_its_complex_index() {
     const PHOTONS: u32 = 40_000;
     let gold = Material {
         name: "gold".into(),
-        kind: MaterialKind::Metal { color: MetalColor::Measured(NamedMetal::Gold), roughness: 0.0 },
+        kind: MaterialKind::Metal {
+            color: MetalColor::Measured(NamedMetal::Gold),
+            roughness: 0.0,
+            texture: None,
+            film: None,
+        },
         normal_map: None,
         roughness_map: None,
     };
@@ -284,5 +299,201 @@ fn a_rough_metal_shows_a_point_lights_highlight_by_the_ggx_closed_form() {
         let (_, image) = frame(backend.as_mut(), &scene);
         let got = image.pixels[4];
         assert!(((got - want) / want).abs().max_element() < 1e-3, "{name}: {got}, the closed form {want}");
+    }
+}
+
+/// A metal's colour texture (glTF's `baseColorTexture` of a metal): one
+/// row of sRGB texels, read nearest.
+fn colours(texels: &[[u8; 3]]) -> Texture {
+    Texture {
+        name: "base colour".into(),
+        width: texels.len() as u32,
+        height: 1,
+        texels: texels
+            .iter()
+            .map(|&[r, g, b]| u32::from(r) | u32::from(g) << 8 | u32::from(b) << 16)
+            .collect::<Vec<_>>()
+            .into(),
+        sampler: Sampler { filter: Filter::Nearest, ..Sampler::default() },
+    }
+}
+
+/// The linear colour of an sRGB texel.
+fn linear(texel: [u8; 3]) -> Vec3 {
+    Vec3::from_array(texel.map(|c| srgb_to_linear(u32::from(c))))
+}
+
+/// A metal of colour `color` and roughness 0.3, its colour scaled by `texture`.
+fn textured(color: Vec3, texture: Option<Texture>) -> Material {
+    let kind = MaterialKind::Metal { color: MetalColor::Rgb(color), roughness: 0.3, texture, film: None };
+    Material::new("metal", kind)
+}
+
+/// A beam meets a metal of colour (1, 0.9, 0.8) under a texture of two
+/// texels, orange (u < ½) and blue (u > ½): on each it reflects as the
+/// untextured metal of the colour times that texel does (the same
+/// photons, flux and bands: white light splits there, as at any coloured
+/// metal), on every backend.
+#[test]
+fn a_metals_colour_texture_is_its_reflectance_texel_by_texel() {
+    const PHOTONS: u32 = 4_000;
+    let (factor, texels) = (Vec3::new(1.0, 0.9, 0.8), [[230, 90, 20], [40, 120, 220]]);
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let mut maps = Vec::new();
+        for (z, texel) in [(-0.5, texels[0]), (0.5, texels[1])] {
+            let mut photons = |metal: Material| {
+                let mut map = trace(backend.as_mut(), &beam_at_a_square(metal, z, PHOTONS));
+                map.photons.sort_by_key(|p| p.key());
+                map.photons
+            };
+            let got = photons(textured(factor, Some(colours(&texels))));
+            let want = photons(textured(factor * linear(texel), None));
+            assert!(got.len() > PHOTONS as usize / 2, "{name}, texel {texel:?}: {} photons reflected", got.len());
+            assert_eq!(got.len(), want.len(), "{name}, texel {texel:?}: photons reflected");
+            for (g, w) in got.iter().zip(&want) {
+                assert_eq!(g.key(), w.key(), "{name}, texel {texel:?}");
+                assert!(
+                    (g.pos() - w.pos()).length() < 1e-5 && g.flux == w.flux,
+                    "{name}, texel {texel:?}: {g:?} vs {w:?}"
+                );
+            }
+            maps.push(got);
+        }
+        // The two texels reflect differently (the test sees the texture).
+        let count = |map: &[Photon], nm: std::ops::Range<f32>| map.iter().filter(|p| nm.contains(&p.lambda_nm)).count();
+        let (red, blue) = (600.0..780.0, 380.0..480.0);
+        assert!(count(&maps[0], red.clone()) > 2 * count(&maps[1], red), "{name}: the orange texel reflects red");
+        assert!(count(&maps[1], blue.clone()) > 2 * count(&maps[0], blue), "{name}: the blue texel reflects blue");
+    }
+}
+
+/// Seen by the camera, a metal under a texture of one texel is the metal
+/// of its colour times that texel: its reflection of a lit grey wall and,
+/// rough, its highlight of a point light, on every backend.
+#[test]
+fn in_view_a_metals_colour_texture_is_the_colour_it_scales_to() {
+    let (factor, texel) = (Vec3::new(0.9, 1.0, 0.7), [200, 150, 60]);
+    for roughness in [0.0f32, 0.5] {
+        let lit = |texture: Option<Texture>, color: Vec3| {
+            let kind = MaterialKind::Metal { color: MetalColor::Rgb(color), roughness, texture, film: None };
+            let mut scene = view_through_a_sheet(Material::new("metal", kind)).scene;
+            scene.materials[1] = white("grey wall");
+            prepare(lit_beside_the_camera(scene))
+        };
+        let (textured, plain) = (lit(Some(colours(&[texel])), factor), lit(None, factor * linear(texel)));
+        assert_the_same_images(&format!("roughness {roughness}"), &textured, &plain, 0.05);
+    }
+}
+
+/// A scene file colours a metal with a `texture` (sRGB, beside it; its
+/// `color`, white unless given, scales it) and coats it with a film
+/// (`film_thickness_nm`, `film_ior`); a measured metal, whose colour is
+/// its optical constants, and a shape without texture coordinates refuse
+/// a texture with its key.
+#[test]
+fn scene_files_give_metals_textures_and_films() {
+    let dir = tempfile::tempdir().unwrap();
+    image::RgbImage::from_raw(1, 1, vec![200, 150, 60]).unwrap().save(dir.path().join("brass.png")).unwrap();
+    let check = |material: &str, shape: &str| one_material_scene_file(dir.path(), material, shape);
+    let (quad, sphere) = (TRIANGLE_WITH_UVS, UNIT_SPHERE);
+    let brass = "kind = \"metal\"\nroughness = 0.4\ntexture = \"brass.png\"\ntexture_filter = \"nearest\"";
+    for (material, color) in
+        [(brass.to_string(), Vec3::ONE), (format!("{brass}\ncolor = [1, 0.5, 0.5]"), Vec3::new(1.0, 0.5, 0.5))]
+    {
+        let doc = check(&material, quad).unwrap_or_else(|e| panic!("{e}"));
+        let MaterialKind::Metal { color: MetalColor::Rgb(c), texture: Some(t), .. } = &doc.scene.materials[0].kind
+        else {
+            panic!("{material}: a textured metal: {:?}", doc.scene.materials[0].kind)
+        };
+        assert_eq!((*c, t.texels[0], t.sampler.filter), (color, 200 | 150 << 8 | 60 << 16, Filter::Nearest));
+    }
+    let doc = check("kind = \"metal\"\ncolor = \"aluminium\"\nfilm_thickness_nm = 250\nfilm_ior = 1.65", sphere)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let MaterialKind::Metal { film, .. } = &doc.scene.materials[0].kind else { panic!("a metal") };
+    assert_eq!(*film, Some(OXIDE));
+    for (material, shape, key, reason) in [
+        (format!("{brass}\ncolor = \"gold\""), quad, "material.m.texture", "measured optical constants"),
+        (brass.replace("brass.png", "missing.png"), quad, "material.m.texture", "cannot read texture"),
+        (brass.to_string(), sphere, "object[0].material", "texture"),
+        ("kind = \"metal\"\ntexture_wrap = \"repeat\"".to_string(), quad, "material.m.texture_wrap", "names none"),
+        ("kind = \"metal\"\nroughness = 0.4".to_string(), quad, "material.m.color", ""),
+        ("kind = \"metal\"\ncolor = \"gold\"\nfilm_ior = 1.5".to_string(), quad, "material.m.film_ior", "thickness"),
+        (
+            "kind = \"metal\"\ncolor = \"gold\"\nfilm_thickness_nm = -3".to_string(),
+            quad,
+            "material.m.film_thickness_nm",
+            "0 to",
+        ),
+    ] {
+        let e = check(&material, shape).map(|_| ()).unwrap_err();
+        assert!(e.key == key && e.reason.contains(reason), "{material} / {shape}: {e}");
+    }
+}
+
+/// A polished metal under a film of oxide (`KHR_materials_iridescence` on
+/// a metal): measured aluminium under 250 nm of index 1.65, and an RGB
+/// steel (F0 0.56) under 120 nm of index 2.2, each the metal of the
+/// disc that folds the beam at 45°.
+fn filmed(color: MetalColor, film: ThinFilm) -> Material {
+    Material::new("filmed", MaterialKind::Metal { color, roughness: 0.0, texture: None, film: Some(film) })
+}
+
+const OXIDE: ThinFilm = ThinFilm { ior: 1.65, thickness_nm: 250.0 };
+const TEMPER: ThinFilm = ThinFilm { ior: 2.2, thickness_nm: 120.0 };
+
+/// A film on a metal colours its reflection wavelength by wavelength by
+/// the Airy sum of the film over the metal's complex index (the core's
+/// `ThinFilm::reflectance_on`, held to Born & Wolf's characteristic
+/// matrix): the photons a polished filmed metal reflects at 45° carry
+/// the light's colour times it, on every backend; the film changes it
+/// (the bare metal's colour is far from it).
+#[test]
+fn a_film_on_a_metal_colours_its_reflection_by_the_airy_sum() {
+    const PHOTONS: u32 = 40_000;
+    let colours = prismatic_core::model::wavelength_rgb::WavelengthRgb::new();
+    let cos = std::f32::consts::FRAC_1_SQRT_2;
+    let mut want = [0.0f64; 3];
+    let mut bare = [0.0f64; 3];
+    for i in 0..1600 {
+        let lambda = 380.0 + (i as f32 + 0.5) / 4.0;
+        let base = NamedMetal::Aluminium.optical_constants(lambda);
+        let f = f64::from(OXIDE.reflectance_on(cos, 1.0, base, lambda)) / 1600.0;
+        let b = conductor_fresnel(f64::from(cos), f64::from(base.0), f64::from(base.1)) / 1600.0;
+        let rgb = colours.at(lambda).as_dvec3().to_array();
+        (0..3).for_each(|c| (want[c], bare[c]) = (want[c] + rgb[c] * f, bare[c] + rgb[c] * b));
+    }
+    let distance = (0..3).map(|c| (want[c] - bare[c]).abs()).fold(0.0, f64::max);
+    assert!(distance > 0.05, "the film barely changes aluminium's colour: {want:?} vs {bare:?}");
+    let mut scene =
+        folded_beam(filmed(MetalColor::Measured(NamedMetal::Aluminium), OXIDE), PHOTONS, BandSpec::Physical(16));
+    scene.render.wavelengths = WavelengthSampling::Continuous;
+    let scene = prepare(scene);
+    for mut backend in every_backend() {
+        assert_reflected_colour(backend.as_mut(), &scene, PHOTONS, want);
+    }
+}
+
+/// Seen by the camera, a polished filmed metal shows the background of
+/// radiance 1 in the colour Σ C_b R(λ_b) of its film's reflectance at
+/// each band's wavelength (the core's `MetalOptics::tint` of white
+/// light), on every backend: measured aluminium under an oxide, and an
+/// RGB steel under a temper film.
+#[test]
+fn a_filmed_metal_in_view_shows_its_films_colour() {
+    for color in [MetalColor::Measured(NamedMetal::Aluminium), MetalColor::Rgb(Vec3::splat(0.56))] {
+        let film = if matches!(color, MetalColor::Rgb(_)) { TEMPER } else { OXIDE };
+        let scene = prepare(metal_in_view(filmed(color, film)));
+        let Surface::Metal(optics) = &scene.surfaces[0] else { panic!("a metal") };
+        let cos = std::f32::consts::FRAC_1_SQRT_2;
+        let want = optics.tint(cos, WHITE_BAND, 0.0, &scene.bands);
+        let bare = MetalOptics { film: None, ..*optics }.tint(cos, WHITE_BAND, 0.0, &scene.bands);
+        assert!((want - bare).abs().max_element() > 0.03, "{color:?}: the film changes nothing: {want} vs {bare}");
+        for mut backend in every_backend() {
+            let name = backend.name();
+            let (_, image) = frame(backend.as_mut(), &scene);
+            let got = image.pixels[4];
+            assert!((got - want).abs().max_element() < 1e-4, "{color:?}, {name}: {got}, {want}");
+        }
     }
 }

@@ -11,7 +11,9 @@ use prismatic_core::model::dispersion::Dispersion;
 use prismatic_core::model::scene::{Filter, Light, Material, MaterialKind, Sampler, Shape, Texture};
 use prismatic_core::{MetalColor, PreparedScene, Scene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
-use prismatic_tests::{beam_onto_a_wall, prepare, view_through_a_sheet};
+use prismatic_tests::{
+    TRIANGLE_WITH_UVS, UNIT_SPHERE, beam_onto_a_wall, one_material_scene_file, prepare, view_through_a_sheet,
+};
 
 /// An image of one row of texels whose green channels are `greens`
 /// (red and blue 0: glTF's non-metal), read nearest.
@@ -27,14 +29,14 @@ fn greens(greens: &[u8]) -> Texture {
 
 /// A metal reflecting every facet's light (F0 = 1) of `roughness`, scaled by `map`.
 fn metal(roughness: f32, map: Option<Texture>) -> Material {
-    let kind = MaterialKind::Metal { color: MetalColor::Rgb(Vec3::ONE), roughness };
+    let kind = MaterialKind::Metal { color: MetalColor::Rgb(Vec3::ONE), roughness, texture: None, film: None };
     Material { roughness_map: map, ..Material::new("metal", kind) }
 }
 
 /// A thin beam along +x meets `metal` head on at (0, 0, `z`): a 2×2
 /// square in the plane x = 0 whose texture coordinates run u from 0 to 1
 /// along +z; what it reflects lands on a white wall at x = −3.
-fn beam_at_a_square(metal: Material, z: f32, photons: u32) -> PreparedScene {
+pub(crate) fn beam_at_a_square(metal: Material, z: f32, photons: u32) -> PreparedScene {
     let corners = [(-1.0, -1.0), (-1.0, 1.0), (1.0, 1.0), (1.0, -1.0)];
     let square = Shape::Mesh {
         positions: corners.iter().map(|&(y, z)| Vec3::new(0.0, y, z)).collect(),
@@ -131,26 +133,33 @@ fn in_view_a_uniform_map_is_the_roughness_it_scales_to() {
         ("frosted sheet", sheet(0.9, Some(greens(&[153]))), sheet(0.9 * scale, None)),
     ];
     for (case, mapped, plain) in cases {
-        let lit = |material: Material| {
-            let mut scene = view_through_a_sheet(material).scene;
-            scene.lights = vec![Light::Point {
-                position: Vec3::new(-5.0, 0.0, 5.0),
-                power: 1000.0,
-                spectrum: Default::default(),
-                range: None,
-            }];
-            prepare(scene)
-        };
-        let (mapped, plain) = (lit(mapped), lit(plain));
-        for mut backend in every_backend() {
-            let name = backend.name();
-            let (_, got) = frame(backend.as_mut(), &mapped);
-            let (_, want) = frame(backend.as_mut(), &plain);
-            let brightest = want.pixels.iter().map(|p| p.max_element()).fold(0.0, f32::max);
-            assert!(brightest > 0.1, "{case}: {name}: nothing lit ({brightest})");
-            for (g, w) in got.pixels.iter().zip(&want.pixels) {
-                assert!((*g - *w).abs().max_element() < 1e-4 * brightest, "{case}: {name}: {g} where {w}");
-            }
+        let lit = |material: Material| prepare(lit_beside_the_camera(view_through_a_sheet(material).scene));
+        assert_the_same_images(case, &lit(mapped), &lit(plain), 0.1);
+    }
+}
+
+/// `scene` lit by a point light of 1 kW beside its camera instead.
+pub(crate) fn lit_beside_the_camera(mut scene: Scene) -> Scene {
+    scene.lights = vec![Light::Point {
+        position: Vec3::new(-5.0, 0.0, 5.0),
+        power: 1000.0,
+        spectrum: Default::default(),
+        range: None,
+    }];
+    scene
+}
+
+/// On every backend, the image of `got` is that of `want` within 1e-4 of
+/// its brightest pixel, which is above `lit`.
+pub(crate) fn assert_the_same_images(case: &str, got: &PreparedScene, want: &PreparedScene, lit: f32) {
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let (_, got) = frame(backend.as_mut(), got);
+        let (_, want) = frame(backend.as_mut(), want);
+        let brightest = want.pixels.iter().map(|p| p.max_element()).fold(0.0, f32::max);
+        assert!(brightest > lit, "{case}: {name}: nothing lit ({brightest})");
+        for (g, w) in got.pixels.iter().zip(&want.pixels) {
+            assert!((*g - *w).abs().max_element() < 1e-4 * brightest, "{case}: {name}: {g} where {w}");
         }
     }
 }
@@ -162,18 +171,8 @@ fn in_view_a_uniform_map_is_the_roughness_it_scales_to() {
 fn scene_files_give_metals_and_glass_roughness_maps() {
     let dir = tempfile::tempdir().unwrap();
     image::RgbImage::from_raw(1, 1, vec![10, 90, 200]).unwrap().save(dir.path().join("scuffs.png")).unwrap();
-    let check = |material: &str, shape: &str| {
-        let text = format!(
-            "[camera]\nposition = [0, 1, 5]\nlook_at = [0, 0, 0]\n\n\
-             [[light]]\nkind = \"point\"\nposition = [0, 4, 0]\npower = 10\n\n\
-             [material.m]\n{material}\n\n[[object]]\nmaterial = \"m\"\n{shape}\n"
-        );
-        let doc = prismatic_cli::scene_file::parse(&text, "test.toml", Some(dir.path()))?;
-        doc.validate().map(|_| doc)
-    };
-    let quad = "shape = \"mesh\"\npositions = [[0, 0, 0], [1, 0, 0], [0, 0, -1]]\ntriangles = [[0, 1, 2]]\n\
-                uvs = [[0, 1], [1, 1], [0, 0]]";
-    let sphere = "shape = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1";
+    let check = |material: &str, shape: &str| one_material_scene_file(dir.path(), material, shape);
+    let (quad, sphere) = (TRIANGLE_WITH_UVS, UNIT_SPHERE);
     let metal_file = "kind = \"metal\"\ncolor = \"gold\"\nroughness = 0.5\nroughness_map = \"scuffs.png\"";
     let glass_file = "kind = \"dielectric\"\nior = 1.5\nthin = true\nroughness = 0.5\nroughness_map = \"scuffs.png\"";
     for material in [metal_file, glass_file] {

@@ -357,12 +357,22 @@ fn a_metals_keys_parse_named_metals_too_and_bad_metals_are_rejected_with_their_l
     };
     assert_eq!(
         metal_of("color = [0.9, 0.6, 0.5]\nroughness = 0.3"),
-        MaterialKind::Metal { color: MetalColor::Rgb(Vec3::new(0.9, 0.6, 0.5)), roughness: 0.3 }
+        MaterialKind::Metal {
+            color: MetalColor::Rgb(Vec3::new(0.9, 0.6, 0.5)),
+            roughness: 0.3,
+            texture: None,
+            film: None
+        }
     );
     // A measured metal; polished unless a roughness is given.
     assert_eq!(
         metal_of("color = \"gold\""),
-        MaterialKind::Metal { color: MetalColor::Measured(NamedMetal::Gold), roughness: 0.0 }
+        MaterialKind::Metal {
+            color: MetalColor::Measured(NamedMetal::Gold),
+            roughness: 0.0,
+            texture: None,
+            film: None
+        }
     );
     assert_error(&with_metal("roughness = 0.3"), "material.ring.color", Some("[material.ring]"), "missing");
     assert_error(

@@ -46,6 +46,23 @@ fn facets_alpha(hit: Hit, s: GpuSurface) -> f32 {
     return select(0.0, max(scaled, MIN_ALPHA), scaled > 0.0);
 }
 
+// PreparedScene::metal_at's colour: the metal `s` at `hit` with its F0
+// scaled by its colour texture there (SURFACE_HAS_COLOUR_MAP, then
+// cleared: the returned surface's F0 is the point's). Its facets stay
+// facets_alpha's.
+fn metal_at(hit: Hit, s: GpuSurface) -> GpuSurface {
+    if (s.flags & SURFACE_HAS_COLOUR_MAP) == 0u {
+        return s;
+    }
+    var m = s;
+    let bits = bitcast<vec3<u32>>(s.checker_albedo);
+    let colour = TextureRef(bits.x, bits.y, bits.z, bitcast<u32>(s.checker_size));
+    let uv = texture_coordinates(objects[hit.object], s, hit.triangle, hit.point);
+    m.albedo = s.albedo * sample_texture(colour, uv);
+    m.flags = s.flags & ~SURFACE_HAS_COLOUR_MAP;
+    return m;
+}
+
 // A surface's texture: a diffuse surface's base colour, a metal's or
 // rough glass's roughness map (its flags hold the sampler's bits).
 fn surface_texture(s: GpuSurface) -> TextureRef {

@@ -553,15 +553,6 @@ fn c_exp_i(z: vec2<f32>) -> vec2<f32> {
     return vec2<f32>(decay * sc.y, decay * sc.x);
 }
 
-// The s and p Fresnel amplitudes between media (na, cos a) and (nb, cos b).
-fn amplitude_s(na: f32, ca: vec2<f32>, nb: f32, cb: vec2<f32>) -> vec2<f32> {
-    return c_div(ca * na - cb * nb, ca * na + cb * nb);
-}
-
-fn amplitude_p(na: f32, ca: vec2<f32>, nb: f32, cb: vec2<f32>) -> vec2<f32> {
-    return c_div(ca * nb - cb * na, ca * nb + cb * na);
-}
-
 // The Airy sum |(r01 + r12 e^{iδ}) / (1 + r01 r12 e^{iδ})|².
 fn airy(r01: vec2<f32>, r12: vec2<f32>, phase: vec2<f32>) -> f32 {
     let r = c_div(r01 + c_mul(r12, phase), vec2<f32>(1.0, 0.0) + c_mul(c_mul(r01, r12), phase));
@@ -571,14 +562,42 @@ fn airy(r01: vec2<f32>, r12: vec2<f32>, phase: vec2<f32>) -> f32 {
 // ThinFilm::reflectance: a film of index n1 and thickness d_nm between n0
 // and a base n2, at wavelength lambda_nm.
 fn thin_film_reflectance(cos_in: f32, n0: f32, n1: f32, n2: f32, d_nm: f32, lambda_nm: f32) -> f32 {
+    return thin_film_on(cos_in, n0, n1, vec2<f32>(n2, 0.0), d_nm, lambda_nm);
+}
+
+// Complex::sqrt: the principal root (on the negative real axis i√−x).
+fn c_sqrt(z: vec2<f32>) -> vec2<f32> {
+    let r = sqrt(z.x * z.x + z.y * z.y);
+    let re = sqrt(0.5 * max(r + z.x, 0.0));
+    let im = sqrt(0.5 * max(r - z.x, 0.0));
+    return vec2<f32>(re, select(im, -im, z.y < 0.0));
+}
+
+// The amplitudes between media (na, qa) and (nb, qb), q = n cos θ (complex
+// n for an absorbing base): s (qa − qb)/(qa + qb), p (nb² qa − na² qb)/(nb² qa + na² qb).
+fn amplitude_s(qa: vec2<f32>, qb: vec2<f32>) -> vec2<f32> {
+    return c_div(qa - qb, qa + qb);
+}
+
+fn amplitude_p(na: vec2<f32>, qa: vec2<f32>, nb: vec2<f32>, qb: vec2<f32>) -> vec2<f32> {
+    let a = c_mul(c_mul(nb, nb), qa);
+    let b = c_mul(c_mul(na, na), qb);
+    return c_div(a - b, a + b);
+}
+
+// ThinFilm::reflectance_on: the film over a base of complex index base = (n2, k2).
+fn thin_film_on(cos_in: f32, n0: f32, n1: f32, base: vec2<f32>, d_nm: f32, lambda_nm: f32) -> f32 {
     let cos0 = clamp(cos_in, 0.0, 1.0);
     let sin2 = 1.0 - cos0 * cos0;
-    let c0 = vec2<f32>(cos0, 0.0);
     let c1 = c_sqrt_of(1.0 - (n0 / n1) * (n0 / n1) * sin2);
-    let c2 = c_sqrt_of(1.0 - (n0 / n2) * (n0 / n2) * sin2);
+    let q2 = c_sqrt(c_mul(base, base) - vec2<f32>(n0 * n0 * sin2, 0.0));
     let phase = c_exp_i(c1 * (4.0 * PI * n1 * d_nm / lambda_nm));
-    let rs = airy(amplitude_s(n0, c0, n1, c1), amplitude_s(n1, c1, n2, c2), phase);
-    let rp = airy(amplitude_p(n0, c0, n1, c1), amplitude_p(n1, c1, n2, c2), phase);
+    let top = vec2<f32>(n0, 0.0);
+    let film = vec2<f32>(n1, 0.0);
+    let q0 = vec2<f32>(n0 * cos0, 0.0);
+    let q1 = c1 * n1;
+    let rs = airy(amplitude_s(q0, q1), amplitude_s(q1, q2), phase);
+    let rp = airy(amplitude_p(top, q0, film, q1), amplitude_p(film, q1, base, q2), phase);
     return clamp(0.5 * (rs + rp), 0.0, 1.0);
 }
 

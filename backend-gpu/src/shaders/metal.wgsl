@@ -22,9 +22,34 @@ fn measured_fresnel(s: GpuSurface, c: f32, lambda_nm: f32) -> f32 {
     return conductor_fresnel(c, nk.x, nk.y);
 }
 
+// MetalOptics::filmed: the film's Airy sum over the metal at the path's
+// wavelength (a measured metal's complex index, an RGB metal's real index
+// (1 + √F0)/(1 − √F0) from its F0 at that wavelength).
+fn metal_filmed(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> f32 {
+    var base: vec2<f32>;
+    if (s.flags & SURFACE_MEASURED) != 0u {
+        base = metal_constants(s, lambda_nm);
+    } else {
+        let r = sqrt(min(bounce_reflectance(s.albedo, band, lambda_nm), MAX_FILMED_F0));
+        base = vec2<f32>((1.0 + r) / (1.0 - r), 0.0);
+    }
+    let film = vec2<f32>(tables[s.film_first], tables[s.film_first + 1u]);
+    return thin_film_on(c, 1.0, film.x, base, film.y, lambda_nm);
+}
+
 // MetalOptics::tint: what a facet met at cosine `c` keeps of each RGB
-// channel of a view path (a measured metal's white path: Σ C_b F(λ_b)).
+// channel of a view path (a measured or filmed metal's white path: Σ C_b F(λ_b)).
 fn metal_tint(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> vec3<f32> {
+    if (s.flags & SURFACE_HAS_FILM) != 0u {
+        if band == WHITE_BAND {
+            var sum = vec3<f32>(0.0);
+            for (var b = 0u; b < params.band_count; b++) {
+                sum += bands[b].weight * metal_filmed(s, c, b, bands[b].lambda_nm);
+            }
+            return sum;
+        }
+        return vec3<f32>(metal_filmed(s, c, band, lambda_nm));
+    }
     if (s.flags & SURFACE_MEASURED) == 0u {
         return reflectance(metal_fresnel(s.albedo, c), band, lambda_nm);
     }
@@ -41,6 +66,12 @@ fn metal_tint(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> vec3<f32> {
 // MetalOptics::reflectance: the share of a photon path's flux a facet
 // met at cosine `c` reflects.
 fn metal_reflectance(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> f32 {
+    if (s.flags & SURFACE_HAS_FILM) != 0u {
+        if band != WHITE_BAND {
+            return metal_filmed(s, c, band, lambda_nm);
+        }
+        return bounce_reflectance(metal_tint(s, c, band, lambda_nm), band, lambda_nm);
+    }
     if (s.flags & SURFACE_MEASURED) == 0u {
         return bounce_reflectance(metal_fresnel(s.albedo, c), band, lambda_nm);
     }
@@ -50,8 +81,8 @@ fn metal_reflectance(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> f32 {
     return bounce_reflectance(metal_tint(s, c, band, lambda_nm), band, lambda_nm);
 }
 
-// MetalOptics::is_chromatic: a measured metal, or F0 not grey.
+// MetalOptics::is_chromatic: a measured metal, a colour texture, a film, or F0 not grey.
 fn metal_is_chromatic(s: GpuSurface) -> bool {
     let f0 = s.albedo;
-    return (s.flags & SURFACE_MEASURED) != 0u || f0.x != f0.y || f0.y != f0.z;
+    return (s.flags & (SURFACE_MEASURED | SURFACE_HAS_COLOUR_MAP | SURFACE_HAS_FILM)) != 0u || f0.x != f0.y || f0.y != f0.z;
 }

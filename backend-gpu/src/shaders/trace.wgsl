@@ -101,7 +101,7 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
         if !reach(p, hit.t) {
             return FOLLOW_END;
         }
-        let s = surfaces[hit.object];
+        let s = metal_at(hit, surfaces[hit.object]);
         if s.kind == SURFACE_DIFFUSE {
             if (*p).bounces == 0u {
                 tally_flux[3] += (*p).flux;
@@ -253,7 +253,7 @@ fn trace_indirect(index: u32) {
         if !reach(&p, hit.t) {
             break;
         }
-        let s = surfaces[hit.object];
+        let s = metal_at(hit, surfaces[hit.object]);
         if s.kind == SURFACE_DIFFUSE {
             if bounced {
                 store_carried(&p, &c, hit.point, index);
@@ -464,7 +464,7 @@ fn trace_emitted(index: u32) {
     }
     let n = split_paths();
     tally_counts[1] += n - 1u;
-    let s = surfaces[hit.object];
+    let s = metal_at(hit, surfaces[hit.object]);
     // trace::split_bands: one spectrum number for all the paths (hero only).
     var u = 0.0;
     if params.wavelengths != WAVELENGTHS_SPLIT {

@@ -429,7 +429,7 @@ fn visit(e: Pending) -> vec3<f32> {
         return sum;
     }
     let q = light_query;
-    return sum + q.e.tint * surface_light(q.e, q.hit, surfaces[q.hit.object], q.face);
+    return sum + q.e.tint * surface_light(q.e, q.hit, metal_at(q.hit, surfaces[q.hit.object]), q.face);
 }
 
 // What entry `e` adds to the pixel, less the light of the surface it met
@@ -475,7 +475,7 @@ fn visit_path(e: Pending) -> vec3<f32> {
     if !hit.ok {
         return e.tint * background(e.dir);
     }
-    let s = surfaces[hit.object];
+    let s = metal_at(hit, surfaces[hit.object]);
     if s.kind == SURFACE_DIFFUSE {
         light_query = LightQuery(true, e, hit, bare_face(1.0, false));
         return vec3<f32>(0.0);

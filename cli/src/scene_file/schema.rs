@@ -373,17 +373,7 @@ impl Reader<'_> {
                     None
                 };
                 let thin = self.opt(t, "thin", Self::boolean)?.unwrap_or(false);
-                // A film is its thickness; its index defaults to glTF's iridescenceIor.
-                let film = match self.opt(t, "film_thickness_nm", Self::float)? {
-                    Some(thickness_nm) => {
-                        Some(ThinFilm { ior: self.opt(t, "film_ior", Self::float)?.unwrap_or(1.3), thickness_nm })
-                    }
-                    None if let Some(v) = self.get(t, "film_ior") => {
-                        let reason = "a film needs film_thickness_nm (its thickness in nanometres)";
-                        return Err(self.err(&join(&t.key, "film_ior"), &v.span(), reason));
-                    }
-                    None => None,
-                };
+                let film = self.film(t)?;
                 let roughness = self.opt(t, "roughness", Self::float)?.unwrap_or(0.0);
                 MaterialKind::Dielectric { dispersion, outside, attenuation, thin, film, roughness }
             }
@@ -392,11 +382,32 @@ impl Reader<'_> {
                 MaterialKind::Mirror
             }
             "metal" => {
-                self.check_keys(t, &["kind", "color", "roughness", "roughness_map", "normal_map", "normal_scale"])?;
-                MaterialKind::Metal {
-                    color: self.req(t, "color", |p, k, v| p.metal_color(k, v))?,
-                    roughness: self.opt(t, "roughness", Self::float)?.unwrap_or(0.0),
-                }
+                self.check_keys(
+                    t,
+                    &[
+                        "kind",
+                        "color",
+                        "roughness",
+                        "roughness_map",
+                        "texture",
+                        "texture_filter",
+                        "texture_wrap",
+                        "film_thickness_nm",
+                        "film_ior",
+                        "normal_map",
+                        "normal_scale",
+                    ],
+                )?;
+                // A texture is the colour unless a colour scales it, as on a diffuse surface.
+                let texture = self.texture(t)?;
+                let color = match texture {
+                    Some(_) => {
+                        self.opt(t, "color", |p, k, v| p.metal_color(k, v))?.unwrap_or(MetalColor::Rgb(Vec3::ONE))
+                    }
+                    None => self.req(t, "color", |p, k, v| p.metal_color(k, v))?,
+                };
+                let roughness = self.opt(t, "roughness", Self::float)?.unwrap_or(0.0);
+                MaterialKind::Metal { color, roughness, texture, film: self.film(t)? }
             }
             other => {
                 let v = self.required(t, "kind")?;
@@ -419,7 +430,22 @@ impl Reader<'_> {
         })
     }
 
-    /// A diffuse material's `texture` (an image file beside the scene) with
+    /// A dielectric's or metal's film: its `film_thickness_nm`, and its
+    /// `film_ior` (glTF's iridescenceIor by default).
+    fn film(&self, t: &Table<'_, '_>) -> Result<Option<ThinFilm>> {
+        match self.opt(t, "film_thickness_nm", Self::float)? {
+            Some(thickness_nm) => {
+                Ok(Some(ThinFilm { ior: self.opt(t, "film_ior", Self::float)?.unwrap_or(1.3), thickness_nm }))
+            }
+            None if let Some(v) = self.get(t, "film_ior") => {
+                let reason = "a film needs film_thickness_nm (its thickness in nanometres)";
+                Err(self.err(&join(&t.key, "film_ior"), &v.span(), reason))
+            }
+            None => Ok(None),
+        }
+    }
+
+    /// A diffuse material's or metal's `texture` (an image file beside the scene) with
     /// its `texture_filter` and `texture_wrap`.
     fn texture(&self, t: &Table<'_, '_>) -> Result<Option<Texture>> {
         let filter = self.opt(t, "texture_filter", |p, k, v| match p.string(k, v)? {

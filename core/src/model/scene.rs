@@ -787,6 +787,17 @@ pub enum MaterialKind {
         color: MetalColor,
         /// glTF's perceptual roughness, in [0, 1].
         roughness: f32,
+        /// An image multiplying an RGB colour texel by texel (glTF's
+        /// `baseColorTexture` of a metal, sRGB-encoded): the reflectance at
+        /// normal incidence where a ray meets it
+        /// ([`crate::plan::prepared::PreparedScene::metal_at`]). A measured
+        /// metal's colour is its optical constants and takes none.
+        texture: Option<Texture>,
+        /// A film on its surface (glTF's `KHR_materials_iridescence` on a
+        /// metal: an oxide, a heat tint), its index an absolute one; its
+        /// reflections interfere with the metal's at each wavelength
+        /// ([`ThinFilm::reflectance_on`]).
+        film: Option<ThinFilm>,
     },
 }
 
@@ -800,7 +811,7 @@ impl MaterialKind {
     }
 }
 
-/// A non-absorbing film on a dielectric's surface, thinner than the
+/// A non-absorbing film on a dielectric's or metal's surface, thinner than the
 /// coherence length of light, so its reflections interfere: its index (an
 /// absolute one, as the scene's indices are) and its thickness.
 #[derive(Clone, Copy, Debug, PartialEq)]

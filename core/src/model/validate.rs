@@ -126,7 +126,8 @@ impl Scene {
                 ));
             }
             let image = match &material.kind {
-                MaterialKind::Diffuse { texture: Some(texture), .. } => Some(("texture", texture)),
+                MaterialKind::Diffuse { texture: Some(texture), .. }
+                | MaterialKind::Metal { texture: Some(texture), .. } => Some(("texture", texture)),
                 _ => material.normal_map.as_ref().map(|map| ("normal map", &map.texture)),
             }
             .or(material.roughness_map.as_ref().map(|t| ("roughness map", t)));
@@ -375,6 +376,9 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             return Err(c.err("roughness_map", reason));
         }
     }
+    if let MaterialKind::Metal { film: Some(f), .. } = &m.kind {
+        validate_film(c, f, bands)?;
+    }
     match &m.kind {
         MaterialKind::Diffuse { albedo, checker, texture, emission } => {
             c.colour("albedo", *albedo)?;
@@ -389,12 +393,24 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             }
         }
         MaterialKind::Mirror => Ok(()),
-        MaterialKind::Metal { color: MetalColor::Measured(_), roughness } => validate_roughness(c, *roughness),
-        MaterialKind::Metal { color: MetalColor::Rgb(color), roughness } => {
+        MaterialKind::Metal { color: MetalColor::Measured(metal), roughness, texture, .. } => {
+            if texture.is_some() {
+                let reason = format!(
+                    "colours an RGB metal; {} reflects by its measured optical constants (give color as [r, g, b])",
+                    metal.name()
+                );
+                return Err(c.err("texture", reason));
+            }
+            validate_roughness(c, *roughness)
+        }
+        MaterialKind::Metal { color: MetalColor::Rgb(color), roughness, texture, .. } => {
             c.colour("color", *color)?;
             if color.max_element() > 1.0 {
                 let reason = format!("a metal reflects at most all light, got [{}, {}, {}]", color.x, color.y, color.z);
                 return Err(c.err("color", reason));
+            }
+            if let Some(t) = texture {
+                validate_texture(c, "texture", t)?;
             }
             validate_roughness(c, *roughness)
         }

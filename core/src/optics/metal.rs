@@ -6,15 +6,24 @@
 //! is ([`crate::model::bands::BandTable::reflectance`]); a measured metal
 //! with the exact Fresnel of its complex index at the path's wavelength
 //! ([`conductor_fresnel`], [`crate::model::metals`]), and a white view path
-//! sees the bands' mean. Where the ray goes is
-//! [`crate::optics::scatter::scatter_metal`]'s.
+//! sees the bands' mean. A film on a metal replaces its Fresnel by the
+//! film's Airy sum over the metal ([`crate::optics::thin_film`]); a colour
+//! texture scales F0 where a ray meets it
+//! ([`crate::plan::prepared::PreparedScene::metal_at`]). Where the ray
+//! goes is [`crate::optics::scatter::scatter_metal`]'s.
 
 use crate::geometry::primitive::basis;
 use crate::model::bands::BandTable;
 use crate::model::metals::{MetalColor, NamedMetal};
 use crate::model::photon::WHITE_BAND;
+use crate::model::scene::ThinFilm;
 use crate::optics::microfacet::{Ggx, conductor_fresnel};
+use crate::util::math::sqrt;
 use glam::Vec3;
+
+/// The most an RGB metal's F0 is taken as under a film: its index
+/// (1 + √F0)/(1 − √F0) stays finite (about 4·10⁴).
+pub const MAX_FILMED_F0: f32 = 0.9999;
 
 /// A metal's optics.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,6 +36,12 @@ pub struct MetalOptics {
     pub measured: Option<NamedMetal>,
     /// The facets' normal distribution; `None`: polished (roughness 0).
     pub ggx: Option<Ggx>,
+    /// Its material's colour texture scales `f0` where a ray meets it
+    /// ([`crate::plan::prepared::PreparedScene::metal_at`], whose optics
+    /// at a point have `f0` scaled and this unset).
+    pub textured: bool,
+    /// The film on its surface (`None`: bare; a film of no thickness is none).
+    pub film: Option<ThinFilm>,
 }
 
 impl MetalOptics {
@@ -36,7 +51,13 @@ impl MetalOptics {
             MetalColor::Measured(m) => Some(m),
             MetalColor::Rgb(_) => None,
         };
-        MetalOptics { f0: color.rgb(), measured, ggx: (roughness > 0.0).then(|| Ggx::from_roughness(roughness)) }
+        MetalOptics {
+            f0: color.rgb(),
+            measured,
+            ggx: (roughness > 0.0).then(|| Ggx::from_roughness(roughness)),
+            textured: false,
+            film: None,
+        }
     }
 
     /// Schlick's Fresnel per RGB channel for light meeting a facet at
@@ -49,31 +70,63 @@ impl MetalOptics {
         self.f0 + (Vec3::ONE - self.f0) * (x2 * x2 * x)
     }
 
-    /// True when its wavelengths reflect differently (F0 is not grey): a
-    /// white photon splits here into its bands or hero wavelengths, or
-    /// goes on as one band ([`crate::photons::trace`]).
+    /// True when its wavelengths reflect differently (F0 is not grey, or
+    /// a texture may colour it): a white photon splits here into its bands
+    /// or hero wavelengths, or goes on as one band ([`crate::photons::trace`]).
     #[inline]
     pub fn is_chromatic(&self) -> bool {
-        self.measured.is_some() || self.f0.x != self.f0.y || self.f0.y != self.f0.z
+        self.measured.is_some()
+            || self.textured
+            || self.film.is_some()
+            || self.f0.x != self.f0.y
+            || self.f0.y != self.f0.z
+    }
+
+    /// What a facet met at cosine `cos` reflects of a path of band `band`
+    /// at `lambda_nm` through `film`: the film's Airy sum over the metal,
+    /// a measured metal's complex index at that wavelength, or for an RGB
+    /// metal the real index (1 + √F0)/(1 − √F0) whose Fresnel is its F0 at
+    /// that wavelength head on (as `KHR_materials_iridescence` reads a
+    /// metal's base colour).
+    #[inline]
+    fn filmed(&self, film: ThinFilm, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> f32 {
+        let base = match self.measured {
+            Some(metal) => metal.optical_constants(lambda_nm),
+            None => {
+                let r = sqrt(bands.bounce_reflectance(self.f0, band, lambda_nm).min(MAX_FILMED_F0));
+                ((1.0 + r) / (1.0 - r), 0.0)
+            }
+        };
+        film.reflectance_on(cos, 1.0, base, lambda_nm)
     }
 
     /// The share of a photon path's flux (band `band` at `lambda_nm`)
     /// that a facet met at cosine `cos` reflects: its survival probability.
     #[inline]
     pub fn reflectance(&self, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> f32 {
-        match self.measured {
-            None => bands.bounce_reflectance(self.fresnel(cos), band, lambda_nm),
-            Some(metal) if band != WHITE_BAND => measured_fresnel(metal, cos, lambda_nm),
-            Some(_) => bands.bounce_reflectance(self.tint(cos, band, lambda_nm, bands), band, lambda_nm),
+        match (self.film, self.measured) {
+            (Some(film), _) if band != WHITE_BAND => self.filmed(film, cos, band, lambda_nm, bands),
+            (None, None) => bands.bounce_reflectance(self.fresnel(cos), band, lambda_nm),
+            (None, Some(metal)) if band != WHITE_BAND => measured_fresnel(metal, cos, lambda_nm),
+            // White light (a view path's; a photon splits first): the bands' mean.
+            _ => bands.bounce_reflectance(self.tint(cos, band, lambda_nm, bands), band, lambda_nm),
         }
     }
 
     /// What a facet met at cosine `cos` keeps of each RGB channel of a
     /// view path of band `band` at `lambda_nm` (a white path: Fresnel per
-    /// channel; of a measured metal, Σ C_b F(λ_b) over the bands, whose
-    /// weights C_b sum to white).
+    /// channel; of a measured or filmed metal, Σ C_b F(λ_b) over the
+    /// bands, whose weights C_b sum to white).
     #[inline]
     pub fn tint(&self, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> Vec3 {
+        if let Some(film) = self.film {
+            return match band {
+                WHITE_BAND => (bands.bands().iter().enumerate())
+                    .map(|(b, info)| info.weight * self.filmed(film, cos, b as u16, info.lambda_nm, bands))
+                    .sum(),
+                _ => Vec3::splat(self.filmed(film, cos, band, lambda_nm, bands)),
+            };
+        }
         match self.measured {
             None => bands.reflectance(self.fresnel(cos), band, lambda_nm),
             Some(metal) if band == WHITE_BAND => {

@@ -204,7 +204,11 @@ impl Surface {
                 emission: *emission,
             },
             MaterialKind::Mirror => Surface::Mirror,
-            MaterialKind::Metal { color, roughness } => Surface::Metal(MetalOptics::new(*color, *roughness)),
+            MaterialKind::Metal { color, roughness, texture, film } => Surface::Metal(MetalOptics {
+                textured: texture.is_some(),
+                film: film.filter(|f| f.thickness_nm > 0.0),
+                ..MetalOptics::new(*color, *roughness)
+            }),
             MaterialKind::Dielectric { dispersion, outside, attenuation, thin, film, roughness } => {
                 // Snell's law and Fresnel depend only on the ratio of the
                 // indices, so the optics carry the relative index n/n_outside.

@@ -5,7 +5,8 @@
 //! film's multiple reflections, r = (r₀₁ + r₁₂ e^{iδ}) / (1 + r₀₁ r₁₂ e^{iδ}),
 //! δ = 4π n₁ d cos θ₁ / λ, for each polarisation, then their mean. Beyond
 //! the critical angle into the film cos θ₁ is imaginary and the film's wave
-//! decays (frustrated total reflection), which the same sum carries.
+//! decays (frustrated total reflection), which the same sum carries. Over
+//! a metal the base's index is complex, n₂ + ik₂, and so are its amplitudes.
 
 use crate::model::scene::ThinFilm;
 use crate::util::math::{exp, sin_cos_turns, sqrt};
@@ -28,6 +29,15 @@ impl Complex {
     /// √x of a real x: real, or i√−x (the root whose wave decays).
     fn sqrt_of(x: f32) -> Self {
         if x >= 0.0 { Complex::real(sqrt(x)) } else { Complex { re: 0.0, im: sqrt(-x) } }
+    }
+
+    /// The principal square root (real part ≥ 0; on the negative real
+    /// axis i√−x, the root whose wave decays, as [`Complex::sqrt_of`]).
+    fn sqrt(self) -> Self {
+        let r = sqrt(self.norm2());
+        let re = sqrt(0.5 * (r + self.re).max(0.0));
+        let im = sqrt(0.5 * (r - self.re).max(0.0));
+        Complex { re, im: if self.im < 0.0 { -im } else { im } }
     }
 
     fn norm2(self) -> f32 {
@@ -78,18 +88,34 @@ impl ThinFilm {
     /// The film's own light is not absorbed, so what is not reflected is
     /// transmitted into the base.
     pub fn reflectance(&self, cos0: f32, n0: f32, n2: f32, lambda_nm: f32) -> f32 {
+        self.reflectance_on(cos0, n0, (n2, 0.0), lambda_nm)
+    }
+
+    /// [`ThinFilm::reflectance`] over an absorbing base of complex index
+    /// n₂ + ik₂ (`base`; a metal's, [`crate::model::metals`]): its Fresnel
+    /// amplitudes are complex, so the film's reflections meet the base's
+    /// phase shift, which is neither 0 nor π, and what is not reflected is
+    /// absorbed by the base. k₂ = 0 is a dielectric base.
+    pub fn reflectance_on(&self, cos0: f32, n0: f32, base: (f32, f32), lambda_nm: f32) -> f32 {
         let n1 = self.ior;
         let cos0 = cos0.clamp(0.0, 1.0);
         let sin2 = 1.0 - cos0 * cos0;
-        let cos_in = |n: f32| Complex::sqrt_of(1.0 - (n0 / n) * (n0 / n) * sin2);
-        let (c0, c1, c2) = (Complex::real(cos0), cos_in(n1), cos_in(n2));
-        let (n0, n1c, n2c) = (Complex::real(n0), Complex::real(n1), Complex::real(n2));
+        let c0 = Complex::real(cos0);
+        let c1 = Complex::sqrt_of(1.0 - (n0 / n1) * (n0 / n1) * sin2);
+        // The base's n₂ cos θ₂ = √(N₂² − n₀² sin²θ₀), the root whose wave decays.
+        let n2 = Complex { re: base.0, im: base.1 };
+        let q2 = (n2 * n2 - Complex::real(n0 * n0 * sin2)).sqrt();
+        let (n0, n1c) = (Complex::real(n0), Complex::real(n1));
         // δ = 4π n₁ d cos θ₁ / λ; e^{iδ} decays where cos θ₁ is imaginary.
         let phase = (c1 * Complex::real(4.0 * core::f32::consts::PI * n1 * self.thickness_nm / lambda_nm)).exp_i();
         let airy = |r01: Complex, r12: Complex| ((r01 + r12 * phase) / (Complex::ONE + r01 * r12 * phase)).norm2();
-        let s = |(na, ca): (Complex, Complex), (nb, cb): (Complex, Complex)| (na * ca - nb * cb) / (na * ca + nb * cb);
-        let p = |(na, ca): (Complex, Complex), (nb, cb): (Complex, Complex)| (nb * ca - na * cb) / (nb * ca + na * cb);
-        let (top, film, base) = ((n0, c0), (n1c, c1), (n2c, c2));
+        // Amplitudes between media a and b, each as (n, n cos θ): s (na ca − nb cb)/(na ca + nb cb),
+        // p (nb ca − na cb)/(nb ca + na cb) multiplied through by nb (cb = qb/nb).
+        let s = |(_, qa): (Complex, Complex), (_, qb): (Complex, Complex)| (qa - qb) / (qa + qb);
+        let p = |(na, qa): (Complex, Complex), (nb, qb): (Complex, Complex)| {
+            (nb * nb * qa - na * na * qb) / (nb * nb * qa + na * na * qb)
+        };
+        let (top, film, base) = ((n0, n0 * c0), (n1c, n1c * c1), (n2, q2));
         let rs = airy(s(top, film), s(film, base));
         let rp = airy(p(top, film), p(film, base));
         (0.5 * (rs + rp)).clamp(0.0, 1.0)
@@ -102,6 +128,87 @@ mod tests {
     use crate::model::cie::cmf;
     use crate::model::color::xyz_to_linear_srgb;
     use crate::optics::fresnel::fresnel;
+    use crate::optics::microfacet::conductor_fresnel;
+
+    /// A complex number in f64 for the matrix method below (re, im).
+    #[derive(Clone, Copy)]
+    struct C(f64, f64);
+
+    impl C {
+        fn mul(self, o: C) -> C {
+            C(self.0 * o.0 - self.1 * o.1, self.0 * o.1 + self.1 * o.0)
+        }
+        fn div(self, o: C) -> C {
+            let d = o.0 * o.0 + o.1 * o.1;
+            C((self.0 * o.0 + self.1 * o.1) / d, (self.1 * o.0 - self.0 * o.1) / d)
+        }
+        fn add(self, o: C) -> C {
+            C(self.0 + o.0, self.1 + o.1)
+        }
+        fn sub(self, o: C) -> C {
+            C(self.0 - o.0, self.1 - o.1)
+        }
+        /// The principal root (its imaginary part has the argument's sign).
+        fn sqrt(self) -> C {
+            let r = self.0.hypot(self.1);
+            let im = ((r - self.0) / 2.0).sqrt();
+            C(((r + self.0) / 2.0).sqrt(), if self.1 < 0.0 { -im } else { im })
+        }
+    }
+
+    /// The reflectance of a film on a base of complex index n₂ + ik₂ by
+    /// Born & Wolf's characteristic matrix (§1.6, time as e^{−iωt}, so an
+    /// absorbing index is n + ik): r = ((m₁₁ + m₁₂ p₂) p₀ − (m₂₁ + m₂₂ p₂)) /
+    /// ((m₁₁ + m₁₂ p₂) p₀ + (m₂₁ + m₂₂ p₂)) with p = n cos θ (s) or cos θ / n
+    /// (p), M = [[cos β, −i sin β / p₁], [−i p₁ sin β, cos β]], in f64.
+    fn on_conductor_by_matrix(cos0: f64, n0: f64, n1: f64, (n2, k2): (f64, f64), d: f64, lambda: f64) -> f64 {
+        let sin2 = 1.0 - cos0 * cos0;
+        let cos1 = (1.0 - (n0 / n1).powi(2) * sin2).sqrt();
+        let big_n2 = C(n2, k2);
+        let q2 = big_n2.mul(big_n2).sub(C(n0 * n0 * sin2, 0.0)).sqrt(); // N₂ cos θ₂
+        let beta = 2.0 * core::f64::consts::PI * n1 * d * cos1 / lambda;
+        let (cb, sb) = (beta.cos(), beta.sin());
+        let r = |p0: C, p1: C, p2: C| {
+            let b = C(cb, 0.0).add(C(0.0, -sb).mul(p2.div(p1)));
+            let c = C(0.0, -sb).mul(p1).add(p2.mul(C(cb, 0.0)));
+            let r = b.mul(p0).sub(c).div(b.mul(p0).add(c));
+            r.0 * r.0 + r.1 * r.1
+        };
+        let s = r(C(n0 * cos0, 0.0), C(n1 * cos1, 0.0), q2);
+        let p = r(C(cos0 / n0, 0.0), C(cos1 / n1, 0.0), q2.div(big_n2.mul(big_n2)));
+        0.5 * (s + p)
+    }
+
+    #[test]
+    fn a_film_on_a_metal_is_the_characteristic_matrix_at_ten_wavelengths() {
+        // Oxide on titanium, on steel, on gold and on aluminium (optical constants near 550 nm).
+        for (n1, base, d) in
+            [(2.4, (2.5, 3.4), 60.0), (1.9, (2.9, 3.0), 250.0), (1.3, (0.35, 2.6), 400.0), (1.5, (1.0, 6.6), 120.0)]
+        {
+            for cos0 in [1.0, 0.8, 0.5, 0.2] {
+                for k in 0..10 {
+                    let lambda = 400.0 + 30.0 * f64::from(k);
+                    let film = ThinFilm { ior: n1 as f32, thickness_nm: d as f32 };
+                    let got = film.reflectance_on(cos0 as f32, 1.0, (base.0 as f32, base.1 as f32), lambda as f32);
+                    let want = on_conductor_by_matrix(cos0, 1.0, n1, base, d, lambda);
+                    assert!(
+                        (f64::from(got) - want).abs() < 2e-5,
+                        "n {n1} on {base:?}, d {d}, cos {cos0}, λ {lambda}: {got} vs {want}"
+                    );
+                }
+            }
+            // A film of no thickness, or of the outside's index, is the bare metal.
+            for cos0 in [1.0f32, 0.6, 0.1] {
+                let bare = conductor_fresnel(cos0, base.0 as f32, base.1 as f32);
+                for film in
+                    [ThinFilm { ior: n1 as f32, thickness_nm: 0.0 }, ThinFilm { ior: 1.0, thickness_nm: d as f32 }]
+                {
+                    let got = film.reflectance_on(cos0, 1.0, (base.0 as f32, base.1 as f32), 550.0);
+                    assert!((got - bare).abs() < 1e-5, "{film:?} on {base:?} at cos {cos0}: {got} vs bare {bare}");
+                }
+            }
+        }
+    }
 
     /// The reflectance by the characteristic (transfer) matrix of the film
     /// (Born & Wolf §1.6), in f64: an independent form of the same optics,

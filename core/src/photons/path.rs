@@ -112,7 +112,8 @@ pub(crate) fn cross_specular(
             true
         }
         Surface::Metal(metal) => {
-            let ggx = scene.facets(hit);
+            let metal = scene.metal_at(metal, hit);
+            let ggx = metal.ggx;
             let (u1, u2) = match ggx {
                 Some(_) => {
                     let [d1, d2] = dim::bounce(p.band, p.bounces);

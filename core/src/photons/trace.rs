@@ -141,7 +141,7 @@ fn trace_path(
         }
         let splits = match surface {
             Surface::Dielectric(glass) => glass.splits_photons,
-            Surface::Metal(metal) => metal.is_chromatic(),
+            Surface::Metal(metal) => scene.metal_at(metal, &hit).is_chromatic(),
             _ => false,
         };
         if p.band == WHITE_BAND && splits {

@@ -5,10 +5,11 @@
 use crate::geometry::normal_map::{TriangleTangents, mapped_normal};
 use crate::geometry::primitive::{Primitive, Ray, prism_faces};
 use crate::geometry::shading::{TriangleNormals, shading_normal};
-use crate::geometry::texture::{TriangleUv, sample_linear};
+use crate::geometry::texture::{TriangleUv, sample, sample_linear};
 use crate::model::bands::BandTable;
-use crate::model::scene::{Light, Scene, SceneError, Shape};
+use crate::model::scene::{Light, MaterialKind, Scene, SceneError, Shape};
 use crate::model::spectrum::Spectrum;
+use crate::optics::metal::MetalOptics;
 use crate::optics::microfacet::Ggx;
 use crate::optics::surface::Surface;
 use crate::plan::area::AreaLights;
@@ -135,6 +136,7 @@ impl PreparedScene {
             .map(|((o, p), s)| match (&o.shape, p) {
                 (Shape::Mesh { triangles, uvs, .. }, Primitive::Mesh(bvh))
                     if matches!(s, Surface::Diffuse { texture: Some(_), .. })
+                        || matches!(s, Surface::Metal(m) if m.textured)
                         || scene.materials[o.material].normal_map.is_some()
                         || scene.materials[o.material].roughness_map.is_some() =>
                 {
@@ -409,6 +411,28 @@ impl PreparedScene {
             _ => Vec2::ZERO,
         };
         self.surfaces[object].albedo_at(point, normal, uv)
+    }
+
+    /// The optics of `metal` (the surface of the object `hit` met) at
+    /// `hit`: its facets ([`PreparedScene::facets`]) and its reflectance at
+    /// normal incidence times its colour texture there, read as a diffuse
+    /// surface's base colour is (sRGB decoded, bilinearly or by nearest
+    /// texel as its sampler says, at the mesh's texture coordinates).
+    #[inline]
+    pub fn metal_at(&self, metal: &MetalOptics, hit: &Hit) -> MetalOptics {
+        let ggx = self.facets(hit);
+        let texture = match &self.scene.materials[self.scene.objects[hit.object].material].kind {
+            MaterialKind::Metal { texture: Some(t), .. } => Some(t),
+            _ => None,
+        };
+        let f0 = match (texture, &self.primitives[hit.object], self.texture_uvs[hit.object].get(hit.triangle as usize))
+        {
+            (Some(t), Primitive::Mesh(bvh), Some(uv)) => {
+                metal.f0 * sample(t, uv.at(&bvh.triangles[hit.triangle as usize], hit.point))
+            }
+            _ => metal.f0,
+        };
+        MetalOptics { f0, ggx, textured: false, ..*metal }
     }
 
     /// The GGX facets of the metal or rough glass at `hit`: its surface's,

@@ -75,7 +75,9 @@ fn first_diffuse(scene: &PreparedScene, ray: &Ray, weight: f32, depth: u32) -> (
             (albedo * weight, facing * weight)
         }
         // A rough metal is a surface of its own to a denoiser: its colour is F0.
-        Surface::Metal(metal) if scene.facets(&hit).is_some() => (metal.f0 * weight, facing * weight),
+        Surface::Metal(metal) if scene.facets(&hit).is_some() => {
+            (scene.metal_at(metal, &hit).f0 * weight, facing * weight)
+        }
         Surface::Mirror | Surface::Metal(_) => {
             let d = reflect(ray.direction, normal);
             first_diffuse(scene, &Ray { origin: offset_origin(hit.point, normal, d), direction: d }, weight, depth + 1)

@@ -175,7 +175,7 @@ impl<'a> ViewContext<'a> {
                 self.radiance(&Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d }, next, points)
             }
             Surface::Metal(metal) => {
-                let metal = &MetalOptics { ggx: self.scene.facets(&hit), ..*metal };
+                let metal = &self.scene.metal_at(metal, &hit);
                 let lambda_nm = stored_wavelength(&self.scene.bands, band, path.lambda_nm);
                 let lit = self.metal_highlights(ray.direction, (hit.point, hit.normal), metal, band, lambda_nm);
                 let (u1, u2) = if metal.ggx.is_some() { path.facets.facet(path.hero, depth) } else { (0.0, 0.0) };

@@ -110,12 +110,12 @@ pub(crate) fn drawn(m: &StandardMaterial, name: String, images: &mut AppImages, 
         left_out.push(format!("{name}: metalness between 0 and 1 or varying (drawn as {drawn_as}, as most of it is)"));
     }
     let (kind, roughness_map) = if metalness.metal {
-        if base_colour_texture.is_some() {
-            left_out.push(format!("{name}: base_color_texture on a metal (its base_color alone colours it)"));
-        }
+        // Its base colour (times its texture) is its reflectance at normal incidence.
         let kind = MaterialKind::Metal {
             color: MetalColor::Rgb(color.clamp(CoreVec3::ZERO, CoreVec3::ONE)),
             roughness: m.perceptual_roughness.clamp(0.0, 1.0),
+            texture: base_colour_texture,
+            film: None,
         };
         (kind, metallic_roughness)
     } else {
@@ -126,6 +126,9 @@ pub(crate) fn drawn(m: &StandardMaterial, name: String, images: &mut AppImages, 
     let material = Material { normal_map, roughness_map, ..Material::new(name, kind) };
     let reads_texture = material.normal_map.is_some()
         || material.roughness_map.is_some()
-        || matches!(material.kind, MaterialKind::Diffuse { texture: Some(_), .. });
+        || matches!(
+            material.kind,
+            MaterialKind::Diffuse { texture: Some(_), .. } | MaterialKind::Metal { texture: Some(_), .. }
+        );
     Drawn { material, uv_transform: reads_texture.then_some(m.uv_transform) }
 }

@@ -260,6 +260,8 @@ fn the_layer_in_bevys_frame_is_the_references_and_lights_the_floor() {
     let brass = MaterialKind::Metal {
         color: prismatic_core::MetalColor::Rgb(prismatic_core::Vec3::new(0.9, 0.7, 0.3)),
         roughness: 0.3,
+        texture: None,
+        film: None,
     };
     assert!(scene.scene.materials.iter().any(|m| m.kind == brass), "the metallic receiver mirrored as a metal");
     let reference = {

@@ -103,12 +103,12 @@ pub fn trace_indirect(scene: &PreparedScene, index: u32, out: &mut Vec<Photon>, 
             p.ray = scatter_diffuse(p.ray.direction, hit.point, hit.normal, u1, u2);
             bounced_diffusely = true;
         } else {
-            let colours = match surface {
+            let colours = || match surface {
                 Surface::Dielectric(glass) => glass.splits_photons,
                 Surface::Metal(metal) => scene.metal_at(metal, &hit).is_chromatic(),
                 _ => false,
             };
-            if lanes.several() && colours {
+            if lanes.several() && colours() {
                 lanes = lanes.choose(random_f32(seed, index, dim::choose(p.bounces)));
                 (p.band, p.lambda_nm) = (lanes.path_band(), lanes.path_lambda());
             }

@@ -139,12 +139,14 @@ fn trace_path(
         if p.bounces == 0 {
             stats.specular_paths += 1;
         }
-        let splits = match surface {
-            Surface::Dielectric(glass) => glass.splits_photons,
-            Surface::Metal(metal) => scene.metal_at(metal, &hit).is_chromatic(),
-            _ => false,
-        };
-        if p.band == WHITE_BAND && splits {
+        // (A band path never splits: only white light looks up a textured metal's colour here.)
+        let splits = p.band == WHITE_BAND
+            && match surface {
+                Surface::Dielectric(glass) => glass.splits_photons,
+                Surface::Metal(metal) => scene.metal_at(metal, &hit).is_chromatic(),
+                _ => false,
+            };
+        if splits {
             // The bands leave here differently (dispersive, coloured or
             // coated glass, a coloured metal): the white photon splits
             // into its bands or hero wavelengths, or goes on as one band.

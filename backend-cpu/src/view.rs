@@ -189,7 +189,11 @@ impl Shader<'_> {
             }
             let (p, n) = (point.lane(i), normal.lane(i));
             let surface = &self.scene.surfaces[object[i] as usize];
-            let facets = self.scene.facets_at(object[i] as usize, triangle[i] as u32, p);
+            // Rough glass's facets here (a metal's come with its colour, `metal_at`).
+            let facets = match surface {
+                Surface::Dielectric(_) => self.scene.facets_at(object[i] as usize, triangle[i] as u32, p),
+                _ => None,
+            };
             if let Surface::Dielectric(glass) = surface {
                 let kept = glass_transmittance(glass, r.dir, hit.normal.lane(i), t[i], r.band);
                 r.tint *= kept;

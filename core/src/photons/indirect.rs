@@ -105,7 +105,7 @@ pub fn trace_indirect(scene: &PreparedScene, index: u32, out: &mut Vec<Photon>, 
         } else {
             let colours = || match surface {
                 Surface::Dielectric(glass) => glass.splits_photons,
-                Surface::Metal(metal) => scene.metal_at(metal, &hit).is_chromatic(),
+                Surface::Metal(metal) => scene.metal_is_chromatic_at(metal, &hit),
                 _ => false,
             };
             if lanes.several() && colours() {

@@ -143,7 +143,7 @@ fn trace_path(
         let splits = p.band == WHITE_BAND
             && match surface {
                 Surface::Dielectric(glass) => glass.splits_photons,
-                Surface::Metal(metal) => scene.metal_at(metal, &hit).is_chromatic(),
+                Surface::Metal(metal) => scene.metal_is_chromatic_at(metal, &hit),
                 _ => false,
             };
         if splits {

@@ -420,7 +420,24 @@ impl PreparedScene {
     /// texel as its sampler says, at the mesh's texture coordinates).
     #[inline]
     pub fn metal_at(&self, metal: &MetalOptics, hit: &Hit) -> MetalOptics {
-        let ggx = self.facets(hit);
+        MetalOptics { ggx: self.facets(hit), ..self.metal_colour_at(metal, hit) }
+    }
+
+    /// Whether `metal` reflects wavelengths differently at `hit` (where a
+    /// white photon splits): [`MetalOptics::is_chromatic`] of its colour
+    /// there, without its facets.
+    #[inline]
+    pub fn metal_is_chromatic_at(&self, metal: &MetalOptics, hit: &Hit) -> bool {
+        self.metal_colour_at(metal, hit).is_chromatic()
+    }
+
+    /// `metal` with F0 times its colour texture at `hit` (and `textured`
+    /// unset); its facets are the surface's, unscaled by a roughness map.
+    #[inline]
+    fn metal_colour_at(&self, metal: &MetalOptics, hit: &Hit) -> MetalOptics {
+        if !metal.textured {
+            return *metal;
+        }
         let texture = match &self.scene.materials[self.scene.objects[hit.object].material].kind {
             MaterialKind::Metal { texture: Some(t), .. } => Some(t),
             _ => None,
@@ -432,7 +449,7 @@ impl PreparedScene {
             }
             _ => metal.f0,
         };
-        MetalOptics { f0, ggx, textured: false, ..*metal }
+        MetalOptics { f0, textured: false, ..*metal }
     }
 
     /// The GGX facets of the metal or rough glass at `hit`: its surface's,

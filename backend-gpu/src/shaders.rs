@@ -155,11 +155,12 @@ pub mod code {
 
 /// The view-ray stack of the render pass: one pending sibling per depth
 /// (the other Fresnel branch), two at the deepest, the rest of one band
-/// split and a spare. Exact rather than rounded up: the shader compiler's
-/// work grows with it (lavapipe lowers varying indices into the stack to
-/// chains of selects).
+/// split and a spare; at least the stack of the default depth (12), so
+/// that every scene of that depth or less shares one view pipeline. Each
+/// size is a pipeline of its own, and its first compile on lavapipe took
+/// about 25 s at any size from 5 to 16 (2026-11-29, 2-core container).
 pub fn stack_size(max_depth: u32) -> u32 {
-    max_depth.min(MAX_DEPTH) + 4
+    (max_depth.min(MAX_DEPTH) + 4).max(16)
 }
 
 fn prelude(stack: u32) -> String {

@@ -457,29 +457,46 @@ fn trace_emitted(index: u32) {
         trace_coloured(e, flux, index);
         return;
     }
+    // The white path, then the paths it splits into, followed from one
+    // call (the shader compiler inlines every call of `follow`, with the
+    // whole scene's intersection and scattering in it).
     var p = Path(e.origin, e.direction, flux, WHITE_BAND, -1.0, 0u);
+    var white = p;
     var hit: Hit;
-    if follow(&p, index, &hit) != FOLLOW_SPLIT {
-        return;
-    }
-    let n = split_paths();
-    tally_counts[1] += n - 1u;
-    let s = metal_at(hit, surfaces[hit.object]);
+    var s: GpuSurface;
+    var n = 0u;
+    var path = 0u;
     // trace::split_bands: one spectrum number for all the paths (hero only).
     var u = 0.0;
-    if params.wavelengths != WAVELENGTHS_SPLIT {
-        u = photon_f32(params.seed, index, DIM_SPECTRUM);
-    }
-    for (var path = 0u; path < n; path++) {
-        let b = split_band(u, path);
-        // The child's bounces are the split's until it has crossed.
-        var child = Path(p.origin, p.dir, p.flux / f32(n), b.band, b.lambda_nm, p.bounces);
-        if !cross_specular(&child, hit, s, index) {
-            continue;
+    loop {
+        let followed = follow(&p, index, &hit);
+        if n == 0u {
+            // The white path has ended, or split at `hit`.
+            if followed != FOLLOW_SPLIT {
+                return;
+            }
+            white = p;
+            n = split_paths();
+            tally_counts[1] += n - 1u;
+            s = metal_at(hit, surfaces[hit.object]);
+            if params.wavelengths != WAVELENGTHS_SPLIT {
+                u = photon_f32(params.seed, index, DIM_SPECTRUM);
+            }
         }
-        child.bounces += 1u;
-        var unused: Hit;
-        follow(&child, index, &unused);
+        // The next path that crosses the split's surface (its bounces are
+        // the split's until it has crossed).
+        loop {
+            if path == n {
+                return;
+            }
+            let b = split_band(u, path);
+            path++;
+            p = Path(white.origin, white.dir, white.flux / f32(n), b.band, b.lambda_nm, white.bounces);
+            if cross_specular(&p, hit, s, index) {
+                p.bounces += 1u;
+                break;
+            }
+        }
     }
 }
 
@@ -490,32 +507,32 @@ fn trace_coloured(e: Emitted, flux: f32, index: u32) {
     let l = lights[e.light];
     let shares = l.spectrum_first + 3u * l.spectrum_len;
     let u = photon_f32(params.seed, index, DIM_SPECTRUM);
-    var unused: Hit;
+    // How many paths, each then made and followed from one call of `follow`.
+    let m = split_paths();
     if params.wavelengths == WAVELENGTHS_SPLIT {
         var count = 0u;
         for (var b = 0u; b < params.band_count; b++) {
             count += select(0u, 1u, tables[shares + b] > 0.0);
         }
         tally_counts[1] += count - 1u;
-        for (var b = 0u; b < params.band_count; b++) {
-            let s = tables[shares + b];
-            if s > 0.0 {
-                var child = Path(e.origin, e.direction, flux * s, b, -1.0, 0u);
-                follow(&child, index, &unused);
-            }
-        }
-        return;
+    } else if params.wavelengths != WAVELENGTHS_RANDOM_BAND {
+        tally_counts[1] += m - 1u;
     }
-    if params.wavelengths == WAVELENGTHS_RANDOM_BAND {
-        var child = Path(e.origin, e.direction, flux, band_by_power(l, u), -1.0, 0u);
-        follow(&child, index, &unused);
-        return;
-    }
-    let m = split_paths();
-    tally_counts[1] += m - 1u;
+    var unused: Hit;
     for (var i = 0u; i < m; i++) {
-        let s = light_spectrum_share(l, u, i, m);
-        var child = Path(e.origin, e.direction, flux * (1.0 / f32(m)), s.band, s.lambda_nm, 0u);
+        var child: Path;
+        if params.wavelengths == WAVELENGTHS_SPLIT {
+            let s = tables[shares + i];
+            if s <= 0.0 {
+                continue;
+            }
+            child = Path(e.origin, e.direction, flux * s, i, -1.0, 0u);
+        } else if params.wavelengths == WAVELENGTHS_RANDOM_BAND {
+            child = Path(e.origin, e.direction, flux, band_by_power(l, u), -1.0, 0u);
+        } else {
+            let s = light_spectrum_share(l, u, i, m);
+            child = Path(e.origin, e.direction, flux * (1.0 / f32(m)), s.band, s.lambda_nm, 0u);
+        }
         follow(&child, index, &unused);
     }
 }

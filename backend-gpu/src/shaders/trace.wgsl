@@ -442,7 +442,11 @@ fn band_by_power(l: GpuLight, u: f32) -> u32 {
     return select(band, last, band == params.band_count);
 }
 
-// trace::trace_emitted
+// trace::trace_emitted. Every path of the photon (a white path and the
+// paths it splits into, or a coloured light's paths) is followed from one
+// call of `follow`: the shader compiler inlines each call, with the
+// scene's intersection and every material in it (on lavapipe the photon
+// pass's first compile took 134 s with five calls, 53.5 s with two).
 fn trace_emitted(index: u32) {
     let e = emit(params.seed, index);
     tally_counts[0] += 1u;
@@ -453,23 +457,34 @@ fn trace_emitted(index: u32) {
     tally_counts[1] += 1u;
     tally_flux[0] += flux;
     photon_range = lights[e.light].range;
-    if lights[e.light].spectrum_len > 0u {
-        trace_coloured(e, flux, index);
-        return;
-    }
-    // The white path, then the paths it splits into, followed from one
-    // call (the shader compiler inlines every call of `follow`, with the
-    // whole scene's intersection and scattering in it).
+    let coloured = lights[e.light].spectrum_len > 0u;
     var p = Path(e.origin, e.direction, flux, WHITE_BAND, -1.0, 0u);
+    // The number of the next path to make.
+    var next = 0u;
+    // One spectrum number for all the paths (trace::split_bands: hero only).
+    var u = 0.0;
+    if coloured {
+        u = photon_f32(params.seed, index, DIM_SPECTRUM);
+        tally_coloured_paths(lights[e.light]);
+        if !coloured_path(e, flux, u, &next, &p) {
+            return;
+        }
+    }
+    // Where the white path split, and into how many paths.
     var white = p;
     var hit: Hit;
     var s: GpuSurface;
     var n = 0u;
-    var path = 0u;
-    // trace::split_bands: one spectrum number for all the paths (hero only).
-    var u = 0.0;
     loop {
+        // Paths made by a split or a coloured light are a band's: they
+        // never split (`hit` stays the split's).
         let followed = follow(&p, index, &hit);
+        if coloured {
+            if !coloured_path(e, flux, u, &next, &p) {
+                return;
+            }
+            continue;
+        }
         if n == 0u {
             // The white path has ended, or split at `hit`.
             if followed != FOLLOW_SPLIT {
@@ -483,58 +498,68 @@ fn trace_emitted(index: u32) {
                 u = photon_f32(params.seed, index, DIM_SPECTRUM);
             }
         }
-        // The next path that crosses the split's surface (its bounces are
-        // the split's until it has crossed).
-        loop {
-            if path == n {
-                return;
-            }
-            let b = split_band(u, path);
-            path++;
-            p = Path(white.origin, white.dir, white.flux / f32(n), b.band, b.lambda_nm, white.bounces);
-            if cross_specular(&p, hit, s, index) {
-                p.bounces += 1u;
-                break;
-            }
+        if !split_path(white, hit, s, n, u, index, &next, &p) {
+            return;
         }
     }
 }
 
-// trace::emission_paths: a coloured light's photon starts as its bands
-// (split, with their shares of the light's power), one band drawn by power
-// (random_band), or wavelengths drawn from the light's spectrum.
-fn trace_coloured(e: Emitted, flux: f32, index: u32) {
-    let l = lights[e.light];
-    let shares = l.spectrum_first + 3u * l.spectrum_len;
-    let u = photon_f32(params.seed, index, DIM_SPECTRUM);
-    // How many paths, each then made and followed from one call of `follow`.
-    let m = split_paths();
+// trace::split_bands: into `p`, the first of paths `*next`.. of the `n`
+// that `white` splits into at `hit` on `s` that crosses the surface (its
+// bounces are the split's until it has crossed); false when none is left.
+fn split_path(white: Path, hit: Hit, s: GpuSurface, n: u32, u: f32, index: u32, next: ptr<function, u32>, p: ptr<function, Path>) -> bool {
+    while *next < n {
+        let b = split_band(u, *next);
+        *next += 1u;
+        *p = Path(white.origin, white.dir, white.flux / f32(n), b.band, b.lambda_nm, white.bounces);
+        if cross_specular(p, hit, s, index) {
+            (*p).bounces += 1u;
+            return true;
+        }
+    }
+    return false;
+}
+
+// The paths a coloured light's photon adds to the tallies' paths.
+fn tally_coloured_paths(l: GpuLight) {
     if params.wavelengths == WAVELENGTHS_SPLIT {
         var count = 0u;
         for (var b = 0u; b < params.band_count; b++) {
-            count += select(0u, 1u, tables[shares + b] > 0.0);
+            count += select(0u, 1u, tables[l.spectrum_first + 3u * l.spectrum_len + b] > 0.0);
         }
         tally_counts[1] += count - 1u;
     } else if params.wavelengths != WAVELENGTHS_RANDOM_BAND {
-        tally_counts[1] += m - 1u;
+        tally_counts[1] += split_paths() - 1u;
     }
-    var unused: Hit;
-    for (var i = 0u; i < m; i++) {
-        var child: Path;
+}
+
+// trace::emission_paths: into `p`, path `*next` (or the next with power)
+// of a coloured light's photon, which starts as its bands (split, with
+// their shares of the light's power), one band drawn by power
+// (random_band), or wavelengths drawn from the light's spectrum; false
+// when none is left.
+fn coloured_path(e: Emitted, flux: f32, u: f32, next: ptr<function, u32>, p: ptr<function, Path>) -> bool {
+    let l = lights[e.light];
+    let m = split_paths();
+    while *next < m {
+        let i = *next;
+        *next += 1u;
         if params.wavelengths == WAVELENGTHS_SPLIT {
-            let s = tables[shares + i];
-            if s <= 0.0 {
-                continue;
+            let share = tables[l.spectrum_first + 3u * l.spectrum_len + i];
+            if share > 0.0 {
+                *p = Path(e.origin, e.direction, flux * share, i, -1.0, 0u);
+                return true;
             }
-            child = Path(e.origin, e.direction, flux * s, i, -1.0, 0u);
         } else if params.wavelengths == WAVELENGTHS_RANDOM_BAND {
-            child = Path(e.origin, e.direction, flux, band_by_power(l, u), -1.0, 0u);
+            *p = Path(e.origin, e.direction, flux, band_by_power(l, u), -1.0, 0u);
+            return true;
         } else {
-            let s = light_spectrum_share(l, u, i, m);
-            child = Path(e.origin, e.direction, flux * (1.0 / f32(m)), s.band, s.lambda_nm, 0u);
+            let share = light_spectrum_share(l, u, i, m);
+            *p = Path(e.origin, e.direction, flux * (1.0 / f32(m)), share.band, share.lambda_nm, 0u);
+            return true;
         }
-        follow(&child, index, &unused);
     }
+    return false;
 }
 
 // WavelengthSampling::paths: what a white photon splits into at dispersive glass.

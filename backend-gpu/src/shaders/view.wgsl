@@ -57,9 +57,10 @@ const NO_SPLIT: u32 = 0xffffffffu;
 
 var<private> stack: array<Pending, STACK_SIZE>;
 var<private> top: u32;
-// What the entry being handled spawns, pushed in one place: each access to
-// `stack` with a varying index costs the shader compiler in proportion to
-// STACK_SIZE (lavapipe lowers it to a chain of selects).
+// What the entry being handled spawns, pushed in one place: lavapipe
+// lowers each access to `stack` with a varying index to a chain of selects
+// (the whole view pipeline still compiled in about 25 s at 7, 8 and 16
+// entries alike; see prismatic_gpu::shaders::stack_size).
 var<private> kids: array<Pending, 3>;
 var<private> kid_count: u32;
 // A sampled path's pixel scramble (PixelSampler).

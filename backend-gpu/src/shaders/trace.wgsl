@@ -327,7 +327,7 @@ fn carried_at_light(light: u32, index: u32, c: ptr<function, Carried>) -> f32 {
                 w = spectrum_share(u, i, m);
             }
             if !uniform {
-                share = tables[l.spectrum_first + 3u * l.spectrum_len + w.band] * f32(n) / f32(m);
+                share = band_share(l, w.band) * f32(n) / f32(m);
             }
         } else if params.wavelengths == WAVELENGTHS_RANDOM_BAND {
             w = SpectrumSample(band_by_power(l, u), -1.0);
@@ -422,15 +422,20 @@ fn sort_slots_by_band() {
     }
 }
 
+// Band `b`'s share of coloured light `l`'s power (its table after the
+// spectrum's samples).
+fn band_share(l: GpuLight, b: u32) -> f32 {
+    return tables[l.spectrum_first + 3u * l.spectrum_len + b];
+}
+
 // trace::band_by_power: the band at cumulative share `u` of light `l`'s
 // band shares (the last with power when rounding leaves `u` past the sum).
 fn band_by_power(l: GpuLight, u: f32) -> u32 {
-    let shares = l.spectrum_first + 3u * l.spectrum_len;
     var band = params.band_count;
     var last = 0u;
     var acc = 0.0;
     for (var b = 0u; b < params.band_count; b++) {
-        let s = tables[shares + b];
+        let s = band_share(l, b);
         acc += s;
         if s > 0.0 {
             last = b;
@@ -446,7 +451,7 @@ fn band_by_power(l: GpuLight, u: f32) -> u32 {
 // paths it splits into, or a coloured light's paths) is followed from one
 // call of `follow`: the shader compiler inlines each call, with the
 // scene's intersection and every material in it (on lavapipe the photon
-// pass's first compile took 134 s with five calls, 53.5 s with two).
+// pass's first compile took 134 s with five calls, 24.2 s with one).
 fn trace_emitted(index: u32) {
     let e = emit(params.seed, index);
     tally_counts[0] += 1u;
@@ -456,8 +461,9 @@ fn trace_emitted(index: u32) {
     let flux = params.flux * e.weight;
     tally_counts[1] += 1u;
     tally_flux[0] += flux;
-    photon_range = lights[e.light].range;
-    let coloured = lights[e.light].spectrum_len > 0u;
+    let l = lights[e.light];
+    photon_range = l.range;
+    let coloured = l.spectrum_len > 0u;
     var p = Path(e.origin, e.direction, flux, WHITE_BAND, -1.0, 0u);
     // The number of the next path to make.
     var next = 0u;
@@ -465,8 +471,8 @@ fn trace_emitted(index: u32) {
     var u = 0.0;
     if coloured {
         u = photon_f32(params.seed, index, DIM_SPECTRUM);
-        tally_coloured_paths(lights[e.light]);
-        if !coloured_path(e, flux, u, &next, &p) {
+        tally_coloured_paths(l);
+        if !coloured_path(e, l, flux, u, &next, &p) {
             return;
         }
     }
@@ -480,7 +486,7 @@ fn trace_emitted(index: u32) {
         // never split (`hit` stays the split's).
         let followed = follow(&p, index, &hit);
         if coloured {
-            if !coloured_path(e, flux, u, &next, &p) {
+            if !coloured_path(e, l, flux, u, &next, &p) {
                 return;
             }
             continue;
@@ -525,7 +531,7 @@ fn tally_coloured_paths(l: GpuLight) {
     if params.wavelengths == WAVELENGTHS_SPLIT {
         var count = 0u;
         for (var b = 0u; b < params.band_count; b++) {
-            count += select(0u, 1u, tables[l.spectrum_first + 3u * l.spectrum_len + b] > 0.0);
+            count += select(0u, 1u, band_share(l, b) > 0.0);
         }
         tally_counts[1] += count - 1u;
     } else if params.wavelengths != WAVELENGTHS_RANDOM_BAND {
@@ -534,18 +540,17 @@ fn tally_coloured_paths(l: GpuLight) {
 }
 
 // trace::emission_paths: into `p`, path `*next` (or the next with power)
-// of a coloured light's photon, which starts as its bands (split, with
+// of coloured light `l`'s photon `e`, which starts as its bands (split, with
 // their shares of the light's power), one band drawn by power
 // (random_band), or wavelengths drawn from the light's spectrum; false
 // when none is left.
-fn coloured_path(e: Emitted, flux: f32, u: f32, next: ptr<function, u32>, p: ptr<function, Path>) -> bool {
-    let l = lights[e.light];
+fn coloured_path(e: Emitted, l: GpuLight, flux: f32, u: f32, next: ptr<function, u32>, p: ptr<function, Path>) -> bool {
     let m = split_paths();
     while *next < m {
         let i = *next;
         *next += 1u;
         if params.wavelengths == WAVELENGTHS_SPLIT {
-            let share = tables[l.spectrum_first + 3u * l.spectrum_len + i];
+            let share = band_share(l, i);
             if share > 0.0 {
                 *p = Path(e.origin, e.direction, flux * share, i, -1.0, 0u);
                 return true;

@@ -193,7 +193,7 @@ pub struct GpuSurface {
     /// Radiance its front faces emit (an area light's glow).
     pub emission: [f32; 3],
     /// Index of a dielectric's or metal's film's index (relative to the
-    /// outside) and thickness (nm) in the tables buffer (see `SURFACE_HAS_FILM`).
+    /// outside), thickness (nm) and factor in the tables buffer (see `SURFACE_HAS_FILM`).
     pub film_first: u32,
 }
 const _: () = assert!(core::mem::size_of::<GpuSurface>() == 112);

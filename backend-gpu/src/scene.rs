@@ -302,7 +302,7 @@ impl EncodedScene {
                 if let Some(film) = &m.film {
                     s.flags |= SURFACE_HAS_FILM;
                     s.film_first = self.tables.len() as u32;
-                    self.tables.extend_from_slice(&[film.ior, film.thickness_nm]);
+                    self.tables.extend_from_slice(&[film.ior, film.thickness_nm, film.factor]);
                 }
                 s
             }
@@ -327,7 +327,7 @@ impl EncodedScene {
                 if let Some(film) = &g.film {
                     s.flags |= SURFACE_HAS_FILM;
                     s.film_first = self.tables.len() as u32;
-                    self.tables.extend_from_slice(&[film.ior, film.thickness_nm]);
+                    self.tables.extend_from_slice(&[film.ior, film.thickness_nm, film.factor]);
                 }
                 if let Some(a) = &g.absorption {
                     s.flags |= SURFACE_ABSORBS;

@@ -63,7 +63,7 @@ pub mod kind {
     pub const TEXTURE_WRAP_U_SHIFT: u32 = 8;
     /// Where the texture's wrap along v sits in the flags (two bits, `WRAP_*`).
     pub const TEXTURE_WRAP_V_SHIFT: u32 = 10;
-    /// The dielectric or metal has a thin film (its index and thickness in the tables at `film_first`).
+    /// The dielectric or metal has a thin film (its index, thickness and factor in the tables at `film_first`).
     pub const SURFACE_HAS_FILM: u32 = 4096;
     /// The metal is measured: its n and k per row of `model::metals` in the tables at `curve_first`.
     pub const SURFACE_MEASURED: u32 = 8192;

@@ -123,7 +123,7 @@ pub fn ring_metals(photons: u32) -> [(&'static str, PreparedScene); 6] {
     let mut filmed = rough.clone();
     for m in &mut filmed.materials {
         if let MaterialKind::Metal { film, .. } = &mut m.kind {
-            *film = Some(ThinFilm { ior: 1.8, thickness_nm: 300.0 });
+            *film = Some(ThinFilm::new(1.8, 300.0));
         }
     }
     let mut polished = rough.clone();

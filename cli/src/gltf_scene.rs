@@ -669,12 +669,12 @@ fn dispersion(m: &gltf::Material<'_>) -> Dispersion {
 }
 
 /// The film of `KHR_materials_iridescence` on glass or a metal: `iridescenceIor`
-/// (default 1.3) and, without a thickness texture, the film is
-/// `iridescenceThicknessMaximum` thick (default 400 nm), as the extension
-/// reads a missing texture. A factor of 0 (the default) is no film. What
-/// it leaves out goes to `unused`: the textures (the film is as thick
-/// everywhere) and a factor between 0 and 1, the extension's blend of
-/// the bare and the filmed reflectance, drawn as a whole film.
+/// (default 1.3), `iridescenceFactor` (the extension's mix of the film's
+/// and the bare surface's Fresnel; 0, the default, is no film) and,
+/// without a thickness texture, the film is `iridescenceThicknessMaximum`
+/// thick (default 400 nm), as the extension reads a missing texture. What
+/// it leaves out goes to `unused`: the textures (the film is as thick, and
+/// its factor the same, everywhere).
 fn film(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option<ThinFilm> {
     let ext = m.extensions().and_then(|e| e.get("KHR_materials_iridescence"))?;
     let number = |key: &str, default: f64| ext.get(key).and_then(serde_json::Value::as_f64).unwrap_or(default) as f32;
@@ -682,16 +682,17 @@ fn film(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option<ThinFi
     if factor <= 0.0 {
         return None;
     }
-    if factor < 1.0 {
-        unused.push("iridescenceFactor below 1 (drawn as a whole film)");
-    }
     if ext.get("iridescenceTexture").is_some() {
         unused.push("iridescenceTexture");
     }
     if ext.get("iridescenceThicknessTexture").is_some() {
         unused.push("iridescenceThicknessTexture (the film is iridescenceThicknessMaximum thick)");
     }
-    Some(ThinFilm { ior: number("iridescenceIor", 1.3), thickness_nm: number("iridescenceThicknessMaximum", 400.0) })
+    Some(ThinFilm {
+        ior: number("iridescenceIor", 1.3),
+        thickness_nm: number("iridescenceThicknessMaximum", 400.0),
+        factor,
+    })
 }
 
 /// A whole scene from a glTF file: its parts, its camera or one framing

@@ -200,7 +200,7 @@ pub fn textured_floor() -> PreparedScene {
     let MaterialKind::Dielectric { film, .. } = &mut scene.materials[1].kind else {
         unreachable!("the sphere is glass")
     };
-    *film = Some(ThinFilm { ior: 2.4, thickness_nm: 300.0 });
+    *film = Some(ThinFilm::new(2.4, 300.0));
     let texels: Vec<u32> =
         (0..64u32).map(|i| (40 + 25 * (i % 8)) | (230 - 25 * (i / 8)) << 8 | ((i * 37) % 256) << 16).collect();
     let sampler = Sampler { filter: Filter::Linear, wrap_u: Wrap::Repeat, wrap_v: Wrap::MirroredRepeat };
@@ -322,8 +322,8 @@ pub fn rippled_mirror() -> PreparedScene {
 
 /// The mirror's beam folded by a rough gold square instead (its colour
 /// scaled by a texture of four tiles, gold, grey, rose and pale) onto a
-/// round floor, beside a polished ball of measured copper under a film of
-/// its oxide, with indirect light: metals' facets, coloured Fresnel texel
+/// round floor, beside a polished ball of measured copper under a patchy
+/// film of its oxide (a factor of 0.6), with indirect light: metals' facets, coloured Fresnel texel
 /// by texel and a film's over a complex index, in caustic and indirect
 /// photons and in view.
 pub fn metals() -> PreparedScene {
@@ -340,8 +340,8 @@ pub fn metals() -> PreparedScene {
         sampler: Sampler { filter: Filter::Nearest, wrap_u: Wrap::Repeat, wrap_v: Wrap::Repeat },
     };
     scene.materials[1] = metal("gold", MetalColor::Rgb(Vec3::new(1.0, 0.766, 0.336)), 0.3, Some(tiles), None);
-    // Copper under 90 nm of its oxide (index 2.5).
-    let tarnish = ThinFilm { ior: 2.5, thickness_nm: 90.0 };
+    // Copper under 90 nm of its oxide (index 2.5) over 60 % of it.
+    let tarnish = ThinFilm { factor: 0.6, ..ThinFilm::new(2.5, 90.0) };
     scene.materials.push(metal("copper", MetalColor::Measured(NamedMetal::Copper), 0.0, None, Some(tarnish)));
     // Facing (−1, −1, 0) at (0, 2, 0), where the mirror's disc was; its tiles meet at the beam's axis.
     let (center, a, b) = (Vec3::new(0.0, 2.0, 0.0), Vec3::new(-1.0, 1.0, 0.0).normalize(), Vec3::Z);

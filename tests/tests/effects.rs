@@ -98,7 +98,7 @@ fn constant_index_glass_traces_white_photons_only_with_a_seventh_of_the_segments
 fn a_film_on_glass_of_one_index_splits_photons_and_view_rays() {
     let mut scene = sphere_scene(Dispersion::Constant(1.5), 9.0, -Vec3::Y);
     let MaterialKind::Dielectric { film, .. } = &mut scene.materials[0].kind else { unreachable!() };
-    *film = Some(ThinFilm { ior: 1.38, thickness_nm: 250.0 });
+    *film = Some(ThinFilm::new(1.38, 250.0));
     let scene = prepare(scene);
     let plan = &scene.plan;
     assert!(plan.band_splitting.on && plan.band_splitting.reason.contains("coated glass"), "{}", plan.summary());

@@ -439,8 +439,8 @@ fn filmed(color: MetalColor, film: ThinFilm) -> Material {
     Material::new("filmed", MaterialKind::Metal { color, roughness: 0.0, texture: None, film: Some(film) })
 }
 
-const OXIDE: ThinFilm = ThinFilm { ior: 1.65, thickness_nm: 250.0 };
-const TEMPER: ThinFilm = ThinFilm { ior: 2.2, thickness_nm: 120.0 };
+const OXIDE: ThinFilm = ThinFilm::new(1.65, 250.0);
+const TEMPER: ThinFilm = ThinFilm::new(2.2, 120.0);
 
 /// A film on a metal colours its reflection wavelength by wavelength by
 /// the Airy sum of the film over the metal's complex index (the core's

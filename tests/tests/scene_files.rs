@@ -323,11 +323,21 @@ fn a_films_keys_parse_and_bad_films_are_rejected_with_their_line() {
         let MaterialKind::Dielectric { film, .. } = amber.kind else { panic!("glass expected, got {:?}", amber.kind) };
         film
     };
-    assert_eq!(film_of("film_thickness_nm = 300\nfilm_ior = 2.4"), Some(ThinFilm { ior: 2.4, thickness_nm: 300.0 }));
+    assert_eq!(film_of("film_thickness_nm = 300\nfilm_ior = 2.4"), Some(ThinFilm::new(2.4, 300.0)));
     // The index defaults to glTF's iridescenceIor.
-    assert_eq!(film_of("film_thickness_nm = 300"), Some(ThinFilm { ior: 1.3, thickness_nm: 300.0 }));
+    assert_eq!(film_of("film_thickness_nm = 300"), Some(ThinFilm::new(1.3, 300.0)));
+    let part = film_of("film_thickness_nm = 300\nfilm_factor = 0.25");
+    assert_eq!(part, Some(ThinFilm { factor: 0.25, ..ThinFilm::new(1.3, 300.0) }));
     assert_eq!(film_of(""), None);
     assert_error(&coloured_glass("film_ior = 2.4"), "material.amber.film_ior", Some("film_ior"), "film_thickness_nm");
+    let factor_alone = coloured_glass("film_factor = 0.5");
+    assert_error(&factor_alone, "material.amber.film_factor", Some("film_factor"), "film_thickness_nm");
+    assert_error(
+        &coloured_glass("film_thickness_nm = 300\nfilm_factor = 1.5"),
+        "material.amber.film_factor",
+        Some("film_factor"),
+        "0 to 1",
+    );
     assert_error(
         &coloured_glass("film_thickness_nm = -5"),
         "material.amber.film_thickness_nm",

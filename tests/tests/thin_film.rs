@@ -18,7 +18,7 @@ use prismatic_tests::{beam_onto_a_wall, view_through_a_sheet};
 /// The sheet's index, its film's index and thickness: a high-index coating
 /// whose reflectance swings from 8 % to 51 % across the visible bands.
 const GLASS: f64 = 1.5;
-const FILM: ThinFilm = ThinFilm { ior: 2.4, thickness_nm: 300.0 };
+const FILM: ThinFilm = ThinFilm::new(2.4, 300.0);
 
 fn coated_sheet() -> Material {
     Material {

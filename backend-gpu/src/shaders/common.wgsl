@@ -559,10 +559,10 @@ fn airy(r01: vec2<f32>, r12: vec2<f32>, phase: vec2<f32>) -> f32 {
     return r.x * r.x + r.y * r.y;
 }
 
-// ThinFilm::reflectance: a film of index n1 and thickness d_nm between n0
-// and a base n2, at wavelength lambda_nm.
-fn thin_film_reflectance(cos_in: f32, n0: f32, n1: f32, n2: f32, d_nm: f32, lambda_nm: f32) -> f32 {
-    return thin_film_on(cos_in, n0, n1, vec2<f32>(n2, 0.0), d_nm, lambda_nm);
+// ThinFilm::reflectance: a film of index n1, thickness d_nm and factor
+// `factor` between n0 and a base n2, at wavelength lambda_nm.
+fn thin_film_reflectance(cos_in: f32, n0: f32, n1: f32, n2: f32, d_nm: f32, factor: f32, lambda_nm: f32) -> f32 {
+    return thin_film_on(cos_in, n0, n1, vec2<f32>(n2, 0.0), d_nm, factor, lambda_nm);
 }
 
 // Complex::sqrt: the principal root (on the negative real axis i√−x).
@@ -585,8 +585,9 @@ fn amplitude_p(na: vec2<f32>, qa: vec2<f32>, nb: vec2<f32>, qb: vec2<f32>) -> ve
     return c_div(a - b, a + b);
 }
 
-// ThinFilm::reflectance_on: the film over a base of complex index base = (n2, k2).
-fn thin_film_on(cos_in: f32, n0: f32, n1: f32, base: vec2<f32>, d_nm: f32, lambda_nm: f32) -> f32 {
+// ThinFilm::reflectance_on: the film over a base of complex index base =
+// (n2, k2); below a factor of 1, mixed with the bare base's Fresnel.
+fn thin_film_on(cos_in: f32, n0: f32, n1: f32, base: vec2<f32>, d_nm: f32, factor: f32, lambda_nm: f32) -> f32 {
     let cos0 = clamp(cos_in, 0.0, 1.0);
     let sin2 = 1.0 - cos0 * cos0;
     let c1 = c_sqrt_of(1.0 - (n0 / n1) * (n0 / n1) * sin2);
@@ -598,7 +599,14 @@ fn thin_film_on(cos_in: f32, n0: f32, n1: f32, base: vec2<f32>, d_nm: f32, lambd
     let q1 = c1 * n1;
     let rs = airy(amplitude_s(q0, q1), amplitude_s(q1, q2), phase);
     let rp = airy(amplitude_p(top, q0, film, q1), amplitude_p(film, q1, base, q2), phase);
-    return clamp(0.5 * (rs + rp), 0.0, 1.0);
+    var r = 0.5 * (rs + rp);
+    if factor < 1.0 {
+        let s0 = amplitude_s(q0, q2);
+        let p0 = amplitude_p(top, q0, base, q2);
+        let bare = 0.5 * (dot(s0, s0) + dot(p0, p0));
+        r = bare + (r - bare) * factor;
+    }
+    return clamp(r, 0.0, 1.0);
 }
 
 // optics::scatter::Face: what a path meets at glass (film_nm = 0: no film).
@@ -607,18 +615,19 @@ struct Face {
     thin: bool,
     film_ior: f32,
     film_nm: f32,
+    film_factor: f32,
     lambda_nm: f32,
 }
 
 // Face::bare.
 fn bare_face(ior: f32, thin: bool) -> Face {
-    return Face(ior, thin, 1.0, 0.0, 0.0);
+    return Face(ior, thin, 1.0, 0.0, 1.0, 0.0);
 }
 
 // Face::interface_reflectance: Fresnel's, or the film's Airy sum.
 fn interface_reflectance(f: Face, cos_i: f32, n1: f32, n2: f32) -> f32 {
     if f.film_nm > 0.0 {
-        return thin_film_reflectance(cos_i, n1, f.film_ior, n2, f.film_nm, f.lambda_nm);
+        return thin_film_reflectance(cos_i, n1, f.film_ior, n2, f.film_nm, f.film_factor, f.lambda_nm);
     }
     return fresnel(cos_i, n1, n2);
 }

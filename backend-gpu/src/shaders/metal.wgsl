@@ -33,8 +33,8 @@ fn metal_filmed(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> f32 {
         let r = sqrt(min(bounce_reflectance(s.albedo, band, lambda_nm), MAX_FILMED_F0));
         base = vec2<f32>((1.0 + r) / (1.0 - r), 0.0);
     }
-    let film = vec2<f32>(tables[s.film_first], tables[s.film_first + 1u]);
-    return thin_film_on(c, 1.0, film.x, base, film.y, lambda_nm);
+    let film = vec3<f32>(tables[s.film_first], tables[s.film_first + 1u], tables[s.film_first + 2u]);
+    return thin_film_on(c, 1.0, film.x, base, film.y, film.z, lambda_nm);
 }
 
 // MetalOptics::tint: what a facet met at cosine `c` keeps of each RGB

@@ -548,7 +548,8 @@ fn path_face(s: GpuSurface, band: u32, lambda_nm: f32) -> Face {
         }
         lambda = bands[b].lambda_nm;
     }
-    return Face(ior, is_sheet(s), tables[s.film_first], tables[s.film_first + 1u], lambda);
+    let film = s.film_first;
+    return Face(ior, is_sheet(s), tables[film], tables[film + 1u], tables[film + 2u], lambda);
 }
 
 struct SpectrumSample {

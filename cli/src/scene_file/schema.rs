@@ -354,6 +354,7 @@ impl Reader<'_> {
                         "thin",
                         "film_thickness_nm",
                         "film_ior",
+                        "film_factor",
                         "roughness",
                         "roughness_map",
                         "normal_map",
@@ -394,6 +395,7 @@ impl Reader<'_> {
                         "texture_wrap",
                         "film_thickness_nm",
                         "film_ior",
+                        "film_factor",
                         "normal_map",
                         "normal_scale",
                     ],
@@ -430,18 +432,23 @@ impl Reader<'_> {
         })
     }
 
-    /// A dielectric's or metal's film: its `film_thickness_nm`, and its
-    /// `film_ior` (glTF's iridescenceIor by default).
+    /// A dielectric's or metal's film: its `film_thickness_nm`, its
+    /// `film_ior` (glTF's iridescenceIor by default) and its `film_factor`
+    /// (glTF's iridescenceFactor, 1 by default).
     fn film(&self, t: &Table<'_, '_>) -> Result<Option<ThinFilm>> {
         match self.opt(t, "film_thickness_nm", Self::float)? {
-            Some(thickness_nm) => {
-                Ok(Some(ThinFilm { ior: self.opt(t, "film_ior", Self::float)?.unwrap_or(1.3), thickness_nm }))
-            }
-            None if let Some(v) = self.get(t, "film_ior") => {
-                let reason = "a film needs film_thickness_nm (its thickness in nanometres)";
-                Err(self.err(&join(&t.key, "film_ior"), &v.span(), reason))
-            }
-            None => Ok(None),
+            Some(thickness_nm) => Ok(Some(ThinFilm {
+                ior: self.opt(t, "film_ior", Self::float)?.unwrap_or(1.3),
+                thickness_nm,
+                factor: self.opt(t, "film_factor", Self::float)?.unwrap_or(1.0),
+            })),
+            None => match ["film_ior", "film_factor"].into_iter().find_map(|k| Some((k, self.get(t, k)?))) {
+                Some((key, v)) => {
+                    let reason = "a film needs film_thickness_nm (its thickness in nanometres)";
+                    Err(self.err(&join(&t.key, key), &v.span(), reason))
+                }
+                None => Ok(None),
+            },
         }
     }
 

@@ -813,13 +813,19 @@ impl MaterialKind {
 
 /// A non-absorbing film on a dielectric's or metal's surface, thinner than the
 /// coherence length of light, so its reflections interfere: its index (an
-/// absolute one, as the scene's indices are) and its thickness.
+/// absolute one, as the scene's indices are), its thickness, and how much
+/// of the surface's reflection is the film's.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ThinFilm {
     /// The film's index of refraction.
     pub ior: f32,
     /// Its thickness in nanometres (0: no film).
     pub thickness_nm: f32,
+    /// glTF's `iridescenceFactor`, in [0, 1]: the surface reflects this
+    /// share of the film's Airy sum and the rest of its bare Fresnel, as a
+    /// surface patched with film over this share of its area would
+    /// ([`ThinFilm::reflectance_on`]). 1: a whole film; 0: no film.
+    pub factor: f32,
 }
 
 /// Beer–Lambert absorption inside a dielectric, stated as glTF's

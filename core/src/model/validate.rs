@@ -461,6 +461,9 @@ fn validate_film(c: &Check<'_>, f: &ThinFilm, bands: BandSpec) -> Result<(), Sce
             format!("a film's thickness must be 0 to {MAX_FILM_NM} nm, got {}", f.thickness_nm),
         ));
     }
+    if !(0.0..=1.0).contains(&f.factor) {
+        return Err(c.err("film_factor", format!("a film's factor must be 0 to 1, got {}", f.factor)));
+    }
     Ok(())
 }
 

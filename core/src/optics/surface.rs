@@ -206,7 +206,7 @@ impl Surface {
             MaterialKind::Mirror => Surface::Mirror,
             MaterialKind::Metal { color, roughness, texture, film } => Surface::Metal(MetalOptics {
                 textured: texture.is_some(),
-                film: film.filter(|f| f.thickness_nm > 0.0),
+                film: film.filter(|f| !f.is_bare()),
                 ..MetalOptics::new(*color, *roughness)
             }),
             MaterialKind::Dielectric { dispersion, outside, attenuation, thin, film, roughness } => {
@@ -236,7 +236,7 @@ impl Surface {
                         .map(|a| if *thin { Attenuation { distance: 1.0, ..*a } } else { *a })
                         .and_then(|a| Absorption::new(&a, bands)),
                     thin: *thin,
-                    film: film.filter(|f| f.thickness_nm > 0.0).map(|f| ThinFilm { ior: f.ior / outside_white, ..f }),
+                    film: film.filter(|f| !f.is_bare()).map(|f| ThinFilm { ior: f.ior / outside_white, ..f }),
                     ggx: (*roughness > 0.0).then(|| Ggx::from_roughness(*roughness)),
                 })
             }
@@ -307,21 +307,23 @@ mod tests {
     #[test]
     fn a_film_is_seen_at_the_paths_wavelength_its_bands_or_the_middle_bands() {
         let bands = BandTable::new(BandSpec::Paper7);
-        let g = glass(Some(ThinFilm { ior: 1.38, thickness_nm: 120.0 }), 1.0);
+        let g = glass(Some(ThinFilm::new(1.38, 120.0)), 1.0);
         assert!(g.is_chromatic() && g.colours_view_rays(), "one index, but the film colours the light");
         assert_eq!(g.face(2, Some(432.5), &bands).lambda_nm, 432.5);
         assert_eq!(g.face(2, None, &bands).lambda_nm, bands.band(2).lambda_nm);
         assert_eq!(g.face(WHITE_BAND, None, &bands).lambda_nm, bands.band(3).lambda_nm);
         assert_eq!(g.face(WHITE_BAND, None, &bands).ior, g.white_ior);
         // In water the film's index, like the glass's, is relative to the outside.
-        let film = glass(Some(ThinFilm { ior: 1.38, thickness_nm: 120.0 }), 1.33).film.unwrap();
+        let film = glass(Some(ThinFilm::new(1.38, 120.0)), 1.33).film.unwrap();
         assert!((film.ior - 1.38 / 1.33).abs() < 1e-6, "{film:?}");
     }
 
     #[test]
-    fn a_film_of_no_thickness_is_bare_glass() {
-        let g = glass(Some(ThinFilm { ior: 2.0, thickness_nm: 0.0 }), 1.0);
-        assert_eq!(g, glass(None, 1.0));
-        assert!(!g.is_chromatic() && !g.colours_view_rays());
+    fn a_film_of_no_thickness_or_no_factor_is_bare_glass() {
+        for film in [ThinFilm::new(2.0, 0.0), ThinFilm { factor: 0.0, ..ThinFilm::new(2.0, 300.0) }] {
+            let g = glass(Some(film), 1.0);
+            assert_eq!(g, glass(None, 1.0), "{film:?}");
+            assert!(!g.is_chromatic() && !g.colours_view_rays());
+        }
     }
 }

@@ -82,6 +82,17 @@ impl Div for Complex {
 }
 
 impl ThinFilm {
+    /// A whole film (factor 1) of index `ior`, `thickness_nm` thick.
+    pub const fn new(ior: f32, thickness_nm: f32) -> Self {
+        ThinFilm { ior, thickness_nm, factor: 1.0 }
+    }
+
+    /// True when it leaves its surface's reflection as it is: no thickness
+    /// (the Airy sum is the bare Fresnel) or no share of the surface.
+    pub fn is_bare(&self) -> bool {
+        self.thickness_nm <= 0.0 || self.factor <= 0.0
+    }
+
     /// The unpolarised reflectance for light of wavelength `lambda_nm`
     /// arriving with cosine `cos0` from a medium of index `n0` at this film
     /// over a base of index `n2` (a total reflection at the base is 1).
@@ -95,7 +106,9 @@ impl ThinFilm {
     /// n₂ + ik₂ (`base`; a metal's, [`crate::model::metals`]): its Fresnel
     /// amplitudes are complex, so the film's reflections meet the base's
     /// phase shift, which is neither 0 nor π, and what is not reflected is
-    /// absorbed by the base. k₂ = 0 is a dielectric base.
+    /// absorbed by the base. k₂ = 0 is a dielectric base. Below a factor
+    /// of 1 it is the mix of the Airy sum and the bare base's Fresnel,
+    /// glTF's mix of the iridescence and the base Fresnel.
     pub fn reflectance_on(&self, cos0: f32, n0: f32, base: (f32, f32), lambda_nm: f32) -> f32 {
         let n1 = self.ior;
         let cos0 = cos0.clamp(0.0, 1.0);
@@ -118,7 +131,15 @@ impl ThinFilm {
         let (top, film, base) = ((n0, n0 * c0), (n1c, n1c * c1), (n2, q2));
         let rs = airy(s(top, film), s(film, base));
         let rp = airy(p(top, film), p(film, base));
-        (0.5 * (rs + rp)).clamp(0.0, 1.0)
+        let filmed = 0.5 * (rs + rp);
+        let r = match self.factor < 1.0 {
+            true => {
+                let bare = 0.5 * (s(top, base).norm2() + p(top, base).norm2());
+                bare + (filmed - bare) * self.factor
+            }
+            false => filmed,
+        };
+        r.clamp(0.0, 1.0)
     }
 }
 
@@ -188,7 +209,7 @@ mod tests {
             for cos0 in [1.0, 0.8, 0.5, 0.2] {
                 for k in 0..10 {
                     let lambda = 400.0 + 30.0 * f64::from(k);
-                    let film = ThinFilm { ior: n1 as f32, thickness_nm: d as f32 };
+                    let film = ThinFilm::new(n1 as f32, d as f32);
                     let got = film.reflectance_on(cos0 as f32, 1.0, (base.0 as f32, base.1 as f32), lambda as f32);
                     let want = on_conductor_by_matrix(cos0, 1.0, n1, base, d, lambda);
                     assert!(
@@ -200,9 +221,7 @@ mod tests {
             // A film of no thickness, or of the outside's index, is the bare metal.
             for cos0 in [1.0f32, 0.6, 0.1] {
                 let bare = conductor_fresnel(cos0, base.0 as f32, base.1 as f32);
-                for film in
-                    [ThinFilm { ior: n1 as f32, thickness_nm: 0.0 }, ThinFilm { ior: 1.0, thickness_nm: d as f32 }]
-                {
+                for film in [ThinFilm::new(n1 as f32, 0.0), ThinFilm::new(1.0, d as f32)] {
                     let got = film.reflectance_on(cos0, 1.0, (base.0 as f32, base.1 as f32), 550.0);
                     assert!((got - bare).abs() < 1e-5, "{film:?} on {base:?} at cos {cos0}: {got} vs bare {bare}");
                 }
@@ -239,7 +258,7 @@ mod tests {
                 let mut seen = (f64::INFINITY, 0.0f64);
                 for k in 0..10 {
                     let lambda = 400.0 + 30.0 * f64::from(k);
-                    let film = ThinFilm { ior: n1 as f32, thickness_nm: d as f32 };
+                    let film = ThinFilm::new(n1 as f32, d as f32);
                     let got = film.reflectance(cos0 as f32, n0 as f32, n2 as f32, lambda as f32);
                     let want = by_transfer_matrix(cos0, n0, n1, n2, d, lambda);
                     assert!(
@@ -259,9 +278,30 @@ mod tests {
         for cos in [1.0f32, 0.7, 0.3, 0.05] {
             let bare = fresnel(cos, 1.0, 1.5);
             // No thickness, or a film of the outside's own index.
-            for film in [ThinFilm { ior: 1.33, thickness_nm: 0.0 }, ThinFilm { ior: 1.0, thickness_nm: 450.0 }] {
+            for film in [ThinFilm::new(1.33, 0.0), ThinFilm::new(1.0, 450.0)] {
                 let got = film.reflectance(cos, 1.0, 1.5, 550.0);
                 assert!((got - bare).abs() < 1e-5, "{film:?}, cos {cos}: {got} vs {bare}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_partial_film_mixes_the_airy_sum_with_the_bare_fresnel() {
+        // glTF's iridescenceFactor: F = mix(F_bare, F_film, factor), over glass and over gold.
+        let gold = (0.47f32, 2.4f32);
+        for cos in [1.0f32, 0.6, 0.2] {
+            for lambda in [420.0f32, 550.0, 680.0] {
+                let whole = ThinFilm::new(1.38, 300.0);
+                let on_glass = |f: ThinFilm| f.reflectance(cos, 1.0, 1.5, lambda);
+                let on_gold = |f: ThinFilm| f.reflectance_on(cos, 1.0, gold, lambda);
+                let (glass, metal) = (fresnel(cos, 1.0, 1.5), conductor_fresnel(cos, gold.0, gold.1));
+                for factor in [0.0f32, 0.25, 0.7] {
+                    let part = ThinFilm { factor, ..whole };
+                    let want = glass + (on_glass(whole) - glass) * factor;
+                    assert!((on_glass(part) - want).abs() < 2e-6, "glass, {factor}, cos {cos}, λ {lambda}");
+                    let want = metal + (on_gold(whole) - metal) * factor;
+                    assert!((on_gold(part) - want).abs() < 2e-6, "gold, {factor}, cos {cos}, λ {lambda}");
+                }
             }
         }
     }
@@ -270,7 +310,7 @@ mod tests {
     fn a_quarter_wave_coating_cancels_its_wavelengths_reflection() {
         // n₁ = √(n₀n₂), d = λ/4n₁: the two reflections cancel at λ, at normal incidence.
         let n1 = 1.5f32.sqrt();
-        let film = ThinFilm { ior: n1, thickness_nm: 550.0 / (4.0 * n1) };
+        let film = ThinFilm::new(n1, 550.0 / (4.0 * n1));
         assert!(film.reflectance(1.0, 1.0, 1.5, 550.0) < 1e-6);
         // Away from λ it reflects, less than the bare glass's 4 %.
         let blue = film.reflectance(1.0, 1.0, 1.5, 400.0);
@@ -280,12 +320,12 @@ mod tests {
     #[test]
     fn a_soap_film_is_black_when_thin_and_brightest_a_quarter_wave_thick() {
         let (n, lambda) = (1.33f32, 550.0f32);
-        let thin = ThinFilm { ior: n, thickness_nm: 1.0 };
+        let thin = ThinFilm::new(n, 1.0);
         assert!(thin.reflectance(1.0, 1.0, 1.0, lambda) < 1e-3, "Newton's black film");
         // At d = λ/4n, e^{iδ} = −1 and r = 2r₀₁/(1 + r₀₁²).
         let r = (1.0 - n) / (1.0 + n);
         let want = 4.0 * r * r / ((1.0 + r * r) * (1.0 + r * r));
-        let quarter = ThinFilm { ior: n, thickness_nm: lambda / (4.0 * n) };
+        let quarter = ThinFilm::new(n, lambda / (4.0 * n));
         let got = quarter.reflectance(1.0, 1.0, 1.0, lambda);
         assert!((got - want).abs() < 1e-6, "{got} vs {want}");
     }
@@ -293,7 +333,7 @@ mod tests {
     /// The CIE XYZ a soap film `d` nm thick reflects of equal-energy white
     /// at normal incidence (CIE 1931, 5 nm steps), white itself of Y = 1.
     fn soap_film_xyz(d: f32) -> glam::DVec3 {
-        let film = ThinFilm { ior: 1.33, thickness_nm: d };
+        let film = ThinFilm::new(1.33, d);
         let xyz: glam::DVec3 = (0..=80)
             .map(|k| {
                 let lambda = 380.0 + 5.0 * k as f32;
@@ -326,7 +366,7 @@ mod tests {
     fn a_gap_beyond_the_critical_angle_reflects_more_as_it_widens() {
         // Glass, an air gap, glass at 60° (critical 41.8°): frustrated total reflection.
         let cos0 = 0.5;
-        let at = |d: f32| ThinFilm { ior: 1.0, thickness_nm: d }.reflectance(cos0, 1.5, 1.5, 550.0);
+        let at = |d: f32| ThinFilm::new(1.0, d).reflectance(cos0, 1.5, 1.5, 550.0);
         assert!(at(0.0) < 1e-6, "no gap, no interface");
         let mut last = 0.0;
         for d in [20.0, 50.0, 100.0, 200.0, 400.0] {

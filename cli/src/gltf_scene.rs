@@ -514,7 +514,7 @@ fn material(
             true => (tint != Vec3::ONE).then_some(Attenuation { color: tint, distance: 1.0 }),
             false => volume,
         };
-        let film = film(m, &mut unused);
+        let film = film(m, &mut unused)?;
         MaterialKind::Dielectric {
             dispersion: dispersion(m),
             outside: Dispersion::Constant(1.0),
@@ -540,7 +540,7 @@ fn material(
                 color: MetalColor::Rgb(Vec3::new(r, g, b).clamp(Vec3::ZERO, Vec3::ONE)),
                 roughness: pbr.roughness_factor(),
                 texture,
-                film: film(m, &mut unused),
+                film: film(m, &mut unused)?,
             },
             false => MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission },
         }
@@ -674,13 +674,17 @@ fn dispersion(m: &gltf::Material<'_>) -> Dispersion {
 /// without a thickness texture, the film is `iridescenceThicknessMaximum`
 /// thick (default 400 nm), as the extension reads a missing texture. What
 /// it leaves out goes to `unused`: the textures (the film is as thick, and
-/// its factor the same, everywhere).
-fn film(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option<ThinFilm> {
-    let ext = m.extensions().and_then(|e| e.get("KHR_materials_iridescence"))?;
+/// its factor the same, everywhere). A factor above 1 is refused.
+fn film(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Result<Option<ThinFilm>, GltfError> {
+    let Some(ext) = m.extensions().and_then(|e| e.get("KHR_materials_iridescence")) else { return Ok(None) };
     let number = |key: &str, default: f64| ext.get(key).and_then(serde_json::Value::as_f64).unwrap_or(default) as f32;
     let factor = number("iridescenceFactor", 0.0);
     if factor <= 0.0 {
-        return None;
+        return Ok(None);
+    }
+    if factor > 1.0 {
+        let path = format!("{}.extensions.KHR_materials_iridescence.iridescenceFactor", material_path(m));
+        return Err(GltfError::new(path, format!("must be 0 to 1, got {factor}")));
     }
     if ext.get("iridescenceTexture").is_some() {
         unused.push("iridescenceTexture");
@@ -688,11 +692,11 @@ fn film(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option<ThinFi
     if ext.get("iridescenceThicknessTexture").is_some() {
         unused.push("iridescenceThicknessTexture (the film is iridescenceThicknessMaximum thick)");
     }
-    Some(ThinFilm {
+    Ok(Some(ThinFilm {
         ior: number("iridescenceIor", 1.3),
         thickness_nm: number("iridescenceThicknessMaximum", 400.0),
         factor,
-    })
+    }))
 }
 
 /// A whole scene from a glTF file: its parts, its camera or one framing

@@ -413,8 +413,9 @@ fn glass_without_a_volume_or_on_an_open_mesh_is_a_thin_sheet() {
 }
 
 /// `KHR_materials_iridescence` on glass or a metal is a film of its index
-/// and maximum thickness; what the film cannot carry yet is named, and on
-/// a diffuse material the whole extension is.
+/// and maximum thickness, mixed by its factor; what the film cannot carry
+/// yet is named, on a diffuse material the whole extension is, and a
+/// factor above 1 is refused with its path.
 #[test]
 fn iridescence_on_glass_is_a_thin_film() {
     let dir = tempfile::tempdir().unwrap();
@@ -452,6 +453,14 @@ fn iridescence_on_glass_is_a_thin_film() {
     assert_eq!(film(&scene), Some(ThinFilm { factor: 0.5, ..ThinFilm::new(1.8, 650.0) }));
     let warnings = scene.warnings.join("\n");
     assert!(warnings.contains("iridescenceThicknessTexture") && !warnings.contains("iridescenceFactor"), "{warnings}");
+    // A factor above 1 is invalid (the extension's schema says at most 1).
+    glass.insert("KHR_materials_iridescence".into(), serde_json::json!({ "iridescenceFactor": 1.5 }));
+    json["materials"][1]["extensions"] = serde_json::Value::Object(glass.clone());
+    let path = dir.path().join("too_much.gltf");
+    std::fs::write(&path, json.to_string()).unwrap();
+    let err = prismatic_cli::load_scene(path.to_str().unwrap()).map(|_| ()).unwrap_err().to_string();
+    let key = "materials[1].extensions.KHR_materials_iridescence.iridescenceFactor";
+    assert!(err.contains("too_much.gltf") && err.contains(key) && err.contains("0 to 1"), "{err}");
     // A factor of 0 is no film.
     glass.insert("KHR_materials_iridescence".into(), serde_json::json!({ "iridescenceFactor": 0.0 }));
     json["materials"][1]["extensions"] = serde_json::Value::Object(glass);

@@ -323,9 +323,9 @@ pub fn rippled_mirror() -> PreparedScene {
 /// The mirror's beam folded by a rough gold square instead (its colour
 /// scaled by a texture of four tiles, gold, grey, rose and pale) onto a
 /// round floor, beside a polished ball of measured copper under a patchy
-/// film of its oxide (a factor of 0.6), with indirect light: metals' facets, coloured Fresnel texel
-/// by texel and a film's over a complex index, in caustic and indirect
-/// photons and in view.
+/// film of its oxide (a factor of 0.6), with indirect light: metals'
+/// facets, coloured Fresnel texel by texel and a partial film's over a
+/// complex index, in caustic and indirect photons and in view.
 pub fn metals() -> PreparedScene {
     let mut scene = mirror().scene;
     let metal = |name: &str, color: MetalColor, roughness: f32, texture: Option<Texture>, film: Option<ThinFilm>| {

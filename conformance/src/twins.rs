@@ -354,9 +354,10 @@ pub const FILM_PHASE_SLACK: f32 = 1e-4;
 
 /// Paths leaving glass (a fifth of them at thin sheets; with `films`, a
 /// third under a film of index 1.1 to 2.5, 0 to 2000 nm thick, seen at 380
-/// to 780 nm, a whole film or a factor in [0, 1)): any [`surface_case`], at points from 1e-3 to 1e4 from the
-/// origin, with branch numbers anywhere in [0, 1) and right at the
-/// reflectance (where the choice flips).
+/// to 780 nm, a whole film or a factor in [0, 1)): any [`surface_case`],
+/// at points from 1e-3 to 1e4 from the origin, with branch numbers
+/// anywhere in [0, 1) and right at the reflectance (where the choice
+/// flips).
 pub fn scatter_case(films: bool) -> impl Strategy<Value = ScatterCase> {
     let film = (1.1f32..2.5, 0.0f32..2000.0, 380.0f32..780.0, prop_oneof![Just(1.0f32), 0.0f32..1.0])
         .prop_map(|(ior, thickness_nm, lambda, factor)| Some((ThinFilm { ior, thickness_nm, factor }, lambda)));

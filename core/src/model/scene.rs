@@ -821,10 +821,11 @@ pub struct ThinFilm {
     pub ior: f32,
     /// Its thickness in nanometres (0: no film).
     pub thickness_nm: f32,
-    /// glTF's `iridescenceFactor`, in [0, 1]: the surface reflects this
-    /// share of the film's Airy sum and the rest of its bare Fresnel, as a
-    /// surface patched with film over this share of its area would
-    /// ([`ThinFilm::reflectance_on`]). 1: a whole film; 0: no film.
+    /// glTF's `iridescenceFactor`, in [0, 1]: each interface reflects this
+    /// share of the film's Airy sum and the rest of its bare Fresnel, as an
+    /// interface patched with film over this share of its area would
+    /// ([`ThinFilm::reflectance_on`]; a thin sheet takes the mix at each
+    /// of its two faces). 1: a whole film; 0: no film.
     pub factor: f32,
 }
 

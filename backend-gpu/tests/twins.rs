@@ -890,17 +890,20 @@ fn check_metal((c, sampler): &(MetalIn, PixelSampler), got: &MetalOut) -> Result
     let scale = Vec3::from(c.point).abs().max_element().max(1.0);
     let metal = MetalOptics { f0: Vec3::from(c.f0), measured: None, ggx, textured: false, film: None };
     let film = ThinFilm { factor: c.film_factor, ..ThinFilm::new(c.film_ior, c.film_nm) };
-    // Both Fresnels within 1e-4: beyond the critical angle of an index
-    // below 1 with k near 0 the metal reflects all but what k absorbs, and
-    // f32's roundings of the two sums move R by up to ~2e-5 there.
+    // The conductor's Fresnel within 1e-5, but beyond the critical angle
+    // of an index below 1 (sin θ > η), where the metal reflects all but
+    // what k absorbs and f32's roundings of the two sums moved R by 1.8e-5
+    // in one case: 1e-4 there, as the film's everywhere.
     let conductor = conductor_fresnel(got.cos_facet, c.eta, c.k);
+    let beyond_critical = 1.0 - got.cos_facet * got.cos_facet > c.eta * c.eta;
+    let conductor_tolerance = if beyond_critical { 1e-4 } else { 1e-5 };
     let filmed = film.reflectance_on(got.cos_facet, 1.0, (c.eta, c.k), c.lambda_nm);
     let ok = close(Vec3::from(got.dir), b.ray.direction, 1e-3)
         && close(Vec3::from(got.origin), b.ray.origin, 1e-4 * scale)
         && (got.cos_facet - b.cos_facet).abs() <= 1e-3
         && (got.unshadowed - b.unshadowed).abs() <= 1e-3
         && close(Vec3::from(got.fresnel), metal.fresnel(got.cos_facet), 1e-5)
-        && (got.conductor - conductor).abs() <= 1e-4
+        && (got.conductor - conductor).abs() <= conductor_tolerance
         && (got.filmed - filmed).abs() <= 1e-4;
     if ok { Ok(()) } else { Err(format!("{got:?}; the core's {b:?}, conductor {conductor}, filmed {filmed}")) }
 }

@@ -159,11 +159,27 @@ impl Shader<'_> {
         let object = hit.object.to_array();
         // Diffuse lanes are shaded together; the rest one by one (misses, mirrors, glass).
         let mut diffuse = [0.0f32; 8];
+        // A blended metal's metalness (1: a whole metal); its diffuse part is shaded here.
+        let mut metal_share = [1.0f32; 8];
         for (i, r) in rays.iter().enumerate() {
             if object[i] < 0.0 {
                 sum[r.pixel as usize] += r.tint * self.scene.background(r.dir);
-            } else if let Surface::Diffuse { .. } = self.scene.surfaces[object[i] as usize] {
-                diffuse[i] = f32::from_bits(u32::MAX);
+                continue;
+            }
+            match &self.scene.surfaces[object[i] as usize] {
+                Surface::Diffuse { .. } => diffuse[i] = f32::from_bits(u32::MAX),
+                Surface::Metal(metal) if metal.is_blended() => {
+                    let at = Hit {
+                        t: hit.t.to_array()[i],
+                        point: point.lane(i),
+                        normal: hit.normal.lane(i),
+                        object: object[i] as usize,
+                        triangle: hit.triangle.to_array()[i] as u32,
+                    };
+                    metal_share[i] = self.scene.metalness_at(metal, &at);
+                    sum[r.pixel as usize] += self.blended_diffuse_part(r, &at, 1.0 - metal_share[i]);
+                }
+                _ => {}
             }
         }
         let diffuse = f32x8::new(diffuse);
@@ -200,6 +216,13 @@ impl Shader<'_> {
                 r.weight *= kept.max_element();
             }
             let r = &*r;
+            // A blended metal's metal part carries its share of the path.
+            let m = metal_share[i];
+            if m == 0.0 || (m < 1.0 && r.weight * m <= MIN_VIEW_WEIGHT) {
+                continue;
+            }
+            let part = ViewRay { weight: r.weight * m, tint: r.tint * m, ..*r };
+            let r = if m < 1.0 { &part } else { r };
             match surface {
                 // Band rays at glass: Fresnel and refraction for the whole packet at once, below.
                 Surface::Mirror => {
@@ -292,6 +315,23 @@ impl Shader<'_> {
     /// Radiance toward the viewer at diffuse hits (lanes in `mask`), less
     /// the caustic, which is left to a visible point per lane (where
     /// light tracing does not bring it).
+    /// What ray `r` sees of the diffuse part (its `share`, 1 − m) of the
+    /// blended metal at `at`: the core's shading, ray by ray, its visible
+    /// point in this tile's list with the pixel's weight.
+    fn blended_diffuse_part(&mut self, r: &ViewRay, at: &Hit, share: f32) -> Vec3 {
+        if share == 0.0 {
+            return Vec3::ZERO;
+        }
+        let first = self.points.len();
+        let ray = Ray { origin: r.origin, direction: r.dir };
+        let lit = self.view.shade_diffuse(&ray, at, (r.tint * share, r.depth), &mut self.points);
+        for p in &mut self.points[first..] {
+            p.weight *= self.scene.camera_response();
+            p.pixel = self.first_pixel + r.pixel;
+        }
+        r.tint * share * lit
+    }
+
     fn shade_diffuse(&mut self, rays: &[ViewRay], ray: &RayX8, hit: &HitX8, p: Vec3x8, mask: f32x8) -> [Vec3; 8] {
         let settings = &self.scene.scene.render;
         let facing = lt(ray.dir.dot(hit.normal), f32x8::ZERO);

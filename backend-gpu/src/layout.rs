@@ -172,7 +172,8 @@ pub struct GpuSurface {
     pub checker_albedo: [f32; 3],
     /// Checker cell size; a metal's colour texture's sampler flags, as bits.
     pub checker_size: f32,
-    /// Checker offset.
+    /// Checker offset; a blended metal's metalness factor in x (see
+    /// `SURFACE_BLENDED`).
     pub checker_offset: [f32; 3],
     /// Samples in the n(λ) curve.
     pub curve_len: u32,

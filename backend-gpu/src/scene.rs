@@ -294,6 +294,13 @@ impl EncodedScene {
                     white_ior: m.ggx.map_or(0.0, |g| g.alpha),
                     ..GpuSurface::default()
                 };
+                if m.is_blended() {
+                    s.flags |= SURFACE_BLENDED;
+                    s.checker_offset[0] = m.metalness.factor;
+                    if m.metalness.mapped {
+                        s.flags |= SURFACE_METALNESS_MAP;
+                    }
+                }
                 if let Some(metal) = m.measured {
                     s.flags |= SURFACE_MEASURED;
                     s.curve_first = self.tables.len() as u32;

@@ -71,6 +71,12 @@ pub mod kind {
     /// width and height in `checker_albedo`, its sampler's flags in
     /// `checker_size` (all as bits).
     pub const SURFACE_HAS_COLOUR_MAP: u32 = 16384;
+    /// The metal is blended with a diffuse surface of its colour: its
+    /// metalness factor in `checker_offset.x` (`MetalOptics::is_blended`).
+    pub const SURFACE_BLENDED: u32 = 32768;
+    /// The blended metal's metalness is scaled by the blue channel of its
+    /// texture (the roughness map; `Metalness::mapped`).
+    pub const SURFACE_METALNESS_MAP: u32 = 65536;
     /// `Wrap::Repeat`.
     pub const WRAP_REPEAT: u32 = 0;
     /// `Wrap::ClampToEdge`.
@@ -183,6 +189,7 @@ fn prelude(stack: u32) -> String {
     u("DIM_ABSORB", dim::ABSORB);
     u("DIM_BOUNCE", dim::BOUNCE);
     u("DIM_CHOOSE", dim::CHOOSE);
+    u("DIM_METAL_PART", dim::METAL_PART);
     u("SEQUENCE_SOBOL", code::photon_sequence(PhotonSequence::Sobol));
     u("WAVELENGTHS_SPLIT", code::wavelengths(WavelengthSampling::Split));
     u("WAVELENGTHS_RANDOM_BAND", code::wavelengths(WavelengthSampling::RandomBand));
@@ -219,6 +226,8 @@ fn prelude(stack: u32) -> String {
     u("SURFACE_HAS_FILM", kind::SURFACE_HAS_FILM);
     u("SURFACE_MEASURED", kind::SURFACE_MEASURED);
     u("SURFACE_HAS_COLOUR_MAP", kind::SURFACE_HAS_COLOUR_MAP);
+    u("SURFACE_BLENDED", kind::SURFACE_BLENDED);
+    u("SURFACE_METALNESS_MAP", kind::SURFACE_METALNESS_MAP);
     u("METAL_ROWS", metals::ROWS as u32);
     u("TEXTURE_WRAP_U_SHIFT", kind::TEXTURE_WRAP_U_SHIFT);
     u("TEXTURE_WRAP_V_SHIFT", kind::TEXTURE_WRAP_V_SHIFT);

@@ -16,6 +16,7 @@ use prismatic_conformance::twins::{
 };
 use prismatic_core::geometry::normal_map::mapped_normal;
 use prismatic_core::geometry::shading::shading_normal;
+use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::ThinFilm;
 use prismatic_core::optics::metal::MetalOptics;
 use prismatic_core::optics::microfacet::{Ggx, conductor_fresnel};
@@ -888,7 +889,14 @@ fn check_metal((c, sampler): &(MetalIn, PixelSampler), got: &MetalOut) -> Result
     }
     let close = |a: Vec3, b: Vec3, tol: f32| (a - b).abs().max_element() <= tol;
     let scale = Vec3::from(c.point).abs().max_element().max(1.0);
-    let metal = MetalOptics { f0: Vec3::from(c.f0), measured: None, ggx, textured: false, film: None };
+    let metal = MetalOptics {
+        f0: Vec3::from(c.f0),
+        measured: None,
+        ggx,
+        textured: false,
+        film: None,
+        metalness: Metalness::WHOLE,
+    };
     let film = ThinFilm { factor: c.film_factor, ..ThinFilm::new(c.film_ior, c.film_nm) };
     // The conductor's Fresnel within 1e-5, but beyond the critical angle
     // of an index below 1 (sin θ > η), where the metal reflects all but

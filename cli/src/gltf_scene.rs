@@ -1,7 +1,8 @@
 //! glTF 2.0 scenes (`.gltf`, `.glb`): triangle meshes placed by their node
 //! transforms, materials from `pbrMetallicRoughness` (diffuse with the
 //! base-colour texture on `TEXCOORD_0`, its sampler and its
-//! `KHR_texture_transform`, or a metal of the base colour and roughness),
+//! `KHR_texture_transform`, or a metal of the base colour and roughness
+//! blended with a diffuse base by its metalness, texel by texel),
 //! their normal maps (the mesh's `TANGENT`, else MikkTSpace's tangents)
 //! and the transmission (rough or polished), IOR,
 //! volume and dispersion extensions, `KHR_lights_punctual` lights, and the
@@ -484,9 +485,12 @@ fn material(
         None => None,
     };
     let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor());
-    let metal =
-        transmission <= 0.0 && is_metal(pbr.metallic_factor(), metal_roughness.as_ref().map(|(t, _)| t), &mut unused);
-    let glass_or_metal = transmission > 0.0 || metal;
+    // Any metal in it: a metal blended with a diffuse base by its metalness.
+    let metalness = match transmission > 0.0 {
+        true => None,
+        false => Metalness::of(pbr.metallic_factor(), metal_roughness.as_ref().map(|(t, _)| &*t.texels)),
+    };
+    let glass_or_metal = transmission > 0.0 || metalness.is_some();
     let mut emission = emission(m);
     if glass_or_metal && emission != Vec3::ZERO {
         unused.push("emission of glass or a metal (only diffuse surfaces emit)");
@@ -499,7 +503,7 @@ fn material(
         unused.push("KHR_materials_iridescence of a diffuse material (films are drawn on glass and metals)");
     }
     let mut uv_transform = None;
-    let kind = if transmission > 0.0 {
+    let mut kind = if transmission > 0.0 {
         if pbr.base_color_texture().is_some() {
             unused.push("baseColorTexture of glass (its colour is the volume's attenuation)");
         }
@@ -534,15 +538,17 @@ fn material(
         };
         let (texture, transform) = texture.unzip();
         uv_transform = transform.flatten();
-        match metal {
-            // A metal's base colour (times its texture) is its reflectance at normal incidence.
-            true => MaterialKind::Metal {
+        match metalness {
+            // A metal's base colour (times its texture) is its reflectance
+            // at normal incidence, and its diffuse part's albedo.
+            Some(metalness) => MaterialKind::Metal {
                 color: MetalColor::Rgb(Vec3::new(r, g, b).clamp(Vec3::ZERO, Vec3::ONE)),
                 roughness: pbr.roughness_factor(),
                 texture,
                 film: film(m, &mut unused)?,
+                metalness,
             },
-            false => MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission },
+            None => MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission },
         }
     };
     // The mesh has one set of coordinates: its textures must agree on their
@@ -550,16 +556,19 @@ fn material(
     let mut transform = has_base_colour_texture(&kind).then_some(uv_transform);
     let mut agrees = |t: Option<Affine2>| *transform.get_or_insert(t) == t;
     // The green channel scales a metal's or glass's roughness (a diffuse
-    // surface has none to scale).
+    // surface has none to scale), the blue a metal's metalness.
     let roughness_map = match metal_roughness {
         Some((texture, t)) if glass_or_metal && agrees(t) => Some(texture),
         Some(_) if glass_or_metal => {
-            unused
-                .push("metallicRoughnessTexture's roughness with another KHR_texture_transform than baseColorTexture");
+            unused.push("metallicRoughnessTexture with another KHR_texture_transform than baseColorTexture");
             None
         }
         _ => None,
     };
+    if let MaterialKind::Metal { metalness, .. } = &mut kind {
+        // Without its map, the metalness is its factor's.
+        metalness.mapped &= roughness_map.is_some();
+    }
     let normal_map = match m.normal_texture() {
         Some(info) => match images.normal_map(&info, &mut unused)? {
             Some((map, t)) if agrees(t) => Some(map),
@@ -581,30 +590,6 @@ fn material(
 /// Does a material of `kind` read its base colour from a texture?
 fn has_base_colour_texture(kind: &MaterialKind) -> bool {
     matches!(kind, MaterialKind::Diffuse { texture: Some(_), .. } | MaterialKind::Metal { texture: Some(_), .. })
-}
-
-/// Whether an opaque material is drawn as a metal ([`Metalness`]: as most
-/// of its surface is); a metalness that is not 0 or 1, or one that varies
-/// across the threshold, is named in `unused`.
-fn is_metal(factor: f32, texture: Option<&Texture>, unused: &mut Vec<&'static str>) -> bool {
-    let Metalness { metal, varies, partial } = Metalness::of(factor, texture);
-    // What is left out, drawn as a metal or drawn diffuse.
-    let [as_metal, as_diffuse] = match (varies, partial, texture.is_some()) {
-        (true, ..) => [
-            "metalness varying across metallicRoughnessTexture (drawn as a whole metal, as most of it is)",
-            "metalness varying across metallicRoughnessTexture (drawn diffuse, as most of it is)",
-        ],
-        (false, true, true) => {
-            ["metalness between 0 and 1 (drawn as a whole metal)", "metalness between 0 and 1 (drawn diffuse)"]
-        }
-        (false, true, false) => [
-            "metallicFactor between 0 and 1 (drawn as a whole metal)",
-            "metallicFactor between 0 and 1 (drawn diffuse)",
-        ],
-        (false, false, _) => return metal,
-    };
-    unused.push(if metal { as_metal } else { as_diffuse });
-    metal
 }
 
 /// The thin-walled twin of solid glass `material` (made once, named after

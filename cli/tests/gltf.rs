@@ -5,6 +5,7 @@
 
 use prismatic_cli::gltf_write::{GltfCamera, GltfDocument, GltfLight, GltfMaterial, GltfMesh, prism};
 use prismatic_core::PreparedScene;
+use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::{Light, MaterialKind, Shape, ThinFilm};
 use prismatic_core::photons::trace;
 use std::path::Path;
@@ -116,14 +117,19 @@ fn a_gltf_prism_traces_the_photons_of_the_same_scene_in_toml() {
 fn what_prismatic_cannot_represent_is_a_warning_not_a_failure() {
     let dir = tempfile::tempdir().unwrap();
     let mut doc = prism_document();
-    doc.materials[0].metallic = 0.2;
     doc.materials[1].roughness = 0.3;
     doc.lights.clear();
-    let path = write(dir.path(), "rough.gltf", &doc);
+    // A film on the diffuse floor, which prismatic draws on glass and metals only.
+    let mut json: serde_json::Value = serde_json::from_str(&doc.to_json()).unwrap();
+    json["materials"][0]["extensions"] =
+        serde_json::json!({ "KHR_materials_iridescence": { "iridescenceFactor": 1.0 } });
+    json["extensionsUsed"].as_array_mut().unwrap().push("KHR_materials_iridescence".into());
+    let path = dir.path().join("rough.gltf");
+    std::fs::write(&path, json.to_string()).unwrap();
     let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
     scene.validate().unwrap();
     let warnings = scene.warnings.join("\n");
-    assert!(warnings.contains("left out: metallicFactor between 0 and 1 (drawn diffuse)"), "{warnings}");
+    assert!(warnings.contains("left out: KHR_materials_iridescence of a diffuse material"), "{warnings}");
     // Rough transmission is frosted glass, drawn as such: no warning.
     assert!(!warnings.contains("materials[1]"), "{warnings}");
     let glass = &scene.scene.materials.iter().find(|m| m.name == "glass").unwrap().kind;
@@ -159,7 +165,7 @@ fn what_prismatic_cannot_represent_is_a_warning_not_a_failure() {
         .unwrap();
     let stderr = String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{stderr}");
-    assert!(stderr.contains("warning: ") && stderr.contains("metallicFactor between 0 and 1"), "{stderr}");
+    assert!(stderr.contains("warning: ") && stderr.contains("KHR_materials_iridescence"), "{stderr}");
     assert!(out.is_file());
 }
 
@@ -753,8 +759,8 @@ fn an_emissive_texture_gives_its_mean_colour() {
 }
 
 /// glTF's metals are metals: a `metallicFactor` of 1 gives a metal of the
-/// base colour and roughness; between 0 and 1 the material is drawn as the
-/// nearer of metal and diffuse and the blend is named as left out.
+/// base colour and roughness; between 0 and 1 a metal blended with a
+/// diffuse base by that metalness, nothing left out; 0 a diffuse surface.
 #[test]
 fn metallic_materials_are_metals_of_their_base_colour_and_roughness() {
     let dir = tempfile::tempdir().unwrap();
@@ -770,14 +776,19 @@ fn metallic_materials_are_metals_of_their_base_colour_and_roughness() {
     };
     let gold = prismatic_core::MetalColor::Rgb(prismatic_core::Vec3::new(1.0, 0.766, 0.336));
     let (kind, warnings) = load(1.0);
-    assert_eq!(kind, MaterialKind::Metal { color: gold, roughness: 0.3, texture: None, film: None });
+    assert_eq!(
+        kind,
+        MaterialKind::Metal { color: gold, roughness: 0.3, texture: None, film: None, metalness: Metalness::WHOLE }
+    );
     assert!(!warnings.contains("metal"), "{warnings}");
-    let (kind, warnings) = load(0.7);
-    assert_eq!(kind, MaterialKind::Metal { color: gold, roughness: 0.3, texture: None, film: None });
-    assert!(warnings.contains("metallicFactor between 0 and 1 (drawn as a whole metal)"), "{warnings}");
-    let (kind, warnings) = load(0.2);
-    assert!(matches!(kind, MaterialKind::Diffuse { .. }), "{kind:?}");
-    assert!(warnings.contains("metallicFactor between 0 and 1 (drawn diffuse)"), "{warnings}");
+    for m in [0.7, 0.2] {
+        let (kind, warnings) = load(m);
+        let metalness = Metalness { factor: m, mapped: false };
+        assert_eq!(kind, MaterialKind::Metal { color: gold, roughness: 0.3, texture: None, film: None, metalness });
+        assert!(warnings.is_empty(), "{warnings}");
+    }
+    let (kind, warnings) = load(0.0);
+    assert!(matches!(kind, MaterialKind::Diffuse { .. }) && warnings.is_empty(), "{kind:?}, {warnings}");
 }
 
 /// A metal's `baseColorTexture` colours it texel by texel (its reflectance
@@ -801,10 +812,12 @@ fn a_metals_base_colour_texture_colours_its_reflectance() {
     let scene = load_valid(dir.path(), "brass.gltf", &doc);
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
     let brass = &scene.scene.materials[0];
-    let MaterialKind::Metal { color, roughness: 0.5, texture: Some(colour), film: None } = &brass.kind else {
+    let MaterialKind::Metal { color, roughness: 0.5, texture: Some(colour), film: None, metalness } = &brass.kind
+    else {
         panic!("a textured metal: {:?}", brass.kind)
     };
     assert_eq!(*color, prismatic_core::MetalColor::Rgb(prismatic_core::Vec3::new(1.0, 0.9, 0.8)));
+    assert_eq!(*metalness, Metalness::WHOLE);
     assert_eq!(colour.texels[..], [255 | 200 << 8 | 90 << 16, 180 | 110 << 8 | 60 << 16]);
     assert!(brass.roughness_map.is_some());
     let mut json: serde_json::Value = serde_json::from_str(&doc.to_json()).unwrap();
@@ -815,7 +828,10 @@ fn a_metals_base_colour_texture_colours_its_reflectance() {
     let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
     assert!(scene.scene.materials[0].roughness_map.is_none());
     let warnings = scene.warnings.join("\n");
-    assert!(warnings.contains("roughness with another KHR_texture_transform than baseColorTexture"), "{warnings}");
+    assert!(
+        warnings.contains("metallicRoughnessTexture with another KHR_texture_transform than baseColorTexture"),
+        "{warnings}"
+    );
 }
 
 /// A `normalTexture` becomes the material's normal map (its bytes as they
@@ -878,10 +894,9 @@ fn a_normal_texture_is_read_with_its_scale_and_tangents() {
 
 /// glTF's `metallicRoughnessTexture` (linear): its green channel scales a
 /// metal's or glass's roughness texel by texel (the material's roughness
-/// map), its blue channel times `metallicFactor` says whether the material
-/// is a metal. A metalness that varies across the texture, which prismatic
-/// cannot yet blend, is drawn as most of it is and named as left out; a
-/// diffuse surface has no roughness to scale.
+/// map), its blue channel times `metallicFactor` is the metalness that
+/// blends the metal with a diffuse base texel by texel (a material with no
+/// metal anywhere is diffuse); a diffuse surface has no roughness to scale.
 #[test]
 fn a_metallic_roughness_texture_scales_roughness_and_says_what_is_metal() {
     use prismatic_cli::gltf_write::GltfTexture;
@@ -899,27 +914,26 @@ fn a_metallic_roughness_texture_scales_roughness_and_says_what_is_metal() {
     assert!(matches!(metal.kind, MaterialKind::Metal { roughness: 0.8, .. }), "{:?}", metal.kind);
     let map = metal.roughness_map.as_ref().expect("the metal's roughness map");
     assert_eq!(map.texels[..], [40 << 8 | 255 << 16, 200 << 8 | 255 << 16]);
-    // Metal over three quarters of it: a metal, the rest named.
+    let metalness = |m: &prismatic_core::model::scene::Material| match m.kind {
+        MaterialKind::Metal { metalness, .. } => metalness,
+        _ => panic!("a metal: {:?}", m.kind),
+    };
+    assert_eq!(metalness(metal), Metalness::WHOLE, "blue 255 everywhere: a whole metal");
+    // Metal over three quarters of it: blended texel by texel by the blue channel.
     doc.materials[0].metallic_roughness_texture = Some(GltfTexture {
         width: 4,
         pixels: vec![[0, 90, 255], [0, 90, 255], [0, 90, 255], [0, 90, 0]],
         ..texture(Vec::new())
     });
     let scene = load("chipped_metal.gltf", &doc);
-    assert!(matches!(scene.scene.materials[0].kind, MaterialKind::Metal { .. }));
-    let warnings = scene.warnings.join("\n");
-    assert!(
-        warnings.contains("metalness varying across metallicRoughnessTexture (drawn as a whole metal"),
-        "{warnings}"
-    );
-    // A metallicFactor of 0.4 over a blue of 255: a metalness of 0.4, diffuse, named.
+    assert_eq!(metalness(&scene.scene.materials[0]), Metalness { factor: 1.0, mapped: true });
+    assert!(scene.scene.materials[0].roughness_map.is_some() && scene.warnings.is_empty(), "{:?}", scene.warnings);
+    // A metallicFactor of 0.4 over a blue of 255: a metalness of 0.4 everywhere.
     doc.materials[0].metallic = 0.4;
     doc.materials[0].metallic_roughness_texture = Some(texture(vec![[0, 90, 255]; 2]));
     let scene = load("half_metal.gltf", &doc);
-    let diffuse = &scene.scene.materials[0];
-    assert!(matches!(diffuse.kind, MaterialKind::Diffuse { .. }) && diffuse.roughness_map.is_none());
-    let warnings = scene.warnings.join("\n");
-    assert!(warnings.contains("metalness between 0 and 1 (drawn diffuse)"), "{warnings}");
+    assert_eq!(metalness(&scene.scene.materials[0]), Metalness { factor: 0.4, mapped: false });
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
     // A non-metal's texture (blue 0) leaves nothing out.
     doc.materials[0].metallic = 1.0;
     doc.materials[0].metallic_roughness_texture = Some(texture(vec![[0, 90, 0]; 2]));

@@ -13,6 +13,7 @@
 use glam::Vec3;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::environment::EnvironmentMap;
+use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, Filter, Light, Material, MaterialKind, NormalMap, Object, PhotonSequence,
     RenderSettings, Sampler, Shape, Texture, ThinFilm, Wrap,
@@ -322,14 +323,16 @@ pub fn rippled_mirror() -> PreparedScene {
 
 /// The mirror's beam folded by a rough gold square instead (its colour
 /// scaled by a texture of four tiles, gold, grey, rose and pale) onto a
-/// round floor, beside a polished ball of measured copper under a patchy
-/// film of its oxide (a factor of 0.6), with indirect light: metals'
-/// facets, coloured Fresnel texel by texel and a partial film's over a
-/// complex index, in caustic and indirect photons and in view.
+/// round floor, the gold worn through to a diffuse base texel by texel
+/// (a metalness of 0.9 times a map's), beside a polished ball of measured
+/// copper under a patchy film of its oxide (a factor of 0.6), with
+/// indirect light: metals' facets, coloured Fresnel texel by texel, a
+/// blended metal's two parts and a partial film's over a complex index,
+/// in caustic and indirect photons and in view.
 pub fn metals() -> PreparedScene {
     let mut scene = mirror().scene;
     let metal = |name: &str, color: MetalColor, roughness: f32, texture: Option<Texture>, film: Option<ThinFilm>| {
-        material(name, MaterialKind::Metal { color, roughness, texture, film })
+        material(name, MaterialKind::Metal { color, roughness, texture, film, metalness: Metalness::WHOLE })
     };
     let texels = [[255, 255, 255], [200, 200, 200], [255, 190, 200], [240, 250, 255]];
     let tiles = Texture {
@@ -340,6 +343,17 @@ pub fn metals() -> PreparedScene {
         sampler: Sampler { filter: Filter::Nearest, wrap_u: Wrap::Repeat, wrap_v: Wrap::Repeat },
     };
     scene.materials[1] = metal("gold", MetalColor::Rgb(Vec3::new(1.0, 0.766, 0.336)), 0.3, Some(tiles), None);
+    // Worn through in places: 90 % metal times the blue of a roughness map
+    // (whole, a third, none, most), its green keeping the roughness.
+    let MaterialKind::Metal { metalness, .. } = &mut scene.materials[1].kind else { unreachable!("gold") };
+    *metalness = Metalness { factor: 0.9, mapped: true };
+    scene.materials[1].roughness_map = Some(Texture {
+        name: "worn".into(),
+        width: 2,
+        height: 2,
+        texels: [255u32, 85, 0, 200].iter().map(|&b| 255 << 8 | b << 16).collect::<Vec<u32>>().into(),
+        sampler: Sampler { filter: Filter::Nearest, wrap_u: Wrap::Repeat, wrap_v: Wrap::Repeat },
+    });
     // Copper under 90 nm of its oxide (index 2.5) over 60 % of it.
     let tarnish = ThinFilm { factor: 0.6, ..ThinFilm::new(2.5, 90.0) };
     scene.materials.push(metal("copper", MetalColor::Measured(NamedMetal::Copper), 0.0, None, Some(tarnish)));

@@ -8,6 +8,7 @@
 use crate::{camera, glass, white};
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::{Checker, Estimator, Light, Material, MaterialKind, Object, RenderSettings, Shape};
 use prismatic_core::util::rng::random_f32;
 use prismatic_core::{MetalColor, NamedMetal, Scene, Vec3};
@@ -80,7 +81,7 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
     if named.pick(3) == 0 {
         color = MetalColor::Measured(NamedMetal::ALL[named.pick(4)]);
     }
-    let metal = MaterialKind::Metal { color, roughness, texture: None, film: None };
+    let metal = MaterialKind::Metal { color, roughness, texture: None, film: None, metalness: Metalness::WHOLE };
     // A third of the scenes' glass frosted, from its own dice too.
     let mut g = Dice { seed, n: 1 << 21 };
     let mut glass = glass("glass", dispersion);

@@ -5,6 +5,7 @@
 use prismatic_core::MetalColor;
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::{Light, MaterialKind, Object, Shape, ThinFilm};
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::{Image, NoProgress, PreparedScene, ReferenceBackend, Scene, Vec3};
@@ -111,8 +112,13 @@ fn a_film_on_glass_of_one_index_splits_photons_and_view_rays() {
 fn a_coloured_metal_gives_photons_bands_and_a_grey_one_keeps_them_white() {
     let metal = |color: Vec3| {
         let mut scene = sphere_scene(Dispersion::Constant(1.5), 9.0, -Vec3::Y);
-        scene.materials[0].kind =
-            MaterialKind::Metal { color: MetalColor::Rgb(color), roughness: 0.2, texture: None, film: None };
+        scene.materials[0].kind = MaterialKind::Metal {
+            color: MetalColor::Rgb(color),
+            roughness: 0.2,
+            texture: None,
+            film: None,
+            metalness: Metalness::WHOLE,
+        };
         prepare(scene).plan
     };
     let gold = metal(Vec3::new(1.0, 0.766, 0.336));

@@ -1,6 +1,7 @@
 //! Cross-crate tests of prismatic, one binary: physics, determinism, parity, scene files.
 
 mod area_lights;
+mod blended_metals;
 mod builtin_scenes;
 mod caustic_layer;
 mod coloured_glass;

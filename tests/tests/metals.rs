@@ -12,6 +12,7 @@
 use crate::roughness_maps::{assert_the_same_images, beam_at_a_square, lit_beside_the_camera};
 use prismatic_core::geometry::texture::srgb_to_linear;
 use prismatic_core::model::bands::BandSpec;
+use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::photon::{Photon, WHITE_BAND};
 use prismatic_core::model::scene::{
     Camera, Filter, Light, Material, MaterialKind, Object, Sampler, Shape, Texture, ThinFilm, WavelengthSampling,
@@ -26,25 +27,31 @@ use prismatic_tests::{
 };
 
 /// glTF's usual gold, in linear RGB.
-const GOLD: Vec3 = Vec3::new(1.0, 0.766, 0.336);
+pub(crate) const GOLD: Vec3 = Vec3::new(1.0, 0.766, 0.336);
 
 fn metal(color: Vec3, roughness: f32) -> Material {
     Material {
         name: "metal".into(),
-        kind: MaterialKind::Metal { color: MetalColor::Rgb(color), roughness, texture: None, film: None },
+        kind: MaterialKind::Metal {
+            color: MetalColor::Rgb(color),
+            roughness,
+            texture: None,
+            film: None,
+            metalness: Metalness::WHOLE,
+        },
         normal_map: None,
         roughness_map: None,
     }
 }
 
 /// Schlick's Fresnel of `f0` at incidence cosine `cos`, in f64.
-fn schlick(f0: f64, cos: f64) -> f64 {
+pub(crate) fn schlick(f0: f64, cos: f64) -> f64 {
     f0 + (1.0 - f0) * (1.0 - cos).powi(5)
 }
 
 /// A beam of radius 0.2 along +x folded by `metal` (a disc at the origin
 /// tilted 45°) onto a white wall at y = 3.
-fn folded_beam(metal: Material, photons: u32, bands: BandSpec) -> Scene {
+pub(crate) fn folded_beam(metal: Material, photons: u32, bands: BandSpec) -> Scene {
     let normal = Vec3::new(-1.0, 1.0, 0.0).normalize();
     let disc = Shape::Disk { center: Vec3::ZERO, normal, radius: 1.0, inner_radius: 0.0 };
     let mut scene = beam_onto_a_wall(photons, metal, disc).scene;
@@ -143,6 +150,7 @@ fn measured_gold_reflects_each_wavelength_by_its_complex_index() {
             roughness: 0.0,
             texture: None,
             film: None,
+            metalness: Metalness::WHOLE,
         },
         normal_map: None,
         roughness_map: None,
@@ -220,7 +228,7 @@ fn half_of_a_rough_metals_light_lands_within_twice_the_arctangent_of_alpha() {
 /// A camera on the x axis looking head on at `metal` (a disc at the origin
 /// tilted 45°, normal (−1, 0, 1)/√2), which shows the background of
 /// radiance 1 above it (3×3 pixels: the middle one sees the disc's centre).
-fn metal_in_view(metal: Material) -> Scene {
+pub(crate) fn metal_in_view(metal: Material) -> Scene {
     let mut render = settings(1000, BandSpec::Paper7);
     (render.width, render.height, render.background, render.ambient) = (3, 3, Vec3::ONE, 0.0);
     Scene {
@@ -325,7 +333,13 @@ fn linear(texel: [u8; 3]) -> Vec3 {
 
 /// A metal of colour `color` and roughness 0.3, its colour scaled by `texture`.
 fn textured(color: Vec3, texture: Option<Texture>) -> Material {
-    let kind = MaterialKind::Metal { color: MetalColor::Rgb(color), roughness: 0.3, texture, film: None };
+    let kind = MaterialKind::Metal {
+        color: MetalColor::Rgb(color),
+        roughness: 0.3,
+        texture,
+        film: None,
+        metalness: Metalness::WHOLE,
+    };
     Material::new("metal", kind)
 }
 
@@ -376,7 +390,13 @@ fn in_view_a_metals_colour_texture_is_the_colour_it_scales_to() {
     let (factor, texel) = (Vec3::new(0.9, 1.0, 0.7), [200, 150, 60]);
     for roughness in [0.0f32, 0.5] {
         let lit = |texture: Option<Texture>, color: Vec3| {
-            let kind = MaterialKind::Metal { color: MetalColor::Rgb(color), roughness, texture, film: None };
+            let kind = MaterialKind::Metal {
+                color: MetalColor::Rgb(color),
+                roughness,
+                texture,
+                film: None,
+                metalness: Metalness::WHOLE,
+            };
             let mut scene = view_through_a_sheet(Material::new("metal", kind)).scene;
             scene.materials[1] = white("grey wall");
             prepare(lit_beside_the_camera(scene))
@@ -436,7 +456,10 @@ fn scene_files_give_metals_textures_and_films() {
 /// steel (F0 0.56) under 120 nm of index 2.2, each the metal of the
 /// disc that folds the beam at 45°.
 fn filmed(color: MetalColor, film: ThinFilm) -> Material {
-    Material::new("filmed", MaterialKind::Metal { color, roughness: 0.0, texture: None, film: Some(film) })
+    Material::new(
+        "filmed",
+        MaterialKind::Metal { color, roughness: 0.0, texture: None, film: Some(film), metalness: Metalness::WHOLE },
+    )
 }
 
 const OXIDE: ThinFilm = ThinFilm::new(1.65, 250.0);

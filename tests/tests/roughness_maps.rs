@@ -8,6 +8,7 @@
 
 use crate::rough_glass::{INDICES, beam_into_a_block, median_radius, radii_of_band, rough};
 use prismatic_core::model::dispersion::Dispersion;
+use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::{Filter, Light, Material, MaterialKind, Sampler, Shape, Texture};
 use prismatic_core::{MetalColor, PreparedScene, Scene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
@@ -29,7 +30,13 @@ fn greens(greens: &[u8]) -> Texture {
 
 /// A metal reflecting every facet's light (F0 = 1) of `roughness`, scaled by `map`.
 fn metal(roughness: f32, map: Option<Texture>) -> Material {
-    let kind = MaterialKind::Metal { color: MetalColor::Rgb(Vec3::ONE), roughness, texture: None, film: None };
+    let kind = MaterialKind::Metal {
+        color: MetalColor::Rgb(Vec3::ONE),
+        roughness,
+        texture: None,
+        film: None,
+        metalness: Metalness::WHOLE,
+    };
     Material { roughness_map: map, ..Material::new("metal", kind) }
 }
 

@@ -5,6 +5,7 @@ use prismatic_cli::builtin::BUILTIN_SCENES;
 use prismatic_cli::scene_file::{SceneFileError, parse};
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::{Estimator, MaterialKind, PhotonSequence, Shape, ThinFilm, WavelengthSampling};
 use prismatic_core::{MetalColor, NamedMetal, Vec3};
 
@@ -371,7 +372,8 @@ fn a_metals_keys_parse_named_metals_too_and_bad_metals_are_rejected_with_their_l
             color: MetalColor::Rgb(Vec3::new(0.9, 0.6, 0.5)),
             roughness: 0.3,
             texture: None,
-            film: None
+            film: None,
+            metalness: Metalness::WHOLE,
         }
     );
     // A measured metal; polished unless a roughness is given.
@@ -381,7 +383,8 @@ fn a_metals_keys_parse_named_metals_too_and_bad_metals_are_rejected_with_their_l
             color: MetalColor::Measured(NamedMetal::Gold),
             roughness: 0.0,
             texture: None,
-            film: None
+            film: None,
+            metalness: Metalness::WHOLE,
         }
     );
     assert_error(&with_metal("roughness = 0.3"), "material.ring.color", Some("[material.ring]"), "missing");

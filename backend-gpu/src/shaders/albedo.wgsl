@@ -1,13 +1,18 @@
 // What a surface's textures make of it at a hit: a diffuse surface's
-// albedo (checker, texture) and a metal's or rough glass's facets (their
-// roughness map): twins of prismatic_core::prepared::PreparedScene's
-// albedo_at and facets over the scene's bindings (scene.wgsl), shared by
+// albedo (checker, texture), a metal's or rough glass's facets (their
+// roughness map) and a blended metal's metalness: twins of
+// prismatic_core::prepared::PreparedScene's albedo_at, facets and
+// metalness_at over the scene's bindings (scene.wgsl), shared by
 // the photons, the view rays and light tracing.
 
 // PreparedScene::albedo_at: Surface::albedo_at (checker evaluated a hair
 // below the surface) times the texture at the hit's coordinates.
 fn albedo_at(hit: Hit, n: vec3<f32>) -> vec3<f32> {
     let s = surfaces[hit.object];
+    if s.kind == SURFACE_METAL {
+        // A blended metal's diffuse part: its F0 there.
+        return metal_at(hit, s).albedo;
+    }
     var base = s.albedo;
     if (s.flags & SURFACE_HAS_CHECKER) != 0u {
         let q = (hit.point + s.checker_offset - n * (s.checker_size * 1e-3)) / s.checker_size;
@@ -61,6 +66,21 @@ fn metal_at(hit: Hit, s: GpuSurface) -> GpuSurface {
     m.albedo = s.albedo * sample_texture(colour, uv);
     m.flags = s.flags & ~SURFACE_HAS_COLOUR_MAP;
     return m;
+}
+
+// PreparedScene::metalness_at: the metalness of the metal `s` at `hit`
+// (1: a whole metal), its factor times the blue channel of its roughness
+// map where SURFACE_METALNESS_MAP.
+fn metalness_at(hit: Hit, s: GpuSurface) -> f32 {
+    if (s.flags & SURFACE_BLENDED) == 0u {
+        return 1.0;
+    }
+    let factor = s.checker_offset.x;
+    if (s.flags & SURFACE_METALNESS_MAP) == 0u {
+        return factor;
+    }
+    let uv = texture_coordinates(objects[hit.object], s, hit.triangle, hit.point);
+    return factor * sample_texture(surface_texture(s), uv).z;
 }
 
 // A surface's texture: a diffuse surface's base colour, a metal's or

@@ -268,6 +268,11 @@ fn choose_dim(bounce: u32) -> u32 {
     return scatter_dim(WHITE_BAND, bounce) + DIM_CHOOSE;
 }
 
+// rng::dim::metal_part: whether a path goes on as a blended metal's metal part.
+fn metal_part_dim(band: u32, bounce: u32) -> u32 {
+    return scatter_dim(band, bounce) + DIM_METAL_PART;
+}
+
 // ---- math.rs ----
 
 // glam's normalize: v · (1 / |v|).

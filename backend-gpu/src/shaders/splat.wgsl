@@ -25,7 +25,16 @@ fn splat(
     let d = length(v);
     let dir = v / d;
     let hit = intersect_scene(params.cam_origin, dir, d * (1.0 + CONNECTION_REL));
-    if !hit.ok || hit.t < d * (1.0 - CONNECTION_REL) || surfaces[hit.object].kind != SURFACE_DIFFUSE {
+    if !hit.ok || hit.t < d * (1.0 - CONNECTION_REL) {
+        return;
+    }
+    // A blended metal's diffuse part reflects the share 1 − m.
+    let s = surfaces[hit.object];
+    var diffuse_share = select(0.0, 1.0, s.kind == SURFACE_DIFFUSE);
+    if (s.flags & SURFACE_BLENDED) != 0u {
+        diffuse_share = 1.0 - metalness_at(hit, s);
+    }
+    if diffuse_share == 0.0 {
         return;
     }
     let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
@@ -33,7 +42,7 @@ fn splat(
         return;
     }
     let albedo = albedo_at(hit, n);
-    let importance = -dot(v, n) / (seen.z * seen.z * seen.z) * params.splat_scale;
+    let importance = -dot(v, n) / (seen.z * seen.z * seen.z) * params.splat_scale * diffuse_share;
     let band = photon.band_bounces & 0xffffu;
     let flux = rgb_of_flux(band, photon.lambda_nm, photon.flux);
     let c = flux * reflectance(albedo, band, photon.lambda_nm) * importance * params.white_balance;

@@ -102,13 +102,17 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             return FOLLOW_END;
         }
         let s = metal_at(hit, surfaces[hit.object]);
-        if s.kind == SURFACE_DIFFUSE {
+        let blended = (s.flags & SURFACE_BLENDED) != 0u;
+        if s.kind == SURFACE_DIFFUSE || blended {
             if (*p).bounces == 0u {
                 tally_flux[3] += (*p).flux;
             } else {
                 store(p, hit.point, index);
             }
-            return FOLLOW_END;
+            // path::goes_on_as_metal: a blended metal's metal part, with its metalness's probability.
+            if s.kind == SURFACE_DIFFUSE || !goes_on_as_metal(*p, hit, s, index) {
+                return FOLLOW_END;
+            }
         }
         if !arrives_at_specular(*p, hit, s, index) {
             return FOLLOW_END;
@@ -143,6 +147,12 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
         (*p).bounces += 1u;
     }
     return FOLLOW_END;
+}
+
+// path::goes_on_as_metal: whether path `p`, stored on the blended metal `s`
+// at `hit`, goes on as its metal part (probability: its metalness there).
+fn goes_on_as_metal(p: Path, hit: Hit, s: GpuSurface, index: u32) -> bool {
+    return random_f32(params.seed, index, metal_part_dim(p.band, p.bounces)) < metalness_at(hit, s);
 }
 
 // trace::arrives_at_specular: whether path `p` goes on at the mirror or
@@ -254,10 +264,12 @@ fn trace_indirect(index: u32) {
             break;
         }
         let s = metal_at(hit, surfaces[hit.object]);
-        if s.kind == SURFACE_DIFFUSE {
-            if bounced {
-                store_carried(&p, &c, hit.point, index);
-            }
+        let blended = (s.flags & SURFACE_BLENDED) != 0u;
+        if (s.kind == SURFACE_DIFFUSE || blended) && bounced {
+            store_carried(&p, &c, hit.point, index);
+        }
+        // A blended metal: its diffuse part, unless the path goes on as its metal.
+        if s.kind == SURFACE_DIFFUSE || (blended && !goes_on_as_metal(p, hit, s, index)) {
             if p.bounces >= params.max_depth {
                 tally_flux[4] += p.flux;
                 break;

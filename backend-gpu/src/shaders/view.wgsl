@@ -351,7 +351,12 @@ fn hidden_direction(l: GpuLight, p: vec3<f32>) -> vec3<f32> {
 // caustic (see add_visible_point; with light tracing only behind a
 // specular bounce, view::gathers_at) for a diffuse surface,
 // ViewContext::metal_highlights for a rough metal and
-// ViewContext::rough_glass_highlights for rough glass (its `face`).
+// ViewContext::rough_glass_highlights for rough glass (its `face`); a
+// metal (met at `hit`, its normal the geometric one) blended with a
+// diffuse surface of its colour takes both, the diffuse part's weighted by
+// 1 − m and the metal's by m (ViewContext::blended_metal). The shading
+// normal faces the viewer on the geometric normal's side, so both parts
+// share its irradiance.
 fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
     let dir = e.dir;
     let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
@@ -361,6 +366,9 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
     var albedo = vec3<f32>(0.0);
     var alpha = 0.0;
     var lambda = e.lambda_nm;
+    // The shares of the diffuse part and of the metal's highlights.
+    var diffuse_share = select(1.0, 0.0, glass);
+    var metal_share = 0.0;
     if metal || glass {
         alpha = facets_alpha(hit, s);
     }
@@ -368,12 +376,17 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
         if lambda < 0.0 && e.band < params.band_count {
             lambda = bands[e.band].lambda_nm;
         }
+        let m = metalness_at(hit, s);
+        diffuse_share = 1.0 - m;
+        metal_share = select(0.0, metal_part(e, m), alpha > 0.0);
+        albedo = s.albedo;
     } else if !glass {
         albedo = albedo_at(hit, n);
     }
-    // A diffuse surface takes its lights' cosines with the smooth normal.
+    // A diffuse surface takes its lights' cosines with the smooth normal,
+    // about which a metal reflects.
     var shading = n;
-    if !metal && !glass {
+    if !glass {
         shading = scattering_normal(hit, dir);
         shading = select(-shading, shading, dot(dir, hit.normal) < 0.0);
     }
@@ -381,7 +394,7 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
     var reflected = vec3<f32>(0.0);
     for (var i = 0u; i < params.light_count; i++) {
         let l = lights[i];
-        var factor = albedo;
+        var factor = albedo * (diffuse_share / PI);
         var lit_side = shading;
         if glass {
             // Either side: a light behind the glass shines through it.
@@ -396,29 +409,32 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
             }
             lit_side = select(-hit.normal, hit.normal, dot(wi, hit.normal) > 0.0);
         }
-        if metal {
+        if metal_share > 0.0 {
             let wi = hidden_direction(l, hit.point);
-            let density = ggx_reflection(alpha, -dir, wi, n);
-            if density == 0.0 {
-                continue;
+            let density = ggx_reflection(alpha, -dir, wi, shading);
+            if density > 0.0 {
+                let h = nrm(wi - dir);
+                factor += metal_tint(s, dot(-dir, h), e.band, lambda) * (density * metal_share);
             }
-            let h = nrm(wi - dir);
-            factor = metal_tint(s, dot(-dir, h), e.band, lambda) * density;
+        }
+        if all(factor == vec3<f32>(0.0)) {
+            continue;
         }
         let m = mat3x3<f32>(l.reflected_r, l.reflected_g, l.reflected_b);
         reflected += m * factor * direct_irradiance(l, hit.point, lit_side);
     }
-    if metal || glass {
+    if glass || diffuse_share == 0.0 {
         return reflected;
     }
     if params.stored > 0u && (e.depth > 0u || params.light_tracing == 0u) {
-        add_visible_point(hit.point, n, e.tint * params.white_balance * (params.exposure / PI), albedo);
+        let weight = e.tint * diffuse_share * params.white_balance * (params.exposure / PI);
+        add_visible_point(hit.point, n, weight, albedo);
     }
     var emitted = vec3<f32>(0.0);
-    if dot(dir, hit.normal) < 0.0 {
+    if !metal && dot(dir, hit.normal) < 0.0 {
         emitted = surfaces[hit.object].emission;
     }
-    return reflected * (1.0 / PI) + albedo * params.ambient + emitted;
+    return reflected + albedo * (params.ambient * diffuse_share) + emitted;
 }
 
 // One pending entry: what it adds to the pixel (with the light of the
@@ -431,6 +447,16 @@ fn visit(e: Pending) -> vec3<f32> {
     }
     let q = light_query;
     return sum + q.e.tint * surface_light(q.e, q.hit, metal_at(q.hit, surfaces[q.hit.object]), q.face);
+}
+
+// ViewContext::blended_metal: the share m of a path `e` that goes on as a
+// metal of metalness m (a whole metal's: 1), 0 past the depth limit or
+// where that share is too small to follow.
+fn metal_part(e: Pending, m: f32) -> f32 {
+    if m <= 0.0 || e.depth >= params.max_depth || (m < 1.0 && e.weight * m <= MIN_VIEW_WEIGHT) {
+        return 0.0;
+    }
+    return m;
 }
 
 // What entry `e` adds to the pixel, less the light of the surface it met
@@ -484,20 +510,24 @@ fn visit_path(e: Pending) -> vec3<f32> {
     // Mirrors, metals and glass scatter about the shading normal.
     var bent = hit;
     bent.normal = scattering_normal(hit, e.dir);
-    // A metal's facets here (glass reads its own in through_dielectric).
+    // A metal's facets and metalness here (glass reads its facets in through_dielectric).
     var alpha = 0.0;
+    var m = 1.0;
     if s.kind == SURFACE_METAL {
         alpha = facets_alpha(bent, s);
+        m = metalness_at(hit, s);
     }
-    if s.kind == SURFACE_METAL && alpha > 0.0 && e.depth < params.max_depth {
-        light_query = LightQuery(true, e, bent, bare_face(1.0, false));
+    // Its light: a rough metal's highlights, a blended metal's diffuse part.
+    if s.kind == SURFACE_METAL && ((alpha > 0.0 && e.depth < params.max_depth) || m < 1.0) {
+        light_query = LightQuery(true, e, hit, bare_face(1.0, false));
     }
     if e.depth >= params.max_depth {
         return vec3<f32>(0.0);
     }
-    if s.kind == SURFACE_METAL {
-        // ViewContext::radiance at a metal: one facet, the path weighted by
-        // its Fresnel at the path's wavelength times G2/G1.
+    if s.kind == SURFACE_METAL && metal_part(e, m) > 0.0 {
+        // ViewContext::off_metal (a blended metal's metal part: the path's
+        // share m of it): one facet, the path weighted by its Fresnel at
+        // the path's wavelength times G2/G1.
         var u = vec2<f32>(0.0);
         if alpha > 0.0 {
             u = pixel_facet(scramble, select(0u, params.view_pass, per_pass()), e.hero, e.depth);
@@ -509,11 +539,14 @@ fn visit_path(e: Pending) -> vec3<f32> {
                 lambda = bands[e.band].lambda_nm;
             }
             let f = metal_tint(s, b.cos_facet, e.band, lambda) * b.unshadowed;
-            let weight = e.weight * max(f.x, max(f.y, f.z));
+            let weight = e.weight * m * max(f.x, max(f.y, f.z));
             if weight > MIN_VIEW_WEIGHT {
-                spawn_ray(e, b.origin, b.dir, e.band, weight, e.tint * f);
+                spawn_ray(e, b.origin, b.dir, e.band, weight, e.tint * m * f);
             }
         }
+        return vec3<f32>(0.0);
+    }
+    if s.kind == SURFACE_METAL {
         return vec3<f32>(0.0);
     }
     if s.kind == SURFACE_MIRROR {

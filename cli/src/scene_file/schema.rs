@@ -19,6 +19,7 @@ use glam::{Vec2, Vec4};
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::color::ToneMap;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
+use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::metals::{MetalColor, NamedMetal};
 use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, EnvironmentMap, Estimator, Filter, Light, Material, MaterialKind, NormalMap, Object,
@@ -396,6 +397,8 @@ impl Reader<'_> {
                         "film_thickness_nm",
                         "film_ior",
                         "film_factor",
+                        "metalness",
+                        "metalness_from_map",
                         "normal_map",
                         "normal_scale",
                     ],
@@ -409,7 +412,11 @@ impl Reader<'_> {
                     None => self.req(t, "color", |p, k, v| p.metal_color(k, v))?,
                 };
                 let roughness = self.opt(t, "roughness", Self::float)?.unwrap_or(0.0);
-                MaterialKind::Metal { color, roughness, texture, film: self.film(t)? }
+                let metalness = Metalness {
+                    factor: self.opt(t, "metalness", Self::float)?.unwrap_or(1.0),
+                    mapped: self.opt(t, "metalness_from_map", Self::boolean)?.unwrap_or(false),
+                };
+                MaterialKind::Metal { color, roughness, texture, film: self.film(t)?, metalness }
             }
             other => {
                 let v = self.required(t, "kind")?;

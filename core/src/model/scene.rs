@@ -6,6 +6,7 @@ use crate::model::bands::BandSpec;
 use crate::model::color::{Display, ToneMap};
 use crate::model::dispersion::Dispersion;
 pub use crate::model::environment::EnvironmentMap;
+use crate::model::metalness::Metalness;
 use crate::model::metals::MetalColor;
 use crate::model::spectrum::Illuminant;
 pub use crate::model::spectrum::Spectrum;
@@ -781,7 +782,12 @@ pub enum MaterialKind {
     /// metal's exact Fresnel at each wavelength, and their normals spread
     /// by a GGX distribution of width roughness² ([`crate::optics::metal`]).
     /// Roughness 0 is a polished metal: a coloured mirror. Light goes on
-    /// from a metal as from a mirror; no photon is stored on it.
+    /// from a whole metal as from a mirror; no photon is stored on it. A
+    /// metalness below 1 blends it with a diffuse surface of its colour
+    /// at every hit (glTF's metallic-roughness model, less the specular
+    /// layer of its non-metal base): photons are stored on it and go on
+    /// from it as the metal with that probability, and the camera sees
+    /// both parts ([`crate::optics::metal`]).
     Metal {
         /// Its colour: RGB reflectance at normal incidence, or a measured metal.
         color: MetalColor,
@@ -798,6 +804,8 @@ pub enum MaterialKind {
         /// reflections interfere with the metal's at each wavelength
         /// ([`ThinFilm::reflectance_on`]).
         film: Option<ThinFilm>,
+        /// How much of it is metal ([`Metalness::WHOLE`]: all of it).
+        metalness: Metalness,
     },
 }
 
@@ -852,8 +860,9 @@ pub struct Material {
     pub normal_map: Option<NormalMap>,
     /// Scales its roughness by texel (a mesh's with texture coordinates):
     /// a metal's or rough glass's roughness times the image's green
-    /// channel, read as linear values (glTF's `metallicRoughnessTexture`);
-    /// `None`: its roughness everywhere.
+    /// channel, read as linear values (glTF's `metallicRoughnessTexture`;
+    /// its blue channel scales a metal's metalness where
+    /// [`Metalness::mapped`]); `None`: its roughness everywhere.
     pub roughness_map: Option<Texture>,
 }
 

@@ -6,6 +6,7 @@
 use crate::model::bands::{BandSpec, MAX_BANDS, VISIBLE_NM};
 use crate::model::dispersion::{Dispersion, MAX_SELLMEIER_TERMS};
 use crate::model::environment::MAX_ENVIRONMENT_SIDE;
+use crate::model::metalness::Metalness;
 use crate::model::metals::MetalColor;
 use crate::model::scene::{
     Attenuation, Light, MAX_AREA_LIGHTS, MAX_DEPTH, MAX_ENVIRONMENT_LIGHTS, MAX_FILM_NM, MAX_IMAGE_SIDE,
@@ -376,8 +377,11 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             return Err(c.err("roughness_map", reason));
         }
     }
-    if let MaterialKind::Metal { film: Some(f), .. } = &m.kind {
-        validate_film(c, f, bands)?;
+    if let MaterialKind::Metal { film, metalness, .. } = &m.kind {
+        if let Some(f) = film {
+            validate_film(c, f, bands)?;
+        }
+        validate_metalness(c, metalness, m.roughness_map.is_some())?;
     }
     match &m.kind {
         MaterialKind::Diffuse { albedo, checker, texture, emission } => {
@@ -427,6 +431,17 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             }
         }
     }
+}
+
+fn validate_metalness(c: &Check<'_>, metalness: &Metalness, has_map: bool) -> Result<(), SceneError> {
+    c.finite("metalness", metalness.factor)?;
+    if !(0.0..=1.0).contains(&metalness.factor) {
+        return Err(c.err("metalness", format!("must be between 0 and 1, got {}", metalness.factor)));
+    }
+    if metalness.mapped && !has_map {
+        return Err(c.err("metalness", "is read from the roughness map's blue channel, but there is no roughness_map"));
+    }
+    Ok(())
 }
 
 fn validate_roughness(c: &Check<'_>, roughness: f32) -> Result<(), SceneError> {

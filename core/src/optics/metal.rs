@@ -11,9 +11,19 @@
 //! texture scales F0 where a ray meets it
 //! ([`crate::plan::prepared::PreparedScene::metal_at`]). Where the ray
 //! goes is [`crate::optics::scatter::scatter_metal`]'s.
+//!
+//! A metalness m below 1 (glTF's, [`Metalness`]) makes a hit the metal's
+//! with probability m and a diffuse surface of albedo F0 otherwise
+//! ([`crate::plan::prepared::PreparedScene::metalness_at`]). A photon is
+//! stored on it as on a diffuse surface (its flux is the light arriving,
+//! whatever the surface does with it) and goes on as the metal with
+//! probability m ([`crate::util::rng::dim::metal_part`]); the camera sees
+//! the diffuse part's light and caustic weighted by 1 − m and the metal's
+//! reflection by m.
 
 use crate::geometry::primitive::basis;
 use crate::model::bands::BandTable;
+use crate::model::metalness::Metalness;
 use crate::model::metals::{MetalColor, NamedMetal};
 use crate::model::photon::WHITE_BAND;
 use crate::model::scene::ThinFilm;
@@ -42,6 +52,8 @@ pub struct MetalOptics {
     pub textured: bool,
     /// The film on its surface (`None`: bare; a film of no thickness is none).
     pub film: Option<ThinFilm>,
+    /// How much of it is metal; the rest is diffuse of albedo `f0`.
+    pub metalness: Metalness,
 }
 
 impl MetalOptics {
@@ -57,7 +69,15 @@ impl MetalOptics {
             ggx: (roughness > 0.0).then(|| Ggx::from_roughness(roughness)),
             textured: false,
             film: None,
+            metalness: Metalness::WHOLE,
         }
+    }
+
+    /// Some of it is diffuse: photons are stored on it and the camera
+    /// sees a diffuse part ([`Metalness::is_whole`] is false).
+    #[inline]
+    pub fn is_blended(&self) -> bool {
+        !self.metalness.is_whole()
     }
 
     /// Schlick's Fresnel per RGB channel for light meeting a facet at

@@ -204,9 +204,10 @@ impl Surface {
                 emission: *emission,
             },
             MaterialKind::Mirror => Surface::Mirror,
-            MaterialKind::Metal { color, roughness, texture, film } => Surface::Metal(MetalOptics {
+            MaterialKind::Metal { color, roughness, texture, film, metalness } => Surface::Metal(MetalOptics {
                 textured: texture.is_some(),
                 film: film.filter(|f| !f.is_bare()),
+                metalness: *metalness,
                 ..MetalOptics::new(*color, *roughness)
             }),
             MaterialKind::Dielectric { dispersion, outside, attenuation, thin, film, roughness } => {
@@ -240,6 +241,18 @@ impl Surface {
                     ggx: (*roughness > 0.0).then(|| Ggx::from_roughness(*roughness)),
                 })
             }
+        }
+    }
+
+    /// Whether photons are stored on it and the camera gathers them there:
+    /// a diffuse surface, or a blended metal (its diffuse part,
+    /// [`crate::optics::metal`]).
+    #[inline]
+    pub fn stores_photons(&self) -> bool {
+        match self {
+            Surface::Diffuse { .. } => true,
+            Surface::Metal(metal) => metal.is_blended(),
+            _ => false,
         }
     }
 

@@ -11,7 +11,9 @@
 //! each, so bounced light is not speckled with colour). Through mirrors and
 //! clear glass they go together; at glass that disperses or tints light,
 //! and at a coloured metal, the path goes on as one of them, as a band
-//! photon does. At a diffuse surface
+//! photon does. At a diffuse surface (or a blended metal's diffuse part,
+//! taken with the probability 1 − m of its metalness m,
+//! [`crate::optics::metal`]; the photon is stored before the choice)
 //! it is stored if it has bounced off a diffuse surface before, then
 //! survives with the probability Σ fⱼ ρ(λⱼ) that the surface reflects
 //! ([`crate::model::bands::BandTable::bounce_reflectance`]; Russian
@@ -34,7 +36,7 @@ use crate::model::photon::{Photon, TraceStats};
 use crate::optics::scatter::scatter_diffuse;
 use crate::optics::surface::Surface;
 use crate::photons::emit::emit_unaimed;
-use crate::photons::path::{Path, arrives_at_specular, cross_specular};
+use crate::photons::path::{Path, arrives_at_specular, cross_specular, goes_on_as_metal};
 use crate::photons::wavelengths::IndirectWavelengths;
 use crate::plan::prepared::PreparedScene;
 use crate::util::rng::{dim, random_f32};
@@ -77,14 +79,19 @@ pub fn trace_indirect(scene: &PreparedScene, index: u32, out: &mut Vec<Photon>, 
             break;
         }
         let surface = &scene.surfaces[hit.object];
-        if let Surface::Diffuse { .. } = surface {
-            if bounced_diffusely {
-                let stored = lanes.photons(&scene.bands, (hit.point, p.ray.direction), p.flux, index, p.bounces);
-                for photon in stored {
-                    stats.count_stored(photon.flux);
-                    out.push(photon);
-                }
+        if surface.stores_photons() && bounced_diffusely {
+            let stored = lanes.photons(&scene.bands, (hit.point, p.ray.direction), p.flux, index, p.bounces);
+            for photon in stored {
+                stats.count_stored(photon.flux);
+                out.push(photon);
             }
+        }
+        // A blended metal: its diffuse part, unless the path goes on as its metal.
+        let diffuse = match surface {
+            Surface::Diffuse { .. } => true,
+            _ => surface.stores_photons() && !goes_on_as_metal(scene, index, &p, &hit),
+        };
+        if diffuse {
             if p.bounces >= scene.plan.max_depth {
                 stats.flux_depth_limited += f64::from(p.flux);
                 break;

@@ -19,7 +19,8 @@
 //! through its band's RGB weight, or the colour of its wavelength
 //! ([`crate::model::bands::BandTable::rgb_of_flux`]), as in the density estimator. The camera's ray toward the photon must
 //! reach it ([`CONNECTION_REL`]): the visibility test, and the hit gives
-//! the surface's albedo and normal.
+//! the surface's albedo and normal. On a blended metal of metalness m the
+//! diffuse part adds (1 − m) of that ([`crate::optics::metal`]).
 //!
 //! Light tracing cannot connect through a mirror or glass to a pinhole, so
 //! the caustics seen only that way are still gathered at visible points:
@@ -73,7 +74,13 @@ impl<'a> CameraConnection<'a> {
         let d = v.length();
         let ray = Ray { origin: self.camera.origin, direction: v / d };
         let hit = self.scene.intersect(&ray, d * (1.0 + CONNECTION_REL))?;
-        if hit.t < d * (1.0 - CONNECTION_REL) || !matches!(self.scene.surfaces[hit.object], Surface::Diffuse { .. }) {
+        // A blended metal's diffuse part reflects the share 1 − m.
+        let diffuse_share = match &self.scene.surfaces[hit.object] {
+            Surface::Diffuse { .. } => 1.0,
+            Surface::Metal(metal) if metal.is_blended() => 1.0 - self.scene.metalness_at(metal, &hit),
+            _ => 0.0,
+        };
+        if hit.t < d * (1.0 - CONNECTION_REL) || diffuse_share == 0.0 {
             return None;
         }
         let n = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
@@ -85,7 +92,7 @@ impl<'a> CameraConnection<'a> {
         let bands = &self.scene.bands;
         let flux = bands.rgb_of_flux(photon.band, photon.lambda_nm, photon.flux);
         let reflected = flux * bands.reflectance(albedo, photon.band, photon.lambda_nm);
-        let radiance = reflected * importance * self.scene.white_balance;
+        let radiance = reflected * (importance * diffuse_share) * self.scene.white_balance;
         Some(Splat { pixel: seen.y * self.camera.width + seen.x, radiance })
     }
 }

@@ -56,6 +56,20 @@ impl Path {
     }
 }
 
+/// Whether path `p`, which has reached the blended metal at `hit` and been
+/// stored there as on a diffuse surface, goes on as its metal part: with
+/// the probability of its metalness there ([`dim::metal_part`];
+/// [`crate::optics::metal`]). Always at a whole metal, mirror or glass.
+pub(crate) fn goes_on_as_metal(scene: &PreparedScene, index: u32, p: &Path, hit: &Hit) -> bool {
+    match &scene.surfaces[hit.object] {
+        Surface::Metal(metal) if metal.is_blended() => {
+            let u = random_f32(scene.scene.render.seed, index, dim::metal_part(p.band, p.bounces));
+            u < scene.metalness_at(metal, hit)
+        }
+        _ => true,
+    }
+}
+
 /// Whether path `p` goes on at the mirror or glass it has reached at `hit`:
 /// not past the depth limit, not absorbed on the segment inside coloured
 /// glass that ends here ([`absorbed`]). An ended path's flux is tallied.

@@ -13,7 +13,10 @@
 //! photon that reaches a diffuse surface after at least one specular
 //! interaction is stored (the dispersion caustic map, L S+ D paths); one
 //! that reaches it directly is direct light, which the renderer ray traces
-//! instead. Inside coloured glass a path survives each segment with its
+//! instead (on a blended metal, the photon is stored as on a diffuse
+//! surface and the path goes on as the metal with the probability of its
+//! metalness, [`crate::optics::metal`]; so there the stored and direct
+//! flux are not part of the energy balance). Inside coloured glass a path survives each segment with its
 //! band's Beer–Lambert transmittance (see [`crate::photons::path::absorbed`],
 //! a path's steps). A coloured light's photons (a spectrum other than equal
 //! energy) are never white: they start as their bands or wavelengths at the
@@ -27,7 +30,7 @@ use crate::model::photon::{Photon, PhotonMap, TraceStats, WHITE_BAND};
 use crate::optics::surface::Surface;
 use crate::photons::emit::emit;
 use crate::photons::indirect;
-use crate::photons::path::{Path, arrives_at_specular, cross_specular};
+use crate::photons::path::{Path, arrives_at_specular, cross_specular, goes_on_as_metal};
 use crate::photons::wavelengths::{emission_paths, sample_band, split_bands};
 use crate::plan::prepared::PreparedScene;
 use crate::util::progress::{Progress, Stage};
@@ -124,14 +127,17 @@ fn trace_path(
             return;
         }
         let surface = &scene.surfaces[hit.object];
-        if let Surface::Diffuse { .. } = surface {
+        if surface.stores_photons() {
             if p.bounces == 0 {
                 stats.flux_direct += f64::from(p.flux);
             } else {
                 stats.count_stored(p.flux);
                 out.push(p.photon(scene, hit.point, index));
             }
-            return;
+            // A blended metal's metal part goes on with its metalness's probability.
+            if matches!(surface, Surface::Diffuse { .. }) || !goes_on_as_metal(scene, index, &p, &hit) {
+                return;
+            }
         }
         if !arrives_at_specular(scene, index, &p, &hit, stats) {
             return;

@@ -75,7 +75,7 @@ impl EffectPlan {
             .copied()
             .filter(|&k| emitters.iter().any(|l| light_reaches(l, bounds[k].0, bounds[k].1)))
             .collect();
-        let has_diffuse = surfaces.iter().any(|s| matches!(s, Surface::Diffuse { .. }));
+        let has_diffuse = surfaces.iter().any(Surface::stores_photons);
         let n_bands = crate::model::bands::BandTable::new(scene.render.bands).len();
 
         let caustics = if specular.is_empty() {
@@ -151,7 +151,7 @@ impl EffectPlan {
         } else if emitters.is_empty() {
             Effect::off("no light")
         } else {
-            let diffuse = surfaces.iter().filter(|s| matches!(s, Surface::Diffuse { .. })).count();
+            let diffuse = surfaces.iter().filter(|s| s.stores_photons()).count();
             Effect::on(format!(
                 "{} photons bounce off {diffuse} diffuse object{}",
                 scene.render.indirect_photons,

@@ -403,9 +403,13 @@ impl PreparedScene {
 
     /// The albedo of diffuse `object` at `point` (unit normal `normal`) on
     /// its mesh triangle `triangle`: the surface's albedo (with its
-    /// checker), times its texture at the point's texture coordinates.
+    /// checker), times its texture at the point's texture coordinates; a
+    /// metal's diffuse part's, its F0 there ([`PreparedScene::metal_at`]).
     #[inline]
     pub fn albedo_at(&self, object: usize, triangle: u32, point: Vec3, normal: Vec3) -> Vec3 {
+        if let Surface::Metal(metal) = &self.surfaces[object] {
+            return self.metal_colour_at(metal, &Hit { t: 0.0, point, normal, object, triangle }).f0;
+        }
         let uv = match (&self.primitives[object], self.texture_uvs[object].get(triangle as usize)) {
             (Primitive::Mesh(bvh), Some(uv)) => uv.at(&bvh.triangles[triangle as usize], point),
             _ => Vec2::ZERO,
@@ -421,6 +425,25 @@ impl PreparedScene {
     #[inline]
     pub fn metal_at(&self, metal: &MetalOptics, hit: &Hit) -> MetalOptics {
         MetalOptics { ggx: self.facets(hit), ..self.metal_colour_at(metal, hit) }
+    }
+
+    /// The metalness of `metal` (the surface of the object `hit` met) at
+    /// `hit`: its factor, times the blue channel of its material's
+    /// roughness map there (linear, at the mesh's texture coordinates)
+    /// where [`Metalness::mapped`](crate::model::metalness::Metalness::mapped).
+    #[inline]
+    pub fn metalness_at(&self, metal: &MetalOptics, hit: &Hit) -> f32 {
+        let metalness = metal.metalness;
+        if !metalness.mapped {
+            return metalness.factor;
+        }
+        let map = &self.scene.materials[self.scene.objects[hit.object].material].roughness_map;
+        match (map, &self.primitives[hit.object], self.texture_uvs[hit.object].get(hit.triangle as usize)) {
+            (Some(map), Primitive::Mesh(bvh), Some(uv)) => {
+                metalness.at(sample_linear(map, uv.at(&bvh.triangles[hit.triangle as usize], hit.point)).z)
+            }
+            _ => metalness.factor,
+        }
     }
 
     /// Whether `metal` reflects wavelengths differently at `hit` (where a

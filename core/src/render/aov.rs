@@ -74,8 +74,8 @@ fn first_diffuse(scene: &PreparedScene, ray: &Ray, weight: f32, depth: u32) -> (
             let albedo = scene.albedo_at(hit.object, hit.triangle, hit.point, hit.normal * side);
             (albedo * weight, facing * weight)
         }
-        // A rough metal is a surface of its own to a denoiser: its colour is F0.
-        Surface::Metal(metal) if scene.facets(&hit).is_some() => {
+        // A rough or blended metal is a surface of its own to a denoiser: its colour is F0.
+        Surface::Metal(metal) if metal.is_blended() || scene.facets(&hit).is_some() => {
             (scene.metal_at(metal, &hit).f0 * weight, facing * weight)
         }
         Surface::Mirror | Surface::Metal(_) => {

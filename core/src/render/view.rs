@@ -163,7 +163,12 @@ impl<'a> ViewContext<'a> {
         let path = ViewPath { weight: path.weight * kept.max_element(), tint: path.tint * kept, ..path };
         let ViewPath { band, depth, weight, tint, .. } = path;
         if let Surface::Diffuse { .. } = surface {
-            return kept * self.shade_diffuse(ray, &hit, path, points);
+            return kept * self.shade_diffuse(ray, &hit, (path.tint, path.depth), points);
+        }
+        if let Surface::Metal(metal) = surface
+            && metal.is_blended()
+        {
+            return self.blended_metal(ray, &hit, (metal, self.scene.metalness_at(metal, &hit)), path, points);
         }
         // Mirrors, metals and glass scatter about the shading normal.
         let hit = Hit { normal: self.scene.scattering_normal(&hit, ray.direction), ..hit };
@@ -174,18 +179,7 @@ impl<'a> ViewContext<'a> {
                 let next = ViewPath { depth: depth + 1, ..path };
                 self.radiance(&Ray { origin: offset_origin(hit.point, hit.normal, d), direction: d }, next, points)
             }
-            Surface::Metal(metal) => {
-                let metal = &self.scene.metal_at(metal, &hit);
-                let lambda_nm = stored_wavelength(&self.scene.bands, band, path.lambda_nm);
-                let lit = self.metal_highlights(ray.direction, (hit.point, hit.normal), metal, band, lambda_nm);
-                let (u1, u2) = if metal.ggx.is_some() { path.facets.facet(path.hero, depth) } else { (0.0, 0.0) };
-                let Some(b) = scatter_metal(ray.direction, hit.point, hit.normal, metal.ggx, u1, u2) else {
-                    return lit;
-                };
-                let f = metal.tint(b.cos_facet, band, lambda_nm, &self.scene.bands) * b.unshadowed;
-                let next = ViewPath { depth: depth + 1, weight: weight * f.max_element(), tint: tint * f, ..path };
-                lit + if next.weight > MIN_VIEW_WEIGHT { f * self.radiance(&b.ray, next, points) } else { Vec3::ZERO }
-            }
+            Surface::Metal(metal) => self.off_metal(ray, &hit, metal, path, points),
             Surface::Dielectric(glass) if band == WHITE_BAND && glass.splits_view_rays => match path.sampler {
                 Some(sampler) => hero_view_paths(self.scene, sampler.spectrum())
                     .map(|HeroViewPath { hero, band, lambda_nm, weight: w }| {
@@ -214,6 +208,58 @@ impl<'a> ViewContext<'a> {
             }
             Surface::Diffuse { .. } => unreachable!("shaded above"),
         }
+    }
+
+    /// What a path arriving along `ray` sees of the metal `metal` at `hit`
+    /// (its normal the scattering normal): its highlights, and the light
+    /// reflected off one facet, weighted by its Fresnel at the path's
+    /// wavelength times G2/G1.
+    fn off_metal(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        metal: &MetalOptics,
+        path: ViewPath,
+        points: &mut Vec<VisiblePoint>,
+    ) -> Vec3 {
+        let ViewPath { band, depth, weight, tint, .. } = path;
+        let metal = &self.scene.metal_at(metal, hit);
+        let lambda_nm = stored_wavelength(&self.scene.bands, band, path.lambda_nm);
+        let lit = self.metal_highlights(ray.direction, (hit.point, hit.normal), metal, band, lambda_nm);
+        let (u1, u2) = if metal.ggx.is_some() { path.facets.facet(path.hero, depth) } else { (0.0, 0.0) };
+        let Some(b) = scatter_metal(ray.direction, hit.point, hit.normal, metal.ggx, u1, u2) else {
+            return lit;
+        };
+        let f = metal.tint(b.cos_facet, band, lambda_nm, &self.scene.bands) * b.unshadowed;
+        let next = ViewPath { depth: depth + 1, weight: weight * f.max_element(), tint: tint * f, ..path };
+        lit + if next.weight > MIN_VIEW_WEIGHT { f * self.radiance(&b.ray, next, points) } else { Vec3::ZERO }
+    }
+
+    /// What a path arriving along `ray` sees of a blended metal (`metal`
+    /// of metalness `m` at `hit`): its diffuse part, shaded as a diffuse
+    /// surface of albedo F0 and weighted by 1 − m (its visible point too),
+    /// and its metal part ([`ViewContext::off_metal`]) by m
+    /// ([`crate::optics::metal`]).
+    fn blended_metal(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        (metal, m): (&MetalOptics, f32),
+        path: ViewPath,
+        points: &mut Vec<VisiblePoint>,
+    ) -> Vec3 {
+        let mut sum = Vec3::ZERO;
+        if m < 1.0 {
+            sum += (1.0 - m) * self.shade_diffuse(ray, hit, (path.tint * (1.0 - m), path.depth), points);
+        }
+        // Where a point is whole metal (m = 1) it is followed as a whole metal is.
+        let followed = m >= 1.0 || path.weight * m > MIN_VIEW_WEIGHT;
+        if m > 0.0 && path.depth < self.scene.plan.max_depth && followed {
+            let bent = Hit { normal: self.scene.scattering_normal(hit, ray.direction), ..*hit };
+            let part = ViewPath { weight: path.weight * m, tint: path.tint * m, ..path };
+            sum += m * self.off_metal(ray, &bent, metal, part, points);
+        }
+        sum
     }
 
     /// What `path` meets at `glass`: its band's index, or at its own
@@ -302,11 +348,19 @@ impl<'a> ViewContext<'a> {
         lit + reflected + split.crossed.map_or(Vec3::ZERO, |(r, w)| follow(&r, w, true))
     }
 
-    /// Radiance leaving a diffuse hit toward the viewer (an emissive
-    /// surface's own glow included), less its caustic,
-    /// which is left to a visible point (when the plan traces caustics and
-    /// light tracing does not bring it: see [`gathers_at`]).
-    fn shade_diffuse(&self, ray: &Ray, hit: &Hit, path: ViewPath, points: &mut Vec<VisiblePoint>) -> Vec3 {
+    /// Radiance leaving a diffuse hit (or a blended metal's diffuse part)
+    /// toward the viewer (an emissive surface's own glow included), less
+    /// its caustic, which is left to a visible point of weight `tint`/π for
+    /// a path of that tint at `depth` (when the plan traces caustics and
+    /// light tracing does not bring it: see [`gathers_at`]). Backends that
+    /// take a blended metal ray by ray call it.
+    pub fn shade_diffuse(
+        &self,
+        ray: &Ray,
+        hit: &Hit,
+        (tint, depth): (Vec3, u32),
+        points: &mut Vec<VisiblePoint>,
+    ) -> Vec3 {
         let side = if ray.direction.dot(hit.normal) < 0.0 { 1.0 } else { -1.0 };
         let n = hit.normal * side;
         let albedo = self.scene.albedo_at(hit.object, hit.triangle, hit.point, n);
@@ -317,8 +371,8 @@ impl<'a> ViewContext<'a> {
         let reflected: Vec3 = (0..self.scene.lights.len())
             .map(|i| self.scene.light_spectra[i].reflected * albedo * self.direct_irradiance(i, hit.point, shading))
             .sum();
-        if gathers_at(self.scene, path.depth) {
-            points.push(VisiblePoint { point: hit.point, normal: n, weight: path.tint / PI, albedo, pixel: 0 });
+        if gathers_at(self.scene, depth) {
+            points.push(VisiblePoint { point: hit.point, normal: n, weight: tint / PI, albedo, pixel: 0 });
         }
         let emitted = self.scene.surfaces[hit.object].emitted(ray.direction, hit.normal);
         reflected * (1.0 / PI) + albedo * settings.ambient + emitted

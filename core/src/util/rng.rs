@@ -101,6 +101,17 @@ pub mod dim {
     pub fn choose(bounce: u32) -> u32 {
         scatter(u16::MAX, bounce) + CHOOSE
     }
+
+    /// Added to a scattering dimension for the choice whether a path goes
+    /// on as a blended metal's metal part: above every wavelength choice.
+    pub const METAL_PART: u32 = 5 << 24;
+
+    /// The dimension of that choice for the path of `band` at `bounce`
+    /// ([`crate::optics::metal`]: the metal's share is the probability).
+    #[inline]
+    pub fn metal_part(band: u16, bounce: u32) -> u32 {
+        scatter(band, bounce) + METAL_PART
+    }
 }
 
 #[cfg(test)]

@@ -42,7 +42,7 @@ impl AppImages<'_, '_> {
     }
 
     /// [`Textures::metalness`].
-    pub(crate) fn metalness(&mut self, handle: &Handle<Image>, factor: f32, texture: &Texture) -> Metalness {
+    pub(crate) fn metalness(&mut self, handle: &Handle<Image>, factor: f32, texture: &Texture) -> Option<Metalness> {
         self.converted.metalness(handle, factor, texture)
     }
 }
@@ -52,7 +52,7 @@ impl AppImages<'_, '_> {
 #[derive(Default)]
 pub(crate) struct Textures {
     converted: HashMap<(AssetId<Image>, Channels), Texture>,
-    metalness: HashMap<(AssetId<Image>, u32), Metalness>,
+    metalness: HashMap<(AssetId<Image>, u32), Option<Metalness>>,
 }
 
 impl Textures {
@@ -69,8 +69,11 @@ impl Textures {
     /// [`Metalness::of`] `factor` and `texture` (`handle`'s image read as
     /// linear values), counted once per image and factor, not each frame:
     /// a pass over every texel.
-    pub(crate) fn metalness(&mut self, handle: &Handle<Image>, factor: f32, texture: &Texture) -> Metalness {
-        *self.metalness.entry((handle.id(), factor.to_bits())).or_insert_with(|| Metalness::of(factor, Some(texture)))
+    pub(crate) fn metalness(&mut self, handle: &Handle<Image>, factor: f32, texture: &Texture) -> Option<Metalness> {
+        *self
+            .metalness
+            .entry((handle.id(), factor.to_bits()))
+            .or_insert_with(|| Metalness::of(factor, Some(&texture.texels)))
     }
 
     /// The texture of `handle`'s image read as `channels`; `Ok(None)` while
@@ -197,15 +200,14 @@ mod tests {
         let handle = images.add(image(TextureFormat::Rgba8Unorm, &[[1, 2, 255, 255]]));
         let mut textures = Textures::default();
         let first = textures.get(&images, &handle, Channels::Linear).unwrap().unwrap();
-        let metal = Metalness { metal: true, varies: false, partial: false };
-        assert_eq!(textures.metalness(&handle, 1.0, &first), metal);
+        assert_eq!(textures.metalness(&handle, 1.0, &first), Some(Metalness::WHOLE));
         images.get_mut(&handle).unwrap().data = Some(vec![9, 9, 0, 255]);
         let cached = textures.get(&images, &handle, Channels::Linear).unwrap().unwrap();
         assert_eq!(cached.texels, first.texels, "not read again before Bevy says it changed");
         textures.forget([AssetEvent::Modified { id: handle.id() }].iter());
         let again = textures.get(&images, &handle, Channels::Linear).unwrap().unwrap();
         assert_eq!(&*again.texels, &[9 | 9 << 8]);
-        assert_eq!(textures.metalness(&handle, 1.0, &again), Metalness { metal: false, ..metal });
+        assert_eq!(textures.metalness(&handle, 1.0, &again), None, "no metal left");
     }
 
     #[test]

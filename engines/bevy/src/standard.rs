@@ -1,8 +1,8 @@
 //! A `StandardMaterial` (a [`crate::CausticMaterial`]'s base) as a
 //! prismatic material: diffuse in its base colour and base colour texture,
-//! or a metal in its base colour where most of its surface is metallic
-//! ([`Metalness`]: by `metallic` times its metallic-roughness texture's
-//! blue channel), its roughness scaled by that texture's green channel,
+//! or a metal in its base colour blended with that diffuse base by its
+//! metalness ([`Metalness`]: `metallic` times its metallic-roughness
+//! texture's blue channel), its roughness scaled by that texture's green channel,
 //! its normals tilted by its normal map. What prismatic cannot draw of it
 //! is named, as the glTF loader names what it leaves out.
 
@@ -102,26 +102,30 @@ pub(crate) fn drawn(m: &StandardMaterial, name: String, images: &mut AppImages, 
         (Some(handle), Some(texture)) => maps.images.metalness(handle, m.metallic, texture),
         _ => Metalness::of(m.metallic, None),
     };
-    let left_out = maps.left_out;
     let c = m.base_color.to_linear();
     let color = CoreVec3::new(c.red, c.green, c.blue);
-    if metalness.varies || metalness.partial {
-        let drawn_as = if metalness.metal { "a whole metal" } else { "diffuse" };
-        left_out.push(format!("{name}: metalness between 0 and 1 or varying (drawn as {drawn_as}, as most of it is)"));
-    }
-    let (kind, roughness_map) = if metalness.metal {
-        // Its base colour (times its texture) is its reflectance at normal incidence.
-        let kind = MaterialKind::Metal {
-            color: MetalColor::Rgb(color.clamp(CoreVec3::ZERO, CoreVec3::ONE)),
-            roughness: m.perceptual_roughness.clamp(0.0, 1.0),
-            texture: base_colour_texture,
-            film: None,
-        };
-        (kind, metallic_roughness)
-    } else {
-        // A receiver of its diffuse share.
-        let albedo = color * (1.0 - m.metallic.clamp(0.0, 1.0));
-        (MaterialKind::Diffuse { albedo, checker: None, texture: base_colour_texture, emission: CoreVec3::ZERO }, None)
+    let (kind, roughness_map) = match metalness {
+        // Its base colour (times its texture) is its reflectance at normal
+        // incidence and its diffuse part's albedo.
+        Some(metalness) => {
+            let kind = MaterialKind::Metal {
+                color: MetalColor::Rgb(color.clamp(CoreVec3::ZERO, CoreVec3::ONE)),
+                roughness: m.perceptual_roughness.clamp(0.0, 1.0),
+                texture: base_colour_texture,
+                film: None,
+                metalness,
+            };
+            (kind, metallic_roughness)
+        }
+        None => {
+            let diffuse = MaterialKind::Diffuse {
+                albedo: color,
+                checker: None,
+                texture: base_colour_texture,
+                emission: CoreVec3::ZERO,
+            };
+            (diffuse, None)
+        }
     };
     let material = Material { normal_map, roughness_map, ..Material::new(name, kind) };
     let reads_texture = material.normal_map.is_some()

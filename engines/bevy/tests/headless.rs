@@ -27,6 +27,7 @@ use prismatic_bevy::{
     CausticCamera, CausticImage, CausticLayer, CausticLight, CausticMaterial, CausticReceiver, CausticScene,
     CausticSettings, CausticShape, CausticStats, Glass, PrismaticPlugin, Receiver,
 };
+use prismatic_core::model::metalness::Metalness;
 use std::sync::{Arc, Mutex};
 
 const WIDTH: u32 = 160;
@@ -262,6 +263,7 @@ fn the_layer_in_bevys_frame_is_the_references_and_lights_the_floor() {
         roughness: 0.3,
         texture: None,
         film: None,
+        metalness: Metalness::WHOLE,
     };
     assert!(scene.scene.materials.iter().any(|m| m.kind == brass), "the metallic receiver mirrored as a metal");
     let reference = {

@@ -66,8 +66,8 @@ pub struct TraceContext<'a> {
     /// Some light has a range, which windows its photons' first segment
     /// ([`TraceContext::reach`]).
     pub(crate) ranged_lights: bool,
-    /// Some object is a metal or rough glass: the core's scalar tracer
-    /// takes every photon (`kernels::trace_chunks`).
+    /// Some object is a metal or rough glass, or has a film map: the
+    /// core's scalar tracer takes every photon (`kernels::trace_chunks`).
     pub(crate) facets: bool,
 }
 
@@ -117,7 +117,7 @@ impl<'a> TraceContext<'a> {
                 Surface::Metal(_) => true,
                 Surface::Dielectric(g) => g.ggx.is_some(),
                 _ => false,
-            }),
+            }) || scene.scene.materials.iter().any(|m| m.film_map.is_some()),
         }
     }
 

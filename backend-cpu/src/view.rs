@@ -223,6 +223,7 @@ impl Shader<'_> {
             }
             let part = ViewRay { weight: r.weight * m, tint: r.tint * m, ..*r };
             let r = if m < 1.0 { &part } else { r };
+            let at = Hit { t: t[i], point: p, normal: n, object: object[i] as usize, triangle: triangle[i] as u32 };
             match surface {
                 // Band rays at glass: Fresnel and refraction for the whole packet at once, below.
                 Surface::Mirror => {
@@ -232,8 +233,6 @@ impl Shader<'_> {
                 }
                 // A metal's highlights, facet and Fresnel: the core's scalar rules, ray by ray.
                 Surface::Metal(metal) => {
-                    let at =
-                        Hit { t: t[i], point: p, normal: n, object: object[i] as usize, triangle: triangle[i] as u32 };
                     let metal = &self.scene.metal_at(metal, &at);
                     let lambda_nm = stored_wavelength(&self.scene.bands, r.band, r.lambda_nm);
                     sum[r.pixel as usize] +=
@@ -260,7 +259,7 @@ impl Shader<'_> {
                         {
                             let share = r.weight * w.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * w, weight: share, band, lambda_nm, hero, ..*r };
-                            let face = glass.face(band, lambda_nm, &self.scene.bands);
+                            let face = self.scene.face(glass, &at, band, lambda_nm);
                             self.at_glass(&tinted, (p, n), (face, glass, facets), one_branch, (queue, sum));
                         }
                     }
@@ -268,7 +267,7 @@ impl Shader<'_> {
                         for (b, info) in self.scene.bands.bands().iter().enumerate() {
                             let share = r.weight * info.weight.abs().max_element();
                             let tinted = ViewRay { tint: r.tint * info.weight, weight: share, band: b as u16, ..*r };
-                            let face = glass.face(b as u16, None, &self.scene.bands);
+                            let face = self.scene.face(glass, &at, b as u16, None);
                             self.at_glass(&tinted, (p, n), (face, glass, facets), one_branch, (queue, sum));
                         }
                     }
@@ -276,7 +275,7 @@ impl Shader<'_> {
                 // A film's reflectance is a complex sum per ray, and rough
                 // glass's facets and highlights are per ray: the scalar rules.
                 Surface::Dielectric(glass) if glass.film.is_some() || glass.ggx.is_some() => {
-                    let face = glass.face(r.band, r.lambda_nm, &self.scene.bands);
+                    let face = self.scene.face(glass, &at, r.band, r.lambda_nm);
                     self.at_glass(r, (p, n), (face, glass, facets), one_branch, (queue, sum));
                 }
                 Surface::Dielectric(glass) => {
@@ -312,9 +311,6 @@ impl Shader<'_> {
         spawn_at_glass(r, p, n, (face, glass, facets), one_branch, queue);
     }
 
-    /// Radiance toward the viewer at diffuse hits (lanes in `mask`), less
-    /// the caustic, which is left to a visible point per lane (where
-    /// light tracing does not bring it).
     /// What ray `r` sees of the diffuse part (its `share`, 1 − m) of the
     /// blended metal at `at`: the core's shading, ray by ray, its visible
     /// point in this tile's list with the pixel's weight.
@@ -332,6 +328,9 @@ impl Shader<'_> {
         r.tint * share * lit
     }
 
+    /// Radiance toward the viewer at diffuse hits (lanes in `mask`), less
+    /// the caustic, which is left to a visible point per lane (where
+    /// light tracing does not bring it).
     fn shade_diffuse(&mut self, rays: &[ViewRay], ray: &RayX8, hit: &HitX8, p: Vec3x8, mask: f32x8) -> [Vec3; 8] {
         let settings = &self.scene.scene.render;
         let facing = lt(ray.dir.dot(hit.normal), f32x8::ZERO);

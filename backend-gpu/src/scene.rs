@@ -148,7 +148,30 @@ impl EncodedScene {
                 s.checker_albedo = [first, t.width, t.height].map(f32::from_bits);
                 s.checker_size = f32::from_bits(texture_flags(t.sampler));
             }
-            if !uvs.is_empty() && s.flags & (SURFACE_HAS_TEXTURE | SURFACE_HAS_COLOUR_MAP) != 0 {
+            // A film's maps: the film's record again, then the minimum
+            // thickness and each map's reference (start, width, height and
+            // sampler flags, as bits; a missing one's unread).
+            let material = &scene.scene.materials[scene.scene.objects[i].material];
+            if let (Some(map), true) = (&material.film_map, s.flags & SURFACE_HAS_FILM != 0) {
+                let mut reference = |t: &Option<Texture>, flag: u32| match t {
+                    Some(t) => {
+                        s.flags |= flag;
+                        let first = *textures.entry((t.texels.as_ptr(), false)).or_insert_with(|| e.texture(t, false));
+                        [first, t.width, t.height, texture_flags(t.sampler)].map(f32::from_bits)
+                    }
+                    None => [0.0; 4],
+                };
+                let (thickness, factor) = (
+                    reference(&map.thickness, SURFACE_FILM_THICKNESS_MAP),
+                    reference(&map.factor, SURFACE_FILM_FACTOR_MAP),
+                );
+                let film = s.film_first as usize;
+                let record: [f32; 3] = e.tables[film..film + 3].try_into().expect("a film's record");
+                s.film_first = e.tables.len() as u32;
+                e.tables.extend(record.into_iter().chain([map.min_nm]).chain(thickness).chain(factor));
+            }
+            let film_maps = SURFACE_FILM_THICKNESS_MAP | SURFACE_FILM_FACTOR_MAP;
+            if !uvs.is_empty() && s.flags & (SURFACE_HAS_TEXTURE | SURFACE_HAS_COLOUR_MAP | film_maps) != 0 {
                 s.uv_first = e.geometry.len() as u32;
                 for uv in uvs {
                     e.geometry.extend([[uv.uv0.x, uv.uv0.y, uv.du1.x, uv.du1.y], [uv.du2.x, uv.du2.y, 0.0, 0.0]]);

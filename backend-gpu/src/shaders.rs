@@ -77,6 +77,16 @@ pub mod kind {
     /// The blended metal's metalness is scaled by the blue channel of its
     /// texture (the roughness map; `Metalness::mapped`).
     pub const SURFACE_METALNESS_MAP: u32 = 65536;
+    /// The film's thickness varies by the green channel of a texture: its
+    /// minimum and the texture's start, width, height and sampler flags
+    /// (as bits) follow the film's record at `film_first`.
+    pub const SURFACE_FILM_THICKNESS_MAP: u32 = 131072;
+    /// The film's factor varies by the red channel of a texture, whose
+    /// reference follows the thickness map's.
+    pub const SURFACE_FILM_FACTOR_MAP: u32 = 262144;
+    /// The film's thickness and factor at a hit are in `emission.xy` (a
+    /// surface copy `surface_at` made; its map flags cleared).
+    pub const SURFACE_FILM_AT_HIT: u32 = 524288;
     /// `Wrap::Repeat`.
     pub const WRAP_REPEAT: u32 = 0;
     /// `Wrap::ClampToEdge`.
@@ -228,6 +238,9 @@ fn prelude(stack: u32) -> String {
     u("SURFACE_HAS_COLOUR_MAP", kind::SURFACE_HAS_COLOUR_MAP);
     u("SURFACE_BLENDED", kind::SURFACE_BLENDED);
     u("SURFACE_METALNESS_MAP", kind::SURFACE_METALNESS_MAP);
+    u("SURFACE_FILM_THICKNESS_MAP", kind::SURFACE_FILM_THICKNESS_MAP);
+    u("SURFACE_FILM_FACTOR_MAP", kind::SURFACE_FILM_FACTOR_MAP);
+    u("SURFACE_FILM_AT_HIT", kind::SURFACE_FILM_AT_HIT);
     u("METAL_ROWS", metals::ROWS as u32);
     u("TEXTURE_WRAP_U_SHIFT", kind::TEXTURE_WRAP_U_SHIFT);
     u("TEXTURE_WRAP_V_SHIFT", kind::TEXTURE_WRAP_V_SHIFT);

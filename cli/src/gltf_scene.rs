@@ -27,8 +27,8 @@ use prismatic_core::geometry::texture::srgb_to_linear;
 use prismatic_core::model::mesh::open_edge;
 use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::{
-    Attenuation, Camera, EnvironmentMap, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, NormalMap, Object,
-    RenderSettings, Sampler, Scene, Shape, Texture, ThinFilm, Wrap, default_ambient,
+    Attenuation, Camera, EnvironmentMap, FilmMap, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, NormalMap,
+    Object, RenderSettings, Sampler, Scene, Shape, Texture, ThinFilm, Wrap, default_ambient,
 };
 use prismatic_core::model::spectrum::Spectrum;
 use prismatic_core::sampling::spot_cone::SpotCone;
@@ -88,7 +88,13 @@ pub fn import_slice(bytes: &[u8], base: Option<&Path>) -> Result<GltfScene, Gltf
     let buffers = gltf::import_buffers(&gltf.document, base, gltf.blob.clone())
         .map_err(|e| GltfError::new("buffers", e.to_string()))?;
     // Images are decoded when a material shows one, each once.
-    let mut images = Images { json: gltf.document.as_json(), base, buffers: &buffers, decoded: HashMap::new() };
+    let mut images = Images {
+        json: gltf.document.as_json(),
+        document: &gltf.document,
+        base,
+        buffers: &buffers,
+        decoded: HashMap::new(),
+    };
     let mut out = GltfScene::default();
     // By glTF material (the default one last): its index in `out.materials`
     // and the transform of its base-colour texture's coordinates.
@@ -317,6 +323,8 @@ fn mesh_shape(
 struct Images<'a> {
     /// The document as written (the gltf crate panics on an image without a source).
     json: &'a gltf::json::Root,
+    /// The document, for textures an extension names by index.
+    document: &'a gltf::Document,
     base: Option<&'a Path>,
     buffers: &'a [gltf::buffer::Data],
     /// By image index, with the default sampler.
@@ -353,25 +361,36 @@ impl Images<'_> {
         unused: &mut Vec<&'static str>,
     ) -> Result<Option<(NormalMap, Option<Affine2>)>, GltfError> {
         let transform = info.extension_value("KHR_texture_transform");
-        let number = |key: &str| transform.and_then(|t| t.get(key)).and_then(serde_json::Value::as_f64);
-        let pair = |key: &str, default: [f32; 2]| {
-            let values = transform.and_then(|t| t.get(key)).and_then(serde_json::Value::as_array);
-            let at = |i: usize| values.and_then(|v| v.get(i)).and_then(serde_json::Value::as_f64);
-            [at(0).map_or(default[0], |x| x as f32), at(1).map_or(default[1], |x| x as f32)]
-        };
-        if number("texCoord").map_or(info.tex_coord(), |c| c as u32) != 0 {
+        if json_tex_coord(transform, info.tex_coord()) != 0 {
             unused.push("normalTexture on a texture coordinate set other than 0");
             return Ok(None);
         }
-        let transform = transform.map(|_| {
-            uv_transform(
-                pair("offset", [0.0, 0.0]),
-                number("rotation").unwrap_or(0.0) as f32,
-                pair("scale", [1.0, 1.0]),
-            )
-        });
         let map = NormalMap { texture: self.texture(&info.texture())?, scale: info.scale() };
-        Ok(Some((map, transform)))
+        Ok(Some((map, transform.map(json_uv_transform))))
+    }
+
+    /// The texture an extension's texture info `info` names (JSON: its
+    /// `index`, `texCoord` and `KHR_texture_transform`; `path` in errors),
+    /// with the transform of its coordinates; `None` (and `other_set` in
+    /// `unused`) when it reads a texture coordinate set other than 0.
+    fn extension_texture(
+        &mut self,
+        info: &serde_json::Value,
+        path: &str,
+        other_set: &'static str,
+        unused: &mut Vec<&'static str>,
+    ) -> Result<Option<(Texture, Option<Affine2>)>, GltfError> {
+        let index = info.get("index").and_then(serde_json::Value::as_u64);
+        let Some(texture) = index.and_then(|i| self.document.textures().nth(i as usize)) else {
+            return Err(GltfError::new(format!("{path}.index"), "must name one of the file's textures"));
+        };
+        let transform = info.get("extensions").and_then(|e| e.get("KHR_texture_transform"));
+        let tex_coord = info.get("texCoord").and_then(serde_json::Value::as_u64).unwrap_or(0) as u32;
+        if json_tex_coord(transform, tex_coord) != 0 {
+            unused.push(other_set);
+            return Ok(None);
+        }
+        Ok(Some((self.texture(&texture)?, transform.map(json_uv_transform))))
     }
 
     /// The image `texture` shows (decoded once) with its sampler.
@@ -518,7 +537,7 @@ fn material(
             true => (tint != Vec3::ONE).then_some(Attenuation { color: tint, distance: 1.0 }),
             false => volume,
         };
-        let film = film(m, &mut unused)?;
+        let film = film(m)?;
         MaterialKind::Dielectric {
             dispersion: dispersion(m),
             outside: Dispersion::Constant(1.0),
@@ -545,7 +564,7 @@ fn material(
                 color: MetalColor::Rgb(Vec3::new(r, g, b).clamp(Vec3::ZERO, Vec3::ONE)),
                 roughness: pbr.roughness_factor(),
                 texture,
-                film: film(m, &mut unused)?,
+                film: film(m)?,
                 metalness,
             },
             None => MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission },
@@ -580,10 +599,21 @@ fn material(
         },
         None => None,
     };
+    // A film's textures vary it (on glass or a metal that has one).
+    let filmed =
+        matches!(kind, MaterialKind::Metal { film: Some(_), .. } | MaterialKind::Dielectric { film: Some(_), .. });
+    let film_map = match film_map(m, images, &mut unused)? {
+        Some((map, transforms)) if filmed && transforms.iter().all(|&t| agrees(t)) => Some(map),
+        Some(_) if filmed => {
+            unused.push("iridescence textures with another KHR_texture_transform than the material's other textures");
+            None
+        }
+        _ => None,
+    };
     if !unused.is_empty() {
         warnings.push(format!("{path} ({name}): left out: {}", unused.join(", ")));
     }
-    let material = Material { normal_map, roughness_map, ..Material::new(name, kind) };
+    let material = Material { normal_map, roughness_map, film_map, ..Material::new(name, kind) };
     Ok((material, transform.flatten()))
 }
 
@@ -653,14 +683,65 @@ fn dispersion(m: &gltf::Material<'_>) -> Dispersion {
     if spread > 0.0 { Dispersion::Abbe { nd: ior, vd: 20.0 / spread } } else { Dispersion::Constant(ior) }
 }
 
+/// The `KHR_texture_transform`s of a material's textures, in turn.
+type UvTransforms = Vec<Option<Affine2>>;
+
+/// The textures of `KHR_materials_iridescence`, each with the transform of
+/// its coordinates: `iridescenceThicknessTexture`, whose green channel g
+/// makes the film `iridescenceThicknessMinimum` (default 100 nm) plus g
+/// times the rest of `iridescenceThicknessMaximum`, and
+/// `iridescenceTexture`, whose red channel scales `iridescenceFactor`;
+/// `None` without either. One on another coordinate set is named in `unused`.
+fn film_map(
+    m: &gltf::Material<'_>,
+    images: &mut Images<'_>,
+    unused: &mut Vec<&'static str>,
+) -> Result<Option<(FilmMap, UvTransforms)>, GltfError> {
+    let Some(ext) = m.extensions().and_then(|e| e.get("KHR_materials_iridescence")) else { return Ok(None) };
+    let path = format!("{}.extensions.KHR_materials_iridescence", material_path(m));
+    let mut transforms = Vec::new();
+    let mut read = |key: &str, other_set: &'static str| -> Result<Option<Texture>, GltfError> {
+        let Some(info) = ext.get(key) else { return Ok(None) };
+        let read = images.extension_texture(info, &format!("{path}.{key}"), other_set, unused)?;
+        Ok(read.map(|(texture, t)| {
+            transforms.push(t);
+            texture
+        }))
+    };
+    let thickness =
+        read("iridescenceThicknessTexture", "iridescenceThicknessTexture on a texture coordinate set other than 0")?;
+    let factor = read("iridescenceTexture", "iridescenceTexture on a texture coordinate set other than 0")?;
+    if thickness.is_none() && factor.is_none() {
+        return Ok(None);
+    }
+    let min_nm = ext.get("iridescenceThicknessMinimum").and_then(serde_json::Value::as_f64).unwrap_or(100.0) as f32;
+    Ok(Some((FilmMap { thickness, min_nm, factor }, transforms)))
+}
+
+/// The texture coordinate set a texture reads: its `KHR_texture_transform`'s
+/// `texCoord` (JSON `transform`) where it has one, else `own`.
+fn json_tex_coord(transform: Option<&serde_json::Value>, own: u32) -> u32 {
+    transform.and_then(|t| t.get("texCoord")).and_then(serde_json::Value::as_u64).map_or(own, |c| c as u32)
+}
+
+/// A `KHR_texture_transform` (JSON) as the affine map of coordinates.
+fn json_uv_transform(transform: &serde_json::Value) -> Affine2 {
+    let number = |key: &str| transform.get(key).and_then(serde_json::Value::as_f64);
+    let pair = |key: &str, default: [f32; 2]| {
+        let values = transform.get(key).and_then(serde_json::Value::as_array);
+        let at = |i: usize| values.and_then(|v| v.get(i)).and_then(serde_json::Value::as_f64);
+        [at(0).map_or(default[0], |x| x as f32), at(1).map_or(default[1], |x| x as f32)]
+    };
+    uv_transform(pair("offset", [0.0, 0.0]), number("rotation").unwrap_or(0.0) as f32, pair("scale", [1.0, 1.0]))
+}
+
 /// The film of `KHR_materials_iridescence` on glass or a metal: `iridescenceIor`
 /// (default 1.3), `iridescenceFactor` (the extension's mix of the film's
 /// and the bare surface's Fresnel; 0, the default, is no film) and,
 /// without a thickness texture, the film is `iridescenceThicknessMaximum`
-/// thick (default 400 nm), as the extension reads a missing texture. What
-/// it leaves out goes to `unused`: the textures (the film is as thick, and
-/// its factor the same, everywhere). A factor above 1 is refused.
-fn film(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Result<Option<ThinFilm>, GltfError> {
+/// thick (default 400 nm), as the extension reads a missing texture (its
+/// textures are [`film_map`]'s). A factor above 1 is refused.
+fn film(m: &gltf::Material<'_>) -> Result<Option<ThinFilm>, GltfError> {
     let Some(ext) = m.extensions().and_then(|e| e.get("KHR_materials_iridescence")) else { return Ok(None) };
     let number = |key: &str, default: f64| ext.get(key).and_then(serde_json::Value::as_f64).unwrap_or(default) as f32;
     let factor = number("iridescenceFactor", 0.0);
@@ -670,12 +751,6 @@ fn film(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Result<Option
     if factor > 1.0 {
         let path = format!("{}.extensions.KHR_materials_iridescence.iridescenceFactor", material_path(m));
         return Err(GltfError::new(path, format!("must be 0 to 1, got {factor}")));
-    }
-    if ext.get("iridescenceTexture").is_some() {
-        unused.push("iridescenceTexture");
-    }
-    if ext.get("iridescenceThicknessTexture").is_some() {
-        unused.push("iridescenceThicknessTexture (the film is iridescenceThicknessMaximum thick)");
     }
     Ok(Some(ThinFilm {
         ior: number("iridescenceIor", 1.3),

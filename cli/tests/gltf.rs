@@ -418,10 +418,68 @@ fn glass_without_a_volume_or_on_an_open_mesh_is_a_thin_sheet() {
     );
 }
 
+/// `KHR_materials_iridescence`'s textures vary a film over the mesh (its
+/// film map: the thickness texture's green from `iridescenceThicknessMinimum`
+/// to the maximum, the iridescence texture's red scaling the factor); one on
+/// another coordinate set is named as left out, and a texture index the
+/// file does not have is refused with its path.
+#[test]
+fn iridescence_textures_vary_the_film_over_the_mesh() {
+    use prismatic_cli::gltf_write::GltfTexture;
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    let oily = GltfTexture { width: 1, height: 1, pixels: vec![[200, 150, 60]], nearest: true, wrap: [10497; 2] };
+    doc.materials[0] = GltfMaterial {
+        metallic: 1.0,
+        roughness: 0.2,
+        base_color_texture: Some(oily),
+        ..GltfMaterial::diffuse("oily", [1.0; 3])
+    };
+    doc.meshes[0].uvs = vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+    let mut json: serde_json::Value = serde_json::from_str(&doc.to_json()).unwrap();
+    json["materials"][0]["extensions"] = serde_json::json!({ "KHR_materials_iridescence": {
+        "iridescenceFactor": 0.9,
+        "iridescenceThicknessMinimum": 120,
+        "iridescenceThicknessMaximum": 480,
+        "iridescenceThicknessTexture": { "index": 0 },
+        "iridescenceTexture": { "index": 0 }
+    } });
+    json["extensionsUsed"].as_array_mut().unwrap().push("KHR_materials_iridescence".into());
+    let load = |json: &serde_json::Value| {
+        let path = dir.path().join("oily.gltf");
+        std::fs::write(&path, json.to_string()).unwrap();
+        prismatic_cli::load_scene(path.to_str().unwrap())
+    };
+    let scene = load(&json).unwrap();
+    scene.validate().unwrap();
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let oily = &scene.scene.materials[0];
+    let MaterialKind::Metal { film, .. } = &oily.kind else { panic!("a metal: {:?}", oily.kind) };
+    assert_eq!(*film, Some(ThinFilm { factor: 0.9, ..ThinFilm::new(1.3, 480.0) }));
+    let map = oily.film_map.as_ref().expect("the film's map");
+    let texel = |t: &Option<prismatic_core::model::scene::Texture>| t.as_ref().expect("a map").texels[0];
+    assert_eq!(
+        (map.min_nm, texel(&map.thickness), texel(&map.factor)),
+        (120.0, 200 | 150 << 8 | 60 << 16, 200 | 150 << 8 | 60 << 16)
+    );
+    // Another coordinate set: left out, named; the thickness map stays.
+    json["materials"][0]["extensions"]["KHR_materials_iridescence"]["iridescenceTexture"]["texCoord"] = 1.into();
+    let scene = load(&json).unwrap();
+    let map = scene.scene.materials[0].film_map.as_ref().expect("the film's map");
+    assert!(map.thickness.is_some() && map.factor.is_none());
+    let warnings = scene.warnings.join("\n");
+    assert!(warnings.contains("iridescenceTexture on a texture coordinate set other than 0"), "{warnings}");
+    // A texture the file does not have.
+    json["materials"][0]["extensions"]["KHR_materials_iridescence"]["iridescenceThicknessTexture"]["index"] = 7.into();
+    let err = load(&json).map(|_| ()).unwrap_err().to_string();
+    let key = "materials[0].extensions.KHR_materials_iridescence.iridescenceThicknessTexture.index";
+    assert!(err.contains(key), "{err}");
+}
+
 /// `KHR_materials_iridescence` on glass or a metal is a film of its index
-/// and maximum thickness, mixed by its factor; what the film cannot carry
-/// yet is named, on a diffuse material the whole extension is, and a
-/// factor above 1 is refused with its path.
+/// and maximum thickness, mixed by its factor; on a diffuse material the
+/// whole extension is named as left out, and a factor above 1 is refused
+/// with its path.
 #[test]
 fn iridescence_on_glass_is_a_thin_film() {
     let dir = tempfile::tempdir().unwrap();
@@ -449,8 +507,7 @@ fn iridescence_on_glass_is_a_thin_film() {
             "iridescenceFactor": 0.5,
             "iridescenceIor": 1.8,
             "iridescenceThicknessMinimum": 200,
-            "iridescenceThicknessMaximum": 650,
-            "iridescenceThicknessTexture": { "index": 0 }
+            "iridescenceThicknessMaximum": 650
         }),
     );
     json["materials"][1]["extensions"] = serde_json::Value::Object(glass.clone());
@@ -458,7 +515,7 @@ fn iridescence_on_glass_is_a_thin_film() {
     // A factor below 1 is the extension's mix of the film's and the bare Fresnel.
     assert_eq!(film(&scene), Some(ThinFilm { factor: 0.5, ..ThinFilm::new(1.8, 650.0) }));
     let warnings = scene.warnings.join("\n");
-    assert!(warnings.contains("iridescenceThicknessTexture") && !warnings.contains("iridescenceFactor"), "{warnings}");
+    assert!(!warnings.contains("iridescence"), "{warnings}");
     // A factor above 1 is invalid (the extension's schema says at most 1).
     glass.insert("KHR_materials_iridescence".into(), serde_json::json!({ "iridescenceFactor": 1.5 }));
     json["materials"][1]["extensions"] = serde_json::Value::Object(glass.clone());

@@ -15,7 +15,7 @@ use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::environment::EnvironmentMap;
 use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::{
-    Attenuation, Camera, Checker, Filter, Light, Material, MaterialKind, NormalMap, Object, PhotonSequence,
+    Attenuation, Camera, Checker, FilmMap, Filter, Light, Material, MaterialKind, NormalMap, Object, PhotonSequence,
     RenderSettings, Sampler, Shape, Texture, ThinFilm, Wrap,
 };
 use prismatic_core::{BandSpec, Estimator, MetalColor, NamedMetal, PreparedScene, Scene};
@@ -324,10 +324,11 @@ pub fn rippled_mirror() -> PreparedScene {
 /// The mirror's beam folded by a rough gold square instead (its colour
 /// scaled by a texture of four tiles, gold, grey, rose and pale) onto a
 /// round floor, the gold worn through to a diffuse base texel by texel
-/// (a metalness of 0.9 times a map's), beside a polished ball of measured
+/// (a metalness of 0.9 times a map's) under a film whose thickness a map
+/// varies, beside a polished ball of measured
 /// copper under a patchy film of its oxide (a factor of 0.6), with
 /// indirect light: metals' facets, coloured Fresnel texel by texel, a
-/// blended metal's two parts and a partial film's over a complex index,
+/// blended metal's two parts, a film map's films and a partial film's over a complex index,
 /// in caustic and indirect photons and in view.
 pub fn metals() -> PreparedScene {
     let mut scene = mirror().scene;
@@ -347,6 +348,20 @@ pub fn metals() -> PreparedScene {
     // (whole, a third, none, most), its green keeping the roughness.
     let MaterialKind::Metal { metalness, .. } = &mut scene.materials[1].kind else { unreachable!("gold") };
     *metalness = Metalness { factor: 0.9, mapped: true };
+    // Under a film of an oxide, 120 to 350 nm thick across the tiles.
+    let MaterialKind::Metal { film, .. } = &mut scene.materials[1].kind else { unreachable!("gold") };
+    *film = Some(ThinFilm { factor: 0.7, ..ThinFilm::new(1.8, 350.0) });
+    scene.materials[1].film_map = Some(FilmMap {
+        thickness: Some(Texture {
+            name: "tint".into(),
+            width: 2,
+            height: 2,
+            texels: [0u32, 90, 180, 255].iter().map(|&g| g << 8).collect::<Vec<u32>>().into(),
+            sampler: Sampler { filter: Filter::Linear, wrap_u: Wrap::Repeat, wrap_v: Wrap::Repeat },
+        }),
+        min_nm: 120.0,
+        factor: None,
+    });
     scene.materials[1].roughness_map = Some(Texture {
         name: "worn".into(),
         width: 2,

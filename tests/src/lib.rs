@@ -30,6 +30,7 @@ pub fn white(name: &str) -> Material {
         kind: MaterialKind::Diffuse { albedo: Vec3::splat(0.8), checker: None, texture: None, emission: Vec3::ZERO },
         normal_map: None,
         roughness_map: None,
+        film_map: None,
     }
 }
 
@@ -47,6 +48,7 @@ pub fn glass(name: &str, dispersion: Dispersion) -> Material {
         },
         normal_map: None,
         roughness_map: None,
+        film_map: None,
     }
 }
 
@@ -244,6 +246,7 @@ pub fn view_through_a_sheet(sheet: Material) -> PreparedScene {
         kind: MaterialKind::Diffuse { albedo: Vec3::ZERO, checker: None, texture: None, emission: Vec3::ZERO },
         normal_map: None,
         roughness_map: None,
+        film_map: None,
     };
     let square =
         [Vec3::new(0.0, -2.0, -2.0), Vec3::new(0.0, 2.0, -2.0), Vec3::new(0.0, 2.0, 2.0), Vec3::new(0.0, -2.0, 2.0)];

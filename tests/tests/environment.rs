@@ -24,6 +24,7 @@ fn floor() -> (Material, Object) {
         kind: MaterialKind::Diffuse { albedo: Vec3::splat(ALBEDO), checker: None, texture: None, emission: Vec3::ZERO },
         normal_map: None,
         roughness_map: None,
+        film_map: None,
     };
     (m, Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 })
 }

@@ -20,6 +20,7 @@ fn diffuse(name: &str, albedo: Vec3, emission: Vec3) -> Material {
         kind: MaterialKind::Diffuse { albedo, checker: None, texture: None, emission },
         normal_map: None,
         roughness_map: None,
+        film_map: None,
     }
 }
 

@@ -8,6 +8,7 @@ mod coloured_glass;
 mod docs_links;
 mod effects;
 mod environment;
+mod film_maps;
 mod fuzz_scene_file;
 mod gather;
 mod gpu_session;

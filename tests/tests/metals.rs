@@ -41,6 +41,7 @@ fn metal(color: Vec3, roughness: f32) -> Material {
         },
         normal_map: None,
         roughness_map: None,
+        film_map: None,
     }
 }
 
@@ -154,6 +155,7 @@ fn measured_gold_reflects_each_wavelength_by_its_complex_index() {
         },
         normal_map: None,
         roughness_map: None,
+        film_map: None,
     };
     let mut scene = folded_beam(gold, PHOTONS, BandSpec::Physical(16));
     scene.render.wavelengths = WavelengthSampling::Continuous;

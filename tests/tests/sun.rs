@@ -30,6 +30,7 @@ fn scene(photons: u32) -> PreparedScene {
         kind: MaterialKind::Diffuse { albedo: Vec3::splat(ALBEDO), checker: None, texture: None, emission: Vec3::ZERO },
         normal_map: None,
         roughness_map: None,
+        film_map: None,
     };
     prepare(Scene {
         render,

@@ -33,6 +33,7 @@ fn coated_sheet() -> Material {
         },
         normal_map: None,
         roughness_map: None,
+        film_map: None,
     }
 }
 

@@ -68,6 +68,33 @@ fn metal_at(hit: Hit, s: GpuSurface) -> GpuSurface {
     return m;
 }
 
+// The surface `s` at `hit`: a metal's colour there (metal_at) and a
+// film's thickness and factor as its maps say there (PreparedScene::film_at:
+// in emission.xy, SURFACE_FILM_AT_HIT set and the map flags cleared).
+fn surface_at(hit: Hit, s: GpuSurface) -> GpuSurface {
+    var m = metal_at(hit, s);
+    let maps = SURFACE_FILM_THICKNESS_MAP | SURFACE_FILM_FACTOR_MAP;
+    if (s.flags & maps) == 0u {
+        return m;
+    }
+    let f = s.film_first;
+    let uv = texture_coordinates(objects[hit.object], s, hit.triangle, hit.point);
+    var thickness = tables[f + 1u];
+    var factor = tables[f + 2u];
+    if (s.flags & SURFACE_FILM_THICKNESS_MAP) != 0u {
+        let min_nm = tables[f + 3u];
+        let t = bitcast<vec4<u32>>(vec4<f32>(tables[f + 4u], tables[f + 5u], tables[f + 6u], tables[f + 7u]));
+        thickness = min_nm + sample_texture(TextureRef(t.x, t.y, t.z, t.w), uv).y * (thickness - min_nm);
+    }
+    if (s.flags & SURFACE_FILM_FACTOR_MAP) != 0u {
+        let t = bitcast<vec4<u32>>(vec4<f32>(tables[f + 8u], tables[f + 9u], tables[f + 10u], tables[f + 11u]));
+        factor *= sample_texture(TextureRef(t.x, t.y, t.z, t.w), uv).x;
+    }
+    m.emission = vec3<f32>(thickness, factor, 0.0);
+    m.flags = (m.flags & ~maps) | SURFACE_FILM_AT_HIT;
+    return m;
+}
+
 // PreparedScene::metalness_at: the metalness of the metal `s` at `hit`
 // (1: a whole metal), its factor times the blue channel of its roughness
 // map where SURFACE_METALNESS_MAP.

@@ -33,7 +33,7 @@ fn metal_filmed(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> f32 {
         let r = sqrt(min(bounce_reflectance(s.albedo, band, lambda_nm), MAX_FILMED_F0));
         base = vec2<f32>((1.0 + r) / (1.0 - r), 0.0);
     }
-    let film = vec3<f32>(tables[s.film_first], tables[s.film_first + 1u], tables[s.film_first + 2u]);
+    let film = surface_film(s);
     return thin_film_on(c, 1.0, film.x, base, film.y, film.z, lambda_nm);
 }
 

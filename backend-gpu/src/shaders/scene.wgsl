@@ -533,6 +533,16 @@ fn path_ior(s: GpuSurface, band: u32, lambda_nm: f32) -> f32 {
     return n + (curve_at(s, lambda_nm) - curve_at(s, bands[band].lambda_nm));
 }
 
+// The film of the surface `s` (SURFACE_HAS_FILM): its index, thickness
+// and factor, as they are at the hit where surface_at made `s`.
+fn surface_film(s: GpuSurface) -> vec3<f32> {
+    let f = s.film_first;
+    if (s.flags & SURFACE_FILM_AT_HIT) != 0u {
+        return vec3<f32>(tables[f], s.emission.x, s.emission.y);
+    }
+    return vec3<f32>(tables[f], tables[f + 1u], tables[f + 2u]);
+}
+
 // DielectricOptics::face: the path's index, and the film seen at its own
 // wavelength, else its band's centre, else (white) the middle band's.
 fn path_face(s: GpuSurface, band: u32, lambda_nm: f32) -> Face {
@@ -548,8 +558,8 @@ fn path_face(s: GpuSurface, band: u32, lambda_nm: f32) -> Face {
         }
         lambda = bands[b].lambda_nm;
     }
-    let film = s.film_first;
-    return Face(ior, is_sheet(s), tables[film], tables[film + 1u], tables[film + 2u], lambda);
+    let film = surface_film(s);
+    return Face(ior, is_sheet(s), film.x, film.y, film.z, lambda);
 }
 
 struct SpectrumSample {

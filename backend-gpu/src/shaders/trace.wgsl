@@ -101,7 +101,7 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
         if !reach(p, hit.t) {
             return FOLLOW_END;
         }
-        let s = metal_at(hit, surfaces[hit.object]);
+        let s = surface_at(hit, surfaces[hit.object]);
         let blended = (s.flags & SURFACE_BLENDED) != 0u;
         if s.kind == SURFACE_DIFFUSE || blended {
             if (*p).bounces == 0u {
@@ -263,7 +263,7 @@ fn trace_indirect(index: u32) {
         if !reach(&p, hit.t) {
             break;
         }
-        let s = metal_at(hit, surfaces[hit.object]);
+        let s = surface_at(hit, surfaces[hit.object]);
         let blended = (s.flags & SURFACE_BLENDED) != 0u;
         if (s.kind == SURFACE_DIFFUSE || blended) && bounced {
             store_carried(&p, &c, hit.point, index);
@@ -511,7 +511,7 @@ fn trace_emitted(index: u32) {
             white = p;
             n = split_paths();
             tally_counts[1] += n - 1u;
-            s = metal_at(hit, surfaces[hit.object]);
+            s = surface_at(hit, surfaces[hit.object]);
             if params.wavelengths != WAVELENGTHS_SPLIT {
                 u = photon_f32(params.seed, index, DIM_SPECTRUM);
             }

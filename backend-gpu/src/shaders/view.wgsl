@@ -446,7 +446,7 @@ fn visit(e: Pending) -> vec3<f32> {
         return sum;
     }
     let q = light_query;
-    return sum + q.e.tint * surface_light(q.e, q.hit, metal_at(q.hit, surfaces[q.hit.object]), q.face);
+    return sum + q.e.tint * surface_light(q.e, q.hit, surface_at(q.hit, surfaces[q.hit.object]), q.face);
 }
 
 // ViewContext::blended_metal: the share m of a path `e` that goes on as a
@@ -457,6 +457,13 @@ fn metal_part(e: Pending, m: f32) -> f32 {
         return 0.0;
     }
     return m;
+}
+
+// What a band of the split entry `e` (at its glass's hit) meets there:
+// the band's index, and the film as it is at that point.
+fn split_face(e: Pending, band: u32, lambda_nm: f32) -> Face {
+    let at = Hit(true, 0.0, e.origin, e.normal, e.object, e.triangle);
+    return path_face(surface_at(at, surfaces[e.object]), band, lambda_nm);
 }
 
 // What entry `e` adds to the pixel, less the light of the surface it met
@@ -480,7 +487,7 @@ fn visit_path(e: Pending) -> vec3<f32> {
         var hero = e;
         hero.hero = i;
         hero.lambda_nm = s.lambda_nm;
-        let face = path_face(surfaces[e.object], s.band, s.lambda_nm);
+        let face = split_face(e, s.band, s.lambda_nm);
         through_dielectric(hero, face, s.band, e.weight * max_abs(w), e.tint * w);
         return vec3<f32>(0.0);
     }
@@ -494,7 +501,7 @@ fn visit_path(e: Pending) -> vec3<f32> {
             spawn(rest);
         }
         let band = bands[b];
-        let face = path_face(surfaces[e.object], b, -1.0);
+        let face = split_face(e, b, -1.0);
         through_dielectric(e, face, b, e.weight * band.max_weight, e.tint * band.weight);
         return vec3<f32>(0.0);
     }
@@ -502,7 +509,7 @@ fn visit_path(e: Pending) -> vec3<f32> {
     if !hit.ok {
         return e.tint * background(e.dir);
     }
-    let s = metal_at(hit, surfaces[hit.object]);
+    let s = surface_at(hit, surfaces[hit.object]);
     if s.kind == SURFACE_DIFFUSE {
         light_query = LightQuery(true, e, hit, bare_face(1.0, false));
         return vec3<f32>(0.0);

@@ -22,9 +22,9 @@ use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::metals::{MetalColor, NamedMetal};
 use prismatic_core::model::scene::{
-    Attenuation, Camera, Checker, EnvironmentMap, Estimator, Filter, Light, Material, MaterialKind, NormalMap, Object,
-    PhotonSequence, RadiusMode, RenderSettings, Sampler, Shape, Texture, ThinFilm, ViewPaths, WavelengthSampling,
-    WhitePoint, Wrap, default_ambient,
+    Attenuation, Camera, Checker, EnvironmentMap, Estimator, FilmMap, Filter, Light, Material, MaterialKind, NormalMap,
+    Object, PhotonSequence, RadiusMode, RenderSettings, Sampler, Shape, Texture, ThinFilm, ViewPaths,
+    WavelengthSampling, WhitePoint, Wrap, default_ambient,
 };
 use prismatic_core::model::spectrum::Spectrum;
 use prismatic_core::{Scene, Vec3};
@@ -77,6 +77,7 @@ impl Reader<'_> {
                     kind: self.material(&mt)?,
                     normal_map: self.normal_map(&mt)?,
                     roughness_map: self.roughness_map(&mt)?,
+                    film_map: self.film_map(&mt)?,
                 });
             }
         }
@@ -356,6 +357,9 @@ impl Reader<'_> {
                         "film_thickness_nm",
                         "film_ior",
                         "film_factor",
+                        "film_thickness_map",
+                        "film_min_nm",
+                        "film_factor_map",
                         "roughness",
                         "roughness_map",
                         "normal_map",
@@ -397,6 +401,9 @@ impl Reader<'_> {
                         "film_thickness_nm",
                         "film_ior",
                         "film_factor",
+                        "film_thickness_map",
+                        "film_min_nm",
+                        "film_factor_map",
                         "metalness",
                         "metalness_from_map",
                         "normal_map",
@@ -513,10 +520,34 @@ impl Reader<'_> {
     /// scene whose green channel, read as linear values, scales its
     /// `roughness` texel by texel (a grey image: its grey).
     fn roughness_map(&self, t: &Table<'_, '_>) -> Result<Option<Texture>> {
-        let Some(v) = self.get(t, "roughness_map") else { return Ok(None) };
-        let key = join(&t.key, "roughness_map");
+        self.linear_image(t, "roughness_map")
+    }
+
+    /// An image file beside the scene at `key` of `t`, read as linear values.
+    fn linear_image(&self, t: &Table<'_, '_>, key: &str) -> Result<Option<Texture>> {
+        let Some(v) = self.get(t, key) else { return Ok(None) };
+        let key = join(&t.key, key);
         let path = self.beside(self.string(&key, v)?);
         texture_file::load(&path, Sampler::default()).map(Some).map_err(|e| self.err(&key, &v.span(), e))
+    }
+
+    /// A film's maps (glTF's iridescence textures): `film_thickness_map`,
+    /// whose green channel g makes the film `film_min_nm` (default 0) plus
+    /// g times the rest of `film_thickness_nm` thick, and
+    /// `film_factor_map`, whose red channel scales `film_factor`; both
+    /// images beside the scene, read as linear values.
+    fn film_map(&self, t: &Table<'_, '_>) -> Result<Option<FilmMap>> {
+        let (thickness, factor) =
+            (self.linear_image(t, "film_thickness_map")?, self.linear_image(t, "film_factor_map")?);
+        let min_nm = self.opt(t, "film_min_nm", Self::float)?;
+        if let (None, Some(v)) = (&thickness, self.get(t, "film_min_nm")) {
+            let reason = "the thinnest a film_thickness_map makes the film; there is no film_thickness_map";
+            return Err(self.err(&join(&t.key, "film_min_nm"), &v.span(), reason));
+        }
+        if thickness.is_none() && factor.is_none() {
+            return Ok(None);
+        }
+        Ok(Some(FilmMap { thickness, min_nm: min_nm.unwrap_or(0.0), factor }))
     }
 
     /// A light's `spectrum`: a name (`"D65"`, `"mercury"`, …), `{ blackbody = K }`,

@@ -864,13 +864,34 @@ pub struct Material {
     /// its blue channel scales a metal's metalness where
     /// [`Metalness::mapped`]); `None`: its roughness everywhere.
     pub roughness_map: Option<Texture>,
+    /// Varies its film's thickness and factor by texel (a mesh's with
+    /// texture coordinates; glTF's iridescence textures); `None`: the
+    /// film is the same everywhere.
+    pub film_map: Option<FilmMap>,
 }
 
 impl Material {
-    /// A material of `kind` named `name`, without a normal or roughness map.
+    /// A material of `kind` named `name`, without a normal, roughness or film map.
     pub fn new(name: impl Into<String>, kind: MaterialKind) -> Self {
-        Material { name: name.into(), kind, normal_map: None, roughness_map: None }
+        Material { name: name.into(), kind, normal_map: None, roughness_map: None, film_map: None }
     }
+}
+
+/// Where a glass's or metal's film varies over a mesh (glTF's
+/// `iridescenceThicknessTexture` and `iridescenceTexture`), read as linear
+/// values at the mesh's texture coordinates
+/// ([`crate::plan::prepared::PreparedScene::film_at`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct FilmMap {
+    /// Its green channel g makes the film `min_nm` + g (`thickness_nm` −
+    /// `min_nm`) thick, `thickness_nm` the film's own (glTF's
+    /// `iridescenceThicknessMaximum`); `None`: the film's thickness everywhere.
+    pub thickness: Option<Texture>,
+    /// The film's thickness where the thickness map's green channel is 0
+    /// (glTF's `iridescenceThicknessMinimum`, in nanometres).
+    pub min_nm: f32,
+    /// Its red channel scales the film's factor; `None`: the factor everywhere.
+    pub factor: Option<Texture>,
 }
 
 /// The geometry of an object.

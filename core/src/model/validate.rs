@@ -9,7 +9,7 @@ use crate::model::environment::MAX_ENVIRONMENT_SIDE;
 use crate::model::metalness::Metalness;
 use crate::model::metals::MetalColor;
 use crate::model::scene::{
-    Attenuation, Light, MAX_AREA_LIGHTS, MAX_DEPTH, MAX_ENVIRONMENT_LIGHTS, MAX_FILM_NM, MAX_IMAGE_SIDE,
+    Attenuation, FilmMap, Light, MAX_AREA_LIGHTS, MAX_DEPTH, MAX_ENVIRONMENT_LIGHTS, MAX_FILM_NM, MAX_IMAGE_SIDE,
     MAX_MESH_TRIANGLES, MAX_PHOTONS, MAX_TEXTURE_SIDE, Material, MaterialKind, Scene, SceneError, Shape, Texture,
     ThinFilm,
 };
@@ -131,7 +131,13 @@ impl Scene {
                 | MaterialKind::Metal { texture: Some(texture), .. } => Some(("texture", texture)),
                 _ => material.normal_map.as_ref().map(|map| ("normal map", &map.texture)),
             }
-            .or(material.roughness_map.as_ref().map(|t| ("roughness map", t)));
+            .or(material.roughness_map.as_ref().map(|t| ("roughness map", t)))
+            .or(material
+                .film_map
+                .iter()
+                .flat_map(|m| m.thickness.iter().chain(&m.factor))
+                .next()
+                .map(|t| ("film map", t)));
             let has_uvs = matches!(&object.shape, Shape::Mesh { uvs, .. } if !uvs.is_empty());
             if let (Some((what, texture)), false) = (image, has_uvs) {
                 return Err(c.err(
@@ -377,6 +383,9 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             return Err(c.err("roughness_map", reason));
         }
     }
+    if let Some(map) = &m.film_map {
+        validate_film_map(c, map, &m.kind)?;
+    }
     if let MaterialKind::Metal { film, metalness, .. } = &m.kind {
         if let Some(f) = film {
             validate_film(c, f, bands)?;
@@ -431,6 +440,25 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             }
         }
     }
+}
+
+fn validate_film_map(c: &Check<'_>, map: &FilmMap, kind: &MaterialKind) -> Result<(), SceneError> {
+    for (key, texture) in [("film_thickness_map", &map.thickness), ("film_factor_map", &map.factor)] {
+        if let Some(t) = texture {
+            validate_texture(c, key, t)?;
+        }
+    }
+    let has_film =
+        matches!(kind, MaterialKind::Metal { film: Some(_), .. } | MaterialKind::Dielectric { film: Some(_), .. });
+    if !has_film {
+        let key = if map.thickness.is_some() { "film_thickness_map" } else { "film_factor_map" };
+        return Err(c.err(key, "varies a film; this material has none (give film_thickness_nm)"));
+    }
+    c.non_negative("film_min_nm", map.min_nm)?;
+    if map.min_nm > MAX_FILM_NM {
+        return Err(c.err("film_min_nm", format!("must be at most {MAX_FILM_NM} nm, got {}", map.min_nm)));
+    }
+    Ok(())
 }
 
 fn validate_metalness(c: &Check<'_>, metalness: &Metalness, has_map: bool) -> Result<(), SceneError> {

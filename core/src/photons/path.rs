@@ -148,7 +148,7 @@ pub(crate) fn cross_specular(
         }
         Surface::Dielectric(glass) => {
             let u = random_f32(seed, index, dim::scatter(p.band, p.bounces));
-            let face = glass.face(p.band, p.lambda_nm, &scene.bands);
+            let face = scene.face(glass, hit, p.band, p.lambda_nm);
             let before = p.ray.direction;
             let crossed = match scene.facets(hit) {
                 None => {

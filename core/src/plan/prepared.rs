@@ -7,11 +7,12 @@ use crate::geometry::primitive::{Primitive, Ray, prism_faces};
 use crate::geometry::shading::{TriangleNormals, shading_normal};
 use crate::geometry::texture::{TriangleUv, sample, sample_linear};
 use crate::model::bands::BandTable;
-use crate::model::scene::{Light, MaterialKind, Scene, SceneError, Shape};
+use crate::model::scene::{Light, MaterialKind, Scene, SceneError, Shape, ThinFilm};
 use crate::model::spectrum::Spectrum;
 use crate::optics::metal::MetalOptics;
 use crate::optics::microfacet::Ggx;
-use crate::optics::surface::Surface;
+use crate::optics::scatter::Face;
+use crate::optics::surface::{DielectricOptics, Surface};
 use crate::plan::area::AreaLights;
 use crate::plan::drawn_suns::DrawnSuns;
 use crate::plan::drawn_triangles::DrawnTriangles;
@@ -138,7 +139,8 @@ impl PreparedScene {
                     if matches!(s, Surface::Diffuse { texture: Some(_), .. })
                         || matches!(s, Surface::Metal(m) if m.textured)
                         || scene.materials[o.material].normal_map.is_some()
-                        || scene.materials[o.material].roughness_map.is_some() =>
+                        || scene.materials[o.material].roughness_map.is_some()
+                        || scene.materials[o.material].film_map.is_some() =>
                 {
                     bvh.sources
                         .iter()
@@ -421,10 +423,47 @@ impl PreparedScene {
     /// `hit`: its facets ([`PreparedScene::facets`]) and its reflectance at
     /// normal incidence times its colour texture there, read as a diffuse
     /// surface's base colour is (sRGB decoded, bilinearly or by nearest
-    /// texel as its sampler says, at the mesh's texture coordinates).
+    /// texel as its sampler says, at the mesh's texture coordinates), and
+    /// its film there ([`PreparedScene::film_at`]).
     #[inline]
     pub fn metal_at(&self, metal: &MetalOptics, hit: &Hit) -> MetalOptics {
-        MetalOptics { ggx: self.facets(hit), ..self.metal_colour_at(metal, hit) }
+        MetalOptics { ggx: self.facets(hit), film: self.film_at(metal.film, hit), ..self.metal_colour_at(metal, hit) }
+    }
+
+    /// What a path of `band` (at its own wavelength `lambda_nm` when it has
+    /// one) meets where `hit` is on `glass` (the surface of the object it
+    /// met): [`DielectricOptics::face`] with the film as it is there
+    /// ([`PreparedScene::film_at`]).
+    #[inline]
+    pub fn face(&self, glass: &DielectricOptics, hit: &Hit, band: u16, lambda_nm: Option<f32>) -> Face {
+        let face = glass.face(band, lambda_nm, &self.bands);
+        Face { film: self.film_at(face.film, hit), ..face }
+    }
+
+    /// The film `film` of the surface of the object `hit` met, as it is at
+    /// `hit`: its thickness and factor as its material's film map says
+    /// there ([`FilmMap`](crate::model::scene::FilmMap), read as linear values, bilinearly or by nearest
+    /// texel as each map's sampler says, at the mesh's texture
+    /// coordinates), else as it is everywhere.
+    #[inline]
+    pub fn film_at(&self, film: Option<ThinFilm>, hit: &Hit) -> Option<ThinFilm> {
+        let film = film?;
+        let material = &self.scene.materials[self.scene.objects[hit.object].material];
+        let (Some(map), Primitive::Mesh(bvh), Some(uv)) =
+            (&material.film_map, &self.primitives[hit.object], self.texture_uvs[hit.object].get(hit.triangle as usize))
+        else {
+            return Some(film);
+        };
+        let uv = uv.at(&bvh.triangles[hit.triangle as usize], hit.point);
+        let thickness_nm = match &map.thickness {
+            Some(t) => map.min_nm + sample_linear(t, uv).y * (film.thickness_nm - map.min_nm),
+            None => film.thickness_nm,
+        };
+        let factor = match &map.factor {
+            Some(t) => film.factor * sample_linear(t, uv).x,
+            None => film.factor,
+        };
+        Some(ThinFilm { thickness_nm, factor, ..film })
     }
 
     /// The metalness of `metal` (the surface of the object `hit` met) at

@@ -83,7 +83,7 @@ fn first_diffuse(scene: &PreparedScene, ray: &Ray, weight: f32, depth: u32) -> (
             first_diffuse(scene, &Ray { origin: offset_origin(hit.point, normal, d), direction: d }, weight, depth + 1)
         }
         Surface::Dielectric(glass) => {
-            let face = glass.face(WHITE_BAND, None, &scene.bands);
+            let face = scene.face(glass, &hit, WHITE_BAND, None);
             let split = split_dielectric(ray.direction, hit.point, normal, face);
             let (r, t) = (split.reflectance, 1.0 - split.reflectance);
             let mut sum = (Vec3::ZERO, Vec3::ZERO);

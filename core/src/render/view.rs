@@ -185,7 +185,7 @@ impl<'a> ViewContext<'a> {
                     .map(|HeroViewPath { hero, band, lambda_nm, weight: w }| {
                         let share = weight * w.abs().max_element();
                         let p = ViewPath { band, hero, lambda_nm, weight: share, tint: tint * w, ..path };
-                        w * self.through_dielectric(ray, &hit, (self.face(glass, &p), glass), p, points)
+                        w * self.through_dielectric(ray, &hit, (self.face(glass, &hit, &p), glass), p, points)
                     })
                     .sum(),
                 None => self
@@ -198,13 +198,13 @@ impl<'a> ViewContext<'a> {
                         // The band's share of the pixel bounds what its branches can add.
                         let share = weight * info.weight.abs().max_element();
                         let band_path = ViewPath { band: b as u16, weight: share, tint: tint * info.weight, ..path };
-                        let face = glass.face(b as u16, None, &self.scene.bands);
+                        let face = self.scene.face(glass, &hit, b as u16, None);
                         info.weight * self.through_dielectric(ray, &hit, (face, glass), band_path, points)
                     })
                     .sum(),
             },
             Surface::Dielectric(glass) => {
-                self.through_dielectric(ray, &hit, (self.face(glass, &path), glass), path, points)
+                self.through_dielectric(ray, &hit, (self.face(glass, &hit, &path), glass), path, points)
             }
             Surface::Diffuse { .. } => unreachable!("shaded above"),
         }
@@ -262,10 +262,10 @@ impl<'a> ViewContext<'a> {
         sum
     }
 
-    /// What `path` meets at `glass`: its band's index, or at its own
-    /// wavelength, and the film at that wavelength.
-    fn face(&self, glass: &DielectricOptics, path: &ViewPath) -> Face {
-        glass.face(path.band, path.lambda_nm, &self.scene.bands)
+    /// What `path` meets at `glass` where `hit` is: its band's index, or at
+    /// its own wavelength, and the film there at that wavelength.
+    fn face(&self, glass: &DielectricOptics, hit: &Hit, path: &ViewPath) -> Face {
+        self.scene.face(glass, hit, path.band, path.lambda_nm)
     }
 
     /// Fresnel-weighted reflection plus refraction at a dielectric hit

@@ -325,7 +325,13 @@ fn build_scene(
             _ => return Err(format!("object {i} needs exactly one of Glass and Receiver")),
         };
         scene_objects.push(Object { shape: placed(&shape.0, at), material: scene_materials.len() });
-        scene_materials.push(Material { name: format!("object{i}"), kind, normal_map: None, roughness_map: None });
+        scene_materials.push(Material {
+            name: format!("object{i}"),
+            kind,
+            normal_map: None,
+            roughness_map: None,
+            film_map: None,
+        });
     }
     let mesh = |handle: &Mesh3d, at, what: &str, uv_transform| {
         meshes

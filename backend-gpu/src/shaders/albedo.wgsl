@@ -11,7 +11,7 @@ fn albedo_at(hit: Hit, n: vec3<f32>) -> vec3<f32> {
     let s = surfaces[hit.object];
     if s.kind == SURFACE_METAL {
         // A blended metal's diffuse part: its F0 there.
-        return metal_at(hit, s).albedo;
+        return surface_at(hit, s).albedo;
     }
     var base = s.albedo;
     if (s.flags & SURFACE_HAS_CHECKER) != 0u {
@@ -51,47 +51,48 @@ fn facets_alpha(hit: Hit, s: GpuSurface) -> f32 {
     return select(0.0, max(scaled, MIN_ALPHA), scaled > 0.0);
 }
 
-// PreparedScene::metal_at's colour: the metal `s` at `hit` with its F0
-// scaled by its colour texture there (SURFACE_HAS_COLOUR_MAP, then
-// cleared: the returned surface's F0 is the point's). Its facets stay
-// facets_alpha's.
-fn metal_at(hit: Hit, s: GpuSurface) -> GpuSurface {
-    if (s.flags & SURFACE_HAS_COLOUR_MAP) == 0u {
+// The surface `s` at `hit` as its maps make it there, in a copy: a
+// metal's F0 times its colour texture (PreparedScene::metal_at's colour;
+// SURFACE_HAS_COLOUR_MAP cleared) and a film's thickness and factor as
+// its maps say (PreparedScene::film_at: in emission.xy,
+// SURFACE_FILM_AT_HIT set and the map flags cleared). The maps are read
+// in one loop, so each call compiles one copy of sample_texture. A metal's
+// facets stay facets_alpha's.
+fn surface_at(hit: Hit, s: GpuSurface) -> GpuSurface {
+    let films = SURFACE_FILM_THICKNESS_MAP | SURFACE_FILM_FACTOR_MAP;
+    if (s.flags & (SURFACE_HAS_COLOUR_MAP | films)) == 0u {
         return s;
     }
     var m = s;
-    let bits = bitcast<vec3<u32>>(s.checker_albedo);
-    let colour = TextureRef(bits.x, bits.y, bits.z, bitcast<u32>(s.checker_size));
-    let uv = texture_coordinates(objects[hit.object], s, hit.triangle, hit.point);
-    m.albedo = s.albedo * sample_texture(colour, uv);
-    m.flags = s.flags & ~SURFACE_HAS_COLOUR_MAP;
-    return m;
-}
-
-// The surface `s` at `hit`: a metal's colour there (metal_at) and a
-// film's thickness and factor as its maps say there (PreparedScene::film_at:
-// in emission.xy, SURFACE_FILM_AT_HIT set and the map flags cleared).
-fn surface_at(hit: Hit, s: GpuSurface) -> GpuSurface {
-    var m = metal_at(hit, s);
-    let maps = SURFACE_FILM_THICKNESS_MAP | SURFACE_FILM_FACTOR_MAP;
-    if (s.flags & maps) == 0u {
-        return m;
-    }
     let f = s.film_first;
+    if (s.flags & films) != 0u {
+        m.emission = vec3<f32>(tables[f + 1u], tables[f + 2u], 0.0);
+        m.flags |= SURFACE_FILM_AT_HIT;
+    }
+    m.flags &= ~(SURFACE_HAS_COLOUR_MAP | films);
     let uv = texture_coordinates(objects[hit.object], s, hit.triangle, hit.point);
-    var thickness = tables[f + 1u];
-    var factor = tables[f + 2u];
-    if (s.flags & SURFACE_FILM_THICKNESS_MAP) != 0u {
-        let min_nm = tables[f + 3u];
-        let t = bitcast<vec4<u32>>(vec4<f32>(tables[f + 4u], tables[f + 5u], tables[f + 6u], tables[f + 7u]));
-        thickness = min_nm + sample_texture(TextureRef(t.x, t.y, t.z, t.w), uv).y * (thickness - min_nm);
+    // 0: the colour map (its reference in the checker's fields); 1, 2: the
+    // film's thickness and factor maps (theirs after the film's record).
+    for (var k = 0u; k < 3u; k++) {
+        let flag = select(select(SURFACE_FILM_FACTOR_MAP, SURFACE_FILM_THICKNESS_MAP, k == 1u), SURFACE_HAS_COLOUR_MAP, k == 0u);
+        if (s.flags & flag) == 0u {
+            continue;
+        }
+        var bits = vec4<u32>(bitcast<vec3<u32>>(s.checker_albedo), bitcast<u32>(s.checker_size));
+        if k > 0u {
+            let r = f + 4u * k;
+            bits = bitcast<vec4<u32>>(vec4<f32>(tables[r], tables[r + 1u], tables[r + 2u], tables[r + 3u]));
+        }
+        let v = sample_texture(TextureRef(bits.x, bits.y, bits.z, bits.w), uv);
+        if k == 0u {
+            m.albedo = s.albedo * v;
+        } else if k == 1u {
+            let min_nm = tables[f + 3u];
+            m.emission.x = min_nm + v.y * (tables[f + 1u] - min_nm);
+        } else {
+            m.emission.y = tables[f + 2u] * v.x;
+        }
     }
-    if (s.flags & SURFACE_FILM_FACTOR_MAP) != 0u {
-        let t = bitcast<vec4<u32>>(vec4<f32>(tables[f + 8u], tables[f + 9u], tables[f + 10u], tables[f + 11u]));
-        factor *= sample_texture(TextureRef(t.x, t.y, t.z, t.w), uv).x;
-    }
-    m.emission = vec3<f32>(thickness, factor, 0.0);
-    m.flags = (m.flags & ~maps) | SURFACE_FILM_AT_HIT;
     return m;
 }
 

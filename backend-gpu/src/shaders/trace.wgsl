@@ -16,6 +16,8 @@ var<private> slot_base: u32;
 var<private> slot_used: u32;
 // The range of the light the invocation's photon left (0: none).
 var<private> photon_range: f32;
+// The surface where `follow` last split a path, as its maps make it there.
+var<private> split_surface: GpuSurface;
 
 var<workgroup> reduce_counts: array<u32, TALLY_COUNTS * WORKGROUP_SIZE>;
 var<workgroup> reduce_flux: array<f32, TALLY_FLUXES * WORKGROUP_SIZE>;
@@ -125,6 +127,7 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             // does, or it goes on as one random band with the whole flux.
             if split_paths() > 1u {
                 *split_at = hit;
+                split_surface = s;
                 return FOLLOW_SPLIT;
             }
             let b = spectrum_share(photon_f32(seed, index, DIM_SPECTRUM), 0u, 1u);
@@ -134,6 +137,7 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
         if s.kind == SURFACE_DIELECTRIC && (*p).band == WHITE_BAND && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u {
             if split_paths() > 1u {
                 *split_at = hit;
+                split_surface = s;
                 return FOLLOW_SPLIT;
             }
             // trace::sample_band: continue as one random band with the whole flux.
@@ -511,7 +515,7 @@ fn trace_emitted(index: u32) {
             white = p;
             n = split_paths();
             tally_counts[1] += n - 1u;
-            s = surface_at(hit, surfaces[hit.object]);
+            s = split_surface;
             if params.wavelengths != WAVELENGTHS_SPLIT {
                 u = photon_f32(params.seed, index, DIM_SPECTRUM);
             }

@@ -73,6 +73,8 @@ struct LightQuery {
     e: Pending,
     hit: Hit,
     face: Face,
+    // The surface there as its maps make it (surface_at), read once.
+    s: GpuSurface,
 }
 var<private> light_query: LightQuery;
 
@@ -121,7 +123,7 @@ fn through_dielectric(e: Pending, face: Face, band: u32, weight: f32, tint: vec3
     let alpha = facets_alpha(hit, surfaces[e.object]);
     if alpha > 0.0 {
         let at = Pending(e.origin, weight, e.dir, band, tint, e.depth, e.normal, NO_SPLIT, e.object, e.triangle, e.lambda_nm, e.hero);
-        light_query = LightQuery(true, at, hit, face);
+        light_query = LightQuery(true, at, hit, face, surfaces[e.object]);
         let facet = pixel_facet(scramble, select(0u, params.view_pass, per_pass()), e.hero, e.depth);
         if jittered() {
             let u = pixel_branch(scramble, params.view_pass, e.hero, e.depth);
@@ -446,7 +448,7 @@ fn visit(e: Pending) -> vec3<f32> {
         return sum;
     }
     let q = light_query;
-    return sum + q.e.tint * surface_light(q.e, q.hit, surface_at(q.hit, surfaces[q.hit.object]), q.face);
+    return sum + q.e.tint * surface_light(q.e, q.hit, q.s, q.face);
 }
 
 // ViewContext::blended_metal: the share m of a path `e` that goes on as a
@@ -511,7 +513,7 @@ fn visit_path(e: Pending) -> vec3<f32> {
     }
     let s = surface_at(hit, surfaces[hit.object]);
     if s.kind == SURFACE_DIFFUSE {
-        light_query = LightQuery(true, e, hit, bare_face(1.0, false));
+        light_query = LightQuery(true, e, hit, bare_face(1.0, false), s);
         return vec3<f32>(0.0);
     }
     // Mirrors, metals and glass scatter about the shading normal.
@@ -526,7 +528,7 @@ fn visit_path(e: Pending) -> vec3<f32> {
     }
     // Its light: a rough metal's highlights, a blended metal's diffuse part.
     if s.kind == SURFACE_METAL && ((alpha > 0.0 && e.depth < params.max_depth) || m < 1.0) {
-        light_query = LightQuery(true, e, hit, bare_face(1.0, false));
+        light_query = LightQuery(true, e, hit, bare_face(1.0, false), s);
     }
     if e.depth >= params.max_depth {
         return vec3<f32>(0.0);

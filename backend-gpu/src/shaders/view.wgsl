@@ -73,8 +73,10 @@ struct LightQuery {
     e: Pending,
     hit: Hit,
     face: Face,
-    // The surface there as its maps make it (surface_at), read once.
+    // The surface there as its maps make it (surface_at), read once, and
+    // a metal's metalness there (metalness_at; 1 elsewhere).
     s: GpuSurface,
+    metalness: f32,
 }
 var<private> light_query: LightQuery;
 
@@ -123,7 +125,7 @@ fn through_dielectric(e: Pending, face: Face, band: u32, weight: f32, tint: vec3
     let alpha = facets_alpha(hit, surfaces[e.object]);
     if alpha > 0.0 {
         let at = Pending(e.origin, weight, e.dir, band, tint, e.depth, e.normal, NO_SPLIT, e.object, e.triangle, e.lambda_nm, e.hero);
-        light_query = LightQuery(true, at, hit, face, surfaces[e.object]);
+        light_query = LightQuery(true, at, hit, face, surfaces[e.object], 1.0);
         let facet = pixel_facet(scramble, select(0u, params.view_pass, per_pass()), e.hero, e.depth);
         if jittered() {
             let u = pixel_branch(scramble, params.view_pass, e.hero, e.depth);
@@ -356,10 +358,11 @@ fn hidden_direction(l: GpuLight, p: vec3<f32>) -> vec3<f32> {
 // ViewContext::rough_glass_highlights for rough glass (its `face`); a
 // metal (met at `hit`, its normal the geometric one) blended with a
 // diffuse surface of its colour takes both, the diffuse part's weighted by
-// 1 − m and the metal's by m (ViewContext::blended_metal). The shading
+// 1 − m and the metal's by m (ViewContext::blended_metal; m as visit_path
+// read it, 1 but for metals). The shading
 // normal faces the viewer on the geometric normal's side, so both parts
 // share its irradiance.
-fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
+fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face, m: f32) -> vec3<f32> {
     let dir = e.dir;
     let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
     let metal = s.kind == SURFACE_METAL;
@@ -378,7 +381,6 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face) -> vec3<f32> {
         if lambda < 0.0 && e.band < params.band_count {
             lambda = bands[e.band].lambda_nm;
         }
-        let m = metalness_at(hit, s);
         diffuse_share = 1.0 - m;
         metal_share = select(0.0, metal_part(e, m), alpha > 0.0);
         albedo = s.albedo;
@@ -448,7 +450,7 @@ fn visit(e: Pending) -> vec3<f32> {
         return sum;
     }
     let q = light_query;
-    return sum + q.e.tint * surface_light(q.e, q.hit, q.s, q.face);
+    return sum + q.e.tint * surface_light(q.e, q.hit, q.s, q.face, q.metalness);
 }
 
 // ViewContext::blended_metal: the share m of a path `e` that goes on as a
@@ -513,7 +515,7 @@ fn visit_path(e: Pending) -> vec3<f32> {
     }
     let s = surface_at(hit, surfaces[hit.object]);
     if s.kind == SURFACE_DIFFUSE {
-        light_query = LightQuery(true, e, hit, bare_face(1.0, false), s);
+        light_query = LightQuery(true, e, hit, bare_face(1.0, false), s, 1.0);
         return vec3<f32>(0.0);
     }
     // Mirrors, metals and glass scatter about the shading normal.
@@ -528,7 +530,7 @@ fn visit_path(e: Pending) -> vec3<f32> {
     }
     // Its light: a rough metal's highlights, a blended metal's diffuse part.
     if s.kind == SURFACE_METAL && ((alpha > 0.0 && e.depth < params.max_depth) || m < 1.0) {
-        light_query = LightQuery(true, e, hit, bare_face(1.0, false), s);
+        light_query = LightQuery(true, e, hit, bare_face(1.0, false), s, m);
     }
     if e.depth >= params.max_depth {
         return vec3<f32>(0.0);

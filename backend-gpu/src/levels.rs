@@ -109,6 +109,11 @@ impl GridLevels {
         Ok(())
     }
 
+    /// Waits until the mark on its way back (if any) has come.
+    pub fn wait_for_mark(&self, ctx: &GpuContext) -> Result<(), BackendError> {
+        self.pending.as_ref().map_or(Ok(()), |pending| pending.wait(ctx))
+    }
+
     /// Whether the mark is on its way back.
     pub fn reading(&self) -> bool {
         self.pending.is_some()

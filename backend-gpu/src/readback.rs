@@ -1,18 +1,23 @@
 //! Values read back from the device without waiting: the copy and the
 //! mapping are submitted now; a later frame, after polling the device,
-//! looks whether the bytes have come.
+//! looks whether the bytes have come, or waits for them.
 
 use crate::context::GpuContext;
 use prismatic_core::BackendError;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, Condvar, Mutex};
 
 /// The first bytes of a device buffer, on their way to the host.
 pub struct PendingRead {
     staging: wgpu::Buffer,
     /// Bytes read: the start of `staging`.
     size: u64,
-    mapped: Arc<Mutex<Option<Result<(), wgpu::BufferAsyncError>>>>,
+    /// The mapping's outcome once its callback has run, and the signal
+    /// that it has.
+    mapped: Arc<(Mutex<Option<Mapped>>, Condvar)>,
 }
+
+/// The outcome of mapping a staging buffer.
+type Mapped = Result<(), wgpu::BufferAsyncError>;
 
 impl PendingRead {
     /// Submits a copy of `source`'s first u32 and starts mapping it;
@@ -39,11 +44,12 @@ impl PendingRead {
             ctx.queue.submit([encoder.finish()]);
         })?;
         ctx.count_read(size);
-        let mapped = Arc::new(Mutex::new(None));
+        let mapped = Arc::new((Mutex::new(None), Condvar::new()));
         let done = Arc::clone(&mapped);
         staging.slice(..size).map_async(wgpu::MapMode::Read, move |r| {
-            if let Ok(mut slot) = done.lock() {
+            if let Ok(mut slot) = done.0.lock() {
                 *slot = Some(r);
+                done.1.notify_all();
             }
         });
         Ok(PendingRead { staging, size, mapped })
@@ -58,7 +64,7 @@ impl PendingRead {
     /// The bytes when the mapping has completed (the caller polls the
     /// device first), `None` while it has not; never waits.
     pub fn bytes(&self) -> Result<Option<Vec<u8>>, BackendError> {
-        let Some(result) = self.mapped.lock().ok().and_then(|mut m| m.take()) else { return Ok(None) };
+        let Some(result) = self.mapped.0.lock().ok().and_then(|mut m| m.take()) else { return Ok(None) };
         result.map_err(|e| BackendError::Device(format!("mapping a value read back: {e}")))?;
         let bytes = self
             .staging
@@ -68,6 +74,19 @@ impl PendingRead {
             .to_vec();
         self.staging.unmap();
         Ok(Some(bytes))
+    }
+
+    /// Waits until the bytes have come: for the device, then for the
+    /// mapping's callback, which another thread polling the same device
+    /// (an engine's, or another test's) may be the one to run after this
+    /// thread's wait has returned. [`PendingRead::bytes`] then has them.
+    pub fn wait(&self, ctx: &GpuContext) -> Result<(), BackendError> {
+        ctx.wait()?;
+        let (slot, signal) = &*self.mapped;
+        let lost = |_| BackendError::Device("a read-back's callback panicked".into());
+        let slot = slot.lock().map_err(lost)?;
+        drop(signal.wait_while(slot, |mapped| mapped.is_none()).map_err(lost)?);
+        Ok(())
     }
 }
 

@@ -12,6 +12,7 @@ use prismatic_gpu::{GpuContext, GpuOptions, GpuSession};
 use prismatic_tests::builtin;
 use prismatic_tests::parity::compare_images;
 use prismatic_tests::tolerance::Tolerance;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Duration;
 
 fn small(name: &str, photons: u32) -> PreparedScene {
@@ -85,6 +86,41 @@ fn small_first_radii_are_gathered_in_finer_grid_levels() {
     assert!(s.grid_levels() > 0b1, "no finer level built (levels {:#b})", s.grid_levels());
     assert_eq!(s.grid_levels() & 1, 1, "level 0 serves the points of levels not built");
     compare_images(&reference(&scene, 3), &s.image().unwrap(), tol(&s)).unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// The first view pass waits for its visible-point counts even when
+/// another thread polling the same device (an engine's loop, or another
+/// test of the process) is the one that runs the read-back's callback:
+/// 16 bands put more points on the sphere's caustic than the first guess
+/// of room, and the image is still the reference's. When the wait trusted
+/// its own poll to have run the callback, a frame under a polling thread
+/// could keep the points that fitted and lose the rest (seen once in the
+/// integration tests: 15 % of a 256-band image's energy gone; the race's
+/// window is narrow, so this test guards the path rather than forcing it).
+#[test]
+fn room_for_the_points_is_learnt_while_another_thread_polls_the_device() {
+    let scene = builtin("sphere", |r| {
+        (r.width, r.height, r.photons) = (48, 48, 4_000);
+        r.bands = prismatic_core::model::bands::BandSpec::Physical(16);
+    });
+    let expected = reference(&scene, 1);
+    for _ in 0..2 {
+        let Some(mut s) = session(&scene, GpuOptions::default()) else { return };
+        let stop = AtomicBool::new(false);
+        let device = s.context().device.clone();
+        std::thread::scope(|threads| {
+            threads.spawn(|| {
+                while !stop.load(Ordering::Relaxed) {
+                    device.poll(wgpu::PollType::Poll).expect("polling");
+                }
+            });
+            let pass = s.next_pass(&mut NoProgress);
+            stop.store(true, Ordering::Relaxed);
+            pass.unwrap_or_else(|e| panic!("pass: {e}"));
+        });
+        assert!(s.point_capacity() > 2 * 48 * 48, "the first guess of room sufficed: the test tests nothing");
+        compare_images(&expected, &s.image().unwrap(), tol(&s)).unwrap_or_else(|e| panic!("{e}"));
+    }
 }
 
 /// An engine that gives its device the storage bindings

@@ -75,7 +75,7 @@ impl GpuSession {
             // A device that gathers in segments waits for each pass's widest
             // buckets anyway: it waits for the mark too, so that the first
             // pass gathers in the levels its radii need.
-            self.ctx.wait()?;
+            self.levels.wait_for_mark(&self.ctx)?;
             self.adopt_levels()?;
         }
         Ok(())

@@ -43,7 +43,9 @@ impl GpuSession {
                 return Ok(());
             }
             // The first view pass: wait for the counts, and trace again with room.
-            self.ctx.wait()?;
+            if let Some(totals) = &self.pending_totals {
+                totals.wait(&self.ctx)?;
+            }
             self.room_learnt = true;
             self.check_reads()?;
             if self.stale < Change::Size {

@@ -55,12 +55,55 @@ struct Pending {
 
 const NO_SPLIT: u32 = 0xffffffffu;
 
-var<private> stack: array<Pending, STACK_SIZE>;
+// A pending ray as the stack keeps it: 12 words, not a `Pending`'s 20.
+// Lavapipe keeps the stack in registers, each access with a varying index
+// a chain of selects, and its compile time grows faster than the stack's
+// words: at depth 44 (48 entries) the view pipeline compiled in 95 s with
+// whole entries and 41 s with 12 words (2026-11-29, 2-core container).
+struct Stacked {
+    origin: vec3<f32>,
+    weight: f32,
+    dir: vec3<f32>,
+    lambda_nm: f32,
+    tint: vec3<f32>,
+    // band (16 bits), depth (8) and hero (8); SPLIT_PENDING for the split.
+    packed: u32,
+}
+
+// The stacked entry that stands for `split`.
+const SPLIT_PENDING: u32 = 0xffffffffu;
+
+var<private> stack: array<Stacked, STACK_SIZE>;
 var<private> top: u32;
-// What the entry being handled spawns, pushed in one place: lavapipe
-// lowers each access to `stack` with a varying index to a chain of selects
-// (the whole view pipeline still compiled in about 25 s at 7, 8 and 16
-// entries alike; see prismatic_gpu::shaders::stack_size).
+// The one band split pending, whole (its glass's hit and next band): only
+// a white ray splits, and everything above a split on the stack is one of
+// its bands' rays, so a split is handed out to its end before a white ray
+// below it can meet glass and split again.
+var<private> split: Pending;
+
+fn push(e: Pending) {
+    var s = Stacked(e.origin, e.weight, e.dir, e.lambda_nm, e.tint, e.band | (e.depth << 16u) | (e.hero << 24u));
+    if e.next_band != NO_SPLIT {
+        split = e;
+        s.packed = SPLIT_PENDING;
+    }
+    stack[top] = s;
+    top++;
+}
+
+fn pop() -> Pending {
+    top--;
+    let s = stack[top];
+    if s.packed == SPLIT_PENDING {
+        return split;
+    }
+    let band = s.packed & 0xffffu;
+    let depth = (s.packed >> 16u) & 0xffu;
+    return Pending(s.origin, s.weight, s.dir, band, s.tint, depth, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, s.lambda_nm, s.packed >> 24u);
+}
+
+// What the entry being handled spawns, pushed in one place (each access
+// to `stack` is a chain of selects on lavapipe, see `Stacked`).
 var<private> kids: array<Pending, 3>;
 var<private> kid_count: u32;
 // A sampled path's pixel scramble (PixelSampler).
@@ -589,18 +632,17 @@ fn pixel(x: u32, y: u32) -> vec3<f32> {
     }
     let d = params.cam_corner + params.cam_right * (f32(x) + jitter.x) + params.cam_down * (f32(y) + jitter.y);
     let white = vec3<f32>(1.0);
-    stack[0] = Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, white, 0u, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, -1.0, 0u);
-    top = 1u;
+    top = 0u;
+    push(Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, white, 0u, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, -1.0, 0u));
     var sum = vec3<f32>(0.0);
     while top > 0u {
-        top--;
+        let e = pop();
         kid_count = 0u;
-        sum += visit(stack[top]);
+        sum += visit(e);
         // The stack never holds more than max_depth + 3 entries (see
         // prismatic_gpu::shaders::stack_size).
         for (var i = 0u; i < kid_count && top < STACK_SIZE; i++) {
-            stack[top] = kids[i];
-            top++;
+            push(kids[i]);
         }
     }
     return sum * params.white_balance * params.exposure;

@@ -175,7 +175,7 @@ pub mod code {
 /// that every scene of that depth or less shares one view pipeline. Each
 /// size is a pipeline of its own, and its first compile on lavapipe took
 /// about 25 s at 7, 8 and 16 entries alike, and at depth 64 (68 entries)
-/// about 200 s with whole entries on the stack, 100 s with view.wgsl's
+/// about 200 s with whole entries on the stack, 94 to 100 s with view.wgsl's
 /// 12-word `Stacked` ones (2026-11-29, 2-core container).
 pub fn stack_size(max_depth: u32) -> u32 {
     (max_depth.min(MAX_DEPTH) + 4).max(16)

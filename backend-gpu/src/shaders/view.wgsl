@@ -81,14 +81,13 @@ var<private> top: u32;
 // below it can meet glass and split again.
 var<private> split: Pending;
 
-fn push(e: Pending) {
-    var s = Stacked(e.origin, e.weight, e.dir, e.lambda_nm, e.tint, e.band | (e.depth << 16u) | (e.hero << 24u));
+// `e` as the stack keeps it (a split kept whole in `split`).
+fn stacked(e: Pending) -> Stacked {
     if e.next_band != NO_SPLIT {
         split = e;
-        s.packed = SPLIT_PENDING;
+        return Stacked(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0.0, vec3<f32>(0.0), SPLIT_PENDING);
     }
-    stack[top] = s;
-    top++;
+    return Stacked(e.origin, e.weight, e.dir, e.lambda_nm, e.tint, e.band | (e.depth << 16u) | (e.hero << 24u));
 }
 
 fn pop() -> Pending {
@@ -104,7 +103,7 @@ fn pop() -> Pending {
 
 // What the entry being handled spawns, pushed in one place (each access
 // to `stack` is a chain of selects on lavapipe, see `Stacked`).
-var<private> kids: array<Pending, 3>;
+var<private> kids: array<Stacked, 3>;
 var<private> kid_count: u32;
 // A sampled path's pixel scramble (PixelSampler).
 var<private> scramble: u32;
@@ -134,7 +133,7 @@ fn jittered() -> bool {
 }
 
 fn spawn(e: Pending) {
-    kids[kid_count] = e;
+    kids[kid_count] = stacked(e);
     kid_count++;
 }
 
@@ -632,8 +631,8 @@ fn pixel(x: u32, y: u32) -> vec3<f32> {
     }
     let d = params.cam_corner + params.cam_right * (f32(x) + jitter.x) + params.cam_down * (f32(y) + jitter.y);
     let white = vec3<f32>(1.0);
-    top = 0u;
-    push(Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, white, 0u, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, -1.0, 0u));
+    stack[0] = stacked(Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, white, 0u, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, -1.0, 0u));
+    top = 1u;
     var sum = vec3<f32>(0.0);
     while top > 0u {
         let e = pop();
@@ -642,7 +641,8 @@ fn pixel(x: u32, y: u32) -> vec3<f32> {
         // The stack never holds more than max_depth + 3 entries (see
         // prismatic_gpu::shaders::stack_size).
         for (var i = 0u; i < kid_count && top < STACK_SIZE; i++) {
-            push(kids[i]);
+            stack[top] = kids[i];
+            top++;
         }
     }
     return sum * params.white_balance * params.exposure;

@@ -39,20 +39,27 @@ fn filmed_metal(film: ThinFilm) -> MaterialKind {
     MaterialKind::Metal { color, roughness: 0.3, texture: None, film: Some(film), metalness: Metalness::WHOLE }
 }
 
+/// Also where the film's own (maximum) thickness is 0 and the map's
+/// minimum is not (glTF allows it): the film is min (1 − g) thick, not
+/// dropped as bare.
 #[test]
 fn in_view_a_uniform_film_map_is_the_film_it_scales_to() {
-    let film = ThinFilm { factor: 0.8, ..ThinFilm::new(1.38, 500.0) };
-    let ([r, g], min_nm) = ([102u8, 153u8], 100.0);
-    let map = FilmMap { thickness: Some(texel([0, g, 0])), min_nm, factor: Some(texel([r, 0, 0])) };
-    let scaled = ThinFilm {
-        thickness_nm: min_nm + f32::from(g) / 255.0 * (film.thickness_nm - min_nm),
-        factor: film.factor * (f32::from(r) / 255.0),
-        ..film
-    };
-    for (case, kind) in [("coated sheet", coated_sheet as Filmed), ("filmed metal", filmed_metal)] {
-        let seen = |material: Material| prepare(lit_beside_the_camera(view_through_a_sheet(material).scene));
-        let mapped = Material { film_map: Some(map.clone()), ..Material::new("filmed", kind(film)) };
-        assert_the_same_images(case, &seen(mapped), &seen(Material::new("filmed", kind(scaled))), 1e-3);
+    let [r, g] = [102u8, 153u8];
+    for (film, min_nm) in
+        [(ThinFilm { factor: 0.8, ..ThinFilm::new(1.38, 500.0) }, 100.0), (ThinFilm::new(1.38, 0.0), 250.0)]
+    {
+        let map = FilmMap { thickness: Some(texel([0, g, 0])), min_nm, factor: Some(texel([r, 0, 0])) };
+        let scaled = ThinFilm {
+            thickness_nm: min_nm + f32::from(g) / 255.0 * (film.thickness_nm - min_nm),
+            factor: film.factor * (f32::from(r) / 255.0),
+            ..film
+        };
+        for (case, kind) in [("coated sheet", coated_sheet as Filmed), ("filmed metal", filmed_metal)] {
+            let case = format!("{case} of {} nm over {min_nm} nm", film.thickness_nm);
+            let seen = |material: Material| prepare(lit_beside_the_camera(view_through_a_sheet(material).scene));
+            let mapped = Material { film_map: Some(map.clone()), ..Material::new("filmed", kind(film)) };
+            assert_the_same_images(&case, &seen(mapped), &seen(Material::new("filmed", kind(scaled))), 1e-3);
+        }
     }
 }
 

@@ -6,7 +6,7 @@
 use crate::model::bands::{BandTable, VISIBLE_NM};
 use crate::model::dispersion::Dispersion;
 use crate::model::photon::WHITE_BAND;
-use crate::model::scene::{Attenuation, Checker, MaterialKind, Texture, ThinFilm};
+use crate::model::scene::{Attenuation, Checker, FilmMap, MaterialKind, Texture, ThinFilm};
 use crate::optics::absorption::Absorption;
 use crate::optics::metal::MetalOptics;
 use crate::optics::microfacet::Ggx;
@@ -192,10 +192,12 @@ impl DielectricOptics {
 }
 
 impl Surface {
-    /// The surface of `material` for the render's band table. Whether white
-    /// light splits into bands at a dielectric is left unset: the effect
-    /// plan decides it ([`crate::plan::prepared::PreparedScene::new`]).
-    pub fn new(material: &MaterialKind, bands: &BandTable) -> Self {
+    /// The surface of `material`, whose film (if any) its `film_map`
+    /// varies, for the render's band table. Whether white light splits
+    /// into bands at a dielectric is left unset: the effect plan decides it
+    /// ([`crate::plan::prepared::PreparedScene::new`]).
+    pub fn new(material: &MaterialKind, film_map: Option<&FilmMap>, bands: &BandTable) -> Self {
+        let unless_bare = |film: &Option<ThinFilm>| film.filter(|f| !f.is_bare_under(film_map));
         match material {
             MaterialKind::Diffuse { albedo, checker, texture, emission } => Surface::Diffuse {
                 albedo: *albedo,
@@ -206,7 +208,7 @@ impl Surface {
             MaterialKind::Mirror => Surface::Mirror,
             MaterialKind::Metal { color, roughness, texture, film, metalness } => Surface::Metal(MetalOptics {
                 textured: texture.is_some(),
-                film: film.filter(|f| !f.is_bare()),
+                film: unless_bare(film),
                 metalness: *metalness,
                 ..MetalOptics::new(*color, *roughness)
             }),
@@ -237,7 +239,7 @@ impl Surface {
                         .map(|a| if *thin { Attenuation { distance: 1.0, ..*a } } else { *a })
                         .and_then(|a| Absorption::new(&a, bands)),
                     thin: *thin,
-                    film: film.filter(|f| !f.is_bare()).map(|f| ThinFilm { ior: f.ior / outside_white, ..f }),
+                    film: unless_bare(film).map(|f| ThinFilm { ior: f.ior / outside_white, ..f }),
                     ggx: (*roughness > 0.0).then(|| Ggx::from_roughness(*roughness)),
                 })
             }
@@ -303,6 +305,7 @@ fn white_index(dispersion: &Dispersion, band_ior: &[f32]) -> f32 {
 mod tests {
     use super::*;
     use crate::model::bands::BandSpec;
+    use crate::model::scene::Sampler;
 
     fn glass(film: Option<ThinFilm>, outside: f32) -> DielectricOptics {
         let material = MaterialKind::Dielectric {
@@ -313,7 +316,13 @@ mod tests {
             film,
             roughness: 0.0,
         };
-        let Surface::Dielectric(g) = Surface::new(&material, &BandTable::new(BandSpec::Paper7)) else { unreachable!() };
+        glass_under(&material, None)
+    }
+
+    fn glass_under(material: &MaterialKind, map: Option<&FilmMap>) -> DielectricOptics {
+        let Surface::Dielectric(g) = Surface::new(material, map, &BandTable::new(BandSpec::Paper7)) else {
+            unreachable!()
+        };
         g
     }
 
@@ -337,6 +346,33 @@ mod tests {
             let g = glass(Some(film), 1.0);
             assert_eq!(g, glass(None, 1.0), "{film:?}");
             assert!(!g.is_chromatic() && !g.colours_view_rays());
+        }
+    }
+
+    /// glTF's `iridescenceThicknessMinimum` above a maximum of 0: the film
+    /// is min · (1 − g) thick where the map's green is g, so not bare.
+    #[test]
+    fn a_film_of_no_thickness_under_a_map_of_a_positive_minimum_is_kept() {
+        let material = MaterialKind::Dielectric {
+            dispersion: Dispersion::Constant(1.5),
+            outside: Dispersion::Constant(1.0),
+            attenuation: None,
+            thin: false,
+            film: Some(ThinFilm::new(1.3, 0.0)),
+            roughness: 0.0,
+        };
+        // One texel of green 0: the film is the minimum thick.
+        let texels = Texture {
+            name: "thickness".into(),
+            width: 1,
+            height: 1,
+            texels: alloc::vec![0u32].into(),
+            sampler: Sampler::default(),
+        };
+        let map = |min_nm: f32, thickness: Option<Texture>| FilmMap { thickness, min_nm, factor: None };
+        assert!(glass_under(&material, Some(&map(250.0, Some(texels.clone())))).film.is_some());
+        for bare in [map(0.0, Some(texels.clone())), map(250.0, None)] {
+            assert_eq!(glass_under(&material, Some(&bare)).film, None, "{bare:?}");
         }
     }
 }

@@ -8,7 +8,7 @@
 //! decays (frustrated total reflection), which the same sum carries. Over
 //! a metal the base's index is complex, n₂ + ik₂, and so are its amplitudes.
 
-use crate::model::scene::ThinFilm;
+use crate::model::scene::{FilmMap, ThinFilm};
 use crate::util::math::{exp, sin_cos_turns, sqrt};
 use core::ops::{Add, Div, Mul, Sub};
 
@@ -91,6 +91,15 @@ impl ThinFilm {
     /// (the Airy sum is the bare Fresnel) or no share of the surface.
     pub fn is_bare(&self) -> bool {
         self.thickness_nm <= 0.0 || self.factor <= 0.0
+    }
+
+    /// True when it is bare everywhere under its material's film map
+    /// `map`: a thickness map of a positive minimum thickens a film of no
+    /// thickness of its own wherever the map's green is below 1 (a factor
+    /// map only scales the factor, so no factor stays none).
+    pub fn is_bare_under(&self, map: Option<&FilmMap>) -> bool {
+        let thickened = map.is_some_and(|m| m.thickness.is_some() && m.min_nm > 0.0);
+        self.factor <= 0.0 || (self.thickness_nm <= 0.0 && !thickened)
     }
 
     /// The unpolarised reflectance for light of wavelength `lambda_nm`

@@ -127,8 +127,13 @@ impl PreparedScene {
             .enumerate()
             .map(|(i, o)| previous.and_then(|p| p.reuse(i, &o.shape)).unwrap_or_else(|| primitive(&o.shape)))
             .collect();
-        let surfaces: Vec<Surface> =
-            scene.objects.iter().map(|o| Surface::new(&scene.materials[o.material].kind, &bands)).collect();
+        let surfaces: Vec<Surface> = scene
+            .objects
+            .iter()
+            .map(|o| {
+                Surface::new(&scene.materials[o.material].kind, scene.materials[o.material].film_map.as_ref(), &bands)
+            })
+            .collect();
         let texture_uvs: Vec<Vec<TriangleUv>> = scene
             .objects
             .iter()

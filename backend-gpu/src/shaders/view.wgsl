@@ -59,7 +59,8 @@ const NO_SPLIT: u32 = 0xffffffffu;
 // Lavapipe keeps the stack in registers, each access with a varying index
 // a chain of selects, and its compile time grows faster than the stack's
 // words: at depth 44 (48 entries) the view pipeline compiled in 95 s with
-// whole entries and 41 s with 12 words (2026-11-29, 2-core container).
+// whole entries and 54 s with these, at depth 64 in about 200 s and 94 s
+// (2026-11-29, 2-core container).
 struct Stacked {
     origin: vec3<f32>,
     weight: f32,

@@ -197,7 +197,7 @@ impl Surface {
     /// into bands at a dielectric is left unset: the effect plan decides it
     /// ([`crate::plan::prepared::PreparedScene::new`]).
     pub fn new(material: &MaterialKind, film_map: Option<&FilmMap>, bands: &BandTable) -> Self {
-        let unless_bare = |film: &Option<ThinFilm>| film.filter(|f| !f.is_bare_under(film_map));
+        let unless_bare = |film: &Option<ThinFilm>| film.filter(|f| !f.is_bare(film_map));
         match material {
             MaterialKind::Diffuse { albedo, checker, texture, emission } => Surface::Diffuse {
                 albedo: *albedo,

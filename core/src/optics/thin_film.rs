@@ -87,17 +87,12 @@ impl ThinFilm {
         ThinFilm { ior, thickness_nm, factor: 1.0 }
     }
 
-    /// True when it leaves its surface's reflection as it is: no thickness
-    /// (the Airy sum is the bare Fresnel) or no share of the surface.
-    pub fn is_bare(&self) -> bool {
-        self.thickness_nm <= 0.0 || self.factor <= 0.0
-    }
-
-    /// True when it is bare everywhere under its material's film map
-    /// `map`: a thickness map of a positive minimum thickens a film of no
-    /// thickness of its own wherever the map's green is below 1 (a factor
-    /// map only scales the factor, so no factor stays none).
-    pub fn is_bare_under(&self, map: Option<&FilmMap>) -> bool {
+    /// True when it leaves its surface's reflection as it is everywhere
+    /// under its material's film map `map`: no share of the surface, or no
+    /// thickness (the Airy sum is the bare Fresnel) unless a thickness map
+    /// of a positive minimum thickens it wherever the map's green is below
+    /// 1 (a factor map only scales the factor, so no factor stays none).
+    pub fn is_bare(&self, map: Option<&FilmMap>) -> bool {
         let thickened = map.is_some_and(|m| m.thickness.is_some() && m.min_nm > 0.0);
         self.factor <= 0.0 || (self.thickness_nm <= 0.0 && !thickened)
     }

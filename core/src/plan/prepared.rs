@@ -130,9 +130,8 @@ impl PreparedScene {
         let surfaces: Vec<Surface> = scene
             .objects
             .iter()
-            .map(|o| {
-                Surface::new(&scene.materials[o.material].kind, scene.materials[o.material].film_map.as_ref(), &bands)
-            })
+            .map(|o| &scene.materials[o.material])
+            .map(|m| Surface::new(&m.kind, m.film_map.as_ref(), &bands))
             .collect();
         let texture_uvs: Vec<Vec<TriangleUv>> = scene
             .objects

@@ -159,8 +159,9 @@ impl Shader<'_> {
         let object = hit.object.to_array();
         // Diffuse lanes are shaded together; the rest one by one (misses, mirrors, glass).
         let mut diffuse = [0.0f32; 8];
-        // A blended metal's metalness (1: a whole metal); its diffuse part is shaded here.
-        let mut metal_share = [1.0f32; 8];
+        // The most a blended metal's specular part reflects (1: a whole
+        // metal's); its diffuse part is shaded here.
+        let mut specular_share = [1.0f32; 8];
         for (i, r) in rays.iter().enumerate() {
             if object[i] < 0.0 {
                 sum[r.pixel as usize] += r.tint * self.scene.background(r.dir);
@@ -176,8 +177,10 @@ impl Shader<'_> {
                         object: object[i] as usize,
                         triangle: hit.triangle.to_array()[i] as u32,
                     };
-                    metal_share[i] = self.scene.metalness_at(metal, &at);
-                    sum[r.pixel as usize] += self.blended_diffuse_part(r, &at, 1.0 - metal_share[i]);
+                    let here = self.scene.metal_at(metal, &at);
+                    let toward_eye = r.dir.dot(self.scene.scattering_normal(&at, r.dir)).abs();
+                    specular_share[i] = here.specular_share();
+                    sum[r.pixel as usize] += self.blended_diffuse_part(r, &at, here.diffuse_share(toward_eye));
                 }
                 _ => {}
             }
@@ -216,13 +219,12 @@ impl Shader<'_> {
                 r.weight *= kept.max_element();
             }
             let r = &*r;
-            // A blended metal's metal part carries its share of the path.
-            let m = metal_share[i];
-            if m == 0.0 || (m < 1.0 && r.weight * m <= MIN_VIEW_WEIGHT) {
+            // A blended metal's specular part, followed where it can add
+            // something (its Fresnel holds the metalness).
+            let most = specular_share[i];
+            if most == 0.0 || (most < 1.0 && r.weight * most <= MIN_VIEW_WEIGHT) {
                 continue;
             }
-            let part = ViewRay { weight: r.weight * m, tint: r.tint * m, ..*r };
-            let r = if m < 1.0 { &part } else { r };
             let at = Hit { t: t[i], point: p, normal: n, object: object[i] as usize, triangle: triangle[i] as u32 };
             match surface {
                 // Band rays at glass: Fresnel and refraction for the whole packet at once, below.
@@ -239,7 +241,7 @@ impl Shader<'_> {
                         r.tint * self.view.metal_highlights(r.dir, (p, n), metal, r.band, lambda_nm);
                     let (u1, u2) = if metal.ggx.is_some() { r.facets.facet(r.hero, r.depth) } else { (0.0, 0.0) };
                     let Some(b) = scatter_metal(r.dir, p, n, metal.ggx, u1, u2) else { continue };
-                    let f = metal.tint(b.cos_facet, r.band, lambda_nm, &self.scene.bands) * b.unshadowed;
+                    let f = metal.specular_tint(b.cos_facet, r.band, lambda_nm, &self.scene.bands) * b.unshadowed;
                     let next = ViewRay {
                         origin: b.ray.origin,
                         dir: b.ray.direction,

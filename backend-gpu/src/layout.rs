@@ -173,11 +173,12 @@ pub struct GpuSurface {
     /// Checker cell size; a metal's colour texture's sampler flags, as bits.
     pub checker_size: f32,
     /// Checker offset; a blended metal's metalness factor in x (see
-    /// `SURFACE_BLENDED`).
+    /// `SURFACE_BLENDED`) and its specular layer's F90 in y (0: none).
     pub checker_offset: [f32; 3],
     /// Samples in the n(λ) curve.
     pub curve_len: u32,
-    /// Absorption coefficient per RGB channel (coloured glass).
+    /// Absorption coefficient per RGB channel (coloured glass); a metal's
+    /// specular layer's F0 per channel.
     pub absorption: [f32; 3],
     /// Index of the per-band absorption coefficients in the tables buffer.
     pub absorption_first: u32,

@@ -324,6 +324,10 @@ impl EncodedScene {
                         s.flags |= SURFACE_METALNESS_MAP;
                     }
                 }
+                if let Some(layer) = m.metalness.layer {
+                    s.absorption = v3(layer.f0);
+                    s.checker_offset[1] = layer.f90;
+                }
                 if let Some(metal) = m.measured {
                     s.flags |= SURFACE_MEASURED;
                     s.curve_first = self.tables.len() as u32;

@@ -202,6 +202,7 @@ fn prelude(stack: u32) -> String {
     u("DIM_BOUNCE", dim::BOUNCE);
     u("DIM_CHOOSE", dim::CHOOSE);
     u("DIM_METAL_PART", dim::METAL_PART);
+    u("DIM_BASE_BOUNCE", dim::BASE_BOUNCE);
     u("SEQUENCE_SOBOL", code::photon_sequence(PhotonSequence::Sobol));
     u("WAVELENGTHS_SPLIT", code::wavelengths(WavelengthSampling::Split));
     u("WAVELENGTHS_RANDOM_BAND", code::wavelengths(WavelengthSampling::RandomBand));
@@ -415,6 +416,7 @@ pub fn splat() -> String {
         SCENE.into(),
         COLOUR.into(),
         ALBEDO.into(),
+        METAL.into(),
         SUMS.into(),
         CONNECT.into(),
         include_str!("shaders/splat.wgsl").into(),

@@ -16,7 +16,7 @@ use prismatic_conformance::twins::{
 };
 use prismatic_core::geometry::normal_map::mapped_normal;
 use prismatic_core::geometry::shading::shading_normal;
-use prismatic_core::model::metalness::Metalness;
+use prismatic_core::model::metalness::{Metalness, SpecularLayer};
 use prismatic_core::model::scene::ThinFilm;
 use prismatic_core::optics::metal::MetalOptics;
 use prismatic_core::optics::microfacet::{Ggx, conductor_fresnel};
@@ -233,6 +233,7 @@ struct MetalIn {
     film_nm: f32,
     lambda_nm: f32,
     film_factor: f32,
+    layer_f90: f32,
 }
 
 struct MetalOut {
@@ -245,6 +246,7 @@ struct MetalOut {
     facet: vec2<f32>,
     conductor: f32,
     filmed: f32,
+    layer: vec3<f32>,
 }
 
 @group(0) @binding(0) var<storage, read> metal_in: array<MetalIn>;
@@ -261,8 +263,10 @@ fn metal(@builtin(global_invocation_id) id: vec3<u32>) {
     let fresnel = metal_fresnel(c.f0, b.cos_facet);
     let conductor = conductor_fresnel(b.cos_facet, c.eta, c.k);
     let filmed = thin_film_on(b.cos_facet, 1.0, c.film_ior, vec2<f32>(c.eta, c.k), c.film_nm, c.film_factor, c.lambda_nm);
+    // A specular layer of F0 the metal's times F90 (so at most F90).
+    let layer = layer_schlick(c.f0 * c.layer_f90, c.layer_f90, b.cos_facet);
     metal_out[id.x] =
-        MetalOut(b.origin, select(0u, 1u, b.ok), b.dir, b.cos_facet, fresnel, b.unshadowed, facet, conductor, filmed);
+        MetalOut(b.origin, select(0u, 1u, b.ok), b.dir, b.cos_facet, fresnel, b.unshadowed, facet, conductor, filmed, layer);
 }
 "#;
 
@@ -286,7 +290,8 @@ struct MetalIn {
     film_nm: f32,
     lambda_nm: f32,
     film_factor: f32,
-    _pad: [f32; 3],
+    layer_f90: f32,
+    _pad: [f32; 2],
 }
 
 #[repr(C)]
@@ -301,6 +306,8 @@ struct MetalOut {
     facet: [f32; 2],
     conductor: f32,
     filmed: f32,
+    layer: [f32; 3],
+    _pad: f32,
 }
 
 const SHADING: &str = r#"
@@ -838,31 +845,36 @@ fn metal_case() -> impl Strategy<Value = (MetalIn, PixelSampler)> {
         // and a film on it (index, thickness, wavelength, factor: whole or part).
         (0.05f32..3.0, 0.0f32..9.0),
         (1.1f32..2.6, 0.0f32..1000.0, 380.0f32..780.0, prop_oneof![Just(1.0f32), 0.0f32..1.0]),
+        // A specular layer's F90 (its F0 the metal's times that).
+        prop_oneof![Just(1.0f32), 0.0f32..1.0],
     )
-        .prop_map(|(d, normal, point, alpha, u1, u2, f0, (seed, pixel, pass, path, depth), (eta, k), film)| {
-            let sampler = PixelSampler::new(seed, pixel, pass);
-            let case = MetalIn {
-                d: d.to_array(),
-                alpha,
-                normal: normal.to_array(),
-                u1,
-                point,
-                u2,
-                f0,
-                scramble: sampler.scramble(),
-                pass_index: pass,
-                path,
-                depth,
-                eta,
-                k,
-                film_ior: film.0,
-                film_nm: film.1,
-                lambda_nm: film.2,
-                film_factor: film.3,
-                _pad: [0.0; 3],
-            };
-            (case, sampler)
-        })
+        .prop_map(
+            |(d, normal, point, alpha, u1, u2, f0, (seed, pixel, pass, path, depth), (eta, k), film, f90)| {
+                let sampler = PixelSampler::new(seed, pixel, pass);
+                let case = MetalIn {
+                    d: d.to_array(),
+                    alpha,
+                    normal: normal.to_array(),
+                    u1,
+                    point,
+                    u2,
+                    f0,
+                    scramble: sampler.scramble(),
+                    pass_index: pass,
+                    path,
+                    depth,
+                    eta,
+                    k,
+                    film_ior: film.0,
+                    film_nm: film.1,
+                    lambda_nm: film.2,
+                    film_factor: film.3,
+                    layer_f90: f90,
+                    _pad: [0.0; 2],
+                };
+                (case, sampler)
+            },
+        )
 }
 
 /// The WGSL answer to `c` against the core's `scatter_metal`, Schlick and a film's Airy sum over the conductor:
@@ -906,20 +918,23 @@ fn check_metal((c, sampler): &(MetalIn, PixelSampler), got: &MetalOut) -> Result
     let beyond_critical = 1.0 - got.cos_facet * got.cos_facet > c.eta * c.eta;
     let conductor_tolerance = if beyond_critical { 1e-4 } else { 1e-5 };
     let filmed = film.reflectance_on(got.cos_facet, 1.0, (c.eta, c.k), c.lambda_nm);
+    let layer = SpecularLayer { f0: Vec3::from(c.f0) * c.layer_f90, f90: c.layer_f90 }.fresnel(got.cos_facet);
     let ok = close(Vec3::from(got.dir), b.ray.direction, 1e-3)
         && close(Vec3::from(got.origin), b.ray.origin, 1e-4 * scale)
         && (got.cos_facet - b.cos_facet).abs() <= 1e-3
         && (got.unshadowed - b.unshadowed).abs() <= 1e-3
         && close(Vec3::from(got.fresnel), metal.fresnel(got.cos_facet), 1e-5)
         && (got.conductor - conductor).abs() <= conductor_tolerance
-        && (got.filmed - filmed).abs() <= 1e-4;
-    if ok { Ok(()) } else { Err(format!("{got:?}; the core's {b:?}, conductor {conductor}, filmed {filmed}")) }
+        && (got.filmed - filmed).abs() <= 1e-4
+        && close(Vec3::from(got.layer), layer, 1e-5);
+    let core = format!("the core's {b:?}, conductor {conductor}, filmed {filmed}, layer {layer}");
+    if ok { Ok(()) } else { Err(format!("{got:?}; {core}")) }
 }
 
 proptest! {
     #![proptest_config(config(8, 0x6d74))]
 
-    /// `scatter_metal`, `metal_fresnel`, `conductor_fresnel`,
+    /// `scatter_metal`, `metal_fresnel`, `layer_schlick`, `conductor_fresnel`,
     /// `thin_film_on` and `pixel_facet` (common.wgsl, which the photon trace and the view pass
     /// both call) against the core's.
     #[test]

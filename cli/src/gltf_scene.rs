@@ -25,7 +25,7 @@ use gltf::khr_lights_punctual::Kind;
 use gltf::texture::{MagFilter, WrappingMode};
 use prismatic_core::geometry::texture::srgb_to_linear;
 use prismatic_core::model::mesh::open_edge;
-use prismatic_core::model::metalness::Metalness;
+use prismatic_core::model::metalness::{Metalness, SpecularLayer};
 use prismatic_core::model::scene::{
     Attenuation, Camera, EnvironmentMap, FilmMap, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, NormalMap,
     Object, RenderSettings, Sampler, Scene, Shape, Texture, ThinFilm, Wrap, default_ambient,
@@ -505,11 +505,11 @@ fn material(
     };
     let transmission = m.transmission().map_or(0.0, |t| t.transmission_factor());
     // Any metal in it: a metal blended with a diffuse base by its metalness.
-    let metalness = match transmission > 0.0 {
+    let metal = match transmission > 0.0 {
         true => None,
         false => Metalness::of(pbr.metallic_factor(), metal_roughness.as_ref().map(|(t, _)| &*t.texels)),
     };
-    let glass_or_metal = transmission > 0.0 || metalness.is_some();
+    let glass_or_metal = transmission > 0.0 || metal.is_some();
     let mut emission = emission(m);
     if glass_or_metal && emission != Vec3::ZERO {
         unused.push("emission of glass or a metal (only diffuse surfaces emit)");
@@ -521,6 +521,13 @@ fn material(
     if !glass_or_metal && m.extensions().is_some_and(|e| e.contains_key("KHR_materials_iridescence")) {
         unused.push("KHR_materials_iridescence of a diffuse material (films are drawn on glass and metals)");
     }
+    // The diffuse base's specular layer (an emitter stays diffuse: only
+    // diffuse surfaces emit, and its glow outshines its reflections).
+    let layer = match transmission > 0.0 || (metal.is_none() && emission != Vec3::ZERO) {
+        true => None,
+        false => specular_layer(m, &mut unused),
+    };
+    let metalness = metal.map(|metal| metal.with_layer(layer)).or_else(|| layer.map(Metalness::layered));
     let mut uv_transform = None;
     let mut kind = if transmission > 0.0 {
         if pbr.base_color_texture().is_some() {
@@ -559,12 +566,13 @@ fn material(
         uv_transform = transform.flatten();
         match metalness {
             // A metal's base colour (times its texture) is its reflectance
-            // at normal incidence, and its diffuse part's albedo.
+            // at normal incidence, and its diffuse part's albedo (glTF's
+            // non-metals too: a diffuse base under a specular layer).
             Some(metalness) => MaterialKind::Metal {
                 color: MetalColor::Rgb(Vec3::new(r, g, b).clamp(Vec3::ZERO, Vec3::ONE)),
                 roughness: pbr.roughness_factor(),
                 texture,
-                film: film(m)?,
+                film: if metal.is_some() { film(m)? } else { None },
                 metalness,
             },
             None => MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission },
@@ -574,19 +582,22 @@ fn material(
     // transform (the first texture's, the base colour's where it has one).
     let mut transform = has_base_colour_texture(&kind).then_some(uv_transform);
     let mut agrees = |t: Option<Affine2>| *transform.get_or_insert(t) == t;
-    // The green channel scales a metal's or glass's roughness (a diffuse
-    // surface has none to scale), the blue a metal's metalness.
+    // The green channel scales the roughness of a metal, glass or a
+    // specular layer (a bare diffuse surface has none to scale), the blue
+    // a metal's metalness.
+    let has_facets = glass_or_metal || layer.is_some();
     let roughness_map = match metal_roughness {
-        Some((texture, t)) if glass_or_metal && agrees(t) => Some(texture),
-        Some(_) if glass_or_metal => {
+        Some((texture, t)) if has_facets && agrees(t) => Some(texture),
+        Some(_) if has_facets => {
             unused.push("metallicRoughnessTexture with another KHR_texture_transform than baseColorTexture");
             None
         }
         _ => None,
     };
     if let MaterialKind::Metal { metalness, .. } = &mut kind {
-        // Without its map, the metalness is its factor's.
+        // Without its map, the metalness is its factor's (a whole metal has no base to layer).
         metalness.mapped &= roughness_map.is_some();
+        *metalness = metalness.with_layer(metalness.layer);
     }
     let normal_map = match m.normal_texture() {
         Some(info) => match images.normal_map(&info, &mut unused)? {
@@ -662,6 +673,23 @@ fn attenuation(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option
     }
     let color = Vec3::from(volume.attenuation_color()).clamp(Vec3::splat(1e-4), Vec3::ONE);
     Some(Attenuation { color, distance })
+}
+
+/// The specular layer of a material's dielectric base: `KHR_materials_ior`
+/// (default 1.5) and `KHR_materials_specular`'s factor and colour
+/// (defaults 1 and white), glTF's F0 of 0.04 and F90 of 1 without either;
+/// its textures are named in `unused`.
+fn specular_layer(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option<SpecularLayer> {
+    let specular = m.specular();
+    if specular.as_ref().is_some_and(|s| s.specular_texture().is_some()) {
+        unused.push("specularTexture's pattern (KHR_materials_specular's factor is taken everywhere)");
+    }
+    if specular.as_ref().is_some_and(|s| s.specular_color_texture().is_some()) {
+        unused.push("specularColorTexture's pattern (KHR_materials_specular's colour factor is taken everywhere)");
+    }
+    let (weight, color) =
+        specular.map_or((1.0, Vec3::ONE), |s| (s.specular_factor(), s.specular_color_factor().into()));
+    SpecularLayer::gltf(m.ior().unwrap_or(1.5), weight, color)
 }
 
 /// The radiance a material emits: `emissiveFactor` × `KHR_materials_emissive_strength`

@@ -28,6 +28,10 @@ pub struct GltfMaterial {
     pub ior: f32,
     /// `KHR_materials_dispersion` (0: none).
     pub dispersion: f32,
+    /// `KHR_materials_specular`'s `specularFactor` of an opaque non-metal:
+    /// 1 is glTF's default specular layer over its diffuse base, 0 none
+    /// (a Lambertian surface, prismatic's diffuse).
+    pub specular: f32,
     /// `KHR_materials_volume`'s `attenuationColor` and `attenuationDistance`
     /// (`None`: clear glass).
     pub attenuation: Option<([f32; 3], f32)>,
@@ -79,7 +83,7 @@ impl GltfMesh {
 }
 
 impl GltfMaterial {
-    /// An opaque diffuse material.
+    /// An opaque diffuse material: Lambertian, without glTF's specular layer.
     pub fn diffuse(name: &str, base_color: [f32; 3]) -> Self {
         GltfMaterial {
             name: name.into(),
@@ -89,6 +93,7 @@ impl GltfMaterial {
             transmission: 0.0,
             ior: 1.5,
             dispersion: 0.0,
+            specular: 0.0,
             attenuation: None,
             base_color_texture: None,
             metallic_roughness_texture: None,
@@ -106,6 +111,7 @@ impl GltfMaterial {
             transmission: 1.0,
             ior,
             dispersion,
+            specular: 1.0,
             attenuation: None,
             base_color_texture: None,
             metallic_roughness_texture: None,
@@ -332,7 +338,7 @@ impl GltfDocument {
         let uri = format!("data:application/octet-stream;base64,{}", base64::encode(&bin));
         let mut doc = json!({
             "asset": { "version": "2.0", "generator": "prismatic" },
-            "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_dispersion", "KHR_materials_volume"],
+            "extensionsUsed": ["KHR_lights_punctual", "KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_dispersion", "KHR_materials_volume", "KHR_materials_specular"],
             "scene": 0,
             "scenes": [{ "nodes": (0..nodes.len()).collect::<Vec<_>>() }],
             "nodes": nodes,
@@ -401,6 +407,8 @@ fn material_json(m: &GltfMaterial) -> Value {
             None => json!({ "thicknessFactor": 1.0 }),
         };
         extensions.insert("KHR_materials_volume".into(), volume);
+    } else if m.specular != 1.0 {
+        extensions.insert("KHR_materials_specular".into(), json!({ "specularFactor": m.specular }));
     }
     json!({
         "name": m.name,

@@ -840,12 +840,60 @@ fn metallic_materials_are_metals_of_their_base_colour_and_roughness() {
     assert!(!warnings.contains("metal"), "{warnings}");
     for m in [0.7, 0.2] {
         let (kind, warnings) = load(m);
-        let metalness = Metalness { factor: m, mapped: false };
+        let metalness = Metalness::plain(m);
         assert_eq!(kind, MaterialKind::Metal { color: gold, roughness: 0.3, texture: None, film: None, metalness });
         assert!(warnings.is_empty(), "{warnings}");
     }
     let (kind, warnings) = load(0.0);
     assert!(matches!(kind, MaterialKind::Diffuse { .. }) && warnings.is_empty(), "{kind:?}, {warnings}");
+}
+
+/// glTF's non-metals are a diffuse base under a dielectric's specular
+/// layer: F0 = ((n − 1)/(n + 1))² from `KHR_materials_ior` (0.04 at its
+/// default 1.5) times `KHR_materials_specular`'s colour and factor, F90
+/// its factor; a blended metal's base takes the layer too, and a factor of
+/// 0 leaves a Lambertian surface (as prismatic writes its diffuse ones).
+#[test]
+fn a_non_metal_is_a_diffuse_base_under_its_specular_layer() {
+    use prismatic_core::model::metalness::SpecularLayer;
+    let dir = tempfile::tempdir().unwrap();
+    let load = |metallic: f32, extensions: serde_json::Value| {
+        let mut doc = prism_document();
+        let paint = GltfMaterial::diffuse("paint", [0.2, 0.4, 0.6]);
+        doc.materials[0] = GltfMaterial { metallic, specular: 1.0, roughness: 0.4, ..paint };
+        let mut json: serde_json::Value = serde_json::from_str(&doc.to_json()).unwrap();
+        json["materials"][0]["extensions"] = extensions;
+        let path = dir.path().join("paint.gltf");
+        std::fs::write(&path, json.to_string()).unwrap();
+        let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"));
+        scene.validate().unwrap_or_else(|e| panic!("{e}"));
+        assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+        scene.scene.materials[0].kind.clone()
+    };
+    let paint = prismatic_core::MetalColor::Rgb(prismatic_core::Vec3::new(0.2, 0.4, 0.6));
+    let close = |a: SpecularLayer, b: SpecularLayer| (a.f0 - b.f0).abs().max_element() < 1e-6 && a.f90 == b.f90;
+    let layer_of = |kind: &MaterialKind, m: f32| match kind {
+        MaterialKind::Metal { color, roughness: 0.4, texture: None, film: None, metalness }
+            if *color == paint && metalness.factor == m && !metalness.mapped =>
+        {
+            metalness.layer.unwrap_or_else(|| panic!("a layer: {kind:?}"))
+        }
+        other => panic!("paint of metalness {m} under a layer: {other:?}"),
+    };
+    let default = SpecularLayer { f0: prismatic_core::Vec3::splat(0.04), f90: 1.0 };
+    assert!(close(layer_of(&load(0.0, serde_json::json!({})), 0.0), default));
+    assert!(close(layer_of(&load(0.5, serde_json::json!({})), 0.5), default), "a blended metal's base");
+    let tinted = load(
+        0.0,
+        serde_json::json!({
+            "KHR_materials_ior": { "ior": 2.0 },
+            "KHR_materials_specular": { "specularFactor": 0.5, "specularColorFactor": [1.0, 0.5, 20.0] }
+        }),
+    );
+    let want = SpecularLayer { f0: prismatic_core::Vec3::new(1.0 / 18.0, 1.0 / 36.0, 0.5), f90: 0.5 };
+    assert!(close(layer_of(&tinted, 0.0), want), "{tinted:?}");
+    let bare = load(0.0, serde_json::json!({ "KHR_materials_specular": { "specularFactor": 0.0 } }));
+    assert!(matches!(bare, MaterialKind::Diffuse { .. }), "{bare:?}");
 }
 
 /// A metal's `baseColorTexture` colours it texel by texel (its reflectance
@@ -983,13 +1031,13 @@ fn a_metallic_roughness_texture_scales_roughness_and_says_what_is_metal() {
         ..texture(Vec::new())
     });
     let scene = load("chipped_metal.gltf", &doc);
-    assert_eq!(metalness(&scene.scene.materials[0]), Metalness { factor: 1.0, mapped: true });
+    assert_eq!(metalness(&scene.scene.materials[0]), Metalness { mapped: true, ..Metalness::WHOLE });
     assert!(scene.scene.materials[0].roughness_map.is_some() && scene.warnings.is_empty(), "{:?}", scene.warnings);
     // A metallicFactor of 0.4 over a blue of 255: a metalness of 0.4 everywhere.
     doc.materials[0].metallic = 0.4;
     doc.materials[0].metallic_roughness_texture = Some(texture(vec![[0, 90, 255]; 2]));
     let scene = load("half_metal.gltf", &doc);
-    assert_eq!(metalness(&scene.scene.materials[0]), Metalness { factor: 0.4, mapped: false });
+    assert_eq!(metalness(&scene.scene.materials[0]), Metalness::plain(0.4));
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
     // A non-metal's texture (blue 0) leaves nothing out.
     doc.materials[0].metallic = 1.0;

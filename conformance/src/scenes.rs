@@ -13,7 +13,7 @@
 use glam::Vec3;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::environment::EnvironmentMap;
-use prismatic_core::model::metalness::Metalness;
+use prismatic_core::model::metalness::{Metalness, SpecularLayer};
 use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, FilmMap, Filter, Light, Material, MaterialKind, NormalMap, Object, PhotonSequence,
     RenderSettings, Sampler, Shape, Texture, ThinFilm, Wrap,
@@ -324,11 +324,12 @@ pub fn rippled_mirror() -> PreparedScene {
 /// The mirror's beam folded by a rough gold square instead (its colour
 /// scaled by a texture of four tiles, gold, grey, rose and pale) onto a
 /// round floor, the gold worn through to a diffuse base texel by texel
-/// (a metalness of 0.9 times a map's) under a film whose thickness a map
+/// (a metalness of 0.9 times a map's; the base under a dielectric's
+/// coloured specular layer) under a film whose thickness a map
 /// varies, beside a polished ball of measured
 /// copper under a patchy film of its oxide (a factor of 0.6), with
 /// indirect light: metals' facets, coloured Fresnel texel by texel, a
-/// blended metal's two parts, a film map's films and a partial film's over a complex index,
+/// blended metal's two parts and its base's layer, a film map's films and a partial film's over a complex index,
 /// in caustic and indirect photons and in view.
 pub fn metals() -> PreparedScene {
     let mut scene = mirror().scene;
@@ -347,7 +348,9 @@ pub fn metals() -> PreparedScene {
     // Worn through in places: 90 % metal times the blue of a roughness map
     // (whole, a third, none, most), its green keeping the roughness.
     let MaterialKind::Metal { metalness, .. } = &mut scene.materials[1].kind else { unreachable!("gold") };
-    *metalness = Metalness { factor: 0.9, mapped: true };
+    // The base a dielectric's coloured specular layer covers.
+    let layer = SpecularLayer::gltf(1.6, 0.8, Vec3::new(1.0, 0.9, 0.7));
+    *metalness = Metalness { factor: 0.9, mapped: true, layer };
     // Under a film of an oxide, 120 to 350 nm thick across the tiles.
     let MaterialKind::Metal { film, .. } = &mut scene.materials[1].kind else { unreachable!("gold") };
     *film = Some(ThinFilm { factor: 0.7, ..ThinFilm::new(1.8, 350.0) });

@@ -4,7 +4,7 @@
 //! photons are stored on it whatever m is, and m of them go on as the
 //! metal.
 
-use crate::metals::{GOLD, folded_beam, metal_in_view, schlick};
+use crate::metals::{GOLD, assert_beam_goes_on, folded_beam, metal_in_view, schlick};
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::{Material, MaterialKind, Shape};
@@ -34,7 +34,7 @@ fn in_view_a_blended_metal_is_the_mix_of_its_diffuse_base_and_the_whole_metal() 
         let name = backend.name();
         let whole = image(blended(GOLD, Metalness::WHOLE), backend.as_mut());
         let base = image(diffuse(GOLD), backend.as_mut());
-        let mixed = image(blended(GOLD, Metalness { factor: m, mapped: false }), backend.as_mut());
+        let mixed = image(blended(GOLD, Metalness::plain(m)), backend.as_mut());
         for (k, got) in mixed.iter().enumerate() {
             let want = (1.0 - m) * base[k] + m * whole[k];
             let tolerance = 1e-4 * want.max_element().max(1.0);
@@ -49,19 +49,9 @@ fn in_view_a_blended_metal_is_the_mix_of_its_diffuse_base_and_the_whole_metal() 
 fn a_blended_metal_passes_on_its_metalness_share_of_the_light() {
     const PHOTONS: u32 = 20_000;
     let m = 0.4;
-    let scene =
-        folded_beam(blended(Vec3::splat(0.6), Metalness { factor: m, mapped: false }), PHOTONS, BandSpec::Paper7);
-    let scene = prepare(scene);
+    let scene = prepare(folded_beam(blended(Vec3::splat(0.6), Metalness::plain(m)), PHOTONS, BandSpec::Paper7));
     let want = f64::from(m) * schlick(0.6, std::f64::consts::FRAC_1_SQRT_2);
-    for mut backend in every_backend() {
-        let name = backend.name();
-        let map = trace(backend.as_mut(), &scene);
-        // The beam meets the metal first: direct light there, stored only on the wall.
-        assert!(map.photons.iter().all(|p| p.pos().y > 2.9), "{name}: a photon stored off the wall");
-        let got = map.photons.len() as f64 / f64::from(PHOTONS);
-        let sd = (want * (1.0 - want) / f64::from(PHOTONS)).sqrt();
-        assert!((got - want).abs() < 5.0 * sd, "{name}: {got:.4} passed on, m × Schlick's {want:.4}");
-    }
+    assert_beam_goes_on(&scene, PHOTONS, want, "m × Schlick's");
 }
 
 #[test]
@@ -72,7 +62,7 @@ fn photons_are_stored_on_a_blended_metal_whatever_its_metalness() {
         // The beam folded by a mirror onto a blended wall (metalness 1 and
         // no map: a whole metal, which stores nothing).
         let mut scene = folded_beam(mirror.clone(), PHOTONS, BandSpec::Paper7);
-        scene.materials[scene.objects[1].material] = blended(Vec3::splat(0.8), Metalness { factor: m, mapped: false });
+        scene.materials[scene.objects[1].material] = blended(Vec3::splat(0.8), Metalness::plain(m));
         let Shape::Plane { .. } = scene.objects[1].shape else { unreachable!("the wall") };
         let scene = prepare(scene);
         for mut backend in every_backend() {
@@ -100,9 +90,9 @@ fn scene_files_blend_metals_by_their_metalness() {
     };
     let metal = "kind = \"metal\"\ncolor = [0.9, 0.6, 0.3]";
     assert_eq!(metalness(metal), Metalness::WHOLE);
-    assert_eq!(metalness(&format!("{metal}\nmetalness = 0.25")), Metalness { factor: 0.25, mapped: false });
+    assert_eq!(metalness(&format!("{metal}\nmetalness = 0.25")), Metalness::plain(0.25));
     let mapped = format!("{metal}\nroughness = 0.5\nroughness_map = \"worn.png\"\nmetalness_from_map = true");
-    assert_eq!(metalness(&mapped), Metalness { factor: 1.0, mapped: true });
+    assert_eq!(metalness(&mapped), Metalness { mapped: true, ..Metalness::WHOLE });
     for (material, reason) in [
         (format!("{metal}\nmetalness = 1.5"), "between 0 and 1"),
         (format!("{metal}\nmetalness_from_map = true"), "no roughness_map"),

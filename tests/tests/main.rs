@@ -32,6 +32,7 @@ mod scene_files;
 mod smooth_shading;
 mod spectral_truth;
 mod spectrum;
+mod specular_layers;
 mod sun;
 mod textures;
 mod thin_film;

@@ -61,6 +61,21 @@ pub(crate) fn folded_beam(metal: Material, photons: u32, bands: BandSpec) -> Sce
     scene
 }
 
+/// On every backend, the photons of [`folded_beam`] `scene` (of `photons`
+/// emitted) that its disc sent on are all stored on the wall and are the
+/// share `want` of them, within 5σ; `what` names the case.
+pub(crate) fn assert_beam_goes_on(scene: &PreparedScene, photons: u32, want: f64, what: &str) {
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let map = trace(backend.as_mut(), scene);
+        // The beam meets the disc first: direct light there, stored only on the wall.
+        assert!(map.photons.iter().all(|p| p.pos().y > 2.9), "{name}, {what}: a photon stored off the wall");
+        let got = map.photons.len() as f64 / f64::from(photons);
+        let sd = (want * (1.0 - want) / f64::from(photons)).sqrt();
+        assert!((got - want).abs() < 5.0 * sd, "{name}, {what}: {got:.4} went on, want {want:.4}");
+    }
+}
+
 #[test]
 fn a_grey_metal_reflects_schlicks_share_of_the_light() {
     const PHOTONS: u32 = 20_000;

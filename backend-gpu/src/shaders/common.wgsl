@@ -268,9 +268,16 @@ fn choose_dim(bounce: u32) -> u32 {
     return scatter_dim(WHITE_BAND, bounce) + DIM_CHOOSE;
 }
 
-// rng::dim::metal_part: whether a path goes on as a blended metal's metal part.
+// rng::dim::metal_part: whether a path goes on as a blended metal's specular part.
 fn metal_part_dim(band: u32, bounce: u32) -> u32 {
     return scatter_dim(band, bounce) + DIM_METAL_PART;
+}
+
+// rng::dim::base_bounce: the first of the two dimensions of the diffuse
+// bounce of a path a specular layer passed to its base (the second is
+// DIM_ABSORB above it).
+fn base_bounce_dim(band: u32, bounce: u32) -> u32 {
+    return scatter_dim(band, bounce) + DIM_BASE_BOUNCE;
 }
 
 // ---- math.rs ----
@@ -733,6 +740,13 @@ fn metal_fresnel(f0: vec3<f32>, c: f32) -> vec3<f32> {
     let x = 1.0 - clamp(c, 0.0, 1.0);
     let x2 = x * x;
     return f0 + (vec3<f32>(1.0) - f0) * (x2 * x2 * x);
+}
+
+// SpecularLayer::fresnel: Schlick's from `f0` to `f90` at facet cosine `c`.
+fn layer_schlick(f0: vec3<f32>, f90: f32, c: f32) -> vec3<f32> {
+    let x = 1.0 - clamp(c, 0.0, 1.0);
+    let x2 = x * x;
+    return f0 + (vec3<f32>(f90) - f0) * (x2 * x2 * x);
 }
 
 // microfacet::conductor_fresnel: the unpolarised reflectance of a

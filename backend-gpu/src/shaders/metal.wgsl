@@ -81,8 +81,79 @@ fn metal_reflectance(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> f32 {
     return bounce_reflectance(metal_tint(s, c, band, lambda_nm), band, lambda_nm);
 }
 
-// MetalOptics::is_chromatic: a measured metal, a colour texture, a film, or F0 not grey.
+// MetalOptics::is_chromatic: where some of it is metal, a measured metal,
+// a colour texture, a film, or F0 not grey; a blend's coloured layer.
 fn metal_is_chromatic(s: GpuSurface) -> bool {
     let f0 = s.albedo;
-    return (s.flags & (SURFACE_MEASURED | SURFACE_HAS_COLOUR_MAP | SURFACE_HAS_FILM)) != 0u || f0.x != f0.y || f0.y != f0.z;
+    let metal = (s.flags & (SURFACE_MEASURED | SURFACE_HAS_COLOUR_MAP | SURFACE_HAS_FILM)) != 0u || f0.x != f0.y || f0.y != f0.z;
+    let blended = (s.flags & SURFACE_BLENDED) != 0u;
+    let some_metal = !blended || s.checker_offset.x > 0.0;
+    let l = layer_f0(s);
+    let layer = s.checker_offset.y > 0.0 && (l.x != l.y || l.y != l.z);
+    return (metal && some_metal) || (layer && blended);
+}
+
+// ---- the specular layer of a blend's base (MetalOptics over
+// model::metalness::SpecularLayer): F0 per channel in `absorption`, F90
+// in checker_offset.y (0: no layer). m is the metalness at the point
+// (metalness_at). ----
+
+fn layer_f0(s: GpuSurface) -> vec3<f32> {
+    return s.absorption;
+}
+
+// SpecularLayer::fresnel
+fn layer_fresnel(s: GpuSurface, c: f32) -> vec3<f32> {
+    return layer_schlick(layer_f0(s), s.checker_offset.y, c);
+}
+
+// MetalOptics::specular_share: m + (1 − m) F90.
+fn specular_share(s: GpuSurface, m: f32) -> f32 {
+    if s.checker_offset.y > 0.0 {
+        return m + (1.0 - m) * s.checker_offset.y;
+    }
+    return m;
+}
+
+// MetalOptics::diffuse_share: (1 − m)(1 − max F_layer(cos)) toward a viewer at `c`.
+fn blend_diffuse_share(s: GpuSurface, m: f32, c: f32) -> f32 {
+    if s.checker_offset.y > 0.0 {
+        let f = layer_fresnel(s, c);
+        return (1.0 - m) * (1.0 - max(f.x, max(f.y, f.z)));
+    }
+    return (1.0 - m) * 1.0;
+}
+
+// MetalOptics::specular_tint: m F_metal + (1 − m) F_layer per RGB channel.
+fn specular_tint(s: GpuSurface, m: f32, c: f32, band: u32, lambda_nm: f32) -> vec3<f32> {
+    var metal = vec3<f32>(0.0);
+    if m > 0.0 {
+        metal = metal_tint(s, c, band, lambda_nm) * m;
+    }
+    if s.checker_offset.y > 0.0 {
+        return metal + reflectance(layer_fresnel(s, c), band, lambda_nm) * (1.0 - m);
+    }
+    return metal;
+}
+
+// MetalOptics::specular_reflectance: a photon path's survival off the specular part.
+fn specular_reflectance(s: GpuSurface, m: f32, c: f32, band: u32, lambda_nm: f32) -> f32 {
+    var metal = 0.0;
+    if m > 0.0 {
+        metal = metal_reflectance(s, c, band, lambda_nm);
+    }
+    if s.checker_offset.y > 0.0 {
+        let layer = bounce_reflectance(layer_fresnel(s, c), band, lambda_nm);
+        return (m * metal + (1.0 - m) * layer) / specular_share(s, m);
+    }
+    return metal;
+}
+
+// MetalOptics::layer_passes: the share the layer passes to the base.
+fn layer_passes(s: GpuSurface, m: f32, c: f32, band: u32, lambda_nm: f32) -> f32 {
+    if s.checker_offset.y <= 0.0 {
+        return 0.0;
+    }
+    let layer = bounce_reflectance(layer_fresnel(s, c), band, lambda_nm);
+    return max((1.0 - m) * (s.checker_offset.y - layer) / specular_share(s, m), 0.0);
 }

@@ -28,11 +28,12 @@ fn splat(
     if !hit.ok || hit.t < d * (1.0 - CONNECTION_REL) {
         return;
     }
-    // A blended metal's diffuse part reflects the share 1 − m.
+    // A blended metal's diffuse part reflects its share toward the eye.
     let s = surfaces[hit.object];
     var diffuse_share = select(0.0, 1.0, s.kind == SURFACE_DIFFUSE);
     if (s.flags & SURFACE_BLENDED) != 0u {
-        diffuse_share = 1.0 - metalness_at(hit, s);
+        let toward_eye = abs(dot(dir, scattering_normal(hit, dir)));
+        diffuse_share = blend_diffuse_share(s, metalness_at(hit, s), toward_eye);
     }
     if diffuse_share == 0.0 {
         return;

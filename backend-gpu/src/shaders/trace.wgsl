@@ -154,9 +154,10 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
 }
 
 // path::goes_on_as_metal: whether path `p`, stored on the blended metal `s`
-// at `hit`, goes on as its metal part (probability: its metalness there).
+// at `hit`, goes on as its specular part (probability: specular_share there).
 fn goes_on_as_metal(p: Path, hit: Hit, s: GpuSurface, index: u32) -> bool {
-    return random_f32(params.seed, index, metal_part_dim(p.band, p.bounces)) < metalness_at(hit, s);
+    let m = metalness_at(hit, s);
+    return random_f32(params.seed, index, metal_part_dim(p.band, p.bounces)) < specular_share(s, m);
 }
 
 // trace::arrives_at_specular: whether path `p` goes on at the mirror or
@@ -178,28 +179,43 @@ fn arrives_at_specular(p: Path, hit: Hit, s: GpuSurface, index: u32) -> bool {
     return true;
 }
 
+// Set by cross_specular: the uniform number left for the diffuse base's
+// own choice where a specular layer passed the path to it (path::Crossing::ToBase),
+// else negative.
+var<private> to_base: f32;
+
 // trace::cross_specular: path `p` (one that does not split here) across
 // the mirror, metal or glass `s` at `hit`; false when the metal, rough
-// glass's microsurface or a tinted sheet absorbed it.
+// glass's microsurface or a tinted sheet absorbed it, or a specular layer
+// passed it to its base (`to_base` set, nothing tallied).
 fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -> bool {
     let n = scattering_normal(hit, (*p).dir);
+    to_base = -1.0;
     if s.kind == SURFACE_METAL {
-        // A facet of the metal, and its Fresnel times the unshadowed share
-        // as the path's survival probability.
+        // A facet of the metal, and its specular part's Fresnel times the
+        // unshadowed share as the path's survival probability; what the
+        // layer's facet passes goes to the base.
         let alpha = facets_alpha(hit, s);
         var u = vec2<f32>(0.0);
         if alpha > 0.0 {
             let d = bounce_dim((*p).band, (*p).bounces);
             u = vec2<f32>(random_f32(params.seed, index, d), random_f32(params.seed, index, d + DIM_ABSORB));
         }
+        let v = random_f32(params.seed, index, scatter_dim((*p).band, (*p).bounces));
         let b = scatter_metal((*p).dir, hit.point, n, alpha, u.x, u.y);
         if b.ok {
             let lambda = stored_wavelength((*p).band, (*p).lambda_nm);
-            let share = b.unshadowed * metal_reflectance(s, b.cos_facet, (*p).band, lambda);
-            if random_f32(params.seed, index, scatter_dim((*p).band, (*p).bounces)) < share {
+            let m = metalness_at(hit, s);
+            let reflects = b.unshadowed * specular_reflectance(s, m, b.cos_facet, (*p).band, lambda);
+            if v < reflects {
                 (*p).origin = b.origin;
                 (*p).dir = b.dir;
                 return true;
+            }
+            let passes = layer_passes(s, m, b.cos_facet, (*p).band, lambda);
+            if v < reflects + passes {
+                to_base = (v - reflects) / passes;
+                return false;
             }
         }
         tally_flux[5] += (*p).flux;
@@ -272,25 +288,14 @@ fn trace_indirect(index: u32) {
         if (s.kind == SURFACE_DIFFUSE || blended) && bounced {
             store_carried(&p, &c, hit.point, index);
         }
-        // A blended metal: its diffuse part, unless the path goes on as its metal.
-        if s.kind == SURFACE_DIFFUSE || (blended && !goes_on_as_metal(p, hit, s, index)) {
-            if p.bounces >= params.max_depth {
-                tally_flux[4] += p.flux;
-                break;
-            }
-            let facing = select(-hit.normal, hit.normal, dot(p.dir, hit.normal) < 0.0);
-            let u = random_f32(seed, index, scatter_dim(p.band, p.bounces));
-            if !carried_bounce(&c, albedo_at(hit, facing), u) {
-                tally_flux[5] += p.flux;
-                break;
-            }
-            let d = bounce_dim(p.band, p.bounces);
-            let u1 = random_f32(seed, index, d);
-            let u2 = random_f32(seed, index, d + DIM_ABSORB);
-            let out = scatter_diffuse(p.dir, hit.point, hit.normal, u1, u2);
-            p.origin = out.origin;
-            p.dir = out.dir;
-            bounced = true;
+        // A blended metal: its diffuse part, unless the path goes on as its
+        // specular part (whose layer may still pass it to the base): the
+        // base's survival number and its bounce's first dimension.
+        let diffuse = s.kind == SURFACE_DIFFUSE || (blended && !goes_on_as_metal(p, hit, s, index));
+        var base = -1.0;
+        var base_dim = bounce_dim(p.band, p.bounces);
+        if diffuse {
+            base = random_f32(seed, index, scatter_dim(p.band, p.bounces));
         } else {
             let glass_splits = s.kind == SURFACE_DIELECTRIC && (s.flags & SURFACE_SPLITS_PHOTONS) != 0u;
             let coloured_metal = s.kind == SURFACE_METAL && metal_is_chromatic(s);
@@ -306,8 +311,29 @@ fn trace_indirect(index: u32) {
                 tally_counts[3] += 1u;
             }
             if !cross_specular(&p, hit, s, index) {
+                if to_base < 0.0 {
+                    break;
+                }
+                base = to_base;
+                base_dim = base_bounce_dim(p.band, p.bounces);
+            }
+        }
+        if base >= 0.0 {
+            if p.bounces >= params.max_depth {
+                tally_flux[4] += p.flux;
                 break;
             }
+            let facing = select(-hit.normal, hit.normal, dot(p.dir, hit.normal) < 0.0);
+            if !carried_bounce(&c, albedo_at(hit, facing), base) {
+                tally_flux[5] += p.flux;
+                break;
+            }
+            let u1 = random_f32(seed, index, base_dim);
+            let u2 = random_f32(seed, index, base_dim + DIM_ABSORB);
+            let out = scatter_diffuse(p.dir, hit.point, hit.normal, u1, u2);
+            p.origin = out.origin;
+            p.dir = out.dir;
+            bounced = true;
         }
         p.bounces += 1u;
     }

@@ -401,10 +401,10 @@ fn hidden_direction(l: GpuLight, p: vec3<f32>) -> vec3<f32> {
 // ViewContext::rough_glass_highlights for rough glass (its `face`); a
 // metal (met at `hit`, its normal the geometric one) blended with a
 // diffuse surface of its colour takes both, the diffuse part's weighted by
-// 1 − m and the metal's by m (ViewContext::blended_metal; m as visit_path
-// read it, 1 but for metals). The shading
-// normal faces the viewer on the geometric normal's side, so both parts
-// share its irradiance.
+// its share toward the viewer and the specular part's by its Fresnel,
+// which holds m (ViewContext::blended_metal; m as visit_path read it, 1
+// but for metals). The shading normal faces the viewer on the geometric
+// normal's side, so both parts share its irradiance.
 fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face, m: f32) -> vec3<f32> {
     let dir = e.dir;
     let n = select(-hit.normal, hit.normal, dot(dir, hit.normal) < 0.0);
@@ -414,9 +414,16 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face, m: f32) -> vec
     var albedo = vec3<f32>(0.0);
     var alpha = 0.0;
     var lambda = e.lambda_nm;
-    // The shares of the diffuse part and of the metal's highlights.
+    // A diffuse surface takes its lights' cosines with the smooth normal,
+    // about which a metal reflects.
+    var shading = n;
+    if !glass {
+        shading = scattering_normal(hit, dir);
+        shading = select(-shading, shading, dot(dir, hit.normal) < 0.0);
+    }
+    // The diffuse part's share, and whether the specular part's highlights show.
     var diffuse_share = select(1.0, 0.0, glass);
-    var metal_share = 0.0;
+    var highlights = false;
     if metal || glass {
         alpha = facets_alpha(hit, s);
     }
@@ -424,18 +431,11 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face, m: f32) -> vec
         if lambda < 0.0 && e.band < params.band_count {
             lambda = bands[e.band].lambda_nm;
         }
-        diffuse_share = 1.0 - m;
-        metal_share = select(0.0, metal_part(e, m), alpha > 0.0);
+        diffuse_share = blend_diffuse_share(s, m, abs(dot(dir, shading)));
+        highlights = alpha > 0.0 && specular_part(e, s, m) > 0.0;
         albedo = s.albedo;
     } else if !glass {
         albedo = albedo_at(hit, n);
-    }
-    // A diffuse surface takes its lights' cosines with the smooth normal,
-    // about which a metal reflects.
-    var shading = n;
-    if !glass {
-        shading = scattering_normal(hit, dir);
-        shading = select(-shading, shading, dot(dir, hit.normal) < 0.0);
     }
     // Each light's irradiance, in the colour the surface reflects of its spectrum.
     var reflected = vec3<f32>(0.0);
@@ -456,12 +456,12 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face, m: f32) -> vec
             }
             lit_side = select(-hit.normal, hit.normal, dot(wi, hit.normal) > 0.0);
         }
-        if metal_share > 0.0 {
+        if highlights {
             let wi = hidden_direction(l, hit.point);
             let density = ggx_reflection(alpha, -dir, wi, shading);
             if density > 0.0 {
                 let h = nrm(wi - dir);
-                factor += metal_tint(s, dot(-dir, h), e.band, lambda) * (density * metal_share);
+                factor += specular_tint(s, m, dot(-dir, h), e.band, lambda) * density;
             }
         }
         if all(factor == vec3<f32>(0.0)) {
@@ -496,14 +496,15 @@ fn visit(e: Pending) -> vec3<f32> {
     return sum + q.e.tint * surface_light(q.e, q.hit, q.s, q.face, q.metalness);
 }
 
-// ViewContext::blended_metal: the share m of a path `e` that goes on as a
-// metal of metalness m (a whole metal's: 1), 0 past the depth limit or
-// where that share is too small to follow.
-fn metal_part(e: Pending, m: f32) -> f32 {
-    if m <= 0.0 || e.depth >= params.max_depth || (m < 1.0 && e.weight * m <= MIN_VIEW_WEIGHT) {
+// ViewContext::blended_metal: the most the specular part of the metal `s`
+// of metalness m reflects of a path `e` (a whole metal's: 1), 0 past the
+// depth limit or where that share is too small to follow.
+fn specular_part(e: Pending, s: GpuSurface, m: f32) -> f32 {
+    let most = specular_share(s, m);
+    if most <= 0.0 || e.depth >= params.max_depth || (most < 1.0 && e.weight * most <= MIN_VIEW_WEIGHT) {
         return 0.0;
     }
-    return m;
+    return most;
 }
 
 // What a band of the split entry `e` (at its glass's hit) meets there:
@@ -578,10 +579,10 @@ fn visit_path(e: Pending) -> vec3<f32> {
     if e.depth >= params.max_depth {
         return vec3<f32>(0.0);
     }
-    if s.kind == SURFACE_METAL && metal_part(e, m) > 0.0 {
-        // ViewContext::off_metal (a blended metal's metal part: the path's
-        // share m of it): one facet, the path weighted by its Fresnel at
-        // the path's wavelength times G2/G1.
+    if s.kind == SURFACE_METAL && specular_part(e, s, m) > 0.0 {
+        // ViewContext::off_metal (a blended metal's specular part, its
+        // Fresnel holding m): one facet, the path weighted by its Fresnel
+        // at the path's wavelength times G2/G1.
         var u = vec2<f32>(0.0);
         if alpha > 0.0 {
             u = pixel_facet(scramble, select(0u, params.view_pass, per_pass()), e.hero, e.depth);
@@ -592,10 +593,10 @@ fn visit_path(e: Pending) -> vec3<f32> {
             if lambda < 0.0 && e.band < params.band_count {
                 lambda = bands[e.band].lambda_nm;
             }
-            let f = metal_tint(s, b.cos_facet, e.band, lambda) * b.unshadowed;
-            let weight = e.weight * m * max(f.x, max(f.y, f.z));
+            let f = specular_tint(s, m, b.cos_facet, e.band, lambda) * b.unshadowed;
+            let weight = e.weight * max(f.x, max(f.y, f.z));
             if weight > MIN_VIEW_WEIGHT {
-                spawn_ray(e, b.origin, b.dir, e.band, weight, e.tint * m * f);
+                spawn_ray(e, b.origin, b.dir, e.band, weight, e.tint * f);
             }
         }
         return vec3<f32>(0.0);

@@ -19,7 +19,7 @@ use glam::{Vec2, Vec4};
 use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::color::ToneMap;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
-use prismatic_core::model::metalness::Metalness;
+use prismatic_core::model::metalness::{Metalness, SpecularLayer};
 use prismatic_core::model::metals::{MetalColor, NamedMetal};
 use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, EnvironmentMap, Estimator, FilmMap, Filter, Light, Material, MaterialKind, NormalMap,
@@ -316,10 +316,21 @@ impl Reader<'_> {
                         "texture_filter",
                         "texture_wrap",
                         "emission",
+                        "specular",
+                        "specular_ior",
+                        "specular_color",
+                        "roughness",
                         "normal_map",
                         "normal_scale",
                     ],
                 )?;
+                let layer = self.specular_layer(t)?;
+                if layer.is_none()
+                    && let Some(v) = self.get(t, "roughness")
+                {
+                    let reason = "a diffuse surface is rough only under a specular layer (give specular)";
+                    return Err(self.err(&join(&t.key, "roughness"), &v.span(), reason));
+                }
                 let checker = match self.get(t, "checker") {
                     Some(v) => {
                         let ct = self.table(&join(&t.key, "checker"), v)?;
@@ -337,11 +348,31 @@ impl Reader<'_> {
                 let texture = self.texture(t)?;
                 // An image shows as it is unless an albedo scales it.
                 let default_albedo = if texture.is_some() { Vec3::ONE } else { Vec3::splat(0.8) };
-                MaterialKind::Diffuse {
-                    albedo: self.opt(t, "albedo", Self::vec3)?.unwrap_or(default_albedo),
-                    checker,
-                    texture,
-                    emission: self.opt(t, "emission", Self::vec3)?.unwrap_or(Vec3::ZERO),
+                let albedo = self.opt(t, "albedo", Self::vec3)?.unwrap_or(default_albedo);
+                match layer {
+                    // Under a specular layer: glTF's non-metal, a metal of no metalness.
+                    Some(layer) => {
+                        for key in ["checker", "emission"] {
+                            if let Some(v) = self.get(t, key) {
+                                let reason =
+                                    "cannot be combined with a specular layer (a diffuse surface without specular can)";
+                                return Err(self.err(&join(&t.key, key), &v.span(), reason));
+                            }
+                        }
+                        MaterialKind::Metal {
+                            color: MetalColor::Rgb(albedo),
+                            roughness: self.opt(t, "roughness", Self::float)?.unwrap_or(0.0),
+                            texture,
+                            film: None,
+                            metalness: Metalness::layered(layer),
+                        }
+                    }
+                    None => MaterialKind::Diffuse {
+                        albedo,
+                        checker,
+                        texture,
+                        emission: self.opt(t, "emission", Self::vec3)?.unwrap_or(Vec3::ZERO),
+                    },
                 }
             }
             "dielectric" => {
@@ -406,6 +437,9 @@ impl Reader<'_> {
                         "film_factor_map",
                         "metalness",
                         "metalness_from_map",
+                        "specular",
+                        "specular_ior",
+                        "specular_color",
                         "normal_map",
                         "normal_scale",
                     ],
@@ -422,7 +456,9 @@ impl Reader<'_> {
                 let metalness = Metalness {
                     factor: self.opt(t, "metalness", Self::float)?.unwrap_or(1.0),
                     mapped: self.opt(t, "metalness_from_map", Self::boolean)?.unwrap_or(false),
+                    layer: None,
                 };
+                let metalness = metalness.with_layer(self.specular_layer(t)?);
                 MaterialKind::Metal { color, roughness, texture, film: self.film(t)?, metalness }
             }
             other => {
@@ -444,6 +480,29 @@ impl Reader<'_> {
             let names: Vec<&str> = NamedMetal::ALL.iter().map(|m| m.name()).collect();
             self.err(key, &v.span(), format!("unknown metal \"{name}\"; named metals are {}", names.join(", ")))
         })
+    }
+
+    /// The specular layer of a diffuse surface or a blended metal's base,
+    /// as glTF's `KHR_materials_specular` and `KHR_materials_ior` give it:
+    /// `specular` (its factor, 1 by default), `specular_ior` (1.5) and
+    /// `specular_color` (white); `None` without any of them.
+    fn specular_layer(&self, t: &Table<'_, '_>) -> Result<Option<SpecularLayer>> {
+        if !["specular", "specular_ior", "specular_color"].iter().any(|k| self.get(t, k).is_some()) {
+            return Ok(None);
+        }
+        let weight = self.opt(t, "specular", Self::float)?.unwrap_or(1.0);
+        if let Some(v) = self.get(t, "specular").filter(|_| !(0.0..=1.0).contains(&weight)) {
+            return Err(self.err(
+                &join(&t.key, "specular"),
+                &v.span(),
+                format!("must be between 0 and 1, got {weight}"),
+            ));
+        }
+        let ior = self.opt(t, "specular_ior", Self::float)?.unwrap_or(1.5);
+        if let Some(v) = self.get(t, "specular_ior").filter(|_| !(ior.is_finite() && ior >= 1.0)) {
+            return Err(self.err(&join(&t.key, "specular_ior"), &v.span(), format!("must be at least 1, got {ior}")));
+        }
+        Ok(SpecularLayer::gltf(ior, weight, self.opt(t, "specular_color", Self::vec3)?.unwrap_or(Vec3::ONE)))
     }
 
     /// A dielectric's or metal's film: its `film_thickness_nm`, its

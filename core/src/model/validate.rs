@@ -469,6 +469,20 @@ fn validate_metalness(c: &Check<'_>, metalness: &Metalness, has_map: bool) -> Re
     if metalness.mapped && !has_map {
         return Err(c.err("metalness", "is read from the roughness map's blue channel, but there is no roughness_map"));
     }
+    if let Some(layer) = metalness.layer {
+        c.finite("specular", layer.f90)?;
+        if !(0.0..=1.0).contains(&layer.f90) {
+            return Err(c.err("specular", format!("must be between 0 and 1, got {}", layer.f90)));
+        }
+        // F0 comes of specular_ior and specular_color, at most F90 when both are sane.
+        let sane = layer.f0.is_finite() && layer.f0.min_element() >= 0.0 && layer.f0.max_element() <= layer.f90;
+        if !sane {
+            return Err(c.err(
+                "specular_color",
+                format!("with specular_ior, must give a reflectance between 0 and specular, got {}", layer.f0),
+            ));
+        }
+    }
     Ok(())
 }
 

@@ -12,18 +12,26 @@
 //! ([`crate::plan::prepared::PreparedScene::metal_at`]). Where the ray
 //! goes is [`crate::optics::scatter::scatter_metal`]'s.
 //!
-//! A metalness m below 1 (glTF's, [`Metalness`]) makes a hit the metal's
-//! with probability m and a diffuse surface of albedo F0 otherwise
-//! ([`crate::plan::prepared::PreparedScene::metalness_at`]). A photon is
+//! A metalness m below 1 (glTF's, [`Metalness`]) blends the metal with a
+//! diffuse surface of albedo F0 (the base colour), optionally under a
+//! dielectric's specular layer ([`SpecularLayer`]: glTF's non-metals).
+//! Both reflections share the facets, so they are one specular part of
+//! Fresnel m F_metal + (1 − m) F_layer ([`MetalOptics::specular_tint`]),
+//! and the diffuse part reflects the share (1 − m)(1 − max F_layer) of
+//! what it is seen by ([`MetalOptics::diffuse_share`]). A photon is
 //! stored on it as on a diffuse surface (its flux is the light arriving,
-//! whatever the surface does with it) and goes on as the metal with
-//! probability m ([`crate::util::rng::dim::metal_part`]); the camera sees
-//! the diffuse part's light and caustic weighted by 1 − m and the metal's
-//! reflection by m.
+//! whatever the surface does with it) and goes on reflected with the
+//! probability m + (1 − m) F90 ([`MetalOptics::specular_share`],
+//! [`crate::util::rng::dim::metal_part`]), then survives by the specular
+//! part's Fresnel over that share ([`MetalOptics::specular_reflectance`]):
+//! together, by the specular part's Fresnel. The camera sees the diffuse
+//! part's light and caustic weighted by its share and the specular
+//! part's reflection by its Fresnel. m is the one at the point met
+//! ([`crate::plan::prepared::PreparedScene::metal_at`] sets it).
 
 use crate::geometry::primitive::basis;
 use crate::model::bands::BandTable;
-use crate::model::metalness::Metalness;
+use crate::model::metalness::{Metalness, SpecularLayer};
 use crate::model::metals::{MetalColor, NamedMetal};
 use crate::model::photon::WHITE_BAND;
 use crate::model::scene::ThinFilm;
@@ -91,15 +99,77 @@ impl MetalOptics {
     }
 
     /// True when its wavelengths reflect differently (F0 is not grey, or
-    /// a texture may colour it): a white photon splits here into its bands
-    /// or hero wavelengths, or goes on as one band ([`crate::photons::trace`]).
+    /// a texture may colour it, or its specular layer is coloured): a
+    /// white photon splits here into its bands or hero wavelengths, or
+    /// goes on as one band ([`crate::photons::trace`]). The metal's colour
+    /// counts only where some of it is metal.
     #[inline]
     pub fn is_chromatic(&self) -> bool {
-        self.measured.is_some()
+        let metal = self.measured.is_some()
             || self.textured
             || self.film.is_some()
             || self.f0.x != self.f0.y
-            || self.f0.y != self.f0.z
+            || self.f0.y != self.f0.z;
+        let some_metal = self.metalness.factor > 0.0;
+        let layer = self.metalness.layer.is_some_and(|l| l.f0.x != l.f0.y || l.f0.y != l.f0.z);
+        (metal && some_metal) || (layer && self.is_blended())
+    }
+
+    /// Its metalness m at the point whose optics these are.
+    #[inline]
+    fn m(&self) -> f32 {
+        self.metalness.factor
+    }
+
+    /// The share of a photon path stored on it that goes on reflected:
+    /// m + (1 − m) F90, the most its specular part reflects (m for a
+    /// blend without a layer; 1 for a whole metal).
+    #[inline]
+    pub fn specular_share(&self) -> f32 {
+        let m = self.m();
+        match self.metalness.layer {
+            Some(l) => m + (1.0 - m) * l.f90,
+            None => m,
+        }
+    }
+
+    /// The share of the light its diffuse part reflects toward a viewer
+    /// at cosine `cos` to the normal: (1 − m) (1 − max F_layer(cos))
+    /// ([`SpecularLayer::diffuse_share`]).
+    #[inline]
+    pub fn diffuse_share(&self, cos: f32) -> f32 {
+        (1.0 - self.m()) * self.metalness.layer.map_or(1.0, |l| l.diffuse_share(cos))
+    }
+
+    /// What the specular part's facet met at cosine `cos` keeps of each
+    /// RGB channel of a view path of band `band` at `lambda_nm`: m F_metal
+    /// + (1 − m) F_layer ([`MetalOptics::tint`] for a whole metal).
+    #[inline]
+    pub fn specular_tint(&self, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> Vec3 {
+        let m = self.m();
+        let metal = if m > 0.0 { self.tint(cos, band, lambda_nm, bands) * m } else { Vec3::ZERO };
+        match self.metalness.layer {
+            Some(l) => metal + layer_tint(l, cos, band, lambda_nm, bands) * (1.0 - m),
+            None => metal,
+        }
+    }
+
+    /// The share of a photon path's flux (band `band` at `lambda_nm`),
+    /// gone on with [`MetalOptics::specular_share`]'s probability, that
+    /// a facet met at cosine `cos` reflects: its survival probability,
+    /// (m R_metal + (1 − m) R_layer) / (m + (1 − m) F90), at most 1
+    /// ([`MetalOptics::reflectance`] for a metal without a layer).
+    #[inline]
+    pub fn specular_reflectance(&self, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> f32 {
+        let m = self.m();
+        let metal = if m > 0.0 { self.reflectance(cos, band, lambda_nm, bands) } else { 0.0 };
+        match self.metalness.layer {
+            Some(l) => {
+                let layer = bands.bounce_reflectance(l.fresnel(cos), band, lambda_nm);
+                (m * metal + (1.0 - m) * layer) / self.specular_share()
+            }
+            None => metal,
+        }
     }
 
     /// What a facet met at cosine `cos` reflects of a path of band `band`
@@ -156,10 +226,23 @@ impl MetalOptics {
         }
     }
 
-    /// The BRDF D G2 F / (4 cos θo cos θi) per RGB channel of a view path
-    /// of band `band` at `lambda_nm`, from `wi` toward `wo` about the
+    /// The share of a photon path's flux (band `band` at `lambda_nm`),
+    /// gone on with [`MetalOptics::specular_share`]'s probability, that
+    /// the specular layer's facet met at cosine `cos` passes to the
+    /// diffuse base below: (1 − m)(F90 − R_layer) / (m + (1 − m) F90), so
+    /// that the base takes (1 − m)(1 − R_layer) in all; 0 without a layer.
+    #[inline]
+    pub fn layer_passes(&self, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> f32 {
+        let Some(l) = self.metalness.layer else { return 0.0 };
+        let layer = bands.bounce_reflectance(l.fresnel(cos), band, lambda_nm);
+        ((1.0 - self.m()) * (l.f90 - layer) / self.specular_share()).max(0.0)
+    }
+
+    /// The specular part's BRDF D G2 F / (4 cos θo cos θi) per RGB
+    /// channel of a view path of band `band` at `lambda_nm`, F its
+    /// [`MetalOptics::specular_tint`], from `wi` toward `wo` about the
     /// normal `n` (unit vectors; zero unless both are above it, and for a
-    /// polished metal, whose reflection is a direction, not a density).
+    /// polished surface, whose reflection is a direction, not a density).
     pub fn reflection(&self, wo: Vec3, wi: Vec3, n: Vec3, band: u16, lambda_nm: f32, bands: &BandTable) -> Vec3 {
         let Some(ggx) = self.ggx else { return Vec3::ZERO };
         let (t, b) = basis(n);
@@ -169,8 +252,15 @@ impl MetalOptics {
         if density == 0.0 {
             return Vec3::ZERO;
         }
-        self.tint(o.dot((o + i).normalize()), band, lambda_nm, bands) * density
+        self.specular_tint(o.dot((o + i).normalize()), band, lambda_nm, bands) * density
     }
+}
+
+/// What the specular layer `layer`'s facet met at cosine `cos` keeps of
+/// each RGB channel of a view path of band `band` at `lambda_nm`.
+#[inline]
+fn layer_tint(layer: SpecularLayer, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> Vec3 {
+    bands.reflectance(layer.fresnel(cos), band, lambda_nm)
 }
 
 /// The Fresnel reflectance of measured `metal` at `lambda_nm` for light

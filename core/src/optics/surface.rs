@@ -258,6 +258,21 @@ impl Surface {
         }
     }
 
+    /// Whether the light it reflects or passes forms caustics worth aiming
+    /// photons at (the effect plan's specular objects): a mirror, glass or
+    /// a metal, but not a diffuse surface, nor a diffuse base under a
+    /// dielectric's specular layer alone (glTF's non-metals: glTF's
+    /// default layer reflects 4 % head on). Photons that reach such a
+    /// base still reflect off its layer.
+    #[inline]
+    pub fn focuses_light(&self) -> bool {
+        match self {
+            Surface::Diffuse { .. } => false,
+            Surface::Metal(metal) => metal.metalness.factor > 0.0,
+            _ => true,
+        }
+    }
+
     /// Radiance it emits toward a viewer on the side of `facing` (a ray's
     /// direction): its emission where the ray meets a front face (against
     /// the outward normal `outward`), else zero.

@@ -12,8 +12,9 @@
 //! clear glass they go together; at glass that disperses or tints light,
 //! and at a coloured metal, the path goes on as one of them, as a band
 //! photon does. At a diffuse surface (or a blended metal's diffuse part,
-//! taken with the probability 1 − m of its metalness m,
-//! [`crate::optics::metal`]; the photon is stored before the choice)
+//! taken where it does not go on as its specular part or where that
+//! part's layer passes it to the base, [`crate::optics::metal`]; the
+//! photon is stored before the choice)
 //! it is stored if it has bounced off a diffuse surface before, then
 //! survives with the probability Σ fⱼ ρ(λⱼ) that the surface reflects
 //! ([`crate::model::bands::BandTable::bounce_reflectance`]; Russian
@@ -36,7 +37,7 @@ use crate::model::photon::{Photon, TraceStats};
 use crate::optics::scatter::scatter_diffuse;
 use crate::optics::surface::Surface;
 use crate::photons::emit::emit_unaimed;
-use crate::photons::path::{Path, arrives_at_specular, cross_specular, goes_on_as_metal};
+use crate::photons::path::{Crossing, Path, arrives_at_specular, cross_specular, goes_on_as_metal};
 use crate::photons::wavelengths::IndirectWavelengths;
 use crate::plan::prepared::PreparedScene;
 use crate::util::rng::{dim, random_f32};
@@ -86,30 +87,16 @@ pub fn trace_indirect(scene: &PreparedScene, index: u32, out: &mut Vec<Photon>, 
                 out.push(photon);
             }
         }
-        // A blended metal: its diffuse part, unless the path goes on as its metal.
+        // A blended metal: its diffuse part, unless the path goes on as its
+        // specular part (whose layer may still pass it to the base).
         let diffuse = match surface {
             Surface::Diffuse { .. } => true,
             _ => surface.stores_photons() && !goes_on_as_metal(scene, index, &p, &hit),
         };
-        if diffuse {
-            if p.bounces >= scene.plan.max_depth {
-                stats.flux_depth_limited += f64::from(p.flux);
-                break;
-            }
-            let facing = if p.ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
-            let albedo = scene.albedo_at(hit.object, hit.triangle, hit.point, facing);
-            let (survives, after) =
-                lanes.bounce(&scene.bands, |band, lambda_nm| scene.bands.bounce_reflectance(albedo, band, lambda_nm));
-            if random_f32(seed, index, dim::scatter(p.band, p.bounces)) >= survives {
-                stats.flux_absorbed += f64::from(p.flux);
-                break;
-            }
-            lanes = after;
-            let [d1, d2] = dim::bounce(p.band, p.bounces);
-            let (u1, u2) = (random_f32(seed, index, d1), random_f32(seed, index, d2));
-            p.ray = scatter_diffuse(p.ray.direction, hit.point, hit.normal, u1, u2);
-            bounced_diffusely = true;
-        } else {
+        // The base's survival number and the dimensions of its bounce's direction.
+        let mut base =
+            diffuse.then(|| (random_f32(seed, index, dim::scatter(p.band, p.bounces)), dim::bounce(p.band, p.bounces)));
+        if !diffuse {
             let colours = || match surface {
                 Surface::Dielectric(glass) => glass.splits_photons,
                 Surface::Metal(metal) => scene.metal_is_chromatic_at(metal, &hit),
@@ -125,9 +112,29 @@ pub fn trace_indirect(scene: &PreparedScene, index: u32, out: &mut Vec<Photon>, 
             if p.bounces == 0 {
                 stats.specular_paths += 1;
             }
-            if !cross_specular(scene, index, &mut p, &hit, stats) {
+            match cross_specular(scene, index, &mut p, &hit, stats) {
+                Crossing::On => {}
+                Crossing::Ended => break,
+                Crossing::ToBase(u) => base = Some((u, dim::base_bounce(p.band, p.bounces))),
+            }
+        }
+        if let Some((u, [d1, d2])) = base {
+            if p.bounces >= scene.plan.max_depth {
+                stats.flux_depth_limited += f64::from(p.flux);
                 break;
             }
+            let facing = if p.ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
+            let albedo = scene.albedo_at(hit.object, hit.triangle, hit.point, facing);
+            let (survives, after) =
+                lanes.bounce(&scene.bands, |band, lambda_nm| scene.bands.bounce_reflectance(albedo, band, lambda_nm));
+            if u >= survives {
+                stats.flux_absorbed += f64::from(p.flux);
+                break;
+            }
+            lanes = after;
+            let (u1, u2) = (random_f32(seed, index, d1), random_f32(seed, index, d2));
+            p.ray = scatter_diffuse(p.ray.direction, hit.point, hit.normal, u1, u2);
+            bounced_diffusely = true;
         }
         p.bounces += 1;
     }

@@ -74,10 +74,13 @@ impl<'a> CameraConnection<'a> {
         let d = v.length();
         let ray = Ray { origin: self.camera.origin, direction: v / d };
         let hit = self.scene.intersect(&ray, d * (1.0 + CONNECTION_REL))?;
-        // A blended metal's diffuse part reflects the share 1 − m.
+        // A blended metal's diffuse part reflects its share toward the eye.
         let diffuse_share = match &self.scene.surfaces[hit.object] {
             Surface::Diffuse { .. } => 1.0,
-            Surface::Metal(metal) if metal.is_blended() => 1.0 - self.scene.metalness_at(metal, &hit),
+            Surface::Metal(metal) if metal.is_blended() => {
+                let toward_eye = ray.direction.dot(self.scene.scattering_normal(&hit, ray.direction)).abs();
+                self.scene.metal_at(metal, &hit).diffuse_share(toward_eye)
+            }
             _ => 0.0,
         };
         if hit.t < d * (1.0 - CONNECTION_REL) || diffuse_share == 0.0 {

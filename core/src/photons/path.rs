@@ -57,17 +57,31 @@ impl Path {
 }
 
 /// Whether path `p`, which has reached the blended metal at `hit` and been
-/// stored there as on a diffuse surface, goes on as its metal part: with
-/// the probability of its metalness there ([`dim::metal_part`];
-/// [`crate::optics::metal`]). Always at a whole metal, mirror or glass.
+/// stored there as on a diffuse surface, goes on as its specular part:
+/// with the probability [`crate::optics::metal::MetalOptics::specular_share`] there
+/// ([`dim::metal_part`]; [`crate::optics::metal`]). Always at a whole
+/// metal, mirror or glass.
 pub(crate) fn goes_on_as_metal(scene: &PreparedScene, index: u32, p: &Path, hit: &Hit) -> bool {
     match &scene.surfaces[hit.object] {
         Surface::Metal(metal) if metal.is_blended() => {
             let u = random_f32(scene.scene.render.seed, index, dim::metal_part(p.band, p.bounces));
-            u < scene.metalness_at(metal, hit)
+            u < scene.metal_at(metal, hit).specular_share()
         }
         _ => true,
     }
+}
+
+/// What became of a path at a mirror, metal or glass ([`cross_specular`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Crossing {
+    /// It goes on, its ray the new one.
+    On,
+    /// It ended there, its flux tallied.
+    Ended,
+    /// A blended metal's specular layer passed it to the diffuse base
+    /// below (nothing tallied), leaving the uniform number for the base's
+    /// own choice.
+    ToBase(f32),
 }
 
 /// Whether path `p` goes on at the mirror or glass it has reached at `hit`:
@@ -100,13 +114,16 @@ pub(crate) fn arrives_at_specular(
 /// its two numbers [`dim::bounce`]'s) with the facet's Fresnel at the
 /// path's wavelength times the unshadowed share as its survival
 /// probability ([`dim::scatter`]; Russian roulette, so survivors keep their
-/// flux); or Fresnel's choice between reflection and refraction at the
+/// flux; on a blended metal the specular part's, [`crate::optics::metal::MetalOptics::specular_reflectance`],
+/// and what its layer's facet passes reaches the base: [`Crossing::ToBase`]
+/// with the probability [`crate::optics::metal::MetalOptics::layer_passes`]);
+/// or Fresnel's choice between reflection and refraction at the
 /// path's own index ([`dim::scatter`]), about the normal or, on rough
 /// glass, about a facet's ([`scatter_rough_dielectric`], its numbers
 /// [`dim::bounce`]'s), surviving with the unshadowed share (the branch
-/// number's leftover). False when the path ended here: absorbed by a metal,
-/// by rough glass's microsurface or by a tinted sheet ([`absorbed_crossing`]),
-/// its flux tallied. A white
+/// number's leftover). [`Crossing::Ended`] when the path ended here:
+/// absorbed by a metal, by rough glass's microsurface or by a tinted sheet
+/// ([`absorbed_crossing`]), its flux tallied. A white
 /// path meets only grey metals: at a coloured one a white photon splits
 /// or takes one band first, and indirect light's goes on as one of its
 /// wavelengths. The bounce is the caller's to count.
@@ -116,14 +133,15 @@ pub(crate) fn cross_specular(
     p: &mut Path,
     hit: &Hit,
     stats: &mut TraceStats,
-) -> bool {
+) -> Crossing {
     let seed = scene.scene.render.seed;
     let normal = scene.scattering_normal(hit, p.ray.direction);
+    let on = |goes_on: bool| if goes_on { Crossing::On } else { Crossing::Ended };
     match &scene.surfaces[hit.object] {
         Surface::Mirror => {
             let d = reflect(p.ray.direction, normal);
             p.ray = Ray { origin: offset_origin(hit.point, normal, d), direction: d };
-            true
+            Crossing::On
         }
         Surface::Metal(metal) => {
             let metal = scene.metal_at(metal, hit);
@@ -136,15 +154,20 @@ pub(crate) fn cross_specular(
                 None => (0.0, 0.0),
             };
             let lambda_nm = stored_wavelength(&scene.bands, p.band, p.lambda_nm);
-            let reflected = scatter_metal(p.ray.direction, hit.point, normal, ggx, u1, u2).filter(|b| {
-                let share = b.unshadowed * metal.reflectance(b.cos_facet, p.band, lambda_nm, &scene.bands);
-                random_f32(seed, index, dim::scatter(p.band, p.bounces)) < share
-            });
-            match reflected {
-                Some(b) => p.ray = b.ray,
-                None => stats.flux_absorbed += f64::from(p.flux),
+            let u = random_f32(seed, index, dim::scatter(p.band, p.bounces));
+            if let Some(b) = scatter_metal(p.ray.direction, hit.point, normal, ggx, u1, u2) {
+                let reflects = b.unshadowed * metal.specular_reflectance(b.cos_facet, p.band, lambda_nm, &scene.bands);
+                if u < reflects {
+                    p.ray = b.ray;
+                    return Crossing::On;
+                }
+                let passes = metal.layer_passes(b.cos_facet, p.band, lambda_nm, &scene.bands);
+                if u < reflects + passes {
+                    return Crossing::ToBase((u - reflects) / passes);
+                }
             }
-            reflected.is_some()
+            stats.flux_absorbed += f64::from(p.flux);
+            Crossing::Ended
         }
         Surface::Dielectric(glass) => {
             let u = random_f32(seed, index, dim::scatter(p.band, p.bounces));
@@ -166,7 +189,7 @@ pub(crate) fn cross_specular(
                         }
                         None => {
                             stats.flux_absorbed += f64::from(p.flux);
-                            return false;
+                            return Crossing::Ended;
                         }
                     }
                 }
@@ -176,7 +199,7 @@ pub(crate) fn cross_specular(
             if absorbed {
                 stats.flux_absorbed += f64::from(p.flux);
             }
-            !absorbed
+            on(!absorbed)
         }
         Surface::Diffuse { .. } => unreachable!("a diffuse surface is not crossed"),
     }

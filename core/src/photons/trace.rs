@@ -30,7 +30,7 @@ use crate::model::photon::{Photon, PhotonMap, TraceStats, WHITE_BAND};
 use crate::optics::surface::Surface;
 use crate::photons::emit::emit;
 use crate::photons::indirect;
-use crate::photons::path::{Path, arrives_at_specular, cross_specular, goes_on_as_metal};
+use crate::photons::path::{Crossing, Path, arrives_at_specular, cross_specular, goes_on_as_metal};
 use crate::photons::wavelengths::{emission_paths, sample_band, split_bands};
 use crate::plan::prepared::PreparedScene;
 use crate::util::progress::{Progress, Stage};
@@ -163,7 +163,7 @@ fn trace_path(
                 stats.paths += u64::from(paths) - 1;
                 for (band, lambda_nm) in split_bands(scene, index) {
                     let mut child = Path { band, lambda_nm, flux: p.flux / paths as f32, ..p };
-                    if cross_specular(scene, index, &mut child, &hit, stats) {
+                    if cross_specular(scene, index, &mut child, &hit, stats) == Crossing::On {
                         child.bounces += 1;
                         trace_path(scene, index, child, None, out, stats);
                     }
@@ -171,7 +171,8 @@ fn trace_path(
                 return;
             }
         }
-        if !cross_specular(scene, index, &mut p, &hit, stats) {
+        // A path a layer passes to its base was stored there already.
+        if cross_specular(scene, index, &mut p, &hit, stats) != Crossing::On {
             return;
         }
         p.bounces += 1;

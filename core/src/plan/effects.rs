@@ -61,8 +61,7 @@ impl EffectPlan {
     /// lights emit photons as `emitters` (a sun as its beam).
     pub fn new(scene: &Scene, emitters: &[Light], surfaces: &[Surface]) -> Self {
         let bounds: Vec<(Vec3, f32)> = scene.objects.iter().map(|o| bounds(&o.shape)).collect();
-        let specular: Vec<usize> =
-            (0..surfaces.len()).filter(|&k| !matches!(surfaces[k], Surface::Diffuse { .. })).collect();
+        let specular: Vec<usize> = (0..surfaces.len()).filter(|&k| surfaces[k].focuses_light()).collect();
         let dispersive = |k: usize| matches!(&surfaces[k], Surface::Dielectric(g) if g.is_dispersive());
         let chromatic = |k: usize| match &surfaces[k] {
             Surface::Dielectric(g) => g.is_chromatic(),
@@ -170,7 +169,7 @@ impl EffectPlan {
             .collect();
         let (max_depth, depth_reason) = if indirect.on {
             (scene.render.max_depth, String::from("render.max_depth (indirect light bounces count too)"))
-        } else if specular.is_empty() {
+        } else if surfaces.iter().all(|s| matches!(s, Surface::Diffuse { .. })) {
             (0, String::from("no mirror or glass: paths end at the first surface"))
         } else {
             (scene.render.max_depth, String::from("render.max_depth"))

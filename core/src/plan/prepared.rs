@@ -7,6 +7,7 @@ use crate::geometry::primitive::{Primitive, Ray, prism_faces};
 use crate::geometry::shading::{TriangleNormals, shading_normal};
 use crate::geometry::texture::{TriangleUv, sample, sample_linear};
 use crate::model::bands::BandTable;
+use crate::model::metalness::Metalness;
 use crate::model::scene::{Light, MaterialKind, Scene, SceneError, Shape, ThinFilm};
 use crate::model::spectrum::Spectrum;
 use crate::optics::metal::MetalOptics;
@@ -190,7 +191,7 @@ impl PreparedScene {
         let beam_targets: Vec<(Vec3, f32)> = bounds
             .iter()
             .zip(&surfaces)
-            .filter(|(_, s)| !matches!(s, Surface::Diffuse { .. }) && scene.render.indirect_photons == 0)
+            .filter(|(_, s)| s.focuses_light() && scene.render.indirect_photons == 0)
             .map(|(b, _)| *b)
             .collect();
         let environment = scene.lights.iter().find_map(|l| match l {
@@ -259,12 +260,8 @@ impl PreparedScene {
                 g.splits_view_rays = g.colours_view_rays() && plan.view_dispersion.on;
             }
         }
-        let aimed_at: Vec<(Vec3, f32)> = bounds
-            .iter()
-            .zip(&surfaces)
-            .filter(|(_, s)| !matches!(s, Surface::Diffuse { .. }))
-            .map(|(b, _)| *b)
-            .collect();
+        let aimed_at: Vec<(Vec3, f32)> =
+            bounds.iter().zip(&surfaces).filter(|(_, s)| s.focuses_light()).map(|(b, _)| *b).collect();
         let drawn_triangles = choice.filter(|_| draw).map(|choice| DrawnTriangles {
             choice: Arc::new(choice),
             first: first_area,
@@ -428,10 +425,17 @@ impl PreparedScene {
     /// normal incidence times its colour texture there, read as a diffuse
     /// surface's base colour is (sRGB decoded, bilinearly or by nearest
     /// texel as its sampler says, at the mesh's texture coordinates), and
-    /// its film there ([`PreparedScene::film_at`]).
+    /// its film there ([`PreparedScene::film_at`]), and its metalness there
+    /// ([`PreparedScene::metalness_at`], no longer mapped).
     #[inline]
     pub fn metal_at(&self, metal: &MetalOptics, hit: &Hit) -> MetalOptics {
-        MetalOptics { ggx: self.facets(hit), film: self.film_at(metal.film, hit), ..self.metal_colour_at(metal, hit) }
+        let metalness = Metalness { factor: self.metalness_at(metal, hit), mapped: false, ..metal.metalness };
+        MetalOptics {
+            ggx: self.facets(hit),
+            film: self.film_at(metal.film, hit),
+            metalness,
+            ..self.metal_colour_at(metal, hit)
+        }
     }
 
     /// What a path of `band` (at its own wavelength `lambda_nm` when it has

@@ -168,7 +168,7 @@ impl<'a> ViewContext<'a> {
         if let Surface::Metal(metal) = surface
             && metal.is_blended()
         {
-            return self.blended_metal(ray, &hit, (metal, self.scene.metalness_at(metal, &hit)), path, points);
+            return self.blended_metal(ray, &hit, metal, path, points);
         }
         // Mirrors, metals and glass scatter about the shading normal.
         let hit = Hit { normal: self.scene.scattering_normal(&hit, ray.direction), ..hit };
@@ -211,9 +211,10 @@ impl<'a> ViewContext<'a> {
     }
 
     /// What a path arriving along `ray` sees of the metal `metal` at `hit`
-    /// (its normal the scattering normal): its highlights, and the light
-    /// reflected off one facet, weighted by its Fresnel at the path's
-    /// wavelength times G2/G1.
+    /// (its normal the scattering normal), or of a blended metal's
+    /// specular part: its highlights, and the light reflected off one
+    /// facet, weighted by its Fresnel at the path's wavelength
+    /// ([`MetalOptics::specular_tint`]) times G2/G1.
     fn off_metal(
         &self,
         ray: &Ray,
@@ -230,34 +231,36 @@ impl<'a> ViewContext<'a> {
         let Some(b) = scatter_metal(ray.direction, hit.point, hit.normal, metal.ggx, u1, u2) else {
             return lit;
         };
-        let f = metal.tint(b.cos_facet, band, lambda_nm, &self.scene.bands) * b.unshadowed;
+        let f = metal.specular_tint(b.cos_facet, band, lambda_nm, &self.scene.bands) * b.unshadowed;
         let next = ViewPath { depth: depth + 1, weight: weight * f.max_element(), tint: tint * f, ..path };
         lit + if next.weight > MIN_VIEW_WEIGHT { f * self.radiance(&b.ray, next, points) } else { Vec3::ZERO }
     }
 
     /// What a path arriving along `ray` sees of a blended metal (`metal`
-    /// of metalness `m` at `hit`): its diffuse part, shaded as a diffuse
-    /// surface of albedo F0 and weighted by 1 − m (its visible point too),
-    /// and its metal part ([`ViewContext::off_metal`]) by m
-    /// ([`crate::optics::metal`]).
+    /// at `hit`): its diffuse part, shaded as a diffuse surface of albedo
+    /// F0 and weighted by its share toward the viewer (its visible point
+    /// too), and its specular part ([`ViewContext::off_metal`]), whose
+    /// Fresnel holds its metalness ([`crate::optics::metal`]).
     fn blended_metal(
         &self,
         ray: &Ray,
         hit: &Hit,
-        (metal, m): (&MetalOptics, f32),
+        metal: &MetalOptics,
         path: ViewPath,
         points: &mut Vec<VisiblePoint>,
     ) -> Vec3 {
+        let bent = Hit { normal: self.scene.scattering_normal(hit, ray.direction), ..*hit };
+        let here = self.scene.metal_at(metal, hit);
+        let share = here.diffuse_share(ray.direction.dot(bent.normal).abs());
         let mut sum = Vec3::ZERO;
-        if m < 1.0 {
-            sum += (1.0 - m) * self.shade_diffuse(ray, hit, (path.tint * (1.0 - m), path.depth), points);
+        if share > 0.0 {
+            sum += share * self.shade_diffuse(ray, hit, (path.tint * share, path.depth), points);
         }
-        // Where a point is whole metal (m = 1) it is followed as a whole metal is.
-        let followed = m >= 1.0 || path.weight * m > MIN_VIEW_WEIGHT;
-        if m > 0.0 && path.depth < self.scene.plan.max_depth && followed {
-            let bent = Hit { normal: self.scene.scattering_normal(hit, ray.direction), ..*hit };
-            let part = ViewPath { weight: path.weight * m, tint: path.tint * m, ..path };
-            sum += m * self.off_metal(ray, &bent, metal, part, points);
+        // Where a point is whole metal it is followed as a whole metal is.
+        let most = here.specular_share();
+        let followed = most >= 1.0 || path.weight * most > MIN_VIEW_WEIGHT;
+        if most > 0.0 && path.depth < self.scene.plan.max_depth && followed {
+            sum += self.off_metal(ray, &bent, metal, path, points);
         }
         sum
     }

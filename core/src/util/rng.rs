@@ -112,6 +112,20 @@ pub mod dim {
     pub fn metal_part(band: u16, bounce: u32) -> u32 {
         scatter(band, bounce) + METAL_PART
     }
+
+    /// Added to a scattering dimension for the first of the two numbers of
+    /// the diffuse bounce of a path a specular layer passed to its base
+    /// (its facet took [`bounce`]'s; the second is one [`ABSORB`] above
+    /// it): above the metal part's choice.
+    pub const BASE_BOUNCE: u32 = 6 << 24;
+
+    /// The two dimensions of that bounce's direction for the path of
+    /// `band` at `bounce`.
+    #[inline]
+    pub fn base_bounce(band: u16, bounce: u32) -> [u32; 2] {
+        let first = scatter(band, bounce) + BASE_BOUNCE;
+        [first, first + ABSORB]
+    }
 }
 
 #[cfg(test)]

@@ -433,7 +433,7 @@ mod tests {
     use bevy::ecs::message::Messages;
     use bevy::ecs::system::RunSystemOnce;
     use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
-    use prismatic_core::model::metalness::Metalness;
+    use prismatic_core::model::metalness::{Metalness, SpecularLayer};
 
     /// A 2×1 image of these texels.
     fn image(format: TextureFormat, texels: [[u8; 4]; 2]) -> Image {
@@ -495,6 +495,11 @@ mod tests {
         }
     }
 
+    /// The specular layer of Bevy's default reflectance (0.5): F0 0.04, F90 1.
+    fn default_layer() -> SpecularLayer {
+        SpecularLayer { f0: prismatic_core::Vec3::splat(0.16 * 0.25), f90: 1.0 }
+    }
+
     #[test]
     fn a_receiver_reads_its_base_colour_texture_through_its_uv_transform() {
         let texels = [[200, 100, 50, 255], [0, 0, 0, 255]];
@@ -508,9 +513,11 @@ mod tests {
             true,
         );
         assert!(left_out.is_empty(), "{left_out:?}");
-        let MaterialKind::Diffuse { texture: Some(texture), .. } = &scene.materials[0].kind else {
+        // A non-metal: its diffuse base (the texture) under its specular layer.
+        let MaterialKind::Metal { texture: Some(texture), metalness, .. } = &scene.materials[0].kind else {
             panic!("{:?}", scene.materials[0].kind)
         };
+        assert_eq!(*metalness, Metalness::layered(default_layer()));
         assert_eq!(&*texture.texels, &packed(&texels));
         let largest = uvs_of(&scene).iter().fold(0.0f32, |m, uv| m.max(uv.max_element()));
         assert_eq!(largest, 2.0, "the plane's UV_0 spans 0..1, its transform doubles it");
@@ -557,7 +564,7 @@ mod tests {
             true,
         );
         let MaterialKind::Metal { metalness, .. } = scene.materials[0].kind else { panic!("a metal") };
-        assert_eq!(metalness, Metalness { factor: 1.0, mapped: true });
+        assert_eq!(metalness, Metalness { mapped: true, layer: Some(default_layer()), ..Metalness::WHOLE });
         assert!(left_out.is_empty(), "{left_out:?}");
         PreparedScene::new(scene).expect("a valid scene");
     }
@@ -572,7 +579,7 @@ mod tests {
             },
             false,
         );
-        assert!(matches!(scene.materials[0].kind, MaterialKind::Diffuse { texture: None, .. }));
+        assert!(matches!(scene.materials[0].kind, MaterialKind::Metal { texture: None, .. }));
         assert_eq!(left_out, ["receiver mesh 0: its textures (its mesh has no UV_0)"]);
         PreparedScene::new(scene).expect("a valid scene");
         // An image not loaded yet: drawn without it until it is, nothing said.
@@ -580,7 +587,7 @@ mod tests {
             |_| StandardMaterial { base_color_texture: Some(Handle::default()), metallic: 0.0, ..default() },
             true,
         );
-        assert!(matches!(scene.materials[0].kind, MaterialKind::Diffuse { texture: None, .. }));
+        assert!(matches!(scene.materials[0].kind, MaterialKind::Metal { texture: None, .. }));
         assert!(left_out.is_empty() && uvs_of(&scene).is_empty(), "{left_out:?}");
     }
 

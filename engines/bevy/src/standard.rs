@@ -1,8 +1,9 @@
 //! A `StandardMaterial` (a [`crate::CausticMaterial`]'s base) as a
-//! prismatic material: diffuse in its base colour and base colour texture,
-//! or a metal in its base colour blended with that diffuse base by its
-//! metalness ([`Metalness`]: `metallic` times its metallic-roughness
-//! texture's blue channel), its roughness scaled by that texture's green channel,
+//! prismatic material: diffuse in its base colour and base colour texture
+//! under its specular layer (`reflectance`, `specular_tint`), or a metal in
+//! its base colour blended with that base by its metalness ([`Metalness`]:
+//! `metallic` times its metallic-roughness texture's blue channel), its
+//! roughness scaled by that texture's green channel,
 //! its normals tilted by its normal map. What prismatic cannot draw of it
 //! is named, as the glTF loader names what it leaves out.
 
@@ -10,7 +11,7 @@ use crate::images::{AppImages, Channels};
 use bevy::math::Affine2;
 use bevy::mesh::UvChannel;
 use bevy::prelude::*;
-use prismatic_core::model::metalness::Metalness;
+use prismatic_core::model::metalness::{Metalness, SpecularLayer};
 use prismatic_core::model::scene::{Material, MaterialKind, NormalMap, Texture};
 use prismatic_core::{MetalColor, Vec3 as CoreVec3};
 
@@ -27,8 +28,13 @@ impl Drawn {
     /// The material without its textures (its mesh has no texture coordinates).
     pub(crate) fn untextured(self) -> Material {
         let mut material = self.material;
-        if let MaterialKind::Diffuse { texture, .. } = &mut material.kind {
-            *texture = None;
+        match &mut material.kind {
+            MaterialKind::Diffuse { texture, .. } => *texture = None,
+            MaterialKind::Metal { texture, metalness, .. } => {
+                // Without its map the metalness is its factor's.
+                (*texture, metalness.mapped) = (None, false);
+            }
+            _ => {}
         }
         (material.normal_map, material.roughness_map) = (None, None);
         material
@@ -85,6 +91,15 @@ pub(crate) fn glass_normal_map(
     Some((map, m.uv_transform))
 }
 
+/// The specular layer of `m`'s dielectric base: F0 = 0.16 · reflectance²
+/// times `specular_tint` (Bevy's mapping: its default reflectance of 0.5 is
+/// glTF's 0.04), F90 1; `None` at reflectance 0.
+fn specular_layer(m: &StandardMaterial) -> Option<SpecularLayer> {
+    let t = m.specular_tint.to_linear();
+    let f0 = CoreVec3::new(t.red, t.green, t.blue) * (0.16 * m.reflectance * m.reflectance);
+    (m.reflectance > 0.0).then(|| SpecularLayer { f0: f0.clamp(CoreVec3::ZERO, CoreVec3::ONE), f90: 1.0 })
+}
+
 /// `m` as a prismatic material named `name`; what of it is left out is
 /// added to `left_out`.
 pub(crate) fn drawn(m: &StandardMaterial, name: String, images: &mut AppImages, left_out: &mut Vec<String>) -> Drawn {
@@ -98,10 +113,12 @@ pub(crate) fn drawn(m: &StandardMaterial, name: String, images: &mut AppImages, 
     );
     let base_colour_texture =
         maps.read("base_color_texture", &m.base_color_texture, &m.base_color_channel, Channels::Colour);
-    let metalness = match (&m.metallic_roughness_texture, &metallic_roughness) {
+    let metal = match (&m.metallic_roughness_texture, &metallic_roughness) {
         (Some(handle), Some(texture)) => maps.images.metalness(handle, m.metallic, texture),
         _ => Metalness::of(m.metallic, None),
     };
+    let layer = specular_layer(m);
+    let metalness = metal.map(|metal| metal.with_layer(layer)).or_else(|| layer.map(Metalness::layered));
     let c = m.base_color.to_linear();
     let color = CoreVec3::new(c.red, c.green, c.blue);
     let (kind, roughness_map) = match metalness {

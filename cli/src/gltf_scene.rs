@@ -519,7 +519,9 @@ fn material(
         unused.push("emissiveTexture's pattern (the mesh emits the texture's mean colour evenly)");
     }
     if !glass_or_metal && m.extensions().is_some_and(|e| e.contains_key("KHR_materials_iridescence")) {
-        unused.push("KHR_materials_iridescence of a diffuse material (films are drawn on glass and metals)");
+        unused.push(
+            "KHR_materials_iridescence of a non-metal (films are drawn on glass and metals, not on a specular layer)",
+        );
     }
     // The diffuse base's specular layer (an emitter stays diffuse: only
     // diffuse surfaces emit, and its glow outshines its reflections).

@@ -152,6 +152,7 @@ fn scene_files_put_a_specular_layer_on_a_diffuse_surface() {
         (format!("{paint}\nspecular = 1\nemission = [1, 1, 1]"), "emission", "specular layer"),
         (format!("{paint}\nspecular_ior = nan"), "specular_ior", "at least 1"),
         (format!("{paint}\nspecular_color = [1, -1, 1]"), "specular_color", "between 0 and specular"),
+        ("kind = \"diffuse\"\nspecular = 1\nalbedo = [0.5, -0.1, 0.5]".into(), "albedo", "not be negative"),
     ] {
         let e = check(&material).map(|_| ()).expect_err(&material);
         assert!(e.key == format!("material.m.{key}") && e.reason.contains(reason), "{material}: {e}");

@@ -416,9 +416,11 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
             }
             validate_roughness(c, *roughness)
         }
-        MaterialKind::Metal { color: MetalColor::Rgb(color), roughness, texture, .. } => {
-            c.colour("color", *color)?;
-            if color.max_element() > 1.0 {
+        MaterialKind::Metal { color: MetalColor::Rgb(color), roughness, texture, metalness, .. } => {
+            // No metal anywhere: the colour is a diffuse base's albedo (a scene file's `albedo`).
+            let plastic = metalness.factor == 0.0 && !metalness.mapped;
+            c.colour(if plastic { "albedo" } else { "color" }, *color)?;
+            if !plastic && color.max_element() > 1.0 {
                 let reason = format!("a metal reflects at most all light, got [{}, {}, {}]", color.x, color.y, color.z);
                 return Err(c.err("color", reason));
             }

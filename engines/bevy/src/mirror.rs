@@ -501,6 +501,15 @@ mod tests {
     }
 
     #[test]
+    fn reflectance_sets_the_specular_layer_and_zero_leaves_a_bare_diffuse_surface() {
+        let (scene, _) = mirrored(|_| StandardMaterial { reflectance: 1.0, ..default() }, true);
+        let MaterialKind::Metal { metalness, .. } = scene.materials[0].kind else { panic!("a layered base") };
+        assert_eq!(metalness.layer.map(|l| (l.f0.x, l.f90)), Some((0.16, 1.0)), "F0 0.16 reflectance²");
+        let (scene, _) = mirrored(|_| StandardMaterial { reflectance: 0.0, ..default() }, true);
+        assert!(matches!(scene.materials[0].kind, MaterialKind::Diffuse { .. }), "{:?}", scene.materials[0].kind);
+    }
+
+    #[test]
     fn a_receiver_reads_its_base_colour_texture_through_its_uv_transform() {
         let texels = [[200, 100, 50, 255], [0, 0, 0, 255]];
         let (scene, left_out) = mirrored(

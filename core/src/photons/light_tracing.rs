@@ -19,8 +19,9 @@
 //! through its band's RGB weight, or the colour of its wavelength
 //! ([`crate::model::bands::BandTable::rgb_of_flux`]), as in the density estimator. The camera's ray toward the photon must
 //! reach it ([`CONNECTION_REL`]): the visibility test, and the hit gives
-//! the surface's albedo and normal. On a blended metal of metalness m the
-//! diffuse part adds (1 − m) of that ([`crate::optics::metal`]).
+//! the surface's albedo and normal. On a blended metal the diffuse part
+//! adds its share toward the eye of that, (1 − m)(1 − max F_layer)
+//! ([`crate::optics::metal::MetalOptics::diffuse_share`]).
 //!
 //! Light tracing cannot connect through a mirror or glass to a pinhole, so
 //! the caustics seen only that way are still gathered at visible points:

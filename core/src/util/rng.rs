@@ -103,11 +103,11 @@ pub mod dim {
     }
 
     /// Added to a scattering dimension for the choice whether a path goes
-    /// on as a blended metal's metal part: above every wavelength choice.
+    /// on as a blended metal's specular part: above every wavelength choice.
     pub const METAL_PART: u32 = 5 << 24;
 
     /// The dimension of that choice for the path of `band` at `bounce`
-    /// ([`crate::optics::metal`]: the metal's share is the probability).
+    /// ([`crate::optics::metal`]: the specular part's share is the probability).
     #[inline]
     pub fn metal_part(band: u16, bounce: u32) -> u32 {
         scatter(band, bounce) + METAL_PART
@@ -116,7 +116,7 @@ pub mod dim {
     /// Added to a scattering dimension for the first of the two numbers of
     /// the diffuse bounce of a path a specular layer passed to its base
     /// (its facet took [`bounce`]'s; the second is one [`ABSORB`] above
-    /// it): above the metal part's choice.
+    /// it): above the specular part's choice.
     pub const BASE_BOUNCE: u32 = 6 << 24;
 
     /// The two dimensions of that bounce's direction for the path of

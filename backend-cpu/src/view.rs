@@ -180,9 +180,7 @@ impl Shader<'_> {
                     let here = self.scene.metal_at(metal, &at);
                     let toward_eye = r.dir.dot(self.scene.scattering_normal(&at, r.dir)).abs();
                     specular_share[i] = here.specular_share();
-                    let lambda_nm = stored_wavelength(&self.scene.bands, r.band, r.lambda_nm);
-                    let share = here.diffuse_share(toward_eye, r.band, lambda_nm, &self.scene.bands);
-                    sum[r.pixel as usize] += self.blended_diffuse_part(r, &at, share);
+                    sum[r.pixel as usize] += self.blended_diffuse_part(r, &at, here.diffuse_share(toward_eye));
                 }
                 _ => {}
             }

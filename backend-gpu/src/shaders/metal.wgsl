@@ -89,14 +89,14 @@ fn metal_is_chromatic(s: GpuSurface) -> bool {
     let blended = (s.flags & SURFACE_BLENDED) != 0u;
     let some_metal = !blended || s.checker_offset.x > 0.0;
     let l = layer_f0(s);
-    let layer = s.checker_offset.y > 0.0 && (l.x != l.y || l.y != l.z || (s.flags & SURFACE_HAS_FILM) != 0u);
+    let layer = s.checker_offset.y > 0.0 && (l.x != l.y || l.y != l.z);
     return (metal && some_metal) || (layer && blended);
 }
 
 // ---- the specular layer of a blend's base (MetalOptics over
 // model::metalness::SpecularLayer): F0 per channel in `absorption`, F90
-// in checker_offset.y (0: no layer), the base's index in checker_offset.z
-// (a film's sits on it). m is the metalness at the point (metalness_at). ----
+// in checker_offset.y (0: no layer). m is the metalness at the point
+// (metalness_at). ----
 
 fn layer_f0(s: GpuSurface) -> vec3<f32> {
     return s.absorption;
@@ -107,39 +107,6 @@ fn layer_fresnel(s: GpuSurface, c: f32) -> vec3<f32> {
     return layer_schlick(layer_f0(s), s.checker_offset.y, c);
 }
 
-// metal::layer_filmed: F90 times the film's Airy sum over the base's index.
-fn layer_filmed(s: GpuSurface, c: f32, lambda_nm: f32) -> f32 {
-    let film = surface_film(s);
-    return s.checker_offset.y * thin_film_on(c, 1.0, film.x, vec2<f32>(s.checker_offset.z, 0.0), film.y, film.z, lambda_nm);
-}
-
-// MetalOptics::layer_tint: Schlick's per channel, or under a film its Airy
-// sum at the path's wavelength (a white path: Σ C_b F(λ_b)).
-fn layer_tint(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> vec3<f32> {
-    if (s.flags & SURFACE_HAS_FILM) != 0u {
-        if band == WHITE_BAND {
-            var sum = vec3<f32>(0.0);
-            for (var b = 0u; b < params.band_count; b++) {
-                sum += bands[b].weight * layer_filmed(s, c, bands[b].lambda_nm);
-            }
-            return sum;
-        }
-        return vec3<f32>(layer_filmed(s, c, lambda_nm));
-    }
-    return reflectance(layer_fresnel(s, c), band, lambda_nm);
-}
-
-// MetalOptics::layer_reflectance: the share of a photon path's flux the layer reflects.
-fn layer_reflectance(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> f32 {
-    if (s.flags & SURFACE_HAS_FILM) != 0u {
-        if band != WHITE_BAND {
-            return layer_filmed(s, c, lambda_nm);
-        }
-        return bounce_reflectance(layer_tint(s, c, band, lambda_nm), band, lambda_nm);
-    }
-    return bounce_reflectance(layer_fresnel(s, c), band, lambda_nm);
-}
-
 // MetalOptics::specular_share: m + (1 − m) F90.
 fn specular_share(s: GpuSurface, m: f32) -> f32 {
     if s.checker_offset.y > 0.0 {
@@ -148,14 +115,10 @@ fn specular_share(s: GpuSurface, m: f32) -> f32 {
     return m;
 }
 
-// MetalOptics::diffuse_share: (1 − m)(1 − max F_layer(cos)) toward a viewer
-// at `c` on a path of `band` at `lambda_nm` (under a film, the film's F_layer).
-fn blend_diffuse_share(s: GpuSurface, m: f32, c: f32, band: u32, lambda_nm: f32) -> f32 {
+// MetalOptics::diffuse_share: (1 − m)(1 − max F_layer(cos)) toward a viewer at `c`.
+fn blend_diffuse_share(s: GpuSurface, m: f32, c: f32) -> f32 {
     if s.checker_offset.y > 0.0 {
-        var f = layer_fresnel(s, c);
-        if (s.flags & SURFACE_HAS_FILM) != 0u {
-            f = layer_tint(s, c, band, lambda_nm);
-        }
+        let f = layer_fresnel(s, c);
         return (1.0 - m) * (1.0 - max(f.x, max(f.y, f.z)));
     }
     return (1.0 - m) * 1.0;
@@ -168,7 +131,7 @@ fn specular_tint(s: GpuSurface, m: f32, c: f32, band: u32, lambda_nm: f32) -> ve
         metal = metal_tint(s, c, band, lambda_nm) * m;
     }
     if s.checker_offset.y > 0.0 {
-        return metal + layer_tint(s, c, band, lambda_nm) * (1.0 - m);
+        return metal + reflectance(layer_fresnel(s, c), band, lambda_nm) * (1.0 - m);
     }
     return metal;
 }
@@ -180,7 +143,7 @@ fn specular_reflectance(s: GpuSurface, m: f32, c: f32, band: u32, lambda_nm: f32
         metal = metal_reflectance(s, c, band, lambda_nm);
     }
     if s.checker_offset.y > 0.0 {
-        let layer = layer_reflectance(s, c, band, lambda_nm);
+        let layer = bounce_reflectance(layer_fresnel(s, c), band, lambda_nm);
         return (m * metal + (1.0 - m) * layer) / specular_share(s, m);
     }
     return metal;
@@ -191,6 +154,6 @@ fn layer_passes(s: GpuSurface, m: f32, c: f32, band: u32, lambda_nm: f32) -> f32
     if s.checker_offset.y <= 0.0 {
         return 0.0;
     }
-    let layer = layer_reflectance(s, c, band, lambda_nm);
+    let layer = bounce_reflectance(layer_fresnel(s, c), band, lambda_nm);
     return max((1.0 - m) * (s.checker_offset.y - layer) / specular_share(s, m), 0.0);
 }

@@ -80,8 +80,7 @@ impl<'a> CameraConnection<'a> {
             Surface::Diffuse { .. } => 1.0,
             Surface::Metal(metal) if metal.is_blended() => {
                 let toward_eye = ray.direction.dot(self.scene.scattering_normal(&hit, ray.direction)).abs();
-                let here = self.scene.metal_at(metal, &hit);
-                here.diffuse_share(toward_eye, photon.band, photon.lambda_nm, &self.scene.bands)
+                self.scene.metal_at(metal, &hit).diffuse_share(toward_eye)
             }
             _ => 0.0,
         };

@@ -251,8 +251,7 @@ impl<'a> ViewContext<'a> {
     ) -> Vec3 {
         let bent = Hit { normal: self.scene.scattering_normal(hit, ray.direction), ..*hit };
         let here = self.scene.metal_at(metal, hit);
-        let lambda_nm = stored_wavelength(&self.scene.bands, path.band, path.lambda_nm);
-        let share = here.diffuse_share(ray.direction.dot(bent.normal).abs(), path.band, lambda_nm, &self.scene.bands);
+        let share = here.diffuse_share(ray.direction.dot(bent.normal).abs());
         let mut sum = Vec3::ZERO;
         if share > 0.0 {
             sum += share * self.shade_diffuse(ray, hit, (path.tint * share, path.depth), points);

@@ -177,10 +177,11 @@ impl Shader<'_> {
                         object: object[i] as usize,
                         triangle: hit.triangle.to_array()[i] as u32,
                     };
-                    let here = self.scene.metal_at(metal, &at);
+                    let m = self.scene.metalness_at(metal, &at);
                     let toward_eye = r.dir.dot(self.scene.scattering_normal(&at, r.dir)).abs();
-                    specular_share[i] = here.specular_share();
-                    sum[r.pixel as usize] += self.blended_diffuse_part(r, &at, here.diffuse_share(toward_eye));
+                    specular_share[i] = metal.metalness.specular_share(m);
+                    sum[r.pixel as usize] +=
+                        self.blended_diffuse_part(r, &at, metal.metalness.diffuse_share(m, toward_eye));
                 }
                 _ => {}
             }

@@ -107,7 +107,7 @@ fn layer_fresnel(s: GpuSurface, c: f32) -> vec3<f32> {
     return layer_schlick(layer_f0(s), s.checker_offset.y, c);
 }
 
-// MetalOptics::specular_share: m + (1 − m) F90.
+// Metalness::specular_share: m + (1 − m) F90.
 fn specular_share(s: GpuSurface, m: f32) -> f32 {
     if s.checker_offset.y > 0.0 {
         return m + (1.0 - m) * s.checker_offset.y;
@@ -115,7 +115,7 @@ fn specular_share(s: GpuSurface, m: f32) -> f32 {
     return m;
 }
 
-// MetalOptics::diffuse_share: (1 − m)(1 − max F_layer(cos)) toward a viewer at `c`.
+// Metalness::diffuse_share: (1 − m)(1 − max F_layer(cos)) toward a viewer at `c`.
 fn blend_diffuse_share(s: GpuSurface, m: f32, c: f32) -> f32 {
     if s.checker_offset.y > 0.0 {
         let f = layer_fresnel(s, c);

@@ -65,6 +65,25 @@ impl Metalness {
         Metalness { layer: layer.filter(|_| !self.is_whole()), ..self }
     }
 
+    /// The share of a photon path stored on a point of metalness `m` that
+    /// goes on reflected: m + (1 − m) F90, the most its specular part
+    /// reflects (m without a layer; 1 where it is whole metal).
+    #[inline]
+    pub fn specular_share(&self, m: f32) -> f32 {
+        match self.layer {
+            Some(l) => m + (1.0 - m) * l.f90,
+            None => m,
+        }
+    }
+
+    /// The share of the light the diffuse part of a point of metalness `m`
+    /// reflects toward a viewer at cosine `cos` to the normal: (1 − m)
+    /// (1 − max F_layer(cos)) ([`SpecularLayer::diffuse_share`]).
+    #[inline]
+    pub fn diffuse_share(&self, m: f32, cos: f32) -> f32 {
+        (1.0 - m) * self.layer.map_or(1.0, |l| l.diffuse_share(cos))
+    }
+
     /// True where every point is metal (factor 1, no map).
     pub fn is_whole(&self) -> bool {
         self.factor >= 1.0 && !self.mapped

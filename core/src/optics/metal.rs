@@ -18,7 +18,7 @@
 //! Both reflections share the facets, so they are one specular part of
 //! Fresnel m F_metal + (1 − m) F_layer ([`MetalOptics::specular_tint`]),
 //! and the diffuse part reflects the share (1 − m)(1 − max F_layer) of
-//! what it is seen by ([`MetalOptics::diffuse_share`]). A photon is
+//! what it is seen by ([`Metalness::diffuse_share`]). A photon is
 //! stored on it as on a diffuse surface (its flux is the light arriving,
 //! whatever the surface does with it) and goes on reflected with the
 //! probability m + (1 − m) F90 ([`MetalOptics::specular_share`],
@@ -121,24 +121,10 @@ impl MetalOptics {
         self.metalness.factor
     }
 
-    /// The share of a photon path stored on it that goes on reflected:
-    /// m + (1 − m) F90, the most its specular part reflects (m for a
-    /// blend without a layer; 1 for a whole metal).
+    /// [`Metalness::specular_share`] at the point whose optics these are.
     #[inline]
     pub fn specular_share(&self) -> f32 {
-        let m = self.m();
-        match self.metalness.layer {
-            Some(l) => m + (1.0 - m) * l.f90,
-            None => m,
-        }
-    }
-
-    /// The share of the light its diffuse part reflects toward a viewer
-    /// at cosine `cos` to the normal: (1 − m) (1 − max F_layer(cos))
-    /// ([`SpecularLayer::diffuse_share`]).
-    #[inline]
-    pub fn diffuse_share(&self, cos: f32) -> f32 {
-        (1.0 - self.m()) * self.metalness.layer.map_or(1.0, |l| l.diffuse_share(cos))
+        self.metalness.specular_share(self.m())
     }
 
     /// What the specular part's facet met at cosine `cos` keeps of each

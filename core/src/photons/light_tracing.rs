@@ -21,7 +21,7 @@
 //! reach it ([`CONNECTION_REL`]): the visibility test, and the hit gives
 //! the surface's albedo and normal. On a blended metal the diffuse part
 //! adds its share toward the eye of that, (1 − m)(1 − max F_layer)
-//! ([`crate::optics::metal::MetalOptics::diffuse_share`]).
+//! ([`crate::model::metalness::Metalness::diffuse_share`]).
 //!
 //! Light tracing cannot connect through a mirror or glass to a pinhole, so
 //! the caustics seen only that way are still gathered at visible points:
@@ -80,7 +80,7 @@ impl<'a> CameraConnection<'a> {
             Surface::Diffuse { .. } => 1.0,
             Surface::Metal(metal) if metal.is_blended() => {
                 let toward_eye = ray.direction.dot(self.scene.scattering_normal(&hit, ray.direction)).abs();
-                self.scene.metal_at(metal, &hit).diffuse_share(toward_eye)
+                metal.metalness.diffuse_share(self.scene.metalness_at(metal, &hit), toward_eye)
             }
             _ => 0.0,
         };

@@ -58,14 +58,14 @@ impl Path {
 
 /// Whether path `p`, which has reached the blended metal at `hit` and been
 /// stored there as on a diffuse surface, goes on as its specular part:
-/// with the probability [`crate::optics::metal::MetalOptics::specular_share`] there
+/// with the probability [`crate::model::metalness::Metalness::specular_share`] there
 /// ([`dim::metal_part`]; [`crate::optics::metal`]). Always at a whole
 /// metal, mirror or glass.
 pub(crate) fn goes_on_as_metal(scene: &PreparedScene, index: u32, p: &Path, hit: &Hit) -> bool {
     match &scene.surfaces[hit.object] {
         Surface::Metal(metal) if metal.is_blended() => {
             let u = random_f32(scene.scene.render.seed, index, dim::metal_part(p.band, p.bounces));
-            u < scene.metal_at(metal, hit).specular_share()
+            u < metal.metalness.specular_share(scene.metalness_at(metal, hit))
         }
         _ => true,
     }

@@ -250,14 +250,14 @@ impl<'a> ViewContext<'a> {
         points: &mut Vec<VisiblePoint>,
     ) -> Vec3 {
         let bent = Hit { normal: self.scene.scattering_normal(hit, ray.direction), ..*hit };
-        let here = self.scene.metal_at(metal, hit);
-        let share = here.diffuse_share(ray.direction.dot(bent.normal).abs());
+        let m = self.scene.metalness_at(metal, hit);
+        let share = metal.metalness.diffuse_share(m, ray.direction.dot(bent.normal).abs());
         let mut sum = Vec3::ZERO;
         if share > 0.0 {
             sum += share * self.shade_diffuse(ray, hit, (path.tint * share, path.depth), points);
         }
         // Where a point is whole metal it is followed as a whole metal is.
-        let most = here.specular_share();
+        let most = metal.metalness.specular_share(m);
         let followed = most >= 1.0 || path.weight * most > MIN_VIEW_WEIGHT;
         if most > 0.0 && path.depth < self.scene.plan.max_depth && followed {
             sum += self.off_metal(ray, &bent, metal, path, points);

@@ -180,8 +180,9 @@ impl Shader<'_> {
                     let m = self.scene.metalness_at(metal, &at);
                     let toward_eye = r.dir.dot(self.scene.scattering_normal(&at, r.dir)).abs();
                     specular_share[i] = metal.metalness.specular_share(m);
-                    sum[r.pixel as usize] +=
-                        self.blended_diffuse_part(r, &at, metal.metalness.diffuse_share(m, toward_eye));
+                    let lambda_nm = stored_wavelength(&self.scene.bands, r.band, r.lambda_nm);
+                    let share = self.scene.diffuse_share_at(metal, &at, m, toward_eye, r.band, lambda_nm);
+                    sum[r.pixel as usize] += self.blended_diffuse_part(r, &at, share);
                 }
                 _ => {}
             }

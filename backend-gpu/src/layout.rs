@@ -173,7 +173,8 @@ pub struct GpuSurface {
     /// Checker cell size; a metal's colour texture's sampler flags, as bits.
     pub checker_size: f32,
     /// Checker offset; a blended metal's metalness factor in x (see
-    /// `SURFACE_BLENDED`) and its specular layer's F90 in y (0: none).
+    /// `SURFACE_BLENDED`), its specular layer's F90 in y (0: none) and
+    /// its base's index in z.
     pub checker_offset: [f32; 3],
     /// Samples in the n(λ) curve.
     pub curve_len: u32,

@@ -326,7 +326,7 @@ impl EncodedScene {
                 }
                 if let Some(layer) = m.metalness.layer {
                     s.absorption = v3(layer.f0);
-                    s.checker_offset[1] = layer.f90;
+                    (s.checker_offset[1], s.checker_offset[2]) = (layer.f90, layer.ior);
                 }
                 if let Some(metal) = m.measured {
                     s.flags |= SURFACE_MEASURED;

@@ -918,7 +918,7 @@ fn check_metal((c, sampler): &(MetalIn, PixelSampler), got: &MetalOut) -> Result
     let beyond_critical = 1.0 - got.cos_facet * got.cos_facet > c.eta * c.eta;
     let conductor_tolerance = if beyond_critical { 1e-4 } else { 1e-5 };
     let filmed = film.reflectance_on(got.cos_facet, 1.0, (c.eta, c.k), c.lambda_nm);
-    let layer = SpecularLayer { f0: Vec3::from(c.f0) * c.layer_f90, f90: c.layer_f90 }.fresnel(got.cos_facet);
+    let layer = SpecularLayer { f0: Vec3::from(c.f0) * c.layer_f90, f90: c.layer_f90, ior: 1.5 }.fresnel(got.cos_facet);
     let ok = close(Vec3::from(got.dir), b.ray.direction, 1e-3)
         && close(Vec3::from(got.origin), b.ray.origin, 1e-4 * scale)
         && (got.cos_facet - b.cos_facet).abs() <= 1e-3

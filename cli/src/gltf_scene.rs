@@ -518,17 +518,17 @@ fn material(
         emission *= images.mean_colour(&info)?;
         unused.push("emissiveTexture's pattern (the mesh emits the texture's mean colour evenly)");
     }
-    if !glass_or_metal && m.extensions().is_some_and(|e| e.contains_key("KHR_materials_iridescence")) {
-        unused.push(
-            "KHR_materials_iridescence of a non-metal (films are drawn on glass and metals, not on a specular layer)",
-        );
-    }
     // The diffuse base's specular layer (an emitter stays diffuse: only
     // diffuse surfaces emit, and its glow outshines its reflections).
     let layer = match transmission > 0.0 || (metal.is_none() && emission != Vec3::ZERO) {
         true => None,
         false => specular_layer(m, &mut unused),
     };
+    let bare = !glass_or_metal && layer.is_none();
+    if bare && m.extensions().is_some_and(|e| e.contains_key("KHR_materials_iridescence")) {
+        unused
+            .push("KHR_materials_iridescence of a bare diffuse material (films are drawn on glass, metals and layers)");
+    }
     let metalness = metal.map(|metal| metal.with_layer(layer)).or_else(|| layer.map(Metalness::layered));
     let mut uv_transform = None;
     let mut kind = if transmission > 0.0 {
@@ -574,7 +574,7 @@ fn material(
                 color: MetalColor::Rgb(Vec3::new(r, g, b).clamp(Vec3::ZERO, Vec3::ONE)),
                 roughness: pbr.roughness_factor(),
                 texture,
-                film: if metal.is_some() { film(m)? } else { None },
+                film: film(m)?,
                 metalness,
             },
             None => MaterialKind::Diffuse { albedo: Vec3::new(r, g, b), checker: None, texture, emission },

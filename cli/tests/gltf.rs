@@ -119,17 +119,20 @@ fn what_prismatic_cannot_represent_is_a_warning_not_a_failure() {
     let mut doc = prism_document();
     doc.materials[1].roughness = 0.3;
     doc.lights.clear();
-    // A film on the diffuse floor, which prismatic draws on glass and metals only.
+    // A film on the bare diffuse floor (no specular layer), which prismatic
+    // draws on glass, metals and specular layers only.
     let mut json: serde_json::Value = serde_json::from_str(&doc.to_json()).unwrap();
-    json["materials"][0]["extensions"] =
-        serde_json::json!({ "KHR_materials_iridescence": { "iridescenceFactor": 1.0 } });
+    json["materials"][0]["extensions"] = serde_json::json!({
+        "KHR_materials_iridescence": { "iridescenceFactor": 1.0 },
+        "KHR_materials_specular": { "specularFactor": 0.0 }
+    });
     json["extensionsUsed"].as_array_mut().unwrap().push("KHR_materials_iridescence".into());
     let path = dir.path().join("rough.gltf");
     std::fs::write(&path, json.to_string()).unwrap();
     let scene = prismatic_cli::load_scene(path.to_str().unwrap()).unwrap();
     scene.validate().unwrap();
     let warnings = scene.warnings.join("\n");
-    assert!(warnings.contains("left out: KHR_materials_iridescence of a non-metal"), "{warnings}");
+    assert!(warnings.contains("left out: KHR_materials_iridescence of a bare diffuse material"), "{warnings}");
     // Rough transmission is frosted glass, drawn as such: no warning.
     assert!(!warnings.contains("materials[1]"), "{warnings}");
     let glass = &scene.scene.materials.iter().find(|m| m.name == "glass").unwrap().kind;
@@ -534,7 +537,13 @@ fn iridescence_on_glass_is_a_thin_film() {
     json["materials"][0]["extensions"] = serde_json::Value::Object(floor);
     json["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 0.0.into();
     let warnings = load(&json).warnings.join("\n");
-    assert!(warnings.contains("KHR_materials_iridescence of a non-metal"), "{warnings}");
+    assert!(warnings.contains("KHR_materials_iridescence of a bare diffuse material"), "{warnings}");
+    // Under glTF's default specular layer: a film on the layer, nothing left out.
+    json["materials"][0]["extensions"].as_object_mut().unwrap().remove("KHR_materials_specular");
+    let scene = load(&json);
+    let MaterialKind::Metal { film, metalness, .. } = &scene.scene.materials[0].kind else { panic!("a layered floor") };
+    assert_eq!((*film, metalness.factor), (Some(ThinFilm::new(1.3, 400.0)), 0.0));
+    assert!(metalness.layer.is_some() && !scene.warnings.join("\n").contains("iridescence"), "{:?}", scene.warnings);
     // A metal floor: a film on the metal, nothing left out.
     json["materials"][0]["pbrMetallicRoughness"]["metallicFactor"] = 1.0.into();
     let scene = load(&json);
@@ -871,7 +880,9 @@ fn a_non_metal_is_a_diffuse_base_under_its_specular_layer() {
         scene.scene.materials[0].kind.clone()
     };
     let paint = prismatic_core::MetalColor::Rgb(prismatic_core::Vec3::new(0.2, 0.4, 0.6));
-    let close = |a: SpecularLayer, b: SpecularLayer| (a.f0 - b.f0).abs().max_element() < 1e-6 && a.f90 == b.f90;
+    let close = |a: SpecularLayer, b: SpecularLayer| {
+        (a.f0 - b.f0).abs().max_element() < 1e-6 && (a.f90, a.ior) == (b.f90, b.ior)
+    };
     let layer_of = |kind: &MaterialKind, m: f32| match kind {
         MaterialKind::Metal { color, roughness: 0.4, texture: None, film: None, metalness }
             if *color == paint && metalness.factor == m && !metalness.mapped =>
@@ -880,7 +891,7 @@ fn a_non_metal_is_a_diffuse_base_under_its_specular_layer() {
         }
         other => panic!("paint of metalness {m} under a layer: {other:?}"),
     };
-    let default = SpecularLayer { f0: prismatic_core::Vec3::splat(0.04), f90: 1.0 };
+    let default = SpecularLayer { f0: prismatic_core::Vec3::splat(0.04), f90: 1.0, ior: 1.5 };
     assert!(close(layer_of(&load(0.0, serde_json::json!({})), 0.0), default));
     assert!(close(layer_of(&load(0.5, serde_json::json!({})), 0.5), default), "a blended metal's base");
     let tinted = load(
@@ -890,7 +901,7 @@ fn a_non_metal_is_a_diffuse_base_under_its_specular_layer() {
             "KHR_materials_specular": { "specularFactor": 0.5, "specularColorFactor": [1.0, 0.5, 20.0] }
         }),
     );
-    let want = SpecularLayer { f0: prismatic_core::Vec3::new(1.0 / 18.0, 1.0 / 36.0, 0.5), f90: 0.5 };
+    let want = SpecularLayer { f0: prismatic_core::Vec3::new(1.0 / 18.0, 1.0 / 36.0, 0.5), f90: 0.5, ior: 2.0 };
     assert!(close(layer_of(&tinted, 0.0), want), "{tinted:?}");
     let bare = load(0.0, serde_json::json!({ "KHR_materials_specular": { "specularFactor": 0.0 } }));
     assert!(matches!(bare, MaterialKind::Diffuse { .. }), "{bare:?}");

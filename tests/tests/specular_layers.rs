@@ -5,9 +5,10 @@
 //! reflect reaches the base.
 
 use crate::metals::{GOLD, assert_beam_goes_on, folded_beam, metal_in_view, schlick};
-use prismatic_core::model::bands::BandSpec;
+use crate::thin_film::assert_band_shares;
+use prismatic_core::model::bands::{BandSpec, BandTable};
 use prismatic_core::model::metalness::{Metalness, SpecularLayer};
-use prismatic_core::model::scene::{Material, MaterialKind};
+use prismatic_core::model::scene::{Material, MaterialKind, ThinFilm};
 use prismatic_core::{MetalColor, PreparedScene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
 use prismatic_tests::{TRIANGLE_WITH_UVS, prepare};
@@ -105,6 +106,63 @@ fn what_a_layer_does_not_reflect_reaches_its_base() {
     }
 }
 
+/// The film of [`filmed_plastic`]: a high-index coating.
+const FILM: ThinFilm = ThinFilm::new(2.4, 300.0);
+
+/// A polished plastic of albedo `albedo` under glTF's default layer (a base
+/// of index 1.5) and [`FILM`] on it (glTF's iridescence on a non-metal).
+fn filmed_plastic(albedo: Vec3) -> Material {
+    let mut material = layered(albedo, 0.0);
+    let MaterialKind::Metal { film, .. } = &mut material.kind else { unreachable!("a layered base") };
+    *film = Some(FILM);
+    material
+}
+
+/// [`FILM`]'s reflectance over a base of index 1.5 for light meeting it at
+/// cosine `cos`, at `lambda_nm`: the mean of the s and p Airy sums with
+/// real amplitudes (no total reflection here), in f64.
+fn filmed_layer(cos: f64, lambda_nm: f64) -> f64 {
+    let (n0, n1, n2, d) = (1.0, f64::from(FILM.ior), 1.5, f64::from(FILM.thickness_nm));
+    let sin2 = 1.0 - cos * cos;
+    let (c0, c1, c2) = (cos, (1.0 - sin2 / (n1 * n1)).sqrt(), (1.0 - sin2 / (n2 * n2)).sqrt());
+    let airy = |r01: f64, r12: f64| {
+        let phase = (4.0 * std::f64::consts::PI * n1 * d * c1 / lambda_nm).cos();
+        (r01 * r01 + r12 * r12 + 2.0 * r01 * r12 * phase) / (1.0 + r01 * r01 * r12 * r12 + 2.0 * r01 * r12 * phase)
+    };
+    let s = airy((n0 * c0 - n1 * c1) / (n0 * c0 + n1 * c1), (n1 * c1 - n2 * c2) / (n1 * c1 + n2 * c2));
+    let p = airy((n1 * c0 - n0 * c1) / (n1 * c0 + n0 * c1), (n2 * c1 - n1 * c2) / (n2 * c1 + n1 * c2));
+    0.5 * (s + p)
+}
+
+/// Under a film the layer reflects each wavelength by the film's Airy sum
+/// over the base: a beam at 45° on a filmed plastic goes on band by band
+/// with it (photons split into the bands there), and in view a white path
+/// takes Σ C_b F(λ_b) of the background and the base the rest's share
+/// 1 − max of that.
+#[test]
+fn a_film_on_a_layer_reflects_each_wavelength_by_its_airy_sum() {
+    const PHOTONS: u32 = 20_000;
+    let bands = BandTable::new(BandSpec::Paper7);
+    let want: Vec<f64> = bands.bands().iter().map(|b| filmed_layer(FRAC_1_SQRT_2, f64::from(b.lambda_nm))).collect();
+    let (lo, hi) = want.iter().fold((1.0f64, 0.0f64), |(lo, hi), &r| (lo.min(r), hi.max(r)));
+    assert!(hi - lo > 0.2, "the film colours the light: {want:?}");
+    let mut beam = prepare(folded_beam(filmed_plastic(Vec3::splat(0.6)), PHOTONS, BandSpec::Paper7));
+    beam.simulate_everything();
+    let tint: Vec3 = bands.bands().iter().zip(&want).map(|(b, &r)| b.weight * r as f32).sum();
+    let image = |material: Material, backend: &mut dyn prismatic_core::Backend| {
+        frame(backend, &prepare(metal_in_view(material))).1.pixels[4]
+    };
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let map = trace(backend.as_mut(), &beam);
+        assert_band_shares(&map, PHOTONS, &want, &format!("{name}, went on"));
+        let base = image(blended(GOLD, 0.0), backend.as_mut());
+        let got = image(filmed_plastic(GOLD), backend.as_mut());
+        let expected = tint + (1.0 - tint.max_element()) * base;
+        assert!((got - expected).abs().max_element() < 2e-4, "{name}: {got}, want {expected}");
+    }
+}
+
 /// A plastic is no caustic caster to aim at: a scene of a light and
 /// layered surfaces alone plans no caustics, and a plastic beside glass
 /// is not one of its specular objects.
@@ -149,6 +207,7 @@ fn scene_files_put_a_specular_layer_on_a_diffuse_surface() {
     for (material, key, reason) in [
         (format!("{paint}\nspecular = 1.5"), "specular", "between 0 and 1"),
         (format!("{paint}\nroughness = 0.3"), "roughness", "give specular"),
+        (format!("{paint}\nfilm_thickness_nm = 300"), "film_thickness_nm", "give specular"),
         (format!("{paint}\nspecular = 1\nemission = [1, 1, 1]"), "emission", "specular layer"),
         (format!("{paint}\nspecular_ior = nan"), "specular_ior", "at least 1"),
         (format!("{paint}\nspecular_color = [1, -1, 1]"), "specular_color", "between 0 and specular"),

@@ -10,6 +10,7 @@
 
 use prismatic_core::model::bands::{BandSpec, BandTable};
 use prismatic_core::model::dispersion::Dispersion;
+use prismatic_core::model::photon::PhotonMap;
 use prismatic_core::model::scene::{Material, MaterialKind, Shape, ThinFilm};
 use prismatic_core::{PreparedScene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
@@ -52,6 +53,17 @@ fn sheet_transmittance(lambda_nm: f64) -> f64 {
     1.0 - 2.0 * r / (1.0 + r)
 }
 
+/// Each band's photons in `map` are the share `want[band]` of `photons`
+/// emitted, within 5σ; `what` names the case (the backend, what the
+/// photons did).
+pub(crate) fn assert_band_shares(map: &PhotonMap, photons: u32, want: &[f64], what: &str) {
+    for (band, &want) in want.iter().enumerate() {
+        let got = map.photons.iter().filter(|p| usize::from(p.band) == band).count() as f64 / f64::from(photons);
+        let sd = (want * (1.0 - want) / f64::from(photons)).sqrt();
+        assert!((got - want).abs() < 5.0 * sd, "{what}, band {band}: {got:.4}, Airy's {want:.4}");
+    }
+}
+
 /// A beam along +x met head on by a coated sheet (a disc) at x = 0.
 fn photon_scene(photons: u32) -> PreparedScene {
     let disc = Shape::Disk { center: Vec3::ZERO, normal: Vec3::NEG_X, radius: 1.0, inner_radius: 0.0 };
@@ -70,11 +82,7 @@ fn each_band_passes_a_coated_sheet_by_the_airy_closed_form() {
     for mut backend in every_backend() {
         let name = backend.name();
         let map = trace(backend.as_mut(), &scene);
-        for (band, &want) in expected.iter().enumerate() {
-            let got = map.photons.iter().filter(|p| usize::from(p.band) == band).count() as f64 / f64::from(PHOTONS);
-            let sd = (want * (1.0 - want) / f64::from(PHOTONS)).sqrt();
-            assert!((got - want).abs() < 5.0 * sd, "{name}, band {band}: {got:.4} passed, Airy's {want:.4}");
-        }
+        assert_band_shares(&map, PHOTONS, &expected, &format!("{name}, passed"));
         let s = &map.stats;
         assert!((s.flux_stored + s.flux_escaped - s.flux_emitted).abs() < 1e-4 * s.flux_emitted, "{name}: {s:?}");
     }

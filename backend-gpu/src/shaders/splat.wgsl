@@ -29,11 +29,13 @@ fn splat(
         return;
     }
     // A blended metal's diffuse part reflects its share toward the eye.
+    let band = photon.band_bounces & 0xffffu;
     let s = surfaces[hit.object];
     var diffuse_share = select(0.0, 1.0, s.kind == SURFACE_DIFFUSE);
     if (s.flags & SURFACE_BLENDED) != 0u {
         let toward_eye = abs(dot(dir, scattering_normal(hit, dir)));
-        diffuse_share = blend_diffuse_share(s, metalness_at(hit, s), toward_eye);
+        let here = surface_at(hit, s);
+        diffuse_share = blend_diffuse_share(here, metalness_at(hit, s), toward_eye, band, photon.lambda_nm);
     }
     if diffuse_share == 0.0 {
         return;
@@ -44,7 +46,6 @@ fn splat(
     }
     let albedo = albedo_at(hit, n);
     let importance = -dot(v, n) / (seen.z * seen.z * seen.z) * params.splat_scale * diffuse_share;
-    let band = photon.band_bounces & 0xffffu;
     let flux = rgb_of_flux(band, photon.lambda_nm, photon.flux);
     let c = flux * reflectance(albedo, band, photon.lambda_nm) * importance * params.white_balance;
     add_splat(pixel, c);

@@ -206,13 +206,14 @@ fn cross_specular(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) -
         if b.ok {
             let lambda = stored_wavelength((*p).band, (*p).lambda_nm);
             let m = metalness_at(hit, s);
-            let reflects = b.unshadowed * specular_reflectance(s, m, b.cos_facet, (*p).band, lambda);
+            let parts = specular_parts(s, m, b.cos_facet, (*p).band, lambda);
+            let reflects = b.unshadowed * parts.x;
             if v < reflects {
                 (*p).origin = b.origin;
                 (*p).dir = b.dir;
                 return true;
             }
-            let passes = layer_passes(s, m, b.cos_facet, (*p).band, lambda);
+            let passes = parts.y;
             if v < reflects + passes {
                 to_base = (v - reflects) / passes;
                 return false;

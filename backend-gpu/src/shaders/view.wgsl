@@ -431,7 +431,7 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face, m: f32) -> vec
         if lambda < 0.0 && e.band < params.band_count {
             lambda = bands[e.band].lambda_nm;
         }
-        diffuse_share = blend_diffuse_share(s, m, abs(dot(dir, shading)));
+        diffuse_share = blend_diffuse_share(s, m, abs(dot(dir, shading)), e.band, lambda);
         highlights = alpha > 0.0 && specular_part(e, s, m) > 0.0;
         albedo = s.albedo;
     } else if !glass {

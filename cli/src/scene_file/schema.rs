@@ -320,16 +320,19 @@ impl Reader<'_> {
                         "specular_ior",
                         "specular_color",
                         "roughness",
+                        "film_thickness_nm",
+                        "film_ior",
+                        "film_factor",
                         "normal_map",
                         "normal_scale",
                     ],
                 )?;
                 let layer = self.specular_layer(t)?;
-                if layer.is_none()
-                    && let Some(v) = self.get(t, "roughness")
-                {
-                    let reason = "a diffuse surface is rough only under a specular layer (give specular)";
-                    return Err(self.err(&join(&t.key, "roughness"), &v.span(), reason));
+                for key in ["roughness", "film_thickness_nm", "film_ior", "film_factor"] {
+                    if let Some(v) = self.get(t, key).filter(|_| layer.is_none()) {
+                        let reason = "needs a specular layer on the diffuse surface (give specular)";
+                        return Err(self.err(&join(&t.key, key), &v.span(), reason));
+                    }
                 }
                 let checker = match self.get(t, "checker") {
                     Some(v) => {
@@ -363,7 +366,7 @@ impl Reader<'_> {
                             color: MetalColor::Rgb(albedo),
                             roughness: self.opt(t, "roughness", Self::float)?.unwrap_or(0.0),
                             texture,
-                            film: None,
+                            film: self.film(t)?,
                             metalness: Metalness::layered(layer),
                         }
                     }

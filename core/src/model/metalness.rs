@@ -110,6 +110,9 @@ pub struct SpecularLayer {
     pub f0: Vec3,
     /// Reflectance at grazing incidence, in [0, 1].
     pub f90: f32,
+    /// The base's index of refraction, which a film on it sits on
+    /// ([`crate::optics::metal`]).
+    pub ior: f32,
 }
 
 impl SpecularLayer {
@@ -120,7 +123,7 @@ impl SpecularLayer {
     pub fn gltf(ior: f32, weight: f32, color: Vec3) -> Option<SpecularLayer> {
         let r = (ior - 1.0) / (ior + 1.0);
         let f0 = (color * (r * r)).min(Vec3::ONE) * weight;
-        (weight > 0.0).then_some(SpecularLayer { f0, f90: weight })
+        (weight > 0.0).then_some(SpecularLayer { f0, f90: weight, ior })
     }
 
     /// Schlick's Fresnel per RGB channel for light meeting a facet at

@@ -111,8 +111,34 @@ impl MetalOptics {
             || self.f0.x != self.f0.y
             || self.f0.y != self.f0.z;
         let some_metal = self.metalness.factor > 0.0;
-        let layer = self.metalness.layer.is_some_and(|l| l.f0.x != l.f0.y || l.f0.y != l.f0.z);
+        let layer = self.metalness.layer.is_some_and(|l| l.f0.x != l.f0.y || l.f0.y != l.f0.z || self.film.is_some());
         (metal && some_metal) || (layer && self.is_blended())
+    }
+
+    /// What its layer `l`'s facet met at cosine `cos` keeps of each RGB
+    /// channel of a view path of band `band` at `lambda_nm`: Schlick's, or
+    /// under a film its Airy sum at the path's wavelength (a white path:
+    /// Σ C_b F(λ_b) over the bands).
+    #[inline]
+    fn layer_tint(&self, l: SpecularLayer, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> Vec3 {
+        match (self.film, band) {
+            (Some(film), WHITE_BAND) => {
+                bands.bands().iter().map(|b| b.weight * layer_filmed(l, film, cos, b.lambda_nm)).sum()
+            }
+            (Some(film), _) => Vec3::splat(layer_filmed(l, film, cos, lambda_nm)),
+            (None, _) => bands.reflectance(l.fresnel(cos), band, lambda_nm),
+        }
+    }
+
+    /// The share of a photon path's flux (band `band` at `lambda_nm`)
+    /// that its layer `l`'s facet met at cosine `cos` reflects.
+    #[inline]
+    fn layer_reflectance(&self, l: SpecularLayer, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> f32 {
+        match self.film {
+            Some(film) if band != WHITE_BAND => layer_filmed(l, film, cos, lambda_nm),
+            Some(_) => bands.bounce_reflectance(self.layer_tint(l, cos, band, lambda_nm, bands), band, lambda_nm),
+            None => bands.bounce_reflectance(l.fresnel(cos), band, lambda_nm),
+        }
     }
 
     /// Its metalness m at the point whose optics these are.
@@ -127,6 +153,21 @@ impl MetalOptics {
         self.metalness.specular_share(self.m())
     }
 
+    /// The share of the light its diffuse part reflects toward a viewer
+    /// at cosine `cos` to the normal, on a path of band `band` at
+    /// `lambda_nm`: (1 − m) (1 − max F_layer(cos)) ([`SpecularLayer::diffuse_share`];
+    /// under a film, F_layer is the film's at the path's wavelength, a
+    /// white path's per RGB channel).
+    #[inline]
+    pub fn diffuse_share(&self, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> f32 {
+        let base = match (self.metalness.layer, self.film) {
+            (None, _) => 1.0,
+            (Some(l), None) => l.diffuse_share(cos),
+            (Some(l), Some(_)) => 1.0 - self.layer_tint(l, cos, band, lambda_nm, bands).max_element(),
+        };
+        (1.0 - self.m()) * base
+    }
+
     /// What the specular part's facet met at cosine `cos` keeps of each
     /// RGB channel of a view path of band `band` at `lambda_nm`: m F_metal
     /// + (1 − m) F_layer ([`MetalOptics::tint`] for a whole metal).
@@ -135,7 +176,7 @@ impl MetalOptics {
         let m = self.m();
         let metal = if m > 0.0 { self.tint(cos, band, lambda_nm, bands) * m } else { Vec3::ZERO };
         match self.metalness.layer {
-            Some(l) => metal + layer_tint(l, cos, band, lambda_nm, bands) * (1.0 - m),
+            Some(l) => metal + self.layer_tint(l, cos, band, lambda_nm, bands) * (1.0 - m),
             None => metal,
         }
     }
@@ -151,7 +192,7 @@ impl MetalOptics {
         let metal = if m > 0.0 { self.reflectance(cos, band, lambda_nm, bands) } else { 0.0 };
         match self.metalness.layer {
             Some(l) => {
-                let layer = bands.bounce_reflectance(l.fresnel(cos), band, lambda_nm);
+                let layer = self.layer_reflectance(l, cos, band, lambda_nm, bands);
                 (m * metal + (1.0 - m) * layer) / self.specular_share()
             }
             None => metal,
@@ -220,7 +261,7 @@ impl MetalOptics {
     #[inline]
     pub fn layer_passes(&self, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> f32 {
         let Some(l) = self.metalness.layer else { return 0.0 };
-        let layer = bands.bounce_reflectance(l.fresnel(cos), band, lambda_nm);
+        let layer = self.layer_reflectance(l, cos, band, lambda_nm, bands);
         ((1.0 - self.m()) * (l.f90 - layer) / self.specular_share()).max(0.0)
     }
 
@@ -242,11 +283,13 @@ impl MetalOptics {
     }
 }
 
-/// What the specular layer `layer`'s facet met at cosine `cos` keeps of
-/// each RGB channel of a view path of band `band` at `lambda_nm`.
+/// The reflectance of the specular layer `layer` under `film` for light
+/// meeting a facet at cosine `cos`, at `lambda_nm`: F90 times the film's
+/// Airy sum over the base's index (glTF's iridescence replaces the
+/// dielectric's Fresnel, its colour included).
 #[inline]
-fn layer_tint(layer: SpecularLayer, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> Vec3 {
-    bands.reflectance(layer.fresnel(cos), band, lambda_nm)
+fn layer_filmed(layer: SpecularLayer, film: ThinFilm, cos: f32, lambda_nm: f32) -> f32 {
+    layer.f90 * film.reflectance_on(cos, 1.0, (layer.ior, 0.0), lambda_nm)
 }
 
 /// The Fresnel reflectance of measured `metal` at `lambda_nm` for light

@@ -80,7 +80,8 @@ impl<'a> CameraConnection<'a> {
             Surface::Diffuse { .. } => 1.0,
             Surface::Metal(metal) if metal.is_blended() => {
                 let toward_eye = ray.direction.dot(self.scene.scattering_normal(&hit, ray.direction)).abs();
-                metal.metalness.diffuse_share(self.scene.metalness_at(metal, &hit), toward_eye)
+                let m = self.scene.metalness_at(metal, &hit);
+                self.scene.diffuse_share_at(metal, &hit, m, toward_eye, photon.band, photon.lambda_nm)
             }
             _ => 0.0,
         };

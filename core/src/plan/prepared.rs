@@ -493,6 +493,21 @@ impl PreparedScene {
         }
     }
 
+    /// The share of the light the diffuse part of `metal` (of metalness `m`
+    /// at `hit`) reflects toward a viewer at cosine `cos`, on a path of
+    /// band `band` at `lambda_nm`: [`Metalness::diffuse_share`], or under a
+    /// film on its layer [`MetalOptics::diffuse_share`] with the film as it
+    /// is at `hit` (the only case that needs more than the metalness).
+    #[inline]
+    pub fn diffuse_share_at(&self, metal: &MetalOptics, hit: &Hit, m: f32, cos: f32, band: u16, lambda_nm: f32) -> f32 {
+        if metal.film.is_none() || metal.metalness.layer.is_none() {
+            return metal.metalness.diffuse_share(m, cos);
+        }
+        let metalness = Metalness { factor: m, mapped: false, ..metal.metalness };
+        let here = MetalOptics { film: self.film_at(metal.film, hit), metalness, ..*metal };
+        here.diffuse_share(cos, band, lambda_nm, &self.bands)
+    }
+
     /// Whether `metal` reflects wavelengths differently at `hit` (where a
     /// white photon splits): [`MetalOptics::is_chromatic`] of its colour
     /// there, without its facets.

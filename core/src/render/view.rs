@@ -251,7 +251,9 @@ impl<'a> ViewContext<'a> {
     ) -> Vec3 {
         let bent = Hit { normal: self.scene.scattering_normal(hit, ray.direction), ..*hit };
         let m = self.scene.metalness_at(metal, hit);
-        let share = metal.metalness.diffuse_share(m, ray.direction.dot(bent.normal).abs());
+        let lambda_nm = stored_wavelength(&self.scene.bands, path.band, path.lambda_nm);
+        let cos = ray.direction.dot(bent.normal).abs();
+        let share = self.scene.diffuse_share_at(metal, hit, m, cos, path.band, lambda_nm);
         let mut sum = Vec3::ZERO;
         if share > 0.0 {
             sum += share * self.shade_diffuse(ray, hit, (path.tint * share, path.depth), points);

@@ -497,7 +497,7 @@ mod tests {
 
     /// The specular layer of Bevy's default reflectance (0.5): F0 0.04, F90 1.
     fn default_layer() -> SpecularLayer {
-        SpecularLayer { f0: prismatic_core::Vec3::splat(0.16 * 0.25), f90: 1.0 }
+        SpecularLayer { f0: prismatic_core::Vec3::splat(0.16 * 0.25), f90: 1.0, ior: 1.5 }
     }
 
     #[test]

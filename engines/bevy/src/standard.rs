@@ -93,11 +93,13 @@ pub(crate) fn glass_normal_map(
 
 /// The specular layer of `m`'s dielectric base: F0 = 0.16 · reflectance²
 /// times `specular_tint` (Bevy's mapping: its default reflectance of 0.5 is
-/// glTF's 0.04), F90 1; `None` at reflectance 0.
+/// glTF's 0.04), F90 1, over a base of index `ior` (where a film sits);
+/// `None` at reflectance 0.
 fn specular_layer(m: &StandardMaterial) -> Option<SpecularLayer> {
     let t = m.specular_tint.to_linear();
     let f0 = CoreVec3::new(t.red, t.green, t.blue) * (0.16 * m.reflectance * m.reflectance);
-    (m.reflectance > 0.0).then(|| SpecularLayer { f0: f0.clamp(CoreVec3::ZERO, CoreVec3::ONE), f90: 1.0 })
+    let f0 = f0.clamp(CoreVec3::ZERO, CoreVec3::ONE);
+    (m.reflectance > 0.0).then_some(SpecularLayer { f0, f90: 1.0, ior: m.ior })
 }
 
 /// `m` as a prismatic material named `name`; what of it is left out is

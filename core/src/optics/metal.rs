@@ -18,7 +18,8 @@
 //! Both reflections share the facets, so they are one specular part of
 //! Fresnel m F_metal + (1 − m) F_layer ([`MetalOptics::specular_tint`]),
 //! and the diffuse part reflects the share (1 − m)(1 − max F_layer) of
-//! what it is seen by ([`Metalness::diffuse_share`]). A photon is
+//! what it is seen by ([`Metalness::diffuse_share`]; under a film on the
+//! layer, the film's F_layer: [`MetalOptics::diffuse_share`]). A photon is
 //! stored on it as on a diffuse surface (its flux is the light arriving,
 //! whatever the surface does with it) and goes on reflected with the
 //! probability m + (1 − m) F90 ([`MetalOptics::specular_share`],

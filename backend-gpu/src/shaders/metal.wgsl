@@ -83,11 +83,10 @@ fn metal_spectral(s: GpuSurface) -> bool {
     return (s.flags & (SURFACE_MEASURED | SURFACE_HAS_FILM)) != 0u;
 }
 
-// The share of a photon path's flux from the tint `t` of its own path
-// (spectral_tint's, or an RGB Fresnel's per channel): a band path's one
-// value, or the path's bounce reflectance.
-fn path_reflectance(t: vec3<f32>, spectral: bool, band: u32, lambda_nm: f32) -> f32 {
-    if spectral && band != WHITE_BAND {
+// The share of a photon path's flux from spectral_tint's `t` for it: a
+// band path's one value, or a white path's bounce reflectance.
+fn spectral_reflectance(t: vec3<f32>, band: u32, lambda_nm: f32) -> f32 {
+    if band != WHITE_BAND {
         return t.x;
     }
     return bounce_reflectance(t, band, lambda_nm);
@@ -106,7 +105,7 @@ fn metal_tint(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> vec3<f32> {
 // met at cosine `c` reflects.
 fn metal_reflectance(s: GpuSurface, c: f32, band: u32, lambda_nm: f32) -> f32 {
     if metal_spectral(s) {
-        return path_reflectance(spectral_tint(s, 1.0, 0.0, c, band, lambda_nm), true, band, lambda_nm);
+        return spectral_reflectance(spectral_tint(s, 1.0, 0.0, c, band, lambda_nm), band, lambda_nm);
     }
     return bounce_reflectance(metal_fresnel(s.albedo, c), band, lambda_nm);
 }
@@ -202,7 +201,7 @@ fn specular_parts(s: GpuSurface, m: f32, c: f32, band: u32, lambda_nm: f32) -> v
     }
     var layer: f32;
     if (s.flags & SURFACE_HAS_FILM) != 0u {
-        layer = path_reflectance(spectral_tint(s, 0.0, 1.0, c, band, lambda_nm), true, band, lambda_nm);
+        layer = spectral_reflectance(spectral_tint(s, 0.0, 1.0, c, band, lambda_nm), band, lambda_nm);
     } else {
         layer = bounce_reflectance(layer_fresnel(s, c), band, lambda_nm);
     }

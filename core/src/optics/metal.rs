@@ -19,7 +19,7 @@
 //! Fresnel m F_metal + (1 − m) F_layer ([`MetalOptics::specular_tint`]),
 //! and the diffuse part reflects the share (1 − m)(1 − max F_layer) of
 //! what it is seen by ([`Metalness::diffuse_share`]; under a film on the
-//! layer, the film's F_layer: [`MetalOptics::diffuse_share`]). A photon is
+//! layer, the film's F_layer: [`filmed_layer_tint`]). A photon is
 //! stored on it as on a diffuse surface (its flux is the light arriving,
 //! whatever the surface does with it) and goes on reflected with the
 //! probability m + (1 − m) F90 ([`MetalOptics::specular_share`],
@@ -122,12 +122,9 @@ impl MetalOptics {
     /// Σ C_b F(λ_b) over the bands).
     #[inline]
     fn layer_tint(&self, l: SpecularLayer, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> Vec3 {
-        match (self.film, band) {
-            (Some(film), WHITE_BAND) => {
-                bands.bands().iter().map(|b| b.weight * layer_filmed(l, film, cos, b.lambda_nm)).sum()
-            }
-            (Some(film), _) => Vec3::splat(layer_filmed(l, film, cos, lambda_nm)),
-            (None, _) => bands.reflectance(l.fresnel(cos), band, lambda_nm),
+        match self.film {
+            Some(film) => filmed_layer_tint(l, film, cos, band, lambda_nm, bands),
+            None => bands.reflectance(l.fresnel(cos), band, lambda_nm),
         }
     }
 
@@ -152,21 +149,6 @@ impl MetalOptics {
     #[inline]
     pub fn specular_share(&self) -> f32 {
         self.metalness.specular_share(self.m())
-    }
-
-    /// The share of the light its diffuse part reflects toward a viewer
-    /// at cosine `cos` to the normal, on a path of band `band` at
-    /// `lambda_nm`: (1 − m) (1 − max F_layer(cos)) ([`SpecularLayer::diffuse_share`];
-    /// under a film, F_layer is the film's at the path's wavelength, a
-    /// white path's per RGB channel).
-    #[inline]
-    pub fn diffuse_share(&self, cos: f32, band: u16, lambda_nm: f32, bands: &BandTable) -> f32 {
-        let base = match (self.metalness.layer, self.film) {
-            (None, _) => 1.0,
-            (Some(l), None) => l.diffuse_share(cos),
-            (Some(l), Some(_)) => 1.0 - self.layer_tint(l, cos, band, lambda_nm, bands).max_element(),
-        };
-        (1.0 - self.m()) * base
     }
 
     /// What the specular part's facet met at cosine `cos` keeps of each
@@ -281,6 +263,25 @@ impl MetalOptics {
             return Vec3::ZERO;
         }
         self.specular_tint(o.dot((o + i).normalize()), band, lambda_nm, bands) * density
+    }
+}
+
+/// What the specular layer `layer` under `film`, its facet met at cosine
+/// `cos`, keeps of each RGB channel of a view path of band `band` at
+/// `lambda_nm`: the film's Airy sum at the path's wavelength (a white
+/// path: Σ C_b F(λ_b) over the bands).
+#[inline]
+pub fn filmed_layer_tint(
+    layer: SpecularLayer,
+    film: ThinFilm,
+    cos: f32,
+    band: u16,
+    lambda_nm: f32,
+    bands: &BandTable,
+) -> Vec3 {
+    match band {
+        WHITE_BAND => bands.bands().iter().map(|b| b.weight * layer_filmed(layer, film, cos, b.lambda_nm)).sum(),
+        _ => Vec3::splat(layer_filmed(layer, film, cos, lambda_nm)),
     }
 }
 

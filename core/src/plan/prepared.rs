@@ -10,7 +10,7 @@ use crate::model::bands::BandTable;
 use crate::model::metalness::Metalness;
 use crate::model::scene::{Light, MaterialKind, Scene, SceneError, Shape, ThinFilm};
 use crate::model::spectrum::Spectrum;
-use crate::optics::metal::MetalOptics;
+use crate::optics::metal::{MetalOptics, filmed_layer_tint};
 use crate::optics::microfacet::Ggx;
 use crate::optics::scatter::Face;
 use crate::optics::surface::{DielectricOptics, Surface};
@@ -495,17 +495,19 @@ impl PreparedScene {
 
     /// The share of the light the diffuse part of `metal` (of metalness `m`
     /// at `hit`) reflects toward a viewer at cosine `cos`, on a path of
-    /// band `band` at `lambda_nm`: [`Metalness::diffuse_share`], or under a
-    /// film on its layer [`MetalOptics::diffuse_share`] with the film as it
-    /// is at `hit` (the only case that needs more than the metalness).
+    /// band `band` at `lambda_nm`: [`Metalness::diffuse_share`], (1 − m)
+    /// (1 − max F_layer(cos)), where under a film on the layer (as the film
+    /// is at `hit`) F_layer is the film's ([`filmed_layer_tint`]: at the
+    /// path's wavelength, a white path's per RGB channel).
     #[inline]
     pub fn diffuse_share_at(&self, metal: &MetalOptics, hit: &Hit, m: f32, cos: f32, band: u16, lambda_nm: f32) -> f32 {
-        if metal.film.is_none() || metal.metalness.layer.is_none() {
-            return metal.metalness.diffuse_share(m, cos);
+        let filmed = metal.metalness.layer.and_then(|layer| Some((layer, self.film_at(metal.film, hit)?)));
+        match filmed {
+            Some((layer, film)) => {
+                (1.0 - m) * (1.0 - filmed_layer_tint(layer, film, cos, band, lambda_nm, &self.bands).max_element())
+            }
+            None => metal.metalness.diffuse_share(m, cos),
         }
-        let metalness = Metalness { factor: m, mapped: false, ..metal.metalness };
-        let here = MetalOptics { film: self.film_at(metal.film, hit), metalness, ..*metal };
-        here.diffuse_share(cos, band, lambda_nm, &self.bands)
     }
 
     /// Whether `metal` reflects wavelengths differently at `hit` (where a

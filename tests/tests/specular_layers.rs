@@ -8,7 +8,7 @@ use crate::metals::{GOLD, assert_beam_goes_on, folded_beam, metal_in_view, schli
 use crate::thin_film::assert_band_shares;
 use prismatic_core::model::bands::{BandSpec, BandTable};
 use prismatic_core::model::metalness::{Metalness, SpecularLayer};
-use prismatic_core::model::scene::{Material, MaterialKind, ThinFilm};
+use prismatic_core::model::scene::{Light, Material, MaterialKind, ThinFilm};
 use prismatic_core::{MetalColor, PreparedScene, Vec3};
 use prismatic_tests::backends::{every_backend, frame, trace};
 use prismatic_tests::{TRIANGLE_WITH_UVS, prepare};
@@ -41,6 +41,17 @@ fn layer_fresnel(cos: f64) -> f64 {
     schlick(0.04, cos)
 }
 
+/// [`metal_in_view`] under a light bright enough that the diffuse base's
+/// pixel weighs in these tests' comparisons (under the shared scene's
+/// light of power 1 it is about 3e-4, and a wrong base share changed the
+/// pixel by less than their tolerances).
+fn lit_in_view(material: Material) -> PreparedScene {
+    let mut scene = metal_in_view(material);
+    let Light::Point { power, .. } = &mut scene.lights[0] else { unreachable!("metal_in_view's point light") };
+    *power = 1000.0;
+    prepare(scene)
+}
+
 /// The camera sees the base's share (1 − m)(1 − F) of the diffuse image,
 /// m of the whole metal's and (1 − m) F of the background the layer
 /// reflects (radiance 1), F the layer's Fresnel at 45°.
@@ -48,11 +59,12 @@ fn layer_fresnel(cos: f64) -> f64 {
 fn in_view_a_polished_layer_reflects_schlicks_share_over_its_base() {
     let f = layer_fresnel(FRAC_1_SQRT_2) as f32;
     let image = |material: Material, backend: &mut dyn prismatic_core::Backend| {
-        frame(backend, &prepare(metal_in_view(material))).1.pixels[4]
+        frame(backend, &lit_in_view(material)).1.pixels[4]
     };
     for mut backend in every_backend() {
         let name = backend.name();
         let base = image(blended(GOLD, 0.0), backend.as_mut());
+        assert!(base.max_element() > 0.1, "{name}: the base is lit: {base}");
         let whole = image(blended(GOLD, 1.0), backend.as_mut());
         for m in [0.0f32, 0.5] {
             let got = image(layered(GOLD, m), backend.as_mut());
@@ -150,13 +162,14 @@ fn a_film_on_a_layer_reflects_each_wavelength_by_its_airy_sum() {
     beam.simulate_everything();
     let tint: Vec3 = bands.bands().iter().zip(&want).map(|(b, &r)| b.weight * r as f32).sum();
     let image = |material: Material, backend: &mut dyn prismatic_core::Backend| {
-        frame(backend, &prepare(metal_in_view(material))).1.pixels[4]
+        frame(backend, &lit_in_view(material)).1.pixels[4]
     };
     for mut backend in every_backend() {
         let name = backend.name();
         let map = trace(backend.as_mut(), &beam);
         assert_band_shares(&map, PHOTONS, &want, &format!("{name}, went on"));
         let base = image(blended(GOLD, 0.0), backend.as_mut());
+        assert!(base.max_element() > 0.1, "{name}: the base is lit: {base}");
         let got = image(filmed_plastic(GOLD), backend.as_mut());
         let expected = tint + (1.0 - tint.max_element()) * base;
         assert!((got - expected).abs().max_element() < 2e-4, "{name}: {got}, want {expected}");

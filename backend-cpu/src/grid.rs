@@ -132,8 +132,10 @@ impl CpuGrid {
         let near = &self.near;
         self.bucket.par_extend(photons.par_iter().map(|p| {
             let b = bucket_of(cell_of(p.pos(), inv_cell), mask);
-            // Buckets no query looks in: past the table, so never counted.
-            if near.is_empty() || near[b as usize / 64] & (1 << (b % 64)) != 0 { b } else { u32::MAX }
+            // Buckets no query looks in, and photons met on rough surfaces
+            // (no gather takes them): past the table, so never counted.
+            let looked_in = near.is_empty() || near[b as usize / 64] & (1 << (b % 64)) != 0;
+            if looked_in && !p.on_rough_surface() { b } else { u32::MAX }
         }));
         let tasks = rayon::current_num_threads().min(n / SORT_TASK).max(1);
         // Buckets split evenly (the hash spreads photons evenly over them).

@@ -34,6 +34,7 @@ use prismatic_core::optics::scatter::{
     self, Face, scatter_dielectric, scatter_metal, scatter_rough_dielectric, split_rough_dielectric,
 };
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
+use prismatic_core::photons::light_tracing::traces_behind_rough;
 use prismatic_core::photons::path::stored_wavelength;
 use prismatic_core::plan::area::area;
 use prismatic_core::plan::area_aims::on_triangle;
@@ -71,6 +72,10 @@ struct ViewRay {
     hero: u32,
     /// The numbers of its rough metals' facets (pass 0's for centre rays).
     facets: PixelSampler,
+    /// It left a rough surface the camera sees, where light tracing brings
+    /// the hidden lights' light: it shows no highlights (the reference's
+    /// `ViewPath`).
+    light_traced: bool,
 }
 
 /// Traces the view rays (pass `pass`'s own paths when
@@ -111,10 +116,13 @@ pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
                     sampler,
                     hero: 0,
                     facets,
+                    light_traced: false,
                 });
             }
             let view = ViewContext::new(scene);
-            let mut shader = Shader { scene, view, points: Vec::new(), first_pixel: (tile * tile_pixels) as u32 };
+            let first_pixel = (tile * tile_pixels) as u32;
+            let traces_behind_rough = traces_behind_rough(scene);
+            let mut shader = Shader { scene, view, points: Vec::new(), first_pixel, traces_behind_rough };
             let mut sum = vec![Vec3::ZERO; pixels.len()];
             while !queue.is_empty() {
                 let take = queue.len().min(8);
@@ -140,6 +148,8 @@ struct Shader<'a> {
     points: Vec<VisiblePoint>,
     /// The tile's first pixel (ray pixels are relative to it).
     first_pixel: u32,
+    /// The core's [`traces_behind_rough`] of the scene.
+    traces_behind_rough: bool,
 }
 
 impl Shader<'_> {
@@ -239,8 +249,10 @@ impl Shader<'_> {
                 Surface::Metal(metal) => {
                     let metal = &self.scene.metal_at(metal, &at);
                     let lambda_nm = stored_wavelength(&self.scene.bands, r.band, r.lambda_nm);
-                    sum[r.pixel as usize] +=
-                        r.tint * self.view.metal_highlights(r.dir, (p, n), metal, r.band, lambda_nm);
+                    if !r.light_traced {
+                        sum[r.pixel as usize] +=
+                            r.tint * self.view.metal_highlights(r.dir, (p, n), metal, r.band, lambda_nm);
+                    }
                     let (u1, u2) = if metal.ggx.is_some() { r.facets.facet(r.hero, r.depth) } else { (0.0, 0.0) };
                     let Some(b) = scatter_metal(r.dir, p, n, metal.ggx, u1, u2) else { continue };
                     let f = metal.specular_tint(b.cos_facet, r.band, lambda_nm, &self.scene.bands) * b.unshadowed;
@@ -250,6 +262,8 @@ impl Shader<'_> {
                         weight: r.weight * f.max_element(),
                         tint: r.tint * f,
                         depth: r.depth + 1,
+                        light_traced: r.light_traced
+                            || (r.depth == 0 && metal.ggx.is_some() && self.traces_behind_rough),
                         ..*r
                     };
                     if next.weight > MIN_VIEW_WEIGHT {
@@ -308,11 +322,16 @@ impl Shader<'_> {
         one_branch: bool,
         (queue, sum): (&mut Vec<ViewRay>, &mut [Vec3]),
     ) {
-        if let Some(ggx) = facets {
+        let Some(ggx) = facets else {
+            spawn_at_glass(r, p, n, (face, glass, facets), one_branch, queue);
+            return;
+        };
+        if !r.light_traced {
             let crossing = glass.sheet_crossing_rgb(r.band);
             sum[r.pixel as usize] += r.tint * self.view.rough_glass_highlights(r.dir, (p, n), (face, ggx), crossing);
         }
-        spawn_at_glass(r, p, n, (face, glass, facets), one_branch, queue);
+        let light_traced = r.light_traced || (r.depth == 0 && self.traces_behind_rough);
+        spawn_at_glass(&ViewRay { light_traced, ..*r }, p, n, (face, glass, facets), one_branch, queue);
     }
 
     /// What ray `r` sees of the diffuse part (its `share`, 1 − m) of the

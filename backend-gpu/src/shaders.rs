@@ -253,6 +253,7 @@ fn prelude(stack: u32) -> String {
     u("LIGHT_POINT", kind::LIGHT_POINT);
     u("LIGHT_BEAM", kind::LIGHT_BEAM);
     u("LIGHT_AREA", kind::LIGHT_AREA);
+    u("ON_ROUGH_SURFACE", u32::from(prismatic_core::model::photon::ON_ROUGH_SURFACE));
     u("PROJECTION_NONE", kind::PROJECTION_NONE);
     u("PROJECTION_CONES", kind::PROJECTION_CONES);
     u("PROJECTION_DISCS", kind::PROJECTION_DISCS);

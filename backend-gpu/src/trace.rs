@@ -29,8 +29,27 @@ pub fn slots_per_emission(scene: &PreparedScene) -> u32 {
 
 /// The most photons a caustic emission stores: one per path a white photon
 /// splits into (every band, or the hero wavelengths) where it splits (at
-/// glass that splits photons or a coloured metal), else one.
+/// glass that splits photons or a coloured metal), else one; where a path
+/// can store and go on (a blended metal) or be met on rough surfaces for
+/// light tracing, two at every surface up to the depth limit, for the
+/// white path before its split too.
 fn caustic_slots(scene: &PreparedScene) -> u32 {
+    let paths = caustic_paths(scene);
+    let light_traced = scene.scene.render.light_tracing;
+    let goes_on = scene.surfaces.iter().any(|s| match s {
+        Surface::Metal(m) => m.is_blended() || (light_traced && s.is_rough()),
+        _ => light_traced && s.is_rough(),
+    });
+    match goes_on {
+        true => (paths + 1) * 2 * (scene.plan.max_depth + 1),
+        false => paths,
+    }
+}
+
+/// The paths a caustic emission can become: one per band or hero
+/// wavelength where a white photon splits (at glass that splits photons
+/// or a coloured metal), else one.
+fn caustic_paths(scene: &PreparedScene) -> u32 {
     let splits = scene.surfaces.iter().any(|s| match s {
         Surface::Dielectric(g) => g.splits_photons,
         Surface::Metal(m) => m.is_chromatic(),
@@ -49,11 +68,22 @@ fn indirect_slots(scene: &PreparedScene) -> u32 {
     }
 }
 
-/// Photons a pass of `scene` can store at most: every emission filling its slots.
+/// Photons a pass of `scene` has room for: every emission filling its
+/// slots, but a caustic emission whose paths can store and go on (blended
+/// metals, rough surfaces met for light tracing) at most
+/// [`CAUSTIC_ROOM`] per path (the grids are as large as the map, so room
+/// for every slot of such a scene would cost every pass; a pass that
+/// stores more is an error that says so, [`PhotonPass::stored`]).
 pub fn map_bound(scene: &PreparedScene) -> u64 {
-    u64::from(scene.caustic_photons()) * u64::from(caustic_slots(scene))
+    let caustic = caustic_slots(scene).min(CAUSTIC_ROOM * caustic_paths(scene));
+    u64::from(scene.caustic_photons()) * u64::from(caustic)
         + u64::from(scene.indirect_photons()) * u64::from(indirect_slots(scene))
 }
+
+/// The room in the map per path of a caustic emission where paths can
+/// store and go on ([`map_bound`]): the path's last photon and three met
+/// on rough surfaces (or stored on blended metals) on its way.
+pub const CAUSTIC_ROOM: u32 = 4;
 
 fn storage(ctx: &GpuContext, label: &str, bytes: u64) -> wgpu::Buffer {
     ctx.device.create_buffer(&wgpu::BufferDescriptor {

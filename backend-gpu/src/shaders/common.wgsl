@@ -321,6 +321,12 @@ fn basis(n: vec3<f32>) -> Basis {
     );
 }
 
+// Light::is_hidden: no ray can meet it (a spot, a point, a beam or a sun
+// of its own; not an area light or a drawn sun).
+fn light_is_hidden(l: GpuLight) -> bool {
+    return l.kind != LIGHT_AREA && (l.sun == 0u || all(l.mean_toward == vec3<f32>(0.0)));
+}
+
 // spot_cone::SpotCone::measure
 fn spot_measure(l: GpuLight) -> f32 {
     return (1.0 - l.cos_inner) + (l.cos_inner - l.cos_max) / 3.0;

@@ -1,4 +1,5 @@
-// Hash-grid build by counting sort: twin of prismatic_core::grid.
+// Hash-grid build by counting sort: twin of prismatic_core::grid (the
+// photons a gather takes).
 // `count` counts photons per bucket; the host scans the counts into bucket
 // starts and copies them to `cursor`; `scatter` copies each photon into its
 // bucket's range of the sorted map, which the gather reads; `widest` finds
@@ -10,6 +11,12 @@
 @group(0) @binding(1) var<storage, read_write> cells: array<atomic<u32>>;
 @group(0) @binding(2) var<storage, read_write> cursor: array<atomic<u32>>;
 @group(0) @binding(11) var<storage, read_write> widest_bucket: atomic<u32>;
+
+// Whether a gather takes photon `p`: not one met on a rough surface
+// (Photon::on_rough_surface), which only light tracing does.
+fn gathered(p: Photon) -> bool {
+    return ((p.band_bounces >> 16u) & ON_ROUGH_SURFACE) == 0u;
+}
 
 fn bucket_of_point(p: vec3<f32>) -> u32 {
     return bucket_of(cell_of(p, params.inv_cell), params.grid_mask);
@@ -23,7 +30,10 @@ fn count(
 ) {
     let i = flat_index(wid, nwg, lid);
     if i < params.stored {
-        atomicAdd(&cells[bucket_of_point(map_load(i).position)], 1u);
+        let p = map_load(i);
+        if gathered(p) {
+            atomicAdd(&cells[bucket_of_point(p.position)], 1u);
+        }
     }
 }
 
@@ -36,8 +46,10 @@ fn scatter(
     let i = flat_index(wid, nwg, lid);
     if i < params.stored {
         let p = map_load(i);
-        let slot = atomicAdd(&cursor[bucket_of_point(p.position)], 1u);
-        sorted_store(slot, p);
+        if gathered(p) {
+            let slot = atomicAdd(&cursor[bucket_of_point(p.position)], 1u);
+            sorted_store(slot, p);
+        }
     }
 }
 

@@ -21,6 +21,9 @@ fn layer_splat(
         return;
     }
     let photon = map_load(i);
+    if ((photon.band_bounces >> 16u) & ON_ROUGH_SURFACE) != 0u {
+        return; // irradiance of diffuse surfaces only
+    }
     let seen = project(photon.position);
     let pixel = chunk_pixel(seen);
     if pixel == NO_PIXEL {

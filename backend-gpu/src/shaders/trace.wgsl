@@ -16,6 +16,9 @@ var<private> slot_base: u32;
 var<private> slot_used: u32;
 // The range of the light the invocation's photon left (0: none).
 var<private> photon_range: f32;
+// That light is hidden (Light::is_hidden): its caustic photons are met on
+// rough surfaces (record_on_rough).
+var<private> photon_hidden: bool;
 // The surface where `follow` last split a path, as its maps make it there.
 var<private> split_surface: GpuSurface;
 
@@ -60,8 +63,13 @@ fn stored_wavelength(band: u32, lambda_nm: f32) -> f32 {
 }
 
 fn store(p: ptr<function, Path>, point: vec3<f32>, index: u32) {
-    tally_counts[4] += 1u;
     tally_flux[1] += (*p).flux;
+    put(p, point, index, min((*p).bounces, 0x7fffu));
+}
+
+// Path::photon into the next slot, its bounces field `bounces`.
+fn put(p: ptr<function, Path>, point: vec3<f32>, index: u32, bounces: u32) {
+    tally_counts[4] += 1u;
     if slot_used < params.slots {
         scratch[slot_base + slot_used] = Photon(
             point,
@@ -69,10 +77,21 @@ fn store(p: ptr<function, Path>, point: vec3<f32>, index: u32) {
             oct_pack((*p).dir),
             stored_wavelength((*p).band, (*p).lambda_nm),
             index,
-            ((*p).band & 0xffffu) | (min((*p).bounces, 0xffffu) << 16u),
+            ((*p).band & 0xffffu) | (bounces << 16u),
         );
     }
     slot_used++;
+}
+
+// trace::record_on_rough: a caustic path of a hidden light, past its first
+// specular interaction, met where the metal (a blended metal's specular
+// part) or glass `s` at `hit` is rough, when light tracing: a photon marked
+// ON_ROUGH_SURFACE, counted as stored but not its flux.
+fn record_on_rough(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) {
+    let rough = (s.kind == SURFACE_METAL || s.kind == SURFACE_DIELECTRIC) && facets_alpha(hit, s) > 0.0;
+    if (*p).bounces > 0u && photon_hidden && params.light_tracing != 0u && rough {
+        put(p, hit.point, index, min((*p).bounces, 0x7fffu) | ON_ROUGH_SURFACE);
+    }
 }
 
 // Path::reach: a path on its first segment windowed by its light's range
@@ -110,6 +129,8 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
                 tally_flux[3] += (*p).flux;
             } else {
                 store(p, hit.point, index);
+                // What a blended metal's specular part reflects of it.
+                record_on_rough(p, hit, s, index);
             }
             // path::goes_on_as_metal: a blended metal's metal part, with its metalness's probability.
             if s.kind == SURFACE_DIFFUSE || !goes_on_as_metal(*p, hit, s, index) {
@@ -144,6 +165,9 @@ fn follow(p: ptr<function, Path>, index: u32, split_at: ptr<function, Hit>) -> u
             let b = spectrum_share(photon_f32(seed, index, DIM_SPECTRUM), 0u, 1u);
             (*p).band = b.band;
             (*p).lambda_nm = b.lambda_nm;
+        }
+        if !blended {
+            record_on_rough(p, hit, s, index);
         }
         if !cross_specular(p, hit, s, index) {
             return FOLLOW_END;
@@ -506,6 +530,7 @@ fn trace_emitted(index: u32) {
     tally_flux[0] += flux;
     let l = lights[e.light];
     photon_range = l.range;
+    photon_hidden = light_is_hidden(l);
     let coloured = l.spectrum_len > 0u;
     var p = Path(e.origin, e.direction, flux, WHITE_BAND, -1.0, 0u);
     // The number of the next path to make.
@@ -561,6 +586,9 @@ fn split_path(white: Path, hit: Hit, s: GpuSurface, n: u32, u: f32, index: u32, 
         let b = split_band(u, *next);
         *next += 1u;
         *p = Path(white.origin, white.dir, white.flux / f32(n), b.band, b.lambda_nm, white.bounces);
+        if (s.flags & SURFACE_BLENDED) == 0u {
+            record_on_rough(p, hit, s, index);
+        }
         if cross_specular(p, hit, s, index) {
             (*p).bounces += 1u;
             return true;

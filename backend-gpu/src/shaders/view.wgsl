@@ -108,6 +108,11 @@ var<private> kids: array<Stacked, 3>;
 var<private> kid_count: u32;
 // A sampled path's pixel scramble (PixelSampler).
 var<private> scramble: u32;
+// The pixel sees a rough surface directly where light tracing brings the
+// hidden lights' light (light_tracing::traces_behind_rough): every path
+// behind it (depth > 0) shows no highlights (the core's
+// ViewPath::light_traced, which only a rough surface at depth 0 sets).
+var<private> light_traced: bool;
 
 // The surface whose light a visit adds (ViewContext's shade_diffuse and
 // highlights): the path as it met it, where, and rough glass's face.
@@ -380,10 +385,9 @@ fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>, alb
     }
 }
 
-// Light::hidden_direction: toward a light no ray can meet (a spot, a point,
-// a beam or a sun of its own; not an area light or a drawn sun), else 0.
+// Light::hidden_direction: toward a light no ray can meet (light_is_hidden), else 0.
 fn hidden_direction(l: GpuLight, p: vec3<f32>) -> vec3<f32> {
-    if l.kind == LIGHT_AREA || (l.sun != 0u && any(l.mean_toward != vec3<f32>(0.0))) {
+    if !light_is_hidden(l) {
         return vec3<f32>(0.0);
     }
     if l.kind == LIGHT_BEAM {
@@ -427,12 +431,17 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face, m: f32) -> vec
     if metal || glass {
         alpha = facets_alpha(hit, s);
     }
+    // Behind a light-traced rough surface the hidden lights' highlights are the photons'.
+    let shows_highlights = !(light_traced && e.depth > 0u);
+    if glass && !shows_highlights {
+        return vec3<f32>(0.0);
+    }
     if metal {
         if lambda < 0.0 && e.band < params.band_count {
             lambda = bands[e.band].lambda_nm;
         }
         diffuse_share = blend_diffuse_share(s, m, abs(dot(dir, shading)), e.band, lambda);
-        highlights = alpha > 0.0 && specular_part(e, s, m) > 0.0;
+        highlights = alpha > 0.0 && specular_part(e, s, m) > 0.0 && shows_highlights;
         albedo = s.albedo;
     } else if !glass {
         albedo = albedo_at(hit, n);
@@ -562,6 +571,9 @@ fn visit_path(e: Pending) -> vec3<f32> {
         light_query = LightQuery(true, e, hit, bare_face(1.0, false), s, 1.0);
         return vec3<f32>(0.0);
     }
+    if e.depth == 0u && params.light_tracing != 0u && params.caustic_photons > 0u {
+        light_traced = facets_alpha(hit, s) > 0.0;
+    }
     // Mirrors, metals and glass scatter about the shading normal.
     var bent = hit;
     bent.normal = scattering_normal(hit, e.dir);
@@ -633,6 +645,7 @@ fn pixel(x: u32, y: u32) -> vec3<f32> {
     }
     let d = params.cam_corner + params.cam_right * (f32(x) + jitter.x) + params.cam_down * (f32(y) + jitter.y);
     let white = vec3<f32>(1.0);
+    light_traced = false;
     stack[0] = stacked(Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, white, 0u, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, -1.0, 0u));
     top = 1u;
     var sum = vec3<f32>(0.0);

@@ -7,7 +7,8 @@ use glam::{Vec2, Vec3};
 /// Band id of a photon that has not been split (white light, all bands).
 pub const WHITE_BAND: u16 = u16::MAX;
 
-/// A caustic photon stored on a diffuse surface.
+/// A caustic photon stored on a diffuse surface (or met on a rough one,
+/// [`ON_ROUGH_SURFACE`]).
 ///
 /// `#[repr(C)]` and `Pod` so that it can be copied to and from GPU buffers
 /// as is; its WGSL twin is `Photon` in the GPU backend's shaders.
@@ -30,9 +31,17 @@ pub struct Photon {
     /// Band id, or [`WHITE_BAND`].
     pub band: u16,
     /// Surfaces its path met before this one (specular interactions for a
-    /// caustic photon; diffuse bounces too for indirect light's).
+    /// caustic photon; diffuse bounces too for indirect light's), and in
+    /// its top bit [`ON_ROUGH_SURFACE`].
     pub bounces: u16,
 }
+
+/// The bit of [`Photon::bounces`] that marks a caustic photon met on a rough
+/// metal or rough glass (not a diffuse surface): light tracing connects it
+/// to the camera through the surface's BSDF
+/// ([`crate::photons::light_tracing`]); gathers, which estimate what
+/// diffuse surfaces reflect, pass it by.
+pub const ON_ROUGH_SURFACE: u16 = 1 << 15;
 
 const _: () = assert!(core::mem::size_of::<Photon>() == 32);
 
@@ -49,18 +58,26 @@ impl Photon {
         oct_unpack(self.direction_oct)
     }
 
+    /// Whether it was met on a rough metal or glass ([`ON_ROUGH_SURFACE`]).
+    #[inline]
+    pub fn on_rough_surface(&self) -> bool {
+        self.bounces & ON_ROUGH_SURFACE != 0
+    }
+
     /// The wavelength it was traced at, `None` for white light.
     #[inline]
     pub fn wavelength(&self) -> Option<f32> {
         (self.band != WHITE_BAND).then_some(self.lambda_nm)
     }
 
-    /// The canonical sort key: (emission, band, bounces). A caustic
-    /// emission stores once per band; an indirect one may store several
-    /// times, in path order (bounces increase along a path).
+    /// The canonical sort key: (emission, band, bounces), a photon met on
+    /// a rough surface after one stored at the same bounce (a blended
+    /// metal keeps both). A caustic emission stores once per band (and
+    /// meets rough surfaces on its way); an indirect one may store several
+    /// times: path order (bounces increase along a path).
     #[inline]
     pub fn key(&self) -> (u32, u16, u16) {
-        (self.emission, self.band, self.bounces)
+        (self.emission, self.band, self.bounces.rotate_left(1))
     }
 }
 
@@ -121,11 +138,12 @@ pub struct TraceStats {
     pub segments: u64,
     /// Photons that took part in at least one specular interaction.
     pub specular_paths: u64,
-    /// Photons stored.
+    /// Photons stored (those met on rough surfaces too, [`ON_ROUGH_SURFACE`]).
     pub stored: u64,
     /// Flux of the photons traced (W); with projection maps, their weighted flux.
     pub flux_emitted: f64,
-    /// Flux of the stored photons.
+    /// Flux of the stored photons (not of those met on rough surfaces,
+    /// whose paths go on: their flux is tallied where they end).
     pub flux_stored: f64,
     /// Flux that left the scene.
     pub flux_escaped: f64,

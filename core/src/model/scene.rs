@@ -582,6 +582,17 @@ pub enum Light {
 }
 
 impl Light {
+    /// Whether no ray can meet it ([`Light::hidden_direction`]): its light
+    /// reaches the camera off a rough surface only by a ray sent toward
+    /// it, or by light tracing's photons
+    /// ([`crate::photons::light_tracing`]).
+    pub fn is_hidden(&self) -> bool {
+        matches!(
+            self,
+            Light::Spot { .. } | Light::Point { .. } | Light::Beam { .. } | Light::Sun { mean_toward: None, .. }
+        )
+    }
+
     /// The direction from `p` toward a light that no ray can meet, whose
     /// light reaches a glossy surface only by a ray sent toward it: a
     /// spot's, a point's, a beam's and a sun's of its own. `None` for the

@@ -273,6 +273,18 @@ impl Surface {
         }
     }
 
+    /// Whether it has GGX facets somewhere: a rough metal (a blended
+    /// metal's rough specular part) or rough glass, where light tracing
+    /// meets caustic photons ([`crate::model::photon::ON_ROUGH_SURFACE`]).
+    #[inline]
+    pub fn is_rough(&self) -> bool {
+        match self {
+            Surface::Metal(metal) => metal.ggx.is_some(),
+            Surface::Dielectric(glass) => glass.ggx.is_some(),
+            _ => false,
+        }
+    }
+
     /// Radiance it emits toward a viewer on the side of `facing` (a ray's
     /// direction): its emission where the ray meets a front face (against
     /// the outward normal `outward`), else zero.

@@ -70,17 +70,22 @@ pub fn bucket_starts(bucket: &[u32], mask: u32) -> Vec<u32> {
 }
 
 impl PhotonGrid {
-    /// Builds the grid for `photons` and gather radius `radius`.
+    /// Builds the grid for `photons` and gather radius `radius` (without
+    /// those met on rough surfaces, which no gather takes:
+    /// [`Photon::on_rough_surface`]).
     pub fn build(photons: &[Photon], radius: f32) -> Self {
         let cell_size = 2.0 * radius;
         let inv_cell = 1.0 / cell_size;
         let mask = bucket_mask(photons.len());
-        let bucket: Vec<u32> = photons.iter().map(|p| bucket_of(cell_of(p.pos(), inv_cell), mask)).collect();
+        let gathered = |p: &Photon| !p.on_rough_surface();
+        let bucket: Vec<u32> =
+            photons.iter().filter(|p| gathered(p)).map(|p| bucket_of(cell_of(p.pos(), inv_cell), mask)).collect();
         let cell_start = bucket_starts(&bucket, mask);
         let mut cursor = cell_start.clone();
-        let mut photon_index = vec![0u32; photons.len()];
-        for (i, &b) in bucket.iter().enumerate() {
-            photon_index[cursor[b as usize] as usize] = i as u32;
+        let mut photon_index = vec![0u32; bucket.len()];
+        let indices = (0u32..).zip(photons).filter(|(_, p)| gathered(p)).map(|(i, _)| i);
+        for (i, &b) in indices.zip(&bucket) {
+            photon_index[cursor[b as usize] as usize] = i;
             cursor[b as usize] += 1;
         }
         PhotonGrid { cell_size, mask, cell_start, photon_index }

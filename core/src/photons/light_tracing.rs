@@ -28,12 +28,23 @@
 //! the view pass makes visible points only behind a specular bounce
 //! ([`crate::render::view`]), and the paths are partitioned between the two
 //! estimators by the camera side's specular depth: none counted twice.
+//!
+//! On rough metal and glass, light tracing brings what no view ray can: a
+//! hidden light's ([`crate::model::scene::Light::is_hidden`]) caustic
+//! photons are recorded where they meet such a surface
+//! ([`crate::model::photon::ON_ROUGH_SURFACE`]) and weighted by π times
+//! its BSDF toward the eye, in place of ρ (`CameraConnection::reflects`:
+//! a metal's GGX reflection, rough glass's reflection or transmission).
+//! The view's paths behind a rough surface the camera sees then leave the
+//! hidden lights' highlights out ([`traces_behind_rough`]): this
+//! partition is by the light, the lights rays meet staying the view's.
 
 use crate::geometry::camera::PinholeCamera;
 use crate::geometry::ray::Ray;
-use crate::model::photon::Photon;
+use crate::model::photon::{Photon, WHITE_BAND};
+use crate::optics::rough_glass::rough_glass_bsdf;
 use crate::optics::surface::Surface;
-use crate::plan::prepared::PreparedScene;
+use crate::plan::prepared::{Hit, PreparedScene};
 use crate::util::tolerance::CONNECTION_REL;
 use alloc::vec::Vec;
 use core::f32::consts::PI;
@@ -66,8 +77,9 @@ impl<'a> CameraConnection<'a> {
     }
 
     /// What `photon` adds to the pixel that sees it, or `None` when no
-    /// pixel sees it directly (outside the image, hidden, on the far side
-    /// of its surface).
+    /// pixel sees it directly (outside the image, hidden) or the surface
+    /// there sends none of its light toward the eye (its BSDF, see the
+    /// module's notes on rough surfaces).
     pub fn splat(&self, photon: &Photon) -> Option<Splat> {
         let x = photon.pos();
         let seen = self.camera.project(x)?;
@@ -75,31 +87,80 @@ impl<'a> CameraConnection<'a> {
         let d = v.length();
         let ray = Ray { origin: self.camera.origin, direction: v / d };
         let hit = self.scene.intersect(&ray, d * (1.0 + CONNECTION_REL))?;
-        // A blended metal's diffuse part reflects its share toward the eye.
-        let diffuse_share = match &self.scene.surfaces[hit.object] {
-            Surface::Diffuse { .. } => 1.0,
-            Surface::Metal(metal) if metal.is_blended() => {
-                let toward_eye = ray.direction.dot(self.scene.scattering_normal(&hit, ray.direction)).abs();
-                let m = self.scene.metalness_at(metal, &hit);
-                self.scene.diffuse_share_at(metal, &hit, m, toward_eye, photon.band, photon.lambda_nm)
-            }
-            _ => 0.0,
-        };
-        if hit.t < d * (1.0 - CONNECTION_REL) || diffuse_share == 0.0 {
+        if hit.t < d * (1.0 - CONNECTION_REL) {
             return None;
         }
         let n = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
-        if photon.direction().dot(n) >= 0.0 {
-            return None; // it lit the other side
+        let reflects = self.reflects(photon, ray.direction, &hit, n);
+        if reflects == Vec3::ZERO {
+            return None;
         }
-        let albedo = self.scene.albedo_at(hit.object, hit.triangle, hit.point, n);
         let importance = -v.dot(n) / (seen.depth * seen.depth * seen.depth) * self.scale;
-        let bands = &self.scene.bands;
-        let flux = bands.rgb_of_flux(photon.band, photon.lambda_nm, photon.flux);
-        let reflected = flux * bands.reflectance(albedo, photon.band, photon.lambda_nm);
-        let radiance = reflected * (importance * diffuse_share) * self.scene.white_balance;
+        let flux = self.scene.bands.rgb_of_flux(photon.band, photon.lambda_nm, photon.flux);
+        let radiance = flux * reflects * importance * self.scene.white_balance;
         Some(Splat { pixel: seen.y * self.camera.width + seen.x, radiance })
     }
+
+    /// π times the BSDF, per RGB channel, by which the surface at `hit`
+    /// (seen along `toward`, `n` its normal facing the eye) sends
+    /// `photon`'s light toward the eye. A photon stored on a diffuse
+    /// surface: its albedo, where it lit the side the eye sees (a blended
+    /// metal's diffuse part: times its share toward the eye, (1 − m)(1 −
+    /// max F_layer), [`crate::model::metalness::Metalness::diffuse_share`]).
+    /// One met on a rough surface ([`Photon::on_rough_surface`]): π times
+    /// a rough metal's (a blended metal's specular part's) BRDF, or rough
+    /// glass's BSDF on either side (what crosses a tinted sheet keeps its
+    /// colour), as the view's highlights take them.
+    fn reflects(&self, photon: &Photon, toward: Vec3, hit: &Hit, n: Vec3) -> Vec3 {
+        let scene = self.scene;
+        let (band, lambda_nm) = (photon.band, photon.lambda_nm);
+        let (wo, wi) = (-toward, -photon.direction());
+        let surface = &scene.surfaces[hit.object];
+        if !photon.on_rough_surface() {
+            let share = match surface {
+                Surface::Diffuse { .. } => 1.0,
+                Surface::Metal(metal) if metal.is_blended() => {
+                    let toward_eye = toward.dot(scene.scattering_normal(hit, toward)).abs();
+                    let m = scene.metalness_at(metal, hit);
+                    scene.diffuse_share_at(metal, hit, m, toward_eye, band, lambda_nm)
+                }
+                _ => 0.0,
+            };
+            if share == 0.0 || wi.dot(n) <= 0.0 {
+                return Vec3::ZERO; // none, or it lit the other side
+            }
+            let albedo = scene.albedo_at(hit.object, hit.triangle, hit.point, n);
+            return scene.bands.reflectance(albedo, band, lambda_nm) * share;
+        }
+        let normal = scene.scattering_normal(hit, toward);
+        match surface {
+            Surface::Metal(metal) => {
+                let facing = if toward.dot(normal) < 0.0 { normal } else { -normal };
+                PI * scene.metal_at(metal, hit).reflection(wo, wi, facing, band, lambda_nm, &scene.bands)
+            }
+            Surface::Dielectric(glass) => {
+                let Some(ggx) = scene.facets(hit) else { return Vec3::ZERO };
+                let own = band != WHITE_BAND && scene.scene.render.wavelengths.continuous();
+                let face = scene.face(glass, hit, band, own.then_some(lambda_nm));
+                let f = PI * rough_glass_bsdf(wo, wi, normal, face, ggx);
+                let crossed = wi.dot(normal) * wo.dot(normal) < 0.0;
+                if crossed { glass.sheet_crossing_rgb(band) * f } else { Vec3::splat(f) }
+            }
+            _ => Vec3::ZERO,
+        }
+    }
+}
+
+/// Whether light tracing brings what a rough surface the camera sees
+/// directly reflects or passes of the hidden lights' light
+/// ([`crate::model::scene::Light::is_hidden`]) after mirrors, metals and
+/// glass alone: the render light traces and traces caustic photons, which
+/// are met on such surfaces ([`crate::model::photon::ON_ROUGH_SURFACE`]).
+/// Then the view's paths behind such a surface show no highlights of the
+/// rough surfaces they meet ([`crate::render::view`]): that light is the
+/// photons'.
+pub fn traces_behind_rough(scene: &PreparedScene) -> bool {
+    scene.scene.render.light_tracing && scene.caustic_photons() > 0
 }
 
 /// The factor every splat of `camera` shares: exposure / (π · pixel area)

@@ -16,7 +16,11 @@
 //! instead (on a blended metal, the photon is stored as on a diffuse
 //! surface and the path goes on as the metal with the probability of its
 //! metalness, [`crate::optics::metal`]; so there the stored and direct
-//! flux are not part of the energy balance). Inside coloured glass a path survives each segment with its
+//! flux are not part of the energy balance). When the render light traces, a
+//! hidden light's path past its first specular interaction is also recorded
+//! on every rough metal or glass it meets, and goes on
+//! ([`crate::model::photon::ON_ROUGH_SURFACE`]).
+//! Inside coloured glass a path survives each segment with its
 //! band's Beer–Lambert transmittance (see [`crate::photons::path::absorbed`],
 //! a path's steps). A coloured light's photons (a spectrum other than equal
 //! energy) are never white: they start as their bands or wavelengths at the
@@ -26,13 +30,13 @@
 //! photons follow its caustic ones ([`crate::photons::indirect`]).
 
 use crate::geometry::primitive::Ray;
-use crate::model::photon::{Photon, PhotonMap, TraceStats, WHITE_BAND};
+use crate::model::photon::{ON_ROUGH_SURFACE, Photon, PhotonMap, TraceStats, WHITE_BAND};
 use crate::optics::surface::Surface;
-use crate::photons::emit::emit;
+use crate::photons::emit::{emit, light_of};
 use crate::photons::indirect;
 use crate::photons::path::{Crossing, Path, arrives_at_specular, cross_specular, goes_on_as_metal};
 use crate::photons::wavelengths::{emission_paths, sample_band, split_bands};
-use crate::plan::prepared::PreparedScene;
+use crate::plan::prepared::{Hit, PreparedScene};
 use crate::util::progress::{Progress, Stage};
 use alloc::vec::Vec;
 
@@ -49,6 +53,8 @@ pub fn trace_photons(scene: &PreparedScene, progress: &mut dyn Progress) -> Phot
         progress.advance(Stage::Photons, u64::from(end), u64::from(total));
         start = end;
     }
+    // Path order: a white photon met on a blended metal before its bands.
+    map.sort_canonical();
     map
 }
 
@@ -106,6 +112,32 @@ pub fn trace_emitted(scene: &PreparedScene, index: u32, flux: f32, out: &mut Vec
     trace_path(scene, index, path, range, out, stats);
 }
 
+/// Records path `p` of white photon `index` where it meets a rough metal
+/// or glass (or a blended metal's rough specular part) at `hit` after at
+/// least one specular interaction, for light tracing
+/// ([`PreparedScene::records_on_rough`]): a photon marked
+/// [`ON_ROUGH_SURFACE`], counted as stored but not its flux (the path goes
+/// on). Only a hidden light's ([`crate::model::scene::Light::is_hidden`]):
+/// the view's rays meet the others' light behind a rough surface
+/// themselves. Where a white photon splits, each of its paths is recorded.
+fn record_on_rough(
+    scene: &PreparedScene,
+    index: u32,
+    p: &Path,
+    hit: &Hit,
+    out: &mut Vec<Photon>,
+    stats: &mut TraceStats,
+) {
+    if p.bounces > 0
+        && scene.records_on_rough(hit)
+        && scene.lights[light_of(scene, scene.scene.render.seed, index)].is_hidden()
+    {
+        stats.stored += 1;
+        let photon = p.photon(scene, hit.point, index);
+        out.push(Photon { bounces: photon.bounces | ON_ROUGH_SURFACE, ..photon });
+    }
+}
+
 /// Follows path `p` of white photon `index` (its light's `range` windows
 /// its first segment) and the band paths it splits into.
 fn trace_path(
@@ -133,6 +165,8 @@ fn trace_path(
             } else {
                 stats.count_stored(p.flux);
                 out.push(p.photon(scene, hit.point, index));
+                // What a blended metal's specular part reflects of it.
+                record_on_rough(scene, index, &p, &hit, out, stats);
             }
             // A blended metal's metal part goes on with its metalness's probability.
             if matches!(surface, Surface::Diffuse { .. }) || !goes_on_as_metal(scene, index, &p, &hit) {
@@ -163,6 +197,9 @@ fn trace_path(
                 stats.paths += u64::from(paths) - 1;
                 for (band, lambda_nm) in split_bands(scene, index) {
                     let mut child = Path { band, lambda_nm, flux: p.flux / paths as f32, ..p };
+                    if !surface.stores_photons() {
+                        record_on_rough(scene, index, &child, &hit, out, stats);
+                    }
                     if cross_specular(scene, index, &mut child, &hit, stats) == Crossing::On {
                         child.bounces += 1;
                         trace_path(scene, index, child, None, out, stats);
@@ -170,6 +207,9 @@ fn trace_path(
                 }
                 return;
             }
+        }
+        if !surface.stores_photons() {
+            record_on_rough(scene, index, &p, &hit, out, stats);
         }
         // A path a layer passes to its base was stored there already.
         if cross_specular(scene, index, &mut p, &hit, stats) != Crossing::On {

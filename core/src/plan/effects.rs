@@ -75,6 +75,8 @@ impl EffectPlan {
             .filter(|&k| emitters.iter().any(|l| light_reaches(l, bounds[k].0, bounds[k].1)))
             .collect();
         let has_diffuse = surfaces.iter().any(Surface::stores_photons);
+        // Light tracing connects caustic photons on rough surfaces to the camera too.
+        let receives = |s: &Surface| s.stores_photons() || (scene.render.light_tracing && s.is_rough());
         let n_bands = crate::model::bands::BandTable::new(scene.render.bands).len();
 
         let caustics = if specular.is_empty() {
@@ -84,8 +86,8 @@ impl EffectPlan {
                 "no light reaches a mirror or glass ({} outside every light's cone, beam or range)",
                 name_list(&specular)
             ))
-        } else if !has_diffuse {
-            Effect::off("no diffuse surface to receive caustics")
+        } else if !surfaces.iter().any(receives) {
+            Effect::off("no diffuse surface (nor, light traced, a rough one) to receive caustics")
         } else if scene.render.photons == 0 {
             Effect::off("0 photons requested")
         } else {

@@ -539,6 +539,16 @@ impl PreparedScene {
         MetalOptics { f0, textured: false, ..*metal }
     }
 
+    /// Whether a caustic photon path that meets the surface at `hit` is
+    /// recorded there for light tracing
+    /// ([`crate::model::photon::ON_ROUGH_SURFACE`]): where the render light
+    /// traces and the metal (a blended metal's specular part) or glass
+    /// there is rough.
+    #[inline]
+    pub fn records_on_rough(&self, hit: &Hit) -> bool {
+        self.scene.render.light_tracing && self.facets(hit).is_some()
+    }
+
     /// The GGX facets of the metal or rough glass at `hit`: its surface's,
     /// their roughness scaled by its roughness map's green channel there
     /// ([`Ggx::scaled`]); `None` where it is polished (and on other

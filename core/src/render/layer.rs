@@ -108,6 +108,9 @@ impl<'a> LayerConnection<'a> {
     /// landed, or `None` when no pixel does (outside the frame, behind or
     /// in front of the engine's surface there, on its far side).
     pub fn splat(&self, photon: &Photon) -> Option<Splat> {
+        if photon.on_rough_surface() {
+            return None; // irradiance of diffuse surfaces only
+        }
         let x = photon.pos();
         let seen = self.camera.project(x)?;
         let pixel = seen.y * self.camera.width + seen.x;

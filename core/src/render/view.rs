@@ -25,7 +25,10 @@
 //! glass: off one facet, each branch weighted by G2/G1, plus the
 //! highlights of hidden lights on both sides), dropping branches whose share of the
 //! pixel (Fresnel factors times, after a split, the band's largest RGB
-//! weight) falls below [`MIN_VIEW_WEIGHT`]. At the first dispersive glass a
+//! weight) falls below [`MIN_VIEW_WEIGHT`]. Behind a rough surface the
+//! camera sees, where light tracing brings the hidden lights' caustic
+//! ([`traces_behind_rough`]), paths add no highlights: that light is the
+//! photons'. At the first dispersive glass a
 //! view ray splits into one ray per band, each weighted by the band's RGB
 //! weight C_i. A ray that crossed coloured glass keeps its Beer–Lambert
 //! transmittance (per RGB channel for white rays, the band's for a band;
@@ -61,6 +64,7 @@ use crate::optics::scatter::{
     split_rough_dielectric,
 };
 use crate::optics::surface::{DielectricOptics, Surface};
+use crate::photons::light_tracing::traces_behind_rough;
 use crate::photons::path::stored_wavelength;
 use crate::photons::wavelengths::spectrum_share;
 use crate::plan::area::area;
@@ -78,8 +82,11 @@ use glam::Vec3;
 /// Where a view ray is on its way from the camera: its band (or white) and
 /// wavelength (`None`: the band's own index), specular depth, share of the
 /// pixel (for pruning), RGB factor, and a sampled path's numbers and hero
-/// path (0 before the split), and the numbers its rough metals' facets
-/// take: the pass's own, or pass 0's for centre rays, which are traced once.
+/// path (0 before the split), the numbers its rough metals' facets
+/// take (the pass's own, or pass 0's for centre rays, which are traced
+/// once), and whether it left a rough surface the camera sees directly
+/// where light tracing brings the hidden lights' light
+/// ([`traces_behind_rough`]).
 #[derive(Clone, Copy, Debug)]
 struct ViewPath {
     band: u16,
@@ -90,6 +97,7 @@ struct ViewPath {
     tint: Vec3,
     sampler: Option<PixelSampler>,
     facets: PixelSampler,
+    light_traced: bool,
 }
 
 /// Everything a pixel's view rays need: the scene and the camera.
@@ -133,6 +141,7 @@ impl<'a> ViewContext<'a> {
             tint: response,
             sampler,
             facets,
+            light_traced: false,
         };
         let first = points.len();
         let ray = match sampler {
@@ -226,13 +235,18 @@ impl<'a> ViewContext<'a> {
         let ViewPath { band, depth, weight, tint, .. } = path;
         let metal = &self.scene.metal_at(metal, hit);
         let lambda_nm = stored_wavelength(&self.scene.bands, band, path.lambda_nm);
-        let lit = self.metal_highlights(ray.direction, (hit.point, hit.normal), metal, band, lambda_nm);
+        let lit = match path.light_traced {
+            true => Vec3::ZERO,
+            false => self.metal_highlights(ray.direction, (hit.point, hit.normal), metal, band, lambda_nm),
+        };
         let (u1, u2) = if metal.ggx.is_some() { path.facets.facet(path.hero, depth) } else { (0.0, 0.0) };
         let Some(b) = scatter_metal(ray.direction, hit.point, hit.normal, metal.ggx, u1, u2) else {
             return lit;
         };
         let f = metal.specular_tint(b.cos_facet, band, lambda_nm, &self.scene.bands) * b.unshadowed;
-        let next = ViewPath { depth: depth + 1, weight: weight * f.max_element(), tint: tint * f, ..path };
+        let light_traced = path.light_traced || (depth == 0 && metal.ggx.is_some() && traces_behind_rough(self.scene));
+        let next =
+            ViewPath { depth: depth + 1, weight: weight * f.max_element(), tint: tint * f, light_traced, ..path };
         lit + if next.weight > MIN_VIEW_WEIGHT { f * self.radiance(&b.ray, next, points) } else { Vec3::ZERO }
     }
 
@@ -334,11 +348,15 @@ impl<'a> ViewContext<'a> {
     ) -> Vec3 {
         let crossing = glass.sheet_crossing_rgb(path.band);
         let at = (hit.point, hit.normal);
-        let lit = self.rough_glass_highlights(ray.direction, at, (face, ggx), crossing);
+        let lit = match path.light_traced {
+            true => Vec3::ZERO,
+            false => self.rough_glass_highlights(ray.direction, at, (face, ggx), crossing),
+        };
+        let light_traced = path.light_traced || (path.depth == 0 && traces_behind_rough(self.scene));
         let mut follow = |out: &Ray, weight: f32, crossed: bool| {
             let f = if crossed { crossing * weight } else { Vec3::splat(weight) };
-            let next =
-                ViewPath { depth: path.depth + 1, weight: path.weight * f.max_element(), tint: path.tint * f, ..path };
+            let (depth, weight, tint) = (path.depth + 1, path.weight * f.max_element(), path.tint * f);
+            let next = ViewPath { depth, weight, tint, light_traced, ..path };
             if next.weight > MIN_VIEW_WEIGHT { f * self.radiance(out, next, points) } else { Vec3::ZERO }
         };
         let facet = path.facets.facet(path.hero, path.depth);

@@ -148,6 +148,40 @@ fn glass_outside_every_light_cone_skips_the_photon_pass_and_says_why() {
 }
 
 #[test]
+fn a_rough_floor_receives_a_caustic_only_where_light_tracing_brings_it() {
+    // The sphere over a rough metal floor: light tracing connects a hidden
+    // light's caustic on it to the camera, so the photon pass runs; without
+    // light tracing, or lit by an area light only (whose light behind a
+    // rough surface the view's rays meet themselves), nothing would record
+    // it, and forcing the pass on changes no pixel.
+    let rough_floor = |light_tracing: bool| {
+        let mut scene = sphere_scene(Dispersion::Constant(1.5), 20.0, -Vec3::Y);
+        let metalness = Metalness::WHOLE;
+        let color = MetalColor::Rgb(Vec3::splat(0.9));
+        scene.materials[1].kind = MaterialKind::Metal { color, roughness: 0.4, texture: None, film: None, metalness };
+        scene.render.light_tracing = light_tracing;
+        scene
+    };
+    assert!(prepare(rough_floor(true)).plan.caustics.on);
+    let mut lamp = rough_floor(true);
+    let (a, b, c) = (Vec3::new(-0.3, 5.0, -0.3), Vec3::new(0.3, 5.0, -0.3), Vec3::new(0.0, 5.0, 0.3));
+    lamp.lights = vec![Light::Area { vertices: [a, b, c], power: 20.0, spectrum: Default::default(), aim: None }];
+    for scene in [rough_floor(false), lamp] {
+        let scene = prepare(scene);
+        let reason = &scene.plan.caustics.reason;
+        assert!(!scene.plan.caustics.on && reason.contains("to receive caustics"), "{reason}");
+        let mut forced = scene.clone();
+        forced.plan.caustics.on = true;
+        for mut backend in every_backend() {
+            let name = backend.name();
+            let ((_, image), (map, forced_image)) = (frame(backend.as_mut(), &scene), frame(backend.as_mut(), &forced));
+            assert!(map.photons.iter().all(|p| !p.on_rough_surface()), "{name}: {reason}");
+            assert_eq!(image.pixels, forced_image.pixels, "{name}: {reason}");
+        }
+    }
+}
+
+#[test]
 fn the_plan_never_skips_light_that_would_show() {
     // Whatever the plan skips, forcing it back on changes nothing. Half the
     // scenes aim their light somewhere random, so that it often misses the glass.

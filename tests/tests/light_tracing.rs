@@ -257,3 +257,65 @@ fn behind_a_light_traced_rough_surface_the_view_leaves_the_hidden_lights_highlig
         assert!((traced / viewed - 1.0).abs() < 0.025, "{name}: light traced {traced:.3}, viewed {viewed:.3}");
     }
 }
+
+#[test]
+fn light_leaving_rough_glass_toward_the_camera_has_walters_radiance() {
+    // A beam of power 1 (radius 0.3) inside a ball of frosted glass (index
+    // 1.5, roughness 0.5: α 0.25, radius 10) folded by a mirror straight
+    // up onto the ball's top, which the camera sees from far above, head
+    // on (every pixel within the beam's spot). The light traced radiance
+    // is Walter et al.'s BTDF times the irradiance inside, E = P/(πr²):
+    // head on, the facet is the normal, so f = η_o² (1 − F) D(n) G2 /
+    // (η_i cos i − η_o cos o)² with D(n) = 1/(πα²), G2 = 1, F = 0.04,
+    // η_i = 1.5 inside and η_o = 1. Radiance over n² is what a ray keeps:
+    // the glass's own BTDF (the renderer's, which carries radiance across
+    // unscaled) would give 2.25 times it.
+    let (alpha, n_glass, radius) = (0.25f64, 1.5f64, 0.3f64);
+    let fresnel = ((n_glass - 1.0) / (n_glass + 1.0)).powi(2);
+    let d = 1.0 / (std::f64::consts::PI * alpha * alpha);
+    let btdf = (1.0 - fresnel) * d / (n_glass - 1.0).powi(2);
+    let want = btdf / (std::f64::consts::PI * radius * radius);
+    let frosted = Material {
+        kind: MaterialKind::Dielectric {
+            dispersion: Dispersion::Constant(n_glass as f32),
+            outside: Dispersion::Constant(1.0),
+            attenuation: None,
+            thin: false,
+            film: None,
+            roughness: 0.5,
+        },
+        ..white("frosted ball")
+    };
+    let mut render = settings(40_000, BandSpec::Paper3);
+    (render.width, render.height, render.light_tracing) = (8, 8, true);
+    (render.background, render.ambient) = (Vec3::ZERO, 0.0);
+    let mirror = Shape::Disk {
+        center: Vec3::new(0.0, 5.0, 0.0),
+        normal: Vec3::new(-1.0, 1.0, 0.0).normalize(),
+        radius: 0.6,
+        inner_radius: 0.0,
+    };
+    let beam = Light::Beam {
+        position: Vec3::new(-5.0, 5.0, 0.0),
+        direction: Vec3::X,
+        radius: radius as f32,
+        power: 1.0,
+        spectrum: Default::default(),
+    };
+    let scene = prepare(Scene {
+        render,
+        camera: Camera { position: Vec3::new(0.0, 40.0, 0.0), look_at: Vec3::Y * 10.0, up: Vec3::Z, fov_deg: 0.6 },
+        lights: vec![beam],
+        materials: vec![frosted, Material { kind: MaterialKind::Mirror, ..white("mirror") }],
+        objects: vec![
+            Object { shape: Shape::Sphere { center: Vec3::ZERO, radius: 10.0 }, material: 0 },
+            Object { shape: mirror, material: 1 },
+        ],
+    });
+    for mut backend in every_backend() {
+        let name = backend.name();
+        let image = image_after(backend.as_mut(), &scene, 4);
+        let got = image.pixels.iter().map(|p| f64::from(p.element_sum()) / 3.0).sum::<f64>() / 64.0;
+        assert!((got / want - 1.0).abs() < 0.02, "{name}: light traced {got:.3}, Walter's {want:.3}");
+    }
+}

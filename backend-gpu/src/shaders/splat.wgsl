@@ -45,7 +45,8 @@ fn splat(
 // a blended metal's diffuse share toward the eye) where it lit the side
 // the eye sees; one met on a rough surface, π times the rough metal's BRDF
 // (a blended metal's specular part's) or rough glass's BSDF on either
-// side, a tinted sheet's crossing colouring what passes it.
+// side, a tinted sheet's crossing colouring what passes it and what
+// leaves solid glass taking (n_eye/n_photon)² (radiance_across).
 fn splat_reflects(photon: Photon, dir: vec3<f32>, hit: Hit, n: vec3<f32>) -> vec3<f32> {
     let band = photon.band_bounces & 0xffffu;
     let lambda = photon.lambda_nm;
@@ -87,7 +88,13 @@ fn splat_reflects(photon: Photon, dir: vec3<f32>, hit: Hit, n: vec3<f32>) -> vec
     let face = path_face(s, band, select(-1.0, lambda, own));
     let f = PI * rough_glass_bsdf(wo, wi, normal, face, alpha);
     if dot(wi, normal) * dot(wo, normal) < 0.0 {
-        return sheet_crossing_rgb(s, band) * f;
+        if is_sheet(s) {
+            return sheet_crossing_rgb(s, band) * f;
+        }
+        // light_tracing::radiance_across: (n_eye/n_photon)².
+        let i = facing_interface(dir, normal, face.ior);
+        let ratio = i.n1 / i.n2;
+        return vec3<f32>(f * (ratio * ratio));
     }
     return vec3<f32>(f);
 }

@@ -42,6 +42,7 @@
 use crate::geometry::camera::PinholeCamera;
 use crate::geometry::ray::Ray;
 use crate::model::photon::{Photon, WHITE_BAND};
+use crate::optics::fresnel::interface;
 use crate::optics::rough_glass::rough_glass_bsdf;
 use crate::optics::surface::Surface;
 use crate::plan::prepared::{Hit, PreparedScene};
@@ -110,7 +111,8 @@ impl<'a> CameraConnection<'a> {
     /// One met on a rough surface ([`Photon::on_rough_surface`]): π times
     /// a rough metal's (a blended metal's specular part's) BRDF, or rough
     /// glass's BSDF on either side (what crosses a tinted sheet keeps its
-    /// colour), as the view's highlights take them.
+    /// colour; what leaves solid glass, [`radiance_across`]), as the
+    /// view's highlights take them.
     fn reflects(&self, photon: &Photon, toward: Vec3, hit: &Hit, n: Vec3) -> Vec3 {
         let scene = self.scene;
         let (band, lambda_nm) = (photon.band, photon.lambda_nm);
@@ -143,12 +145,29 @@ impl<'a> CameraConnection<'a> {
                 let own = band != WHITE_BAND && scene.scene.render.wavelengths.continuous();
                 let face = scene.face(glass, hit, band, own.then_some(lambda_nm));
                 let f = PI * rough_glass_bsdf(wo, wi, normal, face, ggx);
-                let crossed = wi.dot(normal) * wo.dot(normal) < 0.0;
-                if crossed { glass.sheet_crossing_rgb(band) * f } else { Vec3::splat(f) }
+                match wi.dot(normal) * wo.dot(normal) < 0.0 {
+                    true if glass.thin => glass.sheet_crossing_rgb(band) * f,
+                    true => Vec3::splat(f * radiance_across(toward, normal, face.ior)),
+                    false => Vec3::splat(f),
+                }
             }
             _ => Vec3::ZERO,
         }
     }
+}
+
+/// What radiance keeps of itself crossing glass of relative index `ior`
+/// (outward normal `outward`) toward an eye that looks along `toward`:
+/// (n_eye/n_photon)², radiance over n² being what a ray keeps. The
+/// renderer's glass carries radiance across unscaled (rough glass's BTDF
+/// leaves out this factor, [`crate::optics::microfacet::Ggx::transmission`]),
+/// which a path that enters and leaves glass needs none of; but a photon's
+/// flux inside glass is the physical one, so its light leaving toward the
+/// eye takes it.
+fn radiance_across(toward: Vec3, outward: Vec3, ior: f32) -> f32 {
+    let (_, n_eye, n_photon) = interface(toward, outward, ior);
+    let ratio = n_eye / n_photon;
+    ratio * ratio
 }
 
 /// Whether light tracing brings what a rough surface the camera sees

@@ -39,9 +39,14 @@ fn texture_coordinates(obj: GpuObject, s: GpuSurface, tri: u32, p: vec3<f32>) ->
 // PreparedScene::facets: the GGX α of the metal (in white_ior) or rough
 // glass (in albedo.x) `s` at `hit`, its roughness scaled by its roughness
 // map's green channel there (Ggx::scaled, so α by its square); 0 where
-// polished.
+// polished, and on other surfaces (a diffuse surface's albedo.x is its albedo).
 fn facets_alpha(hit: Hit, s: GpuSurface) -> f32 {
-    let alpha = select(s.albedo.x, s.white_ior, s.kind == SURFACE_METAL);
+    var alpha = 0.0;
+    if s.kind == SURFACE_METAL {
+        alpha = s.white_ior;
+    } else if s.kind == SURFACE_DIELECTRIC {
+        alpha = s.albedo.x;
+    }
     if alpha == 0.0 || (s.flags & SURFACE_HAS_TEXTURE) == 0u {
         return alpha;
     }

@@ -88,8 +88,7 @@ fn put(p: ptr<function, Path>, point: vec3<f32>, index: u32, bounces: u32) {
 // part) or glass `s` at `hit` is rough, when light tracing: a photon marked
 // ON_ROUGH_SURFACE, counted as stored but not its flux.
 fn record_on_rough(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) {
-    let rough = (s.kind == SURFACE_METAL || s.kind == SURFACE_DIELECTRIC) && facets_alpha(hit, s) > 0.0;
-    if (*p).bounces > 0u && photon_hidden && params.light_tracing != 0u && rough {
+    if (*p).bounces > 0u && photon_hidden && params.light_tracing != 0u && facets_alpha(hit, s) > 0.0 {
         put(p, hit.point, index, min((*p).bounces, 0x7fffu) | ON_ROUGH_SURFACE);
     }
 }

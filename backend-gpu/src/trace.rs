@@ -35,11 +35,9 @@ pub fn slots_per_emission(scene: &PreparedScene) -> u32 {
 /// white path before its split too.
 fn caustic_slots(scene: &PreparedScene) -> u32 {
     let paths = caustic_paths(scene);
-    let light_traced = scene.scene.render.light_tracing;
-    let goes_on = scene.surfaces.iter().any(|s| match s {
-        Surface::Metal(m) => m.is_blended() || (light_traced && s.is_rough()),
-        _ => light_traced && s.is_rough(),
-    });
+    let recorded = scene.scene.records_on_rough();
+    let blended = |s: &Surface| matches!(s, Surface::Metal(m) if m.is_blended());
+    let goes_on = scene.surfaces.iter().any(|s| blended(s) || (recorded && s.facets().is_some()));
     match goes_on {
         true => (paths + 1) * 2 * (scene.plan.max_depth + 1),
         false => paths,

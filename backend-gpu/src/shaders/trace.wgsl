@@ -16,9 +16,10 @@ var<private> slot_base: u32;
 var<private> slot_used: u32;
 // The range of the light the invocation's photon left (0: none).
 var<private> photon_range: f32;
-// That light is hidden (Light::is_hidden): its caustic photons are met on
-// rough surfaces (record_on_rough).
-var<private> photon_hidden: bool;
+// trace::Source::recorded_on_rough: that light is hidden
+// (Light::is_hidden) and the render light traces, so its caustic photons
+// are recorded on rough surfaces (record_on_rough).
+var<private> photon_recorded: bool;
 // The surface where `follow` last split a path, as its maps make it there.
 var<private> split_surface: GpuSurface;
 
@@ -83,12 +84,12 @@ fn put(p: ptr<function, Path>, point: vec3<f32>, index: u32, bounces: u32) {
     slot_used++;
 }
 
-// trace::record_on_rough: a caustic path of a hidden light, past its first
-// specular interaction, met where the metal (a blended metal's specular
-// part) or glass `s` at `hit` is rough, when light tracing: a photon marked
-// ON_ROUGH_SURFACE, counted as stored but not its flux.
+// trace::record_on_rough: a caustic path of a recorded light
+// (photon_recorded), past its first specular interaction, met where the
+// metal (a blended metal's specular part) or glass `s` at `hit` is rough:
+// a photon marked ON_ROUGH_SURFACE, counted as stored but not its flux.
 fn record_on_rough(p: ptr<function, Path>, hit: Hit, s: GpuSurface, index: u32) {
-    if (*p).bounces > 0u && photon_hidden && params.light_tracing != 0u && facets_alpha(hit, s) > 0.0 {
+    if (*p).bounces > 0u && photon_recorded && facets_alpha(hit, s) > 0.0 {
         put(p, hit.point, index, min((*p).bounces, 0x7fffu) | ON_ROUGH_SURFACE);
     }
 }
@@ -529,7 +530,7 @@ fn trace_emitted(index: u32) {
     tally_flux[0] += flux;
     let l = lights[e.light];
     photon_range = l.range;
-    photon_hidden = light_is_hidden(l);
+    photon_recorded = params.light_tracing != 0u && light_is_hidden(l);
     let coloured = l.spectrum_len > 0u;
     var p = Path(e.origin, e.direction, flux, WHITE_BAND, -1.0, 0u);
     // The number of the next path to make.

@@ -273,15 +273,15 @@ impl Surface {
         }
     }
 
-    /// Whether it has GGX facets somewhere: a rough metal (a blended
-    /// metal's rough specular part) or rough glass, where light tracing
-    /// meets caustic photons ([`crate::model::photon::ON_ROUGH_SURFACE`]).
+    /// Its GGX facets before any roughness map: a rough metal's (a
+    /// blended metal's specular part's) or rough glass's; `None` where it
+    /// is polished and on other surfaces.
     #[inline]
-    pub fn is_rough(&self) -> bool {
+    pub fn facets(&self) -> Option<Ggx> {
         match self {
-            Surface::Metal(metal) => metal.ggx.is_some(),
-            Surface::Dielectric(glass) => glass.ggx.is_some(),
-            _ => false,
+            Surface::Metal(metal) => metal.ggx,
+            Surface::Dielectric(glass) => glass.ggx,
+            _ => None,
         }
     }
 

@@ -174,7 +174,8 @@ fn radiance_across(toward: Vec3, outward: Vec3, ior: f32) -> f32 {
 /// directly reflects or passes of the hidden lights' light
 /// ([`crate::model::scene::Light::is_hidden`]) after mirrors, metals and
 /// glass alone: the render light traces and traces caustic photons, which
-/// are met on such surfaces ([`crate::model::photon::ON_ROUGH_SURFACE`]).
+/// are met on such surfaces ([`crate::model::photon::ON_ROUGH_SURFACE`];
+/// a scene with no hidden light has no highlights to leave out).
 /// Then the view's paths behind such a surface show no highlights of the
 /// rough surfaces they meet ([`crate::render::view`]): that light is the
 /// photons'.

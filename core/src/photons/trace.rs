@@ -32,7 +32,7 @@
 use crate::geometry::primitive::Ray;
 use crate::model::photon::{ON_ROUGH_SURFACE, Photon, PhotonMap, TraceStats, WHITE_BAND};
 use crate::optics::surface::Surface;
-use crate::photons::emit::{emit, light_of};
+use crate::photons::emit::emit;
 use crate::photons::indirect;
 use crate::photons::path::{Crossing, Path, arrives_at_specular, cross_specular, goes_on_as_metal};
 use crate::photons::wavelengths::{emission_paths, sample_band, split_bands};
@@ -90,7 +90,10 @@ pub fn trace_emitted(scene: &PreparedScene, index: u32, flux: f32, out: &mut Vec
     }
     stats.paths += 1;
     stats.flux_emitted += f64::from(flux);
-    let range = scene.emitters[e.light].range();
+    let source = Source {
+        range: scene.emitters[e.light].range(),
+        recorded_on_rough: scene.scene.render.light_tracing && scene.lights[e.light].is_hidden(),
+    };
     if !scene.light_spectra[e.light].is_uniform() {
         // A coloured light's photon takes its wavelengths as it leaves.
         let paths = emission_paths(scene, e.light, index);
@@ -98,7 +101,7 @@ pub fn trace_emitted(scene: &PreparedScene, index: u32, flux: f32, out: &mut Vec
         for (band, lambda_nm, share) in paths {
             let ray = Ray { origin: e.origin, direction: e.direction };
             let path = Path { ray, flux: flux * share, band, lambda_nm, bounces: 0 };
-            trace_path(scene, index, path, range, out, stats);
+            trace_path(scene, index, path, source, out, stats);
         }
         return;
     }
@@ -109,17 +112,27 @@ pub fn trace_emitted(scene: &PreparedScene, index: u32, flux: f32, out: &mut Vec
         lambda_nm: None,
         bounces: 0,
     };
-    trace_path(scene, index, path, range, out, stats);
+    trace_path(scene, index, path, source, out, stats);
 }
 
-/// Records path `p` of white photon `index` where it meets a rough metal
-/// or glass (or a blended metal's rough specular part) at `hit` after at
-/// least one specular interaction, for light tracing
-/// ([`PreparedScene::records_on_rough`]): a photon marked
+/// What a photon's paths keep of the light they left.
+#[derive(Clone, Copy, Debug)]
+struct Source {
+    /// The light's range, which windows a path's first segment.
+    range: Option<f32>,
+    /// A hidden light's caustic photon when the render light traces: met
+    /// on rough surfaces, it is recorded there ([`record_on_rough`]; the
+    /// view's rays meet the other lights' light behind a rough surface
+    /// themselves).
+    recorded_on_rough: bool,
+}
+
+/// Records path `p` of white photon `index` (of a light whose photons are
+/// [`Source::recorded_on_rough`]) where it meets a rough metal or glass
+/// (or a blended metal's rough specular part) at `hit` after at least one
+/// specular interaction, for light tracing: a photon marked
 /// [`ON_ROUGH_SURFACE`], counted as stored but not its flux (the path goes
-/// on). Only a hidden light's ([`crate::model::scene::Light::is_hidden`]):
-/// the view's rays meet the others' light behind a rough surface
-/// themselves. Where a white photon splits, each of its paths is recorded.
+/// on). Where a white photon splits, each of its paths is recorded.
 fn record_on_rough(
     scene: &PreparedScene,
     index: u32,
@@ -128,34 +141,32 @@ fn record_on_rough(
     out: &mut Vec<Photon>,
     stats: &mut TraceStats,
 ) {
-    if p.bounces > 0
-        && scene.records_on_rough(hit)
-        && scene.lights[light_of(scene, scene.scene.render.seed, index)].is_hidden()
-    {
+    if p.bounces > 0 && scene.facets(hit).is_some() {
         stats.stored += 1;
         let photon = p.photon(scene, hit.point, index);
         out.push(Photon { bounces: photon.bounces | ON_ROUGH_SURFACE, ..photon });
     }
 }
 
-/// Follows path `p` of white photon `index` (its light's `range` windows
-/// its first segment) and the band paths it splits into.
+/// Follows path `p` of white photon `index` from its light `source` and
+/// the band paths it splits into.
 fn trace_path(
     scene: &PreparedScene,
     index: u32,
     mut p: Path,
-    range: Option<f32>,
+    source: Source,
     out: &mut Vec<Photon>,
     stats: &mut TraceStats,
 ) {
     let settings = &scene.scene.render;
+    let recorded = |surface: &Surface| source.recorded_on_rough && !surface.stores_photons();
     loop {
         stats.segments += 1;
         let Some(hit) = scene.intersect(&p.ray, f32::INFINITY) else {
             stats.flux_escaped += f64::from(p.flux);
             return;
         };
-        if !p.reach(range, hit.t, stats) {
+        if !p.reach(source.range, hit.t, stats) {
             return;
         }
         let surface = &scene.surfaces[hit.object];
@@ -165,8 +176,10 @@ fn trace_path(
             } else {
                 stats.count_stored(p.flux);
                 out.push(p.photon(scene, hit.point, index));
-                // What a blended metal's specular part reflects of it.
-                record_on_rough(scene, index, &p, &hit, out, stats);
+                if source.recorded_on_rough {
+                    // What a blended metal's specular part reflects of it.
+                    record_on_rough(scene, index, &p, &hit, out, stats);
+                }
             }
             // A blended metal's metal part goes on with its metalness's probability.
             if matches!(surface, Surface::Diffuse { .. }) || !goes_on_as_metal(scene, index, &p, &hit) {
@@ -197,18 +210,18 @@ fn trace_path(
                 stats.paths += u64::from(paths) - 1;
                 for (band, lambda_nm) in split_bands(scene, index) {
                     let mut child = Path { band, lambda_nm, flux: p.flux / paths as f32, ..p };
-                    if !surface.stores_photons() {
+                    if recorded(surface) {
                         record_on_rough(scene, index, &child, &hit, out, stats);
                     }
                     if cross_specular(scene, index, &mut child, &hit, stats) == Crossing::On {
                         child.bounces += 1;
-                        trace_path(scene, index, child, None, out, stats);
+                        trace_path(scene, index, child, source, out, stats);
                     }
                 }
                 return;
             }
         }
-        if !surface.stores_photons() {
+        if recorded(surface) {
             record_on_rough(scene, index, &p, &hit, out, stats);
         }
         // A path a layer passes to its base was stored there already.

@@ -75,10 +75,9 @@ impl EffectPlan {
             .filter(|&k| emitters.iter().any(|l| light_reaches(l, bounds[k].0, bounds[k].1)))
             .collect();
         let has_diffuse = surfaces.iter().any(Surface::stores_photons);
-        // Light tracing connects a hidden light's caustic photons on rough
-        // surfaces to the camera too (crate::photons::light_tracing).
-        let rough_receive = scene.render.light_tracing && scene.lights.iter().any(Light::is_hidden);
-        let receives = |s: &Surface| s.stores_photons() || (rough_receive && s.is_rough());
+        // Light tracing connects caustic photons on rough surfaces to the camera too.
+        let rough_receive = scene.records_on_rough();
+        let receives = |s: &Surface| s.stores_photons() || (rough_receive && s.facets().is_some());
         let n_bands = crate::model::bands::BandTable::new(scene.render.bands).len();
 
         let caustics = if specular.is_empty() {

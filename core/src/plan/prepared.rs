@@ -539,16 +539,6 @@ impl PreparedScene {
         MetalOptics { f0, textured: false, ..*metal }
     }
 
-    /// Whether a caustic photon path that meets the surface at `hit` is
-    /// recorded there for light tracing
-    /// ([`crate::model::photon::ON_ROUGH_SURFACE`]): where the render light
-    /// traces and the metal (a blended metal's specular part) or glass
-    /// there is rough.
-    #[inline]
-    pub fn records_on_rough(&self, hit: &Hit) -> bool {
-        self.scene.render.light_tracing && self.facets(hit).is_some()
-    }
-
     /// The GGX facets of the metal or rough glass at `hit`: its surface's,
     /// their roughness scaled by its roughness map's green channel there
     /// ([`Ggx::scaled`]); `None` where it is polished (and on other
@@ -561,11 +551,7 @@ impl PreparedScene {
     /// [`PreparedScene::facets`] at `point` on `object`'s mesh triangle `triangle`.
     #[inline]
     pub fn facets_at(&self, object: usize, triangle: u32, point: Vec3) -> Option<Ggx> {
-        let ggx = match &self.surfaces[object] {
-            Surface::Metal(metal) => metal.ggx,
-            Surface::Dielectric(glass) => glass.ggx,
-            _ => None,
-        }?;
+        let ggx = self.surfaces[object].facets()?;
         let map = &self.scene.materials[self.scene.objects[object].material].roughness_map;
         match (map, &self.primitives[object], self.texture_uvs[object].get(triangle as usize)) {
             (Some(map), Primitive::Mesh(bvh), Some(uv)) => {

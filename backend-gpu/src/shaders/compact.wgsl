@@ -1,10 +1,13 @@
 // Compaction: twin of the canonical ordering in prismatic_core (the CPU
 // backend's `canonical_order`). After the trace pass, `offsets` holds the
 // exclusive prefix sum of `counts` over the chunk's emissions, so emission
-// k's j-th stored photon goes to cursor + offsets[k] + j: the chunk lands in
-// (emission, band, bounces) order after the chunks before it, with no atomics and no
-// trip to the host. Photons past `capacity` are dropped; the cursor still
-// counts them, so the host sees the overflow.
+// k's stored photon of rank j among its own in (band, bounces) order goes
+// to cursor + offsets[k] + j: the chunk lands in (emission, band, bounces)
+// order after the chunks before it, with no atomics and no trip to the
+// host. A path stores in that order but for a white path's photons met on
+// rough surfaces before it splits, which come after its bands'. Photons
+// past `capacity` are dropped; the cursor still counts them, so the host
+// sees the overflow.
 
 @group(0) @binding(0) var<uniform> params: Params;
 @group(0) @binding(1) var<storage, read> scratch: array<Photon>;
@@ -28,10 +31,23 @@ fn scatter(
     if j >= counts[k] {
         return;
     }
-    let dest = cursor[0] + offsets[k] + j;
+    let first = k * params.slots;
+    let key = canonical_key(scratch[s]);
+    var rank = 0u;
+    for (var i = 0u; i < min(counts[k], params.slots); i++) {
+        rank += select(0u, 1u, canonical_key(scratch[first + i]) < key);
+    }
+    let dest = cursor[0] + offsets[k] + rank;
     if dest < params.capacity {
         map_store(dest, scratch[s]);
     }
+}
+
+// Photon::key within an emission: the band (white last), then the bounces
+// with the rough-surface mark as their lowest bit (rotated left by one).
+fn canonical_key(p: Photon) -> u32 {
+    let bounces = p.band_bounces >> 16u;
+    return ((p.band_bounces & 0xffffu) << 16u) | (((bounces << 1u) | (bounces >> 15u)) & 0xffffu);
 }
 
 // Moves the cursor past the chunk (saturating, so an overflow stays visible).

@@ -97,7 +97,7 @@ impl HostKernels for PacketKernels {
         let traced = Instant::now();
         self.install(|| grids.rebuild(scene, &map, points, radii));
         let gridded = Instant::now();
-        let (irradiance, photons) = self.install(|| grids.gather(scene, points, radii));
+        let (irradiance, photons) = self.install(|| grids.gather(scene, &map, points, radii));
         let splats = self.install(|| splat_photons(scene, &map.photons));
         self.times = StageTimes { view, photons: traced - start, grid: gridded - traced, gather: gridded.elapsed() };
         let stats = map.stats;

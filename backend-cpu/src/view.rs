@@ -34,13 +34,14 @@ use prismatic_core::optics::scatter::{
     self, Face, scatter_dielectric, scatter_metal, scatter_rough_dielectric, split_rough_dielectric,
 };
 use prismatic_core::optics::surface::{DielectricOptics, Surface};
-use prismatic_core::photons::light_tracing::traces_behind_rough;
 use prismatic_core::photons::path::stored_wavelength;
 use prismatic_core::plan::area::area;
 use prismatic_core::plan::area_aims::on_triangle;
 use prismatic_core::plan::prepared::Hit;
 use prismatic_core::plan::prepared::PreparedScene;
-use prismatic_core::render::view::{HeroViewPath, ViewContext, gathers_at, glass_transmittance, hero_view_paths};
+use prismatic_core::render::view::{
+    HeroViewPath, ViewContext, behind_rough, gathers_at, gathers_on_rough, glass_transmittance, hero_view_paths,
+};
 use prismatic_core::render::visible::{VisiblePoint, VisiblePoints};
 use prismatic_core::sampling::pixel_sample::PixelSampler;
 use prismatic_core::sampling::spot_cone::SpotCone;
@@ -72,10 +73,10 @@ struct ViewRay {
     hero: u32,
     /// The numbers of its rough metals' facets (pass 0's for centre rays).
     facets: PixelSampler,
-    /// It left a rough surface the camera sees, where light tracing brings
-    /// the hidden lights' light: it shows no highlights (the reference's
-    /// `ViewPath`).
-    light_traced: bool,
+    /// It left a rough surface where the hidden lights' light is counted,
+    /// light traced or gathered: it shows no highlights and leaves no rough
+    /// visible points (the reference's `ViewPath`, [`behind_rough`]).
+    behind_rough: bool,
 }
 
 /// Traces the view rays (pass `pass`'s own paths when
@@ -116,13 +117,12 @@ pub fn visible_points(scene: &PreparedScene, pass: u32) -> VisiblePoints {
                     sampler,
                     hero: 0,
                     facets,
-                    light_traced: false,
+                    behind_rough: false,
                 });
             }
             let view = ViewContext::new(scene);
             let first_pixel = (tile * tile_pixels) as u32;
-            let traces_behind_rough = traces_behind_rough(scene);
-            let mut shader = Shader { scene, view, points: Vec::new(), first_pixel, traces_behind_rough };
+            let mut shader = Shader { scene, view, points: Vec::new(), first_pixel };
             let mut sum = vec![Vec3::ZERO; pixels.len()];
             while !queue.is_empty() {
                 let take = queue.len().min(8);
@@ -148,8 +148,6 @@ struct Shader<'a> {
     points: Vec<VisiblePoint>,
     /// The tile's first pixel (ray pixels are relative to it).
     first_pixel: u32,
-    /// The core's [`traces_behind_rough`] of the scene.
-    traces_behind_rough: bool,
 }
 
 impl Shader<'_> {
@@ -238,6 +236,13 @@ impl Shader<'_> {
                 continue;
             }
             let at = Hit { t: t[i], point: p, normal: n, object: object[i] as usize, triangle: triangle[i] as u32 };
+            // Rough glass's visible point, before a split into bands: one for the ray.
+            if let Surface::Dielectric(_) = surface
+                && !r.behind_rough
+                && gathers_on_rough(self.scene, r.depth, facets)
+            {
+                self.add_rough_point(r, &at);
+            }
             match surface {
                 // Band rays at glass: Fresnel and refraction for the whole packet at once, below.
                 Surface::Mirror => {
@@ -249,9 +254,12 @@ impl Shader<'_> {
                 Surface::Metal(metal) => {
                     let metal = &self.scene.metal_at(metal, &at);
                     let lambda_nm = stored_wavelength(&self.scene.bands, r.band, r.lambda_nm);
-                    if !r.light_traced {
+                    if !r.behind_rough {
                         sum[r.pixel as usize] +=
                             r.tint * self.view.metal_highlights(r.dir, (p, n), metal, r.band, lambda_nm);
+                        if gathers_on_rough(self.scene, r.depth, metal.ggx) {
+                            self.add_rough_point(r, &at);
+                        }
                     }
                     let (u1, u2) = if metal.ggx.is_some() { r.facets.facet(r.hero, r.depth) } else { (0.0, 0.0) };
                     let Some(b) = scatter_metal(r.dir, p, n, metal.ggx, u1, u2) else { continue };
@@ -262,8 +270,7 @@ impl Shader<'_> {
                         weight: r.weight * f.max_element(),
                         tint: r.tint * f,
                         depth: r.depth + 1,
-                        light_traced: r.light_traced
-                            || (r.depth == 0 && metal.ggx.is_some() && self.traces_behind_rough),
+                        behind_rough: behind_rough(self.scene, r.behind_rough, r.depth, metal.ggx),
                         ..*r
                     };
                     if next.weight > MIN_VIEW_WEIGHT {
@@ -326,12 +333,19 @@ impl Shader<'_> {
             spawn_at_glass(r, p, n, (face, glass, facets), one_branch, queue);
             return;
         };
-        if !r.light_traced {
+        if !r.behind_rough {
             let crossing = glass.sheet_crossing_rgb(r.band);
             sum[r.pixel as usize] += r.tint * self.view.rough_glass_highlights(r.dir, (p, n), (face, ggx), crossing);
         }
-        let light_traced = r.light_traced || (r.depth == 0 && self.traces_behind_rough);
-        spawn_at_glass(&ViewRay { light_traced, ..*r }, p, n, (face, glass, facets), one_branch, queue);
+        let behind_rough = behind_rough(self.scene, r.behind_rough, r.depth, facets);
+        spawn_at_glass(&ViewRay { behind_rough, ..*r }, p, n, (face, glass, facets), one_branch, queue);
+    }
+
+    /// Ray `r`'s visible point on the rough metal or glass at `bent` (its
+    /// normal the shading normal), in this tile's list.
+    fn add_rough_point(&mut self, r: &ViewRay, bent: &Hit) {
+        let point = VisiblePoint::on_rough(bent, r.dir, r.tint * self.scene.camera_response());
+        self.points.push(VisiblePoint { pixel: self.first_pixel + r.pixel, ..point });
     }
 
     /// What ray `r` sees of the diffuse part (its `share`, 1 − m) of the
@@ -366,7 +380,7 @@ impl Shader<'_> {
             if gathers_at(self.scene, rays[i].depth) {
                 let weight = rays[i].tint / PI * self.scene.camera_response();
                 let pixel = self.first_pixel + rays[i].pixel;
-                self.points.push(VisiblePoint { point: pi, normal: ni, weight, albedo: albedo[i], pixel });
+                self.points.push(VisiblePoint { point: pi, normal: ni, weight, albedo: albedo[i], pixel, rough: None });
             }
         }
         // Each light's irradiance, in the colour the surface reflects of its

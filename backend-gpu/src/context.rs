@@ -9,11 +9,11 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex};
 
 /// Storage buffers a session's gather binds, the most of any stage: the
-/// bands, cells, point count, visible points, pixels and four windows of
-/// the sorted photons (group 0), the pixels' sums and direct light, the
-/// levels used, the statistics, the level lists and the pixels' first
-/// radii (group 1).
-pub const STORAGE_BUFFERS_NEEDED: u32 = 15;
+/// bands, cells, point count, visible points, pixels, four windows of
+/// the sorted photons and the scene's objects, surfaces, geometry and
+/// tables (group 0), the pixels' sums and direct light, the levels used,
+/// the statistics, the level lists and the pixels' first radii (group 1).
+pub const STORAGE_BUFFERS_NEEDED: u32 = 19;
 
 /// A device and queue with what the backend knows about them. Clones share
 /// the device and the count of bytes moved ([`GpuContext::counting_apart`]

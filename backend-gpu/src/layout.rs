@@ -115,8 +115,10 @@ pub struct Params {
     pub caustic_photons: u32,
     /// Flux of one indirect photon.
     pub indirect_flux: f32,
-    /// Padding to a multiple of 16 bytes.
-    pub _pad: [u32; 2],
+    /// 1 when caustic photons are recorded on rough surfaces (`EffectPlan::rough_records`).
+    pub rough_records: u32,
+    /// 1 when visible points on rough-enough surfaces gather them (`EffectPlan::rough_gathers`).
+    pub rough_gathers: u32,
 }
 const _: () = assert!(core::mem::size_of::<Params>() == 272);
 
@@ -311,7 +313,7 @@ pub struct Tally {
 }
 const _: () = assert!(core::mem::size_of::<Tally>() == 64);
 
-/// A view ray's diffuse hit waiting for its caustic gather (progressive
+/// A view ray's diffuse (or rough) hit waiting for its caustic gather (progressive
 /// photon mapping's "hit point"): where, facing which way, within which
 /// radius, what the caustic radiance there is worth to its pixel, and the
 /// gather's running sums in fixed point (i64 as `[lo, hi]` words: integer
@@ -347,10 +349,19 @@ pub struct VisiblePoint {
     pub widest: u32,
     /// The surface's RGB albedo, whose reflectance reflects each photon gathered.
     pub albedo: [f32; 3],
-    /// Padding.
-    pub _pad: u32,
+    /// On rough metal or glass ([`ROUGH_POINT`] set): the object; 0 on a
+    /// diffuse surface. A rough point's `normal` is the shading normal
+    /// there, on either side.
+    pub rough: u32,
+    /// A rough point's view ray direction.
+    pub toward: [f32; 3],
+    /// A rough point's mesh triangle.
+    pub triangle: u32,
 }
-const _: () = assert!(core::mem::size_of::<VisiblePoint>() == 112);
+const _: () = assert!(core::mem::size_of::<VisiblePoint>() == 128);
+
+/// The bit of [`VisiblePoint::rough`] that marks a point on rough metal or glass.
+pub const ROUGH_POINT: u32 = 1 << 31;
 
 /// A render's statistics on the device: the passes' trace tallies summed
 /// (counts as `[lo, hi]` u64 words, flux in f32; the order of [`Tally`]),

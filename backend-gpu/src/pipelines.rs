@@ -160,8 +160,10 @@ pub struct Pipelines {
     pub first_radius: wgpu::ComputePipeline,
     /// session.wgsl `begin_pass`: sums emptied, this pass's radii.
     pub begin_pass: wgpu::ComputePipeline,
-    /// session.wgsl `gather_level`: a pass's gather at one grid level's points.
+    /// session.wgsl `gather_level`: a pass's gather at one grid level's points on diffuse surfaces.
     pub gather_level: wgpu::ComputePipeline,
+    /// session.wgsl `gather_rough_level`: the same at its points on rough metal and glass.
+    pub gather_rough_level: wgpu::ComputePipeline,
     /// session.wgsl `accumulate`: the pass added to the pixels' sums.
     pub accumulate: wgpu::ComputePipeline,
     /// session.wgsl `show`: the pixels' base plus mean caustic.
@@ -205,7 +207,7 @@ impl Pipelines {
         let gather_layout = layout(
             device,
             "prismatic gather",
-            &with_windows(vec![Uniform, Read, Read, Read, ReadWrite, ReadWrite], Read),
+            &[with_windows(vec![Uniform, Read, Read, Read, ReadWrite, ReadWrite], Read), vec![Read; 4]].concat(),
         );
         let session_layout = layout(
             device,
@@ -252,6 +254,7 @@ impl Pipelines {
                 &[&level_dispatch_layout],
             ),
             gather_level: session("prismatic gather level", "gather_level"),
+            gather_rough_level: session("prismatic rough gather level", "gather_rough_level"),
             accumulate: session("prismatic accumulate", "accumulate"),
             show: session("prismatic show", "show"),
             add_view: session("prismatic add view", "add_view"),

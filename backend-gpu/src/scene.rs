@@ -246,6 +246,8 @@ impl EncodedScene {
             white_balance: v3(scene.white_balance),
             ambient: [r.ambient; 3],
             light_tracing: u32::from(r.light_tracing),
+            rough_records: u32::from(scene.plan.rough_records),
+            rough_gathers: u32::from(scene.plan.rough_gathers),
             background: v3(r.background),
             splat_scale: prismatic_core::photons::light_tracing::importance_scale(r.exposure, &camera),
             cam_origin: v3(camera.origin),
@@ -671,6 +673,13 @@ impl SceneBuffers {
     /// The band table (binding 4), which the gather binds too.
     pub fn bands(&self) -> &wgpu::Buffer {
         &self.storage[3]
+    }
+
+    /// What a gather reads of the scene for the BSDF of points on rough
+    /// surfaces: objects, surfaces, geometry and tables (gather.wgsl's
+    /// bindings 10–13).
+    pub fn surface_buffers(&self) -> [&wgpu::Buffer; 4] {
+        [&self.storage[0], &self.storage[1], &self.storage[4], &self.storage[5]]
     }
 
     /// Writes the host copy of the settings to the device (visible to the next submit).

@@ -254,6 +254,7 @@ fn prelude(stack: u32) -> String {
     u("LIGHT_BEAM", kind::LIGHT_BEAM);
     u("LIGHT_AREA", kind::LIGHT_AREA);
     u("ON_ROUGH_SURFACE", u32::from(prismatic_core::model::photon::ON_ROUGH_SURFACE));
+    u("ROUGH_POINT", crate::layout::ROUGH_POINT);
     u("PROJECTION_NONE", kind::PROJECTION_NONE);
     u("PROJECTION_CONES", kind::PROJECTION_CONES);
     u("PROJECTION_DISCS", kind::PROJECTION_DISCS);
@@ -273,6 +274,7 @@ fn prelude(stack: u32) -> String {
     f("MIN_REFLECTED_LIFT", prismatic_core::geometry::shading::MIN_REFLECTED_LIFT);
     f("MIN_TANGENT_SHARE", prismatic_core::geometry::normal_map::MIN_TANGENT_SHARE);
     f("MIN_ALPHA", prismatic_core::optics::microfacet::MIN_ALPHA);
+    f("GATHER_ALPHA", prismatic_core::optics::microfacet::GATHER_ALPHA);
     f("MIN_MAPPED_LENGTH", prismatic_core::geometry::normal_map::MIN_MAPPED_LENGTH);
     f("BOX_MARGIN", prismatic_core::geometry::bvh::BOX_MARGIN);
     f("MIN_VIEW_WEIGHT", MIN_VIEW_WEIGHT);
@@ -329,7 +331,15 @@ fn photon_windows(name: &str, group: u32, first: u32, writable: bool) -> String 
 const COMMON: &str = include_str!("shaders/common.wgsl");
 const FIXED: &str = include_str!("shaders/fixed.wgsl");
 /// The scene's bindings and what reads them: intersection, shading normals, textures.
-const SCENE: &str = concat!(include_str!("shaders/scene.wgsl"), include_str!("shaders/texture.wgsl"));
+const SCENE: &str = concat!(
+    include_str!("shaders/scene_bindings.wgsl"),
+    include_str!("shaders/scene.wgsl"),
+    include_str!("shaders/texture.wgsl")
+);
+/// What reads the scene, without its bindings (the gather declares its own).
+const SCENE_FUNCTIONS: &str = concat!(include_str!("shaders/scene.wgsl"), include_str!("shaders/texture.wgsl"));
+/// What a surface sends toward an eye of a photon's light.
+const REFLECTS: &str = include_str!("shaders/reflects.wgsl");
 const ALBEDO: &str = include_str!("shaders/albedo.wgsl");
 const SUMS: &str = include_str!("shaders/sums.wgsl");
 const COLOUR: &str = include_str!("shaders/colour.wgsl");
@@ -393,13 +403,18 @@ pub fn view(stack: u32) -> String {
 }
 
 /// A session's passes (entries `first_radius`, `begin_pass`,
-/// `list_points`, `gather_level`, `accumulate`, `add_view`, `show`): the
-/// gather's bindings in group 0 (the sorted photons are bindings 6–9) and
+/// `list_points`, `gather_level`, `gather_rough_level`, `accumulate`, `add_view`, `show`): the
+/// gather's bindings in group 0 (the sorted photons are bindings 6–9, the
+/// scene's objects, surfaces, geometry and tables 10–13) and
 /// group 1 (the pixels' sums, their direct light, session params, levels
 /// used, statistics, the points' lists by level, the pixels' first radii).
 pub fn session() -> String {
     [
         library(),
+        SCENE_FUNCTIONS.into(),
+        ALBEDO.into(),
+        METAL.into(),
+        REFLECTS.into(),
         include_str!("shaders/gather.wgsl").into(),
         COLOUR.into(),
         photon_windows("sorted", 0, 6, false),
@@ -418,6 +433,7 @@ pub fn splat() -> String {
         COLOUR.into(),
         ALBEDO.into(),
         METAL.into(),
+        REFLECTS.into(),
         SUMS.into(),
         CONNECT.into(),
         include_str!("shaders/splat.wgsl").into(),

@@ -35,7 +35,7 @@ pub fn slots_per_emission(scene: &PreparedScene) -> u32 {
 /// white path before its split too.
 fn caustic_slots(scene: &PreparedScene) -> u32 {
     let paths = caustic_paths(scene);
-    let recorded = scene.scene.records_on_rough();
+    let recorded = scene.plan.rough_records;
     let blended = |s: &Surface| matches!(s, Surface::Metal(m) if m.is_blended());
     let goes_on = scene.surfaces.iter().any(|s| blended(s) || (recorded && s.facets().is_some()));
     match goes_on {

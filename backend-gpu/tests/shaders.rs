@@ -119,7 +119,8 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 env_turn,
                 caustic_photons,
                 indirect_flux,
-                _pad,
+                rough_records,
+                rough_gathers,
             }),
         ),
         ("GpuObject", &trace, rust_layout!(GpuObject { kind, first, count, second, a, ra, n, rb })),
@@ -213,7 +214,9 @@ fn shared_structs_have_the_same_layout_in_rust_and_wgsl() {
                 level,
                 widest,
                 albedo,
-                _pad
+                rough,
+                toward,
+                triangle
             }),
         ),
         ("RunStats", &session, rust_layout!(RunStats { counts, flux, min_ratio, max_ratio })),

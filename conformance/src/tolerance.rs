@@ -92,7 +92,26 @@ impl Tolerance {
     pub fn allowing_outliers(self, fraction: f64) -> Tolerance {
         Tolerance { outlier_fraction: self.outlier_fraction.max(fraction), ..self }
     }
+
+    /// This set for the images of a scene whose visible points on rough
+    /// surfaces gather (`EffectPlan::rough_gathers`): pixels within
+    /// [`ROUGH_GATHER_PIXEL_REL`] at least. Such a gather weighs each
+    /// photon by the surface's BSDF toward the eye, whose lobe moves with
+    /// the photon's direction: a direction rounded to the neighbouring
+    /// 16-bit octahedral code (0.004°, δ = 7e-5 rad) by a backend a few
+    /// ulps apart moves D, so the photon's weight, by about 4θδ/α², up to
+    /// 1 % at α = 0.1 off the lobe's peak; a pixel whose gather a few such
+    /// photons carry moves by a few tenths of a percent (lavapipe against
+    /// the reference on `frosted` at 96×96, one pass of 4,000 photons:
+    /// 185 pixels past 1e-3 in a channel, none past 1e-2 but a dark
+    /// channel's 1.1e-3 of 0.043; 2026-11-30).
+    pub fn with_rough_gathers(self) -> Tolerance {
+        Tolerance { pixel_rel: self.pixel_rel.max(ROUGH_GATHER_PIXEL_REL), ..self }
+    }
 }
+
+/// Pixels' relative tolerance where rough surfaces gather ([`Tolerance::with_rough_gathers`]).
+pub const ROUGH_GATHER_PIXEL_REL: f32 = 1e-2;
 
 /// Outliers allowed however small the map.
 pub const MIN_OUTLIERS: usize = 3;

@@ -16,7 +16,7 @@
 //! | layer | folder | modules | what |
 //! |---|---|---|---|
 //! | 7 | [`render`] | `visible`, `view`, `layer`, `aov`, `accumulation`, `protocol`, `host`, `reference` | the camera's side (or an engine's frame), the exact sums, the render protocol and the scalar reference backend |
-//! | 6 | [`photons`] | `emit`, `wavelengths`, `path`, `trace`, `indirect`, `grid`, `gather`, `light_tracing` | the light's side: photons from emission to the gather and to the camera, caustic and indirect |
+//! | 6 | [`photons`] | `emit`, `wavelengths`, `path`, `trace`, `indirect`, `grid`, `reflects`, `gather`, `light_tracing` | the light's side: photons from emission to the gather and to the camera, caustic and indirect |
 //! | 5 | [`plan`] | `area`, `area_aims`, `reach`, `projection`, `effects`, `prepared`, `drawn_suns`, `drawn_triangles`, `schedule` | what a render of this scene will do |
 //! | 4 | [`optics`] | `fresnel`, `microfacet`, `metal`, `rough_glass`, `thin_film`, `absorption`, `surface`, `scatter` | every scattering function, and the one branch choice at glass |
 //! | 3 | [`geometry`] | `ray`, `triangle`, `primitive`, `bvh`, `bvh_build`, `camera`, `texture`, `shading`, `normal_map`, `form_factor` | rays, intersections, hierarchies, the camera, textures, shading normals, normal maps, form factors |

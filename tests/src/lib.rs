@@ -4,6 +4,7 @@
 pub mod backends;
 pub mod parity;
 pub mod random_scene;
+pub mod rough;
 
 pub use prismatic_conformance::tolerance;
 

@@ -35,7 +35,8 @@ pub fn assert_parity(case: &str, scene: &PreparedScene, expected: &Output, got: 
     let relaxed = [expected, got].iter().any(|o| o.arithmetic == Arithmetic::Relaxed);
     let tol = Tolerance::of(if relaxed { Arithmetic::Relaxed } else { Arithmetic::Strict });
     let maps = compare_maps(&expected.map, &got.map, scene.bands.len(), tol);
-    let images = compare_images(&expected.image, &got.image, tol);
+    let image_tol = if scene.plan.rough_gathers { tol.with_rough_gathers() } else { tol };
+    let images = compare_images(&expected.image, &got.image, image_tol);
     match (maps, images) {
         (Ok(report), Ok(_)) => report,
         (maps, images) => {

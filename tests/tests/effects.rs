@@ -7,6 +7,7 @@ use prismatic_core::model::bands::BandSpec;
 use prismatic_core::model::dispersion::{Dispersion, Glass};
 use prismatic_core::model::metalness::Metalness;
 use prismatic_core::model::scene::{Light, MaterialKind, Object, Shape, ThinFilm};
+use prismatic_core::optics::microfacet::GATHER_ALPHA;
 use prismatic_core::optics::surface::Surface;
 use prismatic_core::{Image, NoProgress, PreparedScene, ReferenceBackend, Scene, Vec3};
 use prismatic_tests::backends::{assert_same_caustic, every_backend, frame, trace};
@@ -148,25 +149,29 @@ fn glass_outside_every_light_cone_skips_the_photon_pass_and_says_why() {
 }
 
 #[test]
-fn a_rough_floor_receives_a_caustic_only_where_light_tracing_brings_it() {
+fn a_rough_floor_receives_a_caustic_only_where_light_tracing_or_its_gather_brings_it() {
     // The sphere over a rough metal floor: light tracing connects a hidden
-    // light's caustic on it to the camera, so the photon pass runs; without
-    // light tracing, or lit by an area light only (whose light behind a
-    // rough surface the view's rays meet themselves), nothing would record
-    // it, and forcing the pass on changes no pixel.
-    let rough_floor = |light_tracing: bool| {
+    // light's caustic on it to the camera, and visible points on a floor
+    // rough enough to gather (Ggx::gathers) gather it, so the photon pass
+    // runs; on a floor just too smooth to gather without light tracing, or
+    // lit by an area light only (whose light behind a rough surface the
+    // view's rays meet themselves), nothing would take it, and forcing the
+    // pass on changes no pixel.
+    let edge = GATHER_ALPHA.sqrt();
+    let rough_floor = |roughness: f32, light_tracing: bool| {
         let mut scene = sphere_scene(Dispersion::Constant(1.5), 20.0, -Vec3::Y);
         let metalness = Metalness::WHOLE;
         let color = MetalColor::Rgb(Vec3::splat(0.9));
-        scene.materials[1].kind = MaterialKind::Metal { color, roughness: 0.4, texture: None, film: None, metalness };
+        scene.materials[1].kind = MaterialKind::Metal { color, roughness, texture: None, film: None, metalness };
         scene.render.light_tracing = light_tracing;
         scene
     };
-    assert!(prepare(rough_floor(true)).plan.caustics.on);
-    let mut lamp = rough_floor(true);
+    assert!(prepare(rough_floor(edge * 0.99, true)).plan.caustics.on);
+    assert!(prepare(rough_floor(edge * 1.01, false)).plan.caustics.on);
+    let mut lamp = rough_floor(edge * 1.01, true);
     let (a, b, c) = (Vec3::new(-0.3, 5.0, -0.3), Vec3::new(0.3, 5.0, -0.3), Vec3::new(0.0, 5.0, 0.3));
     lamp.lights = vec![Light::Area { vertices: [a, b, c], power: 20.0, spectrum: Default::default(), aim: None }];
-    for scene in [rough_floor(false), lamp] {
+    for scene in [rough_floor(edge * 0.99, false), lamp] {
         let scene = prepare(scene);
         let reason = &scene.plan.caustics.reason;
         assert!(!scene.plan.caustics.on && reason.contains("to receive caustics"), "{reason}");

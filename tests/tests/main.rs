@@ -26,6 +26,7 @@ mod parity_gpu;
 mod photon_map;
 mod physics;
 mod progressive;
+mod rough_gathers;
 mod rough_glass;
 mod roughness_maps;
 mod scene_files;

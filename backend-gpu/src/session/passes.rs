@@ -198,6 +198,7 @@ impl GpuSession {
     fn gather_chunks(&mut self, finish: Finish, settings: SessionParams) -> Result<(), BackendError> {
         let steps = self.gather_steps(settings.whole_radius != 0)?;
         let r_pass = self.buffers.params.radius;
+        let rough = self.buffers.params.rough_gathers != 0;
         for chunk in &self.points.chunks {
             let points = chunk.capacity;
             let groups = chunk.groups();
@@ -228,6 +229,10 @@ impl GpuSession {
                         let both = [groups.gather(level), &groups.session];
                         let offset = LEVEL_ARGS_BYTES * level as u64;
                         dispatch_indirect(&mut encoder, &self.pipelines.gather_level, &both, &chunk.level_args, offset);
+                        if rough {
+                            let rough_level = &self.pipelines.gather_rough_level;
+                            dispatch_indirect(&mut encoder, rough_level, &both, &chunk.level_args, offset);
+                        }
                     }
                     if i + 1 == steps.len() {
                         match finish {
@@ -278,7 +283,8 @@ impl GpuSession {
 /// Φ·max(1, N·max|C_i|) at most, the paper's max(1, max|C_i|) (C_i, or
 /// the colour of a wavelength over N: [`BandTable::max_colour`]), each
 /// times what the surface reflects of it, at most its largest albedo
-/// channel when above 1.
+/// channel when above 1, or where points on rough surfaces gather,
+/// [`ROUGH_REFLECTS_BOUND`].
 ///
 /// [`BandTable::max_colour`]: prismatic_core::BandTable::max_colour
 pub fn gather_shifts(pass: &PreparedScene) -> (i32, i32) {
@@ -287,13 +293,24 @@ pub fn gather_shifts(pass: &PreparedScene) -> (i32, i32) {
         _ => indirect_flux(pass) * IndirectWavelengths::largest_share(pass),
     };
     let flux = photon_flux(pass).max(indirect);
-    let weight = pass.bands.max_colour().max(1.0) * max_albedo(pass).max(1.0);
+    let reflects = if pass.plan.rough_gathers { ROUGH_REFLECTS_BOUND } else { 1.0 };
+    let weight = pass.bands.max_colour().max(1.0) * max_albedo(pass).max(reflects);
     let term = match pass.scene.render.estimator {
         Estimator::Density => flux * (weight * pass.bands.len() as f32).max(1.0),
         Estimator::Paper => weight,
     };
     (TERM_BITS - exponent(term), TERM_BITS - exponent(flux))
 }
+
+/// What a gather's term takes room for of π times a rough surface's BSDF
+/// (`prismatic_core::photons::reflects::rough_reflects`), which weighs the
+/// photons a visible point there gathers: for facets rough enough to
+/// gather (α ≥ 0.1, D at most 1/(πα²) ≈ 32) it stays below this where the
+/// eye and the light are not near grazing (head on, π f is about 25 for a
+/// metal, 180 through glass of index 1.5 and 900 of index 1.1); a term
+/// past it is clamped to it (fixed.wgsl). Room for it costs the sums 12
+/// of their bits, which a term's 2^18 units still hold to 4e-6.
+const ROUGH_REFLECTS_BOUND: f32 = 4096.0;
 
 /// The largest albedo channel of the scene's diffuse surfaces (a texture
 /// scales its surface's albedo by at most 1).

@@ -238,6 +238,12 @@ impl GpuSession {
                         wgpu::BindGroupEntry { binding: 5, resource: pixel_slice.clone() },
                     ];
                     entries.extend(grid.sorted.entries(6));
+                    let scene = self.buffers.surface_buffers();
+                    entries.extend(
+                        (10..)
+                            .zip(scene)
+                            .map(|(binding, b)| wgpu::BindGroupEntry { binding, resource: b.as_entire_binding() }),
+                    );
                     gather[level] = Some(group("prismatic session gather", &p.gather_layout, &entries));
                 }
                 let session = group(

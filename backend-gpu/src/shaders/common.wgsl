@@ -57,7 +57,8 @@ struct Params {
     env_turn: f32,
     caustic_photons: u32,
     indirect_flux: f32,
-    _pad: vec2<u32>,
+    rough_records: u32,
+    rough_gathers: u32,
 }
 
 // Twin of prismatic_core::photon::Photon (band in the low 16 bits of
@@ -161,7 +162,9 @@ struct VisiblePoint {
     level: u32,
     widest: u32,
     albedo: vec3<f32>,
-    _pad: u32,
+    rough: u32,
+    toward: vec3<f32>,
+    triangle: u32,
 }
 
 // Twin of prismatic_gpu::layout::RunStats.

@@ -12,10 +12,13 @@
 @group(0) @binding(2) var<storage, read_write> cursor: array<atomic<u32>>;
 @group(0) @binding(11) var<storage, read_write> widest_bucket: atomic<u32>;
 
-// Whether a gather takes photon `p`: not one met on a rough surface
-// (Photon::on_rough_surface), which only light tracing does.
+// Whether a gather may take photon `p`: one met on a rough surface
+// (Photon::on_rough_surface) only where visible points on rough surfaces
+// gather (params.rough_gathers: the grid holds both kinds, and each
+// point's gather takes its own, gather.wgsl), else light tracing alone
+// takes those.
 fn gathered(p: Photon) -> bool {
-    return ((p.band_bounces >> 16u) & ON_ROUGH_SURFACE) == 0u;
+    return params.rough_gathers != 0u || ((p.band_bounces >> 16u) & ON_ROUGH_SURFACE) == 0u;
 }
 
 fn bucket_of_point(p: vec3<f32>) -> u32 {

@@ -151,26 +151,44 @@ fn list_points(
     level_lists.points[slot] = i;
 }
 
-// A pass's gather at the points of grid level `session.level`, one
-// invocation per point of its list (level_dispatch.wgsl sized the
-// dispatch); a point whose buckets the earlier segments read to the end
-// is done.
+// A pass's gather at the points on diffuse surfaces of grid level
+// `session.level`, one invocation per point of its list (level_dispatch.wgsl
+// sized the dispatch).
 @compute @workgroup_size(WORKGROUP_SIZE)
 fn gather_level(
     @builtin(workgroup_id) wid: vec3<u32>,
     @builtin(num_workgroups) nwg: vec3<u32>,
     @builtin(local_invocation_index) lid: u32,
 ) {
-    let j = flat_index(wid, nwg, lid);
+    gather_at(flat_index(wid, nwg, lid), false);
+}
+
+// The same at the points on rough metal and glass (dispatched where the
+// plan gathers there: EffectPlan::rough_gathers).
+@compute @workgroup_size(WORKGROUP_SIZE)
+fn gather_rough_level(
+    @builtin(workgroup_id) wid: vec3<u32>,
+    @builtin(num_workgroups) nwg: vec3<u32>,
+    @builtin(local_invocation_index) lid: u32,
+) {
+    gather_at(flat_index(wid, nwg, lid), true);
+}
+
+// The gather of invocation `j` of `session.level`'s list, at its point if
+// that is on a rough surface as `rough` says (a constant, see
+// gather_segment) and the earlier segments did not read its buckets to
+// the end.
+fn gather_at(j: u32, rough: bool) {
     if j >= atomicLoad(&level_lists.counts[session.level]) {
         return;
     }
     let i = level_lists.points[level_start(session.level) + j];
-    if params.gather_first > 0u && points[i].widest <= params.gather_first {
+    let done = params.gather_first > 0u && points[i].widest <= params.gather_first;
+    if done || ((points[i].rough & ROUGH_POINT) != 0u) != rough {
         return;
     }
     var vp = points[i];
-    gather_segment(&vp);
+    gather_segment(&vp, rough);
     points[i] = vp;
 }
 

@@ -17,8 +17,9 @@ var<private> slot_used: u32;
 // The range of the light the invocation's photon left (0: none).
 var<private> photon_range: f32;
 // trace::Source::recorded_on_rough: that light is hidden
-// (Light::is_hidden) and the render light traces, so its caustic photons
-// are recorded on rough surfaces (record_on_rough).
+// (Light::is_hidden) and the plan records caustic photons on rough
+// surfaces (EffectPlan::rough_records), so they are recorded there
+// (record_on_rough).
 var<private> photon_recorded: bool;
 // The surface where `follow` last split a path, as its maps make it there.
 var<private> split_surface: GpuSurface;
@@ -530,7 +531,7 @@ fn trace_emitted(index: u32) {
     tally_flux[0] += flux;
     let l = lights[e.light];
     photon_range = l.range;
-    photon_recorded = params.light_tracing != 0u && light_is_hidden(l);
+    photon_recorded = params.rough_records != 0u && light_is_hidden(l);
     let coloured = l.spectrum_len > 0u;
     var p = Path(e.origin, e.direction, flux, WHITE_BAND, -1.0, 0u);
     // The number of the next path to make.

@@ -51,6 +51,9 @@ struct Pending {
     lambda_nm: f32,
     // A sampled path's hero path (0 before the split).
     hero: u32,
+    // It left a rough surface where the hidden lights' light is counted
+    // (view::behind_rough): no highlights, no rough visible points.
+    behind: bool,
 }
 
 const NO_SPLIT: u32 = 0xffffffffu;
@@ -67,7 +70,8 @@ struct Stacked {
     dir: vec3<f32>,
     lambda_nm: f32,
     tint: vec3<f32>,
-    // band (16 bits), depth (8) and hero (8); SPLIT_PENDING for the split.
+    // band (16 bits), depth (8), hero (7) and behind (1); SPLIT_PENDING
+    // for the split.
     packed: u32,
 }
 
@@ -88,7 +92,8 @@ fn stacked(e: Pending) -> Stacked {
         split = e;
         return Stacked(vec3<f32>(0.0), 0.0, vec3<f32>(0.0), 0.0, vec3<f32>(0.0), SPLIT_PENDING);
     }
-    return Stacked(e.origin, e.weight, e.dir, e.lambda_nm, e.tint, e.band | (e.depth << 16u) | (e.hero << 24u));
+    let packed = e.band | (e.depth << 16u) | (e.hero << 24u) | (u32(e.behind) << 31u);
+    return Stacked(e.origin, e.weight, e.dir, e.lambda_nm, e.tint, packed);
 }
 
 fn pop() -> Pending {
@@ -99,7 +104,9 @@ fn pop() -> Pending {
     }
     let band = s.packed & 0xffffu;
     let depth = (s.packed >> 16u) & 0xffu;
-    return Pending(s.origin, s.weight, s.dir, band, s.tint, depth, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, s.lambda_nm, s.packed >> 24u);
+    let hero = (s.packed >> 24u) & 0x7fu;
+    let behind = (s.packed >> 31u) != 0u;
+    return Pending(s.origin, s.weight, s.dir, band, s.tint, depth, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, s.lambda_nm, hero, behind);
 }
 
 // What the entry being handled spawns, pushed in one place (each access
@@ -108,11 +115,6 @@ var<private> kids: array<Stacked, 3>;
 var<private> kid_count: u32;
 // A sampled path's pixel scramble (PixelSampler).
 var<private> scramble: u32;
-// The pixel sees a rough surface directly where light tracing brings the
-// hidden lights' light (light_tracing::traces_behind_rough): every path
-// behind it (depth > 0) shows no highlights (the core's
-// ViewPath::light_traced, which only a rough surface at depth 0 sets).
-var<private> light_traced: bool;
 
 // The surface whose light a visit adds (ViewContext's shade_diffuse and
 // highlights): the path as it met it, where, and rough glass's face.
@@ -144,7 +146,7 @@ fn spawn(e: Pending) {
 }
 
 fn spawn_ray(e: Pending, origin: vec3<f32>, dir: vec3<f32>, band: u32, weight: f32, tint: vec3<f32>) {
-    spawn(Pending(origin, weight, dir, band, tint, e.depth + 1u, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, e.lambda_nm, e.hero));
+    spawn(Pending(origin, weight, dir, band, tint, e.depth + 1u, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, e.lambda_nm, e.hero, e.behind));
 }
 
 // One branch off rough glass: its weight times, where it `crossed` a
@@ -172,23 +174,25 @@ fn through_dielectric(e: Pending, face: Face, band: u32, weight: f32, tint: vec3
     let hit = Hit(true, 0.0, e.origin, e.normal, e.object, e.triangle);
     let alpha = facets_alpha(hit, surfaces[e.object]);
     if alpha > 0.0 {
-        let at = Pending(e.origin, weight, e.dir, band, tint, e.depth, e.normal, NO_SPLIT, e.object, e.triangle, e.lambda_nm, e.hero);
+        var on = e;
+        on.behind = behind_rough(e.behind, e.depth, alpha);
+        let at = Pending(e.origin, weight, e.dir, band, tint, e.depth, e.normal, NO_SPLIT, e.object, e.triangle, e.lambda_nm, e.hero, e.behind);
         light_query = LightQuery(true, at, hit, face, surfaces[e.object], 1.0);
         let facet = pixel_facet(scramble, select(0u, params.view_pass, per_pass()), e.hero, e.depth);
         if jittered() {
             let u = pixel_branch(scramble, params.view_pass, e.hero, e.depth);
             let b = scatter_rough_dielectric(e.dir, e.origin, e.normal, face, alpha, facet, u);
             if b.ok {
-                follow_rough(e, Scattered(b.origin, b.dir), b.unshadowed, b.crossed, crossing, band, weight, tint);
+                follow_rough(on, Scattered(b.origin, b.dir), b.unshadowed, b.crossed, crossing, band, weight, tint);
             }
             return;
         }
         let split = split_rough_dielectric(e.dir, e.origin, e.normal, face, alpha, facet);
         if split.crossed_weight >= 0.0 {
-            follow_rough(e, split.crossed, split.crossed_weight, true, crossing, band, weight, tint);
+            follow_rough(on, split.crossed, split.crossed_weight, true, crossing, band, weight, tint);
         }
         if split.reflected_weight >= 0.0 {
-            follow_rough(e, split.reflected, split.reflected_weight, false, crossing, band, weight, tint);
+            follow_rough(on, split.reflected, split.reflected_weight, false, crossing, band, weight, tint);
         }
         return;
     }
@@ -372,6 +376,37 @@ var<private> pixel_index: u32;
 // on the viewer's side, what unit reflected caustic irradiance there adds
 // to the pixel, the surface's albedo, and the pixel (within the chunk).
 fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>, albedo: vec3<f32>) {
+    add_point(point, normal, weight, albedo, 0u, vec3<f32>(0.0), 0u);
+}
+
+// view::gathers_on_rough: whether a path meeting rough metal or glass of
+// width `alpha` (0: polished) after `depth` bounces leaves a visible point
+// there: the plan gathers on rough surfaces, the facets are rough enough
+// (Ggx::gathers) and light tracing does not bring that light (depth 0).
+fn gathers_on_rough(depth: u32, alpha: f32) -> bool {
+    return params.rough_gathers != 0u && alpha >= GATHER_ALPHA && (depth > 0u || params.light_tracing == 0u);
+}
+
+// view::behind_rough: whether what a path sends on from rough metal or
+// glass of width `alpha` met after `depth` bounces (`behind`: it is behind
+// such a surface already) is behind one where the hidden lights' light is
+// counted, light traced (depth 0, light_tracing::traces_behind_rough) or
+// gathered.
+fn behind_rough(behind: bool, depth: u32, alpha: f32) -> bool {
+    let traced = depth == 0u && params.light_tracing != 0u && params.caustic_photons > 0u;
+    return behind || (alpha > 0.0 && (traced || gathers_on_rough(depth, alpha)));
+}
+
+// VisiblePoint::on_rough: path `e`'s visible point on the rough metal or
+// glass at `bent` (its normal the shading normal), for gather_rough.
+fn add_rough_point(e: Pending, bent: Hit) {
+    let weight = e.tint * params.white_balance * (params.exposure / PI);
+    add_point(bent.point, bent.normal, weight, vec3<f32>(1.0), bent.object | ROUGH_POINT, e.dir, bent.triangle);
+}
+
+// A visible point appended to the chunk's (VisiblePoint's fields; one past
+// the capacity is counted, not written).
+fn add_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>, albedo: vec3<f32>, rough: u32, toward: vec3<f32>, triangle: u32) {
     let i = atomicAdd(&counts.points, 1u);
     if i < params.point_capacity {
         let none = vec2<u32>(0u);
@@ -381,7 +416,7 @@ fn add_visible_point(point: vec3<f32>, normal: vec3<f32>, weight: vec3<f32>, alb
         if per_pass() && pixel_ratios[pixel_index] != 0u {
             ratio = bitcast<f32>(~pixel_ratios[pixel_index]);
         }
-        points[i] = VisiblePoint(point, 0u, normal, params.radius, weight, 0u, sums, none, pixel_index, ratio, 0u, 0u, albedo, 0u);
+        points[i] = VisiblePoint(point, 0u, normal, params.radius, weight, 0u, sums, none, pixel_index, ratio, 0u, 0u, albedo, rough, toward, triangle);
     }
 }
 
@@ -431,8 +466,8 @@ fn surface_light(e: Pending, hit: Hit, s: GpuSurface, face: Face, m: f32) -> vec
     if metal || glass {
         alpha = facets_alpha(hit, s);
     }
-    // Behind a light-traced rough surface the hidden lights' highlights are the photons'.
-    let shows_highlights = !(light_traced && e.depth > 0u);
+    // Behind a rough surface where the hidden lights' light is counted, it is the photons'.
+    let shows_highlights = !e.behind;
     if glass && !shows_highlights {
         return vec3<f32>(0.0);
     }
@@ -571,9 +606,6 @@ fn visit_path(e: Pending) -> vec3<f32> {
         light_query = LightQuery(true, e, hit, bare_face(1.0, false), s, 1.0);
         return vec3<f32>(0.0);
     }
-    if e.depth == 0u && params.light_tracing != 0u && params.caustic_photons > 0u {
-        light_traced = facets_alpha(hit, s) > 0.0;
-    }
     // Mirrors, metals and glass scatter about the shading normal.
     var bent = hit;
     bent.normal = scattering_normal(hit, e.dir);
@@ -593,8 +625,14 @@ fn visit_path(e: Pending) -> vec3<f32> {
     }
     if s.kind == SURFACE_METAL && specular_part(e, s, m) > 0.0 {
         // ViewContext::off_metal (a blended metal's specular part, its
-        // Fresnel holding m): one facet, the path weighted by its Fresnel
-        // at the path's wavelength times G2/G1.
+        // Fresnel holding m): its visible point where it gathers, and one
+        // facet, the path weighted by its Fresnel at the path's wavelength
+        // times G2/G1.
+        if !e.behind && gathers_on_rough(e.depth, alpha) {
+            add_rough_point(e, bent);
+        }
+        var next = e;
+        next.behind = behind_rough(e.behind, e.depth, alpha);
         var u = vec2<f32>(0.0);
         if alpha > 0.0 {
             u = pixel_facet(scramble, select(0u, params.view_pass, per_pass()), e.hero, e.depth);
@@ -608,7 +646,7 @@ fn visit_path(e: Pending) -> vec3<f32> {
             let f = specular_tint(s, m, b.cos_facet, e.band, lambda) * b.unshadowed;
             let weight = e.weight * max(f.x, max(f.y, f.z));
             if weight > MIN_VIEW_WEIGHT {
-                spawn_ray(e, b.origin, b.dir, e.band, weight, e.tint * f);
+                spawn_ray(next, b.origin, b.dir, e.band, weight, e.tint * f);
             }
         }
         return vec3<f32>(0.0);
@@ -624,7 +662,11 @@ fn visit_path(e: Pending) -> vec3<f32> {
     // What coloured glass left of a ray that crossed it.
     let kept = glass_transmittance(s, e.dir, hit.normal, hit.t, e.band);
     let weight = e.weight * max(kept.x, max(kept.y, kept.z));
-    var at = Pending(hit.point, weight, e.dir, e.band, e.tint * kept, e.depth, bent.normal, NO_SPLIT, hit.object, hit.triangle, e.lambda_nm, e.hero);
+    var at = Pending(hit.point, weight, e.dir, e.band, e.tint * kept, e.depth, bent.normal, NO_SPLIT, hit.object, hit.triangle, e.lambda_nm, e.hero, e.behind);
+    // Rough glass's visible point, before a split into bands: one for the path.
+    if !e.behind && gathers_on_rough(e.depth, facets_alpha(hit, surfaces[hit.object])) {
+        add_rough_point(at, bent);
+    }
     if e.band == WHITE_BAND && (s.flags & SURFACE_SPLITS_VIEW_RAYS) != 0u {
         at.next_band = 0u;
         spawn(at);
@@ -645,8 +687,7 @@ fn pixel(x: u32, y: u32) -> vec3<f32> {
     }
     let d = params.cam_corner + params.cam_right * (f32(x) + jitter.x) + params.cam_down * (f32(y) + jitter.y);
     let white = vec3<f32>(1.0);
-    light_traced = false;
-    stack[0] = stacked(Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, white, 0u, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, -1.0, 0u));
+    stack[0] = stacked(Pending(params.cam_origin, 1.0, nrm(d), WHITE_BAND, white, 0u, vec3<f32>(0.0), NO_SPLIT, 0u, 0u, -1.0, 0u, false));
     top = 1u;
     var sum = vec3<f32>(0.0);
     while top > 0u {

@@ -964,14 +964,6 @@ pub enum Shape {
 }
 
 impl Scene {
-    /// Whether caustic photons are recorded on the rough surfaces they
-    /// meet, for light tracing to connect them to the camera
-    /// ([`crate::model::photon::ON_ROUGH_SURFACE`]): the render light
-    /// traces and a hidden light ([`Light::is_hidden`]) sends them.
-    pub fn records_on_rough(&self) -> bool {
-        self.render.light_tracing && self.lights.iter().any(Light::is_hidden)
-    }
-
     /// Does `object` emit light (an emissive material on a mesh, the only
     /// shape that may have one)?
     pub fn emits(&self, object: &Object) -> bool {

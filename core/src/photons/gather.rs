@@ -29,6 +29,8 @@ use crate::model::bands::BandTable;
 use crate::model::photon::{Photon, WHITE_BAND};
 use crate::model::scene::Estimator;
 use crate::photons::grid::PhotonGrid;
+use crate::photons::reflects::rough_reflects;
+use crate::plan::prepared::{Hit, PreparedScene};
 use core::f64::consts::PI;
 use glam::{DVec3, Vec3};
 
@@ -65,9 +67,22 @@ impl GatherSums {
     /// gather accepted, reflected by a surface of RGB albedo `albedo`.
     #[inline]
     pub fn add(&mut self, estimator: Estimator, bands: &BandTable, band: u16, lambda_nm: f32, flux: f32, albedo: Vec3) {
+        self.add_reflected(estimator, bands, (band, lambda_nm, flux), bands.reflectance(albedo, band, lambda_nm));
+    }
+
+    /// Adds a photon of `band` at `lambda_nm` carrying `flux` that the
+    /// gather accepted, of which the surface sends `reflected` on (per RGB
+    /// channel).
+    #[inline]
+    pub fn add_reflected(
+        &mut self,
+        estimator: Estimator,
+        bands: &BandTable,
+        (band, lambda_nm, flux): (u16, f32, f32),
+        reflected: Vec3,
+    ) {
         self.found += 1;
         self.flux += f64::from(flux);
-        let reflected = bands.reflectance(albedo, band, lambda_nm);
         match estimator {
             Estimator::Density => self.sums += (bands.rgb_of_flux(band, lambda_nm, flux) * reflected).as_dvec3(),
             Estimator::Paper if band == WHITE_BAND => {
@@ -115,6 +130,47 @@ pub fn gather_counted(
         }
     });
     (finish(estimator, bands.len(), &sums, q.radius), sums.found)
+}
+
+/// Where a visible point on rough metal or glass is, for the BSDF its
+/// gather weighs each photon by ([`rough_reflects`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoughPoint {
+    /// The object.
+    pub object: usize,
+    /// Its mesh triangle (see [`crate::geometry::primitive::SurfaceHit::triangle`]).
+    pub triangle: u32,
+    /// The shading normal there, on either side.
+    pub shading: Vec3,
+    /// The direction of the view ray that met it.
+    pub toward: Vec3,
+}
+
+/// Light reflected or passed toward the viewer (linear RGB, times π: the
+/// diffuse gather's unit, see [`gather`]) at `q` on the rough surface `at`
+/// ([`crate::optics::microfacet::Ggx::gathers`]), from the photons of
+/// `grid` met on rough surfaces ([`Photon::on_rough_surface`]; the others
+/// are a diffuse surface's), each weighed by π times the BSDF from its
+/// direction toward the viewer, on either side ([`rough_reflects`]):
+/// L = Σ f Φ / (π r²). And how many photons it accepted.
+pub fn gather_rough(
+    scene: &PreparedScene,
+    (grid, photons): (&PhotonGrid, &[Photon]),
+    q: &GatherQuery,
+    at: &RoughPoint,
+) -> (Vec3, u32) {
+    let r2 = q.radius * q.radius;
+    let bent = Hit { t: 0.0, point: q.point, normal: at.shading, object: at.object, triangle: at.triangle };
+    let estimator = scene.scene.render.estimator;
+    let mut sums = GatherSums::default();
+    grid.for_each_candidate(q.point, q.radius, |i| {
+        let p = &photons[i as usize];
+        if p.on_rough_surface() && (p.pos() - q.point).length_squared() <= r2 {
+            let reflected = rough_reflects(scene, p, at.toward, &bent);
+            sums.add_reflected(estimator, &scene.bands, (p.band, p.lambda_nm, p.flux), reflected);
+        }
+    });
+    (finish(estimator, scene.bands.len(), &sums, q.radius), sums.found)
 }
 
 #[inline]

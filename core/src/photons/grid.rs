@@ -71,13 +71,22 @@ pub fn bucket_starts(bucket: &[u32], mask: u32) -> Vec<u32> {
 
 impl PhotonGrid {
     /// Builds the grid for `photons` and gather radius `radius` (without
-    /// those met on rough surfaces, which no gather takes:
-    /// [`Photon::on_rough_surface`]).
+    /// those met on rough surfaces, which only a rough surface's visible
+    /// points take: [`Photon::on_rough_surface`], [`PhotonGrid::build_rough`]).
     pub fn build(photons: &[Photon], radius: f32) -> Self {
+        Self::build_where(photons, radius, |p| !p.on_rough_surface())
+    }
+
+    /// The grid of `photons` met on rough surfaces alone, for the gathers
+    /// of visible points there ([`crate::photons::gather::gather_rough`]).
+    pub fn build_rough(photons: &[Photon], radius: f32) -> Self {
+        Self::build_where(photons, radius, Photon::on_rough_surface)
+    }
+
+    fn build_where(photons: &[Photon], radius: f32, gathered: impl Fn(&Photon) -> bool) -> Self {
         let cell_size = 2.0 * radius;
         let inv_cell = 1.0 / cell_size;
-        let mask = bucket_mask(photons.len());
-        let gathered = |p: &Photon| !p.on_rough_surface();
+        let mask = bucket_mask(photons.iter().filter(|p| gathered(p)).count());
         let bucket: Vec<u32> =
             photons.iter().filter(|p| gathered(p)).map(|p| bucket_of(cell_of(p.pos(), inv_cell), mask)).collect();
         let cell_start = bucket_starts(&bucket, mask);

@@ -33,7 +33,7 @@
 //! hidden light's ([`crate::model::scene::Light::is_hidden`]) caustic
 //! photons are recorded where they meet such a surface
 //! ([`crate::model::photon::ON_ROUGH_SURFACE`]) and weighted by π times
-//! its BSDF toward the eye, in place of ρ (`CameraConnection::reflects`:
+//! its BSDF toward the eye, in place of ρ ([`reflects`]:
 //! a metal's GGX reflection, rough glass's reflection or transmission).
 //! The view's paths behind a rough surface the camera sees then leave the
 //! hidden lights' highlights out ([`traces_behind_rough`]): this
@@ -41,11 +41,9 @@
 
 use crate::geometry::camera::PinholeCamera;
 use crate::geometry::ray::Ray;
-use crate::model::photon::{Photon, WHITE_BAND};
-use crate::optics::fresnel::interface;
-use crate::optics::rough_glass::rough_glass_bsdf;
-use crate::optics::surface::Surface;
-use crate::plan::prepared::{Hit, PreparedScene};
+use crate::model::photon::Photon;
+use crate::photons::reflects::reflects;
+use crate::plan::prepared::PreparedScene;
 use crate::util::tolerance::CONNECTION_REL;
 use alloc::vec::Vec;
 use core::f32::consts::PI;
@@ -92,7 +90,7 @@ impl<'a> CameraConnection<'a> {
             return None;
         }
         let n = if ray.direction.dot(hit.normal) < 0.0 { hit.normal } else { -hit.normal };
-        let reflects = self.reflects(photon, ray.direction, &hit, n);
+        let reflects = reflects(self.scene, photon, ray.direction, &hit, n);
         if reflects == Vec3::ZERO {
             return None;
         }
@@ -101,73 +99,6 @@ impl<'a> CameraConnection<'a> {
         let radiance = flux * reflects * importance * self.scene.white_balance;
         Some(Splat { pixel: seen.y * self.camera.width + seen.x, radiance })
     }
-
-    /// π times the BSDF, per RGB channel, by which the surface at `hit`
-    /// (seen along `toward`, `n` its normal facing the eye) sends
-    /// `photon`'s light toward the eye. A photon stored on a diffuse
-    /// surface: its albedo, where it lit the side the eye sees (a blended
-    /// metal's diffuse part: times its share toward the eye, (1 − m)(1 −
-    /// max F_layer), [`crate::model::metalness::Metalness::diffuse_share`]).
-    /// One met on a rough surface ([`Photon::on_rough_surface`]): π times
-    /// a rough metal's (a blended metal's specular part's) BRDF, or rough
-    /// glass's BSDF on either side (what crosses a tinted sheet keeps its
-    /// colour; what leaves solid glass, [`radiance_across`]), as the
-    /// view's highlights take them.
-    fn reflects(&self, photon: &Photon, toward: Vec3, hit: &Hit, n: Vec3) -> Vec3 {
-        let scene = self.scene;
-        let (band, lambda_nm) = (photon.band, photon.lambda_nm);
-        let (wo, wi) = (-toward, -photon.direction());
-        let surface = &scene.surfaces[hit.object];
-        if !photon.on_rough_surface() {
-            let share = match surface {
-                Surface::Diffuse { .. } => 1.0,
-                Surface::Metal(metal) if metal.is_blended() => {
-                    let toward_eye = toward.dot(scene.scattering_normal(hit, toward)).abs();
-                    let m = scene.metalness_at(metal, hit);
-                    scene.diffuse_share_at(metal, hit, m, toward_eye, band, lambda_nm)
-                }
-                _ => 0.0,
-            };
-            if share == 0.0 || wi.dot(n) <= 0.0 {
-                return Vec3::ZERO; // none, or it lit the other side
-            }
-            let albedo = scene.albedo_at(hit.object, hit.triangle, hit.point, n);
-            return scene.bands.reflectance(albedo, band, lambda_nm) * share;
-        }
-        let normal = scene.scattering_normal(hit, toward);
-        match surface {
-            Surface::Metal(metal) => {
-                let facing = if toward.dot(normal) < 0.0 { normal } else { -normal };
-                PI * scene.metal_at(metal, hit).reflection(wo, wi, facing, band, lambda_nm, &scene.bands)
-            }
-            Surface::Dielectric(glass) => {
-                let Some(ggx) = scene.facets(hit) else { return Vec3::ZERO };
-                let own = band != WHITE_BAND && scene.scene.render.wavelengths.continuous();
-                let face = scene.face(glass, hit, band, own.then_some(lambda_nm));
-                let f = PI * rough_glass_bsdf(wo, wi, normal, face, ggx);
-                match wi.dot(normal) * wo.dot(normal) < 0.0 {
-                    true if glass.thin => glass.sheet_crossing_rgb(band) * f,
-                    true => Vec3::splat(f * radiance_across(toward, normal, face.ior)),
-                    false => Vec3::splat(f),
-                }
-            }
-            _ => Vec3::ZERO,
-        }
-    }
-}
-
-/// What radiance keeps of itself crossing glass of relative index `ior`
-/// (outward normal `outward`) toward an eye that looks along `toward`:
-/// (n_eye/n_photon)², radiance over n² being what a ray keeps. The
-/// renderer's glass carries radiance across unscaled (rough glass's BTDF
-/// leaves out this factor, [`crate::optics::microfacet::Ggx::transmission`]),
-/// which a path that enters and leaves glass needs none of; but a photon's
-/// flux inside glass is the physical one, so its light leaving toward the
-/// eye takes it.
-fn radiance_across(toward: Vec3, outward: Vec3, ior: f32) -> f32 {
-    let (_, n_eye, n_photon) = interface(toward, outward, ior);
-    let ratio = n_eye / n_photon;
-    ratio * ratio
 }
 
 /// Whether light tracing brings what a rough surface the camera sees

@@ -7,5 +7,6 @@ pub mod grid;
 pub mod indirect;
 pub mod light_tracing;
 pub mod path;
+pub mod reflects;
 pub mod trace;
 pub mod wavelengths;

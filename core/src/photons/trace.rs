@@ -92,7 +92,7 @@ pub fn trace_emitted(scene: &PreparedScene, index: u32, flux: f32, out: &mut Vec
     stats.flux_emitted += f64::from(flux);
     let source = Source {
         range: scene.emitters[e.light].range(),
-        recorded_on_rough: scene.scene.render.light_tracing && scene.lights[e.light].is_hidden(),
+        recorded_on_rough: scene.plan.rough_records && scene.lights[e.light].is_hidden(),
     };
     if !scene.light_spectra[e.light].is_uniform() {
         // A coloured light's photon takes its wavelengths as it leaves.

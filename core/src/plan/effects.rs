@@ -54,6 +54,13 @@ pub struct EffectPlan {
     pub max_depth: u32,
     /// Why that depth.
     pub depth_reason: String,
+    /// Whether caustic photons are recorded where they meet rough metal or
+    /// glass ([`records_on_rough`]).
+    pub rough_records: bool,
+    /// Whether visible points on rough-enough metal and glass gather those
+    /// photons: caustics are traced and recorded, and a surface is rough
+    /// enough ([`crate::optics::microfacet::Ggx::gathers`]).
+    pub rough_gathers: bool,
 }
 
 impl EffectPlan {
@@ -75,9 +82,9 @@ impl EffectPlan {
             .filter(|&k| emitters.iter().any(|l| light_reaches(l, bounds[k].0, bounds[k].1)))
             .collect();
         let has_diffuse = surfaces.iter().any(Surface::stores_photons);
-        // Light tracing connects caustic photons on rough surfaces to the camera too.
-        let rough_receive = scene.records_on_rough();
-        let receives = |s: &Surface| s.stores_photons() || (rough_receive && s.facets().is_some());
+        // Light tracing and rough visible points take caustic photons on rough surfaces too.
+        let rough_records = records_on_rough(scene, surfaces);
+        let receives = |s: &Surface| s.stores_photons() || (rough_records && s.facets().is_some());
         let n_bands = crate::model::bands::BandTable::new(scene.render.bands).len();
 
         let caustics = if specular.is_empty() {
@@ -88,7 +95,7 @@ impl EffectPlan {
                 name_list(&specular)
             ))
         } else if !surfaces.iter().any(receives) {
-            Effect::off("no diffuse surface (nor, light traced, a rough one) to receive caustics")
+            Effect::off("no diffuse surface (nor a rough one, gathered or light traced) to receive caustics")
         } else if scene.render.photons == 0 {
             Effect::off("0 photons requested")
         } else {
@@ -199,6 +206,7 @@ impl EffectPlan {
                 ))
             }
         };
+        let rough_gathers = caustics.on && rough_records && gathers_on_any(surfaces);
         EffectPlan {
             caustics,
             indirect,
@@ -209,6 +217,8 @@ impl EffectPlan {
             projections,
             max_depth,
             depth_reason,
+            rough_gathers,
+            rough_records,
         }
     }
 
@@ -287,8 +297,33 @@ impl EffectPlan {
             s += &format!("shadows of light[{i}]: {} {}\n", yes(e), e.reason);
         }
         s += &format!("max depth:           {} ({})\n", self.max_depth, self.depth_reason);
+        let rough = match (self.rough_records, self.rough_gathers) {
+            (_, true) => {
+                "caustic photons recorded; gathered where α ≥ 0.1 (with light tracing, light traced where seen directly)"
+            }
+            (true, false) => "caustic photons recorded; light traced where the camera sees them",
+            _ => "caustic photons pass (no hidden light, or no light tracing and none rough enough to gather)",
+        };
+        s += &format!("rough surfaces:      {rough}\n");
         s
     }
+}
+
+/// Whether caustic photons are recorded on the rough metal and glass they
+/// meet ([`crate::model::photon::ON_ROUGH_SURFACE`]): a hidden light
+/// ([`Light::is_hidden`]: no view ray meets it, so only photons bring its
+/// light there) sends them, and either the render light traces (it
+/// connects them to the camera) or a surface of `surfaces` is rough
+/// enough for visible points to gather them
+/// ([`crate::optics::microfacet::Ggx::gathers`]).
+pub fn records_on_rough(scene: &Scene, surfaces: &[Surface]) -> bool {
+    scene.lights.iter().any(Light::is_hidden) && (scene.render.light_tracing || gathers_on_any(surfaces))
+}
+
+/// Whether any of `surfaces` is rough enough for visible points to gather
+/// there (a roughness map only lowers its roughness).
+fn gathers_on_any(surfaces: &[Surface]) -> bool {
+    surfaces.iter().any(|s| s.facets().is_some_and(|g| g.gathers()))
 }
 
 fn plural(n: usize) -> &'static str {

@@ -4,7 +4,7 @@
 //! ([`crate::photons::light_tracing`]), driven by [`HostRender`].
 
 use crate::model::photon::PhotonMap;
-use crate::photons::gather::{GatherQuery, gather_counted};
+use crate::photons::gather::{GatherQuery, gather_counted, gather_rough};
 use crate::photons::grid::PhotonGrid;
 use crate::plan::prepared::PreparedScene;
 use crate::plan::schedule::{GRID_LEVELS, level_of, level_radius, levels_used};
@@ -61,14 +61,28 @@ pub fn gather_pass(scene: &PreparedScene, map: &PhotonMap, points: &[VisiblePoin
     let used = levels_used(radii, r_pass);
     let grids: Vec<Option<PhotonGrid>> =
         (0..GRID_LEVELS).map(|l| used[l].then(|| PhotonGrid::build(&map.photons, level_radius(r_pass, l)))).collect();
+    // The photons met on rough surfaces, where rough points gather.
+    let rough = points.iter().any(|p| p.rough.is_some());
+    let rough_grids: Vec<Option<PhotonGrid>> = (0..GRID_LEVELS)
+        .map(|l| (rough && used[l]).then(|| PhotonGrid::build_rough(&map.photons, level_radius(r_pass, l))))
+        .collect();
     let settings = &scene.scene.render;
     let (irradiance, photons) = points
         .iter()
         .zip(radii)
         .map(|(p, &r)| {
-            let grid = grids[level_of(r, r_pass)].as_ref().expect("level built");
+            let level = level_of(r, r_pass);
             let q = GatherQuery { point: p.point, normal: p.normal, radius: r, albedo: p.albedo };
-            gather_counted(grid, &map.photons, &scene.bands, settings.estimator, &q)
+            match &p.rough {
+                Some(at) => {
+                    let grid = rough_grids[level].as_ref().expect("level built");
+                    gather_rough(scene, (grid, &map.photons), &q, at)
+                }
+                None => {
+                    let grid = grids[level].as_ref().expect("level built");
+                    gather_counted(grid, &map.photons, &scene.bands, settings.estimator, &q)
+                }
+            }
         })
         .unzip();
     PassGather { irradiance, photons, splats: Vec::new(), stats: map.stats }

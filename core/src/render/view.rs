@@ -25,9 +25,13 @@
 //! glass: off one facet, each branch weighted by G2/G1, plus the
 //! highlights of hidden lights on both sides), dropping branches whose share of the
 //! pixel (Fresnel factors times, after a split, the band's largest RGB
-//! weight) falls below [`MIN_VIEW_WEIGHT`]. Behind a rough surface the
-//! camera sees, where light tracing brings the hidden lights' caustic
-//! ([`traces_behind_rough`]), paths add no highlights: that light is the
+//! weight) falls below [`MIN_VIEW_WEIGHT`]. Rough metal and glass rough
+//! enough ([`gathers_on_rough`]) leave a visible point too, which gathers
+//! the photons met there with the surface's BSDF: the hidden lights'
+//! light that mirrors, metals and glass bring, which no view ray finds.
+//! Behind a rough surface where that light is counted (so gathered, or
+//! light traced where the camera sees it: [`behind_rough`]), paths add no
+//! highlights and leave no rough visible points: that light is the
 //! photons'. At the first dispersive glass a
 //! view ray splits into one ray per band, each weighted by the band's RGB
 //! weight C_i. A ray that crossed coloured glass keeps its Beer–Lambert
@@ -84,9 +88,8 @@ use glam::Vec3;
 /// pixel (for pruning), RGB factor, and a sampled path's numbers and hero
 /// path (0 before the split), the numbers its rough metals' facets
 /// take (the pass's own, or pass 0's for centre rays, which are traced
-/// once), and whether it left a rough surface the camera sees directly
-/// where light tracing brings the hidden lights' light
-/// ([`traces_behind_rough`]).
+/// once), and whether it left a rough surface where the hidden lights'
+/// light is counted, light traced or gathered ([`behind_rough`]).
 #[derive(Clone, Copy, Debug)]
 struct ViewPath {
     band: u16,
@@ -97,7 +100,7 @@ struct ViewPath {
     tint: Vec3,
     sampler: Option<PixelSampler>,
     facets: PixelSampler,
-    light_traced: bool,
+    behind_rough: bool,
 }
 
 /// Everything a pixel's view rays need: the scene and the camera.
@@ -141,7 +144,7 @@ impl<'a> ViewContext<'a> {
             tint: response,
             sampler,
             facets,
-            light_traced: false,
+            behind_rough: false,
         };
         let first = points.len();
         let ray = match sampler {
@@ -181,6 +184,14 @@ impl<'a> ViewContext<'a> {
         }
         // Mirrors, metals and glass scatter about the shading normal.
         let hit = Hit { normal: self.scene.scattering_normal(&hit, ray.direction), ..hit };
+        // Rough glass's visible point, before a split into bands: one for the path.
+        if let Surface::Dielectric(_) = surface
+            && depth < self.scene.plan.max_depth
+            && !path.behind_rough
+            && gathers_on_rough(self.scene, depth, self.scene.facets(&hit))
+        {
+            points.push(VisiblePoint::on_rough(&hit, ray.direction, tint));
+        }
         kept * match surface {
             _ if depth >= self.scene.plan.max_depth => Vec3::ZERO,
             Surface::Mirror => {
@@ -235,18 +246,21 @@ impl<'a> ViewContext<'a> {
         let ViewPath { band, depth, weight, tint, .. } = path;
         let metal = &self.scene.metal_at(metal, hit);
         let lambda_nm = stored_wavelength(&self.scene.bands, band, path.lambda_nm);
-        let lit = match path.light_traced {
+        let lit = match path.behind_rough {
             true => Vec3::ZERO,
             false => self.metal_highlights(ray.direction, (hit.point, hit.normal), metal, band, lambda_nm),
         };
+        if !path.behind_rough && gathers_on_rough(self.scene, depth, metal.ggx) {
+            points.push(VisiblePoint::on_rough(hit, ray.direction, tint));
+        }
         let (u1, u2) = if metal.ggx.is_some() { path.facets.facet(path.hero, depth) } else { (0.0, 0.0) };
         let Some(b) = scatter_metal(ray.direction, hit.point, hit.normal, metal.ggx, u1, u2) else {
             return lit;
         };
         let f = metal.specular_tint(b.cos_facet, band, lambda_nm, &self.scene.bands) * b.unshadowed;
-        let light_traced = path.light_traced || (depth == 0 && metal.ggx.is_some() && traces_behind_rough(self.scene));
+        let behind_rough = behind_rough(self.scene, path.behind_rough, depth, metal.ggx);
         let next =
-            ViewPath { depth: depth + 1, weight: weight * f.max_element(), tint: tint * f, light_traced, ..path };
+            ViewPath { depth: depth + 1, weight: weight * f.max_element(), tint: tint * f, behind_rough, ..path };
         lit + if next.weight > MIN_VIEW_WEIGHT { f * self.radiance(&b.ray, next, points) } else { Vec3::ZERO }
     }
 
@@ -348,15 +362,15 @@ impl<'a> ViewContext<'a> {
     ) -> Vec3 {
         let crossing = glass.sheet_crossing_rgb(path.band);
         let at = (hit.point, hit.normal);
-        let lit = match path.light_traced {
+        let lit = match path.behind_rough {
             true => Vec3::ZERO,
             false => self.rough_glass_highlights(ray.direction, at, (face, ggx), crossing),
         };
-        let light_traced = path.light_traced || (path.depth == 0 && traces_behind_rough(self.scene));
+        let behind_rough = behind_rough(self.scene, path.behind_rough, path.depth, Some(ggx));
         let mut follow = |out: &Ray, weight: f32, crossed: bool| {
             let f = if crossed { crossing * weight } else { Vec3::splat(weight) };
             let (depth, weight, tint) = (path.depth + 1, path.weight * f.max_element(), path.tint * f);
-            let next = ViewPath { depth, weight, tint, light_traced, ..path };
+            let next = ViewPath { depth, weight, tint, behind_rough, ..path };
             if next.weight > MIN_VIEW_WEIGHT { f * self.radiance(out, next, points) } else { Vec3::ZERO }
         };
         let facet = path.facets.facet(path.hero, path.depth);
@@ -395,7 +409,7 @@ impl<'a> ViewContext<'a> {
             .map(|i| self.scene.light_spectra[i].reflected * albedo * self.direct_irradiance(i, hit.point, shading))
             .sum();
         if gathers_at(self.scene, depth) {
-            points.push(VisiblePoint { point: hit.point, normal: n, weight: tint / PI, albedo, pixel: 0 });
+            points.push(VisiblePoint { point: hit.point, normal: n, weight: tint / PI, albedo, pixel: 0, rough: None });
         }
         let emitted = self.scene.surfaces[hit.object].emitted(ray.direction, hit.normal);
         reflected * (1.0 / PI) + albedo * settings.ambient + emitted
@@ -603,6 +617,31 @@ pub fn hero_view_paths(scene: &PreparedScene, u: f32) -> impl Iterator<Item = He
 /// sees directly, depth 0: see [`crate::photons::light_tracing`]).
 pub fn gathers_at(scene: &PreparedScene, depth: u32) -> bool {
     scene.plan.photon_pass() && (depth > 0 || !scene.scene.render.light_tracing)
+}
+
+/// Whether a view path that meets rough metal or glass of facets `ggx`
+/// (`None`: polished there) after `depth` bounces leaves a visible point
+/// there that gathers the photons met on it
+/// ([`crate::photons::gather::gather_rough`]), unless it is behind one
+/// already ([`behind_rough`]): the plan gathers on rough surfaces, these
+/// facets are rough enough ([`Ggx::gathers`]; below that light tracing
+/// alone brings that light, where the camera sees the surface), and light
+/// tracing does not bring it (it does where the camera sees the surface
+/// directly, depth 0).
+pub fn gathers_on_rough(scene: &PreparedScene, depth: u32, ggx: Option<Ggx>) -> bool {
+    scene.plan.rough_gathers && ggx.is_some_and(|g| g.gathers()) && (depth > 0 || !scene.scene.render.light_tracing)
+}
+
+/// Whether the paths a view path sends on from rough metal or glass of
+/// facets `ggx` that it meets after `depth` bounces (`behind`: it is
+/// behind such a surface already) add no highlights of the rough surfaces
+/// they meet and leave no visible points on them: the hidden lights' light
+/// that reaches this surface after mirrors, metals, glass or rough
+/// surfaces is counted here, by light tracing ([`traces_behind_rough`],
+/// where the camera sees it directly) or by its visible point
+/// ([`gathers_on_rough`]), so it is not counted again behind it.
+pub fn behind_rough(scene: &PreparedScene, behind: bool, depth: u32, ggx: Option<Ggx>) -> bool {
+    behind || (ggx.is_some() && ((depth == 0 && traces_behind_rough(scene)) || gathers_on_rough(scene, depth, ggx)))
 }
 
 /// What a view ray of `band` keeps of each RGB channel on a segment of

@@ -1,12 +1,16 @@
 //! Visible points (progressive photon mapping's hit points): where a
-//! pixel's view rays meet diffuse surfaces that need the caustic, traced
+//! pixel's view rays meet diffuse surfaces that need the caustic (and
+//! rough metal and glass rough enough to gather it), traced
 //! once per camera and scene; every photon pass then only gathers at them.
 
 use crate::model::image::Image;
+use crate::photons::gather::RoughPoint;
+use crate::plan::prepared::Hit;
 use alloc::vec::Vec;
+use core::f32::consts::PI;
 use glam::Vec3;
 
-/// A diffuse surface point seen through one view path of a pixel.
+/// A diffuse (or rough) surface point seen through one view path of a pixel.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct VisiblePoint {
     /// Surface point.
@@ -22,6 +26,21 @@ pub struct VisiblePoint {
     pub albedo: Vec3,
     /// The pixel, row-major (y · width + x).
     pub pixel: u32,
+    /// On rough metal or glass: where, for its gather's BSDF (`None` on a
+    /// diffuse surface, whose albedo reflects what it gathers).
+    pub rough: Option<RoughPoint>,
+}
+
+impl VisiblePoint {
+    /// The visible point where a view ray along `toward` meets rough metal
+    /// or glass at `bent` (its normal the shading normal there), for a
+    /// path of RGB factor `tint` (what a unit of the gathered light, times
+    /// π, adds to the pixel: `tint`/π).
+    pub fn on_rough(bent: &Hit, toward: Vec3, tint: Vec3) -> Self {
+        let rough = RoughPoint { object: bent.object, triangle: bent.triangle, shading: bent.normal, toward };
+        let normal = if toward.dot(bent.normal) < 0.0 { bent.normal } else { -bent.normal };
+        VisiblePoint { point: bent.point, normal, weight: tint / PI, albedo: Vec3::ONE, pixel: 0, rough: Some(rough) }
+    }
 }
 
 /// A frame's view rays, traced: the image without caustics and the points

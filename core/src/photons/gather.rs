@@ -24,6 +24,10 @@
 //!
 //! Only photons arriving at the front of the surface (`dot(dir, n) < 0` for
 //! the normal facing the viewer) count, so light does not bleed through thin walls.
+//!
+//! A visible point on rough metal or glass takes the photons met on rough
+//! surfaces instead, from either side, each weighed by π times the
+//! surface's BSDF toward the viewer ([`gather_rough`]).
 
 use crate::model::bands::BandTable;
 use crate::model::photon::{Photon, WHITE_BAND};

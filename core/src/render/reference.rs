@@ -61,10 +61,11 @@ pub fn gather_pass(scene: &PreparedScene, map: &PhotonMap, points: &[VisiblePoin
     let used = levels_used(radii, r_pass);
     let grids: Vec<Option<PhotonGrid>> =
         (0..GRID_LEVELS).map(|l| used[l].then(|| PhotonGrid::build(&map.photons, level_radius(r_pass, l)))).collect();
-    // The photons met on rough surfaces, where rough points gather.
-    let rough = points.iter().any(|p| p.rough.is_some());
+    // The photons met on rough surfaces, at the levels where rough points gather.
+    let rough_radii: Vec<f32> = points.iter().zip(radii).filter(|(p, _)| p.rough.is_some()).map(|(_, &r)| r).collect();
+    let rough_used = levels_used(&rough_radii, r_pass);
     let rough_grids: Vec<Option<PhotonGrid>> = (0..GRID_LEVELS)
-        .map(|l| (rough && used[l]).then(|| PhotonGrid::build_rough(&map.photons, level_radius(r_pass, l))))
+        .map(|l| rough_used[l].then(|| PhotonGrid::build_rough(&map.photons, level_radius(r_pass, l))))
         .collect();
     let settings = &scene.scene.render;
     let (irradiance, photons) = points

@@ -104,6 +104,11 @@ fn gather_segment(vp: ptr<function, VisiblePoint>, rough: bool) {
     let point = (*vp).position;
     let normal = (*vp).normal;
     let bent = Hit(true, 0.0, point, normal, (*vp).rough & ~ROUGH_POINT, (*vp).triangle);
+    // A rough surface's maps read once for the point, not per photon.
+    var surface: RoughSurface;
+    if rough {
+        surface = rough_surface(bent);
+    }
     let r2 = (*vp).radius * (*vp).radius;
     var ranges: array<vec2<u32>, 8>;
     let n = segment_ranges(vp, &ranges);
@@ -115,7 +120,7 @@ fn gather_segment(vp: ptr<function, VisiblePoint>, rough: bool) {
                 continue;
             }
             if rough {
-                add_photon(vp, p, rough_reflects(p, (*vp).toward, bent));
+                add_photon(vp, p, rough_reflects_on(p, (*vp).toward, bent, surface));
             } else if dot(oct_unpack(p.direction_oct), normal) < 0.0 {
                 add_photon(vp, p, reflectance((*vp).albedo, p.band_bounces & 0xffffu, p.lambda_nm));
             }

@@ -30,18 +30,38 @@ fn splat_reflects(photon: Photon, dir: vec3<f32>, hit: Hit, n: vec3<f32>) -> vec
 
 // rough_reflects: π times the BSDF by which the rough metal or glass at
 // `bent` (its normal the shading normal) sends the light of `photon`, met
-// there, toward an eye looking along `dir`: a rough metal's GGX
-// reflection (a blended metal's specular part's), or rough glass's BSDF
-// on either side, a tinted sheet's crossing colouring what passes it and
-// what leaves solid glass taking (n_eye/n_photon)² (radiance_across).
+// there, toward an eye looking along `dir` (rough_reflects_on).
 fn rough_reflects(photon: Photon, dir: vec3<f32>, bent: Hit) -> vec3<f32> {
+    return rough_reflects_on(photon, dir, bent, rough_surface(bent));
+}
+
+// reflects::RoughSurface: the surface at `bent` as its maps make it there,
+// its facets' α (0: polished) and its metalness, read once for every
+// photon a visible point there weighs.
+struct RoughSurface {
+    s: GpuSurface,
+    alpha: f32,
+    metalness: f32,
+}
+
+fn rough_surface(bent: Hit) -> RoughSurface {
+    let s = surface_at(bent, surfaces[bent.object]);
+    return RoughSurface(s, facets_alpha(bent, s), metalness_at(bent, s));
+}
+
+// RoughSurface::reflects: a rough metal's GGX reflection (a blended
+// metal's specular part's), or rough glass's BSDF on either side, a tinted
+// sheet's crossing colouring what passes it and what leaves solid glass
+// taking (n_eye/n_photon)² (radiance_across), of `photon` toward an eye
+// looking along `dir`, at `bent` on the surface `r`.
+fn rough_reflects_on(photon: Photon, dir: vec3<f32>, bent: Hit, r: RoughSurface) -> vec3<f32> {
     let band = photon.band_bounces & 0xffffu;
     let lambda = photon.lambda_nm;
     let wo = -dir;
     let wi = -oct_unpack(photon.direction_oct);
     let normal = bent.normal;
-    let s = surface_at(bent, surfaces[bent.object]);
-    let alpha = facets_alpha(bent, s);
+    let s = r.s;
+    let alpha = r.alpha;
     if alpha <= 0.0 {
         return vec3<f32>(0.0);
     }
@@ -52,8 +72,7 @@ fn rough_reflects(photon: Photon, dir: vec3<f32>, bent: Hit) -> vec3<f32> {
         if density == 0.0 {
             return vec3<f32>(0.0);
         }
-        let m = metalness_at(bent, s);
-        return PI * (specular_tint(s, m, dot(wo, nrm(wo + wi)), band, lambda) * density);
+        return PI * (specular_tint(s, r.metalness, dot(wo, nrm(wo + wi)), band, lambda) * density);
     }
     if s.kind != SURFACE_DIELECTRIC {
         return vec3<f32>(0.0);

@@ -33,7 +33,7 @@ use crate::model::bands::BandTable;
 use crate::model::photon::{Photon, WHITE_BAND};
 use crate::model::scene::Estimator;
 use crate::photons::grid::PhotonGrid;
-use crate::photons::reflects::rough_reflects;
+use crate::photons::reflects::RoughSurface;
 use crate::plan::prepared::{Hit, PreparedScene};
 use core::f64::consts::PI;
 use glam::{DVec3, Vec3};
@@ -137,7 +137,7 @@ pub fn gather_counted(
 }
 
 /// Where a visible point on rough metal or glass is, for the BSDF its
-/// gather weighs each photon by ([`rough_reflects`]).
+/// gather weighs each photon by ([`RoughSurface::reflects`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RoughPoint {
     /// The object.
@@ -155,7 +155,7 @@ pub struct RoughPoint {
 /// ([`crate::optics::microfacet::Ggx::gathers`]), from the photons of
 /// `grid` met on rough surfaces ([`Photon::on_rough_surface`]; the others
 /// are a diffuse surface's), each weighed by π times the BSDF from its
-/// direction toward the viewer, on either side ([`rough_reflects`]):
+/// direction toward the viewer, on either side ([`RoughSurface::reflects`]):
 /// L = Σ f Φ / (π r²). And how many photons it accepted.
 pub fn gather_rough(
     scene: &PreparedScene,
@@ -166,11 +166,13 @@ pub fn gather_rough(
     let r2 = q.radius * q.radius;
     let bent = Hit { t: 0.0, point: q.point, normal: at.shading, object: at.object, triangle: at.triangle };
     let estimator = scene.scene.render.estimator;
+    // The surface's maps read once for the point, not per photon.
+    let surface = RoughSurface::at(scene, &bent);
     let mut sums = GatherSums::default();
     grid.for_each_candidate(q.point, q.radius, |i| {
         let p = &photons[i as usize];
         if p.on_rough_surface() && (p.pos() - q.point).length_squared() <= r2 {
-            let reflected = rough_reflects(scene, p, at.toward, &bent);
+            let reflected = surface.as_ref().map_or(Vec3::ZERO, |s| s.reflects(scene, p, at.toward, &bent));
             sums.add_reflected(estimator, &scene.bands, (p.band, p.lambda_nm, p.flux), reflected);
         }
     });

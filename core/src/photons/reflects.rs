@@ -6,8 +6,10 @@
 
 use crate::model::photon::{Photon, WHITE_BAND};
 use crate::optics::fresnel::interface;
+use crate::optics::metal::MetalOptics;
+use crate::optics::microfacet::Ggx;
 use crate::optics::rough_glass::rough_glass_bsdf;
-use crate::optics::surface::Surface;
+use crate::optics::surface::{DielectricOptics, Surface};
 use crate::plan::prepared::{Hit, PreparedScene};
 use core::f32::consts::PI;
 use glam::Vec3;
@@ -44,33 +46,59 @@ pub fn reflects(scene: &PreparedScene, photon: &Photon, toward: Vec3, hit: &Hit,
 
 /// π times the BSDF by which the rough metal or glass at `bent` (its
 /// normal the shading normal there) sends the light of `photon`, met
-/// there, toward an eye that looks along `toward`: a rough metal's (a
-/// blended metal's specular part's) GGX reflection with its Fresnel at the
-/// photon's wavelength, or rough glass's reflection or transmission on
-/// either side (what crosses a tinted sheet keeps its colour; what leaves
-/// solid glass takes (n_eye/n_photon)², `radiance_across`), as the view's
-/// highlights take them.
+/// there, toward an eye that looks along `toward` ([`RoughSurface::reflects`]).
 /// Zero on a polished point.
 pub fn rough_reflects(scene: &PreparedScene, photon: &Photon, toward: Vec3, bent: &Hit) -> Vec3 {
-    let (band, lambda_nm) = (photon.band, photon.lambda_nm);
-    let (wo, wi, normal) = (-toward, -photon.direction(), bent.normal);
-    match &scene.surfaces[bent.object] {
-        Surface::Metal(metal) => {
-            let facing = if toward.dot(normal) < 0.0 { normal } else { -normal };
-            PI * scene.metal_at(metal, bent).reflection(wo, wi, facing, band, lambda_nm, &scene.bands)
+    RoughSurface::at(scene, bent).map_or(Vec3::ZERO, |s| s.reflects(scene, photon, toward, bent))
+}
+
+/// Rough metal or glass at a point as its maps make it there, read once
+/// for every photon a visible point there weighs.
+pub enum RoughSurface<'a> {
+    /// A metal's optics there ([`PreparedScene::metal_at`]).
+    Metal(MetalOptics),
+    /// Glass and its facets there.
+    Glass(&'a DielectricOptics, Ggx),
+}
+
+impl<'a> RoughSurface<'a> {
+    /// The rough metal or glass at `bent`, or `None` where it is neither
+    /// (or glass polished there).
+    pub fn at(scene: &'a PreparedScene, bent: &Hit) -> Option<Self> {
+        match &scene.surfaces[bent.object] {
+            Surface::Metal(metal) => Some(RoughSurface::Metal(scene.metal_at(metal, bent))),
+            Surface::Dielectric(glass) => Some(RoughSurface::Glass(glass, scene.facets(bent)?)),
+            _ => None,
         }
-        Surface::Dielectric(glass) => {
-            let Some(ggx) = scene.facets(bent) else { return Vec3::ZERO };
-            let own = band != WHITE_BAND && scene.scene.render.wavelengths.continuous();
-            let face = scene.face(glass, bent, band, own.then_some(lambda_nm));
-            let f = PI * rough_glass_bsdf(wo, wi, normal, face, ggx);
-            match wi.dot(normal) * wo.dot(normal) < 0.0 {
-                true if glass.thin => glass.sheet_crossing_rgb(band) * f,
-                true => Vec3::splat(f * radiance_across(toward, normal, face.ior)),
-                false => Vec3::splat(f),
+    }
+
+    /// π times the BSDF by which this surface at `bent` (its normal the
+    /// shading normal there) sends the light of `photon`, met there, toward
+    /// an eye that looks along `toward`: a rough metal's (a blended metal's
+    /// specular part's) GGX reflection with its Fresnel at the photon's
+    /// wavelength, or rough glass's reflection or transmission on either
+    /// side (what crosses a tinted sheet keeps its colour; what leaves
+    /// solid glass takes (n_eye/n_photon)², `radiance_across`), as the
+    /// view's highlights take them. Zero off a polished metal.
+    pub fn reflects(&self, scene: &PreparedScene, photon: &Photon, toward: Vec3, bent: &Hit) -> Vec3 {
+        let (band, lambda_nm) = (photon.band, photon.lambda_nm);
+        let (wo, wi, normal) = (-toward, -photon.direction(), bent.normal);
+        match self {
+            RoughSurface::Metal(metal) => {
+                let facing = if toward.dot(normal) < 0.0 { normal } else { -normal };
+                PI * metal.reflection(wo, wi, facing, band, lambda_nm, &scene.bands)
+            }
+            RoughSurface::Glass(glass, ggx) => {
+                let own = band != WHITE_BAND && scene.scene.render.wavelengths.continuous();
+                let face = scene.face(glass, bent, band, own.then_some(lambda_nm));
+                let f = PI * rough_glass_bsdf(wo, wi, normal, face, *ggx);
+                match wi.dot(normal) * wo.dot(normal) < 0.0 {
+                    true if glass.thin => glass.sheet_crossing_rgb(band) * f,
+                    true => Vec3::splat(f * radiance_across(toward, normal, face.ior)),
+                    false => Vec3::splat(f),
+                }
             }
         }
-        _ => Vec3::ZERO,
     }
 }
 

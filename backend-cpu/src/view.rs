@@ -185,11 +185,11 @@ impl Shader<'_> {
                         object: object[i] as usize,
                         triangle: hit.triangle.to_array()[i] as u32,
                     };
-                    let m = self.scene.metalness_at(metal, &at);
+                    let metalness = self.scene.metalness_at(metal, &at);
                     let toward_eye = r.dir.dot(self.scene.scattering_normal(&at, r.dir)).abs();
-                    specular_share[i] = metal.metalness.specular_share(m);
+                    specular_share[i] = metalness.specular_share();
                     let lambda_nm = stored_wavelength(&self.scene.bands, r.band, r.lambda_nm);
-                    let share = self.scene.diffuse_share_at(metal, &at, m, toward_eye, r.band, lambda_nm);
+                    let share = self.scene.diffuse_share_at(metal, &at, metalness, toward_eye, r.band, lambda_nm);
                     sum[r.pixel as usize] += self.blended_diffuse_part(r, &at, share);
                 }
                 _ => {}

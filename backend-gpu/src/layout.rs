@@ -183,7 +183,8 @@ pub struct GpuSurface {
     /// Absorption coefficient per RGB channel (coloured glass); a metal's
     /// specular layer's F0 per channel.
     pub absorption: [f32; 3],
-    /// Index of the per-band absorption coefficients in the tables buffer.
+    /// Index of the per-band absorption coefficients in the tables buffer;
+    /// of a metal's specular layer's maps (see `SURFACE_SPECULAR_MAP`).
     pub absorption_first: u32,
     /// Index of the texture in the tables buffer (a diffuse surface's base
     /// colour, a metal's or rough glass's roughness map): 256 decoding

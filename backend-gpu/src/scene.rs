@@ -152,26 +152,42 @@ impl EncodedScene {
             // thickness and each map's reference (start, width, height and
             // sampler flags, as bits; a missing one's unread).
             let material = &scene.scene.materials[scene.scene.objects[i].material];
-            if let (Some(map), true) = (&material.film_map, s.flags & SURFACE_HAS_FILM != 0) {
-                let mut reference = |t: &Option<Texture>, flag: u32| match t {
-                    Some(t) => {
-                        s.flags |= flag;
-                        let first = *textures.entry((t.texels.as_ptr(), false)).or_insert_with(|| e.texture(t, false));
-                        [first, t.width, t.height, texture_flags(t.sampler)].map(f32::from_bits)
-                    }
-                    None => [0.0; 4],
-                };
-                let (thickness, factor) = (
-                    reference(&map.thickness, SURFACE_FILM_THICKNESS_MAP),
-                    reference(&map.factor, SURFACE_FILM_FACTOR_MAP),
-                );
+            let (filmed, layered) =
+                (s.flags & SURFACE_HAS_FILM != 0, s.kind == SURFACE_METAL && s.checker_offset[1] > 0.0);
+            // A map's reference (start, width, height and sampler flags, as
+            // bits; a missing one's unread), its flag set.
+            let mut reference = |t: &Option<Texture>, flag: u32, srgb: bool| match t {
+                Some(t) => {
+                    s.flags |= flag;
+                    let first = *textures.entry((t.texels.as_ptr(), srgb)).or_insert_with(|| e.texture(t, srgb));
+                    [first, t.width, t.height, texture_flags(t.sampler)].map(f32::from_bits)
+                }
+                None => [0.0; 4],
+            };
+            // A film's maps: the film's record again, then the minimum
+            // thickness and each map's reference.
+            let film_maps = material.film_map.as_ref().filter(|_| filmed).map(|map| {
+                let thickness = reference(&map.thickness, SURFACE_FILM_THICKNESS_MAP, false);
+                (map.min_nm, thickness, reference(&map.factor, SURFACE_FILM_FACTOR_MAP, false))
+            });
+            // A metal's layer's maps: the unclipped F0, then each map's
+            // reference (the weight's, the colour's).
+            let layer_maps = material.specular_map.as_ref().filter(|_| layered).map(|map| {
+                let weight = reference(&map.weight, SURFACE_SPECULAR_MAP, false);
+                (map.color_f0, weight, reference(&map.color, SURFACE_SPECULAR_COLOUR_MAP, true))
+            });
+            if let Some((min_nm, thickness, factor)) = film_maps {
                 let film = s.film_first as usize;
                 let record: [f32; 3] = e.tables[film..film + 3].try_into().expect("a film's record");
                 s.film_first = e.tables.len() as u32;
-                e.tables.extend(record.into_iter().chain([map.min_nm]).chain(thickness).chain(factor));
+                e.tables.extend(record.into_iter().chain([min_nm]).chain(thickness).chain(factor));
             }
-            let film_maps = SURFACE_FILM_THICKNESS_MAP | SURFACE_FILM_FACTOR_MAP;
-            if !uvs.is_empty() && s.flags & (SURFACE_HAS_TEXTURE | SURFACE_HAS_COLOUR_MAP | film_maps) != 0 {
+            if let Some((color_f0, weight, color)) = layer_maps {
+                s.absorption_first = e.tables.len() as u32;
+                e.tables.extend(v4(color_f0, 0.0).into_iter().chain(weight).chain(color));
+            }
+            let maps = SURFACE_FILM_THICKNESS_MAP | SURFACE_FILM_FACTOR_MAP | SURFACE_SPECULAR_MAPS;
+            if !uvs.is_empty() && s.flags & (SURFACE_HAS_TEXTURE | SURFACE_HAS_COLOUR_MAP | maps) != 0 {
                 s.uv_first = e.geometry.len() as u32;
                 for uv in uvs {
                     e.geometry.extend([[uv.uv0.x, uv.uv0.y, uv.du1.x, uv.du1.y], [uv.du2.x, uv.du2.y, 0.0, 0.0]]);

@@ -87,6 +87,16 @@ pub mod kind {
     /// The film's thickness and factor at a hit are in `emission.xy` (a
     /// surface copy `surface_at` made; its map flags cleared).
     pub const SURFACE_FILM_AT_HIT: u32 = 524288;
+    /// The metal's specular layer's weight varies by the red channel of a
+    /// texture: the layer's unclipped F0 (`SpecularMap::color_f0`) and
+    /// the texture's reference (start, width, height and sampler flags, as
+    /// bits) are in the tables at `absorption_first`.
+    pub const SURFACE_SPECULAR_MAP: u32 = 1 << 20;
+    /// The layer's colour varies by a texture (sRGB), whose reference
+    /// follows the weight map's.
+    pub const SURFACE_SPECULAR_COLOUR_MAP: u32 = 1 << 21;
+    /// Either of the layer's maps.
+    pub const SURFACE_SPECULAR_MAPS: u32 = SURFACE_SPECULAR_MAP | SURFACE_SPECULAR_COLOUR_MAP;
     /// `Wrap::Repeat`.
     pub const WRAP_REPEAT: u32 = 0;
     /// `Wrap::ClampToEdge`.
@@ -244,6 +254,8 @@ fn prelude(stack: u32) -> String {
     u("SURFACE_FILM_THICKNESS_MAP", kind::SURFACE_FILM_THICKNESS_MAP);
     u("SURFACE_FILM_FACTOR_MAP", kind::SURFACE_FILM_FACTOR_MAP);
     u("SURFACE_FILM_AT_HIT", kind::SURFACE_FILM_AT_HIT);
+    u("SURFACE_SPECULAR_MAP", kind::SURFACE_SPECULAR_MAP);
+    u("SURFACE_SPECULAR_COLOUR_MAP", kind::SURFACE_SPECULAR_COLOUR_MAP);
     u("METAL_ROWS", metals::ROWS as u32);
     u("TEXTURE_WRAP_U_SHIFT", kind::TEXTURE_WRAP_U_SHIFT);
     u("TEXTURE_WRAP_V_SHIFT", kind::TEXTURE_WRAP_V_SHIFT);

@@ -906,6 +906,7 @@ fn check_metal((c, sampler): &(MetalIn, PixelSampler), got: &MetalOut) -> Result
         measured: None,
         ggx,
         textured: false,
+        layer_textured: false,
         film: None,
         metalness: Metalness::WHOLE,
     };

@@ -28,7 +28,7 @@ use prismatic_core::model::mesh::open_edge;
 use prismatic_core::model::metalness::{Metalness, SpecularLayer};
 use prismatic_core::model::scene::{
     Attenuation, Camera, EnvironmentMap, FilmMap, Filter, Light, MAX_IMAGE_SIDE, Material, MaterialKind, NormalMap,
-    Object, RenderSettings, Sampler, Scene, Shape, Texture, ThinFilm, Wrap, default_ambient,
+    Object, RenderSettings, Sampler, Scene, Shape, SpecularMap, Texture, ThinFilm, Wrap, default_ambient,
 };
 use prismatic_core::model::spectrum::Spectrum;
 use prismatic_core::sampling::spot_cone::SpotCone;
@@ -327,18 +327,28 @@ struct Images<'a> {
     document: &'a gltf::Document,
     base: Option<&'a Path>,
     buffers: &'a [gltf::buffer::Data],
-    /// By image index, with the default sampler.
-    decoded: HashMap<usize, Texture>,
+    /// By image index and the channels read, with the default sampler.
+    decoded: HashMap<(usize, Channels), Texture>,
+}
+
+/// Which of an image's channels a texture's texels hold.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+enum Channels {
+    /// Its red, green and blue (a grey image's grey in each).
+    Rgb,
+    /// Its alpha in each (255 where it has none): `specularTexture`'s.
+    Alpha,
 }
 
 impl Images<'_> {
-    /// The base-colour or metallic-roughness texture `info` names, with
-    /// its sampler and the `KHR_texture_transform` of its coordinates;
-    /// `None` (and `other_set` in `unused`) when it reads a texture
-    /// coordinate set other than 0.
+    /// The texture `info` names (a base colour's, a metallic-roughness
+    /// one's, a specular layer's), its `channels`, with its sampler and the
+    /// `KHR_texture_transform` of its coordinates; `None` (and `other_set`
+    /// in `unused`) when it reads a texture coordinate set other than 0.
     fn texture_info(
         &mut self,
         info: &gltf::texture::Info<'_>,
+        channels: Channels,
         other_set: &'static str,
         unused: &mut Vec<&'static str>,
     ) -> Result<Option<(Texture, Option<Affine2>)>, GltfError> {
@@ -348,7 +358,7 @@ impl Images<'_> {
             return Ok(None);
         }
         let transform = transform.map(|t| uv_transform(t.offset(), t.rotation(), t.scale()));
-        Ok(Some((self.texture(&info.texture())?, transform)))
+        Ok(Some((self.texture(&info.texture(), channels)?, transform)))
     }
 
     /// The normal map `info` names, with the `KHR_texture_transform` of its
@@ -365,7 +375,7 @@ impl Images<'_> {
             unused.push("normalTexture on a texture coordinate set other than 0");
             return Ok(None);
         }
-        let map = NormalMap { texture: self.texture(&info.texture())?, scale: info.scale() };
+        let map = NormalMap { texture: self.texture(&info.texture(), Channels::Rgb)?, scale: info.scale() };
         Ok(Some((map, transform.map(json_uv_transform))))
     }
 
@@ -390,12 +400,12 @@ impl Images<'_> {
             unused.push(other_set);
             return Ok(None);
         }
-        Ok(Some((self.texture(&texture)?, transform.map(json_uv_transform))))
+        Ok(Some((self.texture(&texture, Channels::Rgb)?, transform.map(json_uv_transform))))
     }
 
-    /// The image `texture` shows (decoded once) with its sampler.
-    fn texture(&mut self, texture: &gltf::Texture<'_>) -> Result<Texture, GltfError> {
-        let decoded = self.decoded(&texture.source())?;
+    /// The `channels` of the image `texture` shows (decoded once) with its sampler.
+    fn texture(&mut self, texture: &gltf::Texture<'_>, channels: Channels) -> Result<Texture, GltfError> {
+        let decoded = self.decoded(&texture.source(), channels)?;
         let sampler = texture.sampler();
         let wrap = |w: WrappingMode| match w {
             WrappingMode::Repeat => Wrap::Repeat,
@@ -415,25 +425,25 @@ impl Images<'_> {
     /// The mean linear colour of a texture's image (what an emissive
     /// texture emits on average).
     fn mean_colour(&mut self, info: &gltf::texture::Info<'_>) -> Result<Vec3, GltfError> {
-        let decoded = self.decoded(&info.texture().source())?;
+        let decoded = self.decoded(&info.texture().source(), Channels::Rgb)?;
         let channel = |x: u32, shift: u32| srgb_to_linear((x >> shift) & 0xff);
         let sum: Vec3 = decoded.texels.iter().map(|&x| Vec3::new(channel(x, 0), channel(x, 8), channel(x, 16))).sum();
         Ok(sum / decoded.texels.len().max(1) as f32)
     }
 
-    /// `image` decoded, once however many textures show it.
-    fn decoded(&mut self, image: &gltf::Image<'_>) -> Result<Texture, GltfError> {
-        if let Some(t) = self.decoded.get(&image.index()) {
+    /// The `channels` of `image` decoded, once however many textures show it.
+    fn decoded(&mut self, image: &gltf::Image<'_>, channels: Channels) -> Result<Texture, GltfError> {
+        if let Some(t) = self.decoded.get(&(image.index(), channels)) {
             return Ok(t.clone());
         }
-        let t = self.decode(image)?;
-        self.decoded.insert(image.index(), t.clone());
+        let t = self.decode(image, channels)?;
+        self.decoded.insert((image.index(), channels), t.clone());
         Ok(t)
     }
 
-    /// An image's pixels as 8-bit texels (grey images as grey, alpha
-    /// left out, 16-bit channels to their high byte).
-    fn decode(&self, image: &gltf::Image<'_>) -> Result<Texture, GltfError> {
+    /// An image's pixels as 8-bit texels: their colour (grey images as
+    /// grey, alpha left out) or their alpha, 16-bit channels to their high byte.
+    fn decode(&self, image: &gltf::Image<'_>, read: Channels) -> Result<Texture, GltfError> {
         use gltf::image::Format;
         let path = format!("images[{}]", image.index());
         let json = &self.json.images[image.index()];
@@ -465,10 +475,12 @@ impl Images<'_> {
         let high = |px: &[u8], c: usize| {
             if bytes == 1 { px[c] } else { u16::from_ne_bytes([px[2 * c], px[2 * c + 1]]).to_be_bytes()[0] }
         };
-        let pixels = data
-            .pixels
-            .chunks_exact(channels * bytes)
-            .map(|px| if channels < 3 { [high(px, 0); 3] } else { [high(px, 0), high(px, 1), high(px, 2)] });
+        let pixels = data.pixels.chunks_exact(channels * bytes).map(|px| match (read, channels) {
+            (Channels::Alpha, 2 | 4) => [high(px, channels - 1); 3],
+            (Channels::Alpha, _) => [255; 3],
+            (Channels::Rgb, 1 | 2) => [high(px, 0); 3],
+            (Channels::Rgb, _) => [high(px, 0), high(px, 1), high(px, 2)],
+        });
         Ok(texture_file::from_rgb8(name, data.width, data.height, pixels, Sampler::default()))
     }
 }
@@ -498,6 +510,7 @@ fn material(
     let metal_roughness = match pbr.metallic_roughness_texture() {
         Some(info) => images.texture_info(
             &info,
+            Channels::Rgb,
             "metallicRoughnessTexture on a texture coordinate set other than 0",
             &mut unused,
         )?,
@@ -522,7 +535,7 @@ fn material(
     // diffuse surfaces emit, and its glow outshines its reflections).
     let layer = match transmission > 0.0 || (metal.is_none() && emission != Vec3::ZERO) {
         true => None,
-        false => specular_layer(m, &mut unused),
+        false => specular_layer(m),
     };
     let bare = !glass_or_metal && layer.is_none();
     if bare && m.extensions().is_some_and(|e| e.contains_key("KHR_materials_iridescence")) {
@@ -560,7 +573,8 @@ fn material(
         let [r, g, b, _] = pbr.base_color_factor();
         let texture = match pbr.base_color_texture() {
             Some(info) => {
-                images.texture_info(&info, "baseColorTexture on a texture coordinate set other than 0", &mut unused)?
+                let other_set = "baseColorTexture on a texture coordinate set other than 0";
+                images.texture_info(&info, Channels::Rgb, other_set, &mut unused)?
             }
             None => None,
         };
@@ -615,19 +629,38 @@ fn material(
     // A film's textures vary it (on glass or a metal that has one).
     let filmed =
         matches!(kind, MaterialKind::Metal { film: Some(_), .. } | MaterialKind::Dielectric { film: Some(_), .. });
-    let film_map = match film_map(m, images, &mut unused)? {
-        Some((map, transforms)) if filmed && transforms.iter().all(|&t| agrees(t)) => Some(map),
-        Some(_) if filmed => {
-            unused.push("iridescence textures with another KHR_texture_transform than the material's other textures");
-            None
-        }
-        _ => None,
-    };
+    let moved = "iridescence textures with another KHR_texture_transform than the material's other textures";
+    let film_map = film_map(m, images, &mut unused)?;
+    let film_map = kept(film_map, filmed, &mut agrees, moved, &mut unused);
+    // The layer's textures vary it (where it has one: not on a whole metal).
+    let layered = matches!(kind, MaterialKind::Metal { metalness: Metalness { layer: Some(_), .. }, .. });
+    let moved = "specular textures with another KHR_texture_transform than the material's other textures";
+    let specular_map = specular_map(m, images, &mut unused)?;
+    let specular_map = kept(specular_map, layered, &mut agrees, moved, &mut unused);
     if !unused.is_empty() {
         warnings.push(format!("{path} ({name}): left out: {}", unused.join(", ")));
     }
-    let material = Material { normal_map, roughness_map, film_map, ..Material::new(name, kind) };
+    let material = Material { normal_map, roughness_map, film_map, specular_map, ..Material::new(name, kind) };
     Ok((material, transform.flatten()))
+}
+
+/// An extension's maps `read` (with their textures' transforms), kept
+/// where they `apply` and their transforms agree with the material's other
+/// textures' (the mesh has one set of coordinates); `moved` goes to
+/// `unused` where they apply but do not agree.
+fn kept<T>(
+    read: Option<(T, UvTransforms)>,
+    apply: bool,
+    agrees: &mut impl FnMut(Option<Affine2>) -> bool,
+    moved: &'static str,
+    unused: &mut Vec<&'static str>,
+) -> Option<T> {
+    let (maps, transforms) = read.filter(|_| apply)?;
+    if transforms.iter().all(|&t| agrees(t)) {
+        return Some(maps);
+    }
+    unused.push(moved);
+    None
 }
 
 /// Does a material of `kind` read its base colour from a texture?
@@ -679,19 +712,46 @@ fn attenuation(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option
 
 /// The specular layer of a material's dielectric base: `KHR_materials_ior`
 /// (default 1.5) and `KHR_materials_specular`'s factor and colour
-/// (defaults 1 and white), glTF's F0 of 0.04 and F90 of 1 without either;
-/// its textures are named in `unused`.
-fn specular_layer(m: &gltf::Material<'_>, unused: &mut Vec<&'static str>) -> Option<SpecularLayer> {
-    let specular = m.specular();
-    if specular.as_ref().is_some_and(|s| s.specular_texture().is_some()) {
-        unused.push("specularTexture's pattern (KHR_materials_specular's factor is taken everywhere)");
-    }
-    if specular.as_ref().is_some_and(|s| s.specular_color_texture().is_some()) {
-        unused.push("specularColorTexture's pattern (KHR_materials_specular's colour factor is taken everywhere)");
-    }
+/// (defaults 1 and white), glTF's F0 of 0.04 and F90 of 1 without either
+/// (its textures are [`specular_map`]'s).
+fn specular_layer(m: &gltf::Material<'_>) -> Option<SpecularLayer> {
     let (weight, color) =
-        specular.map_or((1.0, Vec3::ONE), |s| (s.specular_factor(), s.specular_color_factor().into()));
+        m.specular().map_or((1.0, Vec3::ONE), |s| (s.specular_factor(), s.specular_color_factor().into()));
     SpecularLayer::gltf(m.ior().unwrap_or(1.5), weight, color)
+}
+
+/// The textures of `KHR_materials_specular`, each with the transform of
+/// its coordinates: `specularTexture`, whose alpha scales
+/// `specularFactor`, and `specularColorTexture` (sRGB), which scales
+/// `specularColorFactor`; `None` without either. One on another
+/// coordinate set is named in `unused`.
+fn specular_map(
+    m: &gltf::Material<'_>,
+    images: &mut Images<'_>,
+    unused: &mut Vec<&'static str>,
+) -> Result<Option<(SpecularMap, UvTransforms)>, GltfError> {
+    let Some(specular) = m.specular() else { return Ok(None) };
+    let mut transforms = Vec::new();
+    let mut read = |info: Option<gltf::texture::Info<'_>>, channels: Channels, other_set: &'static str| {
+        let Some(info) = info else { return Ok(None) };
+        let read = images.texture_info(&info, channels, other_set, unused)?;
+        Ok::<_, GltfError>(read.map(|(texture, t)| {
+            transforms.push(t);
+            texture
+        }))
+    };
+    let weight =
+        read(specular.specular_texture(), Channels::Alpha, "specularTexture on a texture coordinate set other than 0")?;
+    let color = read(
+        specular.specular_color_texture(),
+        Channels::Rgb,
+        "specularColorTexture on a texture coordinate set other than 0",
+    )?;
+    if weight.is_none() && color.is_none() {
+        return Ok(None);
+    }
+    let color_f0 = SpecularLayer::unclipped_f0(m.ior().unwrap_or(1.5), specular.specular_color_factor().into());
+    Ok(Some((SpecularMap { weight, color, color_f0 }, transforms)))
 }
 
 /// The radiance a material emits: `emissiveFactor` × `KHR_materials_emissive_strength`

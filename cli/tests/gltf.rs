@@ -907,6 +907,64 @@ fn a_non_metal_is_a_diffuse_base_under_its_specular_layer() {
     assert!(matches!(bare, MaterialKind::Diffuse { .. }), "{bare:?}");
 }
 
+/// `KHR_materials_specular`'s textures vary the layer over the mesh:
+/// `specularTexture`'s alpha (in every channel of the weight map) and
+/// `specularColorTexture`'s colour, with the layer's unclipped F0 for the
+/// colour map to scale; nothing is left out. One on another coordinate
+/// set is named and left out, the other kept.
+#[test]
+fn specular_textures_vary_the_layer_over_the_mesh() {
+    use prismatic_cli::gltf_write::GltfTexture;
+    let dir = tempfile::tempdir().unwrap();
+    let mut doc = prism_document();
+    let satin = GltfTexture { width: 1, height: 1, pixels: vec![[200, 150, 60]], nearest: true, wrap: [10497; 2] };
+    doc.materials[0] = GltfMaterial { base_color_texture: Some(satin), ..GltfMaterial::diffuse("satin", [1.0; 3]) };
+    doc.meshes[0].uvs = vec![[0.0, 1.0], [1.0, 1.0], [1.0, 0.0], [0.0, 0.0]];
+    let mut json: serde_json::Value = serde_json::from_str(&doc.to_json()).unwrap();
+    // An RGBA image beside the file, whose alpha (77) is the layer's weight.
+    image::RgbaImage::from_raw(1, 1, vec![10, 20, 30, 77]).unwrap().save(dir.path().join("gloss.png")).unwrap();
+    let images = json["images"].as_array_mut().unwrap();
+    images.push(serde_json::json!({ "uri": "gloss.png" }));
+    let source = images.len() - 1;
+    let textures = json["textures"].as_array_mut().unwrap();
+    textures.push(serde_json::json!({ "source": source }));
+    let gloss = textures.len() - 1;
+    json["materials"][0]["extensions"] = serde_json::json!({
+        "KHR_materials_ior": { "ior": 2.0 },
+        "KHR_materials_specular": {
+            "specularFactor": 0.5,
+            "specularColorFactor": [1.0, 2.0, 30.0],
+            "specularTexture": { "index": gloss },
+            "specularColorTexture": { "index": 0 }
+        }
+    });
+    let used = json["extensionsUsed"].as_array_mut().unwrap();
+    used.extend(["KHR_materials_ior".into(), "KHR_materials_specular".into()]);
+    let load = |json: &serde_json::Value| {
+        let path = dir.path().join("satin.gltf");
+        std::fs::write(&path, json.to_string()).unwrap();
+        prismatic_cli::load_scene(path.to_str().unwrap()).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let scene = load(&json);
+    scene.validate().unwrap_or_else(|e| panic!("{e}"));
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let satin = &scene.scene.materials[0];
+    let MaterialKind::Metal { metalness, .. } = &satin.kind else { panic!("a layered surface: {:?}", satin.kind) };
+    assert_eq!(metalness.layer.map(|l| (l.f90, l.ior)), Some((0.5, 2.0)));
+    let map = satin.specular_map.as_ref().expect("the layer's map");
+    let texel = |t: &Option<prismatic_core::model::scene::Texture>| t.as_ref().expect("a map").texels[0];
+    assert_eq!((texel(&map.weight), texel(&map.color)), (77 | 77 << 8 | 77 << 16, 200 | 150 << 8 | 60 << 16));
+    let want = prismatic_core::Vec3::new(1.0, 2.0, 30.0) / 9.0;
+    assert!((map.color_f0 - want).abs().max_element() < 1e-6, "{}", map.color_f0);
+    // Another coordinate set: left out, named; the weight map stays.
+    json["materials"][0]["extensions"]["KHR_materials_specular"]["specularColorTexture"]["texCoord"] = 1.into();
+    let scene = load(&json);
+    let map = scene.scene.materials[0].specular_map.as_ref().expect("the layer's map");
+    assert!(map.weight.is_some() && map.color.is_none());
+    let warnings = scene.warnings.join("\n");
+    assert!(warnings.contains("specularColorTexture on a texture coordinate set other than 0"), "{warnings}");
+}
+
 /// A metal's `baseColorTexture` colours it texel by texel (its reflectance
 /// at normal incidence is the base colour times the texture, sRGB), with
 /// nothing left out; a roughness map moved otherwise than the base colour

@@ -16,7 +16,7 @@ use prismatic_core::model::environment::EnvironmentMap;
 use prismatic_core::model::metalness::{Metalness, SpecularLayer};
 use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, FilmMap, Filter, Light, Material, MaterialKind, NormalMap, Object, PhotonSequence,
-    RenderSettings, Sampler, Shape, Texture, ThinFilm, Wrap,
+    RenderSettings, Sampler, Shape, SpecularMap, Texture, ThinFilm, Wrap,
 };
 use prismatic_core::{BandSpec, Estimator, MetalColor, NamedMetal, PreparedScene, Scene};
 
@@ -325,7 +325,8 @@ pub fn rippled_mirror() -> PreparedScene {
 /// scaled by a texture of four tiles, gold, grey, rose and pale) onto a
 /// round floor, the gold worn through to a diffuse base texel by texel
 /// (a metalness of 0.9 times a map's; the base under a dielectric's
-/// coloured specular layer) under a film whose thickness a map
+/// coloured specular layer whose weight and colour maps vary it) under a
+/// film whose thickness a map
 /// varies, beside a polished ball of measured
 /// copper under a patchy film of its oxide (a factor of 0.6), with
 /// indirect light: metals' facets, coloured Fresnel texel by texel, a
@@ -349,7 +350,7 @@ pub fn metals() -> PreparedScene {
     // (whole, a third, none, most), its green keeping the roughness.
     let MaterialKind::Metal { metalness, .. } = &mut scene.materials[1].kind else { unreachable!("gold") };
     // The base a dielectric's coloured specular layer covers.
-    let layer = SpecularLayer::gltf(1.6, 0.8, Vec3::new(1.0, 0.9, 0.7));
+    let layer = SpecularLayer::gltf(1.6, 0.8, Vec3::new(1.0, 0.9, 30.0));
     *metalness = Metalness { factor: 0.9, mapped: true, layer };
     // Under a film of an oxide, 120 to 350 nm thick across the tiles.
     let MaterialKind::Metal { film, .. } = &mut scene.materials[1].kind else { unreachable!("gold") };
@@ -364,6 +365,29 @@ pub fn metals() -> PreparedScene {
         }),
         min_nm: 120.0,
         factor: None,
+    });
+    // Its layer glossier in places, and tinted across the tiles (blue
+    // clipping where the tint is strong).
+    scene.materials[1].specular_map = Some(SpecularMap {
+        weight: Some(Texture {
+            name: "gloss".into(),
+            width: 2,
+            height: 2,
+            texels: [255u32, 40, 0, 160].iter().map(|&r| r | 7 << 8).collect::<Vec<u32>>().into(),
+            sampler: Sampler { filter: Filter::Linear, wrap_u: Wrap::Repeat, wrap_v: Wrap::Repeat },
+        }),
+        color: Some(Texture {
+            name: "sheen".into(),
+            width: 2,
+            height: 2,
+            texels: [[255u32, 255, 255], [40, 200, 90], [255, 120, 0], [10, 10, 255]]
+                .iter()
+                .map(|&[r, g, b]| r | g << 8 | b << 16)
+                .collect::<Vec<u32>>()
+                .into(),
+            sampler: Sampler { filter: Filter::Nearest, wrap_u: Wrap::ClampToEdge, wrap_v: Wrap::Repeat },
+        }),
+        color_f0: SpecularLayer::unclipped_f0(1.6, Vec3::new(1.0, 0.9, 30.0)),
     });
     scene.materials[1].roughness_map = Some(Texture {
         name: "worn".into(),

@@ -32,6 +32,7 @@ pub fn white(name: &str) -> Material {
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     }
 }
 
@@ -50,6 +51,7 @@ pub fn glass(name: &str, dispersion: Dispersion) -> Material {
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     }
 }
 
@@ -248,6 +250,7 @@ pub fn view_through_a_sheet(sheet: Material) -> PreparedScene {
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     };
     let square =
         [Vec3::new(0.0, -2.0, -2.0), Vec3::new(0.0, 2.0, -2.0), Vec3::new(0.0, 2.0, 2.0), Vec3::new(0.0, -2.0, 2.0)];

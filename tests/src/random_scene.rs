@@ -71,6 +71,7 @@ pub fn random_scene(seed: u32, photons: u32, side: u32) -> Scene {
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     };
     // The metal's own dice, so that the draws above and below are those
     // the scenes had before metals came.

@@ -34,6 +34,7 @@ fn slab(ior: Dispersion) -> (Material, Object) {
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     };
     let vertices = [Vec3::new(0.0, -3.0, -2.0), Vec3::new(0.0, 3.0, -2.0), Vec3::new(0.0, 0.0, 3.0)];
     (material, Object { shape: Shape::Prism { vertices, extrude: Vec3::X * THICKNESS }, material: 0 })

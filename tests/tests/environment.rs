@@ -25,6 +25,7 @@ fn floor() -> (Material, Object) {
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     };
     (m, Object { shape: Shape::Plane { point: Vec3::ZERO, normal: Vec3::Y }, material: 0 })
 }

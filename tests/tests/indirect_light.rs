@@ -21,6 +21,7 @@ fn diffuse(name: &str, albedo: Vec3, emission: Vec3) -> Material {
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     }
 }
 

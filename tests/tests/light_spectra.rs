@@ -188,6 +188,7 @@ fn sodium_on_green(backend: &mut dyn prismatic_core::Backend, render: RenderSett
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     };
     let scene = Scene {
         render,

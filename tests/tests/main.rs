@@ -34,6 +34,7 @@ mod smooth_shading;
 mod spectral_truth;
 mod spectrum;
 mod specular_layers;
+mod specular_maps;
 mod sun;
 mod textures;
 mod thin_film;

@@ -42,6 +42,7 @@ fn metal(color: Vec3, roughness: f32) -> Material {
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     }
 }
 
@@ -171,6 +172,7 @@ fn measured_gold_reflects_each_wavelength_by_its_complex_index() {
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     };
     let mut scene = folded_beam(gold, PHOTONS, BandSpec::Physical(16));
     scene.render.wavelengths = WavelengthSampling::Continuous;

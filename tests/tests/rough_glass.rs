@@ -36,6 +36,7 @@ pub(crate) fn rough(dispersion: Dispersion, thin: bool, roughness: f32) -> Mater
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     }
 }
 

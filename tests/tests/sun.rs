@@ -31,6 +31,7 @@ fn scene(photons: u32) -> PreparedScene {
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     };
     prepare(Scene {
         render,

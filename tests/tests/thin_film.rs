@@ -35,6 +35,7 @@ fn coated_sheet() -> Material {
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     }
 }
 

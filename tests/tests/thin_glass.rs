@@ -28,6 +28,7 @@ fn sheet(ior: f32) -> Material {
         normal_map: None,
         roughness_map: None,
         film_map: None,
+        specular_map: None,
     }
 }
 

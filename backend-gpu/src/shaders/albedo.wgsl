@@ -58,34 +58,43 @@ fn facets_alpha(hit: Hit, s: GpuSurface) -> f32 {
 
 // The surface `s` at `hit` as its maps make it there, in a copy: a
 // metal's F0 times its colour texture (PreparedScene::metal_at's colour;
-// SURFACE_HAS_COLOUR_MAP cleared) and a film's thickness and factor as
-// its maps say (PreparedScene::film_at: in emission.xy,
-// SURFACE_FILM_AT_HIT set and the map flags cleared). The maps are read
-// in one loop, so each call compiles one copy of sample_texture. A metal's
+// SURFACE_HAS_COLOUR_MAP cleared), a film's thickness and factor as its
+// maps say (PreparedScene::film_at: in emission.xy, SURFACE_FILM_AT_HIT
+// set and the map flags cleared) and a metal's specular layer as its
+// maps say (PreparedScene::layer_at: its F0 and F90 in absorption and
+// checker_offset.y; F90 0 where the weight is). The maps are read in one
+// loop, so each call compiles one copy of sample_texture. A metal's
 // facets stay facets_alpha's.
 fn surface_at(hit: Hit, s: GpuSurface) -> GpuSurface {
     let films = SURFACE_FILM_THICKNESS_MAP | SURFACE_FILM_FACTOR_MAP;
-    if (s.flags & (SURFACE_HAS_COLOUR_MAP | films)) == 0u {
+    let layers = SURFACE_SPECULAR_MAP | SURFACE_SPECULAR_COLOUR_MAP;
+    if (s.flags & (SURFACE_HAS_COLOUR_MAP | films | layers)) == 0u {
         return s;
     }
     var m = s;
     let f = s.film_first;
+    let l = s.absorption_first;
     if (s.flags & films) != 0u {
         m.emission = vec3<f32>(tables[f + 1u], tables[f + 2u], 0.0);
         m.flags |= SURFACE_FILM_AT_HIT;
     }
-    m.flags &= ~(SURFACE_HAS_COLOUR_MAP | films);
+    m.flags &= ~(SURFACE_HAS_COLOUR_MAP | films | layers);
     let uv = texture_coordinates(objects[hit.object], s, hit.triangle, hit.point);
+    // The layer's weight map's value there, and its F0 at its own weight.
+    var weight = 1.0;
+    var f0 = s.absorption;
+    var flags = array<u32, 5>(SURFACE_HAS_COLOUR_MAP, SURFACE_FILM_THICKNESS_MAP, SURFACE_FILM_FACTOR_MAP,
+        SURFACE_SPECULAR_MAP, SURFACE_SPECULAR_COLOUR_MAP);
     // 0: the colour map (its reference in the checker's fields); 1, 2: the
-    // film's thickness and factor maps (theirs after the film's record).
-    for (var k = 0u; k < 3u; k++) {
-        let flag = select(select(SURFACE_FILM_FACTOR_MAP, SURFACE_FILM_THICKNESS_MAP, k == 1u), SURFACE_HAS_COLOUR_MAP, k == 0u);
-        if (s.flags & flag) == 0u {
+    // film's thickness and factor maps (theirs after the film's record);
+    // 3, 4: the layer's weight and colour maps (theirs after its F0).
+    for (var k = 0u; k < 5u; k++) {
+        if (s.flags & flags[k]) == 0u {
             continue;
         }
         var bits = vec4<u32>(bitcast<vec3<u32>>(s.checker_albedo), bitcast<u32>(s.checker_size));
         if k > 0u {
-            let r = f + 4u * k;
+            let r = select(f + 4u * k, l + 4u * (k - 2u), k > 2u);
             bits = bitcast<vec4<u32>>(vec4<f32>(tables[r], tables[r + 1u], tables[r + 2u], tables[r + 3u]));
         }
         let v = sample_texture(TextureRef(bits.x, bits.y, bits.z, bits.w), uv);
@@ -94,9 +103,17 @@ fn surface_at(hit: Hit, s: GpuSurface) -> GpuSurface {
         } else if k == 1u {
             let min_nm = tables[f + 3u];
             m.emission.x = min_nm + v.y * (tables[f + 1u] - min_nm);
-        } else {
+        } else if k == 2u {
             m.emission.y = tables[f + 2u] * v.x;
+        } else if k == 3u {
+            weight = v.x;
+        } else {
+            f0 = min(vec3<f32>(tables[l], tables[l + 1u], tables[l + 2u]) * v, vec3<f32>(1.0)) * s.checker_offset.y;
         }
+    }
+    if (s.flags & layers) != 0u {
+        m.absorption = f0 * weight;
+        m.checker_offset.y = s.checker_offset.y * weight;
     }
     return m;
 }

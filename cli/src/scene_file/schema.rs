@@ -23,7 +23,7 @@ use prismatic_core::model::metalness::{Metalness, SpecularLayer};
 use prismatic_core::model::metals::{MetalColor, NamedMetal};
 use prismatic_core::model::scene::{
     Attenuation, Camera, Checker, EnvironmentMap, Estimator, FilmMap, Filter, Light, Material, MaterialKind, NormalMap,
-    Object, PhotonSequence, RadiusMode, RenderSettings, Sampler, Shape, Texture, ThinFilm, ViewPaths,
+    Object, PhotonSequence, RadiusMode, RenderSettings, Sampler, Shape, SpecularMap, Texture, ThinFilm, ViewPaths,
     WavelengthSampling, WhitePoint, Wrap, default_ambient,
 };
 use prismatic_core::model::spectrum::Spectrum;
@@ -78,6 +78,7 @@ impl Reader<'_> {
                     normal_map: self.normal_map(&mt)?,
                     roughness_map: self.roughness_map(&mt)?,
                     film_map: self.film_map(&mt)?,
+                    specular_map: self.specular_map(&mt)?,
                 });
             }
         }
@@ -319,6 +320,8 @@ impl Reader<'_> {
                         "specular",
                         "specular_ior",
                         "specular_color",
+                        "specular_map",
+                        "specular_color_map",
                         "roughness",
                         "film_thickness_nm",
                         "film_ior",
@@ -443,6 +446,8 @@ impl Reader<'_> {
                         "specular",
                         "specular_ior",
                         "specular_color",
+                        "specular_map",
+                        "specular_color_map",
                         "normal_map",
                         "normal_scale",
                     ],
@@ -506,6 +511,21 @@ impl Reader<'_> {
             return Err(self.err(&join(&t.key, "specular_ior"), &v.span(), format!("must be at least 1, got {ior}")));
         }
         Ok(SpecularLayer::gltf(ior, weight, self.opt(t, "specular_color", Self::vec3)?.unwrap_or(Vec3::ONE)))
+    }
+
+    /// A specular layer's maps (glTF's `KHR_materials_specular` textures):
+    /// `specular_map`, whose red channel, read as linear values, scales
+    /// `specular` (a grey image: its grey), and `specular_color_map`, whose
+    /// colour (sRGB) scales `specular_color`; both images beside the scene.
+    /// A map needs a layer, which the scene's check asks for.
+    fn specular_map(&self, t: &Table<'_, '_>) -> Result<Option<SpecularMap>> {
+        let (weight, color) = (self.image(t, "specular_map")?, self.image(t, "specular_color_map")?);
+        if weight.is_none() && color.is_none() {
+            return Ok(None);
+        }
+        let ior = self.opt(t, "specular_ior", Self::float)?.unwrap_or(1.5);
+        let tint = self.opt(t, "specular_color", Self::vec3)?.unwrap_or(Vec3::ONE);
+        Ok(Some(SpecularMap { weight, color, color_f0: SpecularLayer::unclipped_f0(ior, tint) }))
     }
 
     /// A dielectric's or metal's film: its `film_thickness_nm`, its
@@ -582,11 +602,12 @@ impl Reader<'_> {
     /// scene whose green channel, read as linear values, scales its
     /// `roughness` texel by texel (a grey image: its grey).
     fn roughness_map(&self, t: &Table<'_, '_>) -> Result<Option<Texture>> {
-        self.linear_image(t, "roughness_map")
+        self.image(t, "roughness_map")
     }
 
-    /// An image file beside the scene at `key` of `t`, read as linear values.
-    fn linear_image(&self, t: &Table<'_, '_>, key: &str) -> Result<Option<Texture>> {
+    /// An image file beside the scene at `key` of `t`, its texels as they
+    /// are stored (a map reads them as linear values, a colour map as sRGB).
+    fn image(&self, t: &Table<'_, '_>, key: &str) -> Result<Option<Texture>> {
         let Some(v) = self.get(t, key) else { return Ok(None) };
         let key = join(&t.key, key);
         let path = self.beside(self.string(&key, v)?);
@@ -599,8 +620,7 @@ impl Reader<'_> {
     /// `film_factor_map`, whose red channel scales `film_factor`; both
     /// images beside the scene, read as linear values.
     fn film_map(&self, t: &Table<'_, '_>) -> Result<Option<FilmMap>> {
-        let (thickness, factor) =
-            (self.linear_image(t, "film_thickness_map")?, self.linear_image(t, "film_factor_map")?);
+        let (thickness, factor) = (self.image(t, "film_thickness_map")?, self.image(t, "film_factor_map")?);
         let min_nm = self.opt(t, "film_min_nm", Self::float)?;
         if let (None, Some(v)) = (&thickness, self.get(t, "film_min_nm")) {
             let reason = "the thinnest a film_thickness_map makes the film; there is no film_thickness_map";

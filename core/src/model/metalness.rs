@@ -65,23 +65,25 @@ impl Metalness {
         Metalness { layer: layer.filter(|_| !self.is_whole()), ..self }
     }
 
-    /// The share of a photon path stored on a point of metalness `m` that
-    /// goes on reflected: m + (1 − m) F90, the most its specular part
+    /// The share of a photon path stored on a point of this metalness m
+    /// (its factor: the metalness at a point, [`crate::plan::prepared::PreparedScene::metalness_at`])
+    /// that goes on reflected: m + (1 − m) F90, the most its specular part
     /// reflects (m without a layer; 1 where it is whole metal).
     #[inline]
-    pub fn specular_share(&self, m: f32) -> f32 {
+    pub fn specular_share(&self) -> f32 {
+        let m = self.factor;
         match self.layer {
             Some(l) => m + (1.0 - m) * l.f90,
             None => m,
         }
     }
 
-    /// The share of the light the diffuse part of a point of metalness `m`
-    /// reflects toward a viewer at cosine `cos` to the normal: (1 − m)
-    /// (1 − max F_layer(cos)) ([`SpecularLayer::diffuse_share`]).
+    /// The share of the light the diffuse part of a point of this
+    /// metalness m reflects toward a viewer at cosine `cos` to the normal:
+    /// (1 − m) (1 − max F_layer(cos)) ([`SpecularLayer::diffuse_share`]).
     #[inline]
-    pub fn diffuse_share(&self, m: f32, cos: f32) -> f32 {
-        (1.0 - m) * self.layer.map_or(1.0, |l| l.diffuse_share(cos))
+    pub fn diffuse_share(&self, cos: f32) -> f32 {
+        (1.0 - self.factor) * self.layer.map_or(1.0, |l| l.diffuse_share(cos))
     }
 
     /// True where every point is metal (factor 1, no map).
@@ -121,9 +123,16 @@ impl SpecularLayer {
     /// where it reflects nothing (weight 0; an index of 1 still reflects
     /// toward grazing, as glTF's Fresnel does).
     pub fn gltf(ior: f32, weight: f32, color: Vec3) -> Option<SpecularLayer> {
-        let r = (ior - 1.0) / (ior + 1.0);
-        let f0 = (color * (r * r)).min(Vec3::ONE) * weight;
+        let f0 = SpecularLayer::unclipped_f0(ior, color).min(Vec3::ONE) * weight;
         (weight > 0.0).then_some(SpecularLayer { f0, f90: weight, ior })
+    }
+
+    /// glTF's reflectance head on of a layer of index `ior` and colour
+    /// `color` at weight 1, before it is clipped to 1: `color` ·
+    /// ((n − 1)/(n + 1))².
+    pub fn unclipped_f0(ior: f32, color: Vec3) -> Vec3 {
+        let r = (ior - 1.0) / (ior + 1.0);
+        color * (r * r)
     }
 
     /// Schlick's Fresnel per RGB channel for light meeting a facet at

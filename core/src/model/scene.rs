@@ -879,12 +879,16 @@ pub struct Material {
     /// texture coordinates; glTF's iridescence textures); `None`: the
     /// film is the same everywhere.
     pub film_map: Option<FilmMap>,
+    /// Varies the specular layer of its diffuse base by texel (a mesh's
+    /// with texture coordinates; glTF's `specularTexture` and
+    /// `specularColorTexture`); `None`: the layer is the same everywhere.
+    pub specular_map: Option<SpecularMap>,
 }
 
 impl Material {
-    /// A material of `kind` named `name`, without a normal, roughness or film map.
+    /// A material of `kind` named `name`, without a normal, roughness, film or specular map.
     pub fn new(name: impl Into<String>, kind: MaterialKind) -> Self {
-        Material { name: name.into(), kind, normal_map: None, roughness_map: None, film_map: None }
+        Material { name: name.into(), kind, normal_map: None, roughness_map: None, film_map: None, specular_map: None }
     }
 }
 
@@ -903,6 +907,27 @@ pub struct FilmMap {
     pub min_nm: f32,
     /// Its red channel scales the film's factor; `None`: the factor everywhere.
     pub factor: Option<Texture>,
+}
+
+/// Where the specular layer of a metal's or diffuse surface's base
+/// ([`crate::model::metalness::SpecularLayer`]) varies over a mesh, as
+/// glTF's `KHR_materials_specular` textures vary it, read at the mesh's
+/// texture coordinates ([`crate::plan::prepared::PreparedScene::layer_at`]):
+/// the layer's weight w (F90) and colour c there make F0 = min(`color_f0`
+/// · c, 1) · w and F90 = w.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SpecularMap {
+    /// Its red channel, read as a linear value, scales the layer's weight
+    /// (glTF's `specularTexture`, whose alpha channel the loader puts in
+    /// every channel); `None`: the layer's weight everywhere.
+    pub weight: Option<Texture>,
+    /// Its colour (sRGB decoded) scales the layer's colour (glTF's
+    /// `specularColorTexture`); `None`: the layer's F0 everywhere.
+    pub color: Option<Texture>,
+    /// The layer's reflectance head on at weight 1 before the colour map
+    /// scales it and it is clipped to 1: glTF's `specularColorFactor` ·
+    /// ((n − 1)/(n + 1))² (read with a colour map only).
+    pub color_f0: Vec3,
 }
 
 /// The geometry of an object.

@@ -10,8 +10,8 @@ use crate::model::metalness::Metalness;
 use crate::model::metals::MetalColor;
 use crate::model::scene::{
     Attenuation, FilmMap, Light, MAX_AREA_LIGHTS, MAX_DEPTH, MAX_ENVIRONMENT_LIGHTS, MAX_FILM_NM, MAX_IMAGE_SIDE,
-    MAX_MESH_TRIANGLES, MAX_PHOTONS, MAX_TEXTURE_SIDE, Material, MaterialKind, Scene, SceneError, Shape, Texture,
-    ThinFilm,
+    MAX_MESH_TRIANGLES, MAX_PHOTONS, MAX_TEXTURE_SIDE, Material, MaterialKind, Scene, SceneError, Shape, SpecularMap,
+    Texture, ThinFilm,
 };
 use crate::model::spectrum::Spectrum;
 use alloc::format;
@@ -137,7 +137,13 @@ impl Scene {
                 .iter()
                 .flat_map(|m| m.thickness.iter().chain(&m.factor))
                 .next()
-                .map(|t| ("film map", t)));
+                .map(|t| ("film map", t)))
+            .or(material
+                .specular_map
+                .iter()
+                .flat_map(|m| m.weight.iter().chain(&m.color))
+                .next()
+                .map(|t| ("specular map", t)));
             let has_uvs = matches!(&object.shape, Shape::Mesh { uvs, .. } if !uvs.is_empty());
             if let (Some((what, texture)), false) = (image, has_uvs) {
                 return Err(c.err(
@@ -386,6 +392,9 @@ fn validate_material(c: &Check<'_>, m: &Material, bands: BandSpec) -> Result<(),
     if let Some(map) = &m.film_map {
         validate_film_map(c, map, &m.kind)?;
     }
+    if let Some(map) = &m.specular_map {
+        validate_specular_map(c, map, &m.kind)?;
+    }
     if let MaterialKind::Metal { film, metalness, .. } = &m.kind {
         if let Some(f) = film {
             validate_film(c, f, bands)?;
@@ -459,6 +468,24 @@ fn validate_film_map(c: &Check<'_>, map: &FilmMap, kind: &MaterialKind) -> Resul
     c.non_negative("film_min_nm", map.min_nm)?;
     if map.min_nm > MAX_FILM_NM {
         return Err(c.err("film_min_nm", format!("must be at most {MAX_FILM_NM} nm, got {}", map.min_nm)));
+    }
+    Ok(())
+}
+
+fn validate_specular_map(c: &Check<'_>, map: &SpecularMap, kind: &MaterialKind) -> Result<(), SceneError> {
+    for (key, texture) in [("specular_map", &map.weight), ("specular_color_map", &map.color)] {
+        if let Some(t) = texture {
+            validate_texture(c, key, t)?;
+        }
+    }
+    if !matches!(kind, MaterialKind::Metal { metalness: Metalness { layer: Some(_), .. }, .. }) {
+        let key = if map.weight.is_some() { "specular_map" } else { "specular_color_map" };
+        return Err(c.err(key, "varies a specular layer; this material has none (give specular)"));
+    }
+    let sane = map.color_f0.is_finite() && map.color_f0.min_element() >= 0.0;
+    if map.color.is_some() && !sane {
+        let reason = format!("with specular_ior, must give a reflectance of at least 0, got {}", map.color_f0);
+        return Err(c.err("specular_color", reason));
     }
     Ok(())
 }

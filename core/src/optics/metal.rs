@@ -27,8 +27,9 @@
 //! part's Fresnel over that share ([`MetalOptics::specular_reflectance`]):
 //! together, by the specular part's Fresnel. The camera sees the diffuse
 //! part's light and caustic weighted by its share and the specular
-//! part's reflection by its Fresnel. m is the one at the point met
-//! ([`crate::plan::prepared::PreparedScene::metal_at`] sets it).
+//! part's reflection by its Fresnel. m and the layer are the ones at the
+//! point met ([`crate::plan::prepared::PreparedScene::metal_at`] sets them:
+//! a metalness map and specular maps vary them).
 
 use crate::geometry::primitive::basis;
 use crate::model::bands::BandTable;
@@ -59,6 +60,10 @@ pub struct MetalOptics {
     /// ([`crate::plan::prepared::PreparedScene::metal_at`], whose optics
     /// at a point have `f0` scaled and this unset).
     pub textured: bool,
+    /// Its material's specular colour map colours its layer where a ray
+    /// meets it ([`crate::plan::prepared::PreparedScene::metal_at`], whose
+    /// optics at a point have the layer there and this unset).
+    pub layer_textured: bool,
     /// The film on its surface (`None`: bare; a film of no thickness is none).
     pub film: Option<ThinFilm>,
     /// How much of it is metal; the rest is diffuse of albedo `f0`.
@@ -77,6 +82,7 @@ impl MetalOptics {
             measured,
             ggx: (roughness > 0.0).then(|| Ggx::from_roughness(roughness)),
             textured: false,
+            layer_textured: false,
             film: None,
             metalness: Metalness::WHOLE,
         }
@@ -100,7 +106,8 @@ impl MetalOptics {
     }
 
     /// True when its wavelengths reflect differently (F0 is not grey, or
-    /// a texture may colour it, or its specular layer is coloured): a
+    /// a texture may colour it, or its specular layer is coloured or a
+    /// texture may colour it): a
     /// white photon splits here into its bands or hero wavelengths, or
     /// goes on as one band ([`crate::photons::trace`]). The metal's colour
     /// counts only where some of it is metal.
@@ -112,7 +119,10 @@ impl MetalOptics {
             || self.f0.x != self.f0.y
             || self.f0.y != self.f0.z;
         let some_metal = self.metalness.factor > 0.0;
-        let layer = self.metalness.layer.is_some_and(|l| l.f0.x != l.f0.y || l.f0.y != l.f0.z || self.film.is_some());
+        let layer = self
+            .metalness
+            .layer
+            .is_some_and(|l| l.f0.x != l.f0.y || l.f0.y != l.f0.z || self.film.is_some() || self.layer_textured);
         (metal && some_metal) || (layer && self.is_blended())
     }
 
@@ -148,7 +158,7 @@ impl MetalOptics {
     /// [`Metalness::specular_share`] at the point whose optics these are.
     #[inline]
     pub fn specular_share(&self) -> f32 {
-        self.metalness.specular_share(self.m())
+        self.metalness.specular_share()
     }
 
     /// What the specular part's facet met at cosine `cos` keeps of each

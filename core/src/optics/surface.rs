@@ -6,7 +6,7 @@
 use crate::model::bands::{BandTable, VISIBLE_NM};
 use crate::model::dispersion::Dispersion;
 use crate::model::photon::WHITE_BAND;
-use crate::model::scene::{Attenuation, Checker, FilmMap, MaterialKind, Texture, ThinFilm};
+use crate::model::scene::{Attenuation, Checker, Material, MaterialKind, Texture, ThinFilm};
 use crate::optics::absorption::Absorption;
 use crate::optics::metal::MetalOptics;
 use crate::optics::microfacet::Ggx;
@@ -192,13 +192,15 @@ impl DielectricOptics {
 }
 
 impl Surface {
-    /// The surface of `material`, whose film (if any) its `film_map`
-    /// varies, for the render's band table. Whether white light splits
-    /// into bands at a dielectric is left unset: the effect plan decides it
+    /// The surface of `material` (its film, if any, as its film map
+    /// varies it; its metal's layer coloured by its specular map) for the
+    /// render's band table. Whether white light splits into bands at a
+    /// dielectric is left unset: the effect plan decides it
     /// ([`crate::plan::prepared::PreparedScene::new`]).
-    pub fn new(material: &MaterialKind, film_map: Option<&FilmMap>, bands: &BandTable) -> Self {
+    pub fn new(material: &Material, bands: &BandTable) -> Self {
+        let film_map = material.film_map.as_ref();
         let unless_bare = |film: &Option<ThinFilm>| film.filter(|f| !f.is_bare(film_map));
-        match material {
+        match &material.kind {
             MaterialKind::Diffuse { albedo, checker, texture, emission } => Surface::Diffuse {
                 albedo: *albedo,
                 checker: checker.clone(),
@@ -208,6 +210,7 @@ impl Surface {
             MaterialKind::Mirror => Surface::Mirror,
             MaterialKind::Metal { color, roughness, texture, film, metalness } => Surface::Metal(MetalOptics {
                 textured: texture.is_some(),
+                layer_textured: material.specular_map.as_ref().is_some_and(|m| m.color.is_some()),
                 film: unless_bare(film),
                 metalness: *metalness,
                 ..MetalOptics::new(*color, *roughness)
@@ -332,7 +335,7 @@ fn white_index(dispersion: &Dispersion, band_ior: &[f32]) -> f32 {
 mod tests {
     use super::*;
     use crate::model::bands::BandSpec;
-    use crate::model::scene::Sampler;
+    use crate::model::scene::{FilmMap, Sampler};
 
     fn glass(film: Option<ThinFilm>, outside: f32) -> DielectricOptics {
         let material = MaterialKind::Dielectric {
@@ -347,9 +350,8 @@ mod tests {
     }
 
     fn glass_under(material: &MaterialKind, map: Option<&FilmMap>) -> DielectricOptics {
-        let Surface::Dielectric(g) = Surface::new(material, map, &BandTable::new(BandSpec::Paper7)) else {
-            unreachable!()
-        };
+        let material = Material { film_map: map.cloned(), ..Material::new("glass", material.clone()) };
+        let Surface::Dielectric(g) = Surface::new(&material, &BandTable::new(BandSpec::Paper7)) else { unreachable!() };
         g
     }
 

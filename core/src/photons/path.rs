@@ -65,7 +65,7 @@ pub(crate) fn goes_on_as_metal(scene: &PreparedScene, index: u32, p: &Path, hit:
     match &scene.surfaces[hit.object] {
         Surface::Metal(metal) if metal.is_blended() => {
             let u = random_f32(scene.scene.render.seed, index, dim::metal_part(p.band, p.bounces));
-            u < metal.metalness.specular_share(scene.metalness_at(metal, hit))
+            u < scene.metalness_at(metal, hit).specular_share()
         }
         _ => true,
     }

@@ -32,8 +32,7 @@ pub fn reflects(scene: &PreparedScene, photon: &Photon, toward: Vec3, hit: &Hit,
         Surface::Diffuse { .. } => 1.0,
         Surface::Metal(metal) if metal.is_blended() => {
             let toward_eye = toward.dot(scene.scattering_normal(hit, toward)).abs();
-            let m = scene.metalness_at(metal, hit);
-            scene.diffuse_share_at(metal, hit, m, toward_eye, band, lambda_nm)
+            scene.diffuse_share_at(metal, hit, scene.metalness_at(metal, hit), toward_eye, band, lambda_nm)
         }
         _ => 0.0,
     };

@@ -102,6 +102,7 @@ mod tests {
             normal_map: None,
             roughness_map: None,
             film_map: None,
+            specular_map: None,
         }]);
         let positions = Vec::from([Vec3::ZERO, Vec3::X, Vec3::new(1.0, 0.0, 2.0), Vec3::new(0.0, 0.0, 2.0)]);
         let triangles = Vec::from([[0, 1, 2], [0, 2, 3]]);

@@ -7,7 +7,7 @@ use crate::geometry::primitive::{Primitive, Ray, prism_faces};
 use crate::geometry::shading::{TriangleNormals, shading_normal};
 use crate::geometry::texture::{TriangleUv, sample, sample_linear};
 use crate::model::bands::BandTable;
-use crate::model::metalness::Metalness;
+use crate::model::metalness::{Metalness, SpecularLayer};
 use crate::model::scene::{Light, MaterialKind, Scene, SceneError, Shape, ThinFilm};
 use crate::model::spectrum::Spectrum;
 use crate::optics::metal::{MetalOptics, filmed_layer_tint};
@@ -128,12 +128,8 @@ impl PreparedScene {
             .enumerate()
             .map(|(i, o)| previous.and_then(|p| p.reuse(i, &o.shape)).unwrap_or_else(|| primitive(&o.shape)))
             .collect();
-        let surfaces: Vec<Surface> = scene
-            .objects
-            .iter()
-            .map(|o| &scene.materials[o.material])
-            .map(|m| Surface::new(&m.kind, m.film_map.as_ref(), &bands))
-            .collect();
+        let surfaces: Vec<Surface> =
+            scene.objects.iter().map(|o| &scene.materials[o.material]).map(|m| Surface::new(m, &bands)).collect();
         let texture_uvs: Vec<Vec<TriangleUv>> = scene
             .objects
             .iter()
@@ -145,7 +141,8 @@ impl PreparedScene {
                         || matches!(s, Surface::Metal(m) if m.textured)
                         || scene.materials[o.material].normal_map.is_some()
                         || scene.materials[o.material].roughness_map.is_some()
-                        || scene.materials[o.material].film_map.is_some() =>
+                        || scene.materials[o.material].film_map.is_some()
+                        || scene.materials[o.material].specular_map.is_some() =>
                 {
                     bvh.sources
                         .iter()
@@ -429,11 +426,11 @@ impl PreparedScene {
     /// ([`PreparedScene::metalness_at`], no longer mapped).
     #[inline]
     pub fn metal_at(&self, metal: &MetalOptics, hit: &Hit) -> MetalOptics {
-        let metalness = Metalness { factor: self.metalness_at(metal, hit), mapped: false, ..metal.metalness };
         MetalOptics {
             ggx: self.facets(hit),
             film: self.film_at(metal.film, hit),
-            metalness,
+            metalness: self.metalness_at(metal, hit),
+            layer_textured: false,
             ..self.metal_colour_at(metal, hit)
         }
     }
@@ -475,47 +472,88 @@ impl PreparedScene {
     }
 
     /// The metalness of `metal` (the surface of the object `hit` met) at
-    /// `hit`: its factor, times the blue channel of its material's
-    /// roughness map there (linear, at the mesh's texture coordinates)
-    /// where [`Metalness::mapped`](crate::model::metalness::Metalness::mapped).
+    /// `hit`, no longer mapped: its factor, times the blue channel of its
+    /// material's roughness map there (linear, at the mesh's texture
+    /// coordinates) where [`Metalness::mapped`], and its specular layer
+    /// there ([`PreparedScene::layer_at`]).
     #[inline]
-    pub fn metalness_at(&self, metal: &MetalOptics, hit: &Hit) -> f32 {
+    pub fn metalness_at(&self, metal: &MetalOptics, hit: &Hit) -> Metalness {
         let metalness = metal.metalness;
-        if !metalness.mapped {
-            return metalness.factor;
-        }
+        let layer = self.layer_at(metalness.layer, hit);
         let map = &self.scene.materials[self.scene.objects[hit.object].material].roughness_map;
-        match (map, &self.primitives[hit.object], self.texture_uvs[hit.object].get(hit.triangle as usize)) {
-            (Some(map), Primitive::Mesh(bvh), Some(uv)) => {
+        let factor = match (map, &self.primitives[hit.object], self.texture_uvs[hit.object].get(hit.triangle as usize))
+        {
+            (Some(map), Primitive::Mesh(bvh), Some(uv)) if metalness.mapped => {
                 metalness.at(sample_linear(map, uv.at(&bvh.triangles[hit.triangle as usize], hit.point)).z)
             }
             _ => metalness.factor,
-        }
+        };
+        Metalness { factor, mapped: false, layer }
     }
 
-    /// The share of the light the diffuse part of `metal` (of metalness `m`
-    /// at `hit`) reflects toward a viewer at cosine `cos`, on a path of
-    /// band `band` at `lambda_nm`: [`Metalness::diffuse_share`], (1 − m)
-    /// (1 − max F_layer(cos)), where under a film on the layer (as the film
-    /// is at `hit`) F_layer is the film's ([`filmed_layer_tint`]: at the
-    /// path's wavelength, a white path's per RGB channel).
+    /// The specular layer `layer` of the surface of the object `hit` met,
+    /// as it is at `hit`: its weight w and colour as its material's
+    /// specular map says there ([`SpecularMap`](crate::model::scene::SpecularMap): the weight map's red
+    /// channel, linear, scales F90; the colour map, sRGB decoded, scales
+    /// `color_f0` before it is clipped to 1; each read bilinearly or by
+    /// nearest texel as its sampler says, at the mesh's texture
+    /// coordinates), else as it is everywhere; `None` where it has none
+    /// (or w is 0 there).
     #[inline]
-    pub fn diffuse_share_at(&self, metal: &MetalOptics, hit: &Hit, m: f32, cos: f32, band: u16, lambda_nm: f32) -> f32 {
-        let filmed = metal.metalness.layer.and_then(|layer| Some((layer, self.film_at(metal.film, hit)?)));
+    pub fn layer_at(&self, layer: Option<SpecularLayer>, hit: &Hit) -> Option<SpecularLayer> {
+        let layer = layer?;
+        let material = &self.scene.materials[self.scene.objects[hit.object].material];
+        let (Some(map), Primitive::Mesh(bvh), Some(uv)) = (
+            &material.specular_map,
+            &self.primitives[hit.object],
+            self.texture_uvs[hit.object].get(hit.triangle as usize),
+        ) else {
+            return Some(layer);
+        };
+        let uv = uv.at(&bvh.triangles[hit.triangle as usize], hit.point);
+        let w = map.weight.as_ref().map_or(1.0, |t| sample_linear(t, uv).x);
+        let f0 = match &map.color {
+            Some(t) => (map.color_f0 * sample(t, uv)).min(Vec3::ONE) * layer.f90,
+            None => layer.f0,
+        };
+        (w > 0.0).then_some(SpecularLayer { f0: f0 * w, f90: layer.f90 * w, ..layer })
+    }
+
+    /// The share of the light the diffuse part of `metal` (of metalness
+    /// `at` at `hit`, [`PreparedScene::metalness_at`]) reflects toward a
+    /// viewer at cosine `cos`, on a path of band `band` at `lambda_nm`:
+    /// [`Metalness::diffuse_share`], (1 − m) (1 − max F_layer(cos)), where
+    /// under a film on the layer (as the film is at `hit`) F_layer is the
+    /// film's ([`filmed_layer_tint`]: at the path's wavelength, a white
+    /// path's per RGB channel).
+    #[inline]
+    pub fn diffuse_share_at(
+        &self,
+        metal: &MetalOptics,
+        hit: &Hit,
+        at: Metalness,
+        cos: f32,
+        band: u16,
+        lambda_nm: f32,
+    ) -> f32 {
+        let filmed = at.layer.and_then(|layer| Some((layer, self.film_at(metal.film, hit)?)));
         match filmed {
             Some((layer, film)) => {
-                (1.0 - m) * (1.0 - filmed_layer_tint(layer, film, cos, band, lambda_nm, &self.bands).max_element())
+                let tint = filmed_layer_tint(layer, film, cos, band, lambda_nm, &self.bands);
+                (1.0 - at.factor) * (1.0 - tint.max_element())
             }
-            None => metal.metalness.diffuse_share(m, cos),
+            None => at.diffuse_share(cos),
         }
     }
 
     /// Whether `metal` reflects wavelengths differently at `hit` (where a
     /// white photon splits): [`MetalOptics::is_chromatic`] of its colour
-    /// there, without its facets.
+    /// and its layer there, without its facets (its metalness the
+    /// surface's).
     #[inline]
     pub fn metal_is_chromatic_at(&self, metal: &MetalOptics, hit: &Hit) -> bool {
-        self.metal_colour_at(metal, hit).is_chromatic()
+        let metalness = Metalness { layer: self.layer_at(metal.metalness.layer, hit), ..metal.metalness };
+        MetalOptics { metalness, layer_textured: false, ..self.metal_colour_at(metal, hit) }.is_chromatic()
     }
 
     /// `metal` with F0 times its colour texture at `hit` (and `textured`

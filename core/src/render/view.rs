@@ -278,16 +278,16 @@ impl<'a> ViewContext<'a> {
         points: &mut Vec<VisiblePoint>,
     ) -> Vec3 {
         let bent = Hit { normal: self.scene.scattering_normal(hit, ray.direction), ..*hit };
-        let m = self.scene.metalness_at(metal, hit);
+        let at = self.scene.metalness_at(metal, hit);
         let lambda_nm = stored_wavelength(&self.scene.bands, path.band, path.lambda_nm);
         let cos = ray.direction.dot(bent.normal).abs();
-        let share = self.scene.diffuse_share_at(metal, hit, m, cos, path.band, lambda_nm);
+        let share = self.scene.diffuse_share_at(metal, hit, at, cos, path.band, lambda_nm);
         let mut sum = Vec3::ZERO;
         if share > 0.0 {
             sum += share * self.shade_diffuse(ray, hit, (path.tint * share, path.depth), points);
         }
         // Where a point is whole metal it is followed as a whole metal is.
-        let most = metal.metalness.specular_share(m);
+        let most = at.specular_share();
         let followed = most >= 1.0 || path.weight * most > MIN_VIEW_WEIGHT;
         if most > 0.0 && path.depth < self.scene.plan.max_depth && followed {
             sum += self.off_metal(ray, &bent, metal, path, points);

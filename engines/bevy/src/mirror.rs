@@ -331,6 +331,7 @@ fn build_scene(
             normal_map: None,
             roughness_map: None,
             film_map: None,
+            specular_map: None,
         });
     }
     let mesh = |handle: &Mesh3d, at, what: &str, uv_transform| {

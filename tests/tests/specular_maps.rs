@@ -21,7 +21,7 @@ fn texel([r, g, b]: [u8; 3]) -> Texture {
 
 /// A layered surface as glTF's factors make it: base colour `color`,
 /// metalness `m`, roughness `roughness`, under the layer of index `ior`,
-/// weight `weight` and colour `tint` (and `film` on it), with `map`.
+/// weight `weight` and colour `tint` (and `film` on it).
 struct Layered {
     color: Vec3,
     m: f32,

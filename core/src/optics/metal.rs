@@ -327,6 +327,19 @@ mod tests {
         assert_eq!(grey.ggx, Some(Ggx { alpha: 0.25 }));
     }
 
+    /// A grey layer is white light's alike, unless a colour map may tint
+    /// it (its optics at a point have the layer there, and so are grey again).
+    #[test]
+    fn a_layer_a_colour_map_tints_splits_white_light() {
+        let layer = SpecularLayer::gltf(1.5, 1.0, Vec3::ONE);
+        let plastic = MetalOptics {
+            metalness: Metalness { layer, ..Metalness::plain(0.0) },
+            ..MetalOptics::new(MetalColor::Rgb(Vec3::splat(0.5)), 0.3)
+        };
+        assert!(!plastic.is_chromatic());
+        assert!(MetalOptics { layer_textured: true, ..plastic }.is_chromatic());
+    }
+
     #[test]
     fn a_measured_metal_reflects_each_wavelength_by_its_own_index() {
         let bands = BandTable::new(crate::model::bands::BandSpec::Physical(16));

@@ -6,6 +6,7 @@
 //! is only skipped when it provably cannot contribute.
 
 use crate::model::scene::{Light, Scene, WavelengthSampling};
+use crate::optics::microfacet::GATHER_ALPHA;
 use crate::optics::surface::Surface;
 use crate::plan::projection::Projection;
 use crate::plan::reach::{bounds, camera_sees, light_reaches};
@@ -298,11 +299,12 @@ impl EffectPlan {
         }
         s += &format!("max depth:           {} ({})\n", self.max_depth, self.depth_reason);
         let rough = match (self.rough_records, self.rough_gathers) {
-            (_, true) => {
-                "caustic photons recorded; gathered where α ≥ 0.1 (with light tracing, light traced where seen directly)"
-            }
-            (true, false) => "caustic photons recorded; light traced where the camera sees them",
-            _ => "caustic photons pass (no hidden light, or no light tracing and none rough enough to gather)",
+            (_, true) => format!(
+                "caustic photons recorded; gathered where α ≥ {GATHER_ALPHA} (with light tracing, light traced where \
+                 seen directly)"
+            ),
+            (true, false) => "caustic photons recorded; light traced where the camera sees them".into(),
+            _ => "caustic photons pass (no hidden light, or no light tracing and none rough enough to gather)".into(),
         };
         s += &format!("rough surfaces:      {rough}\n");
         s
